@@ -4,7 +4,9 @@
 // with TPDO1). Deterministic: the same frames give the same positions, whatever the clock.
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/cia402/cia402_state.hpp"
+#include "axisnode/drivesim/simulated_drive.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -12,33 +14,14 @@
 
 namespace mcnc::drivesim {
 
-struct DriveParams {
-  std::uint8_t node_id = 1;
-  double counts_per_unit = 10000.0;
-  double time_constant_s = 0.004;   // first-order position loop (following error = v * tau)
-  double max_velocity = 500.0;      // units/s
-  double quick_stop_decel = 5000.0; // units/s^2
-  double initial_position = 0.0;    // units
-};
-
-// One drive in cyclic synchronous position mode.
-class SimulatedDrive {
-public:
-  SimulatedDrive(const DriveParams& params, double cycle_s) noexcept;
-  [[nodiscard]] std::uint8_t node_id() const noexcept;
-  [[nodiscard]] canopen::NmtState nmt_state() const noexcept;
-  [[nodiscard]] cia402::State state() const noexcept;
-  [[nodiscard]] double position() const noexcept;  // units
-  [[nodiscard]] double velocity() const noexcept;  // units/s
-  void on_nmt(canopen::NmtCommand command) noexcept;
-  void on_rpdo(const canopen::RxPdoCsp& pdo) noexcept;  // latched until the next SYNC
-  // One cycle: apply the latched controlword/target, move; the TPDO to answer with.
-  canopen::TxPdoCsp on_sync() noexcept;
-  // ...
-};
-
+// The drives of one bus. Frames for node ids it does not own, and frames a drive does not
+// consume (TPDOs, heartbeats, EMCYs of other nodes), are ignored. An NMT, SYNC or RPDO1 frame
+// it would consume but that does not decode (wrong length, unknown NMT command, SYNC counter
+// outside 1..240) is dropped and counted in malformed_count(). Outputs that do not fit in
+// `out` are dropped (the state still advances); size `out` for one frame per drive.
 class DriveBusSimulator {
-public:
+ public:
+  // Throws std::invalid_argument on a node id outside 1..127 or used twice.
   DriveBusSimulator(const std::vector<DriveParams>& drives, double cycle_s);
   // Boot-up messages every drive sends at power on (heartbeat with state bootup).
   std::size_t power_on(std::span<canopen::CanFrame> out) noexcept;
@@ -46,8 +29,29 @@ public:
   // reset, TPDOs after SYNC for operational drives) and returns how many.
   std::size_t handle(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
   [[nodiscard]] const SimulatedDrive* find(std::uint8_t node_id) const noexcept;
+
+  // Lockstep over UDP: a real bus shows a frame to every node at once, UDP multicast on
+  // loopback hands it to one socket after another, so a SYNC may overtake an RPDO that the
+  // SYNC producer has already seen. The shell holds a SYNC until every drive that is being fed
+  // (has received an RPDO since the last SYNC before) has its RPDO for this cycle.
+  [[nodiscard]] bool rpdos_complete() const noexcept;
+  // A node that stopped sending (gone, or stopped) is no longer waited for until it sends again.
+  void stop_awaiting_silent_drives() noexcept;
   [[nodiscard]] unsigned long malformed_count() const noexcept;
-  // ...
+  [[nodiscard]] std::size_t size() const noexcept { return drives_.size(); }
+
+ private:
+  static constexpr std::int16_t kNoDrive = -1;
+
+  SimulatedDrive* find_mutable(std::uint8_t node_id) noexcept;
+  std::size_t handle_nmt(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
+  std::size_t handle_sync(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
+  void handle_rpdo(const canopen::CanFrame& in, std::uint8_t node) noexcept;
+
+  std::vector<SimulatedDrive> drives_;
+  std::array<std::int16_t, 128> index_by_node_{};  // node id -> position in drives_
+  unsigned long malformed_ = 0;
+  std::vector<bool> fed_;  // per drive: sent an RPDO in the previous cycle (awaited now)
 };
 
-} // namespace mcnc::drivesim
+}  // namespace mcnc::drivesim

@@ -79,4 +79,15 @@ struct MachineConfig {
 MachineConfig parse_machine_yaml(const std::string& yaml_text);
 MachineConfig load_machine_file(const std::string& path);
 
+// CAN bus load check (docs/configuration.md, "Bus load"). Worst-case bits on the wire of one
+// classic CAN frame with an 11-bit identifier and `data_bytes` data bytes, bit stuffing included.
+[[nodiscard]] int can_frame_bits(int data_bytes) noexcept;
+// Bits per cycle on one bus: one SYNC (1 data byte), and one RPDO and one TPDO (6 data bytes each)
+// per axis on it.
+[[nodiscard]] int bus_bits_per_cycle(int axis_count) noexcept;
+// Share of the bit rate that traffic takes at the given cycle; the loader rejects a bus above
+// kMaxBusLoad so that SDO, EMCY and heartbeat frames still fit.
+[[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us) noexcept;
+inline constexpr double kMaxBusLoad = 0.70;
+
 } // namespace mcnc::config

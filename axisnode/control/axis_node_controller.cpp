@@ -1,0 +1,106 @@
+#include "axisnode/control/axis_node_controller.hpp"
+
+#include <cmath>
+
+namespace mcnc::axisnode {
+
+const char* to_text(AxisAlarm alarm) noexcept {
+  switch (alarm) {
+    case AxisAlarm::none: return "no alarm";
+    case AxisAlarm::setpoint_deadline: return "no setpoint from the owner channel within the deadline: quick stop";
+    case AxisAlarm::owner_lost: return "owner channel lost: quick stop";
+    case AxisAlarm::drive_fault: return "drive fault";
+    case AxisAlarm::drive_lost: return "drive does not answer SYNC: quick stop";
+  }
+  return "unknown alarm";
+}
+
+AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept : setup_(setup) {}
+
+void AxisNodeController::raise(AxisAlarm alarm) noexcept {
+  out_.quick_stop = true;
+  const auto bit = static_cast<std::uint8_t>(1U << static_cast<unsigned>(alarm));
+  if ((raised_ & bit) != 0) {
+    return;
+  }
+  raised_ |= bit;
+  if (out_.alarm == AxisAlarm::none) {
+    out_.alarm = alarm;
+  }
+  if (out_.new_alarm == AxisAlarm::none) {
+    out_.new_alarm = alarm;
+  }
+}
+
+const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
+                                                const AxisNodeInput& in) noexcept {
+  out_.new_alarm = AxisAlarm::none;
+  out_.drive_state_changed = false;
+  const std::uint64_t elapsed = cycle > last_cycle_ ? cycle - last_cycle_ : 1;
+  last_cycle_ = cycle;
+  const auto deadline = static_cast<std::uint64_t>(setup_.deadline_cycles);
+
+  // Drive side: what the drive reported for the last SYNC.
+  if (in.have_tpdo) {
+    last_tpdo_cycle_ = cycle;
+    const double act = in.position_counts / setup_.counts_per_unit;
+    out_.vel = have_position_ ? (act - out_.act) / setup_.cycle_s : 0.0;
+    out_.act = act;
+    have_position_ = true;
+    const cia402::State state = cia402::decode_statusword(in.statusword);
+    out_.drive_state_changed = state != out_.drive_state;
+    out_.drive_state = state;
+  } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= deadline) {
+    raise(AxisAlarm::drive_lost);
+  }
+  if (out_.drive_state == cia402::State::fault ||
+      out_.drive_state == cia402::State::fault_reaction_active) {
+    raise(AxisAlarm::drive_fault);
+  }
+
+  if (in.emergency_stop) {
+    out_.quick_stop = true;
+  }
+  if (in.owner_lost && was_enabled_) {
+    raise(AxisAlarm::owner_lost);
+  }
+
+  const bool operating = out_.drive_state == cia402::State::operation_enabled;
+  if (operating && !was_enabled_) {
+    out_.cmd = out_.act;  // take over where the drive stands: no jump on enable
+    was_enabled_ = true;
+  }
+
+  // Owner side: follow, extrapolate a missing setpoint, or stop after the deadline.
+  if (was_enabled_ && !out_.quick_stop) {
+    if (in.have_setpoint) {
+      owner_seen_ = true;
+      last_setpoint_cycle_ = cycle;
+      out_.missing_setpoints = 0;
+      if (in.setpoint_valid) {
+        out_.cmd = in.setpoint_pos;
+        last_setpoint_vel_ = in.setpoint_vel;
+      } else {
+        last_setpoint_vel_ = 0.0;
+      }
+    } else if (owner_seen_) {
+      out_.missing_setpoints = static_cast<int>(cycle - last_setpoint_cycle_);
+      // A late sample continues the motion.
+      out_.cmd += last_setpoint_vel_ * setup_.cycle_s * static_cast<double>(elapsed);
+      if (cycle - last_setpoint_cycle_ >= deadline) {
+        raise(AxisAlarm::setpoint_deadline);
+      }
+    }
+  }
+  if (out_.quick_stop) {
+    out_.cmd = out_.act;  // the drive ramps down itself; the target follows it
+  }
+
+  const cia402::Goal goal = out_.quick_stop ? cia402::Goal::quick_stop : cia402::Goal::enabled;
+  out_.controlword = cia402::next_controlword(out_.drive_state, goal, false);
+  out_.enabled = operating && !out_.quick_stop;
+  out_.target_counts = static_cast<std::int32_t>(std::llround(out_.cmd * setup_.counts_per_unit));
+  return out_;
+}
+
+} // namespace mcnc::axisnode

@@ -1,0 +1,79 @@
+#pragma once
+// The axis node's cyclic core: follows its owner channel's setpoints, brings its CiA 402 drive
+// to operation enabled, and goes to quick stop when the owner's setpoints stop (deadline), the
+// owner is gone, or the machine is E-stopped (ARCHITECTURE.md §6). Pure and deterministic.
+#include "axisnode/cia402/cia402_state.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+namespace mcnc::axisnode {
+
+struct AxisNodeSetup {
+  double counts_per_unit = 10000.0;
+  double cycle_s = 0.001;
+  int deadline_cycles = 5;
+};
+
+struct AxisNodeInput {
+  bool have_setpoint = false;  // a setpoint from the owner stamped N-1 arrived
+  double setpoint_pos = 0.0;
+  double setpoint_vel = 0.0;
+  bool setpoint_valid = false; // the owner commands (false: hold)
+  bool have_tpdo = false;      // the drive answered this cycle's SYNC
+  std::uint16_t statusword = 0;
+  std::int32_t position_counts = 0;
+  bool owner_lost = false;     // the owner's writer left (DDS liveliness)
+  bool emergency_stop = false;
+};
+
+enum class AxisAlarm : std::uint8_t {
+  none = 0,
+  setpoint_deadline = 1,  // no setpoint for deadline_cycles
+  owner_lost = 2,
+  drive_fault = 3,
+  drive_lost = 4,         // no TPDO for deadline_cycles
+};
+inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
+const char* to_text(AxisAlarm alarm) noexcept;
+
+struct AxisNodeOutput {
+  std::uint16_t controlword = 0;
+  std::int32_t target_counts = 0;
+  double cmd = 0.0;            // commanded position (units)
+  double act = 0.0;            // actual position (units)
+  double vel = 0.0;            // actual velocity (units/s)
+  cia402::State drive_state = cia402::State::not_ready_to_switch_on;
+  bool enabled = false;        // operation enabled and following setpoints
+  bool quick_stop = false;     // quick stop commanded (latched until restart)
+  AxisAlarm new_alarm = AxisAlarm::none;  // raised this cycle
+  AxisAlarm alarm = AxisAlarm::none;      // the active (first) alarm
+  bool drive_state_changed = false;
+  int missing_setpoints = 0;   // cycles since the last setpoint (skipped cycles count)
+};
+
+class AxisNodeController {
+public:
+  explicit AxisNodeController(const AxisNodeSetup& setup) noexcept;
+  // One cycle. Cycle numbers increase; a gap (realtime ticks skipped) counts as that many
+  // cycles without input.
+  const AxisNodeOutput& cycle(std::uint64_t cycle, const AxisNodeInput& in) noexcept;
+  [[nodiscard]] const AxisNodeOutput& output() const noexcept { return out_; }
+
+private:
+  void raise(AxisAlarm alarm) noexcept;
+
+  AxisNodeSetup setup_;
+  AxisNodeOutput out_{};
+  std::uint8_t raised_ = 0;  // bit per AxisAlarm: each is raised once, then stays active
+  bool have_position_ = false;
+  bool was_enabled_ = false;
+  std::uint64_t last_tpdo_cycle_ = 0;
+  std::uint64_t last_setpoint_cycle_ = 0;
+  std::uint64_t last_cycle_ = 0;
+  bool owner_seen_ = false;  // the setpoint deadline runs once the owner has sent a setpoint
+  double last_setpoint_vel_ = 0.0;
+};
+
+} // namespace mcnc::axisnode

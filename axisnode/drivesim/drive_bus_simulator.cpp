@@ -1,0 +1,153 @@
+#include "axisnode/drivesim/drive_bus_simulator.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace mcnc::drivesim {
+
+using canopen::CanFrame;
+using canopen::FrameKind;
+using canopen::NmtCommand;
+using canopen::NmtState;
+
+DriveBusSimulator::DriveBusSimulator(const std::vector<DriveParams>& drives, double cycle_s) {
+  index_by_node_.fill(kNoDrive);
+  drives_.reserve(drives.size());
+  for (const DriveParams& params : drives) {
+    if (params.node_id < 1 || params.node_id > 127) {
+      throw std::invalid_argument("drive node id " + std::to_string(params.node_id) +
+                                  " is outside 1..127");
+    }
+    if (index_by_node_[params.node_id] != kNoDrive) {
+      throw std::invalid_argument("drive node id " + std::to_string(params.node_id) +
+                                  " is used twice on one bus");
+    }
+    index_by_node_[params.node_id] = static_cast<std::int16_t>(drives_.size());
+    drives_.emplace_back(params, cycle_s);
+  }
+  fed_.assign(drives_.size(), false);
+}
+
+std::size_t DriveBusSimulator::power_on(std::span<CanFrame> out) noexcept {
+  std::size_t written = 0;
+  for (SimulatedDrive& drive : drives_) {
+    drive.power_on();
+    if (written < out.size()) {
+      out[written++] = canopen::encode_heartbeat(drive.node_id(), NmtState::bootup);
+    }
+  }
+  return written;
+}
+
+std::size_t DriveBusSimulator::handle(const CanFrame& in, std::span<CanFrame> out) noexcept {
+  const canopen::FrameClass cls = canopen::classify(in);
+  switch (cls.kind) {
+    case FrameKind::nmt:
+      return handle_nmt(in, out);
+    case FrameKind::sync:
+      return handle_sync(in, out);
+    case FrameKind::rpdo1:
+      handle_rpdo(in, cls.node);
+      return 0;
+    default:
+      return 0;
+  }
+}
+
+std::size_t DriveBusSimulator::handle_nmt(const CanFrame& in, std::span<CanFrame> out) noexcept {
+  const auto nmt = canopen::decode_nmt(in);
+  if (!nmt) {
+    ++malformed_;
+    return 0;
+  }
+  const bool resets =
+      nmt->command == NmtCommand::reset_node || nmt->command == NmtCommand::reset_communication;
+  std::size_t written = 0;
+  auto apply = [&](SimulatedDrive& drive) {
+    if (drive.nmt_state() == NmtState::bootup) {
+      return;  // not powered yet: no CANopen stack running
+    }
+    drive.on_nmt(nmt->command);
+    if (resets && written < out.size()) {
+      out[written++] = canopen::encode_heartbeat(drive.node_id(), NmtState::bootup);
+    }
+  };
+  if (nmt->node == 0) {
+    for (SimulatedDrive& drive : drives_) {
+      apply(drive);
+    }
+  } else if (SimulatedDrive* drive = find_mutable(nmt->node)) {
+    apply(*drive);
+  }
+  return written;
+}
+
+std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFrame> out) noexcept {
+  if (!canopen::decode_sync(in)) {
+    ++malformed_;
+    return 0;
+  }
+  std::size_t written = 0;
+  for (std::size_t i = 0; i < drives_.size(); ++i) {
+    SimulatedDrive& drive = drives_[i];
+    fed_[i] = drive.rpdo_since_sync();
+    if (drive.nmt_state() != NmtState::operational) {
+      continue;
+    }
+    const canopen::TxPdoCsp tpdo = drive.on_sync();
+    if (written < out.size()) {
+      out[written++] = canopen::encode_tpdo_csp(drive.node_id(), tpdo);
+    }
+  }
+  return written;
+}
+
+bool DriveBusSimulator::rpdos_complete() const noexcept {
+  for (std::size_t i = 0; i < drives_.size(); ++i) {
+    if (fed_[i] && drives_[i].nmt_state() == NmtState::operational && !drives_[i].rpdo_since_sync()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void DriveBusSimulator::stop_awaiting_silent_drives() noexcept {
+  for (std::size_t i = 0; i < drives_.size(); ++i) {
+    if (!drives_[i].rpdo_since_sync()) {
+      fed_[i] = false;
+    }
+  }
+}
+
+void DriveBusSimulator::handle_rpdo(const CanFrame& in, std::uint8_t node) noexcept {
+  SimulatedDrive* drive = find_mutable(node);
+  if (drive == nullptr) {
+    return;  // another node's RPDO: not ours to judge
+  }
+  const auto pdo = canopen::decode_rpdo_csp(in);
+  if (!pdo) {
+    ++malformed_;
+    return;
+  }
+  if (drive->nmt_state() == NmtState::operational) {
+    drive->on_rpdo(*pdo);
+  }
+}
+
+const SimulatedDrive* DriveBusSimulator::find(std::uint8_t node_id) const noexcept {
+  if (node_id >= index_by_node_.size() || index_by_node_[node_id] == kNoDrive) {
+    return nullptr;
+  }
+  return &drives_[static_cast<std::size_t>(index_by_node_[node_id])];
+}
+
+SimulatedDrive* DriveBusSimulator::find_mutable(std::uint8_t node_id) noexcept {
+  return const_cast<SimulatedDrive*>(std::as_const(*this).find(node_id));
+}
+
+unsigned long DriveBusSimulator::malformed_count() const noexcept {
+  return malformed_;
+}
+
+}  // namespace mcnc::drivesim

@@ -1,0 +1,174 @@
+// mcnc-drivesim: the simulated CiA 402 drives of one CAN bus of a machine. Process shell only:
+// parse the command line, load the machine file, open the bus, pump frames through the
+// DriveBusSimulator until SIGTERM/SIGINT.
+#include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "common/can/can_bus.hpp"
+#include "common/config/machine_config.hpp"
+#include "common/log/logging.hpp"
+
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+
+void on_signal(int /*signal*/) {
+  g_stop = 1;
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;  // no SA_RESTART: a signal ends the bus wait at once
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+}
+
+const char* result_name(mcnc::can::BusResult result) {
+  switch (result) {
+    case mcnc::can::BusResult::ok:
+      return "ok";
+    case mcnc::can::BusResult::timeout:
+      return "timeout";
+    case mcnc::can::BusResult::malformed:
+      return "malformed";
+    case mcnc::can::BusResult::error:
+      return "error";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace mcnc;
+
+  CLI::App app{"mcnc-drivesim: simulated CiA 402 drives of one CAN bus"};
+  std::string machine_path;
+  std::string bus_name;
+  std::string log_level;
+  bool lockstep = false;
+  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  app.add_option("--bus", bus_name, "name of the bus to simulate (buses[].name)")->required();
+  app.add_flag("--lockstep", lockstep,
+               "hold each SYNC until the RPDOs of its cycle are in (UDP does not order senders)");
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
+  CLI11_PARSE(app, argc, argv);
+
+  config::MachineConfig machine;
+  try {
+    machine = config::load_machine_file(machine_path);
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "mcnc-drivesim: %s\n", e.what());
+    return 2;
+  }
+  const config::BusConfig* bus_config = machine.find_bus(bus_name);
+  if (bus_config == nullptr) {
+    std::fprintf(stderr, "mcnc-drivesim: %s: no bus named \"%s\"\n", machine_path.c_str(),
+                 bus_name.c_str());
+    return 2;
+  }
+
+  std::vector<drivesim::DriveParams> drives;
+  for (const config::AxisConfig& axis : machine.axes) {
+    if (axis.bus != bus_name) {
+      continue;
+    }
+    if (axis.node_id < 1 || axis.node_id > 127) {
+      std::fprintf(stderr, "mcnc-drivesim: axis %s: node_id %d outside 1..127\n", axis.name.c_str(),
+                   axis.node_id);
+      return 2;
+    }
+    drivesim::DriveParams params;
+    params.node_id = static_cast<std::uint8_t>(axis.node_id);
+    params.counts_per_unit = axis.counts_per_unit;
+    params.time_constant_s = axis.drive.time_constant_s;
+    params.max_velocity = axis.drive.max_velocity;
+    params.quick_stop_decel = axis.drive.quick_stop_decel;
+    drives.push_back(params);
+  }
+
+  log::setup("drivesim-" + bus_name, log_level);
+  install_signal_handlers();
+
+  try {
+    drivesim::DriveBusSimulator simulator(drives, machine.cycle_s());
+    std::unique_ptr<can::CanBus> bus = can::open_can_bus(bus_config->uri);
+    spdlog::info("{} drive(s) on {} ({}), cycle {} us", drives.size(), bus_name, bus_config->uri,
+                 machine.cycle_us);
+
+    // One TPDO per drive per SYNC at most; sized once so the loop does not allocate.
+    std::vector<canopen::CanFrame> out(drives.size() + 1);
+    unsigned long send_failures = 0;
+    const auto send_all = [&](std::size_t count) {
+      for (std::size_t i = 0; i < count; ++i) {
+        if (bus->send(out[i]) != can::BusResult::ok && send_failures++ == 0) {
+          spdlog::warn("sending a frame failed (further failures counted, not logged)");
+        }
+      }
+    };
+    send_all(simulator.power_on(out));
+
+    unsigned long bus_malformed_logged = 0;
+    unsigned long sim_malformed_logged = 0;
+    // Lockstep: a SYNC waits here until the RPDOs of its cycle are in (see rpdos_complete()).
+    std::optional<canopen::CanFrame> held_sync;
+    auto held_since = std::chrono::steady_clock::now();
+    const auto release_held_sync = [&] {
+      send_all(simulator.handle(*held_sync, out));
+      held_sync.reset();
+    };
+    while (g_stop == 0) {
+      canopen::CanFrame frame;
+      const can::BusResult result =
+          bus->receive(frame, std::chrono::milliseconds(held_sync ? 10 : 100));
+      if (held_sync && std::chrono::steady_clock::now() - held_since > std::chrono::milliseconds(500)) {
+        simulator.stop_awaiting_silent_drives();
+        spdlog::warn("lockstep: a node stopped sending RPDOs; no longer waiting for it");
+        release_held_sync();
+      }
+      if (result == can::BusResult::ok) {
+        const bool is_sync = canopen::classify(frame).kind == canopen::FrameKind::sync;
+        if (held_sync && is_sync) {
+          release_held_sync();  // a second SYNC: the held one's cycle is over
+        }
+        if (lockstep && is_sync && !simulator.rpdos_complete()) {
+          held_sync = frame;
+          held_since = std::chrono::steady_clock::now();
+          continue;
+        }
+        send_all(simulator.handle(frame, out));
+        if (held_sync && simulator.rpdos_complete()) {
+          release_held_sync();
+        }
+        if (simulator.malformed_count() != sim_malformed_logged) {
+          sim_malformed_logged = simulator.malformed_count();
+          spdlog::debug("dropped malformed CANopen frame id 0x{:03X} dlc {} ({} so far)", frame.id,
+                        frame.dlc, sim_malformed_logged);
+        }
+      } else if (result == can::BusResult::malformed) {
+        if (bus_malformed_logged++ == 0) {
+          spdlog::warn("dropped a malformed datagram (further ones counted)");
+        }
+      } else if (result == can::BusResult::error) {
+        spdlog::warn("bus receive: {} (frame id 0x{:08X})", result_name(result), frame.id);
+      }
+    }
+    spdlog::info("stopping: {} malformed datagram(s), {} malformed frame(s), {} send failure(s)",
+                 bus->malformed_count(), simulator.malformed_count(), send_failures);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

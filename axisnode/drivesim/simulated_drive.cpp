@@ -1,0 +1,160 @@
+#include "axisnode/drivesim/simulated_drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mcnc::drivesim {
+
+using canopen::NmtCommand;
+using canopen::NmtState;
+using cia402::State;
+
+SimulatedDrive::SimulatedDrive(const DriveParams& params, double cycle_s) noexcept
+    : params_(params),
+      cycle_s_(cycle_s),
+      position_(params.initial_position),
+      target_(params.initial_position) {}
+
+std::uint8_t SimulatedDrive::node_id() const noexcept {
+  return params_.node_id;
+}
+NmtState SimulatedDrive::nmt_state() const noexcept {
+  return nmt_;
+}
+State SimulatedDrive::state() const noexcept {
+  return device_.state();
+}
+double SimulatedDrive::position() const noexcept {
+  return position_;
+}
+double SimulatedDrive::velocity() const noexcept {
+  return velocity_;
+}
+double SimulatedDrive::target() const noexcept {
+  return target_;
+}
+
+void SimulatedDrive::power_on() noexcept {
+  powered_ = true;
+  nmt_ = NmtState::preoperational;
+  device_.power_on();
+}
+
+void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
+  if (!powered_) {
+    return;
+  }
+  switch (command) {
+    case NmtCommand::start:
+      nmt_ = NmtState::operational;
+      break;
+    case NmtCommand::stop:
+      nmt_ = NmtState::stopped;
+      break;
+    case NmtCommand::enter_preoperational:
+      nmt_ = NmtState::preoperational;
+      break;
+    case NmtCommand::reset_node:
+      device_ = cia402::DeviceStateMachine{};
+      device_.power_on();
+      latched_ = {};
+      rpdo_since_sync_ = false;
+      velocity_ = 0.0;
+      target_ = position_;
+      nmt_ = NmtState::preoperational;
+      break;
+    case NmtCommand::reset_communication:
+      latched_ = {};
+      rpdo_since_sync_ = false;
+      nmt_ = NmtState::preoperational;
+      break;
+  }
+}
+
+void SimulatedDrive::on_rpdo(const canopen::RxPdoCsp& pdo) noexcept {
+  if (nmt_ != NmtState::operational) {
+    return;
+  }
+  latched_ = pdo;
+  rpdo_since_sync_ = true;
+}
+
+canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
+  const State before = device_.state();
+  // The controlword stays in the object dictionary, so it is evaluated again on every SYNC
+  // (like a real drive, one transition per evaluation).
+  device_.apply(latched_.controlword);
+  const State now = device_.state();
+
+  if (now == State::operation_enabled && before == State::operation_enabled && rpdo_since_sync_) {
+    target_ = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
+  } else if (now != State::operation_enabled) {
+    target_ = position_;
+  }
+  // On the SYNC that enables operation the target stays at the actual position: the latched
+  // target was written while disabled and may be stale.
+  rpdo_since_sync_ = false;
+
+  move_one_cycle();
+
+  canopen::TxPdoCsp out;
+  out.statusword = cia402::encode_statusword(now, target_reached());
+  out.position_actual = to_counts(position_);
+  return out;
+}
+
+void SimulatedDrive::move_one_cycle() noexcept {
+  const double dt = cycle_s_;
+  switch (device_.state()) {
+    case State::operation_enabled: {
+      const double tau = std::max(params_.time_constant_s, dt);
+      velocity_ =
+          std::clamp((target_ - position_) / tau, -params_.max_velocity, params_.max_velocity);
+      position_ += velocity_ * dt;
+      break;
+    }
+    case State::quick_stop_active: {
+      const double step = params_.quick_stop_decel * dt;
+      if (std::abs(velocity_) <= step) {
+        velocity_ = 0.0;
+      } else {
+        velocity_ -= std::copysign(step, velocity_);
+      }
+      position_ += velocity_ * dt;
+      target_ = position_;
+      break;
+    }
+    default:
+      velocity_ = 0.0;
+      target_ = position_;
+      break;
+  }
+}
+
+bool SimulatedDrive::target_reached() const noexcept {
+  switch (device_.state()) {
+    case State::operation_enabled:
+      // Within half an increment: what the drive can resolve.
+      return std::abs(target_ - position_) * params_.counts_per_unit <= 0.5;
+    case State::quick_stop_active:
+      return velocity_ == 0.0;  // CiA 402: in quick stop, bit 10 means "halted"
+    default:
+      return false;
+  }
+}
+
+std::int32_t SimulatedDrive::to_counts(double units) const noexcept {
+  const double counts = std::round(units * params_.counts_per_unit);
+  constexpr double kMin = std::numeric_limits<std::int32_t>::min();
+  constexpr double kMax = std::numeric_limits<std::int32_t>::max();
+  if (!(counts >= kMin)) {  // also catches NaN
+    return std::numeric_limits<std::int32_t>::min();
+  }
+  if (counts > kMax) {
+    return std::numeric_limits<std::int32_t>::max();
+  }
+  return static_cast<std::int32_t>(counts);
+}
+
+}  // namespace mcnc::drivesim

@@ -1,0 +1,67 @@
+#pragma once
+// One simulated CiA 402 servo drive in cyclic synchronous position mode. Time advances only
+// through on_sync(), one cycle per call, so a run is a pure function of the frames received.
+#include "axisnode/cia402/canopen_frames.hpp"
+#include "axisnode/cia402/cia402_state.hpp"
+
+#include <cstdint>
+
+namespace mcnc::drivesim {
+
+struct DriveParams {
+  std::uint8_t node_id = 1;
+  double counts_per_unit = 10000.0;
+  double time_constant_s = 0.004;    // first-order position loop (following error = v * tau)
+  double max_velocity = 500.0;       // units/s
+  double quick_stop_decel = 5000.0;  // units/s^2
+  double initial_position = 0.0;     // units
+};
+
+// One drive in cyclic synchronous position mode.
+//
+// NMT: bootup until power_on(), then pre-operational; start / stop / enter pre-operational as
+// in CiA 301; reset node and reset communication return to pre-operational (the caller sends
+// the boot-up). Reset node also restarts the CiA 402 state machine (switch on disabled) and
+// clears the latched RPDO; the position is kept, as a motor does not move on a reset.
+//
+// Motion per on_sync() with dt = cycle_s:
+//  - operation_enabled: v = (target - pos) / max(tau, dt), clamped to +-max_velocity;
+//    pos += v * dt (tau below one cycle would make the discrete loop overshoot).
+//  - quick_stop_active: |v| decreases by quick_stop_decel * dt, never past 0; pos += v * dt.
+//  - otherwise v = 0 and pos stays.
+// The target is taken from RPDOs received after the SYNC that enabled operation; until then
+// (and in every other state) it follows the actual position, so enabling never jumps.
+class SimulatedDrive {
+ public:
+  SimulatedDrive(const DriveParams& params, double cycle_s) noexcept;
+  [[nodiscard]] std::uint8_t node_id() const noexcept;
+  [[nodiscard]] canopen::NmtState nmt_state() const noexcept;
+  [[nodiscard]] cia402::State state() const noexcept;
+  [[nodiscard]] double position() const noexcept;  // units
+  [[nodiscard]] double velocity() const noexcept;  // units/s
+  [[nodiscard]] double target() const noexcept;    // units, the target the loop follows
+  void power_on() noexcept;  // bootup -> pre-operational, CiA 402 -> switch on disabled
+  void on_nmt(canopen::NmtCommand command) noexcept;    // ignored before power_on()
+  void on_rpdo(const canopen::RxPdoCsp& pdo) noexcept;  // latched until the next SYNC
+  [[nodiscard]] bool rpdo_since_sync() const noexcept { return rpdo_since_sync_; }
+  // One cycle: apply the latched controlword/target, move; the TPDO to answer with.
+  canopen::TxPdoCsp on_sync() noexcept;
+
+ private:
+  void move_one_cycle() noexcept;
+  [[nodiscard]] bool target_reached() const noexcept;
+  [[nodiscard]] std::int32_t to_counts(double units) const noexcept;
+
+  DriveParams params_;
+  double cycle_s_;
+  canopen::NmtState nmt_ = canopen::NmtState::bootup;
+  bool powered_ = false;
+  cia402::DeviceStateMachine device_;
+  canopen::RxPdoCsp latched_{};
+  bool rpdo_since_sync_ = false;
+  double position_;
+  double velocity_ = 0.0;
+  double target_;
+};
+
+}  // namespace mcnc::drivesim

@@ -1,0 +1,144 @@
+#include "axisnode/link/drive_link.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace mcnc::axisnode {
+
+using namespace std::chrono_literals;
+
+DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
+                     std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup)
+    : bus_(std::move(bus)), node_id_(node_id), other_nodes_(std::move(other_nodes)), wakeup_(wakeup) {
+  thread_ = std::thread([this] { receive_loop(); });
+}
+
+DriveLink::~DriveLink() {
+  stop_ = true;
+  thread_.join();
+}
+
+void DriveLink::receive_loop() {
+  canopen::CanFrame frame;
+  while (!stop_) {
+    const can::BusResult result = bus_->receive(frame, 50ms);
+    if (result == can::BusResult::malformed) {
+      ++malformed_;
+      continue;
+    }
+    if (result != can::BusResult::ok) {
+      continue;
+    }
+    const canopen::FrameClass cls = canopen::classify(frame);
+    switch (cls.kind) {
+      case canopen::FrameKind::sync:
+        wakeup_.update([&] {
+          rpdo_seen_.reset();
+          ++syncs_;
+        });
+        break;
+      case canopen::FrameKind::rpdo1:
+        if (cls.node != node_id_ && cls.node < 128) {
+          wakeup_.update([&] { rpdo_seen_.set(cls.node); });
+        }
+        break;
+      case canopen::FrameKind::tpdo1:
+        if (cls.node == node_id_) {
+          if (auto pdo = canopen::decode_tpdo_csp(frame)) {
+            wakeup_.update([&] {
+              tpdo_statusword_ = pdo->statusword;
+              tpdo_position_ = pdo->position_actual;
+              ++tpdo_count_;
+            });
+          } else {
+            ++malformed_;
+          }
+        }
+        break;
+      case canopen::FrameKind::heartbeat:
+        if (cls.node == node_id_) {
+          auto state = canopen::decode_heartbeat(frame);
+          if (state && *state == canopen::NmtState::bootup) {
+            wakeup_.update([&] { ++bootups_; });
+          }
+        }
+        break;
+      case canopen::FrameKind::emcy:
+        if (cls.node == node_id_) {
+          if (auto emcy = canopen::decode_emcy(frame)) {
+            ++emcys_;
+            spdlog::warn("EMCY from node {}: error code 0x{:04x}", node_id_, emcy->error_code);
+          }
+        }
+        break;
+      default:
+        break;
+    }
+  }
+}
+
+bool DriveLink::bring_up(std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const std::uint64_t before = bootups_.load();
+    send_nmt(canopen::NmtCommand::reset_communication);
+    if (wakeup_.wait_for([&] { return bootups_.load() > before; }, 500ms)) {
+      send_nmt(canopen::NmtCommand::start);
+      return true;
+    }
+    spdlog::info("node {}: no boot-up yet, resetting communication again", node_id_);
+  }
+  return false;
+}
+
+void DriveLink::send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept {
+  bus_->send(canopen::encode_rpdo_csp(node_id_, canopen::RxPdoCsp{controlword, target_counts}));
+}
+
+void DriveLink::send_sync() noexcept {
+  sync_counter_ = static_cast<std::uint8_t>(sync_counter_ % 240 + 1);
+  // Our own frames are not received back: count our SYNC here.
+  wakeup_.update([&] {
+    rpdo_seen_.reset();
+    ++syncs_;
+  });
+  bus_->send(canopen::encode_sync(sync_counter_));
+}
+
+void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {
+  bus_->send(canopen::encode_nmt(command, node_id_));
+}
+
+bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
+  return wakeup_.wait_for(
+      [&] {
+        for (std::uint8_t node : other_nodes_) {
+          if (!rpdo_seen_.test(node)) {
+            return false;
+          }
+        }
+        return true;
+      },
+      timeout);
+}
+
+bool DriveLink::wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout) {
+  return wakeup_.wait_for([&] { return syncs_.load() > syncs_seen; }, timeout);
+}
+
+bool DriveLink::wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout) {
+  return wakeup_.wait_for([&] { return tpdo_count_.load() > tpdos_seen; }, timeout);
+}
+
+TpdoSample DriveLink::tpdo() const noexcept {
+  TpdoSample sample;
+  sample.pdo.statusword = tpdo_statusword_.load();
+  sample.pdo.position_actual = tpdo_position_.load();
+  sample.count = tpdo_count_.load();
+  return sample;
+}
+
+std::uint64_t DriveLink::malformed_count() const noexcept {
+  return malformed_.load() + bus_->malformed_count();
+}
+
+} // namespace mcnc::axisnode

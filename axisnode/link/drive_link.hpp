@@ -1,0 +1,71 @@
+#pragma once
+// The axis node's CAN side: one CiA 402 drive behind a CanBus. A receive thread keeps what the
+// bus said (boot-up, SYNC count, this node's TPDO, which other nodes sent their RPDO since the
+// last SYNC) and wakes the cyclic loop. In lockstep the SYNC producer sends SYNC only after
+// every node of the bus has sent its RPDO for the cycle, so the drives step in step.
+#include "axisnode/cia402/canopen_frames.hpp"
+#include "common/can/can_bus.hpp"
+#include "common/process/process_node.hpp"
+
+#include <atomic>
+#include <bitset>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <thread>
+#include <vector>
+
+namespace mcnc::axisnode {
+
+struct TpdoSample {
+  canopen::TxPdoCsp pdo{};
+  std::uint64_t count = 0;  // TPDOs received so far
+};
+
+class DriveLink {
+public:
+  DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
+            std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup);
+  ~DriveLink();
+  DriveLink(const DriveLink&) = delete;
+  DriveLink& operator=(const DriveLink&) = delete;
+
+  // NMT reset communication, wait for the boot-up, NMT start. False when the drive never
+  // answered within `timeout` (retrying the reset).
+  bool bring_up(std::chrono::milliseconds timeout);
+  void send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept;
+  void send_sync() noexcept;
+  void send_nmt(canopen::NmtCommand command) noexcept;
+
+  // Lockstep waits (false on timeout).
+  bool wait_other_rpdos(std::chrono::milliseconds timeout);
+  bool wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout);
+  bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
+
+  [[nodiscard]] TpdoSample tpdo() const noexcept;
+  [[nodiscard]] std::uint64_t sync_count() const noexcept { return syncs_.load(); }
+  [[nodiscard]] std::uint64_t malformed_count() const noexcept;
+  [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
+
+private:
+  void receive_loop();
+
+  std::unique_ptr<can::CanBus> bus_;
+  std::uint8_t node_id_;
+  std::vector<std::uint8_t> other_nodes_;
+  process::Wakeup& wakeup_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> syncs_{0};
+  std::atomic<std::uint64_t> bootups_{0};
+  std::atomic<std::uint64_t> emcys_{0};
+  std::atomic<std::uint64_t> malformed_{0};
+  std::atomic<std::uint64_t> tpdo_count_{0};
+  std::atomic<std::uint16_t> tpdo_statusword_{0};
+  std::atomic<std::int32_t> tpdo_position_{0};
+  // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
+  std::bitset<128> rpdo_seen_;
+  std::uint8_t sync_counter_ = 0;
+  std::thread thread_;
+};
+
+} // namespace mcnc::axisnode

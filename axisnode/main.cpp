@@ -1,0 +1,296 @@
+// mcnc-axisnode: one axis. DDS on one side (setpoints from its owner channel, feedback out),
+// CAN on the other (CiA 402 drive in cyclic synchronous position). Wiring only: the behaviour
+// is in AxisNodeController and DriveLink.
+#include "axisnode/control/axis_node_controller.hpp"
+#include "axisnode/link/drive_link.hpp"
+#include "common/clock/cycle_clock.hpp"
+#include "common/cycle/cycle_buffer.hpp"
+#include "common/log/logging.hpp"
+#include "common/process/process_node.hpp"
+#include "common/process/startup.hpp"
+#include "common/trace/trace_writer.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <cstdio>
+
+using namespace std::chrono_literals;
+using namespace mcnc;
+
+namespace {
+
+const char* drive_state_name(cia402::State state) { return cia402::to_string(state); }
+
+DriveState to_wire(cia402::State state) {
+  return static_cast<DriveState>(static_cast<int>(state));
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mcnc axis node: one axis, CiA 402 drive over CAN, setpoints over DDS"};
+  std::string machine_path;
+  std::string axis_name;
+  std::string trace_path;
+  std::string log_level;
+  int trace_pos_every = 10;
+  int stall_ms = 2000;
+  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  app.add_option("--axis", axis_name, "axis name from the machine file")->required();
+  app.add_option("--trace", trace_path, "write this process's trace events to FILE");
+  app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")->check(CLI::PositiveNumber);
+  app.add_option("--lockstep-stall-ms", stall_ms, "lockstep: warn when the bus keeps a cycle waiting this long");
+  app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
+  CLI11_PARSE(app, argc, argv);
+
+  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
+  const config::AxisConfig* axis = machine.find_axis(axis_name);
+  if (axis == nullptr) {
+    std::fprintf(stderr, "error: axis %s is not in machine file %s\n", axis_name.c_str(), machine_path.c_str());
+    return 2;
+  }
+  const config::BusConfig* bus = machine.find_bus(axis->bus);
+  const config::ChannelConfig* owner = machine.find_channel(axis->channel);
+  log::setup(axis->name, log_level);
+  process::install_stop_signals();
+
+  std::vector<std::uint8_t> other_nodes;
+  for (const auto& other : machine.axes) {
+    if (other.bus == axis->bus && other.name != axis->name) {
+      other_nodes.push_back(static_cast<std::uint8_t>(other.node_id));
+    }
+  }
+  const bool sync_producer = bus->sync_producer == axis->name;
+  const auto node_id = static_cast<std::uint8_t>(axis->node_id);
+
+  try {
+    process::ProcessNode node(process::resolve_domain(machine), axis->name);
+    trace::TraceWriter tracer(trace_path, axis->name);
+    node.announce(PHASE_STARTING);
+
+    // Setpoints of this axis from its owner, by cycle; the owner's writer, to notice it leaving.
+    cycle::CycleBuffer<AxisSetpoint, 8> setpoints;
+    dds::WriterId owner_writer{};
+    bool owner_writer_known = false;
+    bool owner_lost = false;
+    const auto axis_id = static_cast<std::uint32_t>(axis->id);
+    const auto owner_id = static_cast<std::uint32_t>(owner->id);
+    process::Wakeup& wake = node.wakeup();
+    dds::Reader<AxisSetpoint> setpoint_reader(
+        node.participant(),
+        [&](const AxisSetpoint& sp, const dds::WriterId& writer) {
+          if (sp.axis() != axis_id || sp.channel() != owner_id) {
+            return;  // single writer per axis: only the owner's setpoints count
+          }
+          wake.update([&] {
+            setpoints.put(sp.cycle(), sp);
+            owner_writer = writer;
+            owner_writer_known = true;
+          });
+        },
+        [&](const dds::WriterId& writer, bool matched) {
+          if (!matched) {
+            wake.update([&] {
+              if (owner_writer_known && writer == owner_writer) {
+                owner_lost = true;
+              }
+            });
+          }
+        });
+    dds::Writer<AxisFeedback> feedback_writer(node.participant());
+
+    axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
+    if (!link.bring_up(10s)) {
+      spdlog::error("drive node {} on {} does not answer (no boot-up)", node_id, bus->uri);
+      node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_lost),
+                       "drive does not answer on " + bus->uri, 0, 0, axis->id);
+      node.announce(PHASE_FAILED, 0, "drive does not answer");
+      return 1;
+    }
+
+    // Discovery: every channel's setpoint writer and feedback reader matched.
+    const int channels = static_cast<int>(machine.channels.size());
+    while (setpoint_reader.matched_writers() < channels || feedback_writer.matched_readers() < channels) {
+      if (process::g_stop_signal != 0) {
+        return 0;
+      }
+      std::this_thread::sleep_for(5ms);
+    }
+    node.announce(PHASE_READY);
+    spdlog::info("ready: node {} on {}{}", node_id, bus->uri, sync_producer ? " (SYNC producer)" : "");
+
+    // Wait for the run to start.
+    wake.wait_for([&] { return node.run_control().command != RUN_NONE || process::g_stop_signal != 0; }, 24h);
+    process::RunControlView rc = node.run_control();
+    if (rc.command != RUN_START) {
+      return 0;
+    }
+    const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
+    if (!lockstep) {
+      spdlog::info("realtime clock: {}", clock::prepare_realtime_thread());
+    }
+    node.announce(PHASE_RUNNING);
+
+    axisnode::AxisNodeSetup setup;
+    setup.counts_per_unit = axis->counts_per_unit;
+    setup.cycle_s = machine.cycle_s();
+    setup.deadline_cycles = machine.deadline_cycles;
+    axisnode::AxisNodeController controller(setup);
+    const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
+    std::int64_t pace_origin_ns = rc.start_ns;
+    bool degraded = false;  // lockstep without an owner: paced to real time
+    bool owner_loss_checked = false;
+    std::uint64_t last_tpdo_count = 0;
+    tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(), owner->name.c_str());
+
+    for (std::uint64_t cycle = 0;; ++cycle) {
+      // 1. Wait until this cycle may run.
+      bool stop = false;
+      bool estop = false;
+      if (lockstep && !degraded) {
+        wake.wait_for(
+            [&] {
+              const RunCommand cmd = node.run_control().command;
+              return cycle == 0 || setpoints.at(cycle - 1) != nullptr || owner_lost ||
+                     cmd == RUN_STOP || cmd == RUN_ESTOP || process::g_stop_signal != 0;
+            },
+            24h);
+      }
+      rc = node.run_control();
+      stop = rc.command == RUN_STOP || process::g_stop_signal != 0;
+      estop = rc.command == RUN_ESTOP;
+      if (stop) {
+        break;
+      }
+      if (lockstep && !degraded && (estop || owner_lost)) {
+        degraded = true;  // nobody feeds this node any more: keep stepping at real time
+        pace_origin_ns = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * cycle_ns;
+      }
+      if (!lockstep || degraded || rc.pace) {
+        cycle = clock::wait_for_cycle(pace_origin_ns, cycle_ns, cycle, !lockstep || degraded);
+      }
+
+      // 2. Inputs stamped N-1.
+      axisnode::AxisNodeInput in;
+      bool lost_now = false;
+      {
+        AxisSetpoint sp;
+        bool have = false;
+        wake.update([&] {
+          if (cycle > 0) {
+            if (const AxisSetpoint* s = setpoints.at(cycle - 1)) {
+              sp = *s;
+              have = true;
+            } else if (!lockstep) {
+              if (const AxisSetpoint* latest = setpoints.latest(); latest != nullptr && latest->cycle() >= cycle - 1) {
+                sp = *latest;
+                have = true;
+              }
+            }
+          }
+          lost_now = owner_lost;
+        });
+        in.have_setpoint = have;
+        in.setpoint_pos = sp.pos();
+        in.setpoint_vel = sp.vel();
+        in.setpoint_valid = sp.valid();
+      }
+      const axisnode::TpdoSample tpdo = link.tpdo();
+      in.have_tpdo = tpdo.count > last_tpdo_count;
+      last_tpdo_count = tpdo.count;
+      in.statusword = tpdo.pdo.statusword;
+      in.position_counts = tpdo.pdo.position_actual;
+      if (lost_now && !owner_loss_checked) {
+        owner_loss_checked = true;
+        if (node.stop_arrives_within(300ms)) {  // the owner left because the run ends
+          break;
+        }
+      }
+      in.owner_lost = lost_now;
+      in.emergency_stop = estop;
+
+      const axisnode::AxisNodeOutput& out = controller.cycle(cycle, in);
+
+      // 3. Feedback stamped N.
+      AxisFeedback fb;
+      fb.axis(axis_id);
+      fb.owner(owner_id);
+      fb.cycle(cycle);
+      fb.cmd(out.cmd);
+      fb.act(out.act);
+      fb.vel(out.vel);
+      fb.statusword(in.statusword);
+      fb.drive_state(to_wire(out.drive_state));
+      fb.enabled(out.enabled);
+      fb.alarm(out.alarm != axisnode::AxisAlarm::none);
+      feedback_writer.write(fb);
+
+      if (out.drive_state_changed) {
+        tracer.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", axis->name.c_str(),
+                    drive_state_name(out.drive_state));
+      }
+      if (out.new_alarm != axisnode::AxisAlarm::none) {
+        const int number = axisnode::kAlarmBase + static_cast<int>(out.new_alarm);
+        const char* text = axisnode::to_text(out.new_alarm);
+        tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"",
+                    axis->name.c_str(), number, text, axis->name.c_str());
+        node.raise_alarm(static_cast<std::uint32_t>(number), text, cycle, 0, axis->id);
+        spdlog::error("alarm {}: {}", number, text);
+      }
+      if (cycle % static_cast<std::uint64_t>(trace_pos_every) == 0) {
+        tracer.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f", axis->name.c_str(),
+                    out.cmd, out.act);
+      }
+
+      // 4. CAN: RPDO, SYNC (producer), and in lockstep the drive's answer to this SYNC. A
+      // lockstep wait never gives up on its own (that would make the run depend on load); it
+      // ends with the run, an E-stop or the owner gone, and says when it is slow.
+      auto lockstep_wait = [&](auto&& arrived, const char* what) {
+        const auto since = std::chrono::steady_clock::now();
+        bool warned = false;
+        while (!arrived(std::chrono::milliseconds(100))) {
+          const RunCommand cmd = node.run_control().command;
+          bool lost = false;
+          wake.update([&] { lost = owner_lost; });
+          if (cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0) {
+            return;
+          }
+          if (!warned && std::chrono::steady_clock::now() - since > std::chrono::milliseconds(stall_ms)) {
+            spdlog::warn("cycle {}: still waiting for {}", cycle, what);
+            warned = true;
+          }
+        }
+      };
+      const std::uint64_t syncs_before = link.sync_count();
+      link.send_rpdo(out.controlword, out.target_counts);
+      const bool wait_bus = lockstep && !degraded;
+      if (sync_producer) {
+        if (wait_bus) {
+          lockstep_wait([&](auto t) { return link.wait_other_rpdos(t); }, "the RPDOs of the other nodes");
+        }
+        link.send_sync();
+      }
+      if (wait_bus) {
+        if (!sync_producer) {
+          lockstep_wait([&](auto t) { return link.wait_sync_after(syncs_before, t); }, "SYNC");
+        }
+        lockstep_wait([&](auto t) { return link.wait_tpdo_after(tpdo.count, t); }, "the drive's TPDO");
+      }
+      if (cycle % 1000 == 0) {
+        node.announce(PHASE_RUNNING, cycle);
+      }
+    }
+
+    link.send_rpdo(cia402::encode_controlword(cia402::Command::disable_voltage),
+                   controller.output().target_counts);
+    link.send_nmt(canopen::NmtCommand::enter_preoperational);
+    tracer.flush();
+    node.announce(PHASE_STOPPED);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

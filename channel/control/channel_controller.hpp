@@ -1,0 +1,141 @@
+#pragma once
+// The channel's cyclic core: the channel state machine (reset / idle / running / alarm) that
+// pulls canonical commands from its CommandSource, hands them to its BlockPlanner, checks the
+// in-position window at every exact stop, and yields one setpoint per axis per cycle plus the
+// events of that cycle. Pure and deterministic: inputs and cycle number in, outputs out.
+#include "channel/interp/command_source.hpp"
+#include "channel/motion/block_planner.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace mcnc::channel {
+
+using interp::AxisVector;
+using interp::kMaxChannelAxes;
+
+enum class ChannelState : std::uint8_t { reset, idle, running, hold, waiting, alarm };
+const char* to_string(ChannelState state) noexcept;
+
+// What the channel knows of one of its axes at cycle N (the feedback stamped N-1).
+struct AxisFeedbackView {
+  double cmd = 0.0;       // position the axis node commands its drive
+  double act = 0.0;       // actual position
+  bool enabled = false;   // drive in operation and following this channel
+  bool alarm = false;     // the axis node holds an alarm
+  bool present = false;   // feedback received at all
+};
+
+struct AxisSetpointOut {
+  double pos = 0.0;
+  double vel = 0.0;
+  double acc = 0.0;
+  bool valid = false;     // false: the axis node holds its position
+};
+
+enum class ChannelEventKind : std::uint8_t {
+  state_changed,
+  block_started,   // command.line / command.block
+  block_ended,     // exact stop reached (in position)
+  alarm,           // alarm_number / alarm text via last_alarm()
+  program_end,     // end_code
+};
+
+struct ChannelEvent {
+  ChannelEventKind kind = ChannelEventKind::state_changed;
+  ChannelState state = ChannelState::reset;
+  int line = 0;
+  std::size_t block = 0;
+  int end_code = 0;
+  int alarm_number = 0;
+  AxisVector pos{};  // block_ended: the commanded end point of the block
+};
+
+struct ChannelAlarm {
+  int number = 0;
+  std::array<char, 192> text{};  // fixed: alarms are raised from the cyclic path
+  int line = 0;
+  int column = 0;
+  int axis = 0;  // channel axis index + 1 when an axis is concerned
+};
+
+struct ChannelOutput {
+  std::array<AxisSetpointOut, kMaxChannelAxes> setpoints{};
+  ChannelState state = ChannelState::reset;
+  std::size_t block = 0;
+  int line = 0;
+  bool program_end = false;
+  int end_code = -1;
+  static constexpr std::size_t kMaxEvents = 8;
+  std::array<ChannelEvent, kMaxEvents> events{};
+  std::size_t event_count = 0;
+};
+
+struct ChannelSetup {
+  std::size_t axis_count = 0;
+  std::vector<double> in_position;  // per axis, units
+  double cycle_s = 0.001;
+};
+
+// Alarm numbers the channel itself raises (program alarms come from the interpreter).
+inline constexpr int kAlarmPlannerRejected = 1200;
+inline constexpr int kAlarmAxisAlarm = 1201;
+inline constexpr int kAlarmAxisLost = 1202;
+inline constexpr int kAlarmEmergencyStop = 1203;
+
+class ChannelController {
+public:
+  ChannelController(ChannelSetup setup, interp::CommandSource& source, motion::BlockPlanner& planner);
+
+  // Cycle start: the program runs as soon as every axis is enabled (from idle or reset).
+  void request_start() noexcept { start_requested_ = true; }
+  // Emergency stop: motion ends at once, the channel goes to reset and stays there.
+  void emergency_stop() noexcept { estop_requested_ = true; }
+  // A program alarm found before the run (e.g. when the program was loaded): raised at the next
+  // cycle, so it stands in that cycle's events.
+  void report_alarm(const interp::ProgramAlarm& alarm) { pending_alarm_ = alarm; }
+  // An owned axis's node is gone: alarm and hold.
+  void axis_lost(std::size_t axis) noexcept;
+
+  // One cycle. `feedback` holds one entry per channel axis.
+  const ChannelOutput& cycle(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+
+  [[nodiscard]] ChannelState state() const noexcept { return out_.state; }
+  [[nodiscard]] const ChannelAlarm& last_alarm() const noexcept { return alarm_; }
+  [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
+  [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
+
+private:
+  void set_state(ChannelState state) noexcept;
+  void push_event(const ChannelEvent& event) noexcept;
+  void raise(int number, const char* text, int line, int column, int axis) noexcept;
+  void raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept;
+  bool all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept;
+  bool in_position(std::span<const AxisFeedbackView> feedback) const noexcept;
+  void run_blocks(std::span<const AxisFeedbackView> feedback) noexcept;
+  void hold_outputs(bool valid) noexcept;
+
+  enum class Phase : std::uint8_t { fetch, moving, settling, ending, done };
+
+  ChannelSetup setup_;
+  interp::CommandSource& source_;
+  motion::BlockPlanner& planner_;
+  ChannelOutput out_{};
+  ChannelAlarm alarm_{};
+  std::size_t alarm_count_ = 0;
+  AxisVector commanded_{};
+  bool position_known_ = false;
+  bool start_requested_ = false;
+  bool estop_requested_ = false;
+  std::size_t lost_axis_ = 0;  // axis index + 1
+  Phase phase_ = Phase::fetch;
+  interp::CanonicalCommand current_{};
+  std::optional<interp::ProgramAlarm> pending_alarm_;
+  bool first_cycle_ = true;
+};
+
+} // namespace mcnc::channel

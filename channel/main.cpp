@@ -1,0 +1,321 @@
+// mcnc-channel: one machining channel. Interpreter -> planner -> one setpoint per owned axis per
+// cycle over DDS, feedback back. Wiring only: the behaviour is in ChannelController.
+#include "channel/control/channel_controller.hpp"
+#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/motion/trapezoid_planner.hpp"
+#include "common/clock/cycle_clock.hpp"
+#include "common/cycle/cycle_buffer.hpp"
+#include "common/cycle/lockstep_gate.hpp"
+#include "common/log/logging.hpp"
+#include "common/process/process_node.hpp"
+#include "common/process/startup.hpp"
+#include "common/trace/trace_writer.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+using namespace std::chrono_literals;
+using namespace mcnc;
+
+namespace {
+
+::mcnc::ChannelState to_wire(channel::ChannelState state) {
+  return static_cast<::mcnc::ChannelState>(static_cast<int>(state));
+}
+
+char incremental_address(char absolute) {
+  switch (absolute) {
+    case 'X': return 'U';
+    case 'Z': return 'W';
+    case 'Y': return 'V';
+    case 'C': return 'H';
+    default: return '\0';
+  }
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') {
+      line.pop_back();
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
+  std::string machine_path;
+  std::string channel_name;
+  std::string program_path;
+  std::string trace_path;
+  std::string log_level;
+  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  app.add_option("--channel", channel_name, "channel name from the machine file")->required();
+  app.add_option("--program", program_path, "part program to run at cycle start")->check(CLI::ExistingFile);
+  app.add_option("--trace", trace_path, "write this process's trace events to FILE");
+  app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
+  CLI11_PARSE(app, argc, argv);
+
+  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
+  const config::ChannelConfig* ch = machine.find_channel(channel_name);
+  if (ch == nullptr) {
+    std::fprintf(stderr, "error: channel %s is not in machine file %s\n", channel_name.c_str(), machine_path.c_str());
+    return 2;
+  }
+  log::setup(ch->name, log_level);
+  process::install_stop_signals();
+
+  // The channel's axes, in program order.
+  std::vector<const config::AxisConfig*> axes;
+  std::vector<interp::AxisAddress> addresses;
+  std::vector<motion::AxisLimits> limits;
+  channel::ChannelSetup setup;
+  for (const std::string& name : ch->axes) {
+    const config::AxisConfig* a = machine.find_axis(name);
+    axes.push_back(a);
+    addresses.push_back(interp::AxisAddress{a->address, incremental_address(a->address), a->diameter});
+    limits.push_back(motion::AxisLimits{a->rapid_rate / 60.0, a->max_feed / 60.0, a->acceleration});
+    setup.in_position.push_back(a->in_position);
+  }
+  setup.axis_count = axes.size();
+  setup.cycle_s = machine.cycle_s();
+
+  interp::MinimalInterpreter interpreter(addresses);
+  std::vector<std::string> program_lines;
+  std::string program_name;
+  std::optional<interp::ProgramAlarm> load_alarm;
+  if (!program_path.empty()) {
+    std::ifstream file(program_path);
+    std::stringstream text;
+    text << file.rdbuf();
+    program_lines = split_lines(text.str());
+    program_name = program_path.substr(program_path.find_last_of('/') + 1);
+    load_alarm = interpreter.load(text.str(), program_name);
+  }
+  motion::TrapezoidPlanner planner(axes.size(), limits);
+  channel::ChannelController controller(setup, interpreter, planner);
+
+  try {
+    process::ProcessNode node(process::resolve_domain(machine), ch->name);
+    trace::TraceWriter tracer(trace_path, ch->name);
+    node.announce(PHASE_STARTING);
+    process::Wakeup& wake = node.wakeup();
+
+    // Feedback of the channel's axes, by cycle, and the lockstep gate over them.
+    std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(axes.size());
+    cycle::LockstepGate gate(axes.size());
+    std::vector<dds::WriterId> axis_writer(axes.size());
+    std::vector<bool> axis_writer_known(axes.size(), false);
+    std::vector<bool> axis_lost(axes.size(), false);
+    auto slot_of = [&](std::uint32_t axis_id) -> int {
+      for (std::size_t i = 0; i < axes.size(); ++i) {
+        if (static_cast<std::uint32_t>(axes[i]->id) == axis_id) {
+          return static_cast<int>(i);
+        }
+      }
+      return -1;
+    };
+    dds::Reader<AxisFeedback> feedback_reader(
+        node.participant(),
+        [&](const AxisFeedback& fb, const dds::WriterId& writer) {
+          const int slot = slot_of(fb.axis());
+          if (slot < 0) {
+            return;
+          }
+          wake.update([&] {
+            feedback[static_cast<std::size_t>(slot)].put(fb.cycle(), fb);
+            gate.on_sample(static_cast<std::size_t>(slot), fb.cycle(), fb.event_seq());
+            axis_writer[static_cast<std::size_t>(slot)] = writer;
+            axis_writer_known[static_cast<std::size_t>(slot)] = true;
+          });
+        },
+        [&](const dds::WriterId& writer, bool matched) {
+          if (matched) {
+            return;
+          }
+          wake.update([&] {
+            for (std::size_t i = 0; i < axes.size(); ++i) {
+              if (axis_writer_known[i] && axis_writer[i] == writer) {
+                axis_lost[i] = true;
+                gate.set_expected(i, false);
+              }
+            }
+          });
+        });
+    dds::Writer<AxisSetpoint> setpoint_writer(node.participant());
+    dds::Writer<::mcnc::ChannelStatus> status_writer(node.participant());
+
+    const int total_axes = static_cast<int>(machine.axes.size());
+    while (feedback_reader.matched_writers() < total_axes || setpoint_writer.matched_readers() < total_axes) {
+      if (process::g_stop_signal != 0) {
+        return 0;
+      }
+      std::this_thread::sleep_for(5ms);
+    }
+    node.announce(PHASE_READY);
+    spdlog::info("ready: {} axes{}{}", axes.size(), program_path.empty() ? "" : ", program ", program_name);
+
+    wake.wait_for([&] { return node.run_control().command != RUN_NONE || process::g_stop_signal != 0; }, 24h);
+    process::RunControlView rc = node.run_control();
+    if (rc.command != RUN_START) {
+      return 0;
+    }
+    const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
+    if (!lockstep) {
+      spdlog::info("realtime clock: {}", clock::prepare_realtime_thread());
+    }
+    node.announce(PHASE_RUNNING);
+    const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
+    std::int64_t pace_origin_ns = rc.start_ns;
+    bool degraded = false;
+
+    if (load_alarm) {
+      controller.report_alarm(*load_alarm);
+    } else if (!program_path.empty()) {
+      controller.request_start();
+    }
+
+    std::vector<channel::AxisFeedbackView> views(axes.size());
+    std::vector<bool> reported_lost(axes.size(), false);
+    char escaped[512];
+    for (std::uint64_t cycle = 0;; ++cycle) {
+      if (lockstep && !degraded) {
+        wake.wait_for(
+            [&] {
+              const RunCommand cmd = node.run_control().command;
+              return gate.may_run(cycle) || cmd == RUN_STOP || cmd == RUN_ESTOP ||
+                     process::g_stop_signal != 0;
+            },
+            24h);
+      }
+      rc = node.run_control();
+      if (rc.command == RUN_STOP || process::g_stop_signal != 0) {
+        break;
+      }
+      if (rc.command == RUN_ESTOP) {
+        controller.emergency_stop();
+        if (lockstep && !degraded) {
+          degraded = true;
+          pace_origin_ns = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * cycle_ns;
+        }
+      }
+      if (!lockstep || degraded || rc.pace) {
+        cycle = clock::wait_for_cycle(pace_origin_ns, cycle_ns, cycle, !lockstep || degraded);
+      }
+
+      // An axis node leaving may be the end of the run, not a failure.
+      bool newly_lost = false;
+      wake.update([&] {
+        for (std::size_t i = 0; i < axes.size(); ++i) {
+          newly_lost = newly_lost || (axis_lost[i] && !reported_lost[i]);
+        }
+      });
+      if (newly_lost && node.stop_arrives_within(300ms)) {
+        break;
+      }
+      wake.update([&] {
+        for (std::size_t i = 0; i < axes.size(); ++i) {
+          const AxisFeedback* fb = cycle > 0 ? feedback[i].at(cycle - 1) : nullptr;
+          if (fb == nullptr && !lockstep) {
+            fb = feedback[i].latest();
+          }
+          if (fb != nullptr) {
+            views[i] = channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
+          }
+          if (axis_lost[i] && !reported_lost[i]) {
+            reported_lost[i] = true;
+            controller.axis_lost(i);
+          }
+        }
+      });
+
+      const channel::ChannelOutput& out = controller.cycle(cycle, views);
+
+      for (std::size_t i = 0; i < axes.size(); ++i) {
+        AxisSetpoint sp;
+        sp.axis(static_cast<std::uint32_t>(axes[i]->id));
+        sp.channel(static_cast<std::uint32_t>(ch->id));
+        sp.cycle(cycle);
+        sp.pos(out.setpoints[i].pos);
+        sp.vel(out.setpoints[i].vel);
+        sp.acc(out.setpoints[i].acc);
+        sp.valid(out.setpoints[i].valid);
+        setpoint_writer.write(sp);
+      }
+      ::mcnc::ChannelStatus status;
+      status.channel(static_cast<std::uint32_t>(ch->id));
+      status.cycle(cycle);
+      status.state(to_wire(out.state));
+      status.block(static_cast<std::uint32_t>(out.block));
+      status.block_total(static_cast<std::uint32_t>(interpreter.block_count()));
+      status.line(out.line);
+      status.alarms(static_cast<std::uint32_t>(controller.alarm_count()));
+      status.program_loaded(!program_path.empty() && !load_alarm);
+      status.program_end(out.program_end);
+      status.end_code(out.end_code);
+      status_writer.write(status);
+
+      for (std::size_t e = 0; e < out.event_count; ++e) {
+        const channel::ChannelEvent& ev = out.events[e];
+        switch (ev.kind) {
+          case channel::ChannelEventKind::state_changed:
+            tracer.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch->name.c_str(),
+                        channel::to_string(ev.state));
+            break;
+          case channel::ChannelEventKind::block_started: {
+            const std::size_t idx = static_cast<std::size_t>(ev.line) - 1;
+            trace::json_escape(idx < program_lines.size() ? program_lines[idx].c_str() : "", escaped,
+                               sizeof escaped);
+            tracer.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"",
+                        ch->name.c_str(), program_name.c_str(), ev.line, escaped);
+            break;
+          }
+          case channel::ChannelEventKind::block_ended:
+            for (std::size_t i = 0; i < axes.size(); ++i) {
+              tracer.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f",
+                          axes[i]->name.c_str(), ev.pos[i], views[i].act);
+            }
+            break;
+          case channel::ChannelEventKind::alarm: {
+            const channel::ChannelAlarm& alarm = controller.last_alarm();
+            trace::json_escape(alarm.text.data(), escaped, sizeof escaped);
+            if (alarm.axis > 0) {
+              tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
+                          ch->name.c_str(), alarm.number, escaped, ch->name.c_str(),
+                          axes[static_cast<std::size_t>(alarm.axis - 1)]->name.c_str(), alarm.line);
+            } else {
+              tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
+                          ch->name.c_str(), alarm.number, escaped, ch->name.c_str(), alarm.line);
+            }
+            node.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle, ch->id,
+                             alarm.axis > 0 ? axes[static_cast<std::size_t>(alarm.axis - 1)]->id : 0, alarm.line);
+            spdlog::error("alarm {}: {} (line {})", alarm.number, alarm.text.data(), alarm.line);
+            break;
+          }
+          case channel::ChannelEventKind::program_end:
+            tracer.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch->name.c_str(), ev.end_code);
+            spdlog::info("program end M{:02d} at cycle {}", ev.end_code, cycle);
+            break;
+        }
+      }
+      if (cycle % 1000 == 0) {
+        node.announce(PHASE_RUNNING, cycle);
+      }
+    }
+    tracer.flush();
+    node.announce(PHASE_STOPPED);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,34 @@
+#pragma once
+// CAN over UDP multicast on loopback ("udp:GROUP:PORT"): one raw 16-byte CanFrame per
+// datagram, a broadcast medium shared by every endpoint of the same group and port on this
+// host. For multi-process tests on hosts without kernel CAN.
+#include "common/can/can_bus.hpp"
+
+#include <netinet/in.h>
+#include <cstdint>
+
+namespace mcnc::can {
+
+class UdpCanBus final : public CanBus {
+ public:
+  // group: IPv4 multicast address (network byte order); port: host byte order. Throws
+  // std::runtime_error (with `uri` and the failing step) when a socket cannot be set up.
+  UdpCanBus(const std::string& uri, in_addr group, std::uint16_t port);
+  ~UdpCanBus() override;
+  UdpCanBus(const UdpCanBus&) = delete;
+  UdpCanBus& operator=(const UdpCanBus&) = delete;
+
+  BusResult send(const CanFrame& frame) noexcept override;
+  BusResult receive(CanFrame& frame, std::chrono::microseconds timeout) noexcept override;
+  [[nodiscard]] unsigned long malformed_count() const noexcept override;
+  [[nodiscard]] int native_handle() const noexcept override;
+
+ private:
+  int recv_fd_ = -1;
+  int send_fd_ = -1;
+  sockaddr_in destination_{};
+  sockaddr_in own_source_{};  // the send socket's address: datagrams from it are our own
+  unsigned long malformed_ = 0;
+};
+
+}  // namespace mcnc::can

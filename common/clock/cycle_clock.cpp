@@ -1,0 +1,53 @@
+#include "common/clock/cycle_clock.hpp"
+
+#include <sched.h>
+#include <sys/mman.h>
+#include <sys/prctl.h>
+
+#include <cerrno>
+#include <ctime>
+
+namespace mcnc::clock {
+
+std::int64_t monotonic_ns() noexcept {
+  timespec ts{};
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+void sleep_until_ns(std::int64_t t_ns) noexcept {
+  timespec ts{};
+  ts.tv_sec = static_cast<time_t>(t_ns / 1'000'000'000);
+  ts.tv_nsec = static_cast<long>(t_ns % 1'000'000'000);
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std::uint64_t cycle,
+                             bool skip_missed) noexcept {
+  const std::int64_t target = origin_ns + static_cast<std::int64_t>(cycle) * period_ns;
+  const std::int64_t now = monotonic_ns();
+  if (skip_missed && now > target + period_ns) {
+    return static_cast<std::uint64_t>((now - origin_ns) / period_ns);
+  }
+  sleep_until_ns(target);
+  return cycle;
+}
+
+const char* prepare_realtime_thread() noexcept {
+  // The default 50 us timer slack would add to every wake-up.
+  prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
+  sched_param param{};
+  param.sched_priority = 40;
+  const bool fifo = sched_setscheduler(0, SCHED_FIFO, &param) == 0;
+  const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+  if (fifo && locked) {
+    return "timer slack 1 ns, SCHED_FIFO 40, memory locked";
+  }
+  if (fifo) {
+    return "timer slack 1 ns, SCHED_FIFO 40 (mlockall not permitted)";
+  }
+  return "timer slack 1 ns (SCHED_FIFO not permitted)";
+}
+
+} // namespace mcnc::clock

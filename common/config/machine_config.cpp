@@ -1,0 +1,454 @@
+#include "common/config/machine_config.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string_view>
+
+#include "common/config/yaml_reader.hpp"
+
+namespace mcnc::config {
+
+namespace {
+
+using detail::YamlMap;
+using detail::YamlValue;
+
+// Names travel in logs, the trace and on the command line ("--program CH1=FILE"), so they stay
+// short and free of separators.
+constexpr std::size_t kMaxNameLength = 31;
+// Linux IFNAMSIZ is 16 including the terminating NUL.
+constexpr std::size_t kMaxIfnameLength = 15;
+// kMaxBusLoad as a whole percentage, for an exact integer comparison.
+constexpr long long kMaxBusLoadPercent = 70;
+static_assert(kMaxBusLoad == kMaxBusLoadPercent / 100.0);
+
+std::string read_name(const YamlValue& value) {
+  std::string name = value.string();
+  if (name.empty() || name.size() > kMaxNameLength) {
+    value.fail("a name must have 1 to " + std::to_string(kMaxNameLength) + " characters");
+  }
+  for (char c : name) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-';
+    if (!ok) {
+      value.fail("name '" + name + "' may only hold letters, digits, '_' and '-'");
+    }
+  }
+  return name;
+}
+
+int read_int(const YamlValue& value, int min, int max) {
+  return static_cast<int>(value.integer(min, max));
+}
+
+void read_optional_int(const YamlMap& map, std::string_view key, int min, int max, int& out) {
+  if (auto value = map.optional(key)) {
+    out = read_int(*value, min, max);
+  }
+}
+
+void read_optional_positive(const YamlMap& map, std::string_view key, double& out) {
+  if (auto value = map.optional(key)) {
+    out = value->positive_number();
+  }
+}
+
+// Strict dotted quad: four decimal octets 0..255.
+bool parse_ipv4(std::string_view text, unsigned (&octets)[4]) {
+  for (int i = 0; i < 4; ++i) {
+    const auto dot = text.find('.');
+    const std::string_view part = i < 3 ? text.substr(0, dot) : text;
+    if ((i < 3 && dot == std::string_view::npos) || part.empty() || part.size() > 3) {
+      return false;
+    }
+    unsigned value = 0;
+    const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (ec != std::errc() || end != part.data() + part.size() || value > 255) {
+      return false;
+    }
+    octets[i] = value;
+    if (i < 3) {
+      text.remove_prefix(dot + 1);
+    }
+  }
+  return true;
+}
+
+void check_uri(const YamlValue& value, const std::string& uri) {
+  constexpr std::string_view kUdp = "udp:";
+  constexpr std::string_view kSocketcan = "socketcan:";
+  const std::string_view text = uri;
+  if (text.starts_with(kUdp)) {
+    const std::string_view rest = text.substr(kUdp.size());
+    const auto colon = rest.rfind(':');
+    if (colon == std::string_view::npos) {
+      value.fail("a udp bus is written udp:GROUP:PORT, got '" + uri + "'");
+    }
+    unsigned octets[4] = {};
+    if (!parse_ipv4(rest.substr(0, colon), octets)) {
+      value.fail("'" + std::string(rest.substr(0, colon)) + "' is not an IPv4 address");
+    }
+    // 224.0.0.0/4: every process of the bus joins the group, so it must be multicast.
+    if (octets[0] < 224 || octets[0] > 239) {
+      value.fail("group " + std::string(rest.substr(0, colon)) +
+                 " is not an IPv4 multicast address (224.0.0.0 to 239.255.255.255)");
+    }
+    const std::string_view port_text = rest.substr(colon + 1);
+    unsigned port = 0;
+    const auto [end, ec] =
+        std::from_chars(port_text.data(), port_text.data() + port_text.size(), port);
+    if (port_text.empty() || ec != std::errc() || end != port_text.data() + port_text.size() ||
+        port < 1 || port > 65535) {
+      value.fail("port '" + std::string(port_text) + "' is not in 1..65535");
+    }
+    return;
+  }
+  if (text.starts_with(kSocketcan)) {
+    const std::string_view ifname = text.substr(kSocketcan.size());
+    if (ifname.empty() || ifname.size() > kMaxIfnameLength) {
+      value.fail("a socketcan interface name has 1 to " + std::to_string(kMaxIfnameLength) +
+                 " characters");
+    }
+    for (char c : ifname) {
+      if (c == '/' || c == ':' || static_cast<unsigned char>(c) <= ' ') {
+        value.fail("'" + std::string(ifname) + "' is not a valid interface name");
+      }
+    }
+    return;
+  }
+  value.fail("a bus uri starts with udp: or socketcan:, got '" + uri + "'");
+}
+
+void parse_machine_section(const YamlValue& value, MachineConfig& out) {
+  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain"});
+  out.name = read_name(map.required("name"));
+  read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
+  read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
+  // 232 is the highest domain whose RTPS ports still fit in 16 bits.
+  read_optional_int(map, "domain", 0, 232, out.domain);
+}
+
+BusConfig parse_bus(const YamlValue& value) {
+  const YamlMap map = value.map({"name", "uri", "bitrate", "sync_producer"});
+  BusConfig bus;
+  bus.name = read_name(map.required("name"));
+  const YamlValue uri = map.required("uri");
+  bus.uri = uri.string();
+  check_uri(uri, bus.uri);
+  read_optional_int(map, "bitrate", 10000, 1000000, bus.bitrate);
+  bus.sync_producer = read_name(map.required("sync_producer"));
+  return bus;
+}
+
+ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs) {
+  const YamlMap map = value.map({"name", "axes"});
+  ChannelConfig channel;
+  channel.name = read_name(map.required("name"));
+  const YamlValue axes = map.required("axes");
+  axis_refs = axes.list();
+  if (axis_refs.empty()) {
+    axes.fail("a channel needs at least one axis");
+  }
+  for (const YamlValue& ref : axis_refs) {
+    channel.axes.push_back(read_name(ref));
+  }
+  return channel;
+}
+
+DriveSimConfig parse_drive(const YamlValue& value) {
+  const YamlMap map = value.map({"time_constant_s", "max_velocity", "quick_stop_decel"});
+  DriveSimConfig drive;
+  read_optional_positive(map, "time_constant_s", drive.time_constant_s);
+  read_optional_positive(map, "max_velocity", drive.max_velocity);
+  read_optional_positive(map, "quick_stop_decel", drive.quick_stop_decel);
+  return drive;
+}
+
+AxisConfig parse_axis(const YamlValue& value) {
+  const YamlMap map =
+      value.map({"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit",
+                 "rapid_rate", "max_feed", "acceleration", "in_position", "drive"});
+  AxisConfig axis;
+  axis.name = read_name(map.required("name"));
+
+  const YamlValue address = map.required("address");
+  const std::string letter = address.string();
+  if (letter.size() != 1 || std::string_view("XYZABC").find(letter[0]) == std::string_view::npos) {
+    address.fail("address must be one of X Y Z A B C, got '" + letter + "'");
+  }
+  axis.address = letter[0];
+
+  if (auto type = map.optional("type")) {
+    const std::string text = type->string();
+    if (text == "linear") {
+      axis.type = AxisType::linear;
+    } else if (text == "rotary") {
+      axis.type = AxisType::rotary;
+    } else {
+      type->fail("type must be linear or rotary, got '" + text + "'");
+    }
+  }
+  if (auto diameter = map.optional("diameter")) {
+    axis.diameter = diameter->boolean();
+    // Diameter programming halves a length; an angle has no diameter.
+    if (axis.diameter && axis.type == AxisType::rotary) {
+      diameter->fail("a rotary axis cannot be programmed in diameter");
+    }
+  }
+  axis.bus = read_name(map.required("bus"));
+  // CANopen node ids are 1..127; 0 addresses every node in NMT commands.
+  axis.node_id = read_int(map.required("node_id"), 1, 127);
+  read_optional_positive(map, "counts_per_unit", axis.counts_per_unit);
+  read_optional_positive(map, "rapid_rate", axis.rapid_rate);
+  read_optional_positive(map, "max_feed", axis.max_feed);
+  read_optional_positive(map, "acceleration", axis.acceleration);
+  read_optional_positive(map, "in_position", axis.in_position);
+  if (auto drive = map.optional("drive")) {
+    axis.drive = parse_drive(*drive);
+  }
+  return axis;
+}
+
+// Rejects a name already seen in the same list; `seen` maps name -> index.
+void check_unique(std::map<std::string, std::size_t>& seen, const std::string& name,
+                  const YamlValue& item, std::size_t index, const std::string& list,
+                  const std::string& what) {
+  const auto [it, inserted] = seen.emplace(name, index);
+  if (!inserted) {
+    item.child("name").fail("duplicate " + what + " name " + name + " (also " +
+                            detail::join_index(list, it->second) + ")");
+  }
+}
+
+MachineConfig parse_document(const YAML::Node& root) {
+  const YamlValue top(root, "");
+  if (!root.IsMap()) {
+    top.fail("a machine file is a map with the keys machine, buses, channels and axes");
+  }
+  const YamlMap doc = top.map({"machine", "buses", "channels", "axes"});
+  MachineConfig config;
+  parse_machine_section(doc.required("machine"), config);
+
+  // Per-item checks first (types, ranges, unknown keys), in file order.
+  const YamlValue buses_value = doc.required("buses");
+  const std::vector<YamlValue> buses = buses_value.list();
+  if (buses.empty()) {
+    buses_value.fail("a machine needs at least one bus");
+  }
+  std::map<std::string, std::size_t> bus_index;
+  std::map<std::string, std::size_t> bus_uri;
+  for (std::size_t i = 0; i < buses.size(); ++i) {
+    config.buses.push_back(parse_bus(buses[i]));
+    check_unique(bus_index, config.buses[i].name, buses[i], i, "buses", "bus");
+    // Two buses on one medium would share node ids and SYNC without the loader noticing.
+    const auto [it, inserted] = bus_uri.emplace(config.buses[i].uri, i);
+    if (!inserted) {
+      buses[i].child("uri").fail("uri " + config.buses[i].uri + " is already used by " +
+                                 detail::join_index("buses", it->second));
+    }
+  }
+
+  const YamlValue axes_value = doc.required("axes");
+  const std::vector<YamlValue> axes = axes_value.list();
+  if (axes.empty()) {
+    axes_value.fail("a machine needs at least one axis");
+  }
+  std::map<std::string, std::size_t> axis_index;
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    config.axes.push_back(parse_axis(axes[i]));
+    config.axes[i].id = static_cast<int>(i) + 1;
+    check_unique(axis_index, config.axes[i].name, axes[i], i, "axes", "axis");
+  }
+
+  const YamlValue channels_value = doc.required("channels");
+  const std::vector<YamlValue> channels = channels_value.list();
+  if (channels.empty()) {
+    channels_value.fail("a machine needs at least one channel");
+  }
+  std::vector<std::vector<YamlValue>> channel_refs(channels.size());
+  std::map<std::string, std::size_t> channel_index;
+  for (std::size_t i = 0; i < channels.size(); ++i) {
+    config.channels.push_back(parse_channel(channels[i], channel_refs[i]));
+    config.channels[i].id = static_cast<int>(i) + 1;
+    check_unique(channel_index, config.channels[i].name, channels[i], i, "channels", "channel");
+  }
+
+  // Cross references.
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    const AxisConfig& axis = config.axes[i];
+    if (!bus_index.contains(axis.bus)) {
+      axes[i].child("bus").fail("unknown bus " + axis.bus);
+    }
+  }
+
+  for (std::size_t c = 0; c < config.channels.size(); ++c) {
+    ChannelConfig& channel = config.channels[c];
+    std::map<char, std::string> addresses;  // address -> axis name, within this channel
+    for (std::size_t j = 0; j < channel.axes.size(); ++j) {
+      const YamlValue& ref = channel_refs[c][j];
+      const auto found = axis_index.find(channel.axes[j]);
+      if (found == axis_index.end()) {
+        ref.fail("unknown axis " + channel.axes[j]);
+      }
+      AxisConfig& axis = config.axes[found->second];
+      if (!axis.channel.empty()) {
+        ref.fail("axis " + axis.name + " is already in channel " + axis.channel);
+      }
+      axis.channel = channel.name;
+      // One address per channel: X also claims its incremental twin U, Z claims W, and so on.
+      const auto [other, inserted] = addresses.emplace(axis.address, axis.name);
+      if (!inserted) {
+        ref.fail("axis " + axis.name + " has address " + std::string(1, axis.address) +
+                 ", already used by axis " + other->second + " in channel " + channel.name);
+      }
+    }
+  }
+
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    if (config.axes[i].channel.empty()) {
+      axes[i].fail("axis " + config.axes[i].name + " is in no channel");
+    }
+  }
+
+  // Node ids per bus, and the axes each bus carries.
+  std::map<std::string, std::map<int, std::string>> nodes;  // bus -> node id -> axis
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    const AxisConfig& axis = config.axes[i];
+    const auto [other, inserted] = nodes[axis.bus].emplace(axis.node_id, axis.name);
+    if (!inserted) {
+      axes[i].child("node_id").fail("node id " + std::to_string(axis.node_id) +
+                                    " is already used by axis " + other->second + " on bus " +
+                                    axis.bus);
+    }
+  }
+
+  for (std::size_t b = 0; b < config.buses.size(); ++b) {
+    const BusConfig& bus = config.buses[b];
+    const auto on_bus = nodes.find(bus.name);
+    if (on_bus == nodes.end()) {
+      buses[b].fail("no axis is on bus " + bus.name);
+    }
+    const auto producer = axis_index.find(bus.sync_producer);
+    if (producer == axis_index.end()) {
+      buses[b].child("sync_producer").fail("unknown axis " + bus.sync_producer);
+    }
+    if (config.axes[producer->second].bus != bus.name) {
+      buses[b]
+          .child("sync_producer")
+          .fail("axis " + bus.sync_producer + " is not on bus " + bus.name);
+    }
+    const int count = static_cast<int>(on_bus->second.size());
+    // Integer comparison, so a bus exactly at the limit is accepted on every platform.
+    const long long bits = bus_bits_per_cycle(count);
+    const long long capacity =
+        static_cast<long long>(bus.bitrate) * config.cycle_us;  // 1e6 x bits/cycle
+    if (bits * 1000000LL * 100 > capacity * kMaxBusLoadPercent) {
+      std::ostringstream reason;
+      reason.precision(1);
+      reason << std::fixed << count << (count == 1 ? " axis needs " : " axes need ") << bits
+             << " bits per " << config.cycle_us << " us cycle, "
+             << 100.0 * bus_load(count, bus.bitrate, config.cycle_us) << " % of " << bus.bitrate
+             << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
+      buses[b].fail(reason.str());
+    }
+  }
+  return config;
+}
+
+}  // namespace
+
+const AxisConfig* MachineConfig::find_axis(const std::string& name) const noexcept {
+  for (const AxisConfig& axis : axes) {
+    if (axis.name == name) {
+      return &axis;
+    }
+  }
+  return nullptr;
+}
+
+const ChannelConfig* MachineConfig::find_channel(const std::string& name) const noexcept {
+  for (const ChannelConfig& channel : channels) {
+    if (channel.name == name) {
+      return &channel;
+    }
+  }
+  return nullptr;
+}
+
+const BusConfig* MachineConfig::find_bus(const std::string& name) const noexcept {
+  for (const BusConfig& bus : buses) {
+    if (bus.name == name) {
+      return &bus;
+    }
+  }
+  return nullptr;
+}
+
+int can_frame_bits(int data_bytes) noexcept {
+  // 47 fixed bits (SOF, 11-bit id, RTR, IDE, r0, DLC, CRC, delimiters, ACK, EOF, intermission),
+  // plus the worst-case stuff bits over the 34 + 8n bits that are subject to stuffing.
+  return 47 + 8 * data_bytes + (34 + 8 * data_bytes - 1) / 4;
+}
+
+int bus_bits_per_cycle(int axis_count) noexcept {
+  constexpr int kSyncBytes = 1;  // SYNC carries the 1-byte counter
+  constexpr int kPdoBytes = 6;   // CSP: controlword + target position / statusword + position
+  return can_frame_bits(kSyncBytes) + axis_count * 2 * can_frame_bits(kPdoBytes);
+}
+
+double bus_load(int axis_count, int bitrate, int cycle_us) noexcept {
+  if (bitrate <= 0 || cycle_us <= 0) {
+    return 0.0;
+  }
+  const double bits_per_cycle = bus_bits_per_cycle(axis_count);
+  return bits_per_cycle / (static_cast<double>(bitrate) * cycle_us * 1e-6);
+}
+
+MachineConfig parse_machine_yaml(const std::string& yaml_text) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(yaml_text);
+  } catch (const YAML::Exception& error) {
+    // yaml-cpp counts lines and columns from 0.
+    throw ConfigError("", "invalid YAML at line " + std::to_string(error.mark.line + 1) +
+                              ", column " + std::to_string(error.mark.column + 1) + ": " +
+                              error.msg);
+  }
+  if (documents.empty()) {
+    throw ConfigError("", "the machine file is empty");
+  }
+  if (documents.size() > 1) {
+    // A stray "---" would otherwise hide everything after it.
+    throw ConfigError("", "the machine file holds " + std::to_string(documents.size()) +
+                              " YAML documents; it must hold one");
+  }
+  return parse_document(documents.front());
+}
+
+MachineConfig load_machine_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw ConfigError(path, std::string("cannot open the machine file: ") + std::strerror(errno));
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    throw ConfigError(path, "cannot read the machine file");
+  }
+  try {
+    return parse_machine_yaml(text.str());
+  } catch (const ConfigError& error) {
+    // Only whole-file errors (syntax, empty) have no key path; name the file instead.
+    if (!error.key_path().empty()) {
+      throw;
+    }
+    const std::string what = error.what();  // ": reason" for an empty key path
+    throw ConfigError(path, what.substr(2));
+  }
+}
+
+}  // namespace mcnc::config

@@ -1,0 +1,99 @@
+#pragma once
+// What every mcnc process that speaks DDS has: its participant, its ProcessState announcement,
+// the run control from mcnc-launch, the alarm writer, and one wake-up that DDS callbacks and
+// other receive threads signal so that the cyclic loop can wait for "something arrived".
+#include "idl/dds_participant.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <string>
+
+namespace mcnc::config {
+struct MachineConfig;
+}
+
+namespace mcnc::process {
+
+// The DDS domain: MCNC_DOMAIN when set, else the machine file's.
+int resolve_domain(const config::MachineConfig& machine);
+
+class Wakeup {
+public:
+  void notify() noexcept {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++count_;
+    }
+    cv_.notify_all();
+  }
+  // Waits until pred() holds, re-checking at every notify; false on timeout.
+  template <class Pred>
+  bool wait_for(Pred pred, std::chrono::microseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return cv_.wait_for(lock, timeout, [&] { return pred(); });
+  }
+  // Runs fn under the same lock the waiter uses, then wakes it (for state the predicate reads).
+  template <class Fn>
+  void update(Fn fn) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      fn();
+      ++count_;
+    }
+    cv_.notify_all();
+  }
+
+private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  std::uint64_t count_ = 0;
+};
+
+// The latest run control, readable without locks from the cyclic loop.
+struct RunControlView {
+  std::uint64_t generation = 0;
+  RunCommand command = RUN_NONE;
+  ClockKind clock = LOCKSTEP_CLOCK;
+  std::int64_t start_ns = 0;
+  bool pace = false;
+};
+
+class ProcessNode {
+public:
+  ProcessNode(int domain, std::string name);
+  ProcessNode(const ProcessNode&) = delete;
+  ProcessNode& operator=(const ProcessNode&) = delete;
+
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  dds::Participant& participant() noexcept { return participant_; }
+  Wakeup& wakeup() noexcept { return wakeup_; }
+
+  void announce(ProcessPhase phase, std::uint64_t cycle = 0, const std::string& detail = {});
+  [[nodiscard]] RunControlView run_control() const noexcept;
+  // A peer that leaves may be leaving because the run ends: its STOP and ours were sent
+  // together but may arrive in either order. True when STOP (or a stop signal) arrives within
+  // `grace`; the caller then ends instead of raising an alarm.
+  bool stop_arrives_within(std::chrono::milliseconds grace);
+  // Publishes an alarm from this process (sequence numbered). Not for the per-cycle path.
+  void raise_alarm(std::uint32_t number, const std::string& text, std::uint64_t cycle,
+                   int channel = 0, int axis = 0, int line = 0);
+
+private:
+  std::string name_;
+  dds::Participant participant_;
+  Wakeup wakeup_;
+  dds::Writer<ProcessState> state_writer_;
+  dds::Writer<Alarm> alarm_writer_;
+  std::atomic<std::uint64_t> alarm_seq_{0};
+  std::atomic<std::uint64_t> rc_generation_{0};
+  std::atomic<int> rc_command_{RUN_NONE};
+  std::atomic<int> rc_clock_{LOCKSTEP_CLOCK};
+  std::atomic<std::int64_t> rc_start_ns_{0};
+  std::atomic<bool> rc_pace_{false};
+  dds::Reader<RunControl> run_control_reader_;
+};
+
+} // namespace mcnc::process

@@ -1,0 +1,18 @@
+#pragma once
+// Start-up helpers shared by the process shells.
+#include "common/config/machine_config.hpp"
+
+#include <csignal>
+#include <string>
+
+namespace mcnc::process {
+
+// Loads and validates the machine file; on error prints "<path>: <key path>: <reason>" to
+// stderr and exits with code 2 (bad input: nothing is started).
+config::MachineConfig load_machine_or_exit(const std::string& path);
+
+// SIGINT/SIGTERM set this flag (installed by install_stop_signals()).
+extern volatile std::sig_atomic_t g_stop_signal;
+void install_stop_signals();
+
+} // namespace mcnc::process

@@ -1,0 +1,205 @@
+#include "idl/dds_participant.hpp"
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+
+namespace fdds = eprosima::fastdds::dds;
+
+namespace mcnc::dds {
+
+namespace {
+
+WriterId to_writer_id(const fdds::InstanceHandle_t& handle) {
+  WriterId id{};
+  std::memcpy(id.data(), handle.value, id.size());
+  return id;
+}
+
+const char* writer_profile(QosKind qos) {
+  switch (qos) {
+    case QosKind::cyclic: return "cyclic_writer";
+    case QosKind::state: return "state_writer";
+    case QosKind::event: return "event_writer";
+  }
+  return "state_writer";
+}
+
+const char* reader_profile(QosKind qos) {
+  switch (qos) {
+    case QosKind::cyclic: return "cyclic_reader";
+    case QosKind::state: return "state_reader";
+    case QosKind::event: return "event_reader";
+  }
+  return "state_reader";
+}
+
+// Profiles are loaded once per process, before the first participant.
+void load_profiles_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    auto* factory = fdds::DomainParticipantFactory::get_instance();
+    if (factory->load_XML_profiles_file(qos_profiles_path()) != ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("cannot load DDS QoS profiles from " + qos_profiles_path());
+    }
+  });
+}
+
+} // namespace
+
+std::string qos_profiles_path() {
+  const char* env = std::getenv("MCNC_QOS_PROFILES");
+  return env != nullptr && *env != '\0' ? env : MCNC_QOS_PROFILES_FILE;
+}
+
+struct Participant::Topics {
+  std::mutex mutex;
+  std::map<std::string, fdds::Topic*> by_name;
+};
+
+Participant::Participant(int domain, const std::string& name) : topics_(std::make_unique<Topics>()) {
+  load_profiles_once();
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  // Copying PARTICIPANT_QOS_DEFAULT would bypass the XML profile: take the factory's default.
+  fdds::DomainParticipantQos qos = factory->get_default_participant_qos();
+  qos.name(name);
+  participant_ = factory->create_participant(domain, qos);
+  if (participant_ == nullptr) {
+    throw std::runtime_error("cannot create DDS participant on domain " + std::to_string(domain));
+  }
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw std::runtime_error("cannot create DDS publisher/subscriber");
+  }
+}
+
+Participant::~Participant() {
+  if (participant_ == nullptr) {
+    return;
+  }
+  participant_->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+fdds::Topic* Participant::topic(const std::string& name, void* pubsub_type) {
+  fdds::TypeSupport type(static_cast<fdds::TopicDataType*>(pubsub_type));
+  std::lock_guard<std::mutex> lock(topics_->mutex);
+  auto it = topics_->by_name.find(name);
+  if (it != topics_->by_name.end()) {
+    return it->second;
+  }
+  type.register_type(participant_);
+  fdds::Topic* topic = participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) {
+    throw std::runtime_error("cannot create DDS topic " + name);
+  }
+  topics_->by_name.emplace(name, topic);
+  return topic;
+}
+
+fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, QosKind qos) {
+  fdds::DataWriter* writer = publisher_->create_datawriter_with_profile(topic, writer_profile(qos));
+  if (writer == nullptr) {
+    throw std::runtime_error("cannot create DDS writer for " + topic->get_name());
+  }
+  return writer;
+}
+
+void Participant::delete_writer(fdds::DataWriter* writer) noexcept {
+  if (writer != nullptr) {
+    publisher_->delete_datawriter(writer);
+  }
+}
+
+fdds::DataReader* Participant::create_reader(fdds::Topic* topic, QosKind qos, void* listener) {
+  fdds::DataReader* reader = subscriber_->create_datareader_with_profile(
+      topic, reader_profile(qos), static_cast<fdds::DataReaderListener*>(listener),
+      fdds::StatusMask::data_available() << fdds::StatusMask::subscription_matched());
+  if (reader == nullptr) {
+    throw std::runtime_error("cannot create DDS reader for " + topic->get_name());
+  }
+  return reader;
+}
+
+void Participant::delete_reader(fdds::DataReader* reader) noexcept {
+  if (reader != nullptr) {
+    subscriber_->delete_datareader(reader);
+  }
+}
+
+namespace detail {
+
+WriterBase::WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos)
+    : participant_(participant),
+      writer_(participant.create_writer(participant.topic(topic, pubsub_type), qos)) {}
+
+WriterBase::~WriterBase() { participant_.delete_writer(writer_); }
+
+bool WriterBase::write_raw(void* sample) noexcept { return writer_->write(sample); }
+
+int WriterBase::matched_readers() const noexcept {
+  fdds::PublicationMatchedStatus status;
+  writer_->get_publication_matched_status(status);
+  return status.current_count;
+}
+
+struct ReaderBase::Listener : public fdds::DataReaderListener {
+  std::function<void*()> make_sample;
+  std::function<void(void*)> free_sample;
+  SampleFn on_sample;
+  MatchFn on_match;
+
+  void on_data_available(fdds::DataReader* reader) override {
+    void* sample = make_sample();
+    fdds::SampleInfo info;
+    while (reader->take_next_sample(sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) {
+        on_sample(sample, to_writer_id(info.publication_handle));
+      }
+    }
+    free_sample(sample);
+  }
+
+  void on_subscription_matched(fdds::DataReader* /*reader*/,
+                               const fdds::SubscriptionMatchedStatus& info) override {
+    if (on_match && info.current_count_change != 0) {
+      on_match(to_writer_id(info.last_publication_handle), info.current_count_change > 0);
+    }
+  }
+};
+
+ReaderBase::ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
+                       std::function<void*()> make_sample, std::function<void(void*)> free_sample,
+                       SampleFn on_sample, MatchFn on_match)
+    : participant_(participant), listener_(std::make_unique<Listener>()) {
+  listener_->make_sample = std::move(make_sample);
+  listener_->free_sample = std::move(free_sample);
+  listener_->on_sample = std::move(on_sample);
+  listener_->on_match = std::move(on_match);
+  reader_ = participant.create_reader(participant.topic(topic, pubsub_type), qos, listener_.get());
+}
+
+ReaderBase::~ReaderBase() { participant_.delete_reader(reader_); }
+
+int ReaderBase::matched_writers() const noexcept {
+  fdds::SubscriptionMatchedStatus status;
+  reader_->get_subscription_matched_status(status);
+  return status.current_count;
+}
+
+} // namespace detail
+} // namespace mcnc::dds

@@ -1,0 +1,127 @@
+#pragma once
+// The typed publish/subscribe layer over Fast DDS. One Participant per process; Writer<T> and
+// Reader<T> take their topic name and QoS profile from the topic catalogue (topics.hpp).
+// Reader callbacks run on a Fast DDS thread: hand the data to your own thread, do not block.
+#include "idl/topics.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace eprosima::fastdds::dds {
+class DomainParticipant;
+class Publisher;
+class Subscriber;
+class Topic;
+class DataWriter;
+class DataReader;
+} // namespace eprosima::fastdds::dds
+
+namespace mcnc::dds {
+
+// Identifies one remote writer (its DDS instance handle), to tell whose samples are whose.
+using WriterId = std::array<std::uint8_t, 16>;
+
+// The QoS profiles file: MCNC_QOS_PROFILES if set, else the one in the source tree.
+std::string qos_profiles_path();
+
+class Participant {
+public:
+  // Throws std::runtime_error when the participant cannot be created (start-up error).
+  Participant(int domain, const std::string& name);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  // The topic of that name, created (and its type registered) on first use. Takes ownership of
+  // `pubsub_type` (a new'd Fast DDS TopicDataType).
+  eprosima::fastdds::dds::Topic* topic(const std::string& name, void* pubsub_type);
+  eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic,
+                                                    QosKind qos);
+  void delete_writer(eprosima::fastdds::dds::DataWriter* writer) noexcept;
+  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic,
+                                                    QosKind qos, void* listener);
+  void delete_reader(eprosima::fastdds::dds::DataReader* reader) noexcept;
+
+private:
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  struct Topics;
+  std::unique_ptr<Topics> topics_;
+};
+
+namespace detail {
+// Type-erased writer/reader so that the Fast DDS headers stay in one translation unit.
+class WriterBase {
+public:
+  WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos);
+  ~WriterBase();
+  WriterBase(const WriterBase&) = delete;
+  WriterBase& operator=(const WriterBase&) = delete;
+  bool write_raw(void* sample) noexcept;
+  [[nodiscard]] int matched_readers() const noexcept;
+
+private:
+  Participant& participant_;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+};
+
+class ReaderBase {
+public:
+  using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
+  using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
+  ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos, std::function<void*()> make_sample, std::function<void(void*)> free_sample,
+             SampleFn on_sample, MatchFn on_match);
+  ~ReaderBase();
+  ReaderBase(const ReaderBase&) = delete;
+  ReaderBase& operator=(const ReaderBase&) = delete;
+  [[nodiscard]] int matched_writers() const noexcept;
+
+  struct Listener;
+
+private:
+  Participant& participant_;
+  std::unique_ptr<Listener> listener_;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+} // namespace detail
+
+template <class T>
+class Writer {
+public:
+  explicit Writer(Participant& participant)
+      : base_(participant, TopicTraits<T>::name,
+              new typename TopicTraits<T>::PubSubType(),
+              TopicTraits<T>::qos) {}
+  bool write(const T& sample) noexcept { return base_.write_raw(const_cast<T*>(&sample)); }
+  [[nodiscard]] int matched_readers() const noexcept { return base_.matched_readers(); }
+
+private:
+  detail::WriterBase base_;
+};
+
+template <class T>
+class Reader {
+public:
+  using SampleFn = std::function<void(const T&, const WriterId&)>;
+  using MatchFn = detail::ReaderBase::MatchFn;
+  Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {})
+      : base_(
+            participant, TopicTraits<T>::name,
+            new typename TopicTraits<T>::PubSubType(),
+            TopicTraits<T>::qos, [] { return static_cast<void*>(new T()); },
+            [](void* p) { delete static_cast<T*>(p); },
+            [fn = std::move(on_sample)](const void* s, const WriterId& w) {
+              fn(*static_cast<const T*>(s), w);
+            },
+            std::move(on_match)) {}
+  [[nodiscard]] int matched_writers() const noexcept { return base_.matched_writers(); }
+
+private:
+  detail::ReaderBase base_;
+};
+
+} // namespace mcnc::dds

@@ -1,0 +1,88 @@
+#include "launch/child_process.hpp"
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <spawn.h>
+#include <stdexcept>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace mcnc::launch {
+
+ChildProcess::ChildProcess(std::string name, std::vector<std::string> argv)
+    : name_(std::move(name)), argv_(std::move(argv)) {}
+
+void ChildProcess::start(const std::vector<std::string>& env_overrides) {
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string entry(*e);
+    bool overridden = false;
+    for (const auto& o : env_overrides) {
+      if (entry.compare(0, o.find('=') + 1, o, 0, o.find('=') + 1) == 0) {
+        overridden = true;
+      }
+    }
+    if (!overridden) {
+      env_strings.push_back(entry);
+    }
+  }
+  env_strings.insert(env_strings.end(), env_overrides.begin(), env_overrides.end());
+  std::vector<char*> env;
+  for (auto& s : env_strings) {
+    env.push_back(s.data());
+  }
+  env.push_back(nullptr);
+  std::vector<char*> args;
+  for (auto& a : argv_) {
+    args.push_back(a.data());
+  }
+  args.push_back(nullptr);
+  const int rc = posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), env.data());
+  if (rc != 0) {
+    throw std::runtime_error("cannot start " + argv_[0] + ": " + std::strerror(rc));
+  }
+}
+
+bool ChildProcess::poll_exited() noexcept {
+  if (pid_ <= 0 || exited_) {
+    return exited_;
+  }
+  int status = 0;
+  const pid_t r = waitpid(pid_, &status, WNOHANG);
+  if (r == pid_) {
+    exited_ = true;
+    status_ = status;
+  }
+  return exited_;
+}
+
+void ChildProcess::signal(int sig) noexcept {
+  if (running()) {
+    kill(pid_, sig);
+  }
+}
+
+int ChildProcess::exit_code() const noexcept {
+  if (WIFEXITED(status_)) {
+    return WEXITSTATUS(status_);
+  }
+  if (WIFSIGNALED(status_)) {
+    return -WTERMSIG(status_);
+  }
+  return -1;
+}
+
+std::string ChildProcess::exit_description() const {
+  if (!exited_) {
+    return "running";
+  }
+  if (WIFSIGNALED(status_)) {
+    return std::string("killed by signal ") + std::to_string(WTERMSIG(status_)) + " (" +
+           strsignal(WTERMSIG(status_)) + ")";
+  }
+  return "exited with code " + std::to_string(WEXITSTATUS(status_));
+}
+
+} // namespace mcnc::launch

@@ -1,0 +1,33 @@
+#pragma once
+// A child process started by mcnc-launch: spawn, poll for exit, signal.
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace mcnc::launch {
+
+class ChildProcess {
+public:
+  ChildProcess(std::string name, std::vector<std::string> argv);
+  // Starts it with `env_overrides` ("KEY=VALUE") added to this process's environment.
+  // Throws std::runtime_error when the executable cannot be started.
+  void start(const std::vector<std::string>& env_overrides);
+  // True once it has exited (reaps it); exit_status() then says how.
+  bool poll_exited() noexcept;
+  void signal(int sig) noexcept;
+  [[nodiscard]] const std::string& name() const noexcept { return name_; }
+  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
+  [[nodiscard]] bool running() const noexcept { return pid_ > 0 && !exited_; }
+  [[nodiscard]] std::string exit_description() const;
+  [[nodiscard]] int exit_code() const noexcept;  // -signal when killed by a signal
+  [[nodiscard]] const std::vector<std::string>& argv() const noexcept { return argv_; }
+
+private:
+  std::string name_;
+  std::vector<std::string> argv_;
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int status_ = 0;
+};
+
+} // namespace mcnc::launch

@@ -1,0 +1,434 @@
+#include "launch/launcher.hpp"
+
+#include "common/clock/cycle_clock.hpp"
+#include "common/process/process_node.hpp"
+#include "common/process/shm_cleanup.hpp"
+#include "common/process/startup.hpp"
+#include "common/trace/trace_merge.hpp"
+#include "common/trace/trace_writer.hpp"
+#include "launch/child_process.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+namespace mcnc::launch {
+
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+const char* to_string(::mcnc::ChannelState state) noexcept {
+  switch (state) {
+    case CH_RESET: return "reset";
+    case CH_IDLE: return "idle";
+    case CH_RUNNING: return "running";
+    case CH_HOLD: return "hold";
+    case CH_WAITING: return "waiting";
+    case CH_ALARM: return "alarm";
+  }
+  return "reset";
+}
+
+namespace {
+
+struct Observed {
+  std::mutex mutex;
+  std::map<std::string, ProcessPhase> phases;
+  std::map<std::uint32_t, ::mcnc::ChannelStatus> status;
+  std::map<std::uint32_t, AxisFeedback> feedback;
+  std::vector<Alarm> alarms;
+};
+
+bool drive_at_rest(const AxisFeedback& fb) {
+  return std::fabs(fb.vel()) < 1e-9 && !fb.enabled();
+}
+
+} // namespace
+
+Launcher::Launcher(config::MachineConfig machine, LaunchOptions options)
+    : machine_(std::move(machine)), options_(std::move(options)) {}
+
+LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
+  LaunchResult result;
+  const int domain = process::resolve_domain(machine_);
+  const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain)};
+
+  // Trace parts: one per process, merged at the end.
+  std::string parts_dir;
+  std::vector<std::string> part_paths;
+  if (!options_.trace_path.empty()) {
+    parts_dir = options_.trace_path + ".parts";
+    fs::remove_all(parts_dir);
+    fs::create_directories(parts_dir);
+  }
+  auto part_for = [&](const std::string& name) {
+    if (parts_dir.empty()) {
+      return std::string();
+    }
+    part_paths.push_back(parts_dir + "/" + name + ".jsonl");
+    return part_paths.back();
+  };
+
+  process::ProcessNode node(domain, "launch");
+  trace::TraceWriter tracer(part_for("launch"), "launch");
+  Observed seen;
+  process::Wakeup& wake = node.wakeup();
+  dds::Reader<ProcessState> state_reader(node.participant(), [&](const ProcessState& s, const dds::WriterId&) {
+    wake.update([&] { seen.phases[s.name()] = s.phase(); });
+  });
+  dds::Reader<::mcnc::ChannelStatus> status_reader(
+      node.participant(), [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+        std::lock_guard<std::mutex> lock(seen.mutex);
+        auto& slot = seen.status[s.channel()];
+        if (s.cycle() >= slot.cycle()) {
+          slot = s;
+        }
+      });
+  dds::Reader<AxisFeedback> feedback_reader(node.participant(), [&](const AxisFeedback& f, const dds::WriterId&) {
+    std::lock_guard<std::mutex> lock(seen.mutex);
+    seen.feedback[f.axis()] = f;
+  });
+  dds::Reader<Alarm> alarm_reader(node.participant(), [&](const Alarm& a, const dds::WriterId&) {
+    std::lock_guard<std::mutex> lock(seen.mutex);
+    seen.alarms.push_back(a);
+  });
+  dds::Writer<RunControl> control_writer(node.participant());
+  std::uint64_t generation = 0;
+  auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
+    RunControl rc;
+    rc.generation(++generation);
+    rc.command(command);
+    rc.clock(options_.clock);
+    rc.start_ns(start_ns);
+    rc.pace(options_.pace);
+    rc.reason(reason);
+    control_writer.write(rc);
+  };
+
+  // Children: drive simulators first (they answer the nodes' NMT), then axis nodes, channels.
+  std::vector<ChildProcess> children;
+  std::vector<std::string> dds_processes;
+  const std::string bin = options_.bin_dir.empty() ? std::string(".") : options_.bin_dir;
+  auto common_args = [&](std::vector<std::string> args) {
+    if (!options_.log_level.empty()) {
+      args.push_back("--log-level");
+      args.push_back(options_.log_level);
+    }
+    return args;
+  };
+  std::vector<std::string> channel_parts;
+  std::vector<std::string> axis_parts;
+  for (const auto& bus : machine_.buses) {
+    std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path, "--bus", bus.name};
+    if (options_.clock == LOCKSTEP_CLOCK) {
+      args.emplace_back("--lockstep");
+    }
+    children.emplace_back("drivesim-" + bus.name, common_args(args));
+  }
+  for (const auto& axis : machine_.axes) {
+    std::vector<std::string> args{bin + "/mcnc-axisnode", "--machine", options_.machine_path, "--axis", axis.name};
+    if (!parts_dir.empty()) {
+      args.insert(args.end(), {"--trace", parts_dir + "/" + axis.name + ".jsonl", "--trace-pos-every",
+                               std::to_string(options_.trace_pos_every)});
+      axis_parts.push_back(parts_dir + "/" + axis.name + ".jsonl");
+    }
+    children.emplace_back(axis.name, common_args(args));
+    dds_processes.push_back(axis.name);
+  }
+  for (const auto& ch : machine_.channels) {
+    std::vector<std::string> args{bin + "/mcnc-channel", "--machine", options_.machine_path, "--channel", ch.name};
+    if (auto it = options_.programs.find(ch.name); it != options_.programs.end()) {
+      args.insert(args.end(), {"--program", it->second});
+    }
+    if (!parts_dir.empty()) {
+      args.insert(args.end(), {"--trace", parts_dir + "/" + ch.name + ".jsonl"});
+      channel_parts.push_back(parts_dir + "/" + ch.name + ".jsonl");
+    }
+    children.emplace_back(ch.name, common_args(args));
+    dds_processes.push_back(ch.name);
+  }
+  // Merge order inside a cycle: channels, axes, launch.
+  std::vector<std::string> merge_order = channel_parts;
+  merge_order.insert(merge_order.end(), axis_parts.begin(), axis_parts.end());
+  merge_order.insert(merge_order.end(), part_paths.begin(), part_paths.end());
+
+  for (auto& child : children) {
+    child.start(env);
+    spdlog::debug("started {} (pid {})", child.name(), child.pid());
+  }
+
+  std::uint64_t last_cycle = 0;
+  auto progress = [&] {
+    std::vector<ChannelProgress> list;
+    std::lock_guard<std::mutex> lock(seen.mutex);
+    for (const auto& ch : machine_.channels) {
+      ChannelProgress p;
+      p.name = ch.name;
+      p.has_program = options_.programs.count(ch.name) != 0;
+      auto it = seen.status.find(static_cast<std::uint32_t>(ch.id));
+      if (it != seen.status.end()) {
+        const auto& s = it->second;
+        p.state = s.state();
+        p.block = s.block();
+        p.block_total = s.block_total();
+        p.line = s.line();
+        p.alarms = s.alarms();
+        p.ended = s.program_end();
+        p.end_code = s.end_code();
+        p.cycle = s.cycle();
+        last_cycle = std::max(last_cycle, s.cycle());
+      }
+      list.push_back(p);
+    }
+    return list;
+  };
+  // Cycle bookkeeping per channel (first running cycle, end cycle), from the status stream.
+  std::map<std::string, ChannelProgress> book;
+  auto update_book = [&](const std::vector<ChannelProgress>& list) {
+    for (const auto& p : list) {
+      auto& b = book[p.name];
+      const bool seen_running = b.seen_running;
+      const std::uint64_t start = b.run_start_cycle;
+      const std::uint64_t end = b.end_cycle;
+      b = p;
+      b.seen_running = seen_running || p.state == CH_RUNNING;
+      b.run_start_cycle = seen_running ? start : (p.state == CH_RUNNING ? p.cycle : 0);
+      b.end_cycle = end != 0 ? end : (p.ended ? p.cycle : 0);
+    }
+  };
+
+  auto find_exited = [&]() -> ChildProcess* {
+    for (auto& child : children) {
+      if (child.running() && child.poll_exited()) {
+        return &child;
+      }
+    }
+    return nullptr;
+  };
+
+  std::string failure;
+  bool killed_child = false;
+
+  // 1. Wait until every DDS process is ready (discovery done, drive answered).
+  const auto start_deadline = std::chrono::steady_clock::now() +
+                              std::chrono::milliseconds(static_cast<long>(options_.start_timeout_s * 1000));
+  for (;;) {
+    if (ChildProcess* dead = find_exited()) {
+      failure = dead->name() + " " + dead->exit_description() + " during start-up";
+      break;
+    }
+    bool all_ready = true;
+    wake.update([&] {
+      for (const auto& name : dds_processes) {
+        auto it = seen.phases.find(name);
+        all_ready = all_ready && it != seen.phases.end() && it->second == PHASE_READY;
+      }
+    });
+    if (all_ready) {
+      break;
+    }
+    if (std::chrono::steady_clock::now() > start_deadline || process::g_stop_signal != 0) {
+      failure = process::g_stop_signal != 0 ? "interrupted during start-up" : "start-up timed out";
+      break;
+    }
+    std::this_thread::sleep_for(5ms);
+  }
+
+  // 2. Run.
+  bool estopped = false;
+  if (failure.empty()) {
+    spdlog::info("all {} processes ready; starting the run ({} clock)", dds_processes.size(),
+                 options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
+    // Realtime: cycle 0 a little in the future so every process starts on the same tick.
+    send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
+    const bool any_program = !options_.programs.empty();
+    const auto run_start = std::chrono::steady_clock::now();
+    auto last_progress = std::chrono::steady_clock::now() - 1s;
+    std::optional<std::chrono::steady_clock::time_point> alarm_since;
+    for (;;) {
+      std::this_thread::sleep_for(2ms);
+      const auto list = progress();
+      update_book(list);
+      if (std::chrono::steady_clock::now() - last_progress > 100ms) {
+        last_progress = std::chrono::steady_clock::now();
+        if (on_progress) {
+          on_progress(list);
+        }
+      }
+      if (ChildProcess* dead = find_exited()) {
+        failure = dead->name() + " " + dead->exit_description();
+        killed_child = dead->exit_code() < 0;
+        break;
+      }
+      if (process::g_stop_signal != 0) {
+        failure = "interrupted";
+        break;
+      }
+      if (options_.run_timeout_s > 0 &&
+          std::chrono::steady_clock::now() - run_start > std::chrono::duration<double>(options_.run_timeout_s)) {
+        failure = "run timed out";
+        break;
+      }
+      // An alarm anywhere stops the run: wait until the channels have reacted (alarm, end or
+      // reset), at most a second, then stop cleanly. The alarm makes the result a failure.
+      std::size_t alarm_count = 0;
+      {
+        std::lock_guard<std::mutex> lock(seen.mutex);
+        alarm_count = seen.alarms.size();
+      }
+      if (alarm_count > 0) {
+        if (!alarm_since) {
+          alarm_since = std::chrono::steady_clock::now();
+        }
+        bool settled = true;
+        for (const auto& p : list) {
+          settled = settled && (!p.has_program || p.ended || p.state == CH_ALARM || p.state == CH_RESET);
+        }
+        if (settled || std::chrono::steady_clock::now() - *alarm_since > 1s) {
+          break;
+        }
+      }
+      if (any_program) {
+        bool all_done = true;
+        for (const auto& p : list) {
+          if (p.has_program) {
+            all_done = all_done && (p.ended || p.state == CH_ALARM);
+          }
+        }
+        if (all_done) {
+          break;
+        }
+      }
+    }
+    if (!failure.empty()) {
+      // E-stop: channels reset, drives quick stop; wait until the drives are at rest.
+      estopped = true;
+      spdlog::error("E-stop: {}", failure);
+      tracer.emit(last_cycle, "alarm", "\"src\":\"launch\",\"number\":3001,\"text\":\"emergency stop: %s\"",
+                  failure.c_str());
+      node.raise_alarm(3001, "emergency stop: " + failure, last_cycle);
+      send_control(RUN_ESTOP, 0, failure);
+      const auto deadline = std::chrono::steady_clock::now() + 5s;
+      while (std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(20ms);
+        find_exited();
+        bool rest = true;
+        std::lock_guard<std::mutex> lock(seen.mutex);
+        for (const auto& axis : machine_.axes) {
+          auto it = seen.feedback.find(static_cast<std::uint32_t>(axis.id));
+          rest = rest && (it == seen.feedback.end() || drive_at_rest(it->second));
+        }
+        if (rest) {
+          break;
+        }
+      }
+    }
+  }
+
+  // 3. Stop: ask politely (DDS processes by run control, drive simulators by SIGTERM once
+  // their nodes are gone), then insist.
+  send_control(RUN_STOP, 0, failure);
+  auto wait_all = [&](std::chrono::milliseconds timeout, bool dds_only = false) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    for (;;) {
+      bool any = false;
+      for (auto& child : children) {
+        const bool is_sim = child.name().rfind("drivesim-", 0) == 0;
+        if (dds_only && is_sim) {
+          continue;
+        }
+        any = any || (child.running() && !child.poll_exited());
+      }
+      if (!any || std::chrono::steady_clock::now() > deadline) {
+        return !any;
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+  };
+  wait_all(3s, true);
+  for (auto& child : children) {
+    if (child.name().rfind("drivesim-", 0) == 0) {
+      child.signal(SIGTERM);
+    }
+  }
+  if (!wait_all(3s)) {
+    for (auto& child : children) {
+      child.signal(SIGTERM);
+    }
+    if (!wait_all(3s)) {
+      for (auto& child : children) {
+        child.signal(SIGKILL);
+      }
+      killed_child = true;
+      wait_all(3s);
+    }
+  }
+  for (auto& child : children) {
+    if (child.exit_code() != 0 && failure.empty()) {
+      failure = child.name() + " " + child.exit_description();
+    }
+  }
+  if (killed_child) {
+    process::remove_stale_dds_shm_files();
+  }
+
+  // 4. Result and trace.
+  const auto final_list = progress();
+  update_book(final_list);
+  {
+    std::lock_guard<std::mutex> lock(seen.mutex);
+    for (const auto& a : seen.alarms) {
+      result.alarms.push_back(a.src() + " " + std::to_string(a.number()) + " " + a.text());
+    }
+  }
+  bool ok = failure.empty() && !estopped;
+  for (const auto& ch : machine_.channels) {
+    ChannelProgress p = book[ch.name];
+    if (p.has_program && (!p.ended || p.alarms > 0)) {
+      ok = false;
+    }
+    result.channels.push_back(p);
+  }
+  if (!result.alarms.empty()) {
+    ok = false;
+  }
+  result.cycles = last_cycle;
+  result.failure = failure;
+  result.exit_code = ok ? 0 : 1;
+
+  tracer.flush();
+  if (!options_.trace_path.empty()) {
+    const std::uint64_t merged_last = trace::merge_parts(merge_order, options_.trace_path);
+    result.cycles = std::max(result.cycles, merged_last);
+    std::ofstream out(options_.trace_path, std::ios::app);
+    std::ostringstream summary;
+    summary << "{\"cycle\":" << result.cycles << ",\"src\":\"launch\",\"ev\":\"summary\",\"ok\":"
+            << (ok ? "true" : "false") << ",\"cycles\":" << result.cycles << ",\"channels\":{";
+    bool first = true;
+    for (const auto& p : result.channels) {
+      summary << (first ? "" : ",") << "\"" << p.name << "\":{\"end\":";
+      first = false;
+      if (p.ended) {
+        summary << p.end_code;
+      } else {
+        summary << "null";
+      }
+      const double cycle_time =
+          p.ended && p.seen_running ? static_cast<double>(p.end_cycle - p.run_start_cycle) * machine_.cycle_s() : 0.0;
+      summary << ",\"alarms\":" << p.alarms << ",\"cycle_time_s\":" << cycle_time << "}";
+    }
+    summary << "}}";
+    out << summary.str() << '\n';
+    fs::remove_all(parts_dir);
+  }
+  return result;
+}
+
+} // namespace mcnc::launch

@@ -1,0 +1,170 @@
+#include "launch/run_command.hpp"
+
+#include "channel/interp/minimal_interpreter.hpp"
+#include "common/process/startup.hpp"
+#include "launch/launcher.hpp"
+#include "launch/self_path.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace mcnc::launch {
+
+namespace {
+
+char incremental_of(char absolute) {
+  switch (absolute) {
+    case 'X': return 'U';
+    case 'Z': return 'W';
+    case 'Y': return 'V';
+    case 'C': return 'H';
+    default: return '\0';
+  }
+}
+
+// Checks a program for the channel's axes; prints "FILE:LINE:COL: alarm N: text" when bad.
+bool program_is_good(const config::MachineConfig& machine, const config::ChannelConfig& ch,
+                     const std::string& path) {
+  std::vector<interp::AxisAddress> addresses;
+  for (const auto& name : ch.axes) {
+    const config::AxisConfig* axis = machine.find_axis(name);
+    addresses.push_back(interp::AxisAddress{axis->address, incremental_of(axis->address), axis->diameter});
+  }
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  interp::MinimalInterpreter interpreter(addresses);
+  const std::string name = std::filesystem::path(path).filename().string();
+  if (auto alarm = interpreter.load(text.str(), name)) {
+    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line, alarm->column,
+                 alarm->number, alarm->text.c_str());
+    return false;
+  }
+  return true;
+}
+
+void write_report(const std::string& dir, const config::MachineConfig& machine, const LaunchResult& result) {
+  std::filesystem::create_directories(dir);
+  std::ofstream out(dir + "/summary.txt");
+  out << "machine " << machine.name << ": " << (result.exit_code == 0 ? "ok" : "failed") << ", "
+      << result.cycles << " cycles of " << machine.cycle_us << " us\n";
+  for (const auto& p : result.channels) {
+    out << p.name << ": ";
+    if (p.ended) {
+      out << "ended M" << p.end_code << " after "
+          << static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s() << " s";
+    } else {
+      out << (p.has_program ? "did not end" : "no program");
+    }
+    out << ", " << p.alarms << " alarms\n";
+  }
+  for (const auto& a : result.alarms) {
+    out << "alarm: " << a << "\n";
+  }
+  if (!result.failure.empty()) {
+    out << "failure: " << result.failure << "\n";
+  }
+}
+
+} // namespace
+
+void add_run_options(CLI::App& app, RunArguments& args) {
+  app.add_option("machine", args.machine_path, "machine file (YAML)")->required();
+  app.add_option("--program", args.programs, "CH=FILE: the program a channel runs (repeatable)");
+  app.add_option("--clock", args.clock, "lockstep (deterministic, default) or realtime")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
+  app.add_flag("--pace", args.pace, "lockstep: do not run ahead of real time");
+  app.add_option("--trace", args.trace_path, "write the event trace (JSON lines) to FILE");
+  app.add_option("--trace-pos-every", args.trace_pos_every, "a pos event every K cycles")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--report", args.report_dir, "write a run report into DIR");
+  app.add_option("--log-level", args.log_level, "log level of every process");
+  app.add_option("--timeout", args.timeout_s, "E-stop the run after this many seconds (0: none)");
+}
+
+int execute_run(const RunArguments& args) {
+  const config::MachineConfig machine = process::load_machine_or_exit(args.machine_path);
+  LaunchOptions options;
+  options.machine_path = std::filesystem::absolute(args.machine_path).string();
+  for (const auto& spec : args.programs) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
+      std::fprintf(stderr, "error: --program %s: expected CHANNEL=FILE\n", spec.c_str());
+      return 2;
+    }
+    const std::string channel = spec.substr(0, eq);
+    const std::string file = spec.substr(eq + 1);
+    const config::ChannelConfig* ch = machine.find_channel(channel);
+    if (ch == nullptr) {
+      std::fprintf(stderr, "error: --program %s: no channel %s in %s\n", spec.c_str(), channel.c_str(),
+                   args.machine_path.c_str());
+      return 2;
+    }
+    if (!std::filesystem::is_regular_file(file)) {
+      std::fprintf(stderr, "error: --program %s: no such file %s\n", spec.c_str(), file.c_str());
+      return 2;
+    }
+    if (options.programs.count(channel) != 0) {
+      std::fprintf(stderr, "error: --program %s: channel %s already has a program\n", spec.c_str(),
+                   channel.c_str());
+      return 2;
+    }
+    if (!program_is_good(machine, *ch, file)) {
+      return 2;
+    }
+    options.programs[channel] = std::filesystem::absolute(file).string();
+  }
+  options.clock = args.clock == "realtime" ? REALTIME_CLOCK : LOCKSTEP_CLOCK;
+  options.pace = args.pace;
+  options.trace_path = args.trace_path;
+  options.trace_pos_every = args.trace_pos_every;
+  options.bin_dir = executable_dir();
+  options.log_level = args.log_level;
+  options.run_timeout_s = args.timeout_s;
+
+  process::install_stop_signals();
+  Launcher launcher(machine, options);
+  std::map<std::string, std::string> last_line;
+  const LaunchResult result = launcher.run([&](const std::vector<ChannelProgress>& list) {
+    for (const auto& p : list) {
+      char line[160];
+      std::snprintf(line, sizeof line, "%-4s block %u/%u  line %d  %s%s", p.name.c_str(), p.block,
+                    p.block_total, p.line, to_string(p.state), p.ended ? "  (program end)" : "");
+      if (last_line[p.name] != line) {
+        last_line[p.name] = line;
+        std::printf("%s\n", line);
+        std::fflush(stdout);
+      }
+    }
+  });
+  for (const auto& p : result.channels) {
+    if (!p.has_program) {
+      continue;
+    }
+    if (p.ended) {
+      std::printf("%s: program end M%02d, cycle time %.3f s, %u alarms\n", p.name.c_str(), p.end_code,
+                  static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s(), p.alarms);
+    } else {
+      std::printf("%s: did not end (%s), %u alarms\n", p.name.c_str(), to_string(p.state), p.alarms);
+    }
+  }
+  for (const auto& a : result.alarms) {
+    std::printf("alarm: %s\n", a.c_str());
+  }
+  if (!result.failure.empty()) {
+    std::printf("failed: %s\n", result.failure.c_str());
+  }
+  std::printf("%s after %llu cycles\n", result.exit_code == 0 ? "ok" : "FAILED",
+              static_cast<unsigned long long>(result.cycles));
+  if (!args.report_dir.empty()) {
+    write_report(args.report_dir, machine, result);
+  }
+  return result.exit_code;
+}
+
+} // namespace mcnc::launch

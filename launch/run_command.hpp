@@ -1,0 +1,32 @@
+#pragma once
+// The options and the run shared by `mcnc-launch` and `mcnc run`: parse the program and clock
+// options, check every input before anything starts (exit 2 on bad input), launch, print
+// progress, and write the report.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace mcnc::launch {
+
+struct RunArguments {
+  std::string machine_path;
+  std::vector<std::string> programs;  // CH=FILE
+  std::string clock = "lockstep";
+  bool pace = false;
+  std::string trace_path;
+  int trace_pos_every = 10;
+  std::string report_dir;
+  std::string log_level;
+  double timeout_s = 0.0;
+};
+
+void add_run_options(CLI::App& app, RunArguments& args);
+// Returns the process exit code: 0 every program ended without alarm, 1 alarm or failure,
+// 2 bad input.
+int execute_run(const RunArguments& args);
+
+} // namespace mcnc::launch

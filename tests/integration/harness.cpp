@@ -1,0 +1,206 @@
+#include "harness.hpp"
+
+#include "common/process/shm_cleanup.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+extern char** environ;
+
+namespace mcnc::test {
+
+namespace fs = std::filesystem;
+
+std::string bin(const std::string& name) { return std::string(MCNC_BIN_DIR) + "/" + name; }
+std::string source(const std::string& relative) { return std::string(MCNC_SOURCE_DIR) + "/" + relative; }
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+pid_t spawn(const std::vector<std::string>& argv, int domain, const std::string& out_path,
+            const std::string& err_path) {
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::string(*e).rfind("MCNC_DOMAIN=", 0) != 0) {
+      env_strings.emplace_back(*e);
+    }
+  }
+  if (domain >= 0) {
+    env_strings.push_back("MCNC_DOMAIN=" + std::to_string(domain));
+  }
+  std::vector<char*> env;
+  for (auto& s : env_strings) {
+    env.push_back(s.data());
+  }
+  env.push_back(nullptr);
+  std::vector<std::string> args_copy = argv;
+  std::vector<char*> args;
+  for (auto& a : args_copy) {
+    args.push_back(a.data());
+  }
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), env.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    throw std::runtime_error("cannot start " + argv[0]);
+  }
+  return pid;
+}
+
+int decode_status(int status) {
+  if (WIFEXITED(status)) {
+    return WEXITSTATUS(status);
+  }
+  return WIFSIGNALED(status) ? -WTERMSIG(status) : -1;
+}
+
+} // namespace
+
+TestMachine::TestMachine(const std::string& machine_file, int domain, int deadline_cycles)
+    : domain_(domain) {
+  char tmpl[] = "/tmp/mcnc-test-XXXXXX";
+  dir_ = mkdtemp(tmpl);
+  std::string text = slurp(source("launch/machines/" + machine_file));
+  // Private bus: group and port derived from the domain.
+  text = std::regex_replace(text, std::regex(R"(udp:[0-9.]+:[0-9]+)"),
+                            "udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
+  text = std::regex_replace(text, std::regex(R"(\n  domain: *[0-9]+)"), "");
+  text = std::regex_replace(text, std::regex(R"(machine:\n)"), "machine:\n  domain: " + std::to_string(domain) + "\n");
+  if (deadline_cycles > 0) {
+    text = std::regex_replace(text, std::regex(R"(deadline_cycles: *[0-9]+)"),
+                              "deadline_cycles: " + std::to_string(deadline_cycles));
+  }
+  std::smatch found;
+  if (std::regex_search(text, found, std::regex(R"(deadline_cycles: *([0-9]+))"))) {
+    deadline_cycles_ = std::stoi(found[1]);
+  }
+  path_ = dir_ + "/" + machine_file;
+  std::ofstream(path_) << text;
+}
+
+TestMachine::~TestMachine() {
+  std::error_code ec;
+  if (std::getenv("MCNC_KEEP_TEST_DIRS") == nullptr) {
+    fs::remove_all(dir_, ec);
+  }
+  process::remove_stale_dds_shm_files();
+}
+
+RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::seconds timeout) {
+  char tmpl[] = "/tmp/mcnc-run-XXXXXX";
+  const std::string dir = mkdtemp(tmpl);
+  const pid_t pid = spawn(argv, domain, dir + "/out", dir + "/err");
+  RunResult result;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  int status = 0;
+  for (;;) {
+    const pid_t r = waitpid(pid, &status, WNOHANG);
+    if (r == pid) {
+      result.exit_code = decode_status(status);
+      break;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      ::kill(pid, SIGINT);
+      std::this_thread::sleep_for(std::chrono::seconds(5));
+      ::kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      result.exit_code = -1000;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  result.out = slurp(dir + "/out");
+  result.err = slurp(dir + "/err");
+  fs::remove_all(dir);
+  return result;
+}
+
+Background::Background(const std::vector<std::string>& argv, int domain, const std::string& log_path)
+    : pid_(spawn(argv, domain, log_path + ".out", log_path + ".err")) {}
+
+Background::~Background() {
+  if (!reaped_) {
+    ::kill(pid_, SIGKILL);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+  }
+}
+
+int Background::wait(std::chrono::seconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      reaped_ = true;
+      return decode_status(status);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return -1000;
+}
+
+void Background::kill(int sig) { ::kill(pid_, sig); }
+
+std::vector<nlohmann::json> read_trace(const std::string& path) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) {
+      lines.push_back(nlohmann::json::parse(line));
+    }
+  }
+  return lines;
+}
+
+std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,
+                                   const std::string& src) {
+  std::vector<nlohmann::json> found;
+  for (const auto& e : trace) {
+    if (e.value("ev", "") == ev && (src.empty() || e.value("src", "") == src)) {
+      found.push_back(e);
+    }
+  }
+  return found;
+}
+
+std::vector<pid_t> pids_with_arg(const std::string& needle) {
+  std::vector<pid_t> pids;
+  for (const auto& proc : fs::directory_iterator("/proc")) {
+    const std::string name = proc.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    std::string cmdline = slurp(proc.path().string() + "/cmdline");
+    for (auto& c : cmdline) {
+      c = c == '\0' ? ' ' : c;
+    }
+    if (cmdline.find(needle) != std::string::npos) {
+      pids.push_back(static_cast<pid_t>(std::stoi(name)));
+    }
+  }
+  return pids;
+}
+
+} // namespace mcnc::test

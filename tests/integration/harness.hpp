@@ -1,0 +1,84 @@
+#pragma once
+// Multi-process test harness: a private machine file per test (own DDS domain, own CAN
+// multicast group and port), running executables with captured output, reading traces.
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <thread>
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace mcnc::test {
+
+std::string bin(const std::string& name);           // path of an mcnc executable
+std::string source(const std::string& relative);    // path in the source tree
+
+// A copy of a machine file from launch/machines/ with its domain and bus URIs made private to
+// this test (domain `domain`, group 239.255.<domain>.1, port 24000 + domain: below the
+// ephemeral port range, where DDS sockets may hold any port), in a temp folder.
+class TestMachine {
+public:
+  // deadline_cycles > 0 replaces the file's (realtime tests run with looser timing: this VM
+  // can stall a process for a few milliseconds under load).
+  TestMachine(const std::string& machine_file, int domain, int deadline_cycles = 0);
+  [[nodiscard]] int deadline_cycles() const { return deadline_cycles_; }
+  ~TestMachine();
+  [[nodiscard]] const std::string& path() const { return path_; }
+  [[nodiscard]] const std::string& dir() const { return dir_; }
+  [[nodiscard]] int domain() const { return domain_; }
+  [[nodiscard]] std::string file(const std::string& name) const { return dir_ + "/" + name; }
+
+private:
+  std::string dir_;
+  std::string path_;
+  int domain_;
+  int deadline_cycles_ = 0;
+};
+
+struct RunResult {
+  int exit_code = -1;  // -signal when killed
+  std::string out;
+  std::string err;
+};
+
+// Runs argv to its end (killed after `timeout`), with MCNC_DOMAIN set when domain >= 0.
+RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::seconds timeout);
+
+// A process started in the background, its output going to files in `log_dir`.
+class Background {
+public:
+  Background(const std::vector<std::string>& argv, int domain, const std::string& log_path);
+  ~Background();  // SIGKILL if still running
+  // Waits for it to exit; the exit code, -signal, or nullopt-like -1000 on timeout.
+  int wait(std::chrono::seconds timeout);
+  void kill(int sig);
+  [[nodiscard]] pid_t pid() const { return pid_; }
+
+private:
+  pid_t pid_ = -1;
+  bool reaped_ = false;
+};
+
+// Every JSON line of a trace file (or trace part).
+std::vector<nlohmann::json> read_trace(const std::string& path);
+std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,
+                                   const std::string& src = {});
+
+// Polls `pred` until true or timeout.
+template <class Pred>
+bool eventually(Pred pred, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (pred()) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return pred();
+}
+
+// pids of processes whose command line contains `needle`.
+std::vector<pid_t> pids_with_arg(const std::string& needle);
+
+} // namespace mcnc::test

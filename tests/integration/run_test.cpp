@@ -1,0 +1,160 @@
+// The whole chain through `mcnc run`: channel -> DDS -> axis nodes -> CAN -> simulated drives.
+#include "harness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+
+using namespace mcnc::test;
+using namespace std::chrono_literals;
+
+namespace {
+
+// The last `pos` event of each axis.
+std::map<std::string, nlohmann::json> last_positions(const std::vector<nlohmann::json>& trace) {
+  std::map<std::string, nlohmann::json> last;
+  for (const auto& e : events(trace, "pos")) {
+    last[e["axis"]] = e;
+  }
+  return last;
+}
+
+void expect_xz_move_result(const std::vector<nlohmann::json>& trace) {
+  ASSERT_FALSE(trace.empty());
+  // Summary last, ok, program end M30.
+  const auto& summary = trace.back();
+  EXPECT_EQ(summary["ev"], "summary");
+  EXPECT_EQ(summary["ok"], true);
+  EXPECT_EQ(summary["channels"]["CH1"]["end"], 30);
+  EXPECT_EQ(summary["channels"]["CH1"]["alarms"], 0);
+  EXPECT_GT(summary["channels"]["CH1"]["cycle_time_s"].get<double>(), 0.5);
+  // Ordered by cycle.
+  for (std::size_t i = 1; i < trace.size(); ++i) {
+    ASSERT_LE(trace[i - 1]["cycle"].get<std::uint64_t>(), trace[i]["cycle"].get<std::uint64_t>()) << i;
+  }
+  // Blocks in program order, with their text.
+  const auto blocks = events(trace, "block", "CH1");
+  std::vector<int> lines;
+  for (const auto& b : blocks) {
+    lines.push_back(b["line"]);
+  }
+  EXPECT_EQ(lines, (std::vector<int>{3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(blocks.at(0)["text"], "N10 G00 X40. Z5.");
+  EXPECT_EQ(blocks.at(0)["prog"], "xz_move.nc");
+  // States: reset -> idle -> running -> idle.
+  std::vector<std::string> states;
+  for (const auto& s : events(trace, "state", "CH1")) {
+    states.push_back(s["state"]);
+  }
+  EXPECT_EQ(states, (std::vector<std::string>{"reset", "idle", "running", "idle"}));
+  EXPECT_EQ(events(trace, "end", "CH1").at(0)["code"], 30);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  // Ownership announced once per axis at start.
+  EXPECT_EQ(events(trace, "owner").size(), 2U);
+  // The drives stand on the programmed end point: X60 (diameter) = 30 radius, Z10.
+  auto last = last_positions(trace);
+  EXPECT_NEAR(last.at("X1")["act"].get<double>(), 30.0, 0.001);
+  EXPECT_NEAR(last.at("Z1")["act"].get<double>(), 10.0, 0.001);
+  EXPECT_NEAR(last.at("X1")["cmd"].get<double>(), 30.0, 1e-9);
+  EXPECT_NEAR(last.at("Z1")["cmd"].get<double>(), 10.0, 1e-9);
+  // At the end of block N20 (line 4) the axes were at X40 (r 20), Z-20.
+  const auto ends = events(trace, "pos", "CH1");
+  bool found = false;
+  for (const auto& e : ends) {
+    if (e["axis"] == "Z1" && std::fabs(e["cmd"].get<double>() + 20.0) < 1e-9) {
+      found = true;
+      EXPECT_NEAR(e["act"].get<double>(), -20.0, 0.001);
+    }
+  }
+  EXPECT_TRUE(found) << "no block-end pos at Z-20";
+}
+
+} // namespace
+
+TEST(Run, LockstepMoveEndsOnTheProgrammedPoint) {
+  TestMachine machine("small_lathe.yaml", 11);
+  const std::string trace = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace},
+                          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("CH1: program end M30"), std::string::npos) << r.out;
+  expect_xz_move_result(read_trace(trace));
+}
+
+TEST(Run, RealtimeMoveEndsOnTheProgrammedPoint) {
+  TestMachine machine("small_lathe.yaml", 12, /*deadline_cycles=*/50);
+  const std::string trace = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("launch/programs/xz_move.nc"), "--clock", "realtime",
+                           "--trace", trace, "--trace-pos-every", "5"},
+                          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  expect_xz_move_result(read_trace(trace));
+}
+
+TEST(Run, LockstepIsDeterministic) {
+  std::vector<std::vector<nlohmann::json>> runs;
+  for (int i = 0; i < 2; ++i) {
+    TestMachine machine("small_lathe.yaml", 13 + i);
+    const std::string trace = machine.file("trace.jsonl");
+    const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                             "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace},
+                            -1, 180s);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    runs.push_back(read_trace(trace));
+  }
+  // Same events at the same cycles with the same positions (the summary's trailing cycle
+  // count may differ by how long the stop took, so compare everything up to the end event).
+  auto until_end = [](const std::vector<nlohmann::json>& trace) {
+    std::vector<nlohmann::json> kept;
+    std::uint64_t end_cycle = events(trace, "end").at(0)["cycle"];
+    for (const auto& e : trace) {
+      if (e["cycle"].get<std::uint64_t>() <= end_cycle && e["ev"] != "summary") {
+        kept.push_back(e);
+      }
+    }
+    return kept;
+  };
+  const auto a = until_end(runs[0]);
+  const auto b = until_end(runs[1]);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]) << "event " << i;
+  }
+}
+
+TEST(Run, BadMachineFileExits2WithTheKeyPath) {
+  for (const std::string tool : {"mcnc", "mcnc-launch"}) {
+    std::vector<std::string> argv{bin(tool)};
+    if (tool == "mcnc") {
+      argv.emplace_back("run");
+    }
+    argv.push_back(source("tests/fixtures/machines/bad_two_channels.yaml"));
+    const RunResult r = run(argv, 15, 60s);
+    EXPECT_EQ(r.exit_code, 2) << tool << r.out << r.err;
+    EXPECT_NE(r.err.find("channels[1].axes[0]"), std::string::npos) << r.err;
+    EXPECT_TRUE(pids_with_arg("bad_two_channels.yaml").empty()) << "nothing may be started";
+  }
+}
+
+TEST(Run, BadProgramExits2WithLineAndColumnAndMovesNothing) {
+  TestMachine machine("small_lathe.yaml", 16);
+  const std::string program = machine.file("bad.nc");
+  std::ofstream(program) << "%\nG01 X10 F100\nG01 X20 Q5\nM30\n%\n";
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program}, -1, 60s);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("bad.nc:3:"), std::string::npos) << r.err;
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty());
+}
+
+TEST(Run, ProgramForUnknownChannelExits2) {
+  TestMachine machine("small_lathe.yaml", 17);
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH9=" + source("launch/programs/xz_move.nc")},
+                          -1, 60s);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no channel CH9"), std::string::npos) << r.err;
+}

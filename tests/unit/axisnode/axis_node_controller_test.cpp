@@ -1,0 +1,206 @@
+// The axis node core in closed loop with a simulated drive (no bus, no DDS): each cycle the
+// controller's RPDO goes to the drive, a SYNC steps it, and its TPDO comes back next cycle.
+#include "axisnode/control/axis_node_controller.hpp"
+#include "axisnode/drivesim/simulated_drive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace mcnc;
+using axisnode::AxisAlarm;
+using axisnode::AxisNodeController;
+using axisnode::AxisNodeInput;
+
+namespace {
+
+constexpr double kCycle = 0.001;
+
+struct Loop {
+  AxisNodeController node;
+  drivesim::SimulatedDrive drive;
+  canopen::TxPdoCsp tpdo{};
+  bool have_tpdo = false;
+  std::uint64_t cycle = 0;
+
+  explicit Loop(int deadline = 5, double start = 12.5)
+      : node(axisnode::AxisNodeSetup{10000.0, kCycle, deadline}),
+        drive(drivesim::DriveParams{1, 10000.0, 0.004, 500.0, 5000.0, start}, kCycle) {
+    drive.power_on();
+    drive.on_nmt(canopen::NmtCommand::start);
+  }
+
+  // One cycle; `setpoint` < 0 cycles means none arrived.
+  const axisnode::AxisNodeOutput& step(AxisNodeInput in) {
+    in.have_tpdo = have_tpdo;
+    in.statusword = tpdo.statusword;
+    in.position_counts = tpdo.position_actual;
+    const auto& out = node.cycle(cycle++, in);
+    drive.on_rpdo(canopen::RxPdoCsp{out.controlword, out.target_counts});
+    tpdo = drive.on_sync();
+    have_tpdo = true;
+    return out;
+  }
+
+  void enable() {
+    for (int i = 0; i < 10 && !node.output().enabled; ++i) {
+      AxisNodeInput in;
+      in.have_setpoint = true;
+      in.setpoint_valid = false;
+      step(in);
+    }
+  }
+};
+
+AxisNodeInput setpoint(double pos, double vel = 0.0) {
+  AxisNodeInput in;
+  in.have_setpoint = true;
+  in.setpoint_valid = true;
+  in.setpoint_pos = pos;
+  in.setpoint_vel = vel;
+  return in;
+}
+
+} // namespace
+
+TEST(AxisNodeController, EnablesTheDriveAndTakesOverItsPositionWithoutAJump) {
+  Loop loop;
+  loop.enable();
+  ASSERT_TRUE(loop.node.output().enabled);
+  EXPECT_EQ(loop.drive.state(), cia402::State::operation_enabled);
+  EXPECT_DOUBLE_EQ(loop.node.output().cmd, 12.5);
+  EXPECT_NEAR(loop.drive.position(), 12.5, 1e-12);
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
+}
+
+TEST(AxisNodeController, FollowsSetpointsToTheDriveInCounts) {
+  Loop loop;
+  loop.enable();
+  for (int i = 0; i < 400; ++i) {
+    loop.step(setpoint(20.0));
+  }
+  EXPECT_EQ(loop.node.output().target_counts, 200000);
+  EXPECT_NEAR(loop.drive.position(), 20.0, 1e-6);
+  EXPECT_NEAR(loop.node.output().act, 20.0, 1e-4);
+}
+
+TEST(AxisNodeController, InvalidSetpointHoldsPosition) {
+  Loop loop;
+  loop.enable();
+  AxisNodeInput hold;
+  hold.have_setpoint = true;
+  hold.setpoint_valid = false;
+  hold.setpoint_pos = 99.0;
+  for (int i = 0; i < 20; ++i) {
+    loop.step(hold);
+  }
+  EXPECT_DOUBLE_EQ(loop.node.output().cmd, 12.5);
+}
+
+TEST(AxisNodeController, MissingSetpointsAreExtrapolatedThenQuickStopAtTheDeadline) {
+  Loop loop(/*deadline=*/5);
+  loop.enable();
+  for (int i = 0; i < 50; ++i) {
+    loop.step(setpoint(12.5 + 0.01 * i, 10.0));  // 10 mm/s
+  }
+  const double last = loop.node.output().cmd;
+  AxisNodeInput none;
+  for (int i = 1; i <= 4; ++i) {
+    const auto& out = loop.step(none);
+    EXPECT_FALSE(out.quick_stop) << "cycle " << i;
+    EXPECT_NEAR(out.cmd, last + 10.0 * kCycle * i, 1e-9);  // continues the motion
+    EXPECT_EQ(out.missing_setpoints, i);
+  }
+  const auto& out = loop.step(none);  // the fifth missing cycle
+  EXPECT_TRUE(out.quick_stop);
+  EXPECT_EQ(out.new_alarm, AxisAlarm::setpoint_deadline);
+  EXPECT_EQ(out.controlword, cia402::encode_controlword(cia402::Command::quick_stop));
+  // The drive ramps down and rests in quick stop active.
+  for (int i = 0; i < 200; ++i) {
+    loop.step(none);
+  }
+  EXPECT_EQ(loop.drive.state(), cia402::State::quick_stop_active);
+  EXPECT_EQ(loop.drive.velocity(), 0.0);
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::setpoint_deadline);
+  EXPECT_FALSE(loop.node.output().enabled);
+  // New setpoints do not restart motion after a quick stop.
+  const double rest = loop.drive.position();
+  for (int i = 0; i < 50; ++i) {
+    loop.step(setpoint(rest + 5.0));
+  }
+  EXPECT_DOUBLE_EQ(loop.drive.position(), rest);
+}
+
+TEST(AxisNodeController, OwnerLostIsAnAlarmAndQuickStop) {
+  Loop loop;
+  loop.enable();
+  AxisNodeInput in = setpoint(12.5);
+  in.owner_lost = true;
+  const auto& out = loop.step(in);
+  EXPECT_TRUE(out.quick_stop);
+  EXPECT_EQ(out.new_alarm, AxisAlarm::owner_lost);
+}
+
+TEST(AxisNodeController, EmergencyStopQuickStopsWithoutAnAxisAlarm) {
+  Loop loop;
+  loop.enable();
+  AxisNodeInput in = setpoint(12.5);
+  in.emergency_stop = true;
+  const auto& out = loop.step(in);
+  EXPECT_TRUE(out.quick_stop);
+  EXPECT_EQ(out.new_alarm, AxisAlarm::none);
+}
+
+TEST(AxisNodeController, DriveThatStopsAnsweringIsAlarmed) {
+  Loop loop(/*deadline=*/3);
+  loop.enable();
+  loop.have_tpdo = false;
+  AxisNodeInput in = setpoint(12.5);
+  AxisNodeInput no_answer = in;
+  // Feed the controller directly: no TPDO for three cycles.
+  axisnode::AxisNodeController& node = loop.node;
+  const std::uint64_t last = loop.cycle - 1;  // the last TPDO was used in this cycle
+  EXPECT_EQ(node.cycle(last + 1, no_answer).new_alarm, AxisAlarm::none);
+  EXPECT_EQ(node.cycle(last + 2, no_answer).new_alarm, AxisAlarm::none);
+  EXPECT_EQ(node.cycle(last + 3, no_answer).new_alarm, AxisAlarm::drive_lost);
+}
+
+TEST(AxisNodeController, AnAlarmIsRaisedOnceAndStaysActive) {
+  Loop loop;
+  loop.enable();
+  AxisNodeInput in = setpoint(12.5);
+  in.owner_lost = true;
+  EXPECT_EQ(loop.step(in).new_alarm, AxisAlarm::owner_lost);
+  for (int i = 0; i < 10; ++i) {
+    const auto& out = loop.step(in);
+    EXPECT_EQ(out.new_alarm, AxisAlarm::none);
+    EXPECT_EQ(out.alarm, AxisAlarm::owner_lost);
+  }
+}
+
+TEST(AxisNodeController, DeadlineIsArmedByTheFirstSetpoint) {
+  Loop loop(/*deadline=*/3);
+  AxisNodeInput none;
+  for (int i = 0; i < 50; ++i) {
+    loop.step(none);  // enables, but the owner has not spoken yet
+  }
+  EXPECT_TRUE(loop.node.output().enabled);
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
+  loop.step(setpoint(12.5));
+  loop.step(none);
+  loop.step(none);
+  EXPECT_EQ(loop.step(none).new_alarm, AxisAlarm::setpoint_deadline);
+}
+
+TEST(AxisNodeController, SkippedCyclesCountTowardTheDeadline) {
+  Loop loop(/*deadline=*/5);
+  loop.enable();
+  loop.step(setpoint(12.5));
+  const std::uint64_t last = loop.cycle - 1;
+  AxisNodeInput none;
+  none.have_tpdo = true;  // the drive answers; only the owner is silent
+  none.statusword = loop.tpdo.statusword;
+  none.position_counts = loop.tpdo.position_actual;
+  EXPECT_EQ(loop.node.cycle(last + 4, none).new_alarm, AxisAlarm::none);  // ticks skipped
+  EXPECT_EQ(loop.node.cycle(last + 5, none).new_alarm, AxisAlarm::setpoint_deadline);
+}

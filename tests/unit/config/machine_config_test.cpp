@@ -1,0 +1,680 @@
+// Machine file loader: a good file parsed completely, defaults, and every rejection with its exact
+// key path.
+#include "common/config/machine_config.hpp"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace mcnc::config {
+namespace {
+
+const std::string kSourceDir = MCNC_SOURCE_DIR;
+
+// Two channels, two buses, four axes: enough structure for every cross-reference rule.
+constexpr const char* kBase = R"(
+machine:
+  name: twin
+  cycle_us: 1000
+buses:
+  - name: can0
+    uri: udp:239.255.42.1:42000
+    sync_producer: X1
+  - name: can1
+    uri: socketcan:can1
+    bitrate: 1000000
+    sync_producer: X2
+channels:
+  - name: CH1
+    axes: [X1, Z1]
+  - name: CH2
+    axes: [X2, Z2]
+axes:
+  - name: X1
+    address: X
+    diameter: true
+    bus: can0
+    node_id: 1
+    drive:
+      max_velocity: 300
+  - name: Z1
+    address: Z
+    bus: can0
+    node_id: 2
+  - name: X2
+    address: X
+    diameter: true
+    bus: can1
+    node_id: 1
+  - name: Z2
+    address: Z
+    bus: can1
+    node_id: 2
+)";
+
+using Mutation = std::function<void(YAML::Node&)>;
+
+std::string mutated(const Mutation& mutate) {
+  YAML::Node root = YAML::Load(kBase);
+  mutate(root);
+  return YAML::Dump(root);
+}
+
+// The key path of the rejection, or "<accepted>" so a missing rejection shows in the assertion.
+std::string rejection_path(const std::string& text, std::string* what = nullptr) {
+  try {
+    (void)parse_machine_yaml(text);
+  } catch (const ConfigError& error) {
+    if (what != nullptr) {
+      *what = error.what();
+    }
+    return error.key_path();
+  }
+  return "<accepted>";
+}
+
+std::string text_with_axes(int axis_count, int cycle_us, int bitrate) {
+  YAML::Node root;
+  root["machine"]["name"] = "load";
+  root["machine"]["cycle_us"] = cycle_us;
+  YAML::Node bus;
+  bus["name"] = "can0";
+  bus["uri"] = "udp:239.255.42.1:42000";
+  bus["bitrate"] = bitrate;
+  bus["sync_producer"] = "A1";
+  root["buses"].push_back(bus);
+  for (int i = 1; i <= axis_count; ++i) {
+    // One channel cannot hold two axes with one address, so put each axis in its own channel.
+    YAML::Node ch;
+    ch["name"] = "CH" + std::to_string(i);
+    ch["axes"].push_back("A" + std::to_string(i));
+    root["channels"].push_back(ch);
+    YAML::Node axis;
+    axis["name"] = "A" + std::to_string(i);
+    axis["address"] = "X";
+    axis["bus"] = "can0";
+    axis["node_id"] = i;
+    root["axes"].push_back(axis);
+  }
+  return YAML::Dump(root);
+}
+
+TEST(MachineConfig, SmallLatheFileIsFullyParsed) {
+  const MachineConfig config = load_machine_file(kSourceDir + "/launch/machines/small_lathe.yaml");
+  EXPECT_EQ(config.name, "small_lathe");
+  EXPECT_EQ(config.cycle_us, 1000);
+  EXPECT_DOUBLE_EQ(config.cycle_s(), 0.001);
+  EXPECT_EQ(config.deadline_cycles, 5);
+  EXPECT_EQ(config.domain, 0);
+
+  ASSERT_EQ(config.buses.size(), 1u);
+  EXPECT_EQ(config.buses[0].name, "can0");
+  EXPECT_EQ(config.buses[0].uri, "udp:239.255.42.1:29000");
+  EXPECT_EQ(config.buses[0].bitrate, 1000000);
+  EXPECT_EQ(config.buses[0].sync_producer, "X1");
+
+  ASSERT_EQ(config.channels.size(), 1u);
+  EXPECT_EQ(config.channels[0].name, "CH1");
+  EXPECT_EQ(config.channels[0].id, 1);
+  EXPECT_EQ(config.channels[0].axes, (std::vector<std::string>{"X1", "Z1"}));
+
+  ASSERT_EQ(config.axes.size(), 2u);
+  const AxisConfig& x = config.axes[0];
+  EXPECT_EQ(x.name, "X1");
+  EXPECT_EQ(x.id, 1);
+  EXPECT_EQ(x.address, 'X');
+  EXPECT_EQ(x.type, AxisType::linear);
+  EXPECT_TRUE(x.diameter);
+  EXPECT_EQ(x.channel, "CH1");
+  EXPECT_EQ(x.bus, "can0");
+  EXPECT_EQ(x.node_id, 1);
+  EXPECT_DOUBLE_EQ(x.counts_per_unit, 10000.0);
+  EXPECT_DOUBLE_EQ(x.rapid_rate, 8000.0);
+  EXPECT_DOUBLE_EQ(x.max_feed, 5000.0);
+  EXPECT_DOUBLE_EQ(x.acceleration, 1500.0);
+  EXPECT_DOUBLE_EQ(x.in_position, 0.0005);
+  EXPECT_DOUBLE_EQ(x.drive.time_constant_s, 0.004);
+  EXPECT_DOUBLE_EQ(x.drive.max_velocity, 200.0);
+  EXPECT_DOUBLE_EQ(x.drive.quick_stop_decel, 5000.0);
+
+  const AxisConfig& z = config.axes[1];
+  EXPECT_EQ(z.name, "Z1");
+  EXPECT_EQ(z.id, 2);
+  EXPECT_EQ(z.address, 'Z');
+  EXPECT_FALSE(z.diameter);
+  EXPECT_EQ(z.channel, "CH1");
+  EXPECT_EQ(z.node_id, 2);
+  EXPECT_DOUBLE_EQ(z.rapid_rate, 10000.0);
+  EXPECT_DOUBLE_EQ(z.drive.max_velocity, 250.0);
+}
+
+TEST(MachineConfig, DefaultsAreApplied) {
+  const MachineConfig config = parse_machine_yaml(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: A}]
+channels: [{name: C, axes: [A]}]
+axes: [{name: A, address: C, type: rotary, bus: b, node_id: 127}]
+)");
+  EXPECT_EQ(config.cycle_us, 1000);
+  EXPECT_EQ(config.deadline_cycles, 5);
+  EXPECT_EQ(config.domain, 0);
+  EXPECT_EQ(config.buses[0].bitrate, 1000000);
+  const AxisConfig& a = config.axes[0];
+  EXPECT_EQ(a.type, AxisType::rotary);
+  EXPECT_EQ(a.address, 'C');
+  EXPECT_FALSE(a.diameter);
+  EXPECT_EQ(a.node_id, 127);
+  EXPECT_DOUBLE_EQ(a.counts_per_unit, 10000.0);
+  EXPECT_DOUBLE_EQ(a.rapid_rate, 12000.0);
+  EXPECT_DOUBLE_EQ(a.max_feed, 6000.0);
+  EXPECT_DOUBLE_EQ(a.acceleration, 1000.0);
+  EXPECT_DOUBLE_EQ(a.in_position, 0.0005);
+  EXPECT_DOUBLE_EQ(a.drive.time_constant_s, 0.004);
+  EXPECT_DOUBLE_EQ(a.drive.max_velocity, 500.0);
+  EXPECT_DOUBLE_EQ(a.drive.quick_stop_decel, 5000.0);
+}
+
+TEST(MachineConfig, IdsChannelsAndLookups) {
+  const MachineConfig config = parse_machine_yaml(kBase);
+  ASSERT_EQ(config.axes.size(), 4u);
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    EXPECT_EQ(config.axes[i].id, static_cast<int>(i) + 1);
+  }
+  EXPECT_EQ(config.channels[1].id, 2);
+  EXPECT_EQ(config.axes[2].channel, "CH2");
+  EXPECT_EQ(config.axes[3].channel, "CH2");
+  EXPECT_DOUBLE_EQ(config.axes[0].drive.max_velocity, 300.0);
+  EXPECT_DOUBLE_EQ(config.axes[0].drive.time_constant_s, 0.004);  // default kept beside it
+
+  ASSERT_NE(config.find_axis("Z2"), nullptr);
+  EXPECT_EQ(config.find_axis("Z2")->id, 4);
+  EXPECT_EQ(config.find_axis("Q9"), nullptr);
+  ASSERT_NE(config.find_channel("CH2"), nullptr);
+  EXPECT_EQ(config.find_channel("CH2")->id, 2);
+  EXPECT_EQ(config.find_channel("CH3"), nullptr);
+  ASSERT_NE(config.find_bus("can1"), nullptr);
+  EXPECT_EQ(config.find_bus("can1")->uri, "socketcan:can1");
+  EXPECT_EQ(config.find_bus("can2"), nullptr);
+}
+
+TEST(MachineConfig, AcceptedVariants) {
+  // Same node id on different buses, same address in different channels (the base has both).
+  EXPECT_EQ(rejection_path(kBase), "<accepted>");
+  // Range ends are inclusive.
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["machine"]["cycle_us"] = 100000;
+              r["machine"]["deadline_cycles"] = 1000;
+              r["machine"]["domain"] = 232;
+              r["axes"][1]["node_id"] = 127;
+            })),
+            "<accepted>");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["machine"]["deadline_cycles"] = 1;
+              r["buses"][0]["uri"] = "udp:224.0.0.1:1";
+            })),
+            "<accepted>");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["buses"][0]["uri"] = "udp:239.255.255.255:65535";
+              r["buses"][1]["uri"] = "socketcan:abcdefghijklmno";  // 15 characters
+            })),
+            "<accepted>");
+  // Numbers may be written with an exponent or a sign.
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["axes"][0]["acceleration"] = "1.5e3";
+              r["axes"][0]["in_position"] = "+0.001";
+              r["axes"][0]["diameter"] = "True";
+            })),
+            "<accepted>");
+}
+
+struct RejectCase {
+  const char* label;
+  Mutation mutate;
+  const char* key_path;
+};
+
+// Keeps gtest from printing the case as raw bytes.
+void PrintTo(const RejectCase& value, std::ostream* out) {
+  *out << value.label;
+}
+
+class Rejects : public testing::TestWithParam<RejectCase> {};
+
+TEST_P(Rejects, WithKeyPath) {
+  std::string what;
+  EXPECT_EQ(rejection_path(mutated(GetParam().mutate), &what), GetParam().key_path) << what;
+}
+
+std::string case_name(const testing::TestParamInfo<RejectCase>& info) {
+  return info.param.label;
+}
+
+// Unknown keys, at every level.
+INSTANTIATE_TEST_SUITE_P(
+    UnknownKey, Rejects,
+    testing::Values(
+        RejectCase{"TopLevel", [](YAML::Node& r) { r["spindles"] = 1; }, "spindles"},
+        RejectCase{"Machine", [](YAML::Node& r) { r["machine"]["cycle"] = 1; }, "machine.cycle"},
+        RejectCase{"Bus", [](YAML::Node& r) { r["buses"][1]["baud"] = 1; }, "buses[1].baud"},
+        RejectCase{"Channel", [](YAML::Node& r) { r["channels"][0]["mode"] = 1; },
+                   "channels[0].mode"},
+        RejectCase{"Axis", [](YAML::Node& r) { r["axes"][1]["accel"] = 1; }, "axes[1].accel"},
+        RejectCase{"Drive", [](YAML::Node& r) { r["axes"][0]["drive"]["tau"] = 1; },
+                   "axes[0].drive.tau"}),
+    case_name);
+
+// Missing required keys.
+INSTANTIATE_TEST_SUITE_P(
+    MissingKey, Rejects,
+    testing::Values(
+        RejectCase{"Machine", [](YAML::Node& r) { r.remove("machine"); }, "machine"},
+        RejectCase{"Buses", [](YAML::Node& r) { r.remove("buses"); }, "buses"},
+        RejectCase{"Channels", [](YAML::Node& r) { r.remove("channels"); }, "channels"},
+        RejectCase{"Axes", [](YAML::Node& r) { r.remove("axes"); }, "axes"},
+        RejectCase{"MachineName", [](YAML::Node& r) { r["machine"].remove("name"); },
+                   "machine.name"},
+        RejectCase{"BusName", [](YAML::Node& r) { r["buses"][1].remove("name"); }, "buses[1].name"},
+        RejectCase{"BusUri", [](YAML::Node& r) { r["buses"][0].remove("uri"); }, "buses[0].uri"},
+        RejectCase{"SyncProducer", [](YAML::Node& r) { r["buses"][0].remove("sync_producer"); },
+                   "buses[0].sync_producer"},
+        RejectCase{"ChannelName", [](YAML::Node& r) { r["channels"][1].remove("name"); },
+                   "channels[1].name"},
+        RejectCase{"ChannelAxes", [](YAML::Node& r) { r["channels"][0].remove("axes"); },
+                   "channels[0].axes"},
+        RejectCase{"AxisName", [](YAML::Node& r) { r["axes"][2].remove("name"); }, "axes[2].name"},
+        RejectCase{"AxisAddress", [](YAML::Node& r) { r["axes"][1].remove("address"); },
+                   "axes[1].address"},
+        RejectCase{"AxisBus", [](YAML::Node& r) { r["axes"][0].remove("bus"); }, "axes[0].bus"},
+        RejectCase{"AxisNodeId", [](YAML::Node& r) { r["axes"][3].remove("node_id"); },
+                   "axes[3].node_id"}),
+    case_name);
+
+// Wrong types.
+INSTANTIATE_TEST_SUITE_P(
+    WrongType, Rejects,
+    testing::Values(
+        RejectCase{"StringForInteger", [](YAML::Node& r) { r["machine"]["cycle_us"] = "fast"; },
+                   "machine.cycle_us"},
+        RejectCase{"FractionForInteger", [](YAML::Node& r) { r["axes"][1]["node_id"] = 1.5; },
+                   "axes[1].node_id"},
+        RejectCase{"ExponentForInteger", [](YAML::Node& r) { r["buses"][0]["bitrate"] = "1e6"; },
+                   "buses[0].bitrate"},
+        RejectCase{"StringForNumber", [](YAML::Node& r) { r["axes"][0]["rapid_rate"] = "high"; },
+                   "axes[0].rapid_rate"},
+        RejectCase{"InfinityForNumber", [](YAML::Node& r) { r["axes"][0]["max_feed"] = "inf"; },
+                   "axes[0].max_feed"},
+        RejectCase{"NullForNumber",
+                   [](YAML::Node& r) { r["axes"][0]["acceleration"] = YAML::Node(); },
+                   "axes[0].acceleration"},
+        RejectCase{"ListForNumber",
+                   [](YAML::Node& r) {
+                     YAML::Node list(YAML::NodeType::Sequence);
+                     list.push_back(1);
+                     r["axes"][0]["drive"]["max_velocity"] = list;
+                   },
+                   "axes[0].drive.max_velocity"},
+        RejectCase{"WordForBoolean", [](YAML::Node& r) { r["axes"][0]["diameter"] = "yes"; },
+                   "axes[0].diameter"},
+        RejectCase{"MapForList",
+                   [](YAML::Node& r) {
+                     r.remove("channels");
+                     r["channels"]["CH1"] = "X1";
+                   },
+                   "channels"},
+        RejectCase{"ScalarForList", [](YAML::Node& r) { r["channels"][0]["axes"] = "X1"; },
+                   "channels[0].axes"},
+        RejectCase{"ListForMap",
+                   [](YAML::Node& r) {
+                     r.remove("machine");
+                     r["machine"].push_back("twin");
+                   },
+                   "machine"},
+        RejectCase{"ScalarForMap", [](YAML::Node& r) { r["axes"][0]["drive"] = 5; },
+                   "axes[0].drive"},
+        RejectCase{"ScalarForListItem", [](YAML::Node& r) { r["axes"][1] = "Z1"; }, "axes[1]"},
+        RejectCase{"ListForName",
+                   [](YAML::Node& r) {
+                     r["axes"][0]["name"] = YAML::Node(YAML::NodeType::Sequence);
+                     r["axes"][0]["name"].push_back("X1");
+                   },
+                   "axes[0].name"},
+        RejectCase{"MapForAxisReference",
+                   [](YAML::Node& r) {
+                     YAML::Node map;
+                     map["name"] = "Z1";
+                     r["channels"][0]["axes"][1] = map;
+                   },
+                   "channels[0].axes[1]"}),
+    case_name);
+
+// Values out of range or malformed.
+INSTANTIATE_TEST_SUITE_P(
+    OutOfRange, Rejects,
+    testing::Values(
+        RejectCase{"CycleTooShort", [](YAML::Node& r) { r["machine"]["cycle_us"] = 99; },
+                   "machine.cycle_us"},
+        RejectCase{"CycleTooLong", [](YAML::Node& r) { r["machine"]["cycle_us"] = 100001; },
+                   "machine.cycle_us"},
+        RejectCase{"DeadlineZero", [](YAML::Node& r) { r["machine"]["deadline_cycles"] = 0; },
+                   "machine.deadline_cycles"},
+        RejectCase{"DeadlineTooLarge",
+                   [](YAML::Node& r) { r["machine"]["deadline_cycles"] = 1001; },
+                   "machine.deadline_cycles"},
+        RejectCase{"DomainNegative", [](YAML::Node& r) { r["machine"]["domain"] = -1; },
+                   "machine.domain"},
+        RejectCase{"DomainTooLarge", [](YAML::Node& r) { r["machine"]["domain"] = 233; },
+                   "machine.domain"},
+        RejectCase{"IntegerOverflow",
+                   [](YAML::Node& r) { r["machine"]["domain"] = "99999999999999999999999"; },
+                   "machine.domain"},
+        RejectCase{"BitrateTooLow", [](YAML::Node& r) { r["buses"][1]["bitrate"] = 9999; },
+                   "buses[1].bitrate"},
+        RejectCase{"BitrateTooHigh", [](YAML::Node& r) { r["buses"][1]["bitrate"] = 1000001; },
+                   "buses[1].bitrate"},
+        RejectCase{"NodeIdZero", [](YAML::Node& r) { r["axes"][2]["node_id"] = 0; },
+                   "axes[2].node_id"},
+        RejectCase{"NodeIdTooLarge", [](YAML::Node& r) { r["axes"][2]["node_id"] = 128; },
+                   "axes[2].node_id"},
+        RejectCase{"CountsZero", [](YAML::Node& r) { r["axes"][0]["counts_per_unit"] = 0; },
+                   "axes[0].counts_per_unit"},
+        RejectCase{"RapidNegative", [](YAML::Node& r) { r["axes"][0]["rapid_rate"] = -1; },
+                   "axes[0].rapid_rate"},
+        RejectCase{"FeedZero", [](YAML::Node& r) { r["axes"][1]["max_feed"] = 0; },
+                   "axes[1].max_feed"},
+        RejectCase{"AccelerationZero", [](YAML::Node& r) { r["axes"][1]["acceleration"] = 0.0; },
+                   "axes[1].acceleration"},
+        RejectCase{"InPositionZero", [](YAML::Node& r) { r["axes"][1]["in_position"] = 0; },
+                   "axes[1].in_position"},
+        RejectCase{"TimeConstantZero",
+                   [](YAML::Node& r) { r["axes"][0]["drive"]["time_constant_s"] = 0; },
+                   "axes[0].drive.time_constant_s"},
+        RejectCase{"DriveVelocityNegative",
+                   [](YAML::Node& r) { r["axes"][0]["drive"]["max_velocity"] = -5; },
+                   "axes[0].drive.max_velocity"},
+        RejectCase{"QuickStopZero",
+                   [](YAML::Node& r) { r["axes"][0]["drive"]["quick_stop_decel"] = 0; },
+                   "axes[0].drive.quick_stop_decel"},
+        RejectCase{"AddressUnknown", [](YAML::Node& r) { r["axes"][1]["address"] = "Q"; },
+                   "axes[1].address"},
+        RejectCase{"AddressIncremental", [](YAML::Node& r) { r["axes"][1]["address"] = "W"; },
+                   "axes[1].address"},
+        RejectCase{"AddressLowercase", [](YAML::Node& r) { r["axes"][1]["address"] = "z"; },
+                   "axes[1].address"},
+        RejectCase{"AddressTwoLetters", [](YAML::Node& r) { r["axes"][1]["address"] = "ZZ"; },
+                   "axes[1].address"},
+        RejectCase{"TypeUnknown", [](YAML::Node& r) { r["axes"][1]["type"] = "spindle"; },
+                   "axes[1].type"},
+        RejectCase{"RotaryInDiameter", [](YAML::Node& r) { r["axes"][0]["type"] = "rotary"; },
+                   "axes[0].diameter"},
+        RejectCase{"NameWithSpace", [](YAML::Node& r) { r["channels"][0]["name"] = "CH 1"; },
+                   "channels[0].name"},
+        RejectCase{"NameEmpty", [](YAML::Node& r) { r["machine"]["name"] = ""; }, "machine.name"},
+        RejectCase{"NameTooLong",
+                   [](YAML::Node& r) { r["machine"]["name"] = std::string(32, 'm'); },
+                   "machine.name"},
+        RejectCase{"UriScheme", [](YAML::Node& r) { r["buses"][0]["uri"] = "tcp:1.2.3.4:5"; },
+                   "buses[0].uri"},
+        RejectCase{"UriNoPort", [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:239.255.42.1"; },
+                   "buses[0].uri"},
+        RejectCase{"UriNotMulticast",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:192.168.1.10:42000"; },
+                   "buses[0].uri"},
+        RejectCase{"UriAboveMulticast",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:240.0.0.1:42000"; },
+                   "buses[0].uri"},
+        RejectCase{"UriShortAddress",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:239.255.42:42000"; },
+                   "buses[0].uri"},
+        RejectCase{"UriOctetTooLarge",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:239.256.42.1:42000"; },
+                   "buses[0].uri"},
+        RejectCase{"UriPortZero",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:239.255.42.1:0"; },
+                   "buses[0].uri"},
+        RejectCase{"UriPortTooLarge",
+                   [](YAML::Node& r) { r["buses"][0]["uri"] = "udp:239.255.42.1:65536"; },
+                   "buses[0].uri"},
+        RejectCase{"UriEmptyIfname", [](YAML::Node& r) { r["buses"][1]["uri"] = "socketcan:"; },
+                   "buses[1].uri"},
+        RejectCase{"UriLongIfname",
+                   [](YAML::Node& r) { r["buses"][1]["uri"] = "socketcan:abcdefghijklmnop"; },
+                   "buses[1].uri"}),
+    case_name);
+
+// Inconsistencies between sections.
+INSTANTIATE_TEST_SUITE_P(
+    CrossCheck, Rejects,
+    testing::Values(
+        RejectCase{"DuplicateAxisName", [](YAML::Node& r) { r["axes"][3]["name"] = "X2"; },
+                   "axes[3].name"},
+        RejectCase{"DuplicateChannelName", [](YAML::Node& r) { r["channels"][1]["name"] = "CH1"; },
+                   "channels[1].name"},
+        RejectCase{"DuplicateBusName", [](YAML::Node& r) { r["buses"][1]["name"] = "can0"; },
+                   "buses[1].name"},
+        RejectCase{"DuplicateBusUri",
+                   [](YAML::Node& r) { r["buses"][1]["uri"] = "udp:239.255.42.1:42000"; },
+                   "buses[1].uri"},
+        RejectCase{"NoBuses",
+                   [](YAML::Node& r) { r["buses"] = YAML::Node(YAML::NodeType::Sequence); },
+                   "buses"},
+        RejectCase{"NoAxes",
+                   [](YAML::Node& r) { r["axes"] = YAML::Node(YAML::NodeType::Sequence); }, "axes"},
+        RejectCase{"NoChannels",
+                   [](YAML::Node& r) { r["channels"] = YAML::Node(YAML::NodeType::Sequence); },
+                   "channels"},
+        RejectCase{
+            "ChannelWithoutAxes",
+            [](YAML::Node& r) { r["channels"][1]["axes"] = YAML::Node(YAML::NodeType::Sequence); },
+            "channels[1].axes"},
+        RejectCase{"AxisInNoChannel",
+                   [](YAML::Node& r) {
+                     r["channels"][1]["axes"] = YAML::Node(YAML::NodeType::Sequence);
+                     r["channels"][1]["axes"].push_back("X2");
+                   },
+                   "axes[3]"},
+        RejectCase{"SameAxisTwiceInChannel",
+                   [](YAML::Node& r) { r["channels"][0]["axes"].push_back("X1"); },
+                   "channels[0].axes[2]"},
+        RejectCase{"UnknownAxisInChannel",
+                   [](YAML::Node& r) { r["channels"][0]["axes"][1] = "Y1"; },
+                   "channels[0].axes[1]"},
+        RejectCase{"SameAddressInChannel", [](YAML::Node& r) { r["axes"][1]["address"] = "X"; },
+                   "channels[0].axes[1]"},
+        RejectCase{"UnknownBus", [](YAML::Node& r) { r["axes"][2]["bus"] = "can7"; },
+                   "axes[2].bus"},
+        RejectCase{"NodeIdTwiceOnBus", [](YAML::Node& r) { r["axes"][3]["node_id"] = 1; },
+                   "axes[3].node_id"},
+        RejectCase{"SyncProducerUnknown",
+                   [](YAML::Node& r) { r["buses"][0]["sync_producer"] = "Y9"; },
+                   "buses[0].sync_producer"},
+        RejectCase{"SyncProducerOnOtherBus",
+                   [](YAML::Node& r) { r["buses"][0]["sync_producer"] = "X2"; },
+                   "buses[0].sync_producer"},
+        RejectCase{"BusWithoutAxes",
+                   [](YAML::Node& r) {
+                     r["axes"][2]["bus"] = "can0";
+                     r["axes"][2]["node_id"] = 3;
+                     r["axes"][3]["bus"] = "can0";
+                     r["axes"][3]["node_id"] = 4;
+                     r["machine"]["cycle_us"] = 2000;  // four axes fit at 2 ms
+                   },
+                   "buses[1]"},
+        RejectCase{"BusOverloaded",
+                   [](YAML::Node& r) {
+                     r["axes"][2]["bus"] = "can0";
+                     r["axes"][2]["node_id"] = 3;
+                     r["buses"][1]["sync_producer"] = "Z2";
+                   },
+                   "buses[0]"},
+        RejectCase{"BusOverloadedAtLowBitrate",
+                   [](YAML::Node& r) { r["buses"][1]["bitrate"] = 500000; }, "buses[1]"}),
+    case_name);
+
+TEST(MachineConfig, AxisInTwoChannelsNamesTheFirstChannel) {
+  const std::string text = mutated([](YAML::Node& r) {
+    r["channels"][1]["axes"] = YAML::Node(YAML::NodeType::Sequence);
+    r["channels"][1]["axes"].push_back("X1");
+    r["channels"][1]["axes"].push_back("X2");
+    r["channels"][1]["axes"].push_back("Z2");
+  });
+  try {
+    (void)parse_machine_yaml(text);
+    FAIL() << "accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(error.key_path(), "channels[1].axes[0]");
+    EXPECT_EQ(std::string(error.what())
+                  .rfind("channels[1].axes[0]: axis X1 is already in channel CH1", 0),
+              0u)
+        << error.what();
+  }
+}
+
+// kBase with its first `from` replaced by `to`, for cases a YAML::Node cannot express.
+std::string edited(const std::string& from, const std::string& to) {
+  std::string text = kBase;
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(MachineConfig, TextLevelRejections) {
+  // A quoted number is a string.
+  EXPECT_EQ(rejection_path(edited("cycle_us: 1000", "cycle_us: \"1000\"")), "machine.cycle_us");
+  // A repeated key is an error, not "the last one wins".
+  EXPECT_EQ(rejection_path(edited("name: twin", "name: twin\n  name: other")), "machine.name");
+  // An empty value is not a default.
+  EXPECT_EQ(rejection_path(edited("cycle_us: 1000", "cycle_us:")), "machine.cycle_us");
+  // YAML 1.1 booleans are refused.
+  EXPECT_EQ(rejection_path(edited("diameter: true", "diameter: on")), "axes[0].diameter");
+  // Hexadecimal, octal and digit separators are refused.
+  EXPECT_EQ(rejection_path(edited("cycle_us: 1000", "cycle_us: 0x3e8")), "machine.cycle_us");
+  EXPECT_EQ(rejection_path(edited("cycle_us: 1000", "cycle_us: 0o1750")), "machine.cycle_us");
+  EXPECT_EQ(rejection_path(edited("bitrate: 1000000", "bitrate: 1_000_000")), "buses[1].bitrate");
+  // A flow list and a block list are the same thing.
+  EXPECT_EQ(rejection_path(edited("axes: [X1, Z1]", "axes:\n      - X1\n      - Z1")),
+            "<accepted>");
+}
+
+TEST(MachineConfig, WholeFileErrorsHaveAnEmptyKeyPath) {
+  std::string what;
+  EXPECT_EQ(rejection_path("machine:\n  name: [m\n", &what), "");
+  EXPECT_NE(what.find("line "), std::string::npos) << what;
+  EXPECT_NE(what.find("column "), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(""), "");
+  EXPECT_EQ(rejection_path("# only a comment\n"), "");
+  EXPECT_EQ(rejection_path("- machine\n"), "");
+  EXPECT_EQ(rejection_path("plain text\n"), "");
+  EXPECT_EQ(rejection_path(std::string(kBase) + "---\nmachine: {name: other}\n"), "");
+}
+
+TEST(MachineConfig, ErrorsGiveTheLine) {
+  std::string what;
+  EXPECT_EQ(rejection_path("machine:\n  name: m\n  cycle_us: 5\n", &what), "machine.cycle_us");
+  EXPECT_NE(what.find("(line 3, column 13)"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(edited("node_id: 2", "node_id: 200"), &what), "axes[1].node_id");
+  EXPECT_NE(what.find("(line 29, column 14)"), std::string::npos) << what;
+}
+
+class TempFile {
+ public:
+  explicit TempFile(const std::string& text)
+      : path_(std::filesystem::temp_directory_path() /
+              ("mcnc_config_test_" +
+               std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+               ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".yaml")) {
+    std::ofstream(path_) << text;
+  }
+  ~TempFile() { std::filesystem::remove(path_); }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  [[nodiscard]] std::string path() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+TEST(LoadMachineFile, MissingFileNamesThePath) {
+  const std::string path = kSourceDir + "/tests/fixtures/machines/does_not_exist.yaml";
+  try {
+    (void)load_machine_file(path);
+    FAIL() << "accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(error.key_path(), path);
+  }
+}
+
+TEST(LoadMachineFile, SyntaxErrorNamesTheFileAndLine) {
+  const TempFile file("machine:\n  name: m\n buses: [\n");
+  try {
+    (void)load_machine_file(file.path());
+    FAIL() << "accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(error.key_path(), file.path());
+    EXPECT_NE(std::string(error.what()).find("line "), std::string::npos) << error.what();
+  }
+}
+
+TEST(LoadMachineFile, ValidationErrorKeepsTheKeyPath) {
+  const TempFile file("machine:\n  name: m\n  deadline_cycles: 0\n");
+  try {
+    (void)load_machine_file(file.path());
+    FAIL() << "accepted";
+  } catch (const ConfigError& error) {
+    EXPECT_EQ(error.key_path(), "machine.deadline_cycles");
+  }
+}
+
+std::string fixture_rejection(const std::string& name) {
+  try {
+    (void)load_machine_file(kSourceDir + "/tests/fixtures/machines/" + name);
+  } catch (const ConfigError& error) {
+    return error.key_path();
+  }
+  return "<accepted>";
+}
+
+TEST(LoadMachineFile, BadFixtures) {
+  EXPECT_EQ(fixture_rejection("bad_two_channels.yaml"), "channels[1].axes[0]");
+  EXPECT_EQ(fixture_rejection("bad_unknown_key.yaml"), "axes[1].acceleraton");
+  EXPECT_EQ(fixture_rejection("bad_node_id.yaml"), "axes[1].node_id");
+}
+
+TEST(BusLoad, FrameBits) {
+  EXPECT_EQ(can_frame_bits(0), 55);   // 47 + 0 + floor(33 / 4)
+  EXPECT_EQ(can_frame_bits(1), 65);   // SYNC: 47 + 8 + floor(41 / 4)
+  EXPECT_EQ(can_frame_bits(6), 115);  // PDO: 47 + 48 + floor(81 / 4)
+  EXPECT_EQ(can_frame_bits(8), 135);  // 47 + 64 + floor(97 / 4)
+  EXPECT_EQ(bus_bits_per_cycle(0), 65);
+  EXPECT_EQ(bus_bits_per_cycle(2), 525);
+  EXPECT_EQ(bus_bits_per_cycle(3), 755);
+  EXPECT_DOUBLE_EQ(bus_load(2, 1000000, 1000), 0.525);
+  EXPECT_DOUBLE_EQ(bus_load(3, 1000000, 2000), 0.3775);
+  EXPECT_DOUBLE_EQ(bus_load(1, 0, 1000), 0.0);
+}
+
+TEST(BusLoad, LimitAtOneMegabit) {
+  // 1 ms: 2 axes take 52.5 %, 3 take 75.5 %.
+  EXPECT_EQ(rejection_path(text_with_axes(2, 1000, 1000000)), "<accepted>");
+  EXPECT_EQ(rejection_path(text_with_axes(3, 1000, 1000000)), "buses[0]");
+  // 2 ms: 5 axes take 60.75 %, 6 take 72.25 %.
+  EXPECT_EQ(rejection_path(text_with_axes(5, 2000, 1000000)), "<accepted>");
+  EXPECT_EQ(rejection_path(text_with_axes(6, 2000, 1000000)), "buses[0]");
+  // 500 kbit/s at 2 ms is the same budget as 1 Mbit/s at 1 ms.
+  EXPECT_EQ(rejection_path(text_with_axes(2, 2000, 500000)), "<accepted>");
+  EXPECT_EQ(rejection_path(text_with_axes(3, 2000, 500000)), "buses[0]");
+}
+
+TEST(BusLoad, ExactlySeventyPercentIsAccepted) {
+  // Two axes need 525 bits per cycle, exactly 70 % of 750 bits: 750000 bit/s at 1 ms.
+  EXPECT_EQ(rejection_path(text_with_axes(2, 1000, 750000)), "<accepted>");
+  EXPECT_EQ(rejection_path(text_with_axes(2, 1000, 749999)), "buses[0]");
+}
+
+}  // namespace
+}  // namespace mcnc::config

@@ -1,0 +1,24 @@
+// mcnc: the user's command line.
+#include "common/log/logging.hpp"
+#include "launch/run_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+int main(int argc, char** argv) {
+  CLI::App app{"mcnc: multi-channel NC runtime"};
+  app.require_subcommand(1);
+  mcnc::launch::RunArguments run_args;
+  CLI::App* run = app.add_subcommand("run", "bring up a machine, run programs to their end, report");
+  mcnc::launch::add_run_options(*run, run_args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;  // bad command line is bad input
+  }
+  mcnc::log::setup("mcnc", run_args.log_level);
+  if (run->parsed()) {
+    return mcnc::launch::execute_run(run_args);
+  }
+  return 2;
+}

@@ -43,6 +43,9 @@ int main(int argc, char** argv) {
   app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")->check(CLI::PositiveNumber);
   app.add_option("--lockstep-stall-ms", stall_ms, "lockstep: warn when the bus keeps a cycle waiting this long");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
+  std::string clock_name = "lockstep";
+  app.add_option("--clock", clock_name, "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
@@ -54,6 +57,9 @@ int main(int argc, char** argv) {
   const config::BusConfig* bus = machine.find_bus(axis->bus);
   const config::ChannelConfig* owner = machine.find_channel(axis->channel);
   log::setup(axis->name, log_level);
+  if (clock_name == "realtime") {
+    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
+  }
   process::install_stop_signals();
 
   std::vector<std::uint8_t> other_nodes;
@@ -128,8 +134,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
-    if (!lockstep) {
-      spdlog::info("realtime clock: {}", clock::prepare_realtime_thread());
+    if (lockstep != (clock_name == "lockstep")) {
+      spdlog::warn("run control says {} clock, started for {}", lockstep ? "lockstep" : "realtime", clock_name);
     }
     node.announce(PHASE_RUNNING);
 

@@ -63,6 +63,9 @@ int main(int argc, char** argv) {
   app.add_option("--program", program_path, "part program to run at cycle start")->check(CLI::ExistingFile);
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
+  std::string clock_name = "lockstep";
+  app.add_option("--clock", clock_name, "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
@@ -72,6 +75,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   log::setup(ch->name, log_level);
+  if (clock_name == "realtime") {
+    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
+  }
   process::install_stop_signals();
 
   // The channel's axes, in program order.
@@ -170,8 +176,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
-    if (!lockstep) {
-      spdlog::info("realtime clock: {}", clock::prepare_realtime_thread());
+    if (lockstep != (clock_name == "lockstep")) {
+      spdlog::warn("run control says {} clock, started for {}", lockstep ? "lockstep" : "realtime", clock_name);
     }
     node.announce(PHASE_RUNNING);
     const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;

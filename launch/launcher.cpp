@@ -117,6 +117,8 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   std::vector<std::string> dds_processes;
   const std::string bin = options_.bin_dir.empty() ? std::string(".") : options_.bin_dir;
   auto common_args = [&](std::vector<std::string> args) {
+    args.emplace_back("--clock");
+    args.emplace_back(options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
     if (!options_.log_level.empty()) {
       args.push_back("--log-level");
       args.push_back(options_.log_level);
@@ -127,9 +129,6 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   std::vector<std::string> axis_parts;
   for (const auto& bus : machine_.buses) {
     std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path, "--bus", bus.name};
-    if (options_.clock == LOCKSTEP_CLOCK) {
-      args.emplace_back("--lockstep");
-    }
     children.emplace_back("drivesim-" + bus.name, common_args(args));
   }
   for (const auto& axis : machine_.axes) {

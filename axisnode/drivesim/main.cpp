@@ -3,6 +3,7 @@
 // DriveBusSimulator until SIGTERM/SIGINT.
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "common/can/can_bus.hpp"
+#include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/log/logging.hpp"
 
@@ -57,11 +58,13 @@ int main(int argc, char** argv) {
   std::string machine_path;
   std::string bus_name;
   std::string log_level;
-  bool lockstep = false;
   app.add_option("--machine", machine_path, "machine file (YAML)")->required();
   app.add_option("--bus", bus_name, "name of the bus to simulate (buses[].name)")->required();
-  app.add_flag("--lockstep", lockstep,
-               "hold each SYNC until the RPDOs of its cycle are in (UDP does not order senders)");
+  std::string clock_name = "lockstep";
+  app.add_option("--clock", clock_name,
+                 "lockstep: hold each SYNC until the RPDOs of its cycle are in (UDP does not "
+                 "order senders); realtime: SCHED_FIFO, memory locked")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
   CLI11_PARSE(app, argc, argv);
 
@@ -99,6 +102,10 @@ int main(int argc, char** argv) {
   }
 
   log::setup("drivesim-" + bus_name, log_level);
+  const bool lockstep = clock_name == "lockstep";
+  if (!lockstep) {
+    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
+  }
   install_signal_handlers();
 
   try {

@@ -34,7 +34,7 @@ std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std
   return cycle;
 }
 
-const char* prepare_realtime_thread() noexcept {
+const char* prepare_realtime_process() noexcept {
   // The default 50 us timer slack would add to every wake-up.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   sched_param param{};

@@ -15,7 +15,9 @@ void sleep_until_ns(std::int64_t t_ns) noexcept;
 std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std::uint64_t cycle,
                              bool skip_missed) noexcept;
 // Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted.
-// Returns a short description of what was applied (for the log).
-const char* prepare_realtime_thread() noexcept;
+// Call it first thing in main(), before any thread starts: threads inherit the policy, and the
+// DDS and CAN receive threads must not wait behind ordinary work. Returns a short description
+// of what was applied (for the log).
+const char* prepare_realtime_process() noexcept;
 
 } // namespace mcnc::clock

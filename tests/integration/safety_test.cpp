@@ -33,16 +33,16 @@ double last_cmd(const std::string& part, const std::string& axis) {
 void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expected_alarm) {
   TestMachine machine("small_lathe.yaml", domain, clock == REALTIME_CLOCK ? 50 : 0);
   const std::string m = machine.path();
-  std::vector<std::string> sim_args{bin("mcnc-drivesim"), "--machine", m, "--bus", "can0"};
-  if (clock == LOCKSTEP_CLOCK) {
-    sim_args.emplace_back("--lockstep");
-  }
-  Background sim(sim_args, domain, machine.file("sim"));
-  Background x({bin("mcnc-axisnode"), "--machine", m, "--axis", "X1", "--trace", machine.file("X1.jsonl")},
+  const std::string clock_name = clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime";
+  Background sim({bin("mcnc-drivesim"), "--machine", m, "--bus", "can0", "--clock", clock_name}, domain,
+                 machine.file("sim"));
+  Background x({bin("mcnc-axisnode"), "--machine", m, "--axis", "X1", "--clock", clock_name, "--trace",
+                machine.file("X1.jsonl")},
                domain, machine.file("X1"));
-  Background z({bin("mcnc-axisnode"), "--machine", m, "--axis", "Z1", "--trace", machine.file("Z1.jsonl")},
+  Background z({bin("mcnc-axisnode"), "--machine", m, "--axis", "Z1", "--clock", clock_name, "--trace",
+                machine.file("Z1.jsonl")},
                domain, machine.file("Z1"));
-  Background ch({bin("mcnc-channel"), "--machine", m, "--channel", "CH1", "--program",
+  Background ch({bin("mcnc-channel"), "--machine", m, "--channel", "CH1", "--clock", clock_name, "--program",
                  source("launch/programs/long_feed.nc")},
                 domain, machine.file("CH1"));
 

@@ -110,7 +110,7 @@ TEST(MachineConfig, SmallLatheFileIsFullyParsed) {
   EXPECT_EQ(config.name, "small_lathe");
   EXPECT_EQ(config.cycle_us, 1000);
   EXPECT_DOUBLE_EQ(config.cycle_s(), 0.001);
-  EXPECT_EQ(config.deadline_cycles, 5);
+  EXPECT_EQ(config.deadline_cycles, 20);
   EXPECT_EQ(config.domain, 0);
 
   ASSERT_EQ(config.buses.size(), 1u);

@@ -1,0 +1,179 @@
+// Setpoint latency, channel publish -> drive receipt of the RPDO, in the realtime clock.
+// This program plays the channel (and mcnc-launch): it starts the real drive simulator and
+// axis nodes of a machine, publishes one AxisSetpoint per cycle for the first axis of the first
+// channel whose position encodes the cycle number, and listens on the CAN bus for the axis
+// node's RPDOs. The latency of cycle k is (RPDO with target k received) - (setpoint k written).
+// It includes the designed one-cycle delay (a setpoint stamped N is applied at N+1).
+#include "common/can/can_bus.hpp"
+#include "common/clock/cycle_clock.hpp"
+#include "common/config/machine_config.hpp"
+#include "common/process/process_node.hpp"
+#include "common/process/shm_cleanup.hpp"
+#include "axisnode/cia402/canopen_frames.hpp"
+#include "launch/child_process.hpp"
+#include "launch/self_path.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <map>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+using namespace mcnc;
+using namespace std::chrono_literals;
+
+int main(int argc, char** argv) {
+  CLI::App app{"setpoint latency: channel publish -> RPDO at the drive (realtime clock)"};
+  std::string machine_path;
+  int cycles = 10000;
+  app.add_option("machine", machine_path, "machine file")->required();
+  app.add_option("--cycles", cycles, "cycles to measure");
+  CLI11_PARSE(app, argc, argv);
+
+  const config::MachineConfig machine = config::load_machine_file(machine_path);
+  const config::ChannelConfig& channel = machine.channels.at(0);
+  const config::AxisConfig& axis = *machine.find_axis(channel.axes.at(0));
+  const config::BusConfig& bus = *machine.find_bus(axis.bus);
+  const int domain = process::resolve_domain(machine);
+  const std::string bin = launch::executable_dir();
+
+  std::vector<launch::ChildProcess> children;
+  children.emplace_back("sim", std::vector<std::string>{bin + "/mcnc-drivesim", "--machine", machine_path,
+                                                        "--bus", bus.name, "--clock", "realtime",
+                                                        "--log-level", "warn"});
+  for (const auto& a : machine.axes) {
+    children.emplace_back(a.name, std::vector<std::string>{bin + "/mcnc-axisnode", "--machine", machine_path,
+                                                           "--axis", a.name, "--clock", "realtime",
+                                                           "--log-level", "warn"});
+  }
+  const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain)};
+  for (auto& c : children) {
+    c.start(env);
+  }
+
+  clock::prepare_realtime_process();
+  process::ProcessNode node(domain, channel.name);
+  std::mutex mutex;
+  std::map<std::string, ProcessPhase> phases;
+  dds::Reader<ProcessState> states(node.participant(), [&](const ProcessState& s, const dds::WriterId&) {
+    std::lock_guard<std::mutex> lock(mutex);
+    phases[s.name()] = s.phase();
+  });
+  dds::Writer<AxisSetpoint> setpoints(node.participant());
+  dds::Reader<AxisFeedback> feedback(node.participant(), [](const AxisFeedback&, const dds::WriterId&) {});
+  dds::Writer<RunControl> control(node.participant());
+
+  // Receive RPDOs on the bus: target counts -> receive time.
+  const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
+  const int warmup = 500;
+  std::vector<std::int64_t> published(static_cast<std::size_t>(cycles + warmup + 10), 0);
+  std::vector<std::int64_t> received(published.size(), 0);
+  std::atomic<bool> stop{false};
+  auto can = can::open_can_bus(bus.uri);
+  std::thread listener([&] {
+    canopen::CanFrame frame;
+    while (!stop) {
+      if (can->receive(frame, 50ms) != can::BusResult::ok) {
+        continue;
+      }
+      const std::int64_t now = clock::monotonic_ns();
+      const auto cls = canopen::classify(frame);
+      if (cls.kind == canopen::FrameKind::rpdo1 && cls.node == axis.node_id) {
+        if (auto pdo = canopen::decode_rpdo_csp(frame)) {
+          const std::int64_t k = pdo->target_position - 1'000'000;  // offset: see below
+          if (k >= 0 && k < static_cast<std::int64_t>(received.size()) && received[static_cast<std::size_t>(k)] == 0) {
+            received[static_cast<std::size_t>(k)] = now;
+          }
+        }
+      }
+    }
+  });
+
+  const auto ready = [&] {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& a : machine.axes) {
+      if (phases[a.name] != PHASE_READY) {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (int i = 0; i < 3000 && !ready(); ++i) {
+    std::this_thread::sleep_for(10ms);
+  }
+  if (!ready()) {
+    std::fprintf(stderr, "axis nodes did not come up\n");
+    return 1;
+  }
+  const std::int64_t start_ns = clock::monotonic_ns() + 200'000'000;
+  RunControl rc;
+  rc.generation(1);
+  rc.command(RUN_START);
+  rc.clock(REALTIME_CLOCK);
+  rc.start_ns(start_ns);
+  control.write(rc);
+
+  // Setpoint k carries position (1'000'000 + k) counts, so the RPDO target identifies it.
+  const double counts = axis.counts_per_unit;
+  const auto total = static_cast<std::uint64_t>(cycles + warmup);
+  for (std::uint64_t cycle = 0; cycle < total; ++cycle) {
+    clock::sleep_until_ns(start_ns + static_cast<std::int64_t>(cycle) * cycle_ns);
+    for (const auto& name : channel.axes) {
+      const config::AxisConfig& a = *machine.find_axis(name);
+      AxisSetpoint sp;
+      sp.axis(static_cast<std::uint32_t>(a.id));
+      sp.channel(static_cast<std::uint32_t>(channel.id));
+      sp.cycle(cycle);
+      sp.valid(true);
+      sp.pos(a.id == axis.id ? (1'000'000.0 + static_cast<double>(cycle)) / counts : 0.0);
+      if (a.id == axis.id) {
+        published[cycle] = clock::monotonic_ns();
+      }
+      setpoints.write(sp);
+    }
+  }
+  std::this_thread::sleep_for(100ms);
+  rc.generation(2);
+  rc.command(RUN_STOP);
+  control.write(rc);
+  stop = true;
+  listener.join();
+  for (auto& c : children) {
+    for (int i = 0; i < 300 && !c.poll_exited(); ++i) {
+      if (i == 100) {
+        c.signal(SIGTERM);
+      }
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  process::remove_stale_dds_shm_files();
+
+  std::vector<double> latency_us;
+  std::size_t lost = 0;
+  for (std::uint64_t k = warmup; k < total; ++k) {
+    if (received[k] == 0 || published[k] == 0) {
+      ++lost;
+      continue;
+    }
+    latency_us.push_back(static_cast<double>(received[k] - published[k]) / 1000.0);
+  }
+  if (latency_us.empty()) {
+    std::fprintf(stderr, "no RPDO matched a setpoint\n");
+    return 1;
+  }
+  std::sort(latency_us.begin(), latency_us.end());
+  auto pct = [&](double p) {
+    return latency_us[std::min(latency_us.size() - 1, static_cast<std::size_t>(p * static_cast<double>(latency_us.size())))];
+  };
+  std::printf("setpoint -> RPDO latency over %zu cycles of %d us (%zu setpoints never reached the bus):\n",
+              latency_us.size(), machine.cycle_us, lost);
+  std::printf("  min %.1f us  median %.1f us  p90 %.1f us  p99 %.1f us  max %.1f us\n", latency_us.front(),
+              pct(0.5), pct(0.9), pct(0.99), latency_us.back());
+  return 0;
+}

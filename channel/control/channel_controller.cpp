@@ -76,6 +76,9 @@ bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) 
 
 bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback) const noexcept {
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
+    if (i >= feedback.size()) {
+      return false;
+    }
     const double width = i < setup_.in_position.size() ? setup_.in_position[i] : 0.0;
     if (std::fabs(feedback[i].act - commanded_[i]) > width) {
       return false;
@@ -106,12 +109,11 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
   }
 
   if (estop_requested_) {
+    // Latched in any state, also before the axes came up: reset, and stay there.
     estop_requested_ = false;
-    if (out_.state != ChannelState::reset) {
-      phase_ = Phase::done;
-      start_requested_ = false;
-      set_state(ChannelState::reset);
-    }
+    phase_ = Phase::done;
+    start_requested_ = false;
+    set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
   if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) && phase_ == Phase::done) {

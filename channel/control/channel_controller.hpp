@@ -91,8 +91,13 @@ class ChannelController {
 public:
   ChannelController(ChannelSetup setup, interp::CommandSource& source, motion::BlockPlanner& planner);
 
-  // Cycle start: the program runs as soon as every axis is enabled (from idle or reset).
-  void request_start() noexcept { start_requested_ = true; }
+  // Cycle start: the program runs as soon as every axis is enabled (from idle or reset). A
+  // start while the program runs is ignored, as on a control panel.
+  void request_start() noexcept {
+    if (out_.state != ChannelState::running) {
+      start_requested_ = true;
+    }
+  }
   // Emergency stop: motion ends at once, the channel goes to reset and stays there.
   void emergency_stop() noexcept { estop_requested_ = true; }
   // A program alarm found before the run (e.g. when the program was loaded): raised at the next

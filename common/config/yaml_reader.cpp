@@ -74,7 +74,9 @@ YamlMap YamlValue::map(std::initializer_list<std::string_view> allowed) const {
   }
   std::vector<std::pair<std::string, YAML::Node>> entries;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    const YAML::Node& key_node = it->first;
+    // Copies: yaml-cpp's iterator yields a temporary pair, so a reference into it dangles.
+    const YAML::Node key_node = it->first;
+    const YAML::Node value_node = it->second;
     if (!key_node.IsScalar()) {
       fail("map keys must be plain names");
     }
@@ -93,7 +95,7 @@ YamlMap YamlValue::map(std::initializer_list<std::string_view> allowed) const {
         key_value.fail("duplicate key");
       }
     }
-    entries.emplace_back(key, it->second);
+    entries.emplace_back(key, value_node);
   }
   return YamlMap(*this, std::move(entries));
 }

@@ -1,34 +1,38 @@
 #include "common/trace/trace_writer.hpp"
 
 #include <cstdarg>
+#include <cstring>
 #include <stdexcept>
 
 namespace mcnc::trace {
 
 void json_escape(const char* in, char* out, std::size_t out_size) noexcept {
-  std::size_t o = 0;
-  auto put = [&](char c) {
-    if (o + 1 < out_size) {
-      out[o++] = c;
-    }
-  };
-  for (const char* p = in; *p != '\0' && o + 7 < out_size; ++p) {
-    const auto c = static_cast<unsigned char>(*p);
-    switch (c) {
-      case '"': put('\\'); put('"'); break;
-      case '\\': put('\\'); put('\\'); break;
-      case '\n': put('\\'); put('n'); break;
-      case '\r': put('\\'); put('r'); break;
-      case '\t': put('\\'); put('t'); break;
-      default:
-        if (c < 0x20) {
-          o += static_cast<std::size_t>(std::snprintf(out + o, out_size - o, "\\u%04x", c));
-        } else {
-          put(static_cast<char>(c));
-        }
-    }
+  if (out_size == 0) {
+    return;
   }
-  out[o < out_size ? o : out_size - 1] = '\0';
+  std::size_t o = 0;
+  for (const char* p = in; *p != '\0'; ++p) {
+    const auto c = static_cast<unsigned char>(*p);
+    char escaped[8];
+    int n = 0;
+    switch (c) {
+      case '"': n = std::snprintf(escaped, sizeof escaped, "\\\""); break;
+      case '\\': n = std::snprintf(escaped, sizeof escaped, "\\\\"); break;
+      case '\n': n = std::snprintf(escaped, sizeof escaped, "\\n"); break;
+      case '\r': n = std::snprintf(escaped, sizeof escaped, "\\r"); break;
+      case '\t': n = std::snprintf(escaped, sizeof escaped, "\\t"); break;
+      default:
+        n = c < 0x20 ? std::snprintf(escaped, sizeof escaped, "\\u%04x", c)
+                     : std::snprintf(escaped, sizeof escaped, "%c", c);
+    }
+    // Cut before a character whose escape does not fit whole (room kept for the terminator).
+    if (o + static_cast<std::size_t>(n) >= out_size) {
+      break;
+    }
+    std::memcpy(out + o, escaped, static_cast<std::size_t>(n));
+    o += static_cast<std::size_t>(n);
+  }
+  out[o] = '\0';
 }
 
 TraceWriter::TraceWriter(const std::string& path, std::string src) : src_(std::move(src)) {
@@ -67,20 +71,27 @@ void TraceWriter::emit(std::uint64_t cycle, const char* ev, const char* fields_f
     return;
   }
   char* slot = &slots_[(head % kSlots) * kSlotSize];
+  // An event that does not fit whole is dropped whole and counted, never written cut.
+  constexpr std::size_t kRoom = kSlotSize - 3;  // the line without "}\n" and the terminator
   int n = std::snprintf(slot, kSlotSize, "{\"cycle\":%llu,\"src\":\"%s\",\"ev\":\"%s\"",
                         static_cast<unsigned long long>(cycle), src_.c_str(), ev);
-  if (fields_fmt != nullptr && fields_fmt[0] != '\0' && n > 0 &&
-      static_cast<std::size_t>(n) < kSlotSize - 3) {
-    slot[n++] = ',';
+  if (n < 0 || static_cast<std::size_t>(n) > kRoom) {
+    dropped_.fetch_add(1);
+    return;
+  }
+  if (fields_fmt != nullptr && fields_fmt[0] != '\0') {
     va_list args;
     va_start(args, fields_fmt);
-    const int m = std::vsnprintf(slot + n, kSlotSize - static_cast<std::size_t>(n) - 2, fields_fmt, args);
+    const int m = std::vsnprintf(slot + n + 1, kRoom - static_cast<std::size_t>(n), fields_fmt, args);
     va_end(args);
-    n = m > 0 ? n + m : n;
-  }
-  if (n < 0 || static_cast<std::size_t>(n) > kSlotSize - 3) {
-    dropped_.fetch_add(1);  // an event that does not fit is dropped whole, never cut
-    return;
+    if (m < 0 || static_cast<std::size_t>(n + 1 + m) > kRoom) {
+      dropped_.fetch_add(1);
+      return;
+    }
+    if (m > 0) {  // fields that format to nothing add no comma
+      slot[n] = ',';
+      n += 1 + m;
+    }
   }
   slot[n++] = '}';
   slot[n++] = '\n';

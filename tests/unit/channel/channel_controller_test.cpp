@@ -1,0 +1,884 @@
+#include "channel/control/channel_controller.hpp"
+#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/interp/program_alarms.hpp"
+#include "channel/motion/trapezoid_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mcnc::channel {
+
+// Readable states in failure messages (found by argument-dependent lookup).
+static void PrintTo(ChannelState state, std::ostream* os) {
+  *os << to_string(state);
+}
+
+namespace {
+
+using interp::CanonicalCommand;
+using interp::CommandKind;
+using interp::ProgramAlarm;
+
+constexpr double kDt = 0.001;
+constexpr double kInPos = 0.01;
+// Axis 0: X (diameter programmed), axis 1: Z.
+constexpr double kRapid[2] = {100.0, 200.0};
+
+std::vector<motion::AxisLimits> lathe_limits() {
+  return {{kRapid[0], 50.0, 1000.0}, {kRapid[1], 100.0, 2000.0}};
+}
+
+AxisVector xz(double x, double z) {
+  AxisVector v{};
+  v[0] = x;
+  v[1] = z;
+  return v;
+}
+
+// A scripted command source: hands out a fixed list of results, then nothing.
+class ScriptedSource final : public interp::CommandSource {
+ public:
+  explicit ScriptedSource(std::vector<interp::PullResult> script) : script_(std::move(script)) {}
+  void rewind(const AxisVector& current) override {
+    cursor_ = 0;
+    rewound_at_ = current;
+    ++rewinds_;
+  }
+  std::optional<interp::PullResult> next() override {
+    if (cursor_ >= script_.size()) {
+      return std::nullopt;
+    }
+    return script_[cursor_++];
+  }
+  [[nodiscard]] std::size_t block_count() const noexcept override { return script_.size(); }
+
+  AxisVector rewound_at_{};
+  int rewinds_ = 0;
+
+ private:
+  std::vector<interp::PullResult> script_;
+  std::size_t cursor_ = 0;
+};
+
+CanonicalCommand command(CommandKind kind, const AxisVector& target, int line, std::size_t block,
+                         double feed = 0.0) {
+  CanonicalCommand c;
+  c.kind = kind;
+  c.target = target;
+  c.feed = feed;
+  c.line = line;
+  c.block = block;
+  return c;
+}
+
+CanonicalCommand program_end(int line, std::size_t block, int code = 30) {
+  CanonicalCommand c;
+  c.kind = CommandKind::program_end;
+  c.end_code = code;
+  c.line = line;
+  c.block = block;
+  return c;
+}
+
+struct LoggedEvent {
+  std::uint64_t cycle = 0;
+  ChannelEvent event;
+};
+
+// The channel with two simulated axes. The axes follow the last valid setpoint with a one-cycle
+// delay: the feedback used at cycle N is what the channel commanded at cycle N-1.
+class Rig {
+ public:
+  explicit Rig(interp::CommandSource* scripted = nullptr, AxisVector start = xz(0.0, 0.0))
+      : interp_({{'X', 'U', true}, {'Z', 'W', false}}),
+        planner_(2, lathe_limits()),
+        ctl_(ChannelSetup{2, {kInPos, kInPos}, kDt},
+             scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
+             planner_) {
+    feedback_.resize(2);
+    for (std::size_t i = 0; i < 2; ++i) {
+      feedback_[i].cmd = start[i];
+      feedback_[i].act = start[i];
+      feedback_[i].enabled = true;
+      feedback_[i].present = true;
+    }
+  }
+
+  void load(const std::string& text) {
+    const auto alarm = interp_.load(text, "T.nc");
+    ASSERT_FALSE(alarm.has_value())
+        << alarm->number << " " << alarm->text << " line " << alarm->line;
+  }
+
+  const ChannelOutput& step() {
+    if (act_override) {
+      act_override(feedback_);
+    }
+    const ChannelOutput& out = ctl_.cycle(cycle_, feedback_);
+    EXPECT_LE(out.event_count, ChannelOutput::kMaxEvents);
+    for (std::size_t e = 0; e < out.event_count && e < ChannelOutput::kMaxEvents; ++e) {
+      events.push_back({cycle_, out.events[e]});
+    }
+    last = out;
+    outputs.push_back(out);
+    for (std::size_t i = 0; i < 2; ++i) {
+      if (out.setpoints[i].valid && follow) {
+        feedback_[i].act = out.setpoints[i].pos;
+        feedback_[i].cmd = out.setpoints[i].pos;
+      }
+    }
+    ++cycle_;
+    return last;
+  }
+
+  // Steps until `done` holds after a cycle or `limit` cycles passed; true when it held.
+  bool run_until(const std::function<bool(const ChannelOutput&)>& done, int limit = 200000) {
+    for (int i = 0; i < limit; ++i) {
+      if (done(step())) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  bool run_to_end(int limit = 200000) {
+    return run_until([](const ChannelOutput& o) { return o.program_end; }, limit);
+  }
+
+  std::vector<ChannelEvent> events_of(ChannelEventKind kind) const {
+    std::vector<ChannelEvent> out;
+    for (const auto& e : events) {
+      if (e.event.kind == kind) {
+        out.push_back(e.event);
+      }
+    }
+    return out;
+  }
+
+  std::optional<std::uint64_t> first_cycle_of(ChannelEventKind kind, int line) const {
+    for (const auto& e : events) {
+      if (e.event.kind == kind && e.event.line == line) {
+        return e.cycle;
+      }
+    }
+    return std::nullopt;
+  }
+
+  interp::MinimalInterpreter interp_;
+  motion::TrapezoidPlanner planner_;
+  ChannelController ctl_;
+  std::vector<AxisFeedbackView> feedback_;
+  std::uint64_t cycle_ = 1;
+  bool follow = true;
+  std::function<void(std::vector<AxisFeedbackView>&)> act_override;
+  std::vector<LoggedEvent> events;
+  std::vector<ChannelOutput> outputs;
+  ChannelOutput last{};
+};
+
+// The largest per-cycle setpoint change of each axis over the recorded outputs.
+void expect_no_jumps(const std::vector<ChannelOutput>& outputs) {
+  for (std::size_t k = 1; k < outputs.size(); ++k) {
+    for (std::size_t i = 0; i < 2; ++i) {
+      const auto& a = outputs[k - 1].setpoints[i];
+      const auto& b = outputs[k].setpoints[i];
+      if (!a.valid || !b.valid) {
+        continue;
+      }
+      const double bound = kRapid[i] * kDt * (1.0 + 1e-9) + 1e-12;
+      ASSERT_LE(std::fabs(b.pos - a.pos), bound) << "axis " << i << " at output " << k;
+    }
+  }
+}
+
+TEST(ChannelController, StateSequenceResetIdleRunningIdle) {
+  Rig rig;
+  rig.load("G00 X40 Z10\nM30\n");
+  for (auto& f : rig.feedback_) {
+    f.enabled = false;
+  }
+  // Not every axis enabled: reset, nothing commanded.
+  for (int i = 0; i < 5; ++i) {
+    const auto& out = rig.step();
+    EXPECT_EQ(out.state, ChannelState::reset);
+    EXPECT_FALSE(out.setpoints[0].valid);
+    EXPECT_FALSE(out.setpoints[1].valid);
+  }
+  ASSERT_FALSE(rig.events.empty());
+  EXPECT_EQ(rig.events.front().event.kind, ChannelEventKind::state_changed);
+  EXPECT_EQ(rig.events.front().event.state, ChannelState::reset);
+  EXPECT_EQ(rig.events.front().cycle, 1u);
+
+  // One axis enabled is not enough.
+  rig.feedback_[0].enabled = true;
+  EXPECT_EQ(rig.step().state, ChannelState::reset);
+  EXPECT_FALSE(rig.last.setpoints[0].valid);
+
+  rig.feedback_[1].enabled = true;
+  const std::uint64_t idle_cycle = rig.cycle_;
+  EXPECT_EQ(rig.step().state, ChannelState::idle);
+  ASSERT_GE(rig.last.event_count, 1u);
+  EXPECT_EQ(rig.last.events[0].kind, ChannelEventKind::state_changed);
+  EXPECT_EQ(rig.last.events[0].state, ChannelState::idle);
+  EXPECT_TRUE(rig.last.setpoints[0].valid);
+
+  // Idle stays idle without a start.
+  for (int i = 0; i < 10; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::idle);
+  }
+  EXPECT_EQ(rig.ctl_.state(), ChannelState::idle);
+
+  rig.ctl_.request_start();
+  EXPECT_EQ(rig.step().state, ChannelState::running);
+  EXPECT_EQ(rig.last.events[0].kind, ChannelEventKind::state_changed);
+  EXPECT_EQ(rig.last.events[0].state, ChannelState::running);
+
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.state, ChannelState::idle);
+  EXPECT_EQ(rig.last.end_code, 30);
+  const auto ends = rig.events_of(ChannelEventKind::program_end);
+  ASSERT_EQ(ends.size(), 1u);
+  EXPECT_EQ(ends[0].end_code, 30);
+  EXPECT_EQ(ends[0].line, 2);
+
+  std::vector<ChannelState> states;
+  for (const auto& e : rig.events_of(ChannelEventKind::state_changed)) {
+    states.push_back(e.state);
+  }
+  EXPECT_EQ(states, (std::vector<ChannelState>{ChannelState::reset, ChannelState::idle,
+                                               ChannelState::running, ChannelState::idle}));
+  EXPECT_GT(rig.cycle_, idle_cycle);
+
+  // Idle after the end holds the end point and stays idle.
+  for (int i = 0; i < 20; ++i) {
+    const auto& out = rig.step();
+    EXPECT_EQ(out.state, ChannelState::idle);
+    EXPECT_EQ(out.setpoints[0].pos, 20.0);
+    EXPECT_EQ(out.setpoints[1].pos, 10.0);
+  }
+}
+
+TEST(ChannelController, StartPositionComesFromFeedbackCmd) {
+  Rig rig(nullptr, xz(5.0, -3.0));
+  rig.load("G01 W1 F600\nM30\n");
+  // act differs from cmd (inside the in-position width): the channel must take cmd.
+  rig.feedback_[0].act = 5.004;
+  rig.feedback_[1].act = -3.006;
+  rig.feedback_[1].enabled = false;
+  rig.follow = false;
+  rig.ctl_.request_start();  // latched until the axes are enabled
+  for (int i = 0; i < 3; ++i) {
+    const auto& out = rig.step();
+    EXPECT_EQ(out.state, ChannelState::reset);
+    EXPECT_FALSE(out.setpoints[0].valid);
+    EXPECT_FALSE(out.setpoints[1].valid);
+  }
+  rig.feedback_[1].enabled = true;
+  rig.follow = true;
+  const auto& out = rig.step();
+  EXPECT_EQ(out.state, ChannelState::running);
+  EXPECT_TRUE(out.setpoints[0].valid);
+  EXPECT_TRUE(out.setpoints[1].valid);
+  EXPECT_EQ(out.setpoints[0].pos, 5.0);
+  EXPECT_EQ(rig.ctl_.commanded()[0], 5.0);
+  // The first motion sample starts from cmd, not from act.
+  EXPECT_GE(out.setpoints[1].pos, -3.0);
+  EXPECT_LT(out.setpoints[1].pos, -3.0 + 0.01);
+
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.setpoints[0].pos, 5.0);
+  EXPECT_EQ(rig.last.setpoints[1].pos, -2.0);
+}
+
+TEST(ChannelController, BlockEventsInProgramOrderWithFileLines) {
+  Rig rig;
+  rig.load(
+      "%\n"
+      "O0001 (test)\n"
+      "N10 G00 X20 Z5\n"
+      "\n"
+      "(a comment line)\n"
+      "N20 G01 Z-10 F3000\n"
+      "N30 G04 P100\n"
+      "N40 U10 W2\n"
+      "N50 M30\n"
+      "%\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+
+  const auto started = rig.events_of(ChannelEventKind::block_started);
+  const auto ended = rig.events_of(ChannelEventKind::block_ended);
+  const std::vector<int> lines{3, 6, 7, 8, 9};
+  ASSERT_EQ(started.size(), lines.size());
+  ASSERT_EQ(ended.size(), lines.size());
+  const std::vector<AxisVector> ends{xz(10, 5), xz(10, -10), xz(10, -10), xz(15, -8), xz(15, -8)};
+  for (std::size_t b = 0; b < lines.size(); ++b) {
+    SCOPED_TRACE(b);
+    EXPECT_EQ(started[b].line, lines[b]);
+    EXPECT_EQ(started[b].block, b + 1);
+    EXPECT_EQ(ended[b].line, lines[b]);
+    EXPECT_EQ(ended[b].block, b + 1);
+    EXPECT_EQ(ended[b].pos[0], ends[b][0]);
+    EXPECT_EQ(ended[b].pos[1], ends[b][1]);
+  }
+  // Strict alternation: started(b), ended(b), started(b+1) ...
+  std::vector<std::pair<ChannelEventKind, int>> seq;
+  for (const auto& e : rig.events) {
+    if (e.event.kind == ChannelEventKind::block_started ||
+        e.event.kind == ChannelEventKind::block_ended) {
+      seq.emplace_back(e.event.kind, e.event.line);
+    }
+  }
+  ASSERT_EQ(seq.size(), 2 * lines.size());
+  for (std::size_t b = 0; b < lines.size(); ++b) {
+    EXPECT_EQ(seq[2 * b].first, ChannelEventKind::block_started);
+    EXPECT_EQ(seq[2 * b].second, lines[b]);
+    EXPECT_EQ(seq[2 * b + 1].first, ChannelEventKind::block_ended);
+    EXPECT_EQ(seq[2 * b + 1].second, lines[b]);
+  }
+  // program_end comes after the last block ended.
+  ASSERT_FALSE(rig.events.empty());
+  std::size_t end_index = 0;
+  std::size_t last_ended = 0;
+  for (std::size_t i = 0; i < rig.events.size(); ++i) {
+    if (rig.events[i].event.kind == ChannelEventKind::program_end) {
+      end_index = i;
+    }
+    if (rig.events[i].event.kind == ChannelEventKind::block_ended) {
+      last_ended = i;
+    }
+  }
+  EXPECT_GT(end_index, last_ended);
+}
+
+TEST(ChannelController, OutputLineAndBlockFollowTheRunningBlock) {
+  Rig rig;
+  rig.load("G00 Z20\n\nG00 X10\nM30\n");
+  rig.ctl_.request_start();
+  rig.step();
+  rig.step();
+  EXPECT_EQ(rig.last.line, 1);
+  EXPECT_EQ(rig.last.block, 1u);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 3; }));
+  EXPECT_EQ(rig.last.block, 2u);
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.line, 4);
+  EXPECT_EQ(rig.last.block, 3u);
+}
+
+TEST(ChannelController, BlockEndsOnlyWhenEveryAxisIsInPosition) {
+  Rig rig;
+  rig.load("G00 X20 Z10\nG00 Z0\nM30\n");
+  rig.ctl_.request_start();
+  // Until the planner has reached the end point of block 1.
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) {
+    return o.setpoints[0].pos == 10.0 && o.setpoints[1].pos == 10.0;
+  }));
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
+
+  // Z lags outside its width, X is in: the block must not end.
+  rig.follow = false;
+  rig.feedback_[0].act = 10.0;
+  rig.feedback_[1].act = 10.0 - 5 * kInPos;
+  for (int i = 0; i < 30; ++i) {
+    const auto& out = rig.step();
+    EXPECT_EQ(out.state, ChannelState::running);
+    EXPECT_EQ(out.setpoints[0].pos, 10.0);
+    EXPECT_EQ(out.setpoints[1].pos, 10.0);
+    EXPECT_TRUE(out.setpoints[1].valid);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_started).size() == 1u);
+
+  // Z in, X now out on the other side: still not ended.
+  rig.feedback_[1].act = 10.0 + 0.5 * kInPos;
+  rig.feedback_[0].act = 10.0 + 2 * kInPos;
+  for (int i = 0; i < 10; ++i) {
+    rig.step();
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
+
+  // Both inside their width (not exactly on the point): the block ends in this very cycle.
+  rig.feedback_[0].act = 10.0 - 0.5 * kInPos;
+  const std::uint64_t in_cycle = rig.cycle_;
+  rig.step();
+  const auto ended = rig.events_of(ChannelEventKind::block_ended);
+  ASSERT_EQ(ended.size(), 1u);
+  EXPECT_EQ(rig.first_cycle_of(ChannelEventKind::block_ended, 1), in_cycle);
+  EXPECT_EQ(ended[0].pos[0], 10.0);
+  EXPECT_EQ(ended[0].pos[1], 10.0);
+  // The next block starts at once.
+  EXPECT_EQ(rig.first_cycle_of(ChannelEventKind::block_started, 2), in_cycle);
+
+  rig.follow = true;
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.setpoints[1].pos, 0.0);
+}
+
+TEST(ChannelController, ProgramEndWaitsForInPosition) {
+  Rig rig;
+  rig.load("M30\n");
+  rig.follow = false;
+  rig.feedback_[0].act = 3 * kInPos;  // cmd stays 0, act outside the width
+  rig.ctl_.request_start();
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_FALSE(rig.step().program_end);
+    EXPECT_EQ(rig.last.state, ChannelState::running);
+  }
+  rig.feedback_[0].act = 0.0;
+  EXPECT_TRUE(rig.step().program_end);
+  EXPECT_EQ(rig.last.state, ChannelState::idle);
+  EXPECT_EQ(rig.last.end_code, 30);
+}
+
+TEST(ChannelController, SetpointsNeverJumpAndReachEndPointsExactly) {
+  Rig rig(nullptr, xz(1.0, 2.0));
+  rig.load(
+      "G00 X-30 Z47.5\n"
+      "G01 U7.25 W-13.125 F4500\n"
+      "G00 Z0.001\n"
+      "G01 X0.3 F2400\n"
+      "M02\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  expect_no_jumps(rig.outputs);
+  const auto ended = rig.events_of(ChannelEventKind::block_ended);
+  ASSERT_EQ(ended.size(), 5u);
+  EXPECT_EQ(ended[0].pos[0], -15.0);
+  EXPECT_EQ(ended[0].pos[1], 47.5);
+  EXPECT_EQ(ended[1].pos[0], -15.0 + 7.25 / 2.0);
+  EXPECT_EQ(ended[1].pos[1], 47.5 + -13.125);
+  EXPECT_EQ(ended[2].pos[1], 0.001);
+  EXPECT_EQ(ended[3].pos[0], 0.3 / 2.0);
+  EXPECT_EQ(rig.last.setpoints[0].pos, 0.15);
+  EXPECT_EQ(rig.last.setpoints[1].pos, 0.001);
+  EXPECT_EQ(rig.last.end_code, 2);
+  EXPECT_EQ(rig.events_of(ChannelEventKind::program_end).at(0).end_code, 2);
+  // Every block's end point appears as a setpoint exactly.
+  for (const auto& e : ended) {
+    bool seen = false;
+    for (const auto& o : rig.outputs) {
+      seen = seen || (o.setpoints[0].pos == e.pos[0] && o.setpoints[1].pos == e.pos[1]);
+    }
+    EXPECT_TRUE(seen) << e.line;
+  }
+}
+
+TEST(ChannelController, SetpointsDoNotJumpWhenFeedbackLagsByOneCycle) {
+  // The axes report the setpoint of the cycle before: the same program must still finish.
+  Rig rig;
+  rig.load("G00 X50 Z-20\nG01 W40 F6000\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  expect_no_jumps(rig.outputs);
+  EXPECT_EQ(rig.last.setpoints[0].pos, 25.0);
+  EXPECT_EQ(rig.last.setpoints[1].pos, 20.0);
+  // G01 at 6000/min = 100/s: 40 units take at least 0.4 s.
+  const auto s = rig.first_cycle_of(ChannelEventKind::block_started, 2);
+  const auto e = rig.first_cycle_of(ChannelEventKind::block_ended, 2);
+  ASSERT_TRUE(s && e);
+  EXPECT_GE(*e - *s, 400u);
+  // No velocity above the programmed feed on Z during block 2.
+  for (std::uint64_t c = *s; c < *e; ++c) {
+    EXPECT_LE(std::fabs(rig.outputs[c - 1].setpoints[1].vel), 100.0 * (1 + 1e-9));
+  }
+}
+
+TEST(ChannelController, DwellHoldsPositionForItsTime) {
+  Rig rig;
+  rig.load("G00 Z1\nG04 P500\nG00 Z2\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  const auto s = rig.first_cycle_of(ChannelEventKind::block_started, 2);
+  const auto e = rig.first_cycle_of(ChannelEventKind::block_started, 3);
+  ASSERT_TRUE(s && e);
+  const auto cycles = static_cast<long>(*e - *s);
+  EXPECT_GE(cycles, 499);
+  EXPECT_LE(cycles, 501);
+  for (std::uint64_t c = *s; c < *e; ++c) {
+    const auto& o = rig.outputs[c - 1];  // outputs[0] is cycle 1
+    EXPECT_EQ(o.setpoints[1].pos, 1.0) << c;
+    EXPECT_EQ(o.setpoints[0].pos, 0.0) << c;
+    EXPECT_EQ(o.setpoints[1].vel, 0.0) << c;
+  }
+  EXPECT_EQ(rig.last.setpoints[1].pos, 2.0);
+}
+
+TEST(ChannelController, ReportedAlarmStopsAtNextCycleAndHolds) {
+  Rig rig;
+  rig.load("G00 Z50\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 50; ++i) {
+    rig.step();
+  }
+  ASSERT_EQ(rig.last.state, ChannelState::running);
+  const double z_before = rig.last.setpoints[1].pos;
+  ASSERT_GT(z_before, 0.0);
+  ASSERT_LT(z_before, 50.0);
+
+  rig.ctl_.report_alarm(ProgramAlarm{1105, "G01 without feed", "T.nc", 7, 3});
+  const auto& out = rig.step();
+  EXPECT_EQ(out.state, ChannelState::alarm);
+  bool alarm_event = false;
+  for (std::size_t e = 0; e < out.event_count; ++e) {
+    if (out.events[e].kind == ChannelEventKind::alarm) {
+      alarm_event = true;
+      EXPECT_EQ(out.events[e].alarm_number, 1105);
+      EXPECT_EQ(out.events[e].line, 7);
+    }
+  }
+  EXPECT_TRUE(alarm_event);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, 1105);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 7);
+  EXPECT_EQ(rig.ctl_.last_alarm().column, 3);
+  EXPECT_STREQ(rig.ctl_.last_alarm().text.data(), "G01 without feed");
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+  for (int i = 0; i < 100; ++i) {
+    const auto& o = rig.step();
+    EXPECT_EQ(o.state, ChannelState::alarm);
+    EXPECT_EQ(o.setpoints[1].pos, z_before);
+    EXPECT_EQ(o.setpoints[0].pos, 0.0);
+    EXPECT_FALSE(o.program_end);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+}
+
+TEST(ChannelController, ReportedAlarmBeforeStartPreventsTheRun) {
+  Rig rig;
+  rig.load("G00 Z50\nM30\n");
+  rig.step();
+  ASSERT_EQ(rig.last.state, ChannelState::idle);
+  rig.ctl_.report_alarm(ProgramAlarm{1010, "program end missing", "T.nc", 4, 0});
+  rig.ctl_.request_start();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::alarm);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::alarm);
+    EXPECT_EQ(rig.last.setpoints[1].pos, 0.0);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_started).empty());
+  EXPECT_EQ(rig.ctl_.last_alarm().number, 1010);
+}
+
+TEST(ChannelController, AxisAlarmDuringRunStopsMotion) {
+  Rig rig;
+  rig.load("G00 X10\nG00 X40 Z80\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 2; }));
+  for (int i = 0; i < 30; ++i) {
+    rig.step();
+  }
+  const double x = rig.last.setpoints[0].pos;
+  const double z = rig.last.setpoints[1].pos;
+  ASSERT_GT(z, 0.0);
+  ASSERT_LT(z, 80.0);
+
+  rig.feedback_[1].alarm = true;
+  const auto& out = rig.step();
+  EXPECT_EQ(out.state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisAlarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().axis, 2);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 2);
+  const auto alarms = rig.events_of(ChannelEventKind::alarm);
+  ASSERT_EQ(alarms.size(), 1u);
+  EXPECT_EQ(alarms[0].alarm_number, kAlarmAxisAlarm);
+  // Motion stops: the setpoint stays where it was, from this cycle on.
+  for (int i = 0; i < 200; ++i) {
+    const auto& o = i == 0 ? rig.last : rig.step();
+    EXPECT_EQ(o.state, ChannelState::alarm);
+    EXPECT_EQ(o.setpoints[0].pos, x);
+    EXPECT_EQ(o.setpoints[1].pos, z);
+  }
+  // The alarm clearing on the axis does not restart the program.
+  rig.feedback_[1].alarm = false;
+  rig.ctl_.request_start();
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::alarm);
+    EXPECT_EQ(rig.last.setpoints[1].pos, z);
+  }
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+}
+
+TEST(ChannelController, AxisLostRaises1202) {
+  Rig rig;
+  rig.load("G00 Z80\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 40; ++i) {
+    rig.step();
+  }
+  const double z = rig.last.setpoints[1].pos;
+  rig.ctl_.axis_lost(0);
+  rig.ctl_.axis_lost(1);  // only the first loss is reported
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisLost);
+  EXPECT_EQ(rig.ctl_.last_alarm().axis, 1);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 1);
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(rig.step().setpoints[1].pos, z);
+  }
+}
+
+TEST(ChannelController, EmergencyStopGoesToResetAndStays) {
+  Rig rig;
+  rig.load("G00 Z80\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 40; ++i) {
+    rig.step();
+  }
+  ASSERT_EQ(rig.last.state, ChannelState::running);
+  rig.ctl_.emergency_stop();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::reset);
+  EXPECT_FALSE(rig.last.setpoints[0].valid);
+  EXPECT_FALSE(rig.last.setpoints[1].valid);
+  bool reset_event = false;
+  for (std::size_t e = 0; e < rig.last.event_count; ++e) {
+    reset_event = reset_event || (rig.last.events[e].kind == ChannelEventKind::state_changed &&
+                                  rig.last.events[e].state == ChannelState::reset);
+  }
+  EXPECT_TRUE(reset_event);
+  // Axes still enabled, a new start asked for: the channel stays in reset, commanding nothing.
+  rig.ctl_.request_start();
+  for (int i = 0; i < 100; ++i) {
+    const auto& o = rig.step();
+    EXPECT_EQ(o.state, ChannelState::reset);
+    EXPECT_FALSE(o.setpoints[0].valid);
+    EXPECT_FALSE(o.setpoints[1].valid);
+    EXPECT_FALSE(o.program_end);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
+}
+
+TEST(ChannelController, EmergencyStopBeforeAxesEnabledIsNotForgotten) {
+  // "Emergency stop: the channel goes to reset and stays there" also when it comes while the
+  // channel is still waiting for its axes.
+  Rig rig;
+  rig.load("G00 Z80\nM30\n");
+  for (auto& f : rig.feedback_) {
+    f.enabled = false;
+  }
+  rig.step();
+  ASSERT_EQ(rig.last.state, ChannelState::reset);
+  rig.ctl_.emergency_stop();
+  rig.step();
+  for (auto& f : rig.feedback_) {
+    f.enabled = true;
+  }
+  rig.ctl_.request_start();
+  for (int i = 0; i < 100; ++i) {
+    const auto& o = rig.step();
+    ASSERT_EQ(o.state, ChannelState::reset) << "cycle " << i;
+    ASSERT_FALSE(o.setpoints[1].valid) << "cycle " << i;
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_started).empty());
+}
+
+TEST(ChannelController, StartRequestedWhileRunningDoesNotRunTheProgramAgain) {
+  Rig rig;
+  rig.load("G00 W5\nM30\n");
+  rig.ctl_.request_start();
+  rig.step();
+  ASSERT_EQ(rig.last.state, ChannelState::running);
+  rig.ctl_.request_start();  // pressed again while the program runs
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
+  for (int i = 0; i < 500; ++i) {
+    ASSERT_EQ(rig.step().state, ChannelState::idle) << "cycle " << i;
+  }
+  EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
+  EXPECT_EQ(rig.events_of(ChannelEventKind::program_end).size(), 1u);
+}
+
+TEST(ChannelController, RestartAfterEndRunsFromTheCurrentPosition) {
+  Rig rig;
+  rig.load("G00 W5\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
+  rig.step();
+  rig.ctl_.request_start();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::running);
+  EXPECT_FALSE(rig.last.program_end);
+  EXPECT_EQ(rig.last.end_code, -1);
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.last.setpoints[1].pos, 10.0);
+  EXPECT_EQ(rig.events_of(ChannelEventKind::program_end).size(), 2u);
+}
+
+TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
+  ProgramAlarm bad{1101, "G02 is not supported yet", "S.nc", 12, 4};
+  ScriptedSource source({interp::PullResult{command(CommandKind::rapid, xz(0, 5), 10, 1)},
+                         interp::PullResult{bad}, interp::PullResult{program_end(14, 3)}});
+  Rig rig(&source);
+  rig.ctl_.request_start();
+  ASSERT_TRUE(
+      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 10000));
+  EXPECT_EQ(source.rewinds_, 1);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, 1101);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 12);
+  EXPECT_EQ(rig.ctl_.last_alarm().column, 4);
+  EXPECT_STREQ(rig.ctl_.last_alarm().text.data(), "G02 is not supported yet");
+  const auto alarms = rig.events_of(ChannelEventKind::alarm);
+  ASSERT_EQ(alarms.size(), 1u);
+  EXPECT_EQ(alarms[0].alarm_number, 1101);
+  EXPECT_EQ(alarms[0].line, 12);
+  // Block 1 ran to its end before the alarm; nothing after it started.
+  ASSERT_EQ(rig.events_of(ChannelEventKind::block_ended).size(), 1u);
+  EXPECT_EQ(rig.events_of(ChannelEventKind::block_started).size(), 1u);
+  EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::alarm);
+    EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
+}
+
+TEST(ChannelController, PlannerRejectingABlockGives1200) {
+  ScriptedSource source({interp::PullResult{command(CommandKind::linear, xz(0, 5), 3, 1, 0.0)},
+                         interp::PullResult{program_end(4, 2)}});
+  Rig rig(&source, xz(1.0, 2.0));
+  rig.ctl_.request_start();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmPlannerRejected);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 3);
+  for (int i = 0; i < 20; ++i) {
+    rig.step();
+    EXPECT_EQ(rig.last.state, ChannelState::alarm);
+    EXPECT_EQ(rig.last.setpoints[0].pos, 1.0);
+    EXPECT_EQ(rig.last.setpoints[1].pos, 2.0);
+  }
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
+}
+
+TEST(ChannelController, SourceEndingWithoutProgramEndGives1200) {
+  ScriptedSource source({interp::PullResult{command(CommandKind::rapid, xz(0, 1), 1, 1)}});
+  Rig rig(&source);
+  rig.ctl_.request_start();
+  ASSERT_TRUE(
+      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 10000));
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmPlannerRejected);
+  EXPECT_EQ(rig.last.setpoints[1].pos, 1.0);
+  EXPECT_FALSE(rig.last.program_end);
+}
+
+TEST(ChannelController, InterpreterLoadAlarmComesOutOfTheSource) {
+  Rig rig;
+  const auto alarm = rig.interp_.load("G00 X1\nG01 Z2\nM30\n", "T.nc");
+  ASSERT_TRUE(alarm.has_value());
+  rig.ctl_.request_start();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, interp::alarm::kFeedMissing);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 2);
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::block_started).empty());
+}
+
+TEST(ChannelController, AllEventsOfABusyCycleFitAndKeepTheirOrder) {
+  Rig rig;
+  rig.load("M30\n");
+  rig.ctl_.request_start();
+  const auto& out = rig.step();
+  ASSERT_LE(out.event_count, ChannelOutput::kMaxEvents);
+  std::vector<ChannelEventKind> kinds;
+  for (std::size_t e = 0; e < out.event_count; ++e) {
+    kinds.push_back(out.events[e].kind);
+  }
+  using K = ChannelEventKind;
+  EXPECT_EQ(kinds,
+            (std::vector<K>{K::state_changed, K::state_changed, K::state_changed, K::block_started,
+                            K::block_ended, K::program_end, K::state_changed}));
+  ASSERT_EQ(out.event_count, 7u);
+  EXPECT_EQ(out.events[0].state, ChannelState::reset);
+  EXPECT_EQ(out.events[1].state, ChannelState::idle);
+  EXPECT_EQ(out.events[2].state, ChannelState::running);
+  EXPECT_EQ(out.events[5].end_code, 30);
+  EXPECT_EQ(out.events[6].state, ChannelState::idle);
+  // The next cycle starts with an empty event list.
+  EXPECT_EQ(rig.step().event_count, 0u);
+}
+
+TEST(ChannelController, RandomProgramsEndExactlyOnTheirLastPoint) {
+  std::mt19937 rng(20240611u);
+  std::uniform_int_distribution<int> coord(-20000, 20000);  // thousandths
+  std::uniform_int_distribution<int> moves(1, 5);
+  std::uniform_int_distribution<int> feed(1200, 6000);
+  std::uniform_int_distribution<int> pick(0, 99);
+  for (int program = 0; program < 300; ++program) {
+    SCOPED_TRACE(program);
+    std::ostringstream text;
+    AxisVector expected = xz(0.0, 0.0);
+    const int n = moves(rng);
+    int line = 0;
+    std::size_t blocks = 0;  // lines that program an axis (the others carry no command)
+    for (int m = 0; m < n; ++m) {
+      bool any_axis = false;
+      const bool linear = pick(rng) < 50;
+      text << (linear ? "G01" : "G00");
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        const int r = pick(rng);
+        if (r < 20) {
+          continue;  // axis not programmed
+        }
+        const int k = coord(rng);
+        const double value = k / 1000.0;
+        const bool incremental = r >= 60;
+        const char letter = axis == 0 ? (incremental ? 'U' : 'X') : (incremental ? 'W' : 'Z');
+        char word[32];
+        std::snprintf(word, sizeof word, " %c%s%d.%03d", letter, k < 0 ? "-" : "",
+                      std::abs(k) / 1000, std::abs(k) % 1000);
+        text << word;
+        any_axis = true;
+        const double physical = axis == 0 ? value / 2.0 : value;
+        expected[axis] = incremental ? expected[axis] + physical : physical;
+      }
+      if (linear) {
+        text << " F" << feed(rng);
+      }
+      text << '\n';
+      ++line;
+      blocks += any_axis ? 1 : 0;
+    }
+    text << "M30\n";
+    ++line;
+    ++blocks;
+
+    Rig rig;
+    rig.load(text.str());
+    if (::testing::Test::HasFatalFailure()) {
+      return;
+    }
+    rig.ctl_.request_start();
+    ASSERT_TRUE(rig.run_to_end()) << text.str();
+    EXPECT_EQ(rig.last.state, ChannelState::idle) << text.str();
+    EXPECT_EQ(rig.last.end_code, 30);
+    EXPECT_EQ(rig.last.setpoints[0].pos, expected[0]) << text.str();
+    EXPECT_EQ(rig.last.setpoints[1].pos, expected[1]) << text.str();
+    const auto ends = rig.events_of(ChannelEventKind::program_end);
+    ASSERT_EQ(ends.size(), 1u);
+    EXPECT_EQ(ends[0].end_code, 30);
+    EXPECT_EQ(ends[0].line, line);
+    EXPECT_EQ(rig.events_of(ChannelEventKind::block_started).size(), blocks);
+    EXPECT_EQ(rig.ctl_.alarm_count(), 0u);
+    expect_no_jumps(rig.outputs);
+  }
+}
+
+}  // namespace
+}  // namespace mcnc::channel

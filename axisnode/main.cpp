@@ -6,12 +6,13 @@
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/log/logging.hpp"
+#include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
 #include "common/trace/trace_writer.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <cstdio>
@@ -21,13 +22,15 @@ using namespace mcnc;
 
 namespace {
 
-const char* drive_state_name(cia402::State state) { return cia402::to_string(state); }
+const char* drive_state_name(cia402::State state) {
+  return cia402::to_string(state);
+}
 
 DriveState to_wire(cia402::State state) {
   return static_cast<DriveState>(static_cast<int>(state));
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc axis node: one axis, CiA 402 drive over CAN, setpoints over DDS"};
@@ -40,18 +43,22 @@ int main(int argc, char** argv) {
   app.add_option("--machine", machine_path, "machine file (YAML)")->required();
   app.add_option("--axis", axis_name, "axis name from the machine file")->required();
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
-  app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")->check(CLI::PositiveNumber);
-  app.add_option("--lockstep-stall-ms", stall_ms, "lockstep: warn when the bus keeps a cycle waiting this long");
+  app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--lockstep-stall-ms", stall_ms,
+                 "lockstep: warn when the bus keeps a cycle waiting this long");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
   std::string clock_name = "lockstep";
-  app.add_option("--clock", clock_name, "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
+  app.add_option("--clock", clock_name,
+                 "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
   const config::AxisConfig* axis = machine.find_axis(axis_name);
   if (axis == nullptr) {
-    std::fprintf(stderr, "error: axis %s is not in machine file %s\n", axis_name.c_str(), machine_path.c_str());
+    std::fprintf(stderr, "error: axis %s is not in machine file %s\n", axis_name.c_str(),
+                 machine_path.c_str());
     return 2;
   }
   const config::BusConfig* bus = machine.find_bus(axis->bus);
@@ -118,65 +125,35 @@ int main(int argc, char** argv) {
 
     // Discovery: every channel's setpoint writer and feedback reader matched.
     const int channels = static_cast<int>(machine.channels.size());
-    while (setpoint_reader.matched_writers() < channels || feedback_writer.matched_readers() < channels) {
-      if (process::g_stop_signal != 0) {
-        return 0;
-      }
-      std::this_thread::sleep_for(5ms);
-    }
-    node.announce(PHASE_READY);
-    spdlog::info("ready: node {} on {}{}", node_id, bus->uri, sync_producer ? " (SYNC producer)" : "");
-
-    // Wait for the run to start.
-    wake.wait_for([&] { return node.run_control().command != RUN_NONE || process::g_stop_signal != 0; }, 24h);
-    process::RunControlView rc = node.run_control();
-    if (rc.command != RUN_START) {
+    process::CycleLoop loop(node, machine.cycle_us);
+    spdlog::info("node {} on {}{}", node_id, bus->uri, sync_producer ? " (SYNC producer)" : "");
+    if (!loop.start(
+            [&] {
+              return setpoint_reader.matched_writers() >= channels &&
+                     feedback_writer.matched_readers() >= channels;
+            },
+            clock_name)) {
       return 0;
     }
-    const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
-    if (lockstep != (clock_name == "lockstep")) {
-      spdlog::warn("run control says {} clock, started for {}", lockstep ? "lockstep" : "realtime", clock_name);
-    }
-    node.announce(PHASE_RUNNING);
+    const bool lockstep = loop.lockstep();
 
     axisnode::AxisNodeSetup setup;
     setup.counts_per_unit = axis->counts_per_unit;
     setup.cycle_s = machine.cycle_s();
     setup.deadline_cycles = machine.deadline_cycles;
     axisnode::AxisNodeController controller(setup);
-    const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
-    std::int64_t pace_origin_ns = rc.start_ns;
-    bool degraded = false;  // lockstep without an owner: paced to real time
     bool owner_loss_checked = false;
     std::uint64_t last_tpdo_count = 0;
-    tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(), owner->name.c_str());
+    tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(),
+                owner->name.c_str());
 
-    for (std::uint64_t cycle = 0;; ++cycle) {
-      // 1. Wait until this cycle may run.
-      bool stop = false;
-      bool estop = false;
-      if (lockstep && !degraded) {
-        wake.wait_for(
-            [&] {
-              const RunCommand cmd = node.run_control().command;
-              return cycle == 0 || setpoints.at(cycle - 1) != nullptr || owner_lost ||
-                     cmd == RUN_STOP || cmd == RUN_ESTOP || process::g_stop_signal != 0;
-            },
-            24h);
-      }
-      rc = node.run_control();
-      stop = rc.command == RUN_STOP || process::g_stop_signal != 0;
-      estop = rc.command == RUN_ESTOP;
-      if (stop) {
-        break;
-      }
-      if (lockstep && !degraded && (estop || owner_lost)) {
-        degraded = true;  // nobody feeds this node any more: keep stepping at real time
-        pace_origin_ns = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * cycle_ns;
-      }
-      if (!lockstep || degraded || rc.pace) {
-        cycle = clock::wait_for_cycle(pace_origin_ns, cycle_ns, cycle, !lockstep || degraded);
-      }
+    // 1. Wait until the cycle may run: the owner's setpoint stamped N-1 is in.
+    for (std::uint64_t cycle = 0; loop.next(
+             cycle, [&](std::uint64_t c) { return c == 0 || setpoints.at(c - 1) != nullptr; },
+             [&] { return owner_lost; });
+         ++cycle) {
+      const bool degraded = loop.degraded();
+      const bool estop = loop.emergency_stop();
 
       // 2. Inputs stamped N-1.
       axisnode::AxisNodeInput in;
@@ -190,7 +167,8 @@ int main(int argc, char** argv) {
               sp = *s;
               have = true;
             } else if (!lockstep) {
-              if (const AxisSetpoint* latest = setpoints.latest(); latest != nullptr && latest->cycle() >= cycle - 1) {
+              if (const AxisSetpoint* latest = setpoints.latest();
+                  latest != nullptr && latest->cycle() >= cycle - 1) {
                 sp = *latest;
                 have = true;
               }
@@ -240,8 +218,8 @@ int main(int argc, char** argv) {
       if (out.new_alarm != axisnode::AxisAlarm::none) {
         const int number = axisnode::kAlarmBase + static_cast<int>(out.new_alarm);
         const char* text = axisnode::to_text(out.new_alarm);
-        tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"",
-                    axis->name.c_str(), number, text, axis->name.c_str());
+        tracer.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"", number, text,
+                    axis->name.c_str());
         node.raise_alarm(static_cast<std::uint32_t>(number), text, cycle, 0, axis->id);
         spdlog::error("alarm {}: {}", number, text);
       }
@@ -263,29 +241,32 @@ int main(int argc, char** argv) {
           if (cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0) {
             return;
           }
-          if (!warned && std::chrono::steady_clock::now() - since > std::chrono::milliseconds(stall_ms)) {
+          if (!warned &&
+              std::chrono::steady_clock::now() - since > std::chrono::milliseconds(stall_ms)) {
             spdlog::warn("cycle {}: still waiting for {}", cycle, what);
             warned = true;
           }
         }
       };
       const std::uint64_t syncs_before = link.sync_count();
-      link.send_rpdo(out.controlword, out.target_counts);
       const bool wait_bus = lockstep && !degraded;
-      if (sync_producer) {
-        if (wait_bus) {
-          lockstep_wait([&](auto t) { return link.wait_other_rpdos(t); }, "the RPDOs of the other nodes");
-        }
+      if (sync_producer && !wait_bus) {
+        // Realtime: SYNC opens the cycle, so every node's RPDO, sent after it, is applied at
+        // the next SYNC: one cycle, the same for every drive of the bus.
+        link.send_sync();
+      }
+      link.send_rpdo(out.controlword, out.target_counts);
+      if (sync_producer && wait_bus) {
+        lockstep_wait([&](auto t) { return link.wait_other_rpdos(t); },
+                      "the RPDOs of the other nodes");
         link.send_sync();
       }
       if (wait_bus) {
         if (!sync_producer) {
           lockstep_wait([&](auto t) { return link.wait_sync_after(syncs_before, t); }, "SYNC");
         }
-        lockstep_wait([&](auto t) { return link.wait_tpdo_after(tpdo.count, t); }, "the drive's TPDO");
-      }
-      if (cycle % 1000 == 0) {
-        node.announce(PHASE_RUNNING, cycle);
+        lockstep_wait([&](auto t) { return link.wait_tpdo_after(tpdo.count, t); },
+                      "the drive's TPDO");
       }
     }
 

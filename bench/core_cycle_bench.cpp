@@ -97,6 +97,6 @@ void BM_MinimalInterpreterLoad1000Blocks(benchmark::State& state) {
 }
 BENCHMARK(BM_MinimalInterpreterLoad1000Blocks);
 
-} // namespace
+}  // namespace
 
 BENCHMARK_MAIN();

@@ -4,12 +4,12 @@
 // channel whose position encodes the cycle number, and listens on the CAN bus for the axis
 // node's RPDOs. The latency of cycle k is (RPDO with target k received) - (setpoint k written).
 // It includes the designed one-cycle delay (a setpoint stamped N is applied at N+1).
+#include "axisnode/cia402/canopen_frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
 #include "launch/child_process.hpp"
 #include "launch/self_path.hpp"
 
@@ -44,13 +44,13 @@ int main(int argc, char** argv) {
   const std::string bin = launch::executable_dir();
 
   std::vector<launch::ChildProcess> children;
-  children.emplace_back("sim", std::vector<std::string>{bin + "/mcnc-drivesim", "--machine", machine_path,
-                                                        "--bus", bus.name, "--clock", "realtime",
-                                                        "--log-level", "warn"});
+  children.emplace_back(
+      "sim", std::vector<std::string>{bin + "/mcnc-drivesim", "--machine", machine_path, "--bus",
+                                      bus.name, "--clock", "realtime", "--log-level", "warn"});
   for (const auto& a : machine.axes) {
-    children.emplace_back(a.name, std::vector<std::string>{bin + "/mcnc-axisnode", "--machine", machine_path,
-                                                           "--axis", a.name, "--clock", "realtime",
-                                                           "--log-level", "warn"});
+    children.emplace_back(a.name, std::vector<std::string>{
+                                      bin + "/mcnc-axisnode", "--machine", machine_path, "--axis",
+                                      a.name, "--clock", "realtime", "--log-level", "warn"});
   }
   const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain)};
   for (auto& c : children) {
@@ -61,12 +61,14 @@ int main(int argc, char** argv) {
   process::ProcessNode node(domain, channel.name);
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
-  dds::Reader<ProcessState> states(node.participant(), [&](const ProcessState& s, const dds::WriterId&) {
-    std::lock_guard<std::mutex> lock(mutex);
-    phases[s.name()] = s.phase();
-  });
+  dds::Reader<ProcessState> states(node.participant(),
+                                   [&](const ProcessState& s, const dds::WriterId&) {
+                                     std::lock_guard<std::mutex> lock(mutex);
+                                     phases[s.name()] = s.phase();
+                                   });
   dds::Writer<AxisSetpoint> setpoints(node.participant());
-  dds::Reader<AxisFeedback> feedback(node.participant(), [](const AxisFeedback&, const dds::WriterId&) {});
+  dds::Reader<AxisFeedback> feedback(node.participant(),
+                                     [](const AxisFeedback&, const dds::WriterId&) {});
   dds::Writer<RunControl> control(node.participant());
 
   // Receive RPDOs on the bus: target counts -> receive time.
@@ -87,7 +89,8 @@ int main(int argc, char** argv) {
       if (cls.kind == canopen::FrameKind::rpdo1 && cls.node == axis.node_id) {
         if (auto pdo = canopen::decode_rpdo_csp(frame)) {
           const std::int64_t k = pdo->target_position - 1'000'000;  // offset: see below
-          if (k >= 0 && k < static_cast<std::int64_t>(received.size()) && received[static_cast<std::size_t>(k)] == 0) {
+          if (k >= 0 && k < static_cast<std::int64_t>(received.size()) &&
+              received[static_cast<std::size_t>(k)] == 0) {
             received[static_cast<std::size_t>(k)] = now;
           }
         }
@@ -169,11 +172,14 @@ int main(int argc, char** argv) {
   }
   std::sort(latency_us.begin(), latency_us.end());
   auto pct = [&](double p) {
-    return latency_us[std::min(latency_us.size() - 1, static_cast<std::size_t>(p * static_cast<double>(latency_us.size())))];
+    return latency_us[std::min(
+        latency_us.size() - 1,
+        static_cast<std::size_t>(p * static_cast<double>(latency_us.size())))];
   };
-  std::printf("setpoint -> RPDO latency over %zu cycles of %d us (%zu setpoints never reached the bus):\n",
-              latency_us.size(), machine.cycle_us, lost);
-  std::printf("  min %.1f us  median %.1f us  p90 %.1f us  p99 %.1f us  max %.1f us\n", latency_us.front(),
-              pct(0.5), pct(0.9), pct(0.99), latency_us.back());
+  std::printf(
+      "setpoint -> RPDO latency over %zu cycles of %d us (%zu setpoints never reached the bus):\n",
+      latency_us.size(), machine.cycle_us, lost);
+  std::printf("  min %.1f us  median %.1f us  p90 %.1f us  p99 %.1f us  max %.1f us\n",
+              latency_us.front(), pct(0.5), pct(0.9), pct(0.99), latency_us.back());
   return 0;
 }

@@ -7,13 +7,15 @@
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/log/logging.hpp"
+#include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
 #include "common/trace/trace_writer.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -25,16 +27,6 @@ namespace {
 
 ::mcnc::ChannelState to_wire(channel::ChannelState state) {
   return static_cast<::mcnc::ChannelState>(static_cast<int>(state));
-}
-
-char incremental_address(char absolute) {
-  switch (absolute) {
-    case 'X': return 'U';
-    case 'Z': return 'W';
-    case 'Y': return 'V';
-    case 'C': return 'H';
-    default: return '\0';
-  }
 }
 
 std::vector<std::string> split_lines(const std::string& text) {
@@ -49,7 +41,7 @@ std::vector<std::string> split_lines(const std::string& text) {
   return lines;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
@@ -60,18 +52,21 @@ int main(int argc, char** argv) {
   std::string log_level;
   app.add_option("--machine", machine_path, "machine file (YAML)")->required();
   app.add_option("--channel", channel_name, "channel name from the machine file")->required();
-  app.add_option("--program", program_path, "part program to run at cycle start")->check(CLI::ExistingFile);
+  app.add_option("--program", program_path, "part program to run at cycle start")
+      ->check(CLI::ExistingFile);
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
   app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
   std::string clock_name = "lockstep";
-  app.add_option("--clock", clock_name, "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
+  app.add_option("--clock", clock_name,
+                 "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
   const config::ChannelConfig* ch = machine.find_channel(channel_name);
   if (ch == nullptr) {
-    std::fprintf(stderr, "error: channel %s is not in machine file %s\n", channel_name.c_str(), machine_path.c_str());
+    std::fprintf(stderr, "error: channel %s is not in machine file %s\n", channel_name.c_str(),
+                 machine_path.c_str());
     return 2;
   }
   log::setup(ch->name, log_level);
@@ -88,7 +83,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : ch->axes) {
     const config::AxisConfig* a = machine.find_axis(name);
     axes.push_back(a);
-    addresses.push_back(interp::AxisAddress{a->address, incremental_address(a->address), a->diameter});
+    addresses.push_back(interp::lathe_axis_address(a->address, a->diameter));
     limits.push_back(motion::AxisLimits{a->rapid_rate / 60.0, a->max_feed / 60.0, a->acceleration});
     setup.in_position.push_back(a->in_position);
   }
@@ -160,30 +155,20 @@ int main(int argc, char** argv) {
     dds::Writer<AxisSetpoint> setpoint_writer(node.participant());
     dds::Writer<::mcnc::ChannelStatus> status_writer(node.participant());
 
+    // Discovery: every axis node's feedback writer and setpoint reader matched.
     const int total_axes = static_cast<int>(machine.axes.size());
-    while (feedback_reader.matched_writers() < total_axes || setpoint_writer.matched_readers() < total_axes) {
-      if (process::g_stop_signal != 0) {
-        return 0;
-      }
-      std::this_thread::sleep_for(5ms);
-    }
-    node.announce(PHASE_READY);
-    spdlog::info("ready: {} axes{}{}", axes.size(), program_path.empty() ? "" : ", program ", program_name);
-
-    wake.wait_for([&] { return node.run_control().command != RUN_NONE || process::g_stop_signal != 0; }, 24h);
-    process::RunControlView rc = node.run_control();
-    if (rc.command != RUN_START) {
+    spdlog::info("{} axes{}{}", axes.size(), program_path.empty() ? "" : ", program ",
+                 program_name);
+    process::CycleLoop loop(node, machine.cycle_us);
+    if (!loop.start(
+            [&] {
+              return feedback_reader.matched_writers() >= total_axes &&
+                     setpoint_writer.matched_readers() >= total_axes;
+            },
+            clock_name)) {
       return 0;
     }
-    const bool lockstep = rc.clock == LOCKSTEP_CLOCK;
-    if (lockstep != (clock_name == "lockstep")) {
-      spdlog::warn("run control says {} clock, started for {}", lockstep ? "lockstep" : "realtime", clock_name);
-    }
-    node.announce(PHASE_RUNNING);
-    const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
-    std::int64_t pace_origin_ns = rc.start_ns;
-    bool degraded = false;
-
+    const bool lockstep = loop.lockstep();
     if (load_alarm) {
       controller.report_alarm(*load_alarm);
     } else if (!program_path.empty()) {
@@ -193,35 +178,30 @@ int main(int argc, char** argv) {
     std::vector<channel::AxisFeedbackView> views(axes.size());
     std::vector<bool> reported_lost(axes.size(), false);
     char escaped[512];
-    for (std::uint64_t cycle = 0;; ++cycle) {
-      if (lockstep && !degraded) {
-        wake.wait_for(
-            [&] {
-              const RunCommand cmd = node.run_control().command;
-              return gate.may_run(cycle) || cmd == RUN_STOP || cmd == RUN_ESTOP ||
-                     process::g_stop_signal != 0;
-            },
-            24h);
-      }
-      rc = node.run_control();
-      if (rc.command == RUN_STOP || process::g_stop_signal != 0) {
-        break;
-      }
-      if (rc.command == RUN_ESTOP) {
+    bool estop_seen = false;
+    // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
+    for (std::uint64_t cycle = 0; loop.next(
+             cycle, [&](std::uint64_t c) { return gate.may_run(c); },
+             [&] {
+               return std::find(axis_lost.begin(), axis_lost.end(), true) != axis_lost.end();
+             });
+         ++cycle) {
+      if (loop.emergency_stop() && !estop_seen) {
+        estop_seen = true;
         controller.emergency_stop();
-        if (lockstep && !degraded) {
-          degraded = true;
-          pace_origin_ns = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * cycle_ns;
-        }
-      }
-      if (!lockstep || degraded || rc.pace) {
-        cycle = clock::wait_for_cycle(pace_origin_ns, cycle_ns, cycle, !lockstep || degraded);
       }
 
-      // An axis node leaving may be the end of the run, not a failure.
+      // An axis node leaving may be the end of the run, not a failure. In realtime, feedback
+      // older than the deadline counts as the axis being gone (ARCHITECTURE.md §6).
       bool newly_lost = false;
       wake.update([&] {
         for (std::size_t i = 0; i < axes.size(); ++i) {
+          const AxisFeedback* latest = feedback[i].latest();
+          if (!lockstep && latest != nullptr &&
+              controller.state() != channel::ChannelState::reset &&
+              latest->cycle() + static_cast<std::uint64_t>(machine.deadline_cycles) < cycle) {
+            axis_lost[i] = true;
+          }
           newly_lost = newly_lost || (axis_lost[i] && !reported_lost[i]);
         }
       });
@@ -235,7 +215,8 @@ int main(int argc, char** argv) {
             fb = feedback[i].latest();
           }
           if (fb != nullptr) {
-            views[i] = channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
+            views[i] =
+                channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
           }
           if (axis_lost[i] && !reported_lost[i]) {
             reported_lost[i] = true;
@@ -279,8 +260,8 @@ int main(int argc, char** argv) {
             break;
           case channel::ChannelEventKind::block_started: {
             const std::size_t idx = static_cast<std::size_t>(ev.line) - 1;
-            trace::json_escape(idx < program_lines.size() ? program_lines[idx].c_str() : "", escaped,
-                               sizeof escaped);
+            trace::json_escape(idx < program_lines.size() ? program_lines[idx].c_str() : "",
+                               escaped, sizeof escaped);
             tracer.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"",
                         ch->name.c_str(), program_name.c_str(), ev.line, escaped);
             break;
@@ -295,15 +276,19 @@ int main(int argc, char** argv) {
             const channel::ChannelAlarm& alarm = controller.last_alarm();
             trace::json_escape(alarm.text.data(), escaped, sizeof escaped);
             if (alarm.axis > 0) {
-              tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
-                          ch->name.c_str(), alarm.number, escaped, ch->name.c_str(),
+              // The alarm's source is the event's own "src".
+              tracer.emit(cycle, "alarm",
+                          "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
+                          alarm.number, escaped, ch->name.c_str(),
                           axes[static_cast<std::size_t>(alarm.axis - 1)]->name.c_str(), alarm.line);
             } else {
-              tracer.emit(cycle, "alarm", "\"src\":\"%s\",\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
-                          ch->name.c_str(), alarm.number, escaped, ch->name.c_str(), alarm.line);
+              tracer.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
+                          alarm.number, escaped, ch->name.c_str(), alarm.line);
             }
-            node.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle, ch->id,
-                             alarm.axis > 0 ? axes[static_cast<std::size_t>(alarm.axis - 1)]->id : 0, alarm.line);
+            node.raise_alarm(
+                static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle, ch->id,
+                alarm.axis > 0 ? axes[static_cast<std::size_t>(alarm.axis - 1)]->id : 0,
+                alarm.line);
             spdlog::error("alarm {}: {} (line {})", alarm.number, alarm.text.data(), alarm.line);
             break;
           }
@@ -312,9 +297,6 @@ int main(int argc, char** argv) {
             spdlog::info("program end M{:02d} at cycle {}", ev.end_code, cycle);
             break;
         }
-      }
-      if (cycle % 1000 == 0) {
-        node.announce(PHASE_RUNNING, cycle);
       }
     }
     tracer.flush();

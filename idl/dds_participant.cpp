@@ -23,6 +23,8 @@ namespace mcnc::dds {
 
 namespace {
 
+constexpr const char* kParticipantProfile = "mcnc_participant";
+
 WriterId to_writer_id(const fdds::InstanceHandle_t& handle) {
   WriterId id{};
   std::memcpy(id.data(), handle.value, id.size());
@@ -31,18 +33,24 @@ WriterId to_writer_id(const fdds::InstanceHandle_t& handle) {
 
 const char* writer_profile(QosKind qos) {
   switch (qos) {
-    case QosKind::cyclic: return "cyclic_writer";
-    case QosKind::state: return "state_writer";
-    case QosKind::event: return "event_writer";
+    case QosKind::cyclic:
+      return "cyclic_writer";
+    case QosKind::state:
+      return "state_writer";
+    case QosKind::event:
+      return "event_writer";
   }
   return "state_writer";
 }
 
 const char* reader_profile(QosKind qos) {
   switch (qos) {
-    case QosKind::cyclic: return "cyclic_reader";
-    case QosKind::state: return "state_reader";
-    case QosKind::event: return "event_reader";
+    case QosKind::cyclic:
+      return "cyclic_reader";
+    case QosKind::state:
+      return "state_reader";
+    case QosKind::event:
+      return "event_reader";
   }
   return "state_reader";
 }
@@ -58,11 +66,17 @@ void load_profiles_once() {
   });
 }
 
-} // namespace
+}  // namespace
 
 std::string qos_profiles_path() {
   const char* env = std::getenv("MCNC_QOS_PROFILES");
   return env != nullptr && *env != '\0' ? env : MCNC_QOS_PROFILES_FILE;
+}
+
+std::chrono::nanoseconds participant_lease(const Participant& participant) {
+  const auto& lease =
+      participant.native()->get_qos().wire_protocol().builtin.discovery_config.leaseDuration;
+  return std::chrono::seconds(lease.seconds) + std::chrono::nanoseconds(lease.nanosec);
 }
 
 struct Participant::Topics {
@@ -70,11 +84,18 @@ struct Participant::Topics {
   std::map<std::string, fdds::Topic*> by_name;
 };
 
-Participant::Participant(int domain, const std::string& name) : topics_(std::make_unique<Topics>()) {
+Participant::Participant(int domain, const std::string& name)
+    : topics_(std::make_unique<Topics>()) {
   load_profiles_once();
   auto* factory = fdds::DomainParticipantFactory::get_instance();
-  // Copying PARTICIPANT_QOS_DEFAULT would bypass the XML profile: take the factory's default.
-  fdds::DomainParticipantQos qos = factory->get_default_participant_qos();
+  // Copying PARTICIPANT_QOS_DEFAULT would bypass the XML profile, and on Fast DDS 2.9 so does
+  // get_default_participant_qos() after loading a file: take the profile by name.
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(kParticipantProfile, qos) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error(std::string("no participant profile ") + kParticipantProfile + " in " +
+                             qos_profiles_path());
+  }
   qos.name(name);
   participant_ = factory->create_participant(domain, qos);
   if (participant_ == nullptr) {
@@ -103,7 +124,8 @@ fdds::Topic* Participant::topic(const std::string& name, void* pubsub_type) {
     return it->second;
   }
   type.register_type(participant_);
-  fdds::Topic* topic = participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  fdds::Topic* topic =
+      participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
   if (topic == nullptr) {
     throw std::runtime_error("cannot create DDS topic " + name);
   }
@@ -147,9 +169,13 @@ WriterBase::WriterBase(Participant& participant, const char* topic, void* pubsub
     : participant_(participant),
       writer_(participant.create_writer(participant.topic(topic, pubsub_type), qos)) {}
 
-WriterBase::~WriterBase() { participant_.delete_writer(writer_); }
+WriterBase::~WriterBase() {
+  participant_.delete_writer(writer_);
+}
 
-bool WriterBase::write_raw(void* sample) noexcept { return writer_->write(sample); }
+bool WriterBase::write_raw(void* sample) noexcept {
+  return writer_->write(sample);
+}
 
 int WriterBase::matched_readers() const noexcept {
   fdds::PublicationMatchedStatus status;
@@ -193,7 +219,9 @@ ReaderBase::ReaderBase(Participant& participant, const char* topic, void* pubsub
   reader_ = participant.create_reader(participant.topic(topic, pubsub_type), qos, listener_.get());
 }
 
-ReaderBase::~ReaderBase() { participant_.delete_reader(reader_); }
+ReaderBase::~ReaderBase() {
+  participant_.delete_reader(reader_);
+}
 
 int ReaderBase::matched_writers() const noexcept {
   fdds::SubscriptionMatchedStatus status;
@@ -201,5 +229,5 @@ int ReaderBase::matched_writers() const noexcept {
   return status.current_count;
 }
 
-} // namespace detail
-} // namespace mcnc::dds
+}  // namespace detail
+}  // namespace mcnc::dds

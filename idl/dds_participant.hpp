@@ -5,6 +5,7 @@
 #include "idl/topics.hpp"
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -17,7 +18,7 @@ class Subscriber;
 class Topic;
 class DataWriter;
 class DataReader;
-} // namespace eprosima::fastdds::dds
+}  // namespace eprosima::fastdds::dds
 
 namespace mcnc::dds {
 
@@ -28,7 +29,7 @@ using WriterId = std::array<std::uint8_t, 16>;
 std::string qos_profiles_path();
 
 class Participant {
-public:
+ public:
   // Throws std::runtime_error when the participant cannot be created (start-up error).
   Participant(int domain, const std::string& name);
   ~Participant();
@@ -45,7 +46,11 @@ public:
                                                     QosKind qos, void* listener);
   void delete_reader(eprosima::fastdds::dds::DataReader* reader) noexcept;
 
-private:
+  [[nodiscard]] eprosima::fastdds::dds::DomainParticipant* native() const noexcept {
+    return participant_;
+  }
+
+ private:
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
@@ -53,10 +58,13 @@ private:
   std::unique_ptr<Topics> topics_;
 };
 
+// How long peers wait before they declare this participant gone (from the QoS profile).
+std::chrono::nanoseconds participant_lease(const Participant& participant);
+
 namespace detail {
 // Type-erased writer/reader so that the Fast DDS headers stay in one translation unit.
 class WriterBase {
-public:
+ public:
   WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos);
   ~WriterBase();
   WriterBase(const WriterBase&) = delete;
@@ -64,16 +72,17 @@ public:
   bool write_raw(void* sample) noexcept;
   [[nodiscard]] int matched_readers() const noexcept;
 
-private:
+ private:
   Participant& participant_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
 };
 
 class ReaderBase {
-public:
+ public:
   using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
   using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
-  ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos, std::function<void*()> make_sample, std::function<void(void*)> free_sample,
+  ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
+             std::function<void*()> make_sample, std::function<void(void*)> free_sample,
              SampleFn on_sample, MatchFn on_match);
   ~ReaderBase();
   ReaderBase(const ReaderBase&) = delete;
@@ -82,36 +91,34 @@ public:
 
   struct Listener;
 
-private:
+ private:
   Participant& participant_;
   std::unique_ptr<Listener> listener_;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
 };
-} // namespace detail
+}  // namespace detail
 
 template <class T>
 class Writer {
-public:
+ public:
   explicit Writer(Participant& participant)
-      : base_(participant, TopicTraits<T>::name,
-              new typename TopicTraits<T>::PubSubType(),
+      : base_(participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
               TopicTraits<T>::qos) {}
   bool write(const T& sample) noexcept { return base_.write_raw(const_cast<T*>(&sample)); }
   [[nodiscard]] int matched_readers() const noexcept { return base_.matched_readers(); }
 
-private:
+ private:
   detail::WriterBase base_;
 };
 
 template <class T>
 class Reader {
-public:
+ public:
   using SampleFn = std::function<void(const T&, const WriterId&)>;
   using MatchFn = detail::ReaderBase::MatchFn;
   Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {})
       : base_(
-            participant, TopicTraits<T>::name,
-            new typename TopicTraits<T>::PubSubType(),
+            participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
             TopicTraits<T>::qos, [] { return static_cast<void*>(new T()); },
             [](void* p) { delete static_cast<T*>(p); },
             [fn = std::move(on_sample)](const void* s, const WriterId& w) {
@@ -120,8 +127,8 @@ public:
             std::move(on_match)) {}
   [[nodiscard]] int matched_writers() const noexcept { return base_.matched_writers(); }
 
-private:
+ private:
   detail::ReaderBase base_;
 };
 
-} // namespace mcnc::dds
+}  // namespace mcnc::dds

@@ -10,12 +10,12 @@ enum class QosKind { cyclic, state, event };
 template <class T>
 struct TopicTraits;
 
-#define MCNC_TOPIC(Type, Kind)                            \
-  template <>                                             \
-  struct TopicTraits<::mcnc::Type> {                      \
-    using PubSubType = ::mcnc::Type##PubSubType;          \
-    static constexpr const char* name = "mcnc/" #Type;    \
-    static constexpr QosKind qos = QosKind::Kind;         \
+#define MCNC_TOPIC(Type, Kind)                         \
+  template <>                                          \
+  struct TopicTraits<::mcnc::Type> {                   \
+    using PubSubType = ::mcnc::Type##PubSubType;       \
+    static constexpr const char* name = "mcnc/" #Type; \
+    static constexpr QosKind qos = QosKind::Kind;      \
   };
 
 MCNC_TOPIC(AxisSetpoint, cyclic)
@@ -27,4 +27,4 @@ MCNC_TOPIC(ProcessState, state)
 
 #undef MCNC_TOPIC
 
-} // namespace mcnc::dds
+}  // namespace mcnc::dds

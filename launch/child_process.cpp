@@ -1,11 +1,12 @@
 #include "launch/child_process.hpp"
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <spawn.h>
 #include <stdexcept>
-#include <sys/wait.h>
 
 extern char** environ;
 
@@ -13,6 +14,30 @@ namespace mcnc::launch {
 
 ChildProcess::ChildProcess(std::string name, std::vector<std::string> argv)
     : name_(std::move(name)), argv_(std::move(argv)) {}
+
+ChildProcess::ChildProcess(ChildProcess&& other) noexcept
+    : name_(std::move(other.name_)),
+      argv_(std::move(other.argv_)),
+      pid_(other.pid_),
+      exited_(other.exited_),
+      status_(other.status_) {
+  other.pid_ = -1;
+}
+
+ChildProcess::~ChildProcess() {
+  if (!running() || poll_exited()) {
+    return;
+  }
+  signal(SIGTERM);
+  for (int i = 0; i < 100 && !poll_exited(); ++i) {
+    usleep(10'000);
+  }
+  if (!poll_exited()) {
+    signal(SIGKILL);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+  }
+}
 
 void ChildProcess::start(const std::vector<std::string>& env_overrides) {
   std::vector<std::string> env_strings;
@@ -85,4 +110,4 @@ std::string ChildProcess::exit_description() const {
   return "exited with code " + std::to_string(WEXITSTATUS(status_));
 }
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

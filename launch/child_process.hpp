@@ -1,14 +1,21 @@
 #pragma once
 // A child process started by mcnc-launch: spawn, poll for exit, signal.
-#include <string>
 #include <sys/types.h>
+#include <string>
 #include <vector>
 
 namespace mcnc::launch {
 
 class ChildProcess {
-public:
+ public:
   ChildProcess(std::string name, std::vector<std::string> argv);
+  // A child still running when its handle goes (an exception, an early return) is terminated:
+  // SIGTERM, then SIGKILL after a second.
+  ~ChildProcess();
+  ChildProcess(ChildProcess&& other) noexcept;
+  ChildProcess& operator=(ChildProcess&&) = delete;
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
   // Starts it with `env_overrides` ("KEY=VALUE") added to this process's environment.
   // Throws std::runtime_error when the executable cannot be started.
   void start(const std::vector<std::string>& env_overrides);
@@ -22,7 +29,7 @@ public:
   [[nodiscard]] int exit_code() const noexcept;  // -signal when killed by a signal
   [[nodiscard]] const std::vector<std::string>& argv() const noexcept { return argv_; }
 
-private:
+ private:
   std::string name_;
   std::vector<std::string> argv_;
   pid_t pid_ = -1;
@@ -30,4 +37,4 @@ private:
   int status_ = 0;
 };
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

@@ -26,12 +26,18 @@ namespace fs = std::filesystem;
 
 const char* to_string(::mcnc::ChannelState state) noexcept {
   switch (state) {
-    case CH_RESET: return "reset";
-    case CH_IDLE: return "idle";
-    case CH_RUNNING: return "running";
-    case CH_HOLD: return "hold";
-    case CH_WAITING: return "waiting";
-    case CH_ALARM: return "alarm";
+    case CH_RESET:
+      return "reset";
+    case CH_IDLE:
+      return "idle";
+    case CH_RUNNING:
+      return "running";
+    case CH_HOLD:
+      return "hold";
+    case CH_WAITING:
+      return "waiting";
+    case CH_ALARM:
+      return "alarm";
   }
   return "reset";
 }
@@ -50,15 +56,18 @@ bool drive_at_rest(const AxisFeedback& fb) {
   return std::fabs(fb.vel()) < 1e-9 && !fb.enabled();
 }
 
-} // namespace
+}  // namespace
 
 Launcher::Launcher(config::MachineConfig machine, LaunchOptions options)
     : machine_(std::move(machine)), options_(std::move(options)) {}
 
-LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
+LaunchResult Launcher::run(
+    const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
   LaunchResult result;
   const int domain = process::resolve_domain(machine_);
-  const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain)};
+  // Children end with the launcher, even when it is killed (see process::die_with_parent()).
+  const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain),
+                                     "MCNC_DIE_WITH_PARENT=1"};
 
   // Trace parts: one per process, merged at the end.
   std::string parts_dir;
@@ -80,9 +89,10 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   trace::TraceWriter tracer(part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();
-  dds::Reader<ProcessState> state_reader(node.participant(), [&](const ProcessState& s, const dds::WriterId&) {
-    wake.update([&] { seen.phases[s.name()] = s.phase(); });
-  });
+  dds::Reader<ProcessState> state_reader(node.participant(),
+                                         [&](const ProcessState& s, const dds::WriterId&) {
+                                           wake.update([&] { seen.phases[s.name()] = s.phase(); });
+                                         });
   dds::Reader<::mcnc::ChannelStatus> status_reader(
       node.participant(), [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
@@ -91,10 +101,11 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
           slot = s;
         }
       });
-  dds::Reader<AxisFeedback> feedback_reader(node.participant(), [&](const AxisFeedback& f, const dds::WriterId&) {
-    std::lock_guard<std::mutex> lock(seen.mutex);
-    seen.feedback[f.axis()] = f;
-  });
+  dds::Reader<AxisFeedback> feedback_reader(node.participant(),
+                                            [&](const AxisFeedback& f, const dds::WriterId&) {
+                                              std::lock_guard<std::mutex> lock(seen.mutex);
+                                              seen.feedback[f.axis()] = f;
+                                            });
   dds::Reader<Alarm> alarm_reader(node.participant(), [&](const Alarm& a, const dds::WriterId&) {
     std::lock_guard<std::mutex> lock(seen.mutex);
     seen.alarms.push_back(a);
@@ -128,21 +139,24 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   std::vector<std::string> channel_parts;
   std::vector<std::string> axis_parts;
   for (const auto& bus : machine_.buses) {
-    std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path, "--bus", bus.name};
+    std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path,
+                                  "--bus", bus.name};
     children.emplace_back("drivesim-" + bus.name, common_args(args));
   }
   for (const auto& axis : machine_.axes) {
-    std::vector<std::string> args{bin + "/mcnc-axisnode", "--machine", options_.machine_path, "--axis", axis.name};
+    std::vector<std::string> args{bin + "/mcnc-axisnode", "--machine", options_.machine_path,
+                                  "--axis", axis.name};
     if (!parts_dir.empty()) {
-      args.insert(args.end(), {"--trace", parts_dir + "/" + axis.name + ".jsonl", "--trace-pos-every",
-                               std::to_string(options_.trace_pos_every)});
+      args.insert(args.end(), {"--trace", parts_dir + "/" + axis.name + ".jsonl",
+                               "--trace-pos-every", std::to_string(options_.trace_pos_every)});
       axis_parts.push_back(parts_dir + "/" + axis.name + ".jsonl");
     }
     children.emplace_back(axis.name, common_args(args));
     dds_processes.push_back(axis.name);
   }
   for (const auto& ch : machine_.channels) {
-    std::vector<std::string> args{bin + "/mcnc-channel", "--machine", options_.machine_path, "--channel", ch.name};
+    std::vector<std::string> args{bin + "/mcnc-channel", "--machine", options_.machine_path,
+                                  "--channel", ch.name};
     if (auto it = options_.programs.find(ch.name); it != options_.programs.end()) {
       args.insert(args.end(), {"--program", it->second});
     }
@@ -216,8 +230,9 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   bool killed_child = false;
 
   // 1. Wait until every DDS process is ready (discovery done, drive answered).
-  const auto start_deadline = std::chrono::steady_clock::now() +
-                              std::chrono::milliseconds(static_cast<long>(options_.start_timeout_s * 1000));
+  const auto start_deadline =
+      std::chrono::steady_clock::now() +
+      std::chrono::milliseconds(static_cast<long>(options_.start_timeout_s * 1000));
   for (;;) {
     if (ChildProcess* dead = find_exited()) {
       failure = dead->name() + " " + dead->exit_description() + " during start-up";
@@ -270,8 +285,8 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
         failure = "interrupted";
         break;
       }
-      if (options_.run_timeout_s > 0 &&
-          std::chrono::steady_clock::now() - run_start > std::chrono::duration<double>(options_.run_timeout_s)) {
+      if (options_.run_timeout_s > 0 && std::chrono::steady_clock::now() - run_start >
+                                            std::chrono::duration<double>(options_.run_timeout_s)) {
         failure = "run timed out";
         break;
       }
@@ -288,7 +303,8 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
         }
         bool settled = true;
         for (const auto& p : list) {
-          settled = settled && (!p.has_program || p.ended || p.state == CH_ALARM || p.state == CH_RESET);
+          settled =
+              settled && (!p.has_program || p.ended || p.state == CH_ALARM || p.state == CH_RESET);
         }
         if (settled || std::chrono::steady_clock::now() - *alarm_since > 1s) {
           break;
@@ -310,7 +326,7 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
       // E-stop: channels reset, drives quick stop; wait until the drives are at rest.
       estopped = true;
       spdlog::error("E-stop: {}", failure);
-      tracer.emit(last_cycle, "alarm", "\"src\":\"launch\",\"number\":3001,\"text\":\"emergency stop: %s\"",
+      tracer.emit(last_cycle, "alarm", "\"number\":3001,\"text\":\"emergency stop: %s\"",
                   failure.c_str());
       node.raise_alarm(3001, "emergency stop: " + failure, last_cycle);
       send_control(RUN_ESTOP, 0, failure);
@@ -405,11 +421,31 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   tracer.flush();
   if (!options_.trace_path.empty()) {
     const std::uint64_t merged_last = trace::merge_parts(merge_order, options_.trace_path);
-    result.cycles = std::max(result.cycles, merged_last);
+    // The trace's own events, not sampled status, give the exact (and in lockstep
+    // reproducible) start and end cycles: the run lasted until the last program end.
+    const auto runs = trace::channel_runs(options_.trace_path);
+    std::uint64_t last_end = 0;
+    bool all_ended = true;
+    for (auto& p : result.channels) {
+      auto it = runs.find(p.name);
+      if (it != runs.end()) {
+        p.seen_running = it->second.started;
+        p.run_start_cycle = it->second.start_cycle;
+        p.ended = it->second.ended;
+        p.end_cycle = it->second.end_cycle;
+        p.end_code = it->second.end_code;
+      }
+      if (p.has_program) {
+        all_ended = all_ended && p.ended;
+        last_end = std::max(last_end, p.end_cycle);
+      }
+    }
+    result.cycles = all_ended && last_end > 0 ? last_end : merged_last;
     std::ofstream out(options_.trace_path, std::ios::app);
     std::ostringstream summary;
-    summary << "{\"cycle\":" << result.cycles << ",\"src\":\"launch\",\"ev\":\"summary\",\"ok\":"
-            << (ok ? "true" : "false") << ",\"cycles\":" << result.cycles << ",\"channels\":{";
+    summary << "{\"cycle\":" << std::max(merged_last, result.cycles)
+            << ",\"src\":\"launch\",\"ev\":\"summary\",\"ok\":" << (ok ? "true" : "false")
+            << ",\"cycles\":" << result.cycles << ",\"channels\":{";
     bool first = true;
     for (const auto& p : result.channels) {
       summary << (first ? "" : ",") << "\"" << p.name << "\":{\"end\":";
@@ -420,7 +456,9 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
         summary << "null";
       }
       const double cycle_time =
-          p.ended && p.seen_running ? static_cast<double>(p.end_cycle - p.run_start_cycle) * machine_.cycle_s() : 0.0;
+          p.ended && p.seen_running
+              ? static_cast<double>(p.end_cycle - p.run_start_cycle) * machine_.cycle_s()
+              : 0.0;
       summary << ",\"alarms\":" << p.alarms << ",\"cycle_time_s\":" << cycle_time << "}";
     }
     summary << "}}";
@@ -430,4 +468,4 @@ LaunchResult Launcher::run(const std::function<void(const std::vector<ChannelPro
   return result;
 }
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

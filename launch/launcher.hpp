@@ -18,13 +18,13 @@ struct LaunchOptions {
   std::string machine_path;
   std::map<std::string, std::string> programs;  // channel name -> program file
   ClockKind clock = LOCKSTEP_CLOCK;
-  bool pace = false;                             // lockstep paced to real time
-  std::string trace_path;                        // merged trace; empty: no trace
+  bool pace = false;       // lockstep paced to real time
+  std::string trace_path;  // merged trace; empty: no trace
   int trace_pos_every = 10;
-  std::string bin_dir;                           // where the mcnc-* executables are
+  std::string bin_dir;  // where the mcnc-* executables are
   std::string log_level;
-  double start_timeout_s = 60.0;                 // discovery and drive bring-up
-  double run_timeout_s = 0.0;                    // 0: no limit
+  double start_timeout_s = 60.0;  // discovery and drive bring-up
+  double run_timeout_s = 0.0;     // 0: no limit
 };
 
 struct ChannelProgress {
@@ -38,30 +38,30 @@ struct ChannelProgress {
   bool ended = false;
   std::int32_t end_code = -1;
   std::uint64_t cycle = 0;
-  std::uint64_t run_start_cycle = 0;   // first cycle seen running
-  std::uint64_t end_cycle = 0;         // cycle the program end was reported
+  std::uint64_t run_start_cycle = 0;  // first cycle seen running
+  std::uint64_t end_cycle = 0;        // cycle the program end was reported
   bool seen_running = false;
 };
 
 struct LaunchResult {
-  int exit_code = 1;                   // 0: every program ended without alarm
+  int exit_code = 1;  // 0: every program ended without alarm
   std::uint64_t cycles = 0;
   std::vector<ChannelProgress> channels;
-  std::vector<std::string> alarms;     // "src number text"
-  std::string failure;                 // why it did not end cleanly
+  std::vector<std::string> alarms;  // "src number text"
+  std::string failure;              // why it did not end cleanly
 };
 
 const char* to_string(::mcnc::ChannelState state) noexcept;
 
 class Launcher {
-public:
+ public:
   Launcher(config::MachineConfig machine, LaunchOptions options);
   // Runs the machine to the end. `on_progress` is called about ten times a second.
   LaunchResult run(const std::function<void(const std::vector<ChannelProgress>&)>& on_progress);
 
-private:
+ private:
   config::MachineConfig machine_;
   LaunchOptions options_;
 };
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

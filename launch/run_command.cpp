@@ -5,8 +5,8 @@
 #include "launch/launcher.hpp"
 #include "launch/self_path.hpp"
 
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <filesystem>
@@ -17,23 +17,13 @@ namespace mcnc::launch {
 
 namespace {
 
-char incremental_of(char absolute) {
-  switch (absolute) {
-    case 'X': return 'U';
-    case 'Z': return 'W';
-    case 'Y': return 'V';
-    case 'C': return 'H';
-    default: return '\0';
-  }
-}
-
 // Checks a program for the channel's axes; prints "FILE:LINE:COL: alarm N: text" when bad.
 bool program_is_good(const config::MachineConfig& machine, const config::ChannelConfig& ch,
                      const std::string& path) {
   std::vector<interp::AxisAddress> addresses;
   for (const auto& name : ch.axes) {
     const config::AxisConfig* axis = machine.find_axis(name);
-    addresses.push_back(interp::AxisAddress{axis->address, incremental_of(axis->address), axis->diameter});
+    addresses.push_back(interp::lathe_axis_address(axis->address, axis->diameter));
   }
   std::ifstream file(path);
   std::stringstream text;
@@ -41,14 +31,15 @@ bool program_is_good(const config::MachineConfig& machine, const config::Channel
   interp::MinimalInterpreter interpreter(addresses);
   const std::string name = std::filesystem::path(path).filename().string();
   if (auto alarm = interpreter.load(text.str(), name)) {
-    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line, alarm->column,
-                 alarm->number, alarm->text.c_str());
+    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line,
+                 alarm->column, alarm->number, alarm->text.c_str());
     return false;
   }
   return true;
 }
 
-void write_report(const std::string& dir, const config::MachineConfig& machine, const LaunchResult& result) {
+void write_report(const std::string& dir, const config::MachineConfig& machine,
+                  const LaunchResult& result) {
   std::filesystem::create_directories(dir);
   std::ofstream out(dir + "/summary.txt");
   out << "machine " << machine.name << ": " << (result.exit_code == 0 ? "ok" : "failed") << ", "
@@ -71,7 +62,7 @@ void write_report(const std::string& dir, const config::MachineConfig& machine, 
   }
 }
 
-} // namespace
+}  // namespace
 
 void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("machine", args.machine_path, "machine file (YAML)")->required();
@@ -101,8 +92,8 @@ int execute_run(const RunArguments& args) {
     const std::string file = spec.substr(eq + 1);
     const config::ChannelConfig* ch = machine.find_channel(channel);
     if (ch == nullptr) {
-      std::fprintf(stderr, "error: --program %s: no channel %s in %s\n", spec.c_str(), channel.c_str(),
-                   args.machine_path.c_str());
+      std::fprintf(stderr, "error: --program %s: no channel %s in %s\n", spec.c_str(),
+                   channel.c_str(), args.machine_path.c_str());
       return 2;
     }
     if (!std::filesystem::is_regular_file(file)) {
@@ -127,30 +118,47 @@ int execute_run(const RunArguments& args) {
   options.log_level = args.log_level;
   options.run_timeout_s = args.timeout_s;
 
+  if (!options.trace_path.empty()) {
+    const auto dir = std::filesystem::absolute(options.trace_path).parent_path();
+    if (!std::filesystem::is_directory(dir)) {
+      std::fprintf(stderr, "error: --trace %s: no such directory %s\n", options.trace_path.c_str(),
+                   dir.c_str());
+      return 2;
+    }
+  }
   process::install_stop_signals();
   Launcher launcher(machine, options);
   std::map<std::string, std::string> last_line;
-  const LaunchResult result = launcher.run([&](const std::vector<ChannelProgress>& list) {
-    for (const auto& p : list) {
-      char line[160];
-      std::snprintf(line, sizeof line, "%-4s block %u/%u  line %d  %s%s", p.name.c_str(), p.block,
-                    p.block_total, p.line, to_string(p.state), p.ended ? "  (program end)" : "");
-      if (last_line[p.name] != line) {
-        last_line[p.name] = line;
-        std::printf("%s\n", line);
-        std::fflush(stdout);
+  LaunchResult result;
+  try {
+    result = launcher.run([&](const std::vector<ChannelProgress>& list) {
+      for (const auto& p : list) {
+        char line[160];
+        std::snprintf(line, sizeof line, "%-4s block %u/%u  line %d  %s%s", p.name.c_str(), p.block,
+                      p.block_total, p.line, to_string(p.state), p.ended ? "  (program end)" : "");
+        if (last_line[p.name] != line) {
+          last_line[p.name] = line;
+          std::printf("%s\n", line);
+          std::fflush(stdout);
+        }
       }
-    }
-  });
+    });
+  } catch (const std::exception& e) {
+    // The children are stopped by their handles; report and fail.
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
   for (const auto& p : result.channels) {
     if (!p.has_program) {
       continue;
     }
     if (p.ended) {
-      std::printf("%s: program end M%02d, cycle time %.3f s, %u alarms\n", p.name.c_str(), p.end_code,
-                  static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s(), p.alarms);
+      std::printf(
+          "%s: program end M%02d, cycle time %.3f s, %u alarms\n", p.name.c_str(), p.end_code,
+          static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s(), p.alarms);
     } else {
-      std::printf("%s: did not end (%s), %u alarms\n", p.name.c_str(), to_string(p.state), p.alarms);
+      std::printf("%s: did not end (%s), %u alarms\n", p.name.c_str(), to_string(p.state),
+                  p.alarms);
     }
   }
   for (const auto& a : result.alarms) {
@@ -167,4 +175,4 @@ int execute_run(const RunArguments& args) {
   return result.exit_code;
 }
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

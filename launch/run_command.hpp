@@ -29,4 +29,4 @@ void add_run_options(CLI::App& app, RunArguments& args);
 // 2 bad input.
 int execute_run(const RunArguments& args);
 
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

@@ -6,4 +6,4 @@ namespace mcnc::launch {
 std::string executable_dir() {
   return std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
 }
-} // namespace mcnc::launch
+}  // namespace mcnc::launch

@@ -18,7 +18,12 @@ enum class NmtCommand : std::uint8_t {
   reset_communication = 0x82,
 };
 
-enum class NmtState : std::uint8_t { bootup = 0x00, stopped = 0x04, operational = 0x05, preoperational = 0x7F };
+enum class NmtState : std::uint8_t {
+  bootup = 0x00,
+  stopped = 0x04,
+  operational = 0x05,
+  preoperational = 0x7F
+};
 
 inline constexpr std::uint32_t kNmtId = 0x000;
 inline constexpr std::uint32_t kSyncId = 0x080;
@@ -44,7 +49,7 @@ struct Emcy {
 
 // node: 1..127 (0 in NMT = all nodes). All multi-byte values little endian.
 CanFrame encode_nmt(NmtCommand command, std::uint8_t node) noexcept;
-CanFrame encode_sync(std::uint8_t counter) noexcept;          // counter 1..240, 0 = no counter byte
+CanFrame encode_sync(std::uint8_t counter) noexcept;  // counter 1..240, 0 = no counter byte
 CanFrame encode_heartbeat(std::uint8_t node, NmtState state) noexcept;
 CanFrame encode_emcy(std::uint8_t node, const Emcy& emcy) noexcept;
 CanFrame encode_rpdo_csp(std::uint8_t node, const RxPdoCsp& pdo) noexcept;
@@ -64,10 +69,10 @@ struct NmtFrame {
   std::uint8_t node;
 };
 std::optional<NmtFrame> decode_nmt(const CanFrame& frame) noexcept;
-std::optional<std::uint8_t> decode_sync(const CanFrame& frame) noexcept;   // the counter (0 if none)
+std::optional<std::uint8_t> decode_sync(const CanFrame& frame) noexcept;  // the counter (0 if none)
 std::optional<NmtState> decode_heartbeat(const CanFrame& frame) noexcept;
 std::optional<Emcy> decode_emcy(const CanFrame& frame) noexcept;
 std::optional<RxPdoCsp> decode_rpdo_csp(const CanFrame& frame) noexcept;
 std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame) noexcept;
 
-} // namespace mcnc::canopen
+}  // namespace mcnc::canopen

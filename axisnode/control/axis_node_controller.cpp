@@ -6,11 +6,16 @@ namespace mcnc::axisnode {
 
 const char* to_text(AxisAlarm alarm) noexcept {
   switch (alarm) {
-    case AxisAlarm::none: return "no alarm";
-    case AxisAlarm::setpoint_deadline: return "no setpoint from the owner channel within the deadline: quick stop";
-    case AxisAlarm::owner_lost: return "owner channel lost: quick stop";
-    case AxisAlarm::drive_fault: return "drive fault";
-    case AxisAlarm::drive_lost: return "drive does not answer SYNC: quick stop";
+    case AxisAlarm::none:
+      return "no alarm";
+    case AxisAlarm::setpoint_deadline:
+      return "no setpoint from the owner channel within the deadline: quick stop";
+    case AxisAlarm::owner_lost:
+      return "owner channel lost: quick stop";
+    case AxisAlarm::drive_fault:
+      return "drive fault";
+    case AxisAlarm::drive_lost:
+      return "drive does not answer SYNC: quick stop";
   }
   return "unknown alarm";
 }
@@ -103,4 +108,4 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   return out_;
 }
 
-} // namespace mcnc::axisnode
+}  // namespace mcnc::axisnode

@@ -20,11 +20,11 @@ struct AxisNodeInput {
   bool have_setpoint = false;  // a setpoint from the owner stamped N-1 arrived
   double setpoint_pos = 0.0;
   double setpoint_vel = 0.0;
-  bool setpoint_valid = false; // the owner commands (false: hold)
-  bool have_tpdo = false;      // the drive answered this cycle's SYNC
+  bool setpoint_valid = false;  // the owner commands (false: hold)
+  bool have_tpdo = false;       // the drive answered this cycle's SYNC
   std::uint16_t statusword = 0;
   std::int32_t position_counts = 0;
-  bool owner_lost = false;     // the owner's writer left (DDS liveliness)
+  bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
 };
 
@@ -33,7 +33,7 @@ enum class AxisAlarm : std::uint8_t {
   setpoint_deadline = 1,  // no setpoint for deadline_cycles
   owner_lost = 2,
   drive_fault = 3,
-  drive_lost = 4,         // no TPDO for deadline_cycles
+  drive_lost = 4,  // no TPDO for deadline_cycles
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;
@@ -41,27 +41,27 @@ const char* to_text(AxisAlarm alarm) noexcept;
 struct AxisNodeOutput {
   std::uint16_t controlword = 0;
   std::int32_t target_counts = 0;
-  double cmd = 0.0;            // commanded position (units)
-  double act = 0.0;            // actual position (units)
-  double vel = 0.0;            // actual velocity (units/s)
+  double cmd = 0.0;  // commanded position (units)
+  double act = 0.0;  // actual position (units)
+  double vel = 0.0;  // actual velocity (units/s)
   cia402::State drive_state = cia402::State::not_ready_to_switch_on;
-  bool enabled = false;        // operation enabled and following setpoints
-  bool quick_stop = false;     // quick stop commanded (latched until restart)
+  bool enabled = false;                   // operation enabled and following setpoints
+  bool quick_stop = false;                // quick stop commanded (latched until restart)
   AxisAlarm new_alarm = AxisAlarm::none;  // raised this cycle
   AxisAlarm alarm = AxisAlarm::none;      // the active (first) alarm
   bool drive_state_changed = false;
-  int missing_setpoints = 0;   // cycles since the last setpoint (skipped cycles count)
+  int missing_setpoints = 0;  // cycles since the last setpoint (skipped cycles count)
 };
 
 class AxisNodeController {
-public:
+ public:
   explicit AxisNodeController(const AxisNodeSetup& setup) noexcept;
   // One cycle. Cycle numbers increase; a gap (realtime ticks skipped) counts as that many
   // cycles without input.
   const AxisNodeOutput& cycle(std::uint64_t cycle, const AxisNodeInput& in) noexcept;
   [[nodiscard]] const AxisNodeOutput& output() const noexcept { return out_; }
 
-private:
+ private:
   void raise(AxisAlarm alarm) noexcept;
 
   AxisNodeSetup setup_;
@@ -76,4 +76,4 @@ private:
   double last_setpoint_vel_ = 0.0;
 };
 
-} // namespace mcnc::axisnode
+}  // namespace mcnc::axisnode

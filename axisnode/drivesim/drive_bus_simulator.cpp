@@ -105,7 +105,8 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
 
 bool DriveBusSimulator::rpdos_complete() const noexcept {
   for (std::size_t i = 0; i < drives_.size(); ++i) {
-    if (fed_[i] && drives_[i].nmt_state() == NmtState::operational && !drives_[i].rpdo_since_sync()) {
+    if (fed_[i] && drives_[i].nmt_state() == NmtState::operational &&
+        !drives_[i].rpdo_since_sync()) {
       return false;
     }
   }

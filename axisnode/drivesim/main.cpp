@@ -139,7 +139,8 @@ int main(int argc, char** argv) {
       canopen::CanFrame frame;
       const can::BusResult result =
           bus->receive(frame, std::chrono::milliseconds(held_sync ? 10 : 100));
-      if (held_sync && std::chrono::steady_clock::now() - held_since > std::chrono::milliseconds(500)) {
+      if (held_sync &&
+          std::chrono::steady_clock::now() - held_since > std::chrono::milliseconds(500)) {
         simulator.stop_awaiting_silent_drives();
         spdlog::warn("lockstep: a node stopped sending RPDOs; no longer waiting for it");
         release_held_sync();

@@ -8,7 +8,10 @@ using namespace std::chrono_literals;
 
 DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
                      std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup)
-    : bus_(std::move(bus)), node_id_(node_id), other_nodes_(std::move(other_nodes)), wakeup_(wakeup) {
+    : bus_(std::move(bus)),
+      node_id_(node_id),
+      other_nodes_(std::move(other_nodes)),
+      wakeup_(wakeup) {
   thread_ = std::thread([this] { receive_loop(); });
 }
 
@@ -129,11 +132,14 @@ bool DriveLink::wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseco
   return wakeup_.wait_for([&] { return tpdo_count_.load() > tpdos_seen; }, timeout);
 }
 
-TpdoSample DriveLink::tpdo() const noexcept {
+TpdoSample DriveLink::tpdo() noexcept {
   TpdoSample sample;
-  sample.pdo.statusword = tpdo_statusword_.load();
-  sample.pdo.position_actual = tpdo_position_.load();
-  sample.count = tpdo_count_.load();
+  // Under the lock the receive thread writes with: statusword, position and count of one frame.
+  wakeup_.with_lock([&] {
+    sample.pdo.statusword = tpdo_statusword_.load();
+    sample.pdo.position_actual = tpdo_position_.load();
+    sample.count = tpdo_count_.load();
+  });
   return sample;
 }
 
@@ -141,4 +147,4 @@ std::uint64_t DriveLink::malformed_count() const noexcept {
   return malformed_.load() + bus_->malformed_count();
 }
 
-} // namespace mcnc::axisnode
+}  // namespace mcnc::axisnode

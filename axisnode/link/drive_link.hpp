@@ -23,7 +23,7 @@ struct TpdoSample {
 };
 
 class DriveLink {
-public:
+ public:
   DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
             std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup);
   ~DriveLink();
@@ -42,12 +42,12 @@ public:
   bool wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout);
   bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
 
-  [[nodiscard]] TpdoSample tpdo() const noexcept;
+  [[nodiscard]] TpdoSample tpdo() noexcept;
   [[nodiscard]] std::uint64_t sync_count() const noexcept { return syncs_.load(); }
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
 
-private:
+ private:
   void receive_loop();
 
   std::unique_ptr<can::CanBus> bus_;
@@ -68,4 +68,4 @@ private:
   std::thread thread_;
 };
 
-} // namespace mcnc::axisnode
+}  // namespace mcnc::axisnode

@@ -8,12 +8,18 @@ namespace mcnc::channel {
 
 const char* to_string(ChannelState state) noexcept {
   switch (state) {
-    case ChannelState::reset: return "reset";
-    case ChannelState::idle: return "idle";
-    case ChannelState::running: return "running";
-    case ChannelState::hold: return "hold";
-    case ChannelState::waiting: return "waiting";
-    case ChannelState::alarm: return "alarm";
+    case ChannelState::reset:
+      return "reset";
+    case ChannelState::idle:
+      return "idle";
+    case ChannelState::running:
+      return "running";
+    case ChannelState::hold:
+      return "hold";
+    case ChannelState::waiting:
+      return "waiting";
+    case ChannelState::alarm:
+      return "alarm";
   }
   return "reset";
 }
@@ -45,7 +51,8 @@ void ChannelController::push_event(const ChannelEvent& event) noexcept {
   }
 }
 
-void ChannelController::raise(int number, const char* text, int line, int column, int axis) noexcept {
+void ChannelController::raise(int number, const char* text, int line, int column,
+                              int axis) noexcept {
   alarm_.number = number;
   std::snprintf(alarm_.text.data(), alarm_.text.size(), "%s", text);
   alarm_.line = line;
@@ -116,7 +123,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
-  if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) && phase_ == Phase::done) {
+  if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) &&
+      phase_ == Phase::done) {
     hold_outputs(false);
     return out_;
   }
@@ -126,7 +134,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
     for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
       if (feedback[i].alarm) {
         char text[96];
-        std::snprintf(text, sizeof text, "axis %zu of the channel has an alarm: motion stopped", i + 1);
+        std::snprintf(text, sizeof text, "axis %zu of the channel has an alarm: motion stopped",
+                      i + 1);
         raise(kAlarmAxisAlarm, text, current_.line, 0, static_cast<int>(i + 1));
         break;
       }
@@ -253,4 +262,4 @@ void ChannelController::run_blocks(std::span<const AxisFeedbackView> feedback) n
   }
 }
 
-} // namespace mcnc::channel
+}  // namespace mcnc::channel

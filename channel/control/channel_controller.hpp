@@ -23,26 +23,26 @@ const char* to_string(ChannelState state) noexcept;
 
 // What the channel knows of one of its axes at cycle N (the feedback stamped N-1).
 struct AxisFeedbackView {
-  double cmd = 0.0;       // position the axis node commands its drive
-  double act = 0.0;       // actual position
-  bool enabled = false;   // drive in operation and following this channel
-  bool alarm = false;     // the axis node holds an alarm
-  bool present = false;   // feedback received at all
+  double cmd = 0.0;      // position the axis node commands its drive
+  double act = 0.0;      // actual position
+  bool enabled = false;  // drive in operation and following this channel
+  bool alarm = false;    // the axis node holds an alarm
+  bool present = false;  // feedback received at all
 };
 
 struct AxisSetpointOut {
   double pos = 0.0;
   double vel = 0.0;
   double acc = 0.0;
-  bool valid = false;     // false: the axis node holds its position
+  bool valid = false;  // false: the axis node holds its position
 };
 
 enum class ChannelEventKind : std::uint8_t {
   state_changed,
-  block_started,   // command.line / command.block
-  block_ended,     // exact stop reached (in position)
-  alarm,           // alarm_number / alarm text via last_alarm()
-  program_end,     // end_code
+  block_started,  // command.line / command.block
+  block_ended,    // exact stop reached (in position)
+  alarm,          // alarm_number / alarm text via last_alarm()
+  program_end,    // end_code
 };
 
 struct ChannelEvent {
@@ -88,8 +88,9 @@ inline constexpr int kAlarmAxisLost = 1202;
 inline constexpr int kAlarmEmergencyStop = 1203;
 
 class ChannelController {
-public:
-  ChannelController(ChannelSetup setup, interp::CommandSource& source, motion::BlockPlanner& planner);
+ public:
+  ChannelController(ChannelSetup setup, interp::CommandSource& source,
+                    motion::BlockPlanner& planner);
 
   // Cycle start: the program runs as soon as every axis is enabled (from idle or reset). A
   // start while the program runs is ignored, as on a control panel.
@@ -107,14 +108,15 @@ public:
   void axis_lost(std::size_t axis) noexcept;
 
   // One cycle. `feedback` holds one entry per channel axis.
-  const ChannelOutput& cycle(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  const ChannelOutput& cycle(std::uint64_t cycle,
+                             std::span<const AxisFeedbackView> feedback) noexcept;
 
   [[nodiscard]] ChannelState state() const noexcept { return out_.state; }
   [[nodiscard]] const ChannelAlarm& last_alarm() const noexcept { return alarm_; }
   [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
 
-private:
+ private:
   void set_state(ChannelState state) noexcept;
   void push_event(const ChannelEvent& event) noexcept;
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
@@ -143,4 +145,4 @@ private:
   bool first_cycle_ = true;
 };
 
-} // namespace mcnc::channel
+}  // namespace mcnc::channel

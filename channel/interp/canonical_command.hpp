@@ -20,21 +20,21 @@ enum class CommandKind {
 
 struct CanonicalCommand {
   CommandKind kind = CommandKind::rapid;
-  AxisVector target{};        // absolute end point, all axes (unchanged axes keep their value)
-  double feed = 0.0;          // units/min along the path (linear)
-  double dwell_s = 0.0;       // dwell
-  int end_code = 0;           // 30 or 2 (program_end)
-  int line = 0;               // 1-based line in the program file
-  std::size_t block = 0;      // 1-based index of the block among executable blocks
+  AxisVector target{};    // absolute end point, all axes (unchanged axes keep their value)
+  double feed = 0.0;      // units/min along the path (linear)
+  double dwell_s = 0.0;   // dwell
+  int end_code = 0;       // 30 or 2 (program_end)
+  int line = 0;           // 1-based line in the program file
+  std::size_t block = 0;  // 1-based index of the block among executable blocks
 };
 
 // A program alarm: where and why. Raised before the offending block produces motion.
 struct ProgramAlarm {
-  int number = 0;             // alarm number (see docs/alarms.md)
+  int number = 0;  // alarm number (see docs/alarms.md)
   std::string text;
-  std::string program;        // program name (file name)
+  std::string program;  // program name (file name)
   int line = 0;
-  int column = 0;             // 1-based, 0 when not known
+  int column = 0;  // 1-based, 0 when not known
 };
 
-} // namespace mcnc::interp
+}  // namespace mcnc::interp

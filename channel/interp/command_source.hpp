@@ -12,7 +12,7 @@ namespace mcnc::interp {
 using PullResult = std::variant<CanonicalCommand, ProgramAlarm>;
 
 class CommandSource {
-public:
+ public:
   virtual ~CommandSource() = default;
   // Position the source at the program start. `current` is the channel's physical position
   // (channel axis order); incremental words and unprogrammed axes start from it.
@@ -21,4 +21,4 @@ public:
   [[nodiscard]] virtual std::size_t block_count() const noexcept = 0;
 };
 
-} // namespace mcnc::interp
+}  // namespace mcnc::interp

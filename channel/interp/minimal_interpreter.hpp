@@ -20,6 +20,29 @@ struct AxisAddress {
   bool diameter = false;
 };
 
+// The lathe's address pair for an axis letter: X-U, Z-W, Y-V, C-H; other letters have no
+// incremental twin ('\0').
+inline AxisAddress lathe_axis_address(char absolute, bool diameter) noexcept {
+  char incremental = '\0';
+  switch (absolute) {
+    case 'X':
+      incremental = 'U';
+      break;
+    case 'Z':
+      incremental = 'W';
+      break;
+    case 'Y':
+      incremental = 'V';
+      break;
+    case 'C':
+      incremental = 'H';
+      break;
+    default:
+      break;
+  }
+  return AxisAddress{absolute, incremental, diameter};
+}
+
 class MinimalInterpreter final : public CommandSource {
  public:
   explicit MinimalInterpreter(std::vector<AxisAddress> axes);

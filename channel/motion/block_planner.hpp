@@ -11,9 +11,9 @@ namespace mcnc::motion {
 using interp::AxisVector;
 
 struct AxisLimits {
-  double rapid_rate = 0.0;   // units/s
-  double max_feed = 0.0;     // units/s
-  double acceleration = 0.0; // units/s^2
+  double rapid_rate = 0.0;    // units/s
+  double max_feed = 0.0;      // units/s
+  double acceleration = 0.0;  // units/s^2
 };
 
 struct MotionSample {
@@ -25,7 +25,7 @@ struct MotionSample {
 enum class StepResult { moving, block_done };
 
 class BlockPlanner {
-public:
+ public:
   virtual ~BlockPlanner() = default;
   // Starts a motion or dwell command from `start`. Returns false (and does nothing) for a
   // command it cannot plan (e.g. zero feed on a move): the caller raises an alarm.
@@ -35,4 +35,4 @@ public:
   virtual StepResult step(double dt, MotionSample& out) noexcept = 0;
 };
 
-} // namespace mcnc::motion
+}  // namespace mcnc::motion

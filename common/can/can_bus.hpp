@@ -12,7 +12,7 @@ namespace mcnc::can {
 enum class BusResult { ok, timeout, malformed, error };
 
 class CanBus {
-public:
+ public:
   virtual ~CanBus() = default;
   // Sends one frame. Frames sent by this endpoint are not received back by it.
   virtual BusResult send(const CanFrame& frame) noexcept = 0;
@@ -28,4 +28,4 @@ public:
 // the URI and the reason when it cannot be opened (start-up error).
 std::unique_ptr<CanBus> open_can_bus(const std::string& uri);
 
-} // namespace mcnc::can
+}  // namespace mcnc::can

@@ -50,4 +50,4 @@ const char* prepare_realtime_process() noexcept {
   return "timer slack 1 ns (SCHED_FIFO not permitted)";
 }
 
-} // namespace mcnc::clock
+}  // namespace mcnc::clock

@@ -20,4 +20,4 @@ std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std
 // of what was applied (for the log).
 const char* prepare_realtime_process() noexcept;
 
-} // namespace mcnc::clock
+}  // namespace mcnc::clock

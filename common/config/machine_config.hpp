@@ -11,12 +11,12 @@ namespace mcnc::config {
 
 // Start-up error: names the YAML key path (e.g. "axes[1].node_id") and the reason.
 class ConfigError : public std::runtime_error {
-public:
+ public:
   ConfigError(std::string key_path, const std::string& reason)
       : std::runtime_error(key_path + ": " + reason), key_path_(std::move(key_path)) {}
   [[nodiscard]] const std::string& key_path() const noexcept { return key_path_; }
 
-private:
+ private:
   std::string key_path_;
 };
 
@@ -24,46 +24,46 @@ enum class AxisType { linear, rotary };
 
 // Parameters of the simulated drive behind an axis (mcnc-drivesim only).
 struct DriveSimConfig {
-  double time_constant_s = 0.004;   // first-order position loop: following error = v * tau
-  double max_velocity = 500.0;      // units/s, the drive's own limit
-  double quick_stop_decel = 5000.0; // units/s^2
+  double time_constant_s = 0.004;    // first-order position loop: following error = v * tau
+  double max_velocity = 500.0;       // units/s, the drive's own limit
+  double quick_stop_decel = 5000.0;  // units/s^2
 };
 
 struct AxisConfig {
-  std::string name;                 // unique machine-wide, e.g. "X1"
-  int id = 0;                       // 1-based position in `axes`
-  char address = 'X';               // program address in its channel: X, Z, Y, C, A, B
+  std::string name;    // unique machine-wide, e.g. "X1"
+  int id = 0;          // 1-based position in `axes`
+  char address = 'X';  // program address in its channel: X, Z, Y, C, A, B
   AxisType type = AxisType::linear;
-  bool diameter = false;            // programmed in diameter (X on a lathe); physical is radius
-  std::string channel;              // home channel (owner at start)
-  std::string bus;                  // bus name
-  int node_id = 0;                  // CANopen node id 1..127
-  double counts_per_unit = 10000.0; // drive increments per mm or degree
-  double rapid_rate = 12000.0;      // units/min (G00)
-  double max_feed = 6000.0;         // units/min (feed clamp)
-  double acceleration = 1000.0;     // units/s^2
-  double in_position = 0.0005;      // units; in-position width for exact stop
+  bool diameter = false;             // programmed in diameter (X on a lathe); physical is radius
+  std::string channel;               // home channel (owner at start)
+  std::string bus;                   // bus name
+  int node_id = 0;                   // CANopen node id 1..127
+  double counts_per_unit = 10000.0;  // drive increments per mm or degree
+  double rapid_rate = 12000.0;       // units/min (G00)
+  double max_feed = 6000.0;          // units/min (feed clamp)
+  double acceleration = 1000.0;      // units/s^2
+  double in_position = 0.0005;       // units; in-position width for exact stop
   DriveSimConfig drive;
 };
 
 struct BusConfig {
-  std::string name;                 // e.g. "can0"
-  std::string uri;                  // "udp:239.255.42.1:42000" or "socketcan:can0"
-  int bitrate = 1000000;            // bit/s
-  std::string sync_producer;        // axis name whose node produces SYNC on this bus
+  std::string name;           // e.g. "can0"
+  std::string uri;            // "udp:239.255.42.1:42000" or "socketcan:can0"
+  int bitrate = 1000000;      // bit/s
+  std::string sync_producer;  // axis name whose node produces SYNC on this bus
 };
 
 struct ChannelConfig {
-  std::string name;                 // "CH1"
-  int id = 0;                       // 1-based position in `channels`
-  std::vector<std::string> axes;    // axis names, in program order
+  std::string name;               // "CH1"
+  int id = 0;                     // 1-based position in `channels`
+  std::vector<std::string> axes;  // axis names, in program order
 };
 
 struct MachineConfig {
   std::string name;
   int cycle_us = 1000;
   int deadline_cycles = 5;
-  int domain = 0;                   // DDS domain; MCNC_DOMAIN overrides (applied by the caller)
+  int domain = 0;  // DDS domain; MCNC_DOMAIN overrides (applied by the caller)
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;
@@ -90,4 +90,4 @@ MachineConfig load_machine_file(const std::string& path);
 [[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us) noexcept;
 inline constexpr double kMaxBusLoad = 0.70;
 
-} // namespace mcnc::config
+}  // namespace mcnc::config

@@ -10,7 +10,7 @@ namespace mcnc::cycle {
 
 template <class T, std::size_t Depth = 8>
 class CycleBuffer {
-public:
+ public:
   void put(std::uint64_t cycle, const T& value) noexcept {
     Slot& slot = slots_[cycle % Depth];
     slot.cycle = cycle;
@@ -26,12 +26,14 @@ public:
     const Slot& slot = slots_[cycle % Depth];
     return slot.used && slot.cycle == cycle ? &slot.value : nullptr;
   }
-  [[nodiscard]] const T* latest() const noexcept { return has_latest_ ? at(latest_cycle_) : nullptr; }
+  [[nodiscard]] const T* latest() const noexcept {
+    return has_latest_ ? at(latest_cycle_) : nullptr;
+  }
   [[nodiscard]] bool empty() const noexcept { return !has_latest_; }
   [[nodiscard]] std::uint64_t latest_cycle() const noexcept { return latest_cycle_; }
   void clear() noexcept { *this = CycleBuffer{}; }
 
-private:
+ private:
   struct Slot {
     std::uint64_t cycle = 0;
     T value{};
@@ -42,4 +44,4 @@ private:
   bool has_latest_ = false;
 };
 
-} // namespace mcnc::cycle
+}  // namespace mcnc::cycle

@@ -67,4 +67,4 @@ std::uint64_t LockstepGate::events_received(std::size_t input) const noexcept {
   return input < inputs_.size() ? inputs_[input].events_contiguous : 0;
 }
 
-} // namespace mcnc::cycle
+}  // namespace mcnc::cycle

@@ -13,11 +13,12 @@
 namespace mcnc::cycle {
 
 class LockstepGate {
-public:
+ public:
   explicit LockstepGate(std::size_t inputs);  // allocates here, never afterwards
 
   // A cyclic sample from `input` stamped `cycle`, announcing its sender's last event sequence.
-  void on_sample(std::size_t input, std::uint64_t cycle, std::uint64_t announced_event_seq) noexcept;
+  void on_sample(std::size_t input, std::uint64_t cycle,
+                 std::uint64_t announced_event_seq) noexcept;
   // An event with sequence `seq` (1, 2, ...) from `input`'s sender. Events may arrive out of
   // order; only a contiguous run from 1 counts as received.
   void on_event(std::size_t input, std::uint64_t seq) noexcept;
@@ -29,7 +30,7 @@ public:
   [[nodiscard]] std::uint64_t events_received(std::size_t input) const noexcept;
   [[nodiscard]] std::size_t size() const noexcept { return inputs_.size(); }
 
-private:
+ private:
   [[nodiscard]] bool input_ready(std::size_t input, std::uint64_t cycle) const noexcept;
 
   struct Input {
@@ -41,4 +42,4 @@ private:
   std::vector<Input> inputs_;
 };
 
-} // namespace mcnc::cycle
+}  // namespace mcnc::cycle

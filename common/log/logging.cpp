@@ -1,8 +1,8 @@
 #include "common/log/logging.hpp"
 
-#include <cstdlib>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
+#include <cstdlib>
 
 namespace mcnc::log {
 
@@ -18,4 +18,4 @@ void setup(const std::string& process_name, const std::string& level) {
   spdlog::set_default_logger(logger);
 }
 
-} // namespace mcnc::log
+}  // namespace mcnc::log

@@ -7,4 +7,4 @@ namespace mcnc::log {
 // Level from `level` ("trace".."off"); empty: MCNC_LOG_LEVEL, else "info". Logs go to stderr.
 void setup(const std::string& process_name, const std::string& level = {});
 
-} // namespace mcnc::log
+}  // namespace mcnc::log

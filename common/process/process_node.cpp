@@ -81,4 +81,4 @@ void ProcessNode::raise_alarm(std::uint32_t number, const std::string& text, std
   alarm_writer_.write(alarm);
 }
 
-} // namespace mcnc::process
+}  // namespace mcnc::process

@@ -4,6 +4,7 @@
 // other receive threads signal so that the cyclic loop can wait for "something arrived".
 #include "idl/dds_participant.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -21,7 +22,7 @@ namespace mcnc::process {
 int resolve_domain(const config::MachineConfig& machine);
 
 class Wakeup {
-public:
+ public:
   void notify() noexcept {
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -29,11 +30,27 @@ public:
     }
     cv_.notify_all();
   }
-  // Waits until pred() holds, re-checking at every notify; false on timeout.
+  // Waits until pred() holds, re-checking at every notify and at least every 50 ms (a signal
+  // handler cannot notify); false on timeout.
   template <class Pred>
   bool wait_for(Pred pred, std::chrono::microseconds timeout) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
     std::unique_lock<std::mutex> lock(mutex_);
-    return cv_.wait_for(lock, timeout, [&] { return pred(); });
+    while (!pred()) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now >= deadline) {
+        return false;
+      }
+      cv_.wait_for(lock, std::min<std::chrono::steady_clock::duration>(
+                             deadline - now, std::chrono::milliseconds(50)));
+    }
+    return true;
+  }
+  // Runs fn under the lock the waiter uses, without waking anyone (to read shared state).
+  template <class Fn>
+  void with_lock(Fn fn) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    fn();
   }
   // Runs fn under the same lock the waiter uses, then wakes it (for state the predicate reads).
   template <class Fn>
@@ -46,7 +63,7 @@ public:
     cv_.notify_all();
   }
 
-private:
+ private:
   std::mutex mutex_;
   std::condition_variable cv_;
   std::uint64_t count_ = 0;
@@ -62,7 +79,7 @@ struct RunControlView {
 };
 
 class ProcessNode {
-public:
+ public:
   ProcessNode(int domain, std::string name);
   ProcessNode(const ProcessNode&) = delete;
   ProcessNode& operator=(const ProcessNode&) = delete;
@@ -81,7 +98,7 @@ public:
   void raise_alarm(std::uint32_t number, const std::string& text, std::uint64_t cycle,
                    int channel = 0, int axis = 0, int line = 0);
 
-private:
+ private:
   std::string name_;
   dds::Participant participant_;
   Wakeup wakeup_;
@@ -96,4 +113,4 @@ private:
   dds::Reader<RunControl> run_control_reader_;
 };
 
-} // namespace mcnc::process
+}  // namespace mcnc::process

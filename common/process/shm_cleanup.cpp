@@ -49,4 +49,4 @@ std::size_t remove_stale_dds_shm_files() noexcept {
   }
 }
 
-} // namespace mcnc::process
+}  // namespace mcnc::process

@@ -11,4 +11,4 @@ namespace mcnc::process {
 // Returns how many segments were removed.
 std::size_t remove_stale_dds_shm_files() noexcept;
 
-} // namespace mcnc::process
+}  // namespace mcnc::process

@@ -11,8 +11,10 @@ namespace mcnc::process {
 // stderr and exits with code 2 (bad input: nothing is started).
 config::MachineConfig load_machine_or_exit(const std::string& path);
 
-// SIGINT/SIGTERM set this flag (installed by install_stop_signals()).
+// SIGINT/SIGTERM set this flag (installed by install_stop_signals()). When MCNC_DIE_WITH_PARENT
+// is set (mcnc-launch sets it for its children), the process also gets SIGTERM when its parent
+// dies, so a killed launcher leaves nothing running.
 extern volatile std::sig_atomic_t g_stop_signal;
 void install_stop_signals();
 
-} // namespace mcnc::process
+}  // namespace mcnc::process

@@ -52,4 +52,54 @@ std::uint64_t merge_parts(const std::vector<std::string>& part_paths, const std:
   return last;
 }
 
-} // namespace mcnc::trace
+}  // namespace mcnc::trace
+
+namespace mcnc::trace {
+
+namespace {
+
+// The string value of "key":"value" in a trace line, or empty.
+std::string string_field(const std::string& line, const std::string& key) {
+  const std::string pattern = "\"" + key + "\":\"";
+  const auto at = line.find(pattern);
+  if (at == std::string::npos) {
+    return {};
+  }
+  const auto begin = at + pattern.size();
+  const auto end = line.find('"', begin);
+  return end == std::string::npos ? std::string() : line.substr(begin, end - begin);
+}
+
+long long number_field(const std::string& line, const std::string& key) {
+  const std::string pattern = "\"" + key + "\":";
+  const auto at = line.find(pattern);
+  return at == std::string::npos ? -1
+                                 : std::strtoll(line.c_str() + at + pattern.size(), nullptr, 10);
+}
+
+}  // namespace
+
+std::map<std::string, ChannelRun> channel_runs(const std::string& trace_path) {
+  std::map<std::string, ChannelRun> runs;
+  std::ifstream in(trace_path);
+  for (std::string line; std::getline(in, line);) {
+    const std::string ev = string_field(line, "ev");
+    if (ev == "state" && string_field(line, "state") == "running") {
+      ChannelRun& run = runs[string_field(line, "ch")];
+      if (!run.started) {
+        run.started = true;
+        run.start_cycle = static_cast<std::uint64_t>(number_field(line, "cycle"));
+      }
+    } else if (ev == "end") {
+      ChannelRun& run = runs[string_field(line, "ch")];
+      if (!run.ended) {
+        run.ended = true;
+        run.end_cycle = static_cast<std::uint64_t>(number_field(line, "cycle"));
+        run.end_code = static_cast<int>(number_field(line, "code"));
+      }
+    }
+  }
+  return runs;
+}
+
+}  // namespace mcnc::trace

@@ -16,11 +16,21 @@ void json_escape(const char* in, char* out, std::size_t out_size) noexcept {
     char escaped[8];
     int n = 0;
     switch (c) {
-      case '"': n = std::snprintf(escaped, sizeof escaped, "\\\""); break;
-      case '\\': n = std::snprintf(escaped, sizeof escaped, "\\\\"); break;
-      case '\n': n = std::snprintf(escaped, sizeof escaped, "\\n"); break;
-      case '\r': n = std::snprintf(escaped, sizeof escaped, "\\r"); break;
-      case '\t': n = std::snprintf(escaped, sizeof escaped, "\\t"); break;
+      case '"':
+        n = std::snprintf(escaped, sizeof escaped, "\\\"");
+        break;
+      case '\\':
+        n = std::snprintf(escaped, sizeof escaped, "\\\\");
+        break;
+      case '\n':
+        n = std::snprintf(escaped, sizeof escaped, "\\n");
+        break;
+      case '\r':
+        n = std::snprintf(escaped, sizeof escaped, "\\r");
+        break;
+      case '\t':
+        n = std::snprintf(escaped, sizeof escaped, "\\t");
+        break;
       default:
         n = c < 0x20 ? std::snprintf(escaped, sizeof escaped, "\\u%04x", c)
                      : std::snprintf(escaped, sizeof escaped, "%c", c);
@@ -82,7 +92,8 @@ void TraceWriter::emit(std::uint64_t cycle, const char* ev, const char* fields_f
   if (fields_fmt != nullptr && fields_fmt[0] != '\0') {
     va_list args;
     va_start(args, fields_fmt);
-    const int m = std::vsnprintf(slot + n + 1, kRoom - static_cast<std::size_t>(n), fields_fmt, args);
+    const int m =
+        std::vsnprintf(slot + n + 1, kRoom - static_cast<std::size_t>(n), fields_fmt, args);
     va_end(args);
     if (m < 0 || static_cast<std::size_t>(n + 1 + m) > kRoom) {
       dropped_.fetch_add(1);
@@ -122,7 +133,9 @@ void TraceWriter::run() {
       lock.lock();
       tail_.store(tail + 1);
     }
+    lock.unlock();  // producers never wait for the disk
     std::fflush(file_);
+    lock.lock();
     drained_.notify_all();
     if (stop_) {
       return;
@@ -130,4 +143,4 @@ void TraceWriter::run() {
   }
 }
 
-} // namespace mcnc::trace
+}  // namespace mcnc::trace

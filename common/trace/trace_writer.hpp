@@ -18,7 +18,7 @@ namespace mcnc::trace {
 void json_escape(const char* in, char* out, std::size_t out_size) noexcept;
 
 class TraceWriter {
-public:
+ public:
   // An empty path makes a writer that drops everything (tracing off).
   TraceWriter(const std::string& path, std::string src);
   ~TraceWriter();
@@ -34,7 +34,7 @@ public:
   void flush();
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_.load(); }
 
-private:
+ private:
   void run();
 
   static constexpr std::size_t kSlotSize = 768;
@@ -52,4 +52,4 @@ private:
   std::thread thread_;
 };
 
-} // namespace mcnc::trace
+}  // namespace mcnc::trace

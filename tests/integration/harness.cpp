@@ -21,8 +21,12 @@ namespace mcnc::test {
 
 namespace fs = std::filesystem;
 
-std::string bin(const std::string& name) { return std::string(MCNC_BIN_DIR) + "/" + name; }
-std::string source(const std::string& relative) { return std::string(MCNC_SOURCE_DIR) + "/" + relative; }
+std::string bin(const std::string& name) {
+  return std::string(MCNC_BIN_DIR) + "/" + name;
+}
+std::string source(const std::string& relative) {
+  return std::string(MCNC_SOURCE_DIR) + "/" + relative;
+}
 
 namespace {
 
@@ -58,8 +62,10 @@ pid_t spawn(const std::vector<std::string>& argv, int domain, const std::string&
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 1, out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                   0644);
   pid_t pid = -1;
   const int rc = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
@@ -76,7 +82,7 @@ int decode_status(int status) {
   return WIFSIGNALED(status) ? -WTERMSIG(status) : -1;
 }
 
-} // namespace
+}  // namespace
 
 TestMachine::TestMachine(const std::string& machine_file, int domain, int deadline_cycles)
     : domain_(domain) {
@@ -84,10 +90,12 @@ TestMachine::TestMachine(const std::string& machine_file, int domain, int deadli
   dir_ = mkdtemp(tmpl);
   std::string text = slurp(source("launch/machines/" + machine_file));
   // Private bus: group and port derived from the domain.
-  text = std::regex_replace(text, std::regex(R"(udp:[0-9.]+:[0-9]+)"),
-                            "udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
+  text = std::regex_replace(
+      text, std::regex(R"(udp:[0-9.]+:[0-9]+)"),
+      "udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
   text = std::regex_replace(text, std::regex(R"(\n  domain: *[0-9]+)"), "");
-  text = std::regex_replace(text, std::regex(R"(machine:\n)"), "machine:\n  domain: " + std::to_string(domain) + "\n");
+  text = std::regex_replace(text, std::regex(R"(machine:\n)"),
+                            "machine:\n  domain: " + std::to_string(domain) + "\n");
   if (deadline_cycles > 0) {
     text = std::regex_replace(text, std::regex(R"(deadline_cycles: *[0-9]+)"),
                               "deadline_cycles: " + std::to_string(deadline_cycles));
@@ -137,7 +145,8 @@ RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::sec
   return result;
 }
 
-Background::Background(const std::vector<std::string>& argv, int domain, const std::string& log_path)
+Background::Background(const std::vector<std::string>& argv, int domain,
+                       const std::string& log_path)
     : pid_(spawn(argv, domain, log_path + ".out", log_path + ".err")) {}
 
 Background::~Background() {
@@ -161,7 +170,9 @@ int Background::wait(std::chrono::seconds timeout) {
   return -1000;
 }
 
-void Background::kill(int sig) { ::kill(pid_, sig); }
+void Background::kill(int sig) {
+  ::kill(pid_, sig);
+}
 
 std::vector<nlohmann::json> read_trace(const std::string& path) {
   std::vector<nlohmann::json> lines;
@@ -203,4 +214,4 @@ std::vector<pid_t> pids_with_arg(const std::string& needle) {
   return pids;
 }
 
-} // namespace mcnc::test
+}  // namespace mcnc::test

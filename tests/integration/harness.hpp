@@ -3,22 +3,22 @@
 // multicast group and port), running executables with captured output, reading traces.
 #include <nlohmann/json.hpp>
 
-#include <chrono>
-#include <thread>
-#include <string>
 #include <sys/types.h>
+#include <chrono>
+#include <string>
+#include <thread>
 #include <vector>
 
 namespace mcnc::test {
 
-std::string bin(const std::string& name);           // path of an mcnc executable
-std::string source(const std::string& relative);    // path in the source tree
+std::string bin(const std::string& name);         // path of an mcnc executable
+std::string source(const std::string& relative);  // path in the source tree
 
 // A copy of a machine file from launch/machines/ with its domain and bus URIs made private to
 // this test (domain `domain`, group 239.255.<domain>.1, port 24000 + domain: below the
 // ephemeral port range, where DDS sockets may hold any port), in a temp folder.
 class TestMachine {
-public:
+ public:
   // deadline_cycles > 0 replaces the file's (realtime tests run with looser timing: this VM
   // can stall a process for a few milliseconds under load).
   TestMachine(const std::string& machine_file, int domain, int deadline_cycles = 0);
@@ -29,7 +29,7 @@ public:
   [[nodiscard]] int domain() const { return domain_; }
   [[nodiscard]] std::string file(const std::string& name) const { return dir_ + "/" + name; }
 
-private:
+ private:
   std::string dir_;
   std::string path_;
   int domain_;
@@ -47,7 +47,7 @@ RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::sec
 
 // A process started in the background, its output going to files in `log_dir`.
 class Background {
-public:
+ public:
   Background(const std::vector<std::string>& argv, int domain, const std::string& log_path);
   ~Background();  // SIGKILL if still running
   // Waits for it to exit; the exit code, -signal, or nullopt-like -1000 on timeout.
@@ -55,7 +55,7 @@ public:
   void kill(int sig);
   [[nodiscard]] pid_t pid() const { return pid_; }
 
-private:
+ private:
   pid_t pid_ = -1;
   bool reaped_ = false;
 };
@@ -81,4 +81,4 @@ bool eventually(Pred pred, std::chrono::milliseconds timeout) {
 // pids of processes whose command line contains `needle`.
 std::vector<pid_t> pids_with_arg(const std::string& needle);
 
-} // namespace mcnc::test
+}  // namespace mcnc::test

@@ -34,16 +34,16 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   TestMachine machine("small_lathe.yaml", domain, clock == REALTIME_CLOCK ? 50 : 0);
   const std::string m = machine.path();
   const std::string clock_name = clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime";
-  Background sim({bin("mcnc-drivesim"), "--machine", m, "--bus", "can0", "--clock", clock_name}, domain,
-                 machine.file("sim"));
-  Background x({bin("mcnc-axisnode"), "--machine", m, "--axis", "X1", "--clock", clock_name, "--trace",
-                machine.file("X1.jsonl")},
+  Background sim({bin("mcnc-drivesim"), "--machine", m, "--bus", "can0", "--clock", clock_name},
+                 domain, machine.file("sim"));
+  Background x({bin("mcnc-axisnode"), "--machine", m, "--axis", "X1", "--clock", clock_name,
+                "--trace", machine.file("X1.jsonl")},
                domain, machine.file("X1"));
-  Background z({bin("mcnc-axisnode"), "--machine", m, "--axis", "Z1", "--clock", clock_name, "--trace",
-                machine.file("Z1.jsonl")},
+  Background z({bin("mcnc-axisnode"), "--machine", m, "--axis", "Z1", "--clock", clock_name,
+                "--trace", machine.file("Z1.jsonl")},
                domain, machine.file("Z1"));
-  Background ch({bin("mcnc-channel"), "--machine", m, "--channel", "CH1", "--clock", clock_name, "--program",
-                 source("launch/programs/long_feed.nc")},
+  Background ch({bin("mcnc-channel"), "--machine", m, "--channel", "CH1", "--clock", clock_name,
+                 "--program", source("launch/programs/long_feed.nc")},
                 domain, machine.file("CH1"));
 
   // The test plays mcnc-launch's part: waits for everyone, starts the run, watches setpoints.
@@ -51,16 +51,18 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
   std::uint64_t last_setpoint_cycle = 0;
-  dds::Reader<ProcessState> states(control.participant(), [&](const ProcessState& s, const dds::WriterId&) {
-    std::lock_guard<std::mutex> lock(mutex);
-    phases[s.name()] = s.phase();
-  });
-  dds::Reader<AxisSetpoint> setpoints(control.participant(), [&](const AxisSetpoint& sp, const dds::WriterId&) {
-    std::lock_guard<std::mutex> lock(mutex);
-    if (sp.axis() == 2) {
-      last_setpoint_cycle = std::max(last_setpoint_cycle, sp.cycle());
-    }
-  });
+  dds::Reader<ProcessState> states(control.participant(),
+                                   [&](const ProcessState& s, const dds::WriterId&) {
+                                     std::lock_guard<std::mutex> lock(mutex);
+                                     phases[s.name()] = s.phase();
+                                   });
+  dds::Reader<AxisSetpoint> setpoints(
+      control.participant(), [&](const AxisSetpoint& sp, const dds::WriterId&) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (sp.axis() == 2) {
+          last_setpoint_cycle = std::max(last_setpoint_cycle, sp.cycle());
+        }
+      });
   dds::Writer<RunControl> run_control(control.participant());
   auto send = [&](RunCommand command, std::uint64_t generation) {
     RunControl rc;
@@ -73,7 +75,8 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   ASSERT_TRUE(eventually(
       [&] {
         std::lock_guard<std::mutex> lock(mutex);
-        return phases["X1"] == PHASE_READY && phases["Z1"] == PHASE_READY && phases["CH1"] == PHASE_READY;
+        return phases["X1"] == PHASE_READY && phases["Z1"] == PHASE_READY &&
+               phases["CH1"] == PHASE_READY;
       },
       60s));
   send(RUN_START, 1);
@@ -84,7 +87,8 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   ASSERT_EQ(ch.wait(10s), -SIGKILL);
 
   // The axis node alarms and quick-stops on its own; give the drive time to come to rest.
-  ASSERT_TRUE(eventually([&] { return !events(read_trace(machine.file("Z1.jsonl")), "alarm").empty(); }, 30s));
+  ASSERT_TRUE(eventually(
+      [&] { return !events(read_trace(machine.file("Z1.jsonl")), "alarm").empty(); }, 30s));
   std::this_thread::sleep_for(500ms);
   send(RUN_STOP, 2);
   EXPECT_EQ(x.wait(20s), 0);
@@ -121,7 +125,7 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   EXPECT_LT(pos.back()["act"].get<double>(), -1.0);
 }
 
-} // namespace
+}  // namespace
 
 TEST(Safety, KilledChannelMakesAxisNodeQuickStopRealtime) {
   kill_channel_while_moving(21, REALTIME_CLOCK, 2001);  // setpoint deadline
@@ -161,7 +165,8 @@ TEST(Safety, CrashedChildMakesLaunchStopEverythingAndExitNonZero) {
   EXPECT_EQ(t.back()["ok"], false);
   const auto launch_alarms = events(t, "alarm", "launch");
   ASSERT_EQ(launch_alarms.size(), 1U);
-  EXPECT_NE(launch_alarms[0]["text"].get<std::string>().find("Z1 killed by signal 9"), std::string::npos)
+  EXPECT_NE(launch_alarms[0]["text"].get<std::string>().find("Z1 killed by signal 9"),
+            std::string::npos)
       << launch_alarms[0];
   // The surviving axis quick-stopped and the channel went to reset.
   const auto x_states = events(t, "drive", "X1");

@@ -8,7 +8,8 @@ int main(int argc, char** argv) {
   CLI::App app{"mcnc: multi-channel NC runtime"};
   app.require_subcommand(1);
   mcnc::launch::RunArguments run_args;
-  CLI::App* run = app.add_subcommand("run", "bring up a machine, run programs to their end, report");
+  CLI::App* run =
+      app.add_subcommand("run", "bring up a machine, run programs to their end, report");
   mcnc::launch::add_run_options(*run, run_args);
   try {
     app.parse(argc, argv);

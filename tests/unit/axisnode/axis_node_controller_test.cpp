@@ -61,7 +61,7 @@ AxisNodeInput setpoint(double pos, double vel = 0.0) {
   return in;
 }
 
-} // namespace
+}  // namespace
 
 TEST(AxisNodeController, EnablesTheDriveAndTakesOverItsPositionWithoutAJump) {
   Loop loop;

@@ -1,5 +1,5 @@
-#include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
+#include "common/cycle/cycle_buffer.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,8 +12,10 @@
 namespace fs = std::filesystem;
 
 namespace {
-std::string shm(const std::string& name) { return "/dev/shm/" + name; }
-} // namespace
+std::string shm(const std::string& name) {
+  return "/dev/shm/" + name;
+}
+}  // namespace
 
 TEST(ShmCleanup, RemovesSegmentsWhoseLockIsFreeAndKeepsLockedOnes) {
   const std::string tag = std::to_string(getpid());

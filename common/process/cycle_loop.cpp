@@ -1,0 +1,33 @@
+#include "common/process/cycle_loop.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace mcnc::process {
+
+bool CycleLoop::start(const std::function<bool()>& discovered, const std::string& clock_name) {
+  while (!discovered()) {
+    if (g_stop_signal != 0) {
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  node_.announce(PHASE_READY);
+  node_.wakeup().wait_for(
+      [&] { return node_.run_control().command != RUN_NONE || g_stop_signal != 0; },
+      std::chrono::hours(24));
+  const RunControlView rc = node_.run_control();
+  if (rc.command != RUN_START || g_stop_signal != 0) {
+    return false;
+  }
+  lockstep_ = rc.clock == LOCKSTEP_CLOCK;
+  pace_ = rc.pace;
+  origin_ns_ = rc.start_ns;
+  if (lockstep_ != (clock_name == "lockstep")) {
+    spdlog::warn("the run uses the {} clock; this process was started for {}",
+                 lockstep_ ? "lockstep" : "realtime", clock_name);
+  }
+  node_.announce(PHASE_RUNNING);
+  return true;
+}
+
+}  // namespace mcnc::process

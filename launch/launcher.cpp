@@ -48,6 +48,10 @@ struct Observed {
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
   std::map<std::uint32_t, ::mcnc::ChannelStatus> status;
+  // Every status sample passes the listener, so these are exact: per channel, the first cycle
+  // it was running and the cycle it reported its program end.
+  std::map<std::uint32_t, std::uint64_t> first_running;
+  std::map<std::uint32_t, std::uint64_t> first_end;
   std::map<std::uint32_t, AxisFeedback> feedback;
   std::vector<Alarm> alarms;
 };
@@ -99,6 +103,12 @@ LaunchResult Launcher::run(
         auto& slot = seen.status[s.channel()];
         if (s.cycle() >= slot.cycle()) {
           slot = s;
+        }
+        if (s.state() == CH_RUNNING) {
+          seen.first_running.emplace(s.channel(), s.cycle());  // keeps the first
+        }
+        if (s.program_end()) {
+          seen.first_end.emplace(s.channel(), s.cycle());
         }
       });
   dds::Reader<AxisFeedback> feedback_reader(node.participant(),
@@ -198,25 +208,18 @@ LaunchResult Launcher::run(
         p.cycle = s.cycle();
         last_cycle = std::max(last_cycle, s.cycle());
       }
+      const auto id = static_cast<std::uint32_t>(ch.id);
+      if (auto r = seen.first_running.find(id); r != seen.first_running.end()) {
+        p.seen_running = true;
+        p.run_start_cycle = r->second;
+      }
+      if (auto e = seen.first_end.find(id); e != seen.first_end.end()) {
+        p.end_cycle = e->second;
+      }
       list.push_back(p);
     }
     return list;
   };
-  // Cycle bookkeeping per channel (first running cycle, end cycle), from the status stream.
-  std::map<std::string, ChannelProgress> book;
-  auto update_book = [&](const std::vector<ChannelProgress>& list) {
-    for (const auto& p : list) {
-      auto& b = book[p.name];
-      const bool seen_running = b.seen_running;
-      const std::uint64_t start = b.run_start_cycle;
-      const std::uint64_t end = b.end_cycle;
-      b = p;
-      b.seen_running = seen_running || p.state == CH_RUNNING;
-      b.run_start_cycle = seen_running ? start : (p.state == CH_RUNNING ? p.cycle : 0);
-      b.end_cycle = end != 0 ? end : (p.ended ? p.cycle : 0);
-    }
-  };
-
   auto find_exited = [&]() -> ChildProcess* {
     for (auto& child : children) {
       if (child.running() && child.poll_exited()) {
@@ -269,7 +272,6 @@ LaunchResult Launcher::run(
     for (;;) {
       std::this_thread::sleep_for(2ms);
       const auto list = progress();
-      update_book(list);
       if (std::chrono::steady_clock::now() - last_progress > 100ms) {
         last_progress = std::chrono::steady_clock::now();
         if (on_progress) {
@@ -396,7 +398,6 @@ LaunchResult Launcher::run(
 
   // 4. Result and trace.
   const auto final_list = progress();
-  update_book(final_list);
   {
     std::lock_guard<std::mutex> lock(seen.mutex);
     for (const auto& a : seen.alarms) {
@@ -404,8 +405,7 @@ LaunchResult Launcher::run(
     }
   }
   bool ok = failure.empty() && !estopped;
-  for (const auto& ch : machine_.channels) {
-    ChannelProgress p = book[ch.name];
+  for (const ChannelProgress& p : final_list) {
     if (p.has_program && (!p.ended || p.alarms > 0)) {
       ok = false;
     }
@@ -414,7 +414,16 @@ LaunchResult Launcher::run(
   if (!result.alarms.empty()) {
     ok = false;
   }
-  result.cycles = last_cycle;
+  // The run lasted until the last program end (the stop that follows takes a few more cycles).
+  std::uint64_t last_end = 0;
+  bool all_ended = !options_.programs.empty();
+  for (const auto& p : result.channels) {
+    if (p.has_program) {
+      all_ended = all_ended && p.ended;
+      last_end = std::max(last_end, p.end_cycle);
+    }
+  }
+  result.cycles = all_ended ? last_end : last_cycle;
   result.failure = failure;
   result.exit_code = ok ? 0 : 1;
 

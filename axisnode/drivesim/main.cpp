@@ -6,6 +6,7 @@
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/log/logging.hpp"
+#include "common/process/startup.hpp"
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -19,21 +20,6 @@
 #include <vector>
 
 namespace {
-
-volatile std::sig_atomic_t g_stop = 0;
-
-void on_signal(int /*signal*/) {
-  g_stop = 1;
-}
-
-void install_signal_handlers() {
-  struct sigaction action {};
-  action.sa_handler = on_signal;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = 0;  // no SA_RESTART: a signal ends the bus wait at once
-  sigaction(SIGTERM, &action, nullptr);
-  sigaction(SIGINT, &action, nullptr);
-}
 
 const char* result_name(mcnc::can::BusResult result) {
   switch (result) {
@@ -68,13 +54,7 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
   CLI11_PARSE(app, argc, argv);
 
-  config::MachineConfig machine;
-  try {
-    machine = config::load_machine_file(machine_path);
-  } catch (const config::ConfigError& e) {
-    std::fprintf(stderr, "mcnc-drivesim: %s\n", e.what());
-    return 2;
-  }
+  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
   const config::BusConfig* bus_config = machine.find_bus(bus_name);
   if (bus_config == nullptr) {
     std::fprintf(stderr, "mcnc-drivesim: %s: no bus named \"%s\"\n", machine_path.c_str(),
@@ -106,7 +86,7 @@ int main(int argc, char** argv) {
   if (!lockstep) {
     spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
   }
-  install_signal_handlers();
+  process::install_stop_signals();
 
   try {
     drivesim::DriveBusSimulator simulator(drives, machine.cycle_s());
@@ -135,7 +115,7 @@ int main(int argc, char** argv) {
       send_all(simulator.handle(*held_sync, out));
       held_sync.reset();
     };
-    while (g_stop == 0) {
+    while (process::g_stop_signal == 0) {
       canopen::CanFrame frame;
       const can::BusResult result =
           bus->receive(frame, std::chrono::milliseconds(held_sync ? 10 : 100));

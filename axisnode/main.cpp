@@ -34,40 +34,30 @@ DriveState to_wire(cia402::State state) {
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc axis node: one axis, CiA 402 drive over CAN, setpoints over DDS"};
-  std::string machine_path;
+  process::ShellOptions shell;
   std::string axis_name;
   std::string trace_path;
-  std::string log_level;
   int trace_pos_every = 10;
   int stall_ms = 2000;
-  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  process::add_shell_options(app, shell);
   app.add_option("--axis", axis_name, "axis name from the machine file")->required();
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
   app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")
       ->check(CLI::PositiveNumber);
   app.add_option("--lockstep-stall-ms", stall_ms,
                  "lockstep: warn when the bus keeps a cycle waiting this long");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
-  std::string clock_name = "lockstep";
-  app.add_option("--clock", clock_name,
-                 "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
-      ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
-  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
+  const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
   const config::AxisConfig* axis = machine.find_axis(axis_name);
   if (axis == nullptr) {
     std::fprintf(stderr, "error: axis %s is not in machine file %s\n", axis_name.c_str(),
-                 machine_path.c_str());
+                 shell.machine_path.c_str());
     return 2;
   }
   const config::BusConfig* bus = machine.find_bus(axis->bus);
   const config::ChannelConfig* owner = machine.find_channel(axis->channel);
-  log::setup(axis->name, log_level);
-  if (clock_name == "realtime") {
-    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
-  }
-  process::install_stop_signals();
+  process::start_process(axis->name, shell);
 
   std::vector<std::uint8_t> other_nodes;
   for (const auto& other : machine.axes) {
@@ -132,7 +122,7 @@ int main(int argc, char** argv) {
               return setpoint_reader.matched_writers() >= channels &&
                      feedback_writer.matched_readers() >= channels;
             },
-            clock_name)) {
+            shell.clock)) {
       return 0;
     }
     const bool lockstep = loop.lockstep();

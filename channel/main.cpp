@@ -45,35 +45,25 @@ std::vector<std::string> split_lines(const std::string& text) {
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
-  std::string machine_path;
+  process::ShellOptions shell;
   std::string channel_name;
   std::string program_path;
   std::string trace_path;
-  std::string log_level;
-  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  process::add_shell_options(app, shell);
   app.add_option("--channel", channel_name, "channel name from the machine file")->required();
   app.add_option("--program", program_path, "part program to run at cycle start")
       ->check(CLI::ExistingFile);
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
-  app.add_option("--log-level", log_level, "trace|debug|info|warn|error|off");
-  std::string clock_name = "lockstep";
-  app.add_option("--clock", clock_name,
-                 "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
-      ->check(CLI::IsMember({"lockstep", "realtime"}));
   CLI11_PARSE(app, argc, argv);
 
-  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
+  const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
   const config::ChannelConfig* ch = machine.find_channel(channel_name);
   if (ch == nullptr) {
     std::fprintf(stderr, "error: channel %s is not in machine file %s\n", channel_name.c_str(),
-                 machine_path.c_str());
+                 shell.machine_path.c_str());
     return 2;
   }
-  log::setup(ch->name, log_level);
-  if (clock_name == "realtime") {
-    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
-  }
-  process::install_stop_signals();
+  process::start_process(ch->name, shell);
 
   // The channel's axes, in program order.
   std::vector<const config::AxisConfig*> axes;
@@ -165,7 +155,7 @@ int main(int argc, char** argv) {
               return feedback_reader.matched_writers() >= total_axes &&
                      setpoint_writer.matched_readers() >= total_axes;
             },
-            clock_name)) {
+            shell.clock)) {
       return 0;
     }
     const bool lockstep = loop.lockstep();

@@ -41,23 +41,18 @@ int main(int argc, char** argv) {
   using namespace mcnc;
 
   CLI::App app{"mcnc-drivesim: simulated CiA 402 drives of one CAN bus"};
-  std::string machine_path;
+  process::ShellOptions shell;
   std::string bus_name;
-  std::string log_level;
-  app.add_option("--machine", machine_path, "machine file (YAML)")->required();
+  // --clock lockstep also holds each SYNC until the RPDOs of its cycle are in (UDP does not
+  // order senders the way a bus does).
+  process::add_shell_options(app, shell);
   app.add_option("--bus", bus_name, "name of the bus to simulate (buses[].name)")->required();
-  std::string clock_name = "lockstep";
-  app.add_option("--clock", clock_name,
-                 "lockstep: hold each SYNC until the RPDOs of its cycle are in (UDP does not "
-                 "order senders); realtime: SCHED_FIFO, memory locked")
-      ->check(CLI::IsMember({"lockstep", "realtime"}));
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error, critical, off");
   CLI11_PARSE(app, argc, argv);
 
-  const config::MachineConfig machine = process::load_machine_or_exit(machine_path);
+  const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
   const config::BusConfig* bus_config = machine.find_bus(bus_name);
   if (bus_config == nullptr) {
-    std::fprintf(stderr, "mcnc-drivesim: %s: no bus named \"%s\"\n", machine_path.c_str(),
+    std::fprintf(stderr, "mcnc-drivesim: %s: no bus named \"%s\"\n", shell.machine_path.c_str(),
                  bus_name.c_str());
     return 2;
   }
@@ -81,12 +76,8 @@ int main(int argc, char** argv) {
     drives.push_back(params);
   }
 
-  log::setup("drivesim-" + bus_name, log_level);
-  const bool lockstep = clock_name == "lockstep";
-  if (!lockstep) {
-    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
-  }
-  process::install_stop_signals();
+  process::start_process("drivesim-" + bus_name, shell);
+  const bool lockstep = shell.clock == "lockstep";
 
   try {
     drivesim::DriveBusSimulator simulator(drives, machine.cycle_s());

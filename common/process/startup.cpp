@@ -1,5 +1,11 @@
 #include "common/process/startup.hpp"
 
+#include "common/clock/cycle_clock.hpp"
+#include "common/log/logging.hpp"
+
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
 #include <sys/prctl.h>
 #include <unistd.h>
 
@@ -8,6 +14,22 @@
 #include <string>
 
 namespace mcnc::process {
+
+void add_shell_options(CLI::App& app, ShellOptions& options) {
+  app.add_option("--machine", options.machine_path, "machine file (YAML)")->required();
+  app.add_option("--clock", options.clock,
+                 "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
+      ->check(CLI::IsMember({"lockstep", "realtime"}));
+  app.add_option("--log-level", options.log_level, "trace|debug|info|warn|error|off");
+}
+
+void start_process(const std::string& process_name, const ShellOptions& options) {
+  log::setup(process_name, options.log_level);
+  if (options.clock == "realtime") {
+    spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
+  }
+  install_stop_signals();
+}
 
 volatile std::sig_atomic_t g_stop_signal = 0;
 

@@ -5,7 +5,24 @@
 #include <csignal>
 #include <string>
 
+namespace CLI {
+class App;
+}
+
 namespace mcnc::process {
+
+// The options every process shell takes: --machine, --clock, --log-level.
+struct ShellOptions {
+  std::string machine_path;
+  std::string clock = "lockstep";  // realtime: SCHED_FIFO and locked memory from the start
+  std::string log_level;
+};
+void add_shell_options(CLI::App& app, ShellOptions& options);
+
+// The first things a process does once it knows its name: its logger, real-time scheduling
+// when the clock is realtime (before any thread starts, so that all inherit it), and the stop
+// signals.
+void start_process(const std::string& process_name, const ShellOptions& options);
 
 // Loads and validates the machine file; on error prints "<path>: <key path>: <reason>" to
 // stderr and exits with code 2 (bad input: nothing is started).

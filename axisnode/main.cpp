@@ -27,6 +27,8 @@ const char* drive_state_name(cia402::State state) {
 }
 
 DriveState to_wire(cia402::State state) {
+  static_assert(static_cast<int>(cia402::State::fault) == static_cast<int>(DRIVE_FAULT),
+                "core and wire drive states must be in the same order");
   return static_cast<DriveState>(static_cast<int>(state));
 }
 

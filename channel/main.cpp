@@ -3,6 +3,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/minimal_interpreter.hpp"
 #include "channel/motion/trapezoid_planner.hpp"
+#include "channel/wire/channel_outputs.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
@@ -24,10 +25,6 @@ using namespace std::chrono_literals;
 using namespace mcnc;
 
 namespace {
-
-::mcnc::ChannelState to_wire(channel::ChannelState state) {
-  return static_cast<::mcnc::ChannelState>(static_cast<int>(state));
-}
 
 std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -142,8 +139,7 @@ int main(int argc, char** argv) {
             }
           });
         });
-    dds::Writer<AxisSetpoint> setpoint_writer(node.participant());
-    dds::Writer<::mcnc::ChannelStatus> status_writer(node.participant());
+    channel::ChannelOutputs outputs(node, tracer, *ch, axes, program_name, program_lines);
 
     // Discovery: every axis node's feedback writer and setpoint reader matched.
     const int total_axes = static_cast<int>(machine.axes.size());
@@ -153,7 +149,7 @@ int main(int argc, char** argv) {
     if (!loop.start(
             [&] {
               return feedback_reader.matched_writers() >= total_axes &&
-                     setpoint_writer.matched_readers() >= total_axes;
+                     outputs.setpoint_readers() >= total_axes;
             },
             shell.clock)) {
       return 0;
@@ -167,7 +163,6 @@ int main(int argc, char** argv) {
 
     std::vector<channel::AxisFeedbackView> views(axes.size());
     std::vector<bool> reported_lost(axes.size(), false);
-    char escaped[512];
     bool estop_seen = false;
     // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
     for (std::uint64_t cycle = 0; loop.next(
@@ -216,78 +211,9 @@ int main(int argc, char** argv) {
       });
 
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
-
-      for (std::size_t i = 0; i < axes.size(); ++i) {
-        AxisSetpoint sp;
-        sp.axis(static_cast<std::uint32_t>(axes[i]->id));
-        sp.channel(static_cast<std::uint32_t>(ch->id));
-        sp.cycle(cycle);
-        sp.pos(out.setpoints[i].pos);
-        sp.vel(out.setpoints[i].vel);
-        sp.acc(out.setpoints[i].acc);
-        sp.valid(out.setpoints[i].valid);
-        setpoint_writer.write(sp);
-      }
-      ::mcnc::ChannelStatus status;
-      status.channel(static_cast<std::uint32_t>(ch->id));
-      status.cycle(cycle);
-      status.state(to_wire(out.state));
-      status.block(static_cast<std::uint32_t>(out.block));
-      status.block_total(static_cast<std::uint32_t>(interpreter.block_count()));
-      status.line(out.line);
-      status.alarms(static_cast<std::uint32_t>(controller.alarm_count()));
-      status.program_loaded(!program_path.empty() && !load_alarm);
-      status.program_end(out.program_end);
-      status.end_code(out.end_code);
-      status_writer.write(status);
-
-      for (std::size_t e = 0; e < out.event_count; ++e) {
-        const channel::ChannelEvent& ev = out.events[e];
-        switch (ev.kind) {
-          case channel::ChannelEventKind::state_changed:
-            tracer.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch->name.c_str(),
-                        channel::to_string(ev.state));
-            break;
-          case channel::ChannelEventKind::block_started: {
-            const std::size_t idx = static_cast<std::size_t>(ev.line) - 1;
-            trace::json_escape(idx < program_lines.size() ? program_lines[idx].c_str() : "",
-                               escaped, sizeof escaped);
-            tracer.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"",
-                        ch->name.c_str(), program_name.c_str(), ev.line, escaped);
-            break;
-          }
-          case channel::ChannelEventKind::block_ended:
-            for (std::size_t i = 0; i < axes.size(); ++i) {
-              tracer.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f",
-                          axes[i]->name.c_str(), ev.pos[i], views[i].act);
-            }
-            break;
-          case channel::ChannelEventKind::alarm: {
-            const channel::ChannelAlarm& alarm = controller.last_alarm();
-            trace::json_escape(alarm.text.data(), escaped, sizeof escaped);
-            if (alarm.axis > 0) {
-              // The alarm's source is the event's own "src".
-              tracer.emit(cycle, "alarm",
-                          "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
-                          alarm.number, escaped, ch->name.c_str(),
-                          axes[static_cast<std::size_t>(alarm.axis - 1)]->name.c_str(), alarm.line);
-            } else {
-              tracer.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
-                          alarm.number, escaped, ch->name.c_str(), alarm.line);
-            }
-            node.raise_alarm(
-                static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle, ch->id,
-                alarm.axis > 0 ? axes[static_cast<std::size_t>(alarm.axis - 1)]->id : 0,
-                alarm.line);
-            spdlog::error("alarm {}: {} (line {})", alarm.number, alarm.text.data(), alarm.line);
-            break;
-          }
-          case channel::ChannelEventKind::program_end:
-            tracer.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch->name.c_str(), ev.end_code);
-            spdlog::info("program end M{:02d} at cycle {}", ev.end_code, cycle);
-            break;
-        }
-      }
+      outputs.publish(cycle, controller, out, views,
+                      static_cast<std::uint32_t>(interpreter.block_count()),
+                      !program_path.empty() && !load_alarm);
     }
     tracer.flush();
     node.announce(PHASE_STOPPED);

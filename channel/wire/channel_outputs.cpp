@@ -1,0 +1,109 @@
+#include "channel/wire/channel_outputs.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace mcnc::channel {
+
+namespace {
+
+::mcnc::ChannelState to_wire(ChannelState state) {
+  static_assert(static_cast<int>(ChannelState::alarm) == static_cast<int>(CH_ALARM),
+                "core and wire channel states must be in the same order");
+  return static_cast<::mcnc::ChannelState>(static_cast<int>(state));
+}
+
+}  // namespace
+
+ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
+                               const config::ChannelConfig& channel,
+                               std::vector<const config::AxisConfig*> axes,
+                               std::string program_name, std::vector<std::string> program_lines)
+    : node_(node),
+      tracer_(tracer),
+      channel_(channel),
+      axes_(std::move(axes)),
+      program_name_(std::move(program_name)),
+      program_lines_(std::move(program_lines)),
+      setpoints_(node.participant()),
+      status_(node.participant()) {}
+
+void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& controller,
+                             const ChannelOutput& out, std::span<const AxisFeedbackView> views,
+                             std::uint32_t block_total, bool program_loaded) {
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    AxisSetpoint sp;
+    sp.axis(static_cast<std::uint32_t>(axes_[i]->id));
+    sp.channel(static_cast<std::uint32_t>(channel_.id));
+    sp.cycle(cycle);
+    sp.pos(out.setpoints[i].pos);
+    sp.vel(out.setpoints[i].vel);
+    sp.acc(out.setpoints[i].acc);
+    sp.valid(out.setpoints[i].valid);
+    setpoints_.write(sp);
+  }
+  ::mcnc::ChannelStatus status;
+  status.channel(static_cast<std::uint32_t>(channel_.id));
+  status.cycle(cycle);
+  status.state(to_wire(out.state));
+  status.block(static_cast<std::uint32_t>(out.block));
+  status.block_total(block_total);
+  status.line(out.line);
+  status.alarms(static_cast<std::uint32_t>(controller.alarm_count()));
+  status.program_loaded(program_loaded);
+  status.program_end(out.program_end);
+  status.end_code(out.end_code);
+  status_.write(status);
+
+  for (std::size_t e = 0; e < out.event_count; ++e) {
+    record(cycle, controller, out.events[e], views);
+  }
+}
+
+void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& controller,
+                            const ChannelEvent& event, std::span<const AxisFeedbackView> views) {
+  const char* ch = channel_.name.c_str();
+  switch (event.kind) {
+    case ChannelEventKind::state_changed:
+      tracer_.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch, to_string(event.state));
+      break;
+    case ChannelEventKind::block_started: {
+      const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
+      trace::json_escape(idx < program_lines_.size() ? program_lines_[idx].c_str() : "", escaped_,
+                         sizeof escaped_);
+      tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
+                   program_name_.c_str(), event.line, escaped_);
+      break;
+    }
+    case ChannelEventKind::block_ended:
+      for (std::size_t i = 0; i < axes_.size(); ++i) {
+        tracer_.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f",
+                     axes_[i]->name.c_str(), event.pos[i], i < views.size() ? views[i].act : 0.0);
+      }
+      break;
+    case ChannelEventKind::alarm: {
+      const ChannelAlarm& alarm = controller.last_alarm();
+      trace::json_escape(alarm.text.data(), escaped_, sizeof escaped_);
+      const config::AxisConfig* axis =
+          alarm.axis > 0 ? axes_[static_cast<std::size_t>(alarm.axis - 1)] : nullptr;
+      // The alarm's source is the event's own "src".
+      if (axis != nullptr) {
+        tracer_.emit(cycle, "alarm",
+                     "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
+                     alarm.number, escaped_, ch, axis->name.c_str(), alarm.line);
+      } else {
+        tracer_.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
+                     alarm.number, escaped_, ch, alarm.line);
+      }
+      node_.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle,
+                        channel_.id, axis != nullptr ? axis->id : 0, alarm.line);
+      spdlog::error("alarm {}: {} (line {})", alarm.number, alarm.text.data(), alarm.line);
+      break;
+    }
+    case ChannelEventKind::program_end:
+      tracer_.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch, event.end_code);
+      spdlog::info("program end M{:02d} at cycle {}", event.end_code, cycle);
+      break;
+  }
+}
+
+}  // namespace mcnc::channel

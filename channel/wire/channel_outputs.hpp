@@ -1,0 +1,46 @@
+#pragma once
+// The channel's outputs on the wire: each cycle's setpoints and status over DDS, and its events
+// in the trace (state, block, block-end positions, alarm, end) with alarms also published.
+// An adapter between ChannelController and DDS / the trace; the shell only wires it.
+#include "channel/control/channel_controller.hpp"
+#include "common/config/machine_config.hpp"
+#include "common/process/process_node.hpp"
+#include "common/trace/trace_writer.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace mcnc::channel {
+
+class ChannelOutputs {
+ public:
+  ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
+                 const config::ChannelConfig& channel, std::vector<const config::AxisConfig*> axes,
+                 std::string program_name, std::vector<std::string> program_lines);
+
+  // Publishes this cycle's setpoints and status and records its events. `views` is the
+  // feedback the controller saw (for the act of block-end positions).
+  void publish(std::uint64_t cycle, const ChannelController& controller, const ChannelOutput& out,
+               std::span<const AxisFeedbackView> views, std::uint32_t block_total,
+               bool program_loaded);
+  // Axis nodes matched on the setpoint topic, for discovery.
+  [[nodiscard]] int setpoint_readers() const noexcept { return setpoints_.matched_readers(); }
+
+ private:
+  void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
+              std::span<const AxisFeedbackView> views);
+
+  process::ProcessNode& node_;
+  trace::TraceWriter& tracer_;
+  const config::ChannelConfig& channel_;
+  std::vector<const config::AxisConfig*> axes_;
+  std::string program_name_;
+  std::vector<std::string> program_lines_;
+  dds::Writer<AxisSetpoint> setpoints_;
+  dds::Writer<::mcnc::ChannelStatus> status_;
+  char escaped_[512] = {};
+};
+
+}  // namespace mcnc::channel

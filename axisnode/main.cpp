@@ -220,46 +220,16 @@ int main(int argc, char** argv) {
                     out.cmd, out.act);
       }
 
-      // 4. CAN: RPDO, SYNC (producer), and in lockstep the drive's answer to this SYNC. A
-      // lockstep wait never gives up on its own (that would make the run depend on load); it
-      // ends with the run, an E-stop or the owner gone, and says when it is slow.
-      auto lockstep_wait = [&](auto&& arrived, const char* what) {
-        const auto since = std::chrono::steady_clock::now();
-        bool warned = false;
-        while (!arrived(std::chrono::milliseconds(100))) {
-          const RunCommand cmd = node.run_control().command;
-          bool lost = false;
-          wake.update([&] { lost = owner_lost; });
-          if (cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0) {
-            return;
-          }
-          if (!warned &&
-              std::chrono::steady_clock::now() - since > std::chrono::milliseconds(stall_ms)) {
-            spdlog::warn("cycle {}: still waiting for {}", cycle, what);
-            warned = true;
-          }
-        }
-      };
-      const std::uint64_t syncs_before = link.sync_count();
-      const bool wait_bus = lockstep && !degraded;
-      if (sync_producer && !wait_bus) {
-        // Realtime: SYNC opens the cycle, so every node's RPDO, sent after it, is applied at
-        // the next SYNC: one cycle, the same for every drive of the bus.
-        link.send_sync();
-      }
-      link.send_rpdo(out.controlword, out.target_counts);
-      if (sync_producer && wait_bus) {
-        lockstep_wait([&](auto t) { return link.wait_other_rpdos(t); },
-                      "the RPDOs of the other nodes");
-        link.send_sync();
-      }
-      if (wait_bus) {
-        if (!sync_producer) {
-          lockstep_wait([&](auto t) { return link.wait_sync_after(syncs_before, t); }, "SYNC");
-        }
-        lockstep_wait([&](auto t) { return link.wait_tpdo_after(tpdo.count, t); },
-                      "the drive's TPDO");
-      }
+      // 4. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
+      link.exchange(
+          out.controlword, out.target_counts, sync_producer, lockstep && !degraded, tpdo.count,
+          [&] {
+            const RunCommand cmd = node.run_control().command;
+            bool lost = false;
+            wake.update([&] { lost = owner_lost; });
+            return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
+          },
+          std::chrono::milliseconds(stall_ms));
     }
 
     link.send_rpdo(cia402::encode_controlword(cia402::Command::disable_voltage),

@@ -111,6 +111,39 @@ void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {
   bus_->send(canopen::encode_nmt(command, node_id_));
 }
 
+void DriveLink::exchange(std::uint16_t controlword, std::int32_t target_counts, bool sync_producer,
+                         bool lockstep, std::uint64_t tpdos_seen,
+                         const std::function<bool()>& abandon, std::chrono::milliseconds slow) {
+  const auto wait = [&](auto&& arrived, const char* what) {
+    const auto since = std::chrono::steady_clock::now();
+    bool warned = false;
+    while (!arrived(std::chrono::milliseconds(100))) {
+      if (abandon()) {
+        return;
+      }
+      if (!warned && std::chrono::steady_clock::now() - since > slow) {
+        spdlog::warn("node {}: still waiting for {}", node_id_, what);
+        warned = true;
+      }
+    }
+  };
+  const std::uint64_t syncs_before = syncs_.load();
+  if (sync_producer && !lockstep) {
+    send_sync();
+  }
+  send_rpdo(controlword, target_counts);
+  if (!lockstep) {
+    return;
+  }
+  if (sync_producer) {
+    wait([&](auto t) { return wait_other_rpdos(t); }, "the RPDOs of the other nodes");
+    send_sync();
+  } else {
+    wait([&](auto t) { return wait_sync_after(syncs_before, t); }, "SYNC");
+  }
+  wait([&](auto t) { return wait_tpdo_after(tpdos_seen, t); }, "the drive's TPDO");
+}
+
 bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
   return wakeup_.wait_for(
       [&] {

@@ -11,6 +11,7 @@
 #include <bitset>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <thread>
 #include <vector>
@@ -36,6 +37,16 @@ class DriveLink {
   void send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept;
   void send_sync() noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
+
+  // One cycle on the bus. Realtime (`lockstep` false): the SYNC producer opens the cycle with
+  // SYNC, then the RPDO goes out (applied at the next SYNC, the same for every drive). Lockstep:
+  // RPDO; the producer sends SYNC once every node's RPDO of the cycle is seen; then wait for the
+  // drive's answer to it (TPDO count past `tpdos_seen`). A lockstep wait never gives up on its
+  // own, which would make results depend on load: it ends when `abandon()` says so (stop,
+  // E-stop, owner gone), and logs when it has waited longer than `slow`.
+  void exchange(std::uint16_t controlword, std::int32_t target_counts, bool sync_producer,
+                bool lockstep, std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
+                std::chrono::milliseconds slow);
 
   // Lockstep waits (false on timeout).
   bool wait_other_rpdos(std::chrono::milliseconds timeout);

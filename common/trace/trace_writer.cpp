@@ -95,7 +95,7 @@ void TraceWriter::emit(std::uint64_t cycle, const char* ev, const char* fields_f
     const int m =
         std::vsnprintf(slot + n + 1, kRoom - static_cast<std::size_t>(n), fields_fmt, args);
     va_end(args);
-    if (m < 0 || static_cast<std::size_t>(n + 1 + m) > kRoom) {
+    if (m < 0 || static_cast<std::size_t>(n) + 1 + static_cast<std::size_t>(m) > kRoom) {
       dropped_.fetch_add(1);
       return;
     }

@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
     if (!link.bring_up(10s)) {
       spdlog::error("drive node {} on {} does not answer (no boot-up)", node_id, bus->uri);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_lost),
-                       "drive does not answer on " + bus->uri, 0, 0, axis->id);
+                       ("drive does not answer on " + bus->uri).c_str(), 0, 0, axis->id);
       node.announce(PHASE_FAILED, 0, "drive does not answer");
       return 1;
     }
@@ -213,7 +213,6 @@ int main(int argc, char** argv) {
         tracer.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"", number, text,
                     axis->name.c_str());
         node.raise_alarm(static_cast<std::uint32_t>(number), text, cycle, 0, axis->id);
-        spdlog::error("alarm {}: {}", number, text);
       }
       if (cycle % static_cast<std::uint64_t>(trace_pos_every) == 0) {
         tracer.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f", axis->name.c_str(),

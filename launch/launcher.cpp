@@ -330,7 +330,7 @@ LaunchResult Launcher::run(
       spdlog::error("E-stop: {}", failure);
       tracer.emit(last_cycle, "alarm", "\"number\":3001,\"text\":\"emergency stop: %s\"",
                   failure.c_str());
-      node.raise_alarm(3001, "emergency stop: " + failure, last_cycle);
+      node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
       send_control(RUN_ESTOP, 0, failure);
       const auto deadline = std::chrono::steady_clock::now() + 5s;
       while (std::chrono::steady_clock::now() < deadline) {

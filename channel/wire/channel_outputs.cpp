@@ -96,12 +96,11 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       }
       node_.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle,
                         channel_.id, axis != nullptr ? axis->id : 0, alarm.line);
-      spdlog::error("alarm {}: {} (line {})", alarm.number, alarm.text.data(), alarm.line);
       break;
     }
     case ChannelEventKind::program_end:
       tracer_.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch, event.end_code);
-      spdlog::info("program end M{:02d} at cycle {}", event.end_code, cycle);
+      spdlog::debug("program end M{:02d} at cycle {}", event.end_code, cycle);
       break;
   }
 }

@@ -5,6 +5,9 @@
 
 #include <unistd.h>
 
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -37,7 +40,9 @@ ProcessNode::ProcessNode(int domain, std::string name)
           rc_pace_.store(rc.pace());
           rc_generation_.store(rc.generation());
         });
-      }) {}
+      }) {
+  alarm_thread_ = std::thread([this] { publish_alarms(); });
+}
 
 void ProcessNode::announce(ProcessPhase phase, std::uint64_t cycle, const std::string& detail) {
   ProcessState state;
@@ -67,18 +72,64 @@ bool ProcessNode::stop_arrives_within(std::chrono::milliseconds grace) {
       grace);
 }
 
-void ProcessNode::raise_alarm(std::uint32_t number, const std::string& text, std::uint64_t cycle,
-                              int channel, int axis, int line) {
-  Alarm alarm;
-  alarm.src(name_);
-  alarm.number(number);
-  alarm.text(text);
-  alarm.channel(channel);
-  alarm.axis(axis);
-  alarm.line(line);
-  alarm.cycle(cycle);
-  alarm.seq(++alarm_seq_);
-  alarm_writer_.write(alarm);
+bool ProcessNode::raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle,
+                              int channel, int axis, int line) noexcept {
+  const std::uint64_t head = alarm_head_.load(std::memory_order_relaxed);
+  if (head - alarm_tail_.load(std::memory_order_acquire) >= kAlarmSlots) {
+    alarms_lost_.fetch_add(1);
+    return false;
+  }
+  AlarmRecord& record = alarm_slots_[head % kAlarmSlots];
+  record.number = number;
+  std::snprintf(record.text.data(), record.text.size(), "%s", text);
+  record.cycle = cycle;
+  record.channel = channel;
+  record.axis = axis;
+  record.line = line;
+  alarm_head_.store(head + 1, std::memory_order_release);
+  alarm_signal_.fetch_add(1, std::memory_order_release);
+  alarm_signal_.notify_one();
+  return true;
+}
+
+void ProcessNode::publish_alarms() {
+  std::uint64_t seq = 0;
+  for (;;) {
+    const std::uint64_t signal = alarm_signal_.load(std::memory_order_acquire);
+    std::uint64_t tail = alarm_tail_.load(std::memory_order_relaxed);
+    const std::uint64_t head = alarm_head_.load(std::memory_order_acquire);
+    if (tail == head) {
+      if (alarm_stop_.load()) {
+        return;  // drained
+      }
+      alarm_signal_.wait(signal);  // returns at once if a raise came after the load above
+      continue;
+    }
+    for (; tail != head; ++tail) {
+      const AlarmRecord& record = alarm_slots_[tail % kAlarmSlots];
+      Alarm alarm;
+      alarm.src(name_);
+      alarm.number(record.number);
+      alarm.text(record.text.data());
+      alarm.channel(record.channel);
+      alarm.axis(record.axis);
+      alarm.line(record.line);
+      alarm.cycle(record.cycle);
+      alarm.seq(++seq);
+      alarm_writer_.write(alarm);
+      spdlog::error("alarm {}: {}{}", record.number, record.text.data(),
+                    record.line > 0 ? " (line " + std::to_string(record.line) + ")" : "");
+      alarm_tail_.store(tail + 1, std::memory_order_release);
+    }
+  }
+}
+
+ProcessNode::~ProcessNode() {
+  // Publish what is queued, then stop, while the writers still exist.
+  alarm_stop_.store(true);
+  alarm_signal_.fetch_add(1);
+  alarm_signal_.notify_all();
+  alarm_thread_.join();
 }
 
 }  // namespace mcnc::process

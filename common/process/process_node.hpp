@@ -5,12 +5,14 @@
 #include "idl/dds_participant.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
 #include <string>
+#include <thread>
 
 namespace mcnc::config {
 struct MachineConfig;
@@ -94,9 +96,14 @@ class ProcessNode {
   // together but may arrive in either order. True when STOP (or a stop signal) arrives within
   // `grace`; the caller then ends instead of raising an alarm.
   bool stop_arrives_within(std::chrono::milliseconds grace);
-  // Publishes an alarm from this process (sequence numbered). Not for the per-cycle path.
-  void raise_alarm(std::uint32_t number, const std::string& text, std::uint64_t cycle,
-                   int channel = 0, int axis = 0, int line = 0);
+  // Raises an alarm from this process: copies it into a fixed-size queue and returns; a thread
+  // of this node publishes it (sequence numbered) and logs it. Safe in the per-cycle path: no
+  // allocation, no blocking, no logging there. One thread raises alarms. Text longer than the
+  // record is cut; a full queue drops the alarm and counts it in alarms_lost().
+  bool raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle, int channel = 0,
+                   int axis = 0, int line = 0) noexcept;
+  [[nodiscard]] std::uint64_t alarms_lost() const noexcept { return alarms_lost_.load(); }
+  ~ProcessNode();
 
  private:
   std::string name_;
@@ -111,6 +118,24 @@ class ProcessNode {
   std::atomic<std::int64_t> rc_start_ns_{0};
   std::atomic<bool> rc_pace_{false};
   dds::Reader<RunControl> run_control_reader_;
+
+  struct AlarmRecord {
+    std::uint32_t number = 0;
+    std::array<char, 192> text{};
+    std::uint64_t cycle = 0;
+    int channel = 0;
+    int axis = 0;
+    int line = 0;
+  };
+  void publish_alarms();
+  static constexpr std::size_t kAlarmSlots = 64;
+  std::array<AlarmRecord, kAlarmSlots> alarm_slots_{};
+  std::atomic<std::uint64_t> alarm_head_{0};  // written by the raising thread
+  std::atomic<std::uint64_t> alarm_tail_{0};  // written by the publishing thread
+  std::atomic<std::uint64_t> alarms_lost_{0};
+  std::atomic<std::uint64_t> alarm_signal_{0};  // bumped by a raise and by shutdown
+  std::atomic<bool> alarm_stop_{false};
+  std::thread alarm_thread_;
 };
 
 }  // namespace mcnc::process

@@ -137,8 +137,8 @@ void TraceWriter::run() {
     std::fflush(file_);
     lock.lock();
     drained_.notify_all();
-    if (stop_) {
-      return;
+    if (stop_ && tail_.load() == head_.load()) {
+      return;  // only once drained: events may have come in while the disk was flushed
     }
   }
 }

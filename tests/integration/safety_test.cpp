@@ -86,10 +86,18 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
   ch.kill(SIGKILL);
   ASSERT_EQ(ch.wait(10s), -SIGKILL);
 
-  // The axis node alarms and quick-stops on its own; give the drive time to come to rest.
+  // The axis node alarms and commands a quick stop on its own. The drive applies it at the
+  // next SYNC; in lockstep the bus's SYNC producer (X1) resumes once it has noticed the lost
+  // owner too (its own DDS lease timer), so wait for the drive's state, not a fixed time.
   ASSERT_TRUE(eventually(
       [&] { return !events(read_trace(machine.file("Z1.jsonl")), "alarm").empty(); }, 30s));
-  std::this_thread::sleep_for(500ms);
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto states = events(read_trace(machine.file("Z1.jsonl")), "drive", "Z1");
+        return !states.empty() && states.back()["state"] == "quick_stop_active";
+      },
+      30s));
+  std::this_thread::sleep_for(300ms);  // at rest: a few pos events with the same act
   send(RUN_STOP, 2);
   EXPECT_EQ(x.wait(20s), 0);
   EXPECT_EQ(z.wait(20s), 0);

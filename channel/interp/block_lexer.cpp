@@ -1,4 +1,5 @@
 #include "channel/interp/block_lexer.hpp"
+#include "channel/interp/program_chars.hpp"
 
 #include "channel/interp/program_alarms.hpp"
 
@@ -9,20 +10,6 @@
 namespace mcnc::interp {
 
 namespace {
-
-// ASCII only: program text is ASCII outside comments, and <cctype> would depend on the locale.
-bool is_blank(char c) {
-  return c == ' ' || c == '\t';
-}
-bool is_digit(char c) {
-  return c >= '0' && c <= '9';
-}
-bool is_letter(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-}
-char to_upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
 
 int column_of(std::size_t index) {
   return static_cast<int>(index) + 1;

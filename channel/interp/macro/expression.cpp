@@ -1,4 +1,5 @@
 #include "channel/interp/macro/expression.hpp"
+#include "channel/interp/program_chars.hpp"
 
 #include "channel/interp/macro/macro_alarms.hpp"
 
@@ -10,21 +11,12 @@
 
 namespace mcnc::interp::macro {
 
-namespace {
+using interp::is_blank;
+using interp::is_digit;
+using interp::is_letter;
+using interp::to_upper;
 
-// ASCII only: program text is ASCII outside comments, and <cctype> would depend on the locale.
-bool is_blank(char c) {
-  return c == ' ' || c == '\t';
-}
-bool is_digit(char c) {
-  return c >= '0' && c <= '9';
-}
-bool is_letter(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z');
-}
-char to_upper(char c) {
-  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
-}
+namespace {
 
 enum class Tok { kEnd, kNumber, kHash, kOpen, kClose, kComma, kOperator, kWord, kAssign, kInvalid };
 

@@ -1,0 +1,46 @@
+#pragma once
+// Splits the text of one program file into its programs (pure: no file I/O). It knows only the
+// file format: the `%` tape marks, `O` program-number lines and which lines belong to which
+// program. Blocks are passed on untouched, with their 1-based line numbers in the file, so that
+// the interpreter's alarms point into the file. Rules and decisions: docs/dialect.md, "Program
+// format".
+#include "channel/interp/canonical_command.hpp"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mcnc::interp::program {
+
+inline constexpr int kMaxProgramNumber = 9999;  // O + 4 digits (Dafeng spec L113, §1.10 L154)
+
+struct ProgramLine {
+  int line = 0;      // 1-based line number in the file
+  std::string text;  // without its line terminator ('\r' of CRLF removed)
+};
+
+struct Program {
+  std::optional<int> number;  // the O number; none for a file without O lines
+  std::string name;           // text of the first `( )` comment on the O line, trimmed
+  std::string file;           // the file name given to split_programs
+  int header_line = 0;        // line of the O word; 0 when there is none
+  int header_column = 0;      // 1-based column of the O word; 0 when there is none
+  // The O line itself (when there is one) and every following line up to the next O line or the
+  // end of the tape, blank and comment-only lines included.
+  std::vector<ProgramLine> lines;
+};
+
+// Either the programs of the file in file order, or the first alarm (then `programs` is empty:
+// a file with a format error yields nothing, so a half-read file is never run).
+struct SplitResult {
+  std::vector<Program> programs;
+  std::optional<ProgramAlarm> alarm;  // `program` names the file
+};
+
+SplitResult split_programs(std::string_view text, const std::string& file_name);
+
+// "O0012": the spelling used in alarm texts and file names (4 digits, zero padded).
+std::string program_label(int number);
+
+}  // namespace mcnc::interp::program

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <functional>
 
 using namespace std::chrono_literals;
 using namespace mcnc;
@@ -139,6 +140,15 @@ int main(int argc, char** argv) {
     tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(),
                 owner->name.c_str());
 
+    // A lockstep bus wait ends with the run, an E-stop or the owner gone. Built once: a
+    // std::function made from this lambda inside the loop could allocate every cycle.
+    const std::function<bool()> abandon_bus_wait = [&] {
+      const RunCommand cmd = node.run_control().command;
+      bool lost = false;
+      wake.with_lock([&] { lost = owner_lost; });
+      return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
+    };
+
     // 1. Wait until the cycle may run: the owner's setpoint stamped N-1 is in.
     for (std::uint64_t cycle = 0; loop.next(
              cycle, [&](std::uint64_t c) { return c == 0 || setpoints.at(c - 1) != nullptr; },
@@ -220,21 +230,16 @@ int main(int argc, char** argv) {
       }
 
       // 4. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
-      link.exchange(
-          out.controlword, out.target_counts, sync_producer, lockstep && !degraded, tpdo.count,
-          [&] {
-            const RunCommand cmd = node.run_control().command;
-            bool lost = false;
-            wake.update([&] { lost = owner_lost; });
-            return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
-          },
-          std::chrono::milliseconds(stall_ms));
+      link.exchange(out.controlword, out.target_counts, sync_producer, lockstep && !degraded,
+                    tpdo.count, abandon_bus_wait, std::chrono::milliseconds(stall_ms));
     }
 
     link.send_rpdo(cia402::encode_controlword(cia402::Command::disable_voltage),
                    controller.output().target_counts);
     link.send_nmt(canopen::NmtCommand::enter_preoperational);
     tracer.flush();
+    spdlog::info("stopped: {} EMCY, {} malformed frames, {} trace events dropped",
+                 link.emcy_count(), link.malformed_count(), tracer.dropped());
     node.announce(PHASE_STOPPED);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

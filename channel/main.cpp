@@ -216,6 +216,9 @@ int main(int argc, char** argv) {
                       !program_path.empty() && !load_alarm);
     }
     tracer.flush();
+    if (tracer.dropped() > 0) {
+      spdlog::warn("{} trace events dropped (trace writer could not keep up)", tracer.dropped());
+    }
     node.announce(PHASE_STOPPED);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

@@ -27,7 +27,6 @@ class ChildProcess {
   [[nodiscard]] bool running() const noexcept { return pid_ > 0 && !exited_; }
   [[nodiscard]] std::string exit_description() const;
   [[nodiscard]] int exit_code() const noexcept;  // -signal when killed by a signal
-  [[nodiscard]] const std::vector<std::string>& argv() const noexcept { return argv_; }
 
  private:
   std::string name_;

@@ -48,18 +48,16 @@ class DriveLink {
                 bool lockstep, std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
                 std::chrono::milliseconds slow);
 
-  // Lockstep waits (false on timeout).
-  bool wait_other_rpdos(std::chrono::milliseconds timeout);
-  bool wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout);
-  bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
-
   [[nodiscard]] TpdoSample tpdo() noexcept;
-  [[nodiscard]] std::uint64_t sync_count() const noexcept { return syncs_.load(); }
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
 
  private:
   void receive_loop();
+  // Lockstep waits (false on timeout).
+  bool wait_other_rpdos(std::chrono::milliseconds timeout);
+  bool wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout);
+  bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
 
   std::unique_ptr<can::CanBus> bus_;
   std::uint8_t node_id_;

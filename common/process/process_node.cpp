@@ -130,6 +130,9 @@ ProcessNode::~ProcessNode() {
   alarm_signal_.fetch_add(1);
   alarm_signal_.notify_all();
   alarm_thread_.join();
+  if (alarms_lost_.load() > 0) {
+    spdlog::error("{} alarms were lost: the alarm queue was full", alarms_lost_.load());
+  }
 }
 
 }  // namespace mcnc::process

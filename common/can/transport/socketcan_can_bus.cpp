@@ -1,5 +1,7 @@
 #include "common/can/transport/socketcan_can_bus.hpp"
 
+#include "common/can/transport/fd_wait.hpp"
+
 #include <linux/can.h>
 #include <linux/can/error.h>
 #include <linux/can/raw.h>
@@ -17,17 +19,6 @@ namespace {
 
 static_assert(sizeof(CanFrame) == sizeof(can_frame));
 static_assert(sizeof(can_frame::data) == std::tuple_size_v<decltype(CanFrame::data)>);
-
-timespec to_timespec(std::chrono::microseconds d) noexcept {
-  if (d.count() < 0) {
-    d = std::chrono::microseconds::zero();
-  }
-  const auto secs = std::chrono::duration_cast<std::chrono::seconds>(d);
-  timespec ts{};
-  ts.tv_sec = static_cast<time_t>(secs.count());
-  ts.tv_nsec = static_cast<long>((d - secs).count() * 1000);
-  return ts;
-}
 
 }  // namespace
 
@@ -87,15 +78,8 @@ BusResult SocketCanBus::send(const CanFrame& frame) noexcept {
 }
 
 BusResult SocketCanBus::receive(CanFrame& frame, std::chrono::microseconds timeout) noexcept {
-  pollfd pfd{fd_, POLLIN, 0};
-  const timespec wait = to_timespec(timeout);
-  const int ready = ::ppoll(&pfd, 1, &wait, nullptr);
-  if (ready == 0) {
-    return BusResult::timeout;
-  }
-  if (ready < 0) {
-    // A signal ends the wait so the caller can look at its flags.
-    return errno == EINTR ? BusResult::timeout : BusResult::error;
+  if (const BusResult ready = wait_readable(fd_, timeout); ready != BusResult::ok) {
+    return ready;
   }
   can_frame in{};
   const ssize_t got = ::recv(fd_, &in, sizeof(in), MSG_DONTWAIT);

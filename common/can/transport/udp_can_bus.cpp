@@ -1,5 +1,7 @@
 #include "common/can/transport/udp_can_bus.hpp"
 
+#include "common/can/transport/fd_wait.hpp"
+
 #include <arpa/inet.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -28,17 +30,6 @@ in_addr loopback() {
   in_addr addr{};
   addr.s_addr = htonl(INADDR_LOOPBACK);
   return addr;
-}
-
-timespec to_timespec(std::chrono::nanoseconds d) noexcept {
-  if (d.count() < 0) {
-    d = std::chrono::nanoseconds::zero();
-  }
-  const auto secs = std::chrono::duration_cast<std::chrono::seconds>(d);
-  timespec ts{};
-  ts.tv_sec = static_cast<time_t>(secs.count());
-  ts.tv_nsec = static_cast<long>((d - secs).count());
-  return ts;
 }
 
 }  // namespace
@@ -133,15 +124,9 @@ BusResult UdpCanBus::receive(CanFrame& frame, std::chrono::microseconds timeout)
   // One byte more than a frame, so an oversized datagram shows up as a wrong size.
   unsigned char buffer[sizeof(CanFrame) + 1];
   for (;;) {
-    pollfd pfd{recv_fd_, POLLIN, 0};
-    const timespec wait = to_timespec(deadline - Clock::now());
-    const int ready = ::ppoll(&pfd, 1, &wait, nullptr);
-    if (ready == 0) {
-      return BusResult::timeout;
-    }
-    if (ready < 0) {
-      // A signal (e.g. SIGTERM) ends the wait so the caller can look at its flags.
-      return errno == EINTR ? BusResult::timeout : BusResult::error;
+    if (const BusResult ready = wait_readable(recv_fd_, deadline - Clock::now());
+        ready != BusResult::ok) {
+      return ready;  // a signal (e.g. SIGTERM) ends the wait as a timeout
     }
     sockaddr_in source{};
     socklen_t source_len = sizeof(source);

@@ -48,10 +48,6 @@ struct Observed {
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
   std::map<std::uint32_t, ::mcnc::ChannelStatus> status;
-  // Every status sample passes the listener, so these are exact: per channel, the first cycle
-  // it was running and the cycle it reported its program end.
-  std::map<std::uint32_t, std::uint64_t> first_running;
-  std::map<std::uint32_t, std::uint64_t> first_end;
   std::map<std::uint32_t, AxisFeedback> feedback;
   std::vector<Alarm> alarms;
 };
@@ -103,12 +99,6 @@ LaunchResult Launcher::run(
         auto& slot = seen.status[s.channel()];
         if (s.cycle() >= slot.cycle()) {
           slot = s;
-        }
-        if (s.state() == CH_RUNNING) {
-          seen.first_running.emplace(s.channel(), s.cycle());  // keeps the first
-        }
-        if (s.program_end()) {
-          seen.first_end.emplace(s.channel(), s.cycle());
         }
       });
   dds::Reader<AxisFeedback> feedback_reader(node.participant(),
@@ -206,15 +196,11 @@ LaunchResult Launcher::run(
         p.ended = s.program_end();
         p.end_code = s.end_code();
         p.cycle = s.cycle();
+        // The channel reports its own start and end cycles: exact from any one sample.
+        p.seen_running = s.state() == CH_RUNNING || s.program_end() || s.run_start_cycle() > 0;
+        p.run_start_cycle = s.run_start_cycle();
+        p.end_cycle = s.end_cycle();
         last_cycle = std::max(last_cycle, s.cycle());
-      }
-      const auto id = static_cast<std::uint32_t>(ch.id);
-      if (auto r = seen.first_running.find(id); r != seen.first_running.end()) {
-        p.seen_running = true;
-        p.run_start_cycle = r->second;
-      }
-      if (auto e = seen.first_end.find(id); e != seen.first_end.end()) {
-        p.end_cycle = e->second;
       }
       list.push_back(p);
     }
@@ -430,26 +416,9 @@ LaunchResult Launcher::run(
   tracer.flush();
   if (!options_.trace_path.empty()) {
     const std::uint64_t merged_last = trace::merge_parts(merge_order, options_.trace_path);
-    // The trace's own events, not sampled status, give the exact (and in lockstep
-    // reproducible) start and end cycles: the run lasted until the last program end.
-    const auto runs = trace::channel_runs(options_.trace_path);
-    std::uint64_t last_end = 0;
-    bool all_ended = true;
-    for (auto& p : result.channels) {
-      auto it = runs.find(p.name);
-      if (it != runs.end()) {
-        p.seen_running = it->second.started;
-        p.run_start_cycle = it->second.start_cycle;
-        p.ended = it->second.ended;
-        p.end_cycle = it->second.end_cycle;
-        p.end_code = it->second.end_code;
-      }
-      if (p.has_program) {
-        all_ended = all_ended && p.ended;
-        last_end = std::max(last_end, p.end_cycle);
-      }
+    if (!all_ended) {
+      result.cycles = std::max(result.cycles, merged_last);  // the run's last cycle
     }
-    result.cycles = all_ended && last_end > 0 ? last_end : merged_last;
     std::ofstream out(options_.trace_path, std::ios::app);
     std::ostringstream summary;
     summary << "{\"cycle\":" << std::max(merged_last, result.cycles)

@@ -38,8 +38,8 @@ struct ChannelProgress {
   bool ended = false;
   std::int32_t end_code = -1;
   std::uint64_t cycle = 0;
-  std::uint64_t run_start_cycle = 0;  // first cycle seen running
-  std::uint64_t end_cycle = 0;        // cycle the program end was reported
+  std::uint64_t run_start_cycle = 0;  // as the channel reports it
+  std::uint64_t end_cycle = 0;        // as the channel reports it
   bool seen_running = false;
 };
 

@@ -100,7 +100,7 @@ void ChannelController::hold_outputs(bool valid) noexcept {
   }
 }
 
-const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
+const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
                                               std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
   if (first_cycle_) {
@@ -171,11 +171,12 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
     phase_ = Phase::fetch;
     out_.program_end = false;
     out_.end_code = -1;
+    out_.run_start_cycle = cycle;
     set_state(ChannelState::running);
   }
 
   if (out_.state == ChannelState::running) {
-    run_blocks(feedback);
+    run_blocks(cycle, feedback);
   }
   if (out_.state != ChannelState::running) {
     hold_outputs(out_.state != ChannelState::reset);
@@ -183,7 +184,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t /*cycle*/,
   return out_;
 }
 
-void ChannelController::run_blocks(std::span<const AxisFeedbackView> feedback) noexcept {
+void ChannelController::run_blocks(std::uint64_t cycle,
+                                   std::span<const AxisFeedbackView> feedback) noexcept {
   // A few zero-time blocks may finish in one cycle; the bound keeps the cycle short.
   for (int guard = 0; guard < 16 && out_.state == ChannelState::running; ++guard) {
     switch (phase_) {
@@ -244,6 +246,7 @@ void ChannelController::run_blocks(std::span<const AxisFeedbackView> feedback) n
         if (phase_ == Phase::ending) {
           out_.program_end = true;
           out_.end_code = current_.end_code;
+          out_.end_cycle = cycle;
           ChannelEvent end;
           end.kind = ChannelEventKind::program_end;
           end.line = current_.line;

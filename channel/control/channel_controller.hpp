@@ -70,6 +70,8 @@ struct ChannelOutput {
   int line = 0;
   bool program_end = false;
   int end_code = -1;
+  std::uint64_t run_start_cycle = 0;  // cycle the program started (valid once it has run)
+  std::uint64_t end_cycle = 0;        // cycle of its program end (valid when program_end)
   static constexpr std::size_t kMaxEvents = 8;
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -123,7 +125,7 @@ class ChannelController {
   void raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept;
   bool all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept;
   bool in_position(std::span<const AxisFeedbackView> feedback) const noexcept;
-  void run_blocks(std::span<const AxisFeedbackView> feedback) noexcept;
+  void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
 
   enum class Phase : std::uint8_t { fetch, moving, settling, ending, done };

@@ -52,6 +52,8 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.program_loaded(program_loaded);
   status.program_end(out.program_end);
   status.end_code(out.end_code);
+  status.run_start_cycle(out.run_start_cycle);
+  status.end_cycle(out.end_cycle);
   status_.write(status);
 
   for (std::size_t e = 0; e < out.event_count; ++e) {

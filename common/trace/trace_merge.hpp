@@ -13,22 +13,3 @@ std::uint64_t merge_parts(const std::vector<std::string>& part_paths, const std:
                           std::size_t* lines_written = nullptr);
 
 }  // namespace mcnc::trace
-
-#include <map>
-
-namespace mcnc::trace {
-
-// What a merged trace says of one channel's run: the cycle it first entered `running` and the
-// cycle of its `end` event.
-struct ChannelRun {
-  bool started = false;
-  std::uint64_t start_cycle = 0;
-  bool ended = false;
-  std::uint64_t end_cycle = 0;
-  int end_code = -1;
-};
-
-// Reads the `state` and `end` events of a merged trace, by channel name.
-std::map<std::string, ChannelRun> channel_runs(const std::string& trace_path);
-
-}  // namespace mcnc::trace

@@ -880,5 +880,36 @@ TEST(ChannelController, RandomProgramsEndExactlyOnTheirLastPoint) {
   }
 }
 
+TEST(ChannelController, ReportsTheCyclesItsProgramStartedAndEnded) {
+  Rig rig;
+  rig.load("G00 W2.\nG04 P100\nM30\n");
+  for (int i = 0; i < 3; ++i) {
+    rig.step();  // idle, not started yet
+  }
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  std::optional<std::uint64_t> running;
+  std::optional<std::uint64_t> ended;
+  for (const auto& e : rig.events) {
+    if (!running && e.event.kind == ChannelEventKind::state_changed &&
+        e.event.state == ChannelState::running) {
+      running = e.cycle;
+    }
+    if (e.event.kind == ChannelEventKind::program_end) {
+      ended = e.cycle;
+    }
+  }
+  ASSERT_TRUE(running && ended);
+  EXPECT_EQ(rig.last.run_start_cycle, *running);
+  EXPECT_EQ(rig.last.end_cycle, *ended);
+  EXPECT_GE(rig.last.end_cycle - rig.last.run_start_cycle, 100U);  // the dwell alone
+  // Both stay as reported until the next start.
+  for (int i = 0; i < 5; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.last.run_start_cycle, *running);
+  EXPECT_EQ(rig.last.end_cycle, *ended);
+}
+
 }  // namespace
 }  // namespace mcnc::channel

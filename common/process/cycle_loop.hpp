@@ -54,9 +54,6 @@ class CycleLoop {
     if (!lockstep_ || degraded_ || pace_) {
       cycle = clock::wait_for_cycle(origin_ns_, period_ns_, cycle, !lockstep_ || degraded_);
     }
-    if (cycle % 1000 == 0) {
-      node_.announce(PHASE_RUNNING, cycle);
-    }
     return true;
   }
 

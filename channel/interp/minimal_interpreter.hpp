@@ -2,6 +2,7 @@
 // The walking-skeleton interpreter: G00, G01, G04 (P ms integer / X,U seconds), F (units/min),
 // X/Z absolute, U/W incremental (X/U in diameter on diameter axes), N, comments, %, O, M30/M02.
 // The whole program is checked when loaded, so a bad block is an alarm before anything moves.
+#include "channel/interp/axis_address.hpp"
 #include "channel/interp/command_source.hpp"
 
 #include <array>
@@ -12,36 +13,6 @@
 namespace mcnc::interp {
 
 struct LexedLine;  // channel/interp/block_lexer.hpp
-
-// One axis of the channel as the program addresses it.
-struct AxisAddress {
-  char absolute = 'X';     // X, Z, Y, C ...
-  char incremental = 'U';  // U, W, V, H ...
-  bool diameter = false;
-};
-
-// The lathe's address pair for an axis letter: X-U, Z-W, Y-V, C-H; other letters have no
-// incremental twin ('\0').
-inline AxisAddress lathe_axis_address(char absolute, bool diameter) noexcept {
-  char incremental = '\0';
-  switch (absolute) {
-    case 'X':
-      incremental = 'U';
-      break;
-    case 'Z':
-      incremental = 'W';
-      break;
-    case 'Y':
-      incremental = 'V';
-      break;
-    case 'C':
-      incremental = 'H';
-      break;
-    default:
-      break;
-  }
-  return AxisAddress{absolute, incremental, diameter};
-}
 
 class MinimalInterpreter final : public CommandSource {
  public:

@@ -1,6 +1,7 @@
 // mcnc: the user's command line.
 #include "common/log/logging.hpp"
 #include "launch/run_command.hpp"
+#include "tools/mcnc/interp_command.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -11,11 +12,18 @@ int main(int argc, char** argv) {
   CLI::App* run =
       app.add_subcommand("run", "bring up a machine, run programs to their end, report");
   mcnc::launch::add_run_options(*run, run_args);
+  mcnc::tools::InterpArguments interp_args;
+  CLI::App* interp = app.add_subcommand(
+      "interp", "interpret a program and print its canonical commands as JSON lines");
+  mcnc::tools::add_interp_options(*interp, interp_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;  // bad command line is bad input
+  }
+  if (interp->parsed()) {
+    return mcnc::tools::execute_interp(interp_args);
   }
   mcnc::log::setup("mcnc", run_args.log_level);
   if (run->parsed()) {

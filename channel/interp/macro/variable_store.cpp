@@ -28,6 +28,10 @@ long long as_ll(std::int64_t n) {
 
 }  // namespace
 
+MacroAlarm VariableProvider::write(std::int64_t number, MacroValue /*value*/) {
+  return make_alarm(alarm::kReadOnlyVariable, 0, "variable #%lld is read-only", as_ll(number));
+}
+
 VariableRead MathConstantsProvider::read(std::int64_t number) const {
   return VariableRead{MacroValue::of(number == kFirst ? std::numbers::pi : std::numbers::e), {}};
 }
@@ -104,7 +108,10 @@ MacroAlarm VariableStore::write(std::int64_t number, MacroValue value) {
     *v = value;
     return {};
   }
-  if (n > 0 && provider_for(n) != nullptr) {
+  if (const ProviderRange* p = n > 0 ? provider_for(n) : nullptr) {
+    if (p->writable != nullptr) {
+      return p->writable->write(n, value);
+    }
     return make_alarm(alarm::kReadOnlyVariable, 0, "variable #%lld is read-only", as_ll(number));
   }
   return make_alarm(alarm::kUndefinedVariable, 0, "variable #%lld does not exist", as_ll(number));
@@ -164,8 +171,17 @@ MacroAlarm VariableStore::add_provider(std::int64_t first, std::int64_t last,
                         as_ll(last), as_ll(p.first), as_ll(p.last));
     }
   }
-  providers_.push_back(ProviderRange{first, last, &provider});
+  providers_.push_back(ProviderRange{first, last, &provider, nullptr});
   return {};
+}
+
+MacroAlarm VariableStore::add_writable_provider(std::int64_t first, std::int64_t last,
+                                                VariableProvider& provider) {
+  MacroAlarm a = add_provider(first, last, provider);
+  if (!a) {
+    providers_.back().writable = &provider;
+  }
+  return a;
 }
 
 void VariableStore::save_retained(std::ostream& out) const {

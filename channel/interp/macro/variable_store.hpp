@@ -46,6 +46,8 @@ class VariableProvider {
  public:
   virtual ~VariableProvider() = default;
   virtual VariableRead read(std::int64_t number) const = 0;
+  // Only called for ranges registered with add_writable_provider.
+  virtual MacroAlarm write(std::int64_t number, MacroValue value);
 };
 
 // #3101 = π and #3102 = e (dafeng L6569-6571), ready to register.
@@ -86,6 +88,9 @@ class VariableStore {
   // Registers `provider` (not owned; it must outlive the store) for [first, last]. The range may
   // not overlap #0-#999, #20000-#20999 or another provider.
   MacroAlarm add_provider(std::int64_t first, std::int64_t last, const VariableProvider& provider);
+  // The same for a range whose variables may also be written (offsets, timers...).
+  MacroAlarm add_writable_provider(std::int64_t first, std::int64_t last,
+                                   VariableProvider& provider);
 
   // #500-#999 as text, one `#n=value` line per non-null variable, in number order; values
   // round-trip exactly. load replaces all of #500-#999 (absent = null) or, on an alarm, none.
@@ -101,6 +106,7 @@ class VariableStore {
     std::int64_t first;
     std::int64_t last;
     const VariableProvider* provider;
+    VariableProvider* writable;  // nullptr: read-only
   };
   // The slot of a variable the store holds (number already mapped by own_number), or nullptr.
   MacroValue* slot(std::int64_t number);

@@ -1,0 +1,137 @@
+#pragma once
+// The canonical commands of the interpreter: what one pull of Interpreter::next() yields. The
+// JSON form (`mcnc interp`, docs/canonical-commands.md) prints these fields by op.
+//
+// Positions are machine coordinates of the channel's axes, in the channel's axis order: mm for
+// linear axes (diameter axes already halved to the physical radius), degrees for rotary axes.
+// Work offsets, G52/G50 shifts, the facing-turret mirror and the tool offset are applied.
+#include "channel/interp/canonical_command.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace mcnc::interp {
+
+enum class Op : std::uint8_t {
+  rapid,
+  linear,
+  arc,
+  dwell,
+  spindle,
+  spindle_select,
+  tool,
+  aux,
+  wait_input,
+  stop,
+  end,
+  sync,
+  axis_release,
+  axis_acquire,
+  axis_restore,
+  axis_couple,
+  axis_decouple,
+  spindle_sync,
+  spindle_unsync,
+  subcall,
+  subcall_release,
+  message,
+};
+
+enum class FeedMode : std::uint8_t { per_min, per_rev };
+enum class ArcDirection : std::uint8_t { cw, ccw };
+enum class Plane : std::uint8_t { xy, zx, yz };  // G17, G18, G19
+// keep: a speed for another channel's spindle whose direction this channel does not know.
+enum class SpindleDirection : std::uint8_t { cw, ccw, stop, orient, keep };
+
+// Spindle arguments of G114.1 and the G144 argument vector use these sizes.
+inline constexpr int kSubcallArgs = 26;  // #1-#26
+
+struct Command {
+  Op op = Op::rapid;
+  std::uint64_t n = 0;  // 1-based sequence number of the command in this run
+  int line = 0;         // 1-based line of the block in its file
+  const std::string* file = nullptr;  // the file of the block (owned by the interpreter)
+  // The interpreter evaluated nothing after this block and will not until it is pulled past:
+  // the read-ahead barriers of spec dafeng §4.3 and the multi-channel words.
+  bool barrier = false;
+
+  // rapid, linear, arc: end point of every channel axis (unmoved axes keep their position).
+  AxisVector to{};
+  double feed = 0.0;  // linear, arc: mm/min or mm/rev (FeedMode)
+  FeedMode feed_mode = FeedMode::per_min;
+  bool exact_stop = false;  // linear, arc: stop exactly at the end (G09, G61)
+  // arc: centre in the two plane axes (axis indices), direction, plane, extra full turns.
+  Plane plane = Plane::zx;
+  ArcDirection direction = ArcDirection::cw;
+  std::array<int, 2> center_axes{};
+  std::array<double, 2> center{};
+  int turns = 0;
+
+  // dwell: seconds, or spindle revolutions when in_revs.
+  double seconds = 0.0;
+  bool in_revs = false;
+
+  // spindle / spindle_select: spindle number within `channel` (0 = this channel).
+  int spindle = 1;
+  int channel = 0;
+  SpindleDirection spindle_direction = SpindleDirection::stop;
+  double rpm = 0.0;
+  bool css = false;        // constant surface speed: `surface` m/min, clamped at `max_rpm`
+  double surface = 0.0;
+  double max_rpm = 0.0;    // 0: no G50 S clamp programmed
+  bool has_angle = false;  // M05 PA: stop at `angle` degrees
+  double angle = 0.0;
+  int divisions = 0;       // M05 PN: stop at the nearest multiple of 360/PN
+
+  // tool
+  int tool = 0;
+  int offset = 0;
+
+  // aux, stop (0 = M00, 1 = M01), end (2 or 30)
+  int code = 0;
+
+  // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
+  int input = 0;
+  bool input_on = true;
+  double timeout_s = -1.0;
+  double width_s = -1.0;
+  double dwell_s = -1.0;
+
+  // sync (G04.1): no P = read-ahead barrier only; `all_channels` for Q-1 or P without Q.
+  bool has_p = false;
+  int p = 0;
+  bool all_channels = false;
+  std::array<std::uint64_t, 4> channels{};  // bit c set: channel c takes part (1-255)
+
+  // axis_release / axis_acquire: axis letter and exchange number; force for G141 P1.
+  char axis = 0;
+  int exchange = 0;
+  bool force = false;
+  // axis_couple / axis_decouple (system axis numbers); master 0 = from the machine's parameters.
+  int master = 0;
+  int slave = 0;
+
+  // spindle_sync (G114.1): P, Q, K, R.
+  int sync_p = 1;
+  int sync_q = 1;
+  int sync_k = 1;
+  double sync_r = 0.0;
+
+  // subcall (G144)
+  int program = 0;
+  bool wait = true;
+  int repeat = 1;
+  std::array<double, kSubcallArgs> args{};
+  std::uint32_t args_set = 0;  // bit i: #(i+1) was given
+
+  // message (#3006)
+  std::string text;
+
+  void set_channel(int c) { channels[static_cast<std::size_t>(c) / 64] |= 1ULL << (c % 64); }
+  bool has_channel(int c) const {
+    return (channels[static_cast<std::size_t>(c) / 64] >> (c % 64)) & 1ULL;
+  }
+};
+
+}  // namespace mcnc::interp

@@ -1,0 +1,222 @@
+#include "channel/interp/gcode_table.hpp"
+
+namespace mcnc::interp {
+
+namespace {
+
+constexpr const char* kCycles = "canned cycles (G70-G76, G90/G92/G94, G8x) come with the next "
+                                "interpreter release";
+constexpr const char* kThreads = "threading (G32, G32.1, G32.2/G32.3, G34) comes with the next "
+                                 "interpreter release";
+constexpr const char* kTnrc =
+    "tool-nose radius compensation (G41/G42) comes with the next interpreter release";
+constexpr const char* kOther = "this function of the dialect is not implemented";
+
+GCodeInfo not_yet(const char* topic) {
+  return GCodeInfo{GFunction::not_in_this_version, 0, topic};
+}
+
+// Codes that system A and B write the same way.
+GCodeInfo common_code(int code10) {
+  switch (code10) {
+    case 0:
+      return {GFunction::rapid, 1};
+    case 10:
+      return {GFunction::linear, 1};
+    case 20:
+      return {GFunction::arc_cw, 1};
+    case 30:
+      return {GFunction::arc_ccw, 1};
+    case 40:
+      return {GFunction::dwell, 0};
+    case 41:
+      return {GFunction::channel_sync, 0};
+    case 90:
+      return {GFunction::exact_stop, 0};
+    case 100:
+      return {GFunction::data_input, 0};
+    case 170:
+      return {GFunction::plane_xy, 16};
+    case 180:
+      return {GFunction::plane_zx, 16};
+    case 190:
+      return {GFunction::plane_yz, 16};
+    case 200:
+      return {GFunction::inch, 6};
+    case 210:
+      return {GFunction::metric, 6};
+    case 280:
+      return {GFunction::reference_return, 0};
+    case 300:
+      return {GFunction::reference_2_4, 0};
+    case 320:
+    case 321:
+    case 322:
+    case 323:
+    case 340:
+      return not_yet(kThreads);
+    case 400:
+      return {GFunction::tnrc_cancel, 7};
+    case 410:
+    case 420:
+      return not_yet(kTnrc);
+    case 504:
+      return {GFunction::axis_sync_off, 0};
+    case 514:
+      return {GFunction::axis_sync_on, 0};
+    case 520:
+      return {GFunction::local_system, 0};
+    case 530:
+      return {GFunction::machine_position, 0};
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+      return {GFunction::work_system, 14};
+    case 541:
+      return {GFunction::work_system_ext, 14};
+    case 610:
+      return {GFunction::exact_stop_mode, 15};
+    case 640:
+      return {GFunction::cutting_mode, 15};
+    case 650:
+      return {GFunction::macro_call, 0};
+    case 660:
+      return {GFunction::modal_call, 12};
+    case 670:
+      return {GFunction::modal_call_cancel, 12};
+    case 680:
+      return {GFunction::turret_mirror_on, 4};
+    case 690:
+      return {GFunction::turret_mirror_off, 4};
+    case 700:
+    case 710:
+    case 720:
+    case 730:
+    case 740:
+    case 750:
+    case 760:
+    case 830:
+    case 835:
+    case 836:
+    case 837:
+    case 840:
+    case 845:
+    case 846:
+    case 850:
+    case 870:
+    case 875:
+    case 876:
+    case 877:
+    case 880:
+    case 885:
+    case 886:
+    case 890:
+      return not_yet(kCycles);
+    case 800:
+      return {GFunction::drill_cancel, 10};
+    case 960:
+      return {GFunction::css_on, 2};
+    case 970:
+      return {GFunction::css_off, 2};
+    case 1130:
+      return {GFunction::spindle_sync_off, 0};
+    case 1141:
+      return {GFunction::spindle_sync_on, 0};
+    case 1400:
+      return {GFunction::axis_release, 0};
+    case 1410:
+      return {GFunction::axis_acquire, 0};
+    case 1420:
+      return {GFunction::axis_restore, 0};
+    case 1440:
+      return {GFunction::channel_call, 0};
+    case 1450:
+      return {GFunction::channel_release, 0};
+    case 50:
+    case 71:
+    case 1070:
+    case 109:
+    case 121:
+    case 131:
+    case 150:
+    case 160:
+    case 220:
+    case 230:
+    case 310:
+    case 318:
+    case 401:
+    case 411:
+    case 421:
+    case 501:
+    case 511:
+    case 502:
+    case 512:
+    case 508:
+    case 518:
+    case 681:
+    case 691:
+    case 801:
+    case 804:
+    case 811:
+    case 814:
+    case 981:
+    case 991:
+    case 1600:
+      return not_yet(kOther);
+    default:
+      return {};
+  }
+}
+
+}  // namespace
+
+GCodeInfo lookup_gcode(int code10, GCodeSystem system) {
+  if (system == GCodeSystem::a) {
+    switch (code10) {
+      case 500:
+        return {GFunction::coordinate_set, 0};
+      case 503:
+        return {GFunction::restore_origin, 0};
+      case 900:
+      case 920:
+      case 940:
+        return not_yet(kCycles);
+      case 980:
+        return {GFunction::feed_per_min, 5};
+      case 990:
+        return {GFunction::feed_per_rev, 5};
+      default:
+        return common_code(code10);
+    }
+  }
+  switch (code10) {
+    case 920:
+      return {GFunction::coordinate_set, 0};
+    case 921:
+      return {GFunction::restore_origin, 0};
+    case 770:
+    case 780:
+    case 790:
+      return not_yet(kCycles);
+    case 940:
+      return {GFunction::feed_per_min, 5};
+    case 950:
+      return {GFunction::feed_per_rev, 5};
+    case 900:
+      return {GFunction::absolute, 3};
+    case 910:
+      return {GFunction::incremental, 3};
+    // Canned-cycle return level: a group of its own (decision D13), 11 here.
+    case 980:
+      return {GFunction::return_initial, 11};
+    case 990:
+      return {GFunction::return_r_level, 11};
+    default:
+      return common_code(code10);
+  }
+}
+
+}  // namespace mcnc::interp

@@ -1,0 +1,75 @@
+#pragma once
+// The G codes of the lathe dialect by G-code system (spec dafeng §2.0, appendix L8068-8307):
+// what each code does and its modal group, numbered as the appendix numbers them so that #4001-
+// #4030 read group n at #4000+n. Codes are handled as 10 x the written value (G04.1 -> 41).
+#include "channel/interp/interp_config.hpp"
+
+#include <cstdint>
+
+namespace mcnc::interp {
+
+// What a G code means, independent of how system A or B spells it.
+enum class GFunction : std::uint8_t {
+  unknown,
+  not_in_this_version,  // a code of the spec whose turn has not come (canned cycles ...)
+  rapid,
+  linear,
+  arc_cw,
+  arc_ccw,
+  dwell,           // G04
+  channel_sync,    // G04.1
+  exact_stop,      // G09
+  data_input,      // G10
+  plane_xy,
+  plane_zx,
+  plane_yz,
+  inch,
+  metric,
+  reference_return,  // G28
+  reference_2_4,     // G30
+  tnrc_cancel,       // G40
+  coordinate_set,    // G50 (A) / G92 (B), also the S clamp
+  restore_origin,    // G50.3 (A) / G92.1 (B)
+  local_system,      // G52
+  machine_position,  // G53
+  work_system,       // G54-G59
+  work_system_ext,   // G54.1
+  exact_stop_mode,   // G61
+  cutting_mode,      // G64
+  macro_call,        // G65
+  modal_call,        // G66
+  modal_call_cancel, // G67
+  turret_mirror_on,  // G68
+  turret_mirror_off, // G69
+  drill_cancel,      // G80
+  css_on,            // G96
+  css_off,           // G97
+  feed_per_min,      // G98 (A) / G94 (B)
+  feed_per_rev,      // G99 (A) / G95 (B)
+  absolute,          // G90 (B)
+  incremental,       // G91 (B)
+  axis_sync_on,      // G51.4
+  axis_sync_off,     // G50.4
+  spindle_sync_off,  // G113
+  spindle_sync_on,   // G114.1
+  axis_release,      // G140
+  axis_acquire,      // G141
+  axis_restore,      // G142
+  channel_call,      // G144
+  channel_release,   // G145
+  return_initial,    // G98 (B): canned-cycle return level, kept for issue 4
+  return_r_level,    // G99 (B)
+};
+
+struct GCodeInfo {
+  GFunction function = GFunction::unknown;
+  int group = 0;  // 0: one-shot (group 00)
+  const char* topic = "";  // for not_in_this_version: what the code is
+};
+
+// `code10` = 10 x the G value (G01 -> 10, G54.1 -> 541).
+GCodeInfo lookup_gcode(int code10, GCodeSystem system);
+
+inline constexpr int kModalGroups = 30;  // #4001-#4030
+
+}  // namespace mcnc::interp

@@ -1,0 +1,86 @@
+#pragma once
+// The parameters of one channel's interpreter: the dialect choices of docs/dialect.md, the
+// channel's axes, reference points, initial offsets and the macro-call tables of spec dafeng
+// §4.13. `mcnc interp --param FILE` reads them from YAML (tools/mcnc/interp_params.cpp).
+#include "channel/interp/command.hpp"
+#include "channel/interp/macro/variable_store.hpp"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mcnc::interp {
+
+enum class GCodeSystem : std::uint8_t { a, b };  // param 2200.1
+// Which manual decides where the two dialects differ (docs/dialect.md, "Dafeng and GSK").
+enum class Dialect : std::uint8_t { dafeng, gsk };
+// Numbers without a decimal point: whole units (calculator type, spec D1) or least increments.
+enum class DecimalPoint : std::uint8_t { calculator, increment };
+
+inline constexpr int kMaxToolOffsets = 64;   // offset numbers 1-64 (spec L3626)
+inline constexpr int kExtendedWorkSystems = 99;  // G54.1 P1-P99
+inline constexpr int kWorkSystems = 6 + kExtendedWorkSystems;  // G54-G59, then P1-P99
+inline constexpr int kReferencePoints = 4;   // G28 (1), G30 P2-P4
+
+struct AxisConfig {
+  char name = 'X';
+  bool diameter = false;  // X programmed as a diameter (param 0001.1)
+  bool rotary = false;    // degrees (param 0001.2)
+  double start = 0.0;     // machine position when the program starts (physical)
+  std::array<double, kReferencePoints> reference{};  // machine positions (physical)
+  int exchange = 0;       // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
+};
+
+// Tool offset values as programmed: X as a diameter on a diameter axis.
+struct ToolOffsetValues {
+  double x = 0.0;
+  double z = 0.0;
+  double y = 0.0;
+  double radius = 0.0;
+  int tip = 0;
+};
+
+struct MacroCallTables {
+  int t_program = 0;  // 9000.1 / 9010: T calls O<t_program> like M98, #149 = T value
+  // Individual G-code macro calls (9020-9033): code x10 (G120 -> 1200), program.
+  std::vector<std::pair<int, int>> g_macro;
+  int g_range_count = 0, g_range_program = 0, g_range_first = 0;  // 9034-9036
+  std::vector<std::pair<int, int>> m_subprogram;                  // 9040-9053 (like M98)
+  int m_sub_range_count = 0, m_sub_range_program = 0, m_sub_range_first = 0;  // 9054-9056
+  std::vector<std::pair<int, int>> m_macro;                       // 9060-9073 (like G65)
+  int m_macro_range_count = 0, m_macro_range_program = 0, m_macro_range_first = 0;  // 9074-9076
+};
+
+struct InterpreterConfig {
+  GCodeSystem system = GCodeSystem::a;
+  Dialect dialect = Dialect::dafeng;
+  int channel = 1;
+  std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
+  DecimalPoint decimal_point = DecimalPoint::calculator;
+  double least_increment = 0.001;  // mm (param 0013)
+  FeedMode power_on_feed_mode = FeedMode::per_min;  // param 2201.3
+  bool arc_check = true;           // param 2203.1
+  double arc_tolerance = 0.01;     // mm, param 2210
+  bool dwell_in_revs_with_g99 = false;
+  std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
+  int max_tool = 99;                  // param 1511
+  int max_subprogram_nesting = 16;    // M98 (spec L6335)
+  int max_macro_nesting = 5;          // G65/G66 and macro-type calls (spec L7387)
+  // Macro statements one pull may evaluate without yielding a command: an endless loop
+  // without motion becomes an alarm instead of a hang.
+  std::uint64_t statement_limit = 100'000'000;
+  MacroCallTables calls;
+  macro::MacroDialect macro;  // locals, commons, vacant ordering; `channel` is set from above
+  std::string retained_file;  // #500-#999 are loaded from and saved to it ("" = not kept)
+  std::filesystem::path program_dir;  // searched by O number after the programs of the file
+
+  // Initial tables (what G10 writes).
+  std::array<ToolOffsetValues, kMaxToolOffsets + 1> tool_geometry{};  // [0] unused
+  std::array<ToolOffsetValues, kMaxToolOffsets + 1> tool_wear{};
+  std::vector<std::array<double, kMaxChannelAxes>> work_offsets =
+      std::vector<std::array<double, kMaxChannelAxes>>(kWorkSystems + 1);  // [0] = EXT
+};
+
+}  // namespace mcnc::interp

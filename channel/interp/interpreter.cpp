@@ -1,0 +1,42 @@
+#include "channel/interp/interpreter.hpp"
+
+#include "channel/interp/program_run.hpp"
+
+namespace mcnc::interp {
+
+Interpreter::Interpreter(const InterpreterConfig& config,
+                         const InterpreterEnvironment* environment)
+    : run_(std::make_unique<ProgramRun>(config, environment)) {}
+
+Interpreter::~Interpreter() = default;
+
+std::optional<ProgramAlarm> Interpreter::start(const std::string& text,
+                                               const std::string& file_name) {
+  return run_->start_text(text, file_name);
+}
+
+std::optional<ProgramAlarm> Interpreter::start_number(int number) {
+  return run_->start_number(number);
+}
+
+std::optional<InterpResult> Interpreter::next() {
+  return run_->next();
+}
+
+macro::VariableStore& Interpreter::variables() {
+  return run_->variables();
+}
+
+const AxisVector& Interpreter::machine_position() const {
+  return run_->machine();
+}
+
+double Interpreter::program_position(int axis) const {
+  return run_->program_position(axis);
+}
+
+std::optional<ProgramAlarm> Interpreter::save_retained() {
+  return run_->save_retained();
+}
+
+}  // namespace mcnc::interp

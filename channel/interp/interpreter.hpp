@@ -1,0 +1,65 @@
+#pragma once
+// The ISO lathe interpreter of one channel (spec dafeng, gsk; decisions in docs/dialect.md): a
+// pull-based generator of canonical commands. next() runs the program just far enough to yield
+// one command, so macro statements are evaluated only as far as commands have been pulled and a
+// read-ahead barrier (Command::barrier) is never looked past: a channel that holds its pulls at
+// a G04.1 has not evaluated the IF[#500...] after it.
+//
+// Pure: no I/O except reading programs (the program directory) and the retained-variable file;
+// no DDS, no threads, no clock (timers come through InterpreterEnvironment).
+#include "channel/interp/command.hpp"
+#include "channel/interp/interp_config.hpp"
+#include "channel/interp/macro/variable_store.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+
+namespace mcnc::interp {
+
+// What the interpreter asks of the world: a clock for #3001/#3002, the date for #3011/#3012.
+class InterpreterEnvironment {
+ public:
+  virtual ~InterpreterEnvironment() = default;
+  virtual double milliseconds() const { return 0.0; }  // monotonic
+  virtual double date() const { return 0.0; }          // yyyymmdd
+  virtual double time_of_day() const { return 0.0; }   // hhmmss
+};
+
+using InterpResult = std::variant<Command, ProgramAlarm>;
+
+class ProgramRun;  // the run state and its execution (program_run.hpp)
+
+class Interpreter {
+ public:
+  explicit Interpreter(const InterpreterConfig& config,
+                       const InterpreterEnvironment* environment = nullptr);
+  ~Interpreter();
+  Interpreter(const Interpreter&) = delete;
+  Interpreter& operator=(const Interpreter&) = delete;
+
+  // Loads a program file's text: its first program is the main program; the others are found
+  // by number (M98, G65, ...) before the program directory is searched. Every line of a program
+  // is parsed when the program is loaded, so a syntax error is an alarm before anything moves.
+  std::optional<ProgramAlarm> start(const std::string& text, const std::string& file_name);
+  // Starts program O<number> of the program directory.
+  std::optional<ProgramAlarm> start_number(int number);
+
+  // The next command; or an alarm (the program stops there, later pulls return nullopt); or
+  // nullopt once the program has ended.
+  std::optional<InterpResult> next();
+
+  macro::VariableStore& variables();
+  // Physical machine position of each channel axis after the last pulled command.
+  const AxisVector& machine_position() const;
+  // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
+  double program_position(int axis) const;
+  // Saves #500-#999 to the configured retained file (also done when the program ends).
+  std::optional<ProgramAlarm> save_retained();
+
+ private:
+  std::unique_ptr<ProgramRun> run_;
+};
+
+}  // namespace mcnc::interp

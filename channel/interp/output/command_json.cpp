@@ -1,0 +1,401 @@
+#include "channel/interp/output/command_json.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace mcnc::interp::output {
+
+namespace {
+
+// Shortest round-trip form, after rounding to 1e-9 so that binary noise (0.30000000000000004)
+// does not reach the output; -0 prints as 0.
+void number(std::string& out, double v) {
+  double r = std::round(v * 1e9) / 1e9;
+  if (r == 0.0 || !std::isfinite(r)) {
+    r = 0.0;
+  }
+  char buf[40];
+  const auto res = std::to_chars(buf, buf + sizeof buf, r);
+  out.append(buf, res.ptr);
+}
+
+void integer(std::string& out, long long v) {
+  char buf[24];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, res.ptr);
+}
+
+void string(std::string& out, const std::string& s) {
+  out += '"';
+  for (const char c : s) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          out += buf;
+        } else {
+          out += c;
+        }
+    }
+  }
+  out += '"';
+}
+
+void key(std::string& out, const char* k) {
+  out += ",\"";
+  out += k;
+  out += "\":";
+}
+
+void positions(std::string& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
+  out += '{';
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (i > 0) {
+      out += ',';
+    }
+    out += '"';
+    out += axes[i].name;
+    out += "\":";
+    number(out, v[i]);
+  }
+  out += '}';
+}
+
+void feed(std::string& out, const Command& c) {
+  key(out, "feed");
+  number(out, c.feed);
+  key(out, "feed_mode");
+  out += c.feed_mode == FeedMode::per_min ? "\"per_min\"" : "\"per_rev\"";
+  if (c.exact_stop) {
+    key(out, "exact_stop");
+    out += "true";
+  }
+}
+
+const char* op_name(Op op) {
+  switch (op) {
+    case Op::rapid:
+      return "rapid";
+    case Op::linear:
+      return "linear";
+    case Op::arc:
+      return "arc";
+    case Op::dwell:
+      return "dwell";
+    case Op::spindle:
+      return "spindle";
+    case Op::spindle_select:
+      return "spindle_select";
+    case Op::tool:
+      return "tool";
+    case Op::aux:
+      return "aux";
+    case Op::wait_input:
+      return "wait_input";
+    case Op::stop:
+      return "stop";
+    case Op::end:
+      return "end";
+    case Op::sync:
+      return "sync";
+    case Op::axis_release:
+      return "axis_release";
+    case Op::axis_acquire:
+      return "axis_acquire";
+    case Op::axis_restore:
+      return "axis_restore";
+    case Op::axis_couple:
+      return "axis_couple";
+    case Op::axis_decouple:
+      return "axis_decouple";
+    case Op::spindle_sync:
+      return "spindle_sync";
+    case Op::spindle_unsync:
+      return "spindle_unsync";
+    case Op::subcall:
+      return "subcall";
+    case Op::subcall_release:
+      return "subcall_release";
+    case Op::message:
+      return "message";
+  }
+  return "?";
+}
+
+const char* direction_name(SpindleDirection d) {
+  switch (d) {
+    case SpindleDirection::cw:
+      return "\"cw\"";
+    case SpindleDirection::ccw:
+      return "\"ccw\"";
+    case SpindleDirection::stop:
+      return "\"stop\"";
+    case SpindleDirection::orient:
+      return "\"orient\"";
+    case SpindleDirection::keep:
+      return "\"keep\"";
+  }
+  return "\"?\"";
+}
+
+}  // namespace
+
+void append_json(std::string& out, const Command& c, const std::vector<AxisConfig>& axes,
+                 const std::string& main_file) {
+  out += "{\"n\":";
+  integer(out, static_cast<long long>(c.n));
+  key(out, "line");
+  integer(out, c.line);
+  if (c.file != nullptr && *c.file != main_file) {
+    key(out, "file");
+    string(out, *c.file);
+  }
+  key(out, "op");
+  out += '"';
+  out += op_name(c.op);
+  out += '"';
+  switch (c.op) {
+    case Op::rapid:
+      key(out, "to");
+      positions(out, c.to, axes);
+      break;
+    case Op::linear:
+      key(out, "to");
+      positions(out, c.to, axes);
+      feed(out, c);
+      break;
+    case Op::arc: {
+      key(out, "to");
+      positions(out, c.to, axes);
+      key(out, "center");
+      out += "{\"";
+      out += axes[static_cast<std::size_t>(c.center_axes[0])].name;
+      out += "\":";
+      number(out, c.center[0]);
+      out += ",\"";
+      out += axes[static_cast<std::size_t>(c.center_axes[1])].name;
+      out += "\":";
+      number(out, c.center[1]);
+      out += '}';
+      key(out, "dir");
+      out += c.direction == ArcDirection::cw ? "\"cw\"" : "\"ccw\"";
+      key(out, "plane");
+      out += c.plane == Plane::xy ? "\"XY\"" : c.plane == Plane::zx ? "\"ZX\"" : "\"YZ\"";
+      if (c.turns > 0) {
+        key(out, "turns");
+        integer(out, c.turns);
+      }
+      feed(out, c);
+      break;
+    }
+    case Op::dwell:
+      key(out, c.in_revs ? "revs" : "seconds");
+      number(out, c.seconds);
+      break;
+    case Op::spindle:
+      if (c.channel != 0) {
+        key(out, "channel");
+        integer(out, c.channel);
+      }
+      key(out, "spindle");
+      integer(out, c.spindle);
+      key(out, "dir");
+      out += direction_name(c.spindle_direction);
+      if (c.css) {
+        key(out, "css");
+        out += "{\"surface\":";
+        number(out, c.surface);
+        out += ",\"max_rpm\":";
+        if (c.max_rpm > 0.0) {
+          number(out, c.max_rpm);
+        } else {
+          out += "null";
+        }
+        out += '}';
+      } else {
+        key(out, "rpm");
+        number(out, c.rpm);
+      }
+      if (c.has_angle) {
+        key(out, "angle");
+        number(out, c.angle);
+      }
+      if (c.divisions > 0) {
+        key(out, "divisions");
+        integer(out, c.divisions);
+      }
+      break;
+    case Op::spindle_select:
+      if (c.channel != 0) {
+        key(out, "channel");
+        integer(out, c.channel);
+      }
+      key(out, "spindle");
+      integer(out, c.spindle);
+      break;
+    case Op::tool:
+      key(out, "tool");
+      integer(out, c.tool);
+      key(out, "offset");
+      integer(out, c.offset);
+      break;
+    case Op::aux:
+      key(out, "code");
+      integer(out, c.code);
+      break;
+    case Op::wait_input:
+      key(out, "input");
+      integer(out, c.input);
+      key(out, "state");
+      out += c.input_on ? "\"on\"" : "\"off\"";
+      if (c.timeout_s >= 0.0) {
+        key(out, "timeout");
+        number(out, c.timeout_s);
+      }
+      if (c.width_s >= 0.0) {
+        key(out, "width");
+        number(out, c.width_s);
+      }
+      if (c.dwell_s >= 0.0) {
+        key(out, "seconds");
+        number(out, c.dwell_s);
+      }
+      break;
+    case Op::stop:
+      key(out, "code");
+      out += c.code == 1 ? "\"M01\"" : "\"M00\"";
+      break;
+    case Op::end:
+      key(out, "code");
+      out += c.code == 2 ? "\"M02\"" : "\"M30\"";
+      break;
+    case Op::sync:
+      if (c.has_p) {
+        key(out, "p");
+        integer(out, c.p);
+        key(out, "channels");
+        if (c.all_channels) {
+          out += "\"all\"";
+        } else {
+          out += '[';
+          bool first = true;
+          for (int ch = 1; ch <= 255; ++ch) {
+            if (c.has_channel(ch)) {
+              if (!first) {
+                out += ',';
+              }
+              first = false;
+              integer(out, ch);
+            }
+          }
+          out += ']';
+        }
+      }
+      break;
+    case Op::axis_release:
+    case Op::axis_acquire:
+      key(out, "axis");
+      out += '"';
+      out += c.axis;
+      out += '"';
+      key(out, "exchange");
+      integer(out, c.exchange);
+      if (c.op == Op::axis_acquire) {
+        key(out, "force");
+        out += c.force ? "true" : "false";
+      }
+      break;
+    case Op::axis_couple:
+      if (c.master != 0) {
+        key(out, "master");
+        integer(out, c.master);
+      }
+      key(out, "slave");
+      integer(out, c.slave);
+      break;
+    case Op::axis_decouple:
+      key(out, "slave");
+      integer(out, c.slave);
+      break;
+    case Op::spindle_sync:
+      key(out, "p");
+      integer(out, c.sync_p);
+      key(out, "q");
+      integer(out, c.sync_q);
+      key(out, "k");
+      integer(out, c.sync_k);
+      key(out, "r");
+      number(out, c.sync_r);
+      break;
+    case Op::subcall: {
+      key(out, "channel");
+      integer(out, c.channel);
+      key(out, "program");
+      integer(out, c.program);
+      key(out, "wait");
+      out += c.wait ? "true" : "false";
+      key(out, "repeat");
+      integer(out, c.repeat);
+      key(out, "args");
+      out += '{';
+      bool first = true;
+      for (int i = 0; i < kSubcallArgs; ++i) {
+        if ((c.args_set >> i) & 1U) {
+          if (!first) {
+            out += ',';
+          }
+          first = false;
+          out += '"';
+          integer(out, i + 1);
+          out += "\":";
+          number(out, c.args[static_cast<std::size_t>(i)]);
+        }
+      }
+      out += '}';
+      break;
+    }
+    case Op::message:
+      key(out, "text");
+      string(out, c.text);
+      break;
+    case Op::axis_restore:
+    case Op::spindle_unsync:
+    case Op::subcall_release:
+      break;
+  }
+  if (c.barrier) {
+    key(out, "barrier");
+    out += "true";
+  }
+  out += "}\n";
+}
+
+void append_json(std::string& out, const ProgramAlarm& a) {
+  out += "{\"op\":\"alarm\",\"number\":";
+  integer(out, a.number);
+  key(out, "text");
+  string(out, a.text);
+  key(out, "file");
+  string(out, a.program);
+  key(out, "line");
+  integer(out, a.line);
+  key(out, "col");
+  integer(out, a.column);
+  out += "}\n";
+}
+
+}  // namespace mcnc::interp::output

@@ -1,0 +1,558 @@
+#include "channel/interp/parse/line_parser.hpp"
+
+#include "channel/interp/program_alarms.hpp"
+#include "channel/interp/program_chars.hpp"
+
+#include <array>
+#include <charconv>
+#include <cstdio>
+#include <string>
+#include <system_error>
+
+namespace mcnc::interp::parse {
+
+namespace {
+
+constexpr std::array<std::array<char, 2>, 15> kTwoLetterAddresses{{{'U', 'X'},
+                                                                   {'U', 'Y'},
+                                                                   {'U', 'Z'},
+                                                                   {'U', 'A'},
+                                                                   {'U', 'B'},
+                                                                   {'U', 'C'},
+                                                                   {'P', 'S'},
+                                                                   {'S', 'P'},
+                                                                   {'N', 'Q'},
+                                                                   {'P', 'Q'},
+                                                                   {'U', 'R'},
+                                                                   {'P', 'A'},
+                                                                   {'P', 'N'},
+                                                                   {'D', 'T'},
+                                                                   {'D', 'C'}}};
+
+bool is_two_letter_address(char a, char b) {
+  for (const auto& pair : kTwoLetterAddresses) {
+    if (pair[0] == a && pair[1] == b) {
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string describe_char(char c) {
+  const auto byte = static_cast<unsigned char>(c);
+  char buf[32];
+  if (byte >= 0x21 && byte < 0x7f) {
+    std::snprintf(buf, sizeof buf, "'%c'", c);
+  } else {
+    std::snprintf(buf, sizeof buf, "byte 0x%02X", byte);
+  }
+  return buf;
+}
+
+// Parses one line. `text_` is the upper-cased line with comments blanked (columns preserved)
+// and cut at `;` or `//`.
+class LineParser {
+ public:
+  LineParser(std::string text, LineParse& out) : text_(std::move(text)), out_(out) {}
+
+  void run() {
+    skip_blanks();
+    if (at_end()) {
+      return;
+    }
+    if (peek() == '%') {
+      return;
+    }
+    if (peek() == '/') {
+      ++pos_;
+      out_.line.skip_level = 1;
+      if (!at_end() && is_digit(peek())) {
+        out_.line.skip_level = peek() - '0';
+        ++pos_;
+        if (out_.line.skip_level == 0) {
+          fail(alarm::kBadBlockSkip, "block skip level must be 1-9", pos_);
+          return;
+        }
+      }
+      skip_blanks();
+      if (!at_end() && !is_letter(peek()) && peek() != '#') {
+        fail(alarm::kBadBlockSkip, "block skip '/' must be followed by a block", pos_ + 1);
+        return;
+      }
+      if (!at_end() && peek() == '#' && pos_ > 0 && text_[pos_ - 1] == '/') {
+        fail(alarm::kBadBlockSkip, "block skip '/' must be followed by a block", pos_ + 1);
+        return;
+      }
+    }
+    if (!at_end() && peek() == 'O' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1])) {
+      return;  // the program-number line; the program splitter has checked it
+    }
+    if (!at_end() && peek() == 'N' && pos_ + 1 < text_.size() && !is_letter(text_[pos_ + 1])) {
+      if (!parse_sequence()) {
+        return;
+      }
+    }
+    skip_blanks();
+    if (at_end()) {
+      return;
+    }
+    parse_statement(out_.line.statement);
+  }
+
+ private:
+  bool at_end() const { return pos_ >= text_.size(); }
+  char peek() const { return text_[pos_]; }
+  int column(std::size_t index) const { return static_cast<int>(index) + 1; }
+  void skip_blanks() {
+    while (!at_end() && is_blank(peek())) {
+      ++pos_;
+    }
+  }
+  bool failed() const { return out_.error.has_value(); }
+  void fail(int number, std::string text, std::size_t index) {
+    if (!out_.error) {
+      out_.error = ParseError{number, std::move(text), column(index)};
+    }
+  }
+  void fail_at_column(int number, std::string text, int col) {
+    if (!out_.error) {
+      out_.error = ParseError{number, std::move(text), col};
+    }
+  }
+
+  bool parse_sequence() {
+    const std::size_t start = pos_;
+    ++pos_;
+    skip_blanks();
+    const std::size_t digits = pos_;
+    while (!at_end() && is_digit(peek())) {
+      ++pos_;
+    }
+    if (pos_ == digits) {
+      fail(alarm::kIntegerExpected, "sequence number N needs digits", start);
+      return false;
+    }
+    if (!at_end() && (peek() == '.' || peek() == '#' || peek() == '[')) {
+      fail(alarm::kIntegerExpected, "sequence number N must be a plain integer", start);
+      return false;
+    }
+    if (pos_ - digits > 8) {
+      fail(alarm::kValueOutOfRange, "sequence number N has more than 8 digits", start);
+      return false;
+    }
+    std::int64_t n = 0;
+    std::from_chars(text_.data() + digits, text_.data() + pos_, n);
+    out_.line.sequence = n;
+    out_.line.sequence_column = column(start);
+    return true;
+  }
+
+  // The run of letters at the current position, upper case.
+  std::string_view letters_at(std::size_t i) const {
+    std::size_t j = i;
+    while (j < text_.size() && is_letter(text_[j])) {
+      ++j;
+    }
+    return std::string_view(text_).substr(i, j - i);
+  }
+
+  bool keyword(std::string_view word) {
+    const std::string_view run = letters_at(pos_);
+    if (run != word) {
+      return false;
+    }
+    pos_ += word.size();
+    return true;
+  }
+
+  void expect_end(const char* what) {
+    skip_blanks();
+    if (!failed() && !at_end()) {
+      fail(alarm::kWordsAfterStatement, std::string("unexpected text after ") + what, pos_);
+    }
+  }
+
+  // Parses an expression at pos_ into `s.expressions`; returns its index or -1.
+  int expression(Statement& s, macro::ParseMode mode) {
+    const std::string_view rest = std::string_view(text_).substr(pos_);
+    macro::ParseResult r = macro::parse_expression(rest, column(pos_), mode);
+    if (r.alarm) {
+      fail_at_column(r.alarm.number, std::string(r.alarm.text()), r.alarm.column);
+      return -1;
+    }
+    if (r.expression.empty()) {
+      fail(alarm::kMalformedNumber, "expression expected", pos_);
+      return -1;
+    }
+    pos_ += r.end;
+    s.expressions.push_back(std::move(r.expression));
+    return static_cast<int>(s.expressions.size()) - 1;
+  }
+
+  // `[cond]` after IF / ELIF / WHILE.
+  int bracket_condition(Statement& s, const char* what) {
+    skip_blanks();
+    if (at_end() || peek() != '[') {
+      fail(alarm::kMalformedNumber, std::string(what) + " needs a condition in [ ]", pos_);
+      return -1;
+    }
+    return expression(s, macro::ParseMode::kOperandPrefix);
+  }
+
+  bool integer_label(int& label, const char* what) {
+    skip_blanks();
+    const std::size_t start = pos_;
+    while (!at_end() && is_digit(peek())) {
+      ++pos_;
+    }
+    if (pos_ == start || pos_ - start > 9) {
+      fail(alarm::kIntegerExpected, std::string(what) + " needs a positive integer", start);
+      return false;
+    }
+    std::from_chars(text_.data() + start, text_.data() + pos_, label);
+    if (label <= 0) {
+      fail(alarm::kIntegerExpected, std::string(what) + " needs a positive integer", start);
+      return false;
+    }
+    return true;
+  }
+
+  void parse_statement(Statement& s) {
+    s.column = column(pos_);
+    const char c = peek();
+    if (c == '#') {
+      s.kind = StatementKind::assignment;
+      const std::string_view rest = std::string_view(text_).substr(pos_);
+      macro::AssignmentParse a = macro::parse_assignment(rest, column(pos_));
+      if (a.alarm) {
+        fail_at_column(a.alarm.number, std::string(a.alarm.text()), a.alarm.column);
+        return;
+      }
+      s.assignment = std::move(a.assignment);
+      pos_ = text_.size();
+      return;
+    }
+    if (!is_letter(c)) {
+      fail(alarm::kUnexpectedCharacter, "unexpected character " + describe_char(c), pos_);
+      return;
+    }
+    const std::string_view run = letters_at(pos_);
+    if (run == "IF") {
+      pos_ += 2;
+      s.condition = bracket_condition(s, "IF");
+      if (failed()) {
+        return;
+      }
+      skip_blanks();
+      if (at_end()) {
+        s.kind = StatementKind::if_block;
+        return;
+      }
+      s.kind = StatementKind::if_then;
+      keyword("THEN");
+      skip_blanks();
+      if (at_end()) {
+        fail(alarm::kWordsAfterStatement, "IF [...] THEN needs a statement", pos_);
+        return;
+      }
+      s.then = std::make_unique<Statement>();
+      parse_statement(*s.then);
+      const StatementKind k = s.then->kind;
+      if (!failed() && k != StatementKind::block && k != StatementKind::assignment &&
+          k != StatementKind::go_to && k != StatementKind::loop_break &&
+          k != StatementKind::loop_continue) {
+        fail_at_column(alarm::kWordsAfterStatement,
+                       "IF [...] may only be followed by a block, an assignment, GOTO, BREAK "
+                       "or CONTINUE on its line",
+                       s.then->column);
+      }
+      return;
+    }
+    if (run == "ELIF" || run == "ELSEIF") {
+      pos_ += run.size();
+      s.kind = StatementKind::elif;
+      s.condition = bracket_condition(s, "ELIF");
+      expect_end("ELIF [...]");
+      return;
+    }
+    if (run == "ELSE") {
+      pos_ += 4;
+      s.kind = StatementKind::else_branch;
+      expect_end("ELSE");
+      return;
+    }
+    if (run == "ENDIF") {
+      pos_ += 5;
+      s.kind = StatementKind::endif;
+      expect_end("ENDIF");
+      return;
+    }
+    if (run == "WHILE") {
+      pos_ += 5;
+      s.kind = StatementKind::while_do;
+      s.condition = bracket_condition(s, "WHILE");
+      if (failed()) {
+        return;
+      }
+      skip_blanks();
+      if (!keyword("DO")) {
+        fail(alarm::kWordsAfterStatement, "WHILE [...] needs DO m", pos_);
+        return;
+      }
+      if (integer_label(s.label, "DO")) {
+        expect_end("DO m");
+      }
+      return;
+    }
+    if (run == "END") {
+      pos_ += 3;
+      s.kind = StatementKind::loop_end;
+      if (integer_label(s.label, "END")) {
+        expect_end("END m");
+      }
+      return;
+    }
+    if (run == "GOTO" || run == "GOTOF" || run == "GOTOB") {
+      pos_ += run.size();
+      s.kind = StatementKind::go_to;
+      s.direction = run == "GOTOF"   ? GotoDirection::forward
+                    : run == "GOTOB" ? GotoDirection::backward
+                                     : GotoDirection::wrap;
+      skip_blanks();
+      s.target = expression(s, macro::ParseMode::kExpressionPrefix);
+      expect_end("GOTO n");
+      return;
+    }
+    if (run == "BREAK" || run == "BRK") {
+      pos_ += run.size();
+      s.kind = StatementKind::loop_break;
+      expect_end("BREAK");
+      return;
+    }
+    if (run == "CONTINUE" || run == "CONT") {
+      pos_ += run.size();
+      s.kind = StatementKind::loop_continue;
+      expect_end("CONTINUE");
+      return;
+    }
+    if (run == "CH") {
+      pos_ += 2;
+      s.kind = StatementKind::channel_only;
+      if (integer_label(s.label, "CH") && s.label > 255) {
+        fail_at_column(alarm::kValueOutOfRange, "CH n: n must be 1-255", s.column);
+        return;
+      }
+      expect_end("CH n");
+      return;
+    }
+    if (run.size() >= 3) {
+      std::string name(run);
+      fail(alarm::kUnsupportedStatement,
+           name + " is not a statement this interpreter knows (macro functions such as DPRNT, "
+                  "SPSV or MBRD are not supported)",
+           pos_);
+      return;
+    }
+    s.kind = StatementKind::block;
+    parse_words(s);
+  }
+
+  void parse_words(Statement& s) {
+    while (!failed()) {
+      skip_blanks();
+      if (at_end()) {
+        return;
+      }
+      Word w;
+      w.column = column(pos_);
+      const char c = peek();
+      if (c == ',') {
+        ++pos_;
+        if (at_end() || (peek() != 'C' && peek() != 'R' && peek() != 'A')) {
+          fail(alarm::kUnknownAddress, "',' must be followed by C, R or A", pos_ - 1);
+          return;
+        }
+        w.address = Address{peek(), 0, true};
+        ++pos_;
+      } else if (is_letter(c)) {
+        const char next = pos_ + 1 < text_.size() ? text_[pos_ + 1] : '\0';
+        if (is_letter(next)) {
+          if (!is_two_letter_address(c, next)) {
+            const std::string_view run = letters_at(pos_);
+            fail(alarm::kUnknownAddress, "unknown address " + std::string(run), pos_);
+            return;
+          }
+          w.address = Address{c, next, false};
+          pos_ += 2;
+        } else {
+          if (c == 'O') {
+            fail(alarm::kUnknownAddress, "O is only allowed at the start of a program", pos_);
+            return;
+          }
+          w.address = Address{c, 0, false};
+          ++pos_;
+        }
+      } else if (c == '#') {
+        fail(alarm::kUnexpectedCharacter,
+             "a macro statement cannot follow NC words on one line", pos_);
+        return;
+      } else {
+        fail(alarm::kUnexpectedCharacter, "unexpected character " + describe_char(c), pos_);
+        return;
+      }
+      parse_index(w);
+      if (!failed()) {
+        parse_value(s, w);
+      }
+      if (!failed()) {
+        s.words.push_back(w);
+      }
+    }
+  }
+
+  // `S2=`: digits followed by '=' are a sub-index.
+  void parse_index(Word& w) {
+    std::size_t i = pos_;
+    while (i < text_.size() && is_blank(text_[i])) {
+      ++i;
+    }
+    const std::size_t digits = i;
+    while (i < text_.size() && is_digit(text_[i])) {
+      ++i;
+    }
+    if (i == digits || i - digits > 3) {
+      return;
+    }
+    std::size_t j = i;
+    while (j < text_.size() && is_blank(text_[j])) {
+      ++j;
+    }
+    if (j < text_.size() && text_[j] == '=') {
+      std::from_chars(text_.data() + digits, text_.data() + i, w.index);
+      pos_ = j + 1;
+    }
+  }
+
+  void parse_value(Statement& s, Word& w) {
+    skip_blanks();
+    std::size_t i = pos_;
+    bool negative = false;
+    if (i < text_.size() && (text_[i] == '+' || text_[i] == '-')) {
+      negative = text_[i] == '-';
+      ++i;
+      while (i < text_.size() && is_blank(text_[i])) {
+        ++i;
+      }
+    }
+    if (i < text_.size() && (is_digit(text_[i]) || text_[i] == '.')) {
+      const std::size_t begin = i;
+      int digits = 0;
+      while (i < text_.size() && is_digit(text_[i])) {
+        ++i;
+        ++digits;
+      }
+      if (i < text_.size() && text_[i] == '.') {
+        w.has_point = true;
+        ++i;
+        while (i < text_.size() && is_digit(text_[i])) {
+          ++i;
+          ++digits;
+        }
+      }
+      if (digits == 0 || (i < text_.size() && (text_[i] == '.' || text_[i] == '#' ||
+                                                 text_[i] == '[' || text_[i] == '='))) {
+        fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
+                       w.column);
+        return;
+      }
+      double magnitude = 0.0;
+      const auto [ptr, ec] = std::from_chars(text_.data() + begin, text_.data() + i, magnitude);
+      if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
+        fail_at_column(alarm::kValueOutOfRange, "value of " + name_of(w.address) + " out of range",
+                       w.column);
+        return;
+      }
+      if (ec != std::errc() || ptr != text_.data() + i) {
+        fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
+                       w.column);
+        return;
+      }
+      w.literal = true;
+      w.value = negative ? -magnitude : magnitude;
+      pos_ = i;
+      return;
+    }
+    if (at_end() || (!is_letter(peek()) && peek() != '#' && peek() != '[' && peek() != '-' &&
+                     peek() != '+')) {
+      fail_at_column(alarm::kMalformedNumber, name_of(w.address) + " needs a value", w.column);
+      return;
+    }
+    if (is_letter(peek()) && letters_at(pos_).size() < 2) {
+      fail_at_column(alarm::kMalformedNumber, name_of(w.address) + " needs a value", w.column);
+      return;
+    }
+    w.literal = false;
+    w.expression = expression(s, macro::ParseMode::kOperandPrefix);
+  }
+
+  static std::string name_of(const Address& a) {
+    std::string n;
+    if (a.comma) {
+      n += ',';
+    }
+    n += a.first;
+    if (a.second != 0) {
+      n += a.second;
+    }
+    return n;
+  }
+
+  std::string text_;
+  LineParse& out_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+LineParse parse_line(std::string_view text, int line_number) {
+  LineParse out;
+  out.line.line = line_number;
+  if (!text.empty() && text.back() == '\r') {
+    text.remove_suffix(1);
+  }
+  // Blank comments (keeping columns), remember the first one, cut at `;` or `//`, upper-case.
+  std::string work(text);
+  std::size_t end = work.size();
+  bool have_message = false;
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    const char c = work[i];
+    if (c == ';' || (c == '/' && i + 1 < work.size() && work[i + 1] == '/')) {
+      end = i;
+      break;
+    }
+    if (c == '(') {
+      const std::size_t close = work.find(')', i + 1);
+      if (close == std::string::npos) {
+        out.error = ParseError{alarm::kUnclosedComment, "comment '(' not closed on its line",
+                               static_cast<int>(i) + 1};
+        return out;
+      }
+      if (!have_message) {
+        out.line.message = std::string(text.substr(i + 1, close - i - 1));
+        have_message = true;
+      }
+      for (std::size_t j = i; j <= close; ++j) {
+        work[j] = ' ';
+      }
+      i = close;
+      continue;
+    }
+    work[i] = to_upper(c);
+  }
+  work.resize(end);
+  LineParser parser(std::move(work), out);
+  parser.run();
+  return out;
+}
+
+}  // namespace mcnc::interp::parse

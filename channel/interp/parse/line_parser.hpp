@@ -1,0 +1,28 @@
+#pragma once
+// Parses one program line into a Line (statement.hpp). Lexical rules: spec dafeng §1.7-§1.9 and
+// docs/dialect.md "Blocks and words": comments `( )`, `;` and `//` (the rest of the line), block
+// skip `/` or `/n` at the start, an optional N word, then one statement. Words are one or two
+// letters (UX..UC, PS, SP, NQ, PQ, UR, PA, PN, DT, DC), a comma word (,C ,R ,A), an optional
+// sub-index (`S2=`), and a literal or a macro operand (`#1`, `-#1`, `[expr]`, `SIN[30]`).
+#include "channel/interp/parse/statement.hpp"
+
+#include <optional>
+#include <string_view>
+
+namespace mcnc::interp::parse {
+
+struct ParseError {
+  int number = 0;
+  std::string text;
+  int column = 0;
+};
+
+struct LineParse {
+  Line line;
+  std::optional<ParseError> error;
+};
+
+// `text` without its line terminator (a trailing '\r' is tolerated); `line_number` is stored.
+LineParse parse_line(std::string_view text, int line_number);
+
+}  // namespace mcnc::interp::parse

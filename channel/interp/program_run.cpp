@@ -1,0 +1,592 @@
+#include "channel/interp/program_run.hpp"
+
+#include "channel/interp/program/program_format_alarms.hpp"
+#include "channel/interp/program/program_store.hpp"
+#include "channel/interp/program_alarms.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+namespace mcnc::interp {
+
+namespace {
+
+macro::MacroDialect dialect_of(const InterpreterConfig& c) {
+  macro::MacroDialect d = c.macro;
+  d.channel = c.channel;
+  return d;
+}
+
+std::string label(int number) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "O%04d", number);
+  return buf;
+}
+
+// A value that must be a whole number (N targets, program numbers, counts).
+bool whole(double v, std::int64_t& out) {
+  const double r = std::round(v);
+  if (std::fabs(v - r) > 1e-9 || std::fabs(r) > 9.2e18) {
+    return false;
+  }
+  out = static_cast<std::int64_t>(r);
+  return true;
+}
+
+}  // namespace
+
+ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnvironment* environment)
+    : config_(config),
+      environment_(environment != nullptr ? environment : &default_environment_),
+      vars_(dialect_of(config)),
+      geometry_(config.tool_geometry),
+      wear_(config.tool_wear),
+      work_(config.work_offsets),
+      local_(config.work_offsets.size()) {
+  vars_.add_provider(macro::MathConstantsProvider::kFirst, macro::MathConstantsProvider::kLast,
+                     constants_);
+  vars_.add_writable_provider(2001, 2999, *this);
+  vars_.add_writable_provider(3000, 3100, *this);
+  vars_.add_writable_provider(3901, 3902, *this);
+  vars_.add_writable_provider(4000, 4399, *this);
+  vars_.add_writable_provider(5001, 5399, *this);
+  vars_.add_writable_provider(7001, 7999, *this);
+  vars_.add_writable_provider(10001, 19999, *this);
+  for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
+    machine_[i] = config_.axes[i].start;
+  }
+  work_.resize(kWorkSystems + 1);
+  local_.resize(kWorkSystems + 1);
+  feed_mode_ = config_.power_on_feed_mode;
+  spindle_direction_.fill(SpindleDirection::stop);
+  // #4001-#4030 at power-on (spec dafeng §2.1): G00, G97, G69, G98/G99, G21, G40, G80, G67, G54,
+  // G64, G18; system B adds G90 and G98 (return level).
+  const bool b = config_.system == GCodeSystem::b;
+  modal_codes_[1] = 0;
+  modal_codes_[2] = 97;
+  modal_codes_[3] = b ? 90 : 0;
+  modal_codes_[4] = 69;
+  modal_codes_[5] = feed_mode_ == FeedMode::per_min ? (b ? 94 : 98) : (b ? 95 : 99);
+  modal_codes_[6] = 21;
+  modal_codes_[7] = 40;
+  modal_codes_[10] = 80;
+  modal_codes_[11] = b ? 98 : 0;
+  modal_codes_[12] = 67;
+  modal_codes_[14] = 54;
+  modal_codes_[15] = 64;
+  modal_codes_[16] = 18;
+  timer_ms_base_ = environment_->milliseconds();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Programs
+
+std::optional<ProgramAlarm> ProgramRun::start_text(const std::string& text,
+                                                   const std::string& file_name) {
+  program::SplitResult split = program::split_programs(text, file_name);
+  if (split.alarm) {
+    return split.alarm;
+  }
+  if (split.programs.empty()) {
+    return ProgramAlarm{alarm::kProgramEndMissing, "the file holds no program", file_name, 0, 0};
+  }
+  for (const program::Program& p : split.programs) {
+    parse::ParsedProgramResult parsed = parse::parse_program(p);
+    if (parsed.alarm) {
+      return parsed.alarm;
+    }
+    file_programs_.push_back(std::make_unique<parse::ParsedProgram>(std::move(*parsed.program)));
+  }
+  if (!config_.retained_file.empty()) {
+    std::ifstream probe(config_.retained_file);
+    if (probe.good()) {
+      const macro::MacroAlarm a = vars_.load_retained_file(config_.retained_file);
+      if (a) {
+        return ProgramAlarm{a.number, std::string(a.text()), config_.retained_file, 0, 0};
+      }
+    }
+  }
+  const parse::ParsedProgram* main = file_programs_.front().get();
+  main_number_ = main->number.value_or(0);
+  frames_.push_back(Frame{main, 0, 0, 0, CallKind::main, false, false});
+  started_ = true;
+  return std::nullopt;
+}
+
+std::optional<ProgramAlarm> ProgramRun::start_number(int number) {
+  program::ProgramStore store(config_.program_dir);
+  program::ProgramResult found = store.find(number);
+  if (found.alarm) {
+    return found.alarm;
+  }
+  parse::ParsedProgramResult parsed = parse::parse_program(*found.program);
+  if (parsed.alarm) {
+    return parsed.alarm;
+  }
+  file_programs_.push_back(std::make_unique<parse::ParsedProgram>(std::move(*parsed.program)));
+  main_number_ = number;
+  frames_.push_back(Frame{file_programs_.back().get(), 0, 0, 0, CallKind::main, false, false});
+  started_ = true;
+  return std::nullopt;
+}
+
+const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
+  for (const auto& p : file_programs_) {
+    if (p->number && *p->number == number) {
+      return p.get();
+    }
+  }
+  if (auto it = directory_programs_.find(number); it != directory_programs_.end()) {
+    return it->second.get();
+  }
+  if (config_.program_dir.empty()) {
+    fail(program::alarm::kProgramNotFound,
+         "program " + label(number) + " not found (not in this file, and no program directory)",
+         column);
+    return nullptr;
+  }
+  program::ProgramStore store(config_.program_dir);
+  program::ProgramResult found = store.find(number);
+  if (found.alarm) {
+    fail(found.alarm->number, found.alarm->text, column);
+    return nullptr;
+  }
+  parse::ParsedProgramResult parsed = parse::parse_program(*found.program);
+  if (parsed.alarm) {
+    alarm_ = parsed.alarm;  // points into the called file
+    return nullptr;
+  }
+  auto& slot = directory_programs_[number];
+  slot = std::make_unique<parse::ParsedProgram>(std::move(*parsed.program));
+  return slot.get();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pulling
+
+std::optional<InterpResult> ProgramRun::next() {
+  auto pop = [this]() -> InterpResult {
+    Command c = std::move(out_.front());
+    out_.pop_front();
+    c.n = ++sequence_;
+    return c;
+  };
+  if (!out_.empty()) {
+    return pop();
+  }
+  if (!started_ || ended_ || alarm_) {
+    if (alarm_ && !alarm_reported_) {
+      alarm_reported_ = true;
+      return *alarm_;
+    }
+    return std::nullopt;
+  }
+  std::uint64_t statements = 0;
+  while (out_.empty() && !ended_ && !alarm_) {
+    if (++statements > config_.statement_limit) {
+      fail(alarm::kStatementLimit,
+           "more than " + std::to_string(config_.statement_limit) +
+               " statements without a command: an endless macro loop?",
+           0);
+      break;
+    }
+    step();
+  }
+  if (alarm_) {
+    out_.clear();
+    alarm_reported_ = true;
+    return *alarm_;
+  }
+  if (!out_.empty()) {
+    return pop();
+  }
+  return std::nullopt;
+}
+
+bool ProgramRun::step() {
+  Frame& f = frames_.back();
+  const parse::ParsedProgram& p = *f.program;
+  if (f.pc >= static_cast<int>(p.lines.size())) {
+    file_ = &p.file;
+    line_ = p.lines.empty() ? nullptr : &p.lines.back();
+    if (f.kind == CallKind::main && frames_.size() == 1) {
+      return fail(alarm::kProgramEndMissing, "program end M30 or M02 missing", 0);
+    }
+    return fail(alarm::kSubprogramEndMissing,
+                "subprogram " + label(p.number.value_or(0)) + " ends without M99", 0);
+  }
+  const int index = f.pc++;
+  const parse::Line& line = p.lines[static_cast<std::size_t>(index)];
+  if (line.skip_level > 0 && config_.block_skip[static_cast<std::size_t>(line.skip_level)]) {
+    return true;
+  }
+  line_ = &line;
+  file_ = &p.file;
+  block_out_start_ = out_.size();
+  return execute(line, index, line.statement);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Macro statements
+
+bool ProgramRun::evaluate(const parse::Statement& s, int expression, macro::MacroValue& out) {
+  const macro::EvalResult r =
+      macro::evaluate(s.expressions[static_cast<std::size_t>(expression)], vars_);
+  if (r.alarm) {
+    return fail_macro(r.alarm);
+  }
+  out = r.value;
+  return true;
+}
+
+bool ProgramRun::condition(const parse::Statement& s, int expression, bool& out) {
+  macro::MacroValue v;
+  if (!evaluate(s, expression, v)) {
+    return false;
+  }
+  out = !v.is_null() && v.number() != 0.0;
+  return true;
+}
+
+bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statement& s) {
+  const parse::ParsedProgram& p = *frames_.back().program;
+  const auto at = [&](const std::vector<int>& v) { return v[static_cast<std::size_t>(index)]; };
+  switch (s.kind) {
+    case parse::StatementKind::empty:
+    case parse::StatementKind::endif:
+      return true;
+    case parse::StatementKind::block:
+      return execute_block(line, s);
+    case parse::StatementKind::assignment:
+      return assign(line, s);
+    case parse::StatementKind::go_to: {
+      macro::MacroValue v;
+      if (!evaluate(s, s.target, v)) {
+        return false;
+      }
+      std::int64_t n = 0;
+      if (v.is_null() || !whole(v.number(), n) || n < 0) {
+        return fail(alarm::kBadWordValue, "GOTO needs a sequence number (a whole number >= 0)",
+                    s.column);
+      }
+      return jump_to_sequence(n, s.direction, s.column);
+    }
+    case parse::StatementKind::if_then: {
+      bool c = false;
+      if (!condition(s, s.condition, c)) {
+        return false;
+      }
+      return c ? execute(line, index, *s.then) : true;
+    }
+    case parse::StatementKind::if_block: {
+      bool c = false;
+      if (!condition(s, s.condition, c)) {
+        return false;
+      }
+      if (c) {
+        return true;
+      }
+      for (int j = at(p.partner); j >= 0;) {
+        const parse::Line& branch = p.lines[static_cast<std::size_t>(j)];
+        if (branch.statement.kind == parse::StatementKind::elif) {
+          line_ = &branch;
+          bool taken = false;
+          if (!condition(branch.statement, branch.statement.condition, taken)) {
+            return false;
+          }
+          if (taken) {
+            frames_.back().pc = j + 1;
+            return true;
+          }
+          j = p.partner[static_cast<std::size_t>(j)];
+          continue;
+        }
+        frames_.back().pc = j + 1;  // ELSE body, or past ENDIF
+        return true;
+      }
+      return true;
+    }
+    case parse::StatementKind::elif:
+    case parse::StatementKind::else_branch:
+      // Reached in sequence: the branch before it ran; continue after ENDIF.
+      frames_.back().pc = at(p.endif_of) + 1;
+      return true;
+    case parse::StatementKind::while_do: {
+      bool c = false;
+      if (!condition(s, s.condition, c)) {
+        return false;
+      }
+      if (!c) {
+        frames_.back().pc = at(p.partner) + 1;
+      }
+      return true;
+    }
+    case parse::StatementKind::loop_end:
+      frames_.back().pc = at(p.partner);
+      return true;
+    case parse::StatementKind::loop_break:
+    case parse::StatementKind::loop_continue: {
+      const int w = at(p.loop_of);
+      if (w < 0) {
+        return fail(alarm::kLoopControl,
+                    s.kind == parse::StatementKind::loop_break ? "BREAK outside a WHILE loop"
+                                                               : "CONTINUE outside a WHILE loop",
+                    s.column);
+      }
+      frames_.back().pc =
+          s.kind == parse::StatementKind::loop_break ? p.partner[static_cast<std::size_t>(w)] + 1
+                                                     : w;
+      return true;
+    }
+    case parse::StatementKind::channel_only:
+      if (s.label != config_.channel) {
+        return fail(alarm::kWrongChannel,
+                    "this program may only run in channel " + std::to_string(s.label) +
+                        " (CH" + std::to_string(s.label) + "), not in channel " +
+                        std::to_string(config_.channel),
+                    s.column);
+      }
+      return true;
+  }
+  return true;
+}
+
+bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
+  const macro::Assignment& a = s.assignment;
+  std::int64_t target = a.target;
+  if (target < 0) {
+    const macro::EvalResult r = macro::evaluate(a.target_index, vars_);
+    if (r.alarm) {
+      return fail_macro(r.alarm);
+    }
+    if (!whole(r.value.number(), target)) {
+      target = -1;  // execute() reports the bad number
+    }
+  }
+  if (target == 3000 || target == 3006) {
+    const macro::EvalResult r = macro::evaluate(a.value, vars_);
+    if (r.alarm) {
+      return fail_macro(r.alarm);
+    }
+    std::int64_t n = 0;
+    if (target == 3000) {
+      if (!whole(r.value.number(), n) || n < 0 || n > 99) {
+        return fail(alarm::kUserAlarmRange, "#3000 = n: n must be a whole number 0-99",
+                    a.target_column);
+      }
+      return fail(alarm::kUserAlarmBase + static_cast<int>(n),
+                  line.message.empty() ? "macro alarm" : line.message, a.target_column);
+    }
+    emit(Op::message).text = line.message;
+    Command& stop = emit(Op::stop);
+    stop.code = 0;
+    stop.barrier = true;
+    return true;
+  }
+  const macro::MacroAlarm m = macro::execute(a, vars_);
+  if (m) {
+    return fail_macro(m);
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Jumps and calls
+
+int ProgramRun::find_sequence(const parse::ParsedProgram& p, std::int64_t n, int from,
+                              parse::GotoDirection direction, int column) {
+  const auto it = p.sequence_lines.find(n);
+  if (it != p.sequence_lines.end()) {
+    const std::vector<int>& at = it->second;
+    switch (direction) {
+      case parse::GotoDirection::wrap:
+        for (int i : at) {
+          if (i > from) {
+            return i;
+          }
+        }
+        return at.front();
+      case parse::GotoDirection::forward:
+        for (int i : at) {
+          if (i > from) {
+            return i;
+          }
+        }
+        break;
+      case parse::GotoDirection::backward:
+        for (auto r = at.rbegin(); r != at.rend(); ++r) {
+          if (*r <= from) {
+            return *r;
+          }
+        }
+        break;
+    }
+  }
+  fail(alarm::kSequenceNotFound,
+       "sequence number N" + std::to_string(n) + " not found in " +
+           (p.number ? label(*p.number) : p.file) +
+           (direction == parse::GotoDirection::forward    ? " after this block"
+            : direction == parse::GotoDirection::backward ? " before this block"
+                                                          : ""),
+       column);
+  return -1;
+}
+
+bool ProgramRun::jump_to_sequence(std::int64_t n, parse::GotoDirection direction, int column) {
+  Frame& f = frames_.back();
+  const int target = find_sequence(*f.program, n, f.pc - 1, direction, column);
+  if (target < 0) {
+    return false;
+  }
+  f.pc = target;
+  return true;
+}
+
+bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, int column,
+                                 bool t_call) {
+  if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
+    return fail(alarm::kCallNestingTooDeep,
+                "subprogram calls nested deeper than " +
+                    std::to_string(config_.max_subprogram_nesting),
+                column);
+  }
+  const parse::ParsedProgram* p =
+      program < 0 ? frames_.back().program : find_program(program, column);
+  if (p == nullptr) {
+    return false;
+  }
+  int start = 0;
+  if (start_sequence >= 0) {
+    start = find_sequence(*p, start_sequence, -1, parse::GotoDirection::forward, column);
+    if (start < 0) {
+      return false;
+    }
+  }
+  if (repeat <= 0) {
+    return true;
+  }
+  frames_.push_back(Frame{p, start, start, repeat - 1, CallKind::subprogram, false, t_call});
+  return true;
+}
+
+bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::MacroValue, 33>& args,
+                            int column, bool modal) {
+  if (macro_depth_ >= config_.max_macro_nesting) {
+    return fail(alarm::kCallNestingTooDeep,
+                "macro calls (G65, G66, macro-type G/M codes) nested deeper than " +
+                    std::to_string(config_.max_macro_nesting),
+                column);
+  }
+  if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
+    return fail(alarm::kCallNestingTooDeep,
+                "subprogram calls nested deeper than " +
+                    std::to_string(config_.max_subprogram_nesting),
+                column);
+  }
+  const parse::ParsedProgram* p = find_program(program, column);
+  if (p == nullptr || repeat <= 0) {
+    return p != nullptr;
+  }
+  const macro::MacroAlarm pushed = vars_.push_level();
+  if (pushed) {
+    return fail(alarm::kCallNestingTooDeep, std::string(pushed.text()), column);
+  }
+  for (int i = 1; i <= 33 && i <= config_.macro.local_last; ++i) {
+    if (!args[static_cast<std::size_t>(i - 1)].is_null()) {
+      vars_.write(i, args[static_cast<std::size_t>(i - 1)]);
+    }
+  }
+  ++macro_depth_;
+  frames_.push_back(Frame{p, 0, 0, repeat - 1, CallKind::macro, modal, false});
+  return true;
+}
+
+bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column) {
+  if (frames_.size() == 1) {
+    // M99 in the main program: back to its start (spec dafeng L6348-6350), or to N P.
+    Frame& f = frames_.back();
+    if (return_sequence >= 0) {
+      const int t = find_sequence(*f.program, return_sequence, -1,
+                                  parse::GotoDirection::forward, column);
+      if (t < 0) {
+        return false;
+      }
+      f.pc = t;
+    } else {
+      f.pc = 0;
+    }
+    return true;
+  }
+  Frame& f = frames_.back();
+  if (f.repeats_left > 0) {
+    --f.repeats_left;
+    f.pc = f.start_pc;
+    return true;
+  }
+  if (f.kind == CallKind::macro) {
+    vars_.pop_level();
+    --macro_depth_;
+  }
+  frames_.pop_back();
+  if (return_sequence >= 0) {
+    Frame& caller = frames_.back();
+    const int t = find_sequence(*caller.program, return_sequence, -1,
+                                parse::GotoDirection::forward, column);
+    if (t < 0) {
+      return false;
+    }
+    caller.pc = t;
+  }
+  return true;
+}
+
+void ProgramRun::end_program(int code) {
+  Command& c = emit(Op::end);
+  c.code = code;
+  c.barrier = true;
+  ended_ = true;
+  save_retained();
+}
+
+std::optional<ProgramAlarm> ProgramRun::save_retained() {
+  if (config_.retained_file.empty()) {
+    return std::nullopt;
+  }
+  const macro::MacroAlarm a = vars_.save_retained_file(config_.retained_file);
+  if (a) {
+    return ProgramAlarm{a.number, std::string(a.text()), config_.retained_file, 0, 0};
+  }
+  return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output and alarms
+
+Command& ProgramRun::emit(Op op) {
+  Command& c = out_.emplace_back();
+  c.op = op;
+  c.line = line_ != nullptr ? line_->line : 0;
+  c.file = file_;
+  c.to = machine_;
+  return c;
+}
+
+bool ProgramRun::fail(int number, std::string text, int column) {
+  if (alarm_) {
+    return false;
+  }
+  while (out_.size() > block_out_start_) {
+    out_.pop_back();  // nothing of the failing block is emitted
+  }
+  alarm_ = ProgramAlarm{number, std::move(text), file_ != nullptr ? *file_ : std::string(),
+                        line_ != nullptr ? line_->line : 0, column};
+  save_retained();
+  return false;
+}
+
+bool ProgramRun::fail_macro(const macro::MacroAlarm& a) {
+  return fail(a.number, std::string(a.text()), a.column);
+}
+
+}  // namespace mcnc::interp

@@ -1,0 +1,206 @@
+#pragma once
+// The state of one interpreter run and its execution, behind Interpreter (interpreter.hpp).
+// program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
+// program_run_motion.cpp: coordinates and motion; system_variables.cpp: #2000-#19999.
+#include "channel/interp/gcode_table.hpp"
+#include "channel/interp/interpreter.hpp"
+#include "channel/interp/parse/parsed_program.hpp"
+
+#include <array>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mcnc::interp {
+
+// One evaluated word of the block being executed.
+struct BlockWord {
+  parse::Address address;
+  int index = -1;
+  double value = 0.0;
+  bool has_point = false;
+  bool literal = true;
+  int column = 0;
+  bool used = false;
+};
+
+// Thrown nowhere: every failing step returns false after recording the alarm in `alarm_`.
+class ProgramRun final : public macro::VariableProvider {
+ public:
+  ProgramRun(const InterpreterConfig& config, const InterpreterEnvironment* environment);
+
+  std::optional<ProgramAlarm> start_text(const std::string& text, const std::string& file_name);
+  std::optional<ProgramAlarm> start_number(int number);
+  std::optional<InterpResult> next();
+
+  macro::VariableStore& variables() { return vars_; }
+  const AxisVector& machine() const { return machine_; }
+  double program_position(int axis) const;
+  std::optional<ProgramAlarm> save_retained();
+
+  macro::VariableRead read(std::int64_t number) const override;
+  macro::MacroAlarm write(std::int64_t number, macro::MacroValue value) override;
+
+ private:
+  enum class CallKind : std::uint8_t { main, subprogram, macro };
+  struct Frame {
+    const parse::ParsedProgram* program = nullptr;
+    int pc = 0;        // next line to execute
+    int start_pc = 0;  // where a repetition starts
+    int repeats_left = 0;
+    CallKind kind = CallKind::main;
+    bool modal_call = false;  // a G66 call: its own motion does not call again
+    bool t_call = false;      // the T-code program: its T words are real T commands
+  };
+  struct ModalCall {
+    bool active = false;
+    int program = 0;
+    int repeat = 1;
+    std::array<macro::MacroValue, 33> args{};
+    std::size_t frame_depth = 0;  // frames when G66 was given
+  };
+
+  // ---- programs and flow (program_run.cpp)
+  bool load_main(const program::Program& program);
+  const parse::ParsedProgram* find_program(int number, int column);
+  bool step();
+  bool execute(const parse::Line& line, int index, const parse::Statement& s);
+  bool evaluate(const parse::Statement& s, int expression, macro::MacroValue& out);
+  bool condition(const parse::Statement& s, int expression, bool& out);
+  bool assign(const parse::Line& line, const parse::Statement& s);
+  bool jump_to_sequence(std::int64_t n, parse::GotoDirection direction, int column);
+  int find_sequence(const parse::ParsedProgram& p, std::int64_t n, int from,
+                    parse::GotoDirection direction, int column);
+  bool call_subprogram(int program, int start_sequence, int repeat, int column, bool t_call);
+  bool call_macro(int program, int repeat, const std::array<macro::MacroValue, 33>& args,
+                  int column, bool modal);
+  bool return_from_subprogram(std::int64_t return_sequence, int column);
+  void end_program(int code);
+
+  // ---- NC blocks (program_run_block.cpp)
+  bool execute_block(const parse::Line& line, const parse::Statement& s);
+  bool evaluate_words(const parse::Statement& s);
+  bool collect_macro_args(std::array<macro::MacroValue, 33>& args, bool type_one_only,
+                          bool reserve_p);
+  bool apply_modal(GFunction f, int code10, int column);
+  bool run_spindle_words(bool has_m_spindle);
+  bool run_tool_word();
+  bool run_m_codes(bool after_motion);
+  bool run_one_shot(GFunction f, int code10, int column);
+  bool run_dwell(int column);
+  bool run_channel_sync(int column);
+  bool run_data_input(int column);
+  bool run_channel_call(int column);
+  bool run_axis_exchange(GFunction f, int column);
+  bool run_spindle_sync(GFunction f);
+  bool run_axis_sync(GFunction f, int column);
+  bool check_unused_words();
+
+  // ---- coordinates and motion (program_run_motion.cpp)
+  struct AxisWords {
+    BlockWord* word = nullptr;  // the axis's word in this block, if any
+    bool incremental = false;
+    bool error = false;  // an alarm was raised (absolute and incremental together)
+  };
+  AxisWords axis_words(int axis);
+  bool read_axis_targets(AxisVector& target, std::array<bool, kMaxChannelAxes>& given,
+                         bool machine_coordinates);
+  bool run_motion(GFunction motion, bool machine_coordinates, int column);
+  bool run_arc(GFunction motion, const AxisVector& target, int column);
+  bool run_reference_return(GFunction f, int column);
+  bool run_coordinate_set(int column);
+  bool run_local_system(int column);
+  bool run_restore_origin(int column);
+  double offset_sum(int axis) const;  // EXT + work + G50 shift + G52 (physical)
+  double tool_offset(int axis) const; // physical
+  double to_physical(int axis, double programmed, bool mirror = true) const;
+  double to_programmed(int axis, double physical, bool mirror = true) const;
+  bool check_feed(int column);
+  void apply_tool_offset(int offset);
+
+  // ---- output and alarms
+  Command& emit(Op op);
+  bool fail(int number, std::string text, int column);
+  bool fail_macro(const macro::MacroAlarm& a);
+  BlockWord* word(char letter);
+  BlockWord* word(char a, char b);
+  int count_words(char letter) const;
+  double scaled(const BlockWord& w, bool length) const;
+
+  InterpreterConfig config_;
+  const InterpreterEnvironment* environment_;
+  InterpreterEnvironment default_environment_;
+  macro::VariableStore vars_;
+  macro::MathConstantsProvider constants_;
+
+  // Programs: those of the started file, then the directory (loaded once per run).
+  std::vector<std::unique_ptr<parse::ParsedProgram>> file_programs_;
+  std::map<int, std::unique_ptr<parse::ParsedProgram>> directory_programs_;
+  std::vector<Frame> frames_;
+  int macro_depth_ = 0;
+  int main_number_ = 0;
+
+  // Output
+  std::deque<Command> out_;
+  std::uint64_t sequence_ = 0;
+  bool started_ = false;
+  bool ended_ = false;
+  std::optional<ProgramAlarm> alarm_;
+  bool alarm_reported_ = false;
+
+  // The block being executed.
+  const parse::Line* line_ = nullptr;
+  const std::string* file_ = nullptr;
+  std::vector<BlockWord> words_;
+  std::size_t block_out_start_ = 0;
+  bool block_barrier_ = false;
+  bool block_moved_ = false;
+  bool block_exact_stop_ = false;
+
+  // Modal state
+  GFunction motion_ = GFunction::rapid;
+  Plane plane_ = Plane::zx;
+  FeedMode feed_mode_ = FeedMode::per_min;
+  bool metric_ = true;
+  bool css_ = false;
+  bool exact_stop_mode_ = false;
+  bool turret_mirror_ = false;
+  bool incremental_mode_ = false;  // system B G91
+  int work_system_ = 1;            // 1-6 = G54-G59, 7.. = G54.1 P1..
+  std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
+  double feed_ = 0.0;
+  ModalCall modal_call_;
+
+  // Spindles of this channel (1-9), the reference spindle (SP) and G96 data.
+  std::array<double, 10> rpm_{};
+  std::array<SpindleDirection, 10> spindle_direction_{};
+  double surface_ = 0.0;
+  double clamp_rpm_ = 0.0;
+  int reference_spindle_ = 1;
+
+  // Tool
+  int tool_ = 0;
+  int offset_ = 0;
+  double t_value_ = 0.0;
+  std::array<ToolOffsetValues, kMaxToolOffsets + 1> geometry_{};
+  std::array<ToolOffsetValues, kMaxToolOffsets + 1> wear_{};
+
+  // Coordinates (physical, per channel axis)
+  AxisVector machine_{};
+  std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
+  std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
+  std::array<double, kMaxChannelAxes> shift_{};             // G50 shift
+  std::array<bool, kMaxChannelAxes> released_{};            // G140 without G142/G141 since
+  // M92 loops: passes left per (call depth, M92 line); -1 = endless.
+  std::map<std::pair<std::size_t, const parse::Line*>, std::int64_t> loop_counters_;
+
+  double timer_ms_base_ = 0.0;
+  double timer_hours_base_ = 0.0;
+  double parts_done_ = 0.0;      // #3901
+  double parts_required_ = 0.0;  // #3902
+};
+
+}  // namespace mcnc::interp

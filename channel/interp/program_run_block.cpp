@@ -1,0 +1,1542 @@
+// NC blocks: words, G and M codes, spindles, tools, calls and the multi-channel words.
+#include "channel/interp/program_alarms.hpp"
+#include "channel/interp/program_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace mcnc::interp {
+
+namespace {
+
+bool whole_number(double v, std::int64_t& out) {
+  const double r = std::round(v);
+  if (std::fabs(v - r) > 1e-6 || std::fabs(r) > 1e15) {
+    return false;
+  }
+  out = static_cast<std::int64_t>(r);
+  return true;
+}
+
+std::string g_name(int code10) {
+  char buf[24];
+  if (code10 % 10 == 0) {
+    std::snprintf(buf, sizeof buf, "G%02d", code10 / 10);
+  } else {
+    std::snprintf(buf, sizeof buf, "G%02d.%d", code10 / 10, code10 % 10);
+  }
+  return buf;
+}
+
+std::string address_name(const parse::Address& a) {
+  std::string n;
+  if (a.comma) {
+    n += ',';
+  }
+  n += a.first;
+  if (a.second != 0) {
+    n += a.second;
+  }
+  return n;
+}
+
+// G65 type I argument addresses -> local variable (spec dafeng L7393-7415); 0 = not an argument.
+int type_one_variable(char letter) {
+  switch (letter) {
+    case 'A':
+      return 1;
+    case 'B':
+      return 2;
+    case 'C':
+      return 3;
+    case 'I':
+      return 4;
+    case 'J':
+      return 5;
+    case 'K':
+      return 6;
+    case 'D':
+      return 7;
+    case 'E':
+      return 8;
+    case 'F':
+      return 9;
+    case 'H':
+      return 11;
+    case 'M':
+      return 13;
+    case 'N':
+      return 14;
+    case 'P':
+      return 16;
+    case 'Q':
+      return 17;
+    case 'R':
+      return 18;
+    case 'S':
+      return 19;
+    case 'T':
+      return 20;
+    case 'U':
+      return 21;
+    case 'V':
+      return 22;
+    case 'W':
+      return 23;
+    case 'X':
+      return 24;
+    case 'Y':
+      return 25;
+    case 'Z':
+      return 26;
+    default:
+      return 0;
+  }
+}
+
+// The P words of these codes are theirs, not the `S_ Paab` spindle address.
+bool takes_p(GFunction f) {
+  switch (f) {
+    case GFunction::dwell:
+    case GFunction::channel_sync:
+    case GFunction::data_input:
+    case GFunction::reference_2_4:
+    case GFunction::work_system:
+    case GFunction::work_system_ext:
+    case GFunction::axis_sync_on:
+    case GFunction::axis_sync_off:
+    case GFunction::axis_acquire:
+    case GFunction::spindle_sync_on:
+      return true;
+    default:
+      return false;
+  }
+}
+
+struct BlockG {
+  int code10 = 0;
+  GCodeInfo info;
+  int column = 0;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Words
+
+BlockWord* ProgramRun::word(char letter) {
+  for (BlockWord& w : words_) {
+    if (w.address.is(letter)) {
+      return &w;
+    }
+  }
+  return nullptr;
+}
+
+BlockWord* ProgramRun::word(char a, char b) {
+  for (BlockWord& w : words_) {
+    if (w.address.is(a, b)) {
+      return &w;
+    }
+  }
+  return nullptr;
+}
+
+int ProgramRun::count_words(char letter) const {
+  int n = 0;
+  for (const BlockWord& w : words_) {
+    n += w.address.is(letter) ? 1 : 0;
+  }
+  return n;
+}
+
+double ProgramRun::scaled(const BlockWord& w, bool length) const {
+  double v = w.value;
+  if (!length) {
+    return v;
+  }
+  const double inc = config_.least_increment;
+  if (w.literal) {
+    if (!w.has_point && config_.decimal_point == DecimalPoint::increment) {
+      v *= inc;
+    }
+    return v;
+  }
+  // A variable value is cut to the least increment: truncated (Dafeng L6671-6676) or rounded
+  // (GSK). Values a hair below a multiple of the increment (0.3 / 0.001) count as on it.
+  const double units = v / inc;
+  const double nearest = std::round(units);
+  if (std::fabs(units - nearest) < 1e-6) {
+    return nearest * inc;
+  }
+  return (config_.dialect == Dialect::gsk ? nearest : std::trunc(units)) * inc;
+}
+
+bool ProgramRun::evaluate_words(const parse::Statement& s) {
+  words_.clear();
+  for (const parse::Word& pw : s.words) {
+    BlockWord w;
+    w.address = pw.address;
+    w.index = pw.index;
+    w.column = pw.column;
+    w.literal = pw.literal;
+    w.has_point = pw.has_point;
+    if (pw.literal) {
+      w.value = pw.value;
+    } else {
+      macro::MacroValue v;
+      if (!evaluate(s, pw.expression, v)) {
+        return false;
+      }
+      if (v.is_null()) {
+        continue;  // a word whose value is null disappears (spec dafeng L6437-6445)
+      }
+      w.value = v.number();
+      w.has_point = true;
+    }
+    words_.push_back(w);
+  }
+  return true;
+}
+
+bool ProgramRun::check_unused_words() {
+  for (const BlockWord& w : words_) {
+    if (w.used) {
+      continue;
+    }
+    const std::string name = address_name(w.address);
+    if (w.address.second == 0 && !w.address.comma && w.address.first != 'U' &&
+        w.address.first != 'W' && w.address.first != 'V' && w.address.first != 'H') {
+      bool axis_letter = false;
+      for (char c : {'X', 'Y', 'Z', 'A', 'B', 'C'}) {
+        axis_letter = axis_letter || w.address.first == c;
+      }
+      if (axis_letter) {
+        return fail(alarm::kWordNotAllowed,
+                    name + " is not an axis of channel " + std::to_string(config_.channel) +
+                        " or not used by this block",
+                    w.column);
+      }
+    }
+    if (w.address.comma) {
+      return fail(alarm::kNotInThisVersion,
+                  name + ": automatic chamfer, corner rounding and angle programming come "
+                         "with the next interpreter release",
+                  w.column);
+    }
+    return fail(alarm::kWordNotAllowed, name + " is not used by this block", w.column);
+  }
+  return true;
+}
+
+bool ProgramRun::collect_macro_args(std::array<macro::MacroValue, 33>& args, bool type_one_only,
+                                    bool reserve_p) {
+  args.fill(macro::MacroValue::null());
+  int group = 1;  // type II: I/J/K groups, a repeated letter starts the next group
+  std::array<bool, 3> in_group{};
+  for (BlockWord& w : words_) {
+    if (w.used) {
+      continue;
+    }
+    if (w.address.second != 0 || w.address.comma || w.index >= 0) {
+      return fail(alarm::kWordNotAllowed, address_name(w.address) + " cannot be a macro argument",
+                  w.column);
+    }
+    const char c = w.address.first;
+    if (c == 'G' || c == 'L' || c == 'O' || (c == 'P' && reserve_p)) {
+      continue;  // the caller takes them
+    }
+    int var = type_one_variable(c);
+    if (!type_one_only && (c == 'I' || c == 'J' || c == 'K')) {
+      const int k = c - 'I';
+      bool later_set = false;
+      for (int j = k; j < 3; ++j) {
+        later_set = later_set || in_group[static_cast<std::size_t>(j)];
+      }
+      if (later_set) {
+        ++group;
+        in_group.fill(false);
+      }
+      if (group > 10) {
+        return fail(alarm::kWordNotAllowed, "more than 10 I/J/K argument groups", w.column);
+      }
+      in_group[static_cast<std::size_t>(k)] = true;
+      var = 4 + 3 * (group - 1) + k;
+    }
+    if (var == 0) {
+      return fail(alarm::kWordNotAllowed, address_name(w.address) + " cannot be a macro argument",
+                  w.column);
+    }
+    args[static_cast<std::size_t>(var - 1)] = macro::MacroValue::of(w.value);
+    w.used = true;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The block
+
+bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Statement& s) {
+  if (!evaluate_words(s)) {
+    return false;
+  }
+  if (words_.empty()) {
+    return true;
+  }
+  block_barrier_ = false;
+  block_moved_ = false;
+  block_exact_stop_ = false;
+
+  // G codes of the block.
+  std::array<BlockG, 8> gs{};
+  int ng = 0;
+  for (BlockWord& w : words_) {
+    if (!w.address.is('G')) {
+      continue;
+    }
+    w.used = true;
+    std::int64_t code10 = 0;
+    if (w.index >= 0 || !whole_number(w.value * 10.0, code10) || code10 < 0 || code10 > 9999) {
+      return fail(alarm::kUnsupportedG, "G needs a code such as G01 or G04.1", w.column);
+    }
+    const int c = static_cast<int>(code10);
+    // G codes that call macros (spec dafeng §4.13): the block is a call, like G65.
+    int program = 0;
+    for (const auto& [g, p] : config_.calls.g_macro) {
+      program = g == c ? p : program;
+    }
+    const MacroCallTables& t = config_.calls;
+    if (program == 0 && t.g_range_count > 0 && c % 10 == 0 && c / 10 >= t.g_range_first &&
+        c / 10 < t.g_range_first + t.g_range_count) {
+      program = t.g_range_program + (c / 10 - t.g_range_first);
+    }
+    if (program != 0) {
+      std::array<macro::MacroValue, 33> args{};
+      BlockWord* l = word('L');
+      std::int64_t repeat = 1;
+      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
+        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
+                    l->column);
+      }
+      if (l != nullptr) {
+        l->used = true;
+      }
+      if (!collect_macro_args(args, false, false)) {
+        return false;
+      }
+      return call_macro(program, static_cast<int>(repeat), args, w.column, false);
+    }
+    const GCodeInfo info = lookup_gcode(c, config_.system);
+    if (info.function == GFunction::unknown) {
+      return fail(alarm::kUnsupportedG, g_name(c) + " is not a G code of this dialect",
+                  w.column);
+    }
+    if (info.function == GFunction::not_in_this_version) {
+      return fail(alarm::kNotInThisVersion, g_name(c) + ": " + info.topic, w.column);
+    }
+    for (int i = 0; i < ng; ++i) {
+      BlockG& other = gs[static_cast<std::size_t>(i)];
+      if (other.info.group == info.group) {
+        if (config_.dialect == Dialect::gsk && info.group != 0) {
+          other = BlockG{c, info, w.column};  // GSK: the last code of a group wins (A.1 item 10)
+          goto next_word;                     // NOLINT(cppcoreguidelines-avoid-goto)
+        }
+        char group[8];
+        std::snprintf(group, sizeof group, "%02d", info.group);
+        return fail(alarm::kGroupConflict,
+                    "two G codes of group " + std::string(group) + " in one block (" +
+                        g_name(other.code10) + ", " + g_name(c) + ")",
+                    w.column);
+      }
+    }
+    if (ng == static_cast<int>(gs.size())) {
+      return fail(alarm::kGroupConflict, "too many G codes in one block", w.column);
+    }
+    gs[static_cast<std::size_t>(ng++)] = BlockG{c, info, w.column};
+  next_word:;
+  }
+
+  // Duplicate addresses (G, M and the argument letters of calls may repeat).
+  bool call_block = false;
+  for (int i = 0; i < ng; ++i) {
+    const GFunction f = gs[static_cast<std::size_t>(i)].info.function;
+    call_block = call_block || f == GFunction::macro_call || f == GFunction::modal_call ||
+                 f == GFunction::channel_sync;
+  }
+  for (std::size_t i = 0; i < words_.size(); ++i) {
+    const BlockWord& a = words_[i];
+    if (a.address.is('G') || a.address.is('M')) {
+      continue;
+    }
+    if (call_block && (a.address.is('I') || a.address.is('J') || a.address.is('K') ||
+                       a.address.is('Q'))) {
+      continue;
+    }
+    for (std::size_t j = i + 1; j < words_.size(); ++j) {
+      if (words_[j].address == a.address) {
+        return fail(alarm::kDuplicateAddress,
+                    address_name(a.address) + " appears twice in one block", words_[j].column);
+      }
+    }
+  }
+
+  GFunction motion = GFunction::unknown;  // group 01 in this block
+  GFunction primary = GFunction::unknown;  // the one-shot code that takes the words
+  int primary_code = 0;
+  int primary_column = 0;
+  for (int i = 0; i < ng; ++i) {
+    const BlockG& g = gs[static_cast<std::size_t>(i)];
+    if (g.info.group == 1) {
+      motion = g.info.function;
+      continue;
+    }
+    if (g.info.function == GFunction::exact_stop) {
+      block_exact_stop_ = true;
+      continue;
+    }
+    if (g.info.group == 0) {
+      primary = g.info.function;
+      primary_code = g.code10;
+      primary_column = g.column;
+      continue;
+    }
+  }
+
+  // Macro calls take every other word as an argument.
+  if (primary == GFunction::macro_call) {
+    if (words_.front().address != parse::Address{'G', 0, false} ||
+        words_.front().value != 65.0) {
+      return fail(alarm::kWordNotAllowed, "G65 must come first in its block (only N before it)",
+                  words_.front().column);
+    }
+    BlockWord* p = word('P');
+    BlockWord* l = word('L');
+    std::int64_t program = 0;
+    std::int64_t repeat = 1;
+    if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
+      return fail(alarm::kBadWordValue, "G65 needs P<program number 0-9999>", primary_column);
+    }
+    if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
+      return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
+                  l->column);
+    }
+    p->used = true;
+    if (l != nullptr) {
+      l->used = true;
+    }
+    std::array<macro::MacroValue, 33> args{};
+    if (!collect_macro_args(args, false, true)) {
+      return false;
+    }
+    if (modal_call_.active) {
+      modal_call_.active = false;  // G65 cancels a modal G66 call (gsk D2-37)
+      modal_codes_[12] = 67;
+    }
+    return call_macro(static_cast<int>(program), static_cast<int>(repeat), args, primary_column,
+                      false);
+  }
+  for (int i = 0; i < ng; ++i) {
+    const BlockG& g = gs[static_cast<std::size_t>(i)];
+    if (g.info.function == GFunction::modal_call) {
+      BlockWord* p = word('P');
+      BlockWord* l = word('L');
+      std::int64_t program = 0;
+      std::int64_t repeat = 1;
+      if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
+        return fail(alarm::kBadWordValue, "G66 needs P<program number 0-9999>", g.column);
+      }
+      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
+        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
+                    l->column);
+      }
+      p->used = true;
+      if (l != nullptr) {
+        l->used = true;
+      }
+      ModalCall m;
+      m.active = true;
+      m.program = static_cast<int>(program);
+      m.repeat = static_cast<int>(repeat);
+      m.frame_depth = frames_.size();
+      if (!collect_macro_args(m.args, false, true)) {
+        return false;
+      }
+      modal_call_ = m;
+      modal_codes_[12] = 66;
+      return check_unused_words();
+    }
+    if (g.info.function == GFunction::modal_call_cancel) {
+      modal_call_.active = false;
+      modal_codes_[12] = 67;
+    }
+  }
+  if (primary == GFunction::channel_call) {
+    return run_channel_call(primary_column);
+  }
+
+  // M codes that call programs (spec dafeng §4.13): M98-like or G65-like.
+  for (BlockWord& w : words_) {
+    if (!w.address.is('M')) {
+      continue;
+    }
+    std::int64_t m = 0;
+    if (!whole_number(w.value, m) || m < 0 || m > 9999) {
+      return fail(alarm::kBadWordValue, "M needs a whole number 0-9999", w.column);
+    }
+    const MacroCallTables& t = config_.calls;
+    int program = 0;
+    bool as_macro = false;
+    for (const auto& [code, p] : t.m_subprogram) {
+      program = code == m ? p : program;
+    }
+    for (const auto& [code, p] : t.m_macro) {
+      if (code == m) {
+        program = p;
+        as_macro = true;
+      }
+    }
+    if (program == 0 && t.m_sub_range_count > 0 && m >= t.m_sub_range_first &&
+        m < t.m_sub_range_first + t.m_sub_range_count) {
+      program = t.m_sub_range_program + static_cast<int>(m - t.m_sub_range_first);
+    }
+    if (program == 0 && t.m_macro_range_count > 0 && m >= t.m_macro_range_first &&
+        m < t.m_macro_range_first + t.m_macro_range_count) {
+      program = t.m_macro_range_program + static_cast<int>(m - t.m_macro_range_first);
+      as_macro = true;
+    }
+    if (program == 0) {
+      continue;
+    }
+    w.used = true;
+    if (as_macro) {
+      std::array<macro::MacroValue, 33> args{};
+      BlockWord* l = word('L');
+      std::int64_t repeat = 1;
+      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
+        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
+                    l->column);
+      }
+      if (l != nullptr) {
+        l->used = true;
+      }
+      if (!collect_macro_args(args, false, false)) {
+        return false;
+      }
+      return call_macro(program, static_cast<int>(repeat), args, w.column, false);
+    }
+    return call_subprogram(program, -1, 1, w.column, false) && check_unused_words();
+  }
+
+  // Modal codes, in the order a control applies them before the block's motion.
+  for (int i = 0; i < ng; ++i) {
+    const BlockG& g = gs[static_cast<std::size_t>(i)];
+    if (g.info.group != 0 && g.info.group != 1 && !apply_modal(g.info.function, g.code10, g.column)) {
+      return false;
+    }
+  }
+  if (motion != GFunction::unknown) {
+    motion_ = motion;
+    for (int i = 0; i < ng; ++i) {
+      if (gs[static_cast<std::size_t>(i)].info.group == 1) {
+        modal_codes_[1] = static_cast<double>(gs[static_cast<std::size_t>(i)].code10) / 10.0;
+      }
+    }
+  }
+  if (BlockWord* f = word('F')) {
+    f->used = true;
+    if (f->value < 0.0) {
+      return fail(alarm::kNegativeFeed, "feed F must not be negative", f->column);
+    }
+    feed_ = f->value * (metric_ ? 1.0 : 25.4);
+  }
+
+  // Spindles, tool and the M codes that go out before the motion.
+  bool p_is_spindle_address = word('S') != nullptr;
+  for (int i = 0; i < ng; ++i) {
+    p_is_spindle_address =
+        p_is_spindle_address && !takes_p(gs[static_cast<std::size_t>(i)].info.function);
+  }
+  for (const BlockWord& w : words_) {
+    if (w.address.is('M') && (w.value == 98.0 || w.value == 99.0)) {
+      p_is_spindle_address = false;
+    }
+  }
+  if (!run_spindle_words(p_is_spindle_address)) {
+    return false;
+  }
+  if (!run_tool_word()) {
+    return false;
+  }
+  if (!run_m_codes(false)) {
+    return false;
+  }
+
+  // The one-shot code, or the motion of the modal group 01 code.
+  if (primary != GFunction::unknown && primary != GFunction::machine_position) {
+    if (!run_one_shot(primary, primary_code, primary_column)) {
+      return false;
+    }
+  } else {
+    const bool g53 = primary == GFunction::machine_position;
+    GFunction m = motion_;
+    if (g53) {
+      block_barrier_ = true;
+      m = motion == GFunction::linear ? GFunction::linear : GFunction::rapid;
+      if (motion != GFunction::unknown && motion != GFunction::rapid &&
+          motion != GFunction::linear) {
+        return fail(alarm::kWordNotAllowed, "G53 moves with G00 or G01 only", primary_column);
+      }
+    }
+    if (!run_motion(m, g53, g53 ? primary_column : 0)) {
+      return false;
+    }
+  }
+
+  if (block_barrier_ && !out_.empty() && out_.size() > block_out_start_) {
+    out_.back().barrier = true;
+  }
+  if (!check_unused_words()) {
+    return false;
+  }
+  // A modal G66 call follows every block that moved an axis, outside the called macro.
+  if (block_moved_ && modal_call_.active) {
+    bool inside = false;
+    for (const Frame& f : frames_) {
+      inside = inside || f.modal_call;
+    }
+    if (!inside && !call_macro(modal_call_.program, modal_call_.repeat, modal_call_.args, 0, true)) {
+      return false;
+    }
+  }
+  return run_m_codes(true);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Modal codes
+
+bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
+  const double value = static_cast<double>(code10) / 10.0;
+  switch (f) {
+    case GFunction::plane_xy:
+      plane_ = Plane::xy;
+      modal_codes_[16] = value;
+      return true;
+    case GFunction::plane_zx:
+      plane_ = Plane::zx;
+      modal_codes_[16] = value;
+      return true;
+    case GFunction::plane_yz:
+      plane_ = Plane::yz;
+      modal_codes_[16] = value;
+      return true;
+    case GFunction::inch:
+    case GFunction::metric:
+      metric_ = f == GFunction::metric;
+      modal_codes_[6] = value;
+      return true;
+    case GFunction::tnrc_cancel:
+      modal_codes_[7] = value;
+      return true;
+    case GFunction::drill_cancel:
+      modal_codes_[10] = value;
+      return true;
+    case GFunction::work_system:
+    case GFunction::work_system_ext: {
+      BlockWord* p = word('P');
+      if (f == GFunction::work_system_ext || (code10 == 540 && p != nullptr)) {
+        std::int64_t n = 0;
+        if (p == nullptr || !whole_number(p->value, n) || n < 1 || n > kExtendedWorkSystems) {
+          return fail(alarm::kBadWordValue, "G54.1 needs P1-P99", p != nullptr ? p->column : column);
+        }
+        p->used = true;
+        work_system_ = 6 + static_cast<int>(n);
+        modal_codes_[14] = 54.1;
+        return true;
+      }
+      work_system_ = (code10 - 540) / 10 + 1;
+      modal_codes_[14] = value;
+      return true;
+    }
+    case GFunction::exact_stop_mode:
+    case GFunction::cutting_mode:
+      exact_stop_mode_ = f == GFunction::exact_stop_mode;
+      modal_codes_[15] = value;
+      return true;
+    case GFunction::turret_mirror_on:
+    case GFunction::turret_mirror_off:
+      turret_mirror_ = f == GFunction::turret_mirror_on;
+      modal_codes_[4] = value;
+      return true;
+    case GFunction::css_on:
+    case GFunction::css_off:
+      css_ = f == GFunction::css_on;
+      modal_codes_[2] = value;
+      return true;
+    case GFunction::feed_per_min:
+    case GFunction::feed_per_rev:
+      feed_mode_ = f == GFunction::feed_per_min ? FeedMode::per_min : FeedMode::per_rev;
+      modal_codes_[5] = value;
+      return true;
+    case GFunction::absolute:
+    case GFunction::incremental:
+      incremental_mode_ = f == GFunction::incremental;
+      modal_codes_[3] = value;
+      return true;
+    case GFunction::return_initial:
+    case GFunction::return_r_level:
+      modal_codes_[11] = value;
+      return true;
+    case GFunction::modal_call:
+    case GFunction::modal_call_cancel:
+      return true;
+    default:
+      return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Spindles and tools
+
+bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
+  // SPaab: the reference spindle of G96/G99/threading (spec dafeng L2662-2746).
+  if (BlockWord* sp = word('S', 'P')) {
+    sp->used = true;
+    std::int64_t v = 0;
+    if (!whole_number(sp->value, v) || v < 1 || v > 649) {
+      return fail(alarm::kBadWordValue, "SP needs aab: channel aa (0-64) and spindle b (1-9)",
+                  sp->column);
+    }
+    const int channel = static_cast<int>(v / 10);
+    const int spindle = static_cast<int>(v % 10);
+    if (spindle == 0) {
+      return fail(alarm::kBadWordValue, "SP needs a spindle number b of 1-9", sp->column);
+    }
+    Command& c = emit(Op::spindle_select);
+    c.channel = channel == config_.channel ? 0 : channel;
+    c.spindle = spindle;
+    if (c.channel == 0) {
+      reference_spindle_ = spindle;
+    }
+  }
+
+  // Which spindle the S word and the spindle M codes address.
+  int channel = 0;  // 0: this channel
+  int addressed = 0;
+  BlockWord* s = word('S');
+  BlockWord* p = p_is_spindle_address ? word('P') : nullptr;
+  if (p != nullptr) {
+    std::int64_t v = 0;
+    if (!whole_number(p->value, v) || v < 1 || v > 999) {
+      return fail(alarm::kBadWordValue, "S_ P: P needs aab: channel aa and spindle b (1-9)",
+                  p->column);
+    }
+    p->used = true;
+    channel = static_cast<int>(v / 10);
+    channel = channel == config_.channel ? 0 : channel;
+    addressed = static_cast<int>(v % 10);
+    if (addressed == 0) {
+      return fail(alarm::kBadWordValue, "S_ P: the spindle number b must be 1-9", p->column);
+    }
+  }
+  bool surface_changed = false;
+  bool clamp_changed = false;
+  std::array<bool, 10> speed_changed{};
+  double remote_rpm = -1.0;
+  if (s != nullptr) {
+    s->used = true;
+    if (s->value < 0.0) {
+      return fail(alarm::kBadWordValue, "S must not be negative", s->column);
+    }
+    int spindle = s->index >= 0 ? s->index : (addressed != 0 ? addressed : 1);
+    if (spindle < 1 || spindle > 9) {
+      return fail(alarm::kBadWordValue, "Sn=: spindle n must be 1-9", s->column);
+    }
+    if (addressed != 0 && s->index >= 0 && s->index != addressed) {
+      return fail(alarm::kBadWordValue, "Sn= and P name different spindles", s->column);
+    }
+    addressed = spindle;
+    bool clamp = false;
+    for (const BlockWord& w : words_) {
+      if (w.address.is('G')) {
+        const GCodeInfo info = lookup_gcode(static_cast<int>(std::lround(w.value * 10)),
+                                            config_.system);
+        clamp = clamp || info.function == GFunction::coordinate_set;
+      }
+    }
+    if (channel != 0) {
+      remote_rpm = s->value;
+    } else if (clamp) {
+      clamp_rpm_ = s->value;  // G50 S (G92 S in system B): the G96 maximum
+      clamp_changed = true;
+    } else if (css_ && s->index < 0 && p == nullptr) {
+      surface_ = s->value * (metric_ ? 1.0 : 0.3048);  // G96 S: m/min (ft/min in G20)
+      surface_changed = true;
+    } else {
+      rpm_[static_cast<std::size_t>(spindle)] = s->value;
+      speed_changed[static_cast<std::size_t>(spindle)] = true;
+    }
+  }
+
+  auto spindle_command = [this](int spindle, SpindleDirection dir) -> Command& {
+    Command& c = emit(Op::spindle);
+    c.spindle = spindle;
+    c.spindle_direction = dir;
+    c.rpm = rpm_[static_cast<std::size_t>(spindle)];
+    if (css_ && spindle == reference_spindle_ && dir != SpindleDirection::stop &&
+        dir != SpindleDirection::orient) {
+      c.css = true;
+      c.surface = surface_;
+      c.max_rpm = clamp_rpm_;
+    }
+    return c;
+  };
+
+  bool commanded = false;
+  for (BlockWord& w : words_) {
+    if (!w.address.is('M')) {
+      continue;
+    }
+    std::int64_t m = 0;
+    if (!whole_number(w.value, m)) {
+      return fail(alarm::kBadWordValue, "M needs a whole number", w.column);
+    }
+    const int base = static_cast<int>(m % 100);
+    const int spindle = static_cast<int>(m / 100) + 1;
+    if (m >= 1000 || (base != 3 && base != 4 && base != 5 && base != 19)) {
+      continue;
+    }
+    w.used = true;
+    if (addressed != 0 && addressed != spindle && (p != nullptr || (s != nullptr && s->index >= 0))) {
+      return fail(alarm::kBadWordValue,
+                  "M" + std::to_string(m) + " is spindle " + std::to_string(spindle) +
+                      " but the S word addresses spindle " + std::to_string(addressed),
+                  w.column);
+    }
+    const SpindleDirection dir = base == 3   ? SpindleDirection::cw
+                                 : base == 4 ? SpindleDirection::ccw
+                                 : base == 5 ? SpindleDirection::stop
+                                             : SpindleDirection::orient;
+    if (channel != 0) {
+      Command& c = emit(Op::spindle);
+      c.channel = channel;
+      c.spindle = spindle;
+      c.spindle_direction = dir;
+      c.rpm = remote_rpm >= 0.0 ? remote_rpm : 0.0;
+      commanded = true;
+      continue;
+    }
+    if (dir != SpindleDirection::orient) {
+      spindle_direction_[static_cast<std::size_t>(spindle)] = dir;
+    }
+    Command& c = spindle_command(spindle, dir);
+    if (dir == SpindleDirection::stop) {
+      if (BlockWord* pa = word('P', 'A')) {
+        pa->used = true;
+        c.has_angle = true;
+        c.angle = pa->value;
+      }
+      if (BlockWord* pn = word('P', 'N')) {
+        pn->used = true;
+        std::int64_t n = 0;
+        if (!whole_number(pn->value, n) || n < 1 || n > 360) {
+          return fail(alarm::kBadWordValue, "PN needs a number of divisions 1-360", pn->column);
+        }
+        c.divisions = static_cast<int>(n);
+      }
+    }
+    speed_changed[static_cast<std::size_t>(spindle)] = false;
+    if (spindle == reference_spindle_) {
+      surface_changed = false;
+      clamp_changed = false;
+    }
+    commanded = true;
+  }
+  if (channel != 0 && !commanded && remote_rpm >= 0.0) {
+    Command& c = emit(Op::spindle);  // a speed for another channel's spindle: direction kept
+    c.channel = channel;
+    c.spindle = addressed;
+    c.spindle_direction = SpindleDirection::keep;
+    c.rpm = remote_rpm;
+  }
+  // A new speed, surface speed or clamp for a turning spindle goes out at once.
+  for (int sp = 1; sp <= 9; ++sp) {
+    const SpindleDirection dir = spindle_direction_[static_cast<std::size_t>(sp)];
+    const bool turning = dir == SpindleDirection::cw || dir == SpindleDirection::ccw;
+    const bool css_here = css_ && sp == reference_spindle_;
+    const bool changed = css_here ? (surface_changed || clamp_changed)
+                                  : speed_changed[static_cast<std::size_t>(sp)];
+    if (turning && changed) {
+      spindle_command(sp, dir);
+    }
+  }
+  return true;
+}
+
+bool ProgramRun::run_tool_word() {
+  BlockWord* t = word('T');
+  if (t == nullptr) {
+    return true;
+  }
+  t->used = true;
+  std::int64_t v = 0;
+  if (!whole_number(t->value, v) || v < 0 || v > 9999) {
+    return fail(alarm::kBadWordValue, "T needs TAABB: tool AA and offset BB as a whole number",
+                t->column);
+  }
+  bool in_t_call = false;
+  for (const Frame& f : frames_) {
+    in_t_call = in_t_call || f.t_call;
+  }
+  if (config_.calls.t_program != 0 && !in_t_call) {
+    // The T code calls the tool-change program like M98, with #149 = the T value (L7549-7566).
+    vars_.write(149, macro::MacroValue::of(static_cast<double>(v)));
+    return call_subprogram(config_.calls.t_program, -1, 1, t->column, true);
+  }
+  const int tool = static_cast<int>(v / 100);
+  const int offset = static_cast<int>(v % 100);
+  if (tool > config_.max_tool) {
+    return fail(alarm::kBadWordValue,
+                "tool number " + std::to_string(tool) + " beyond the " +
+                    std::to_string(config_.max_tool) + " tools of this machine",
+                t->column);
+  }
+  if (offset > kMaxToolOffsets) {
+    return fail(alarm::kBadWordValue,
+                "offset number " + std::to_string(offset) + " beyond 64", t->column);
+  }
+  Command& c = emit(Op::tool);
+  c.tool = tool;
+  c.offset = offset;
+  tool_ = tool;
+  t_value_ = static_cast<double>(v);
+  apply_tool_offset(offset);
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// M codes
+
+bool ProgramRun::run_m_codes(bool after_motion) {
+  for (BlockWord& w : words_) {
+    if (!w.address.is('M') || (w.used && !after_motion)) {
+      continue;
+    }
+    std::int64_t m = 0;
+    if (!whole_number(w.value, m) || m < 0 || m > 9999) {
+      return fail(alarm::kBadWordValue, "M needs a whole number 0-9999", w.column);
+    }
+    const bool flow = m == 0 || m == 1 || m == 2 || m == 30 || m == 98 || m == 99 || m == 92 ||
+                      m == 91;
+    if (!after_motion) {
+      if (flow) {
+        w.used = true;  // runs after the motion; its words are checked then
+        const char* words = m == 98 ? "PQL" : m == 99 ? "P" : m == 92 ? "NL" : "";
+        for (const char* c = words; *c != 0; ++c) {
+          if (BlockWord* x = word(*c)) {
+            x->used = true;
+          }
+        }
+        if (m == 91) {
+          return fail(alarm::kNotInThisVersion,
+                      "M91 (jump on an input) needs the PLC inputs of a later release", w.column);
+        }
+        continue;
+      }
+      w.used = true;
+      emit(Op::aux).code = static_cast<int>(m);
+      continue;
+    }
+    if (!flow) {
+      continue;
+    }
+    switch (m) {
+      case 0:
+      case 1: {
+        Command& c = emit(Op::stop);
+        c.code = static_cast<int>(m);
+        c.barrier = true;
+        break;
+      }
+      case 2:
+      case 30:
+        end_program(static_cast<int>(m));
+        return true;
+      case 98: {
+        BlockWord* p = word('P');
+        BlockWord* q = word('Q');
+        BlockWord* l = word('L');
+        std::int64_t program = -1;
+        std::int64_t start = -1;
+        std::int64_t repeat = 1;
+        if (p != nullptr) {
+          p->used = true;
+          if (!whole_number(p->value, program) || program < 0 || program > 99999999) {
+            return fail(alarm::kBadWordValue, "M98 P needs a program number", p->column);
+          }
+          if (program > 9999) {
+            if (l != nullptr) {
+              return fail(alarm::kBadWordValue,
+                          "M98 P<count><program> and L together: give the count once",
+                          p->column);
+            }
+            repeat = program / 10000;  // P30001234: O1234 three times (spec L6326-6329)
+            program %= 10000;
+          }
+        }
+        if (q != nullptr) {
+          q->used = true;
+          if (!whole_number(q->value, start) || start < 0) {
+            return fail(alarm::kBadWordValue, "M98 Q needs a sequence number", q->column);
+          }
+        }
+        if (l != nullptr) {
+          l->used = true;
+          if (!whole_number(l->value, repeat) || repeat < 0 || repeat > 999999) {
+            return fail(alarm::kBadWordValue, "M98 L needs a repeat count 0-999999", l->column);
+          }
+        }
+        if (p == nullptr && q == nullptr) {
+          return fail(alarm::kBadWordValue, "M98 needs P<program> or Q<sequence number>",
+                      w.column);
+        }
+        return call_subprogram(static_cast<int>(program), static_cast<int>(start),
+                               static_cast<int>(repeat), w.column, false);
+      }
+      case 99: {
+        BlockWord* p = word('P');
+        std::int64_t target = -1;
+        if (p != nullptr) {
+          p->used = true;
+          if (!whole_number(p->value, target) || target < 0) {
+            return fail(alarm::kBadWordValue, "M99 P needs a sequence number", p->column);
+          }
+        }
+        return return_from_subprogram(target, w.column);
+      }
+      case 92: {
+        // M92 N L: jump back to N; L = total passes (decision D23), no L = endless.
+        BlockWord* n = word('N');
+        BlockWord* l = word('L');
+        std::int64_t target = 0;
+        std::int64_t passes = -1;
+        if (n == nullptr || !whole_number(n->value, target) || target < 0) {
+          return fail(alarm::kBadWordValue, "M92 needs N<sequence number>", w.column);
+        }
+        n->used = true;
+        if (l != nullptr) {
+          l->used = true;
+          if (!whole_number(l->value, passes)) {
+            return fail(alarm::kBadWordValue, "M92 L needs a whole number", l->column);
+          }
+          passes = passes < 1 ? 1 : passes;
+        }
+        const auto key = std::make_pair(frames_.size(), line_);
+        auto it = loop_counters_.find(key);
+        if (it == loop_counters_.end()) {
+          it = loop_counters_.emplace(key, passes < 0 ? -1 : passes - 1).first;
+        }
+        if (it->second == 0) {
+          loop_counters_.erase(it);
+          break;
+        }
+        if (it->second > 0) {
+          --it->second;
+        }
+        return jump_to_sequence(target, parse::GotoDirection::backward, n->column);
+      }
+      default:
+        break;
+    }
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One-shot codes
+
+bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
+  switch (f) {
+    case GFunction::dwell:
+      return run_dwell(column);
+    case GFunction::channel_sync:
+      return run_channel_sync(column);
+    case GFunction::data_input:
+      return run_data_input(column);
+    case GFunction::reference_return:
+    case GFunction::reference_2_4:
+      return run_reference_return(f, column);
+    case GFunction::coordinate_set:
+      return run_coordinate_set(column);
+    case GFunction::restore_origin:
+      return run_restore_origin(column);
+    case GFunction::local_system:
+      return run_local_system(column);
+    case GFunction::axis_release:
+    case GFunction::axis_acquire:
+    case GFunction::axis_restore:
+      return run_axis_exchange(f, column);
+    case GFunction::channel_release:
+      emit(Op::subcall_release);
+      return true;
+    case GFunction::axis_sync_on:
+    case GFunction::axis_sync_off:
+      return run_axis_sync(f, column);
+    case GFunction::spindle_sync_on:
+    case GFunction::spindle_sync_off:
+      return run_spindle_sync(f);
+    default:
+      return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
+  }
+}
+
+bool ProgramRun::run_dwell(int column) {
+  BlockWord* p = word('P');
+  BlockWord* x = word('X');
+  BlockWord* u = word('U');
+  BlockWord* i = word('I');
+  if (BlockWord* ps = word('P', 'S')) {
+    return fail(alarm::kNotInThisVersion,
+                "G04 PS (wait for the spindle speed) needs the spindle feedback of a later "
+                "release",
+                ps->column);
+  }
+  const bool gsk = config_.dialect == Dialect::gsk;
+  const int given = (p != nullptr) + (x != nullptr) + (u != nullptr);
+  if (given > 1 && !gsk) {
+    BlockWord* second = p != nullptr ? (x != nullptr ? x : u) : u;
+    return fail(alarm::kDwellTimeTwice, "G04 dwell time given more than once (P, X, U)",
+                second->column);
+  }
+  double seconds = 0.0;
+  bool has_time = false;
+  // GSK (D2-7): P wins over X, X over U.
+  if (u != nullptr) {
+    u->used = true;
+    seconds = scaled(*u, true);
+    has_time = true;
+  }
+  if (x != nullptr) {
+    x->used = true;
+    seconds = scaled(*x, true);
+    has_time = true;
+  }
+  if (p != nullptr) {
+    p->used = true;
+    seconds = p->value / 1000.0;
+    has_time = true;
+  }
+  if (seconds < 0.0) {
+    if (!gsk) {
+      return fail(alarm::kNegativeDwell, "G04 dwell time must not be negative",
+                  (p != nullptr ? p : (x != nullptr ? x : u))->column);
+    }
+    seconds = 0.0;
+  }
+  if (i != nullptr) {
+    i->used = true;
+    std::int64_t input = 0;
+    if (!whole_number(i->value, input)) {
+      return fail(alarm::kBadWordValue, "G04 I needs an input number", i->column);
+    }
+    block_barrier_ = true;
+    if (input == 0) {
+      Command& c = emit(Op::sync);  // G04 I0: the read-ahead barrier (spec L6918-6921)
+      c.barrier = true;
+      if (has_time) {
+        Command& d = emit(Op::dwell);
+        d.seconds = seconds;
+      }
+      return true;
+    }
+    Command& c = emit(Op::wait_input);
+    c.input = static_cast<int>(input < 0 ? -input : input);
+    c.input_on = input > 0;
+    if (BlockWord* j = word('J')) {
+      j->used = true;
+      c.timeout_s = j->value;
+    }
+    if (BlockWord* k = word('K')) {
+      k->used = true;
+      c.width_s = k->value;
+    }
+    c.dwell_s = has_time ? seconds : -1.0;
+    return true;
+  }
+  Command& c = emit(Op::dwell);
+  if (config_.dwell_in_revs_with_g99 && feed_mode_ == FeedMode::per_rev) {
+    c.in_revs = true;
+  }
+  c.seconds = seconds;
+  (void)column;
+  return true;
+}
+
+bool ProgramRun::run_channel_sync(int column) {
+  BlockWord* p = word('P');
+  Command& c = emit(Op::sync);
+  c.barrier = true;
+  block_barrier_ = true;
+  bool any_q = false;
+  for (BlockWord& w : words_) {
+    if (!w.address.is('Q')) {
+      continue;
+    }
+    w.used = true;
+    any_q = true;
+    std::int64_t v = 0;
+    if (!whole_number(w.value, v)) {
+      return fail(alarm::kSyncForm, "G04.1 Q needs whole numbers", w.column);
+    }
+    if (w.index < 0 && v == -1) {
+      c.all_channels = true;
+      continue;
+    }
+    if (v <= 0 || (w.index >= 0 && (w.index < 1 || w.index > 25))) {
+      return fail(alarm::kSyncForm,
+                  "G04.1 Q: write channels as digits (Q123, 0 = channel 10), Qt=d for channel "
+                  "10t+d, or Q-1 for all",
+                  w.column);
+    }
+    // Each digit is a channel; digit 0 is channel 10. Qt=d... names channels 10t+d (D6).
+    for (std::int64_t rest = v; rest > 0; rest /= 10) {
+      const int d = static_cast<int>(rest % 10);
+      const int channel = w.index >= 0 ? 10 * w.index + d : (d == 0 ? 10 : d);
+      if (channel < 1 || channel > 255) {
+        return fail(alarm::kSyncForm,
+                    "G04.1 Q names channel " + std::to_string(channel) + " (channels are 1-255)",
+                    w.column);
+      }
+      c.set_channel(channel);
+    }
+  }
+  if (p == nullptr) {
+    if (any_q) {
+      return fail(alarm::kSyncForm, "G04.1 with Q needs P (the synchronisation number)", column);
+    }
+    return true;  // neither P nor Q: the read-ahead barrier of G04 I0 (spec L5445)
+  }
+  p->used = true;
+  std::int64_t v = 0;
+  if (!whole_number(p->value, v) || v < 1 || v > 99999999) {
+    return fail(alarm::kSyncForm, "G04.1 P needs a positive whole number", p->column);
+  }
+  c.has_p = true;
+  c.p = static_cast<int>(v);
+  if (!any_q) {
+    c.all_channels = true;  // P without Q: all channels (decision D5)
+  }
+  if (c.all_channels) {
+    c.channels = {};
+  } else if (!c.has_channel(config_.channel)) {
+    return fail(alarm::kSyncForm,
+                "G04.1 Q does not include this channel (" + std::to_string(config_.channel) + ")",
+                column);
+  }
+  return true;
+}
+
+bool ProgramRun::run_channel_call(int column) {
+  BlockWord* n = word('N');
+  BlockWord* p = word('P');
+  BlockWord* h = word('H');
+  BlockWord* l = word('L');
+  std::int64_t channel = 0;
+  std::int64_t program = 0;
+  std::int64_t wait = 1;
+  std::int64_t repeat = 1;
+  if (n == nullptr || !whole_number(n->value, channel) || channel < 1 || channel > 255) {
+    return fail(alarm::kBadWordValue, "G144 needs N<channel 1-255>",
+                n != nullptr ? n->column : column);
+  }
+  if (channel == config_.channel) {
+    return fail(alarm::kBadWordValue, "G144 N names this channel itself",
+                n->column);
+  }
+  if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
+    return fail(alarm::kBadWordValue, "G144 needs P<program number 0-9999>",
+                p != nullptr ? p->column : column);
+  }
+  if (h != nullptr && (!whole_number(h->value, wait) || (wait != 0 && wait != 1))) {
+    return fail(alarm::kBadWordValue, "G144 H must be 0 (no wait) or 1 (wait)", h->column);
+  }
+  if (l != nullptr) {
+    if (wait == 0) {
+      return fail(alarm::kWordNotAllowed, "G144 L (repeat count) is only valid with H1",
+                  l->column);
+    }
+    if (!whole_number(l->value, repeat) || repeat < 1) {
+      return fail(alarm::kBadWordValue, "G144 L needs a repeat count of at least 1", l->column);
+    }
+    l->used = true;
+  }
+  n->used = true;
+  p->used = true;
+  if (h != nullptr) {
+    h->used = true;
+  }
+  Command& c = emit(Op::subcall);
+  c.channel = static_cast<int>(channel);
+  c.program = static_cast<int>(program);
+  c.wait = wait == 1;
+  c.repeat = static_cast<int>(repeat);
+  for (BlockWord& w : words_) {
+    if (w.used) {
+      continue;
+    }
+    const char letter = w.address.first;
+    const int var = w.address.second == 0 && !w.address.comma && w.index < 0 &&
+                            letter != 'N' && letter != 'P' && letter != 'H' && letter != 'L' &&
+                            letter != 'O'
+                        ? type_one_variable(letter)
+                        : 0;
+    if (var == 0 || var > kSubcallArgs) {
+      return fail(alarm::kWordNotAllowed, address_name(w.address) + " cannot be a G144 argument",
+                  w.column);
+    }
+    c.args[static_cast<std::size_t>(var - 1)] = w.value;
+    c.args_set |= 1U << (var - 1);
+    w.used = true;
+  }
+  c.barrier = c.wait;
+  return true;
+}
+
+bool ProgramRun::run_axis_exchange(GFunction f, int column) {
+  if (f == GFunction::axis_restore) {
+    Command& c = emit(Op::axis_restore);
+    c.barrier = true;
+    released_.fill(false);
+    return true;
+  }
+  bool force = false;
+  if (f == GFunction::axis_acquire) {
+    if (BlockWord* p = word('P')) {
+      std::int64_t v = 0;
+      if (!whole_number(p->value, v) || (v != 0 && v != 1)) {
+        return fail(alarm::kBadWordValue, "G141 P must be 0 (wait for release) or 1 (force)",
+                    p->column);
+      }
+      p->used = true;
+      force = v == 1;
+    }
+  }
+  int count = 0;
+  for (BlockWord& w : words_) {
+    if (w.used || w.address.second != 0 || w.address.comma) {
+      continue;
+    }
+    const char letter = w.address.first;
+    if (letter != 'X' && letter != 'Y' && letter != 'Z' && letter != 'A' && letter != 'B' &&
+        letter != 'C') {
+      continue;
+    }
+    std::int64_t exchange = 0;
+    if (!whole_number(w.value, exchange) || exchange < 1 || exchange > 9999) {
+      return fail(alarm::kBadWordValue,
+                  std::string(1, letter) +
+                      "n: n is the axis exchange number (parameter 5660), a positive whole number",
+                  w.column);
+    }
+    int axis = -1;
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      axis = config_.axes[i].name == letter ? static_cast<int>(i) : axis;
+    }
+    if (axis < 0) {
+      return fail(alarm::kWordNotAllowed,
+                  std::string(1, letter) + " is not an axis (or placeholder axis) of channel " +
+                      std::to_string(config_.channel),
+                  w.column);
+    }
+    const int own = config_.axes[static_cast<std::size_t>(axis)].exchange;
+    if (own != 0 && own != exchange && f == GFunction::axis_release) {
+      return fail(alarm::kBadWordValue,
+                  std::string(1, letter) + std::to_string(exchange) + ": the exchange number of " +
+                      letter + " in this channel is " + std::to_string(own),
+                  w.column);
+    }
+    w.used = true;
+    Command& c = emit(f == GFunction::axis_release ? Op::axis_release : Op::axis_acquire);
+    c.axis = letter;
+    c.exchange = static_cast<int>(exchange);
+    c.force = force;
+    c.barrier = true;
+    released_[static_cast<std::size_t>(axis)] = f == GFunction::axis_release;
+    ++count;
+  }
+  if (count == 0) {
+    return fail(alarm::kBadWordValue,
+                std::string(f == GFunction::axis_release ? "G140" : "G141") +
+                    " needs an axis with its exchange number, e.g. A14",
+                column);
+  }
+  return true;
+}
+
+bool ProgramRun::run_axis_sync(GFunction f, int column) {
+  BlockWord* p = word('P');
+  BlockWord* q = word('Q');
+  std::int64_t master = 0;
+  std::int64_t slave = 0;
+  if (q == nullptr || !whole_number(q->value, slave) || slave < 1 || slave > 255) {
+    return fail(alarm::kBadWordValue,
+                std::string(f == GFunction::axis_sync_on ? "G51.4" : "G50.4") +
+                    " needs Q<slave axis number>",
+                q != nullptr ? q->column : column);
+  }
+  q->used = true;
+  if (p != nullptr) {
+    p->used = true;  // G50.4 accepts and ignores P (spec L5580)
+    if (f == GFunction::axis_sync_on &&
+        (!whole_number(p->value, master) || master < 1 || master > 255 || master == slave)) {
+      return fail(alarm::kBadWordValue, "G51.4 P needs a master axis number other than Q",
+                  p->column);
+    }
+  }
+  Command& c = emit(f == GFunction::axis_sync_on ? Op::axis_couple : Op::axis_decouple);
+  c.master = f == GFunction::axis_sync_on ? static_cast<int>(master) : 0;
+  c.slave = static_cast<int>(slave);
+  c.barrier = true;
+  return true;
+}
+
+bool ProgramRun::run_spindle_sync(GFunction f) {
+  if (f == GFunction::spindle_sync_off) {
+    Command& c = emit(Op::spindle_unsync);
+    c.barrier = true;
+    return true;
+  }
+  Command& c = emit(Op::spindle_sync);
+  std::int64_t v = 0;
+  if (BlockWord* p = word('P')) {
+    p->used = true;
+    if (!whole_number(p->value, v) || v < 1) {
+      return fail(alarm::kBadWordValue, "G114.1 P (master ratio) must be a positive whole number",
+                  p->column);
+    }
+    c.sync_p = static_cast<int>(v);
+  }
+  if (BlockWord* q = word('Q')) {
+    q->used = true;
+    if (!whole_number(q->value, v) || v == 0) {
+      return fail(alarm::kBadWordValue, "G114.1 Q (slave ratio) must be a non-zero whole number",
+                  q->column);
+    }
+    c.sync_q = static_cast<int>(v);
+  }
+  if (BlockWord* k = word('K')) {
+    k->used = true;
+    if (!whole_number(k->value, v) || v < 1 || v > 3) {
+      return fail(alarm::kBadWordValue, "G114.1 K (synchronisation group) must be 1-3",
+                  k->column);
+    }
+    c.sync_k = static_cast<int>(v);
+  }
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    if (r->value < 0.0 || r->value >= 360.0) {
+      return fail(alarm::kBadWordValue, "G114.1 R (phase) must be 0-359.999 degrees", r->column);
+    }
+    c.sync_r = r->value;
+  }
+  c.barrier = true;
+  return true;
+}
+
+bool ProgramRun::run_data_input(int column) {
+  BlockWord* l = word('L');
+  BlockWord* p = word('P');
+  std::int64_t lv = 0;
+  std::int64_t pv = 0;
+  if (p == nullptr || !whole_number(p->value, pv)) {
+    return fail(alarm::kBadWordValue, "G10 needs P (which offset)", column);
+  }
+  p->used = true;
+  if (l != nullptr) {
+    l->used = true;
+    if (!whole_number(l->value, lv) || (lv != 2 && lv != 20)) {
+      return fail(alarm::kNotInThisVersion,
+                  "G10 L" + std::to_string(lv) +
+                      " is not implemented (work offsets: L2, L20; tool offsets: no L)",
+                  l->column);
+    }
+    int system = 0;
+    if (lv == 2) {
+      if (pv < 0 || pv > 6 + kExtendedWorkSystems) {
+        return fail(alarm::kBadWordValue, "G10 L2 P must be 0 (EXT), 1-6 (G54-G59) or 7-105",
+                    p->column);
+      }
+      system = static_cast<int>(pv);
+    } else {
+      if (pv < 1 || pv > kExtendedWorkSystems) {
+        return fail(alarm::kBadWordValue, "G10 L20 P must be 1-99 (G54.1 P1-P99)", p->column);
+      }
+      system = 6 + static_cast<int>(pv);
+    }
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      const int ia = static_cast<int>(i);
+      const AxisWords aw = axis_words(ia);
+      if (aw.error) {
+        return false;
+      }
+      if (aw.word == nullptr) {
+        continue;
+      }
+      aw.word->used = true;
+      double& slot = work_[static_cast<std::size_t>(system)][i];
+      const double v = to_physical(ia, scaled(*aw.word, true), false);
+      slot = aw.incremental ? slot + v : v;
+    }
+    return true;
+  }
+  // Tool offsets: P1-P64 wear, P10001-P10064 geometry (spec dafeng L3620-3669).
+  const bool geometry = pv >= 10001 && pv <= 10000 + kMaxToolOffsets;
+  if (!geometry && (pv < 1 || pv > kMaxToolOffsets)) {
+    return fail(alarm::kBadWordValue, "G10 P must be 1-64 (wear) or 10001-10064 (geometry)",
+                p->column);
+  }
+  ToolOffsetValues& t = geometry ? geometry_[static_cast<std::size_t>(pv - 10000)]
+                                 : wear_[static_cast<std::size_t>(pv)];
+  struct Field {
+    char abs;
+    char inc;
+    double* value;
+  };
+  const double inch = metric_ ? 1.0 : 25.4;
+  for (const Field& fd : {Field{'X', 'U', &t.x}, Field{'Z', 'W', &t.z}, Field{'Y', 'V', &t.y}}) {
+    BlockWord* a = word(fd.abs);
+    BlockWord* i = word(fd.inc);
+    if (a != nullptr && i != nullptr) {
+      return fail(alarm::kAbsoluteAndIncremental,
+                  std::string(1, fd.abs) + " and " + fd.inc + " in one block", i->column);
+    }
+    if (a != nullptr) {
+      a->used = true;
+      *fd.value = scaled(*a, true) * inch;
+    }
+    if (i != nullptr) {
+      i->used = true;
+      *fd.value += scaled(*i, true) * inch;
+    }
+  }
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    t.radius = scaled(*r, true) * inch;
+  }
+  if (BlockWord* ur = word('U', 'R')) {
+    ur->used = true;
+    t.radius += scaled(*ur, true) * inch;
+  }
+  if (BlockWord* q = word('Q')) {
+    q->used = true;
+    std::int64_t tip = 0;
+    if (!whole_number(q->value, tip) || tip < 0 || tip > 9) {
+      return fail(alarm::kBadWordValue, "G10 Q (imaginary tool tip) must be 0-9", q->column);
+    }
+    // One imaginary tip per offset number, read as #2301+: kept with the geometry.
+    geometry_[static_cast<std::size_t>(geometry ? pv - 10000 : pv)].tip = static_cast<int>(tip);
+  }
+  apply_tool_offset(offset_);  // the active offset takes the new values at once
+  return true;
+}
+
+}  // namespace mcnc::interp

@@ -1,0 +1,466 @@
+// Coordinates and motion: axis words to machine positions (spec dafeng §1.2, §1.4-§1.6, §2.9),
+// G00/G01/G02/G03, G28/G30, G50/G92, G50.3, G52.
+#include "channel/interp/axis_address.hpp"
+#include "channel/interp/program_alarms.hpp"
+#include "channel/interp/program_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace mcnc::interp {
+
+namespace {
+
+std::string format_mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", v);
+  return buf;
+}
+
+}  // namespace
+
+double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  double v = programmed;
+  if (!a.rotary && !metric_) {
+    v *= 25.4;
+  }
+  if (a.diameter) {
+    v /= 2.0;
+  }
+  if (mirror && turret_mirror_ && a.name == 'X') {
+    v = -v;  // G68: the facing turret's X is mirrored about X0 (spec L4460-4501)
+  }
+  return v;
+}
+
+double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  double v = physical;
+  if (mirror && turret_mirror_ && a.name == 'X') {
+    v = -v;
+  }
+  if (a.diameter) {
+    v *= 2.0;
+  }
+  if (!a.rotary && !metric_) {
+    v /= 25.4;
+  }
+  return v;
+}
+
+double ProgramRun::offset_sum(int axis) const {
+  const auto i = static_cast<std::size_t>(axis);
+  const auto ws = static_cast<std::size_t>(work_system_);
+  return work_[0][i] + work_[ws][i] + shift_[i] + local_[ws][i];
+}
+
+double ProgramRun::tool_offset(int axis) const {
+  if (offset_ <= 0) {
+    return 0.0;
+  }
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  const ToolOffsetValues& g = geometry_[static_cast<std::size_t>(offset_)];
+  const ToolOffsetValues& w = wear_[static_cast<std::size_t>(offset_)];
+  switch (a.name) {
+    case 'X':
+      return (g.x + w.x) / (a.diameter ? 2.0 : 1.0);
+    case 'Z':
+      return g.z + w.z;
+    case 'Y':
+      return g.y + w.y;
+    default:
+      return 0.0;
+  }
+}
+
+void ProgramRun::apply_tool_offset(int offset) {
+  // No motion: the displayed position changes and the next move goes to the offset position
+  // (spec dafeng L3574-3619). Incremental moves are measured from the displayed position.
+  offset_ = offset;
+}
+
+double ProgramRun::program_position(int axis) const {
+  const auto i = static_cast<std::size_t>(axis);
+  return to_programmed(axis, machine_[i] - offset_sum(axis) - tool_offset(axis));
+}
+
+ProgramRun::AxisWords ProgramRun::axis_words(int axis) {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  AxisWords out;
+  BlockWord* abs = word(a.name);
+  BlockWord* inc = nullptr;
+  if (config_.system == GCodeSystem::a) {
+    const AxisAddress address = lathe_axis_address(a.name, a.diameter);
+    inc = address.incremental != 0 ? word(address.incremental) : nullptr;
+  }
+  BlockWord* extended = word('U', a.name);  // UX, UZ, UA ... (spec dafeng §1.6)
+  if (extended != nullptr && inc != nullptr) {
+    fail(alarm::kAbsoluteAndIncremental,
+         std::string(1, inc->address.first) + " and U" + a.name + " in one block",
+         extended->column);
+    out.error = true;
+    return out;
+  }
+  inc = inc != nullptr ? inc : extended;
+  if (abs != nullptr && inc != nullptr) {
+    fail(alarm::kAbsoluteAndIncremental,
+         "absolute " + std::string(1, a.name) + " and its incremental address in one block",
+         inc->column);
+    out.error = true;
+    return out;
+  }
+  if (abs != nullptr && config_.system == GCodeSystem::b && incremental_mode_) {
+    out.word = abs;
+    out.incremental = true;  // system B, G91
+    return out;
+  }
+  out.word = abs != nullptr ? abs : inc;
+  out.incremental = abs == nullptr && inc != nullptr;
+  return out;
+}
+
+bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChannelAxes>& given,
+                                   bool machine_coordinates) {
+  target = machine_;
+  given.fill(false);
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    const int ia = static_cast<int>(i);
+    const AxisWords aw = axis_words(ia);
+    if (aw.error) {
+      return false;
+    }
+    if (aw.word == nullptr) {
+      continue;
+    }
+    aw.word->used = true;
+    if (released_[i]) {
+      return fail(alarm::kReleasedAxis,
+                  std::string(1, config_.axes[i].name) +
+                      " was released to another channel by G140; acquire it (G141) or restore "
+                      "(G142) first",
+                  aw.word->column);
+    }
+    given[i] = true;
+    const double v = scaled(*aw.word, true);
+    if (aw.incremental) {
+      if (machine_coordinates) {
+        return fail(alarm::kWordNotAllowed, "G53 takes absolute machine positions only",
+                    aw.word->column);
+      }
+      target[i] = machine_[i] + to_physical(ia, v);
+    } else if (machine_coordinates) {
+      target[i] = to_physical(ia, v, false);
+    } else {
+      target[i] = to_physical(ia, v) + offset_sum(ia) + tool_offset(ia);
+    }
+  }
+  return true;
+}
+
+bool ProgramRun::check_feed(int column) {
+  if (feed_ <= 0.0) {
+    return fail(alarm::kFeedMissing, "cutting move without feed: program F greater than 0",
+                column);
+  }
+  return true;
+}
+
+bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int column) {
+  AxisVector target{};
+  std::array<bool, kMaxChannelAxes> given{};
+  if (!read_axis_targets(target, given, machine_coordinates)) {
+    return false;
+  }
+  bool any = false;
+  int first_column = column;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    any = any || given[i];
+  }
+  for (const BlockWord& w : words_) {
+    if (w.used && first_column == 0 && w.address.second == 0) {
+      first_column = w.column;
+    }
+  }
+  if (motion == GFunction::arc_cw || motion == GFunction::arc_ccw) {
+    const bool arc_words = word('R') != nullptr || word('I') != nullptr ||
+                           word('J') != nullptr || word('K') != nullptr;
+    if (!any && !arc_words) {
+      return true;
+    }
+    return run_arc(motion, target, column != 0 ? column : first_column);
+  }
+  if (!any) {
+    return true;
+  }
+  if (motion == GFunction::linear) {
+    BlockWord* f = word('F');
+    if (!check_feed(f != nullptr ? f->column : first_column)) {
+      return false;
+    }
+  }
+  Command& c = emit(motion == GFunction::linear ? Op::linear : Op::rapid);
+  c.to = target;
+  c.feed = feed_;
+  c.feed_mode = feed_mode_;
+  c.exact_stop = motion == GFunction::linear && (block_exact_stop_ || exact_stop_mode_);
+  machine_ = target;
+  block_moved_ = true;
+  return true;
+}
+
+bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column) {
+  struct PlaneAxes {
+    char a, b;    // first and second axis of the plane
+    char ca, cb;  // their centre words
+  };
+  const PlaneAxes pa = plane_ == Plane::xy   ? PlaneAxes{'X', 'Y', 'I', 'J'}
+                       : plane_ == Plane::zx ? PlaneAxes{'Z', 'X', 'K', 'I'}
+                                             : PlaneAxes{'Y', 'Z', 'J', 'K'};
+  int ia = -1;
+  int ib = -1;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    ia = config_.axes[i].name == pa.a ? static_cast<int>(i) : ia;
+    ib = config_.axes[i].name == pa.b ? static_cast<int>(i) : ib;
+  }
+  if (ia < 0 || ib < 0) {
+    return fail(alarm::kNoPlaneAxis,
+                std::string("an arc in the ") + pa.a + pa.b + " plane needs axes " + pa.a +
+                    " and " + pa.b + " in this channel",
+                column);
+  }
+  const auto a = static_cast<std::size_t>(ia);
+  const auto b = static_cast<std::size_t>(ib);
+  const double sa = machine_[a];
+  const double sb = machine_[b];
+  const double ea = target[a];
+  const double eb = target[b];
+  ArcDirection dir = motion == GFunction::arc_cw ? ArcDirection::cw : ArcDirection::ccw;
+  if (turret_mirror_ && (pa.a == 'X' || pa.b == 'X')) {
+    dir = dir == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw;  // mirrored X
+  }
+  const double inch = metric_ ? 1.0 : 25.4;
+  BlockWord* r = word('R');
+  BlockWord* wa = word(pa.ca);
+  BlockWord* wb = word(pa.cb);
+  double ca = 0.0;
+  double cb = 0.0;
+  const double tol = config_.arc_tolerance;
+  if (r != nullptr) {
+    r->used = true;
+    if (wa != nullptr) {
+      wa->used = true;  // R wins over I/K (gsk D2-9)
+    }
+    if (wb != nullptr) {
+      wb->used = true;
+    }
+    const double radius = scaled(*r, true) * inch;
+    const double dx = ea - sa;
+    const double dy = eb - sb;
+    const double d = std::hypot(dx, dy);
+    if (d < 1e-9) {
+      return fail(alarm::kArcFullCircleWithR,
+                  "a full circle cannot be programmed with R; give the centre with I/K",
+                  r->column);
+    }
+    double rr = std::fabs(radius);
+    const double half = d / 2.0;
+    if (rr < half) {
+      if (half - rr > tol) {
+        return fail(alarm::kArcGeometry,
+                    "arc radius R" + format_mm(std::fabs(radius)) +
+                        " is smaller than half the distance to the end point (" +
+                        format_mm(half) + ")",
+                    r->column);
+      }
+      rr = half;
+    }
+    const double h = std::sqrt(std::max(0.0, rr * rr - half * half));
+    // The centre of the shorter arc lies left of the chord for CCW, right for CW; R < 0 takes
+    // the longer arc (spec dafeng L475-560).
+    double side = dir == ArcDirection::ccw ? 1.0 : -1.0;
+    if (radius < 0.0) {
+      side = -side;
+    }
+    ca = sa + dx / 2.0 + side * h * (-dy / d);
+    cb = sb + dy / 2.0 + side * h * (dx / d);
+  } else {
+    if (wa == nullptr && wb == nullptr) {
+      return fail(alarm::kArcGeometry,
+                  std::string("arc needs R or its centre (") + pa.ca + "/" + pa.cb + ")", column);
+    }
+    auto offset = [&](BlockWord* w, char axis) {
+      if (w == nullptr) {
+        return 0.0;
+      }
+      w->used = true;
+      double v = scaled(*w, true) * inch;  // I/J/K are radius values (spec L119-167)
+      if (turret_mirror_ && axis == 'X') {
+        v = -v;
+      }
+      return v;
+    };
+    ca = sa + offset(wa, pa.a);
+    cb = sb + offset(wb, pa.b);
+    const double r0 = std::hypot(sa - ca, sb - cb);
+    const double r1 = std::hypot(ea - ca, eb - cb);
+    if (r0 < 1e-9) {
+      return fail(alarm::kArcGeometry, "arc centre at the start point (radius 0)", column);
+    }
+    if (config_.arc_check && std::fabs(r0 - r1) > tol) {
+      return fail(alarm::kArcGeometry,
+                  "arc end point is not on the circle: radius " + format_mm(r0) +
+                      " at the start, " + format_mm(r1) + " at the end (tolerance " +
+                      format_mm(tol) + ")",
+                  column);
+    }
+  }
+  int turns = 0;
+  if (BlockWord* l = word('L')) {
+    l->used = true;
+    const double v = l->value;
+    if (v < 1.0 || std::fabs(v - std::round(v)) > 1e-9) {
+      return fail(alarm::kBadWordValue, "L (helical turns) must be a whole number >= 1",
+                  l->column);
+    }
+    turns = static_cast<int>(std::lround(v)) - 1;
+  }
+  BlockWord* f = word('F');
+  if (!check_feed(f != nullptr ? f->column : column)) {
+    return false;
+  }
+  Command& c = emit(Op::arc);
+  c.to = target;
+  c.plane = plane_;
+  c.direction = dir;
+  c.center_axes = {ia, ib};
+  c.center = {ca, cb};
+  c.turns = turns;
+  c.feed = feed_;
+  c.feed_mode = feed_mode_;
+  c.exact_stop = block_exact_stop_ || exact_stop_mode_;
+  machine_ = target;
+  block_moved_ = true;
+  return true;
+}
+
+bool ProgramRun::run_reference_return(GFunction f, int column) {
+  int point = 1;
+  if (f == GFunction::reference_2_4) {
+    point = 2;
+    if (BlockWord* p = word('P')) {
+      p->used = true;
+      if (p->value != 2.0 && p->value != 3.0 && p->value != 4.0) {
+        return fail(alarm::kBadWordValue, "G30 P must be 2, 3 or 4", p->column);
+      }
+      point = static_cast<int>(p->value);
+    }
+  }
+  AxisVector via{};
+  std::array<bool, kMaxChannelAxes> given{};
+  if (!read_axis_targets(via, given, false)) {
+    return false;
+  }
+  bool any = false;
+  AxisVector home = via;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    if (given[i]) {
+      any = true;
+      home[i] = config_.axes[i].reference[static_cast<std::size_t>(point - 1)];
+    }
+  }
+  if (!any) {
+    (void)column;
+    return true;
+  }
+  emit(Op::rapid).to = via;  // the intermediate point first
+  emit(Op::rapid).to = home;
+  machine_ = home;
+  block_moved_ = true;
+  if (f == GFunction::reference_return) {
+    // Homing clears the G50 shift and the G52 local systems of the homed axes (L4083-4129).
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      if (given[i]) {
+        shift_[i] = 0.0;
+        for (auto& l : local_) {
+          l[i] = 0.0;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+bool ProgramRun::run_coordinate_set(int /*column*/) {
+  const auto ws = static_cast<std::size_t>(work_system_);
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    const int ia = static_cast<int>(i);
+    const AxisWords aw = axis_words(ia);
+    if (aw.error) {
+      return false;
+    }
+    if (aw.word == nullptr) {
+      continue;
+    }
+    aw.word->used = true;
+    const double v = to_physical(ia, scaled(*aw.word, true));
+    if (aw.incremental) {
+      shift_[i] -= v;  // G50 U: the position reads U more (L4219-4232)
+      continue;
+    }
+    // The position before the tool offset reads v; G52 of this axis ends in every system.
+    for (auto& l : local_) {
+      l[i] = 0.0;
+    }
+    shift_[i] = machine_[i] - work_[0][i] - work_[ws][i] - v;
+  }
+  return true;
+}
+
+bool ProgramRun::run_local_system(int /*column*/) {
+  const auto ws = static_cast<std::size_t>(work_system_);
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    const int ia = static_cast<int>(i);
+    const AxisWords aw = axis_words(ia);
+    if (aw.error) {
+      return false;
+    }
+    if (aw.word == nullptr) {
+      continue;
+    }
+    aw.word->used = true;
+    const double v = to_physical(ia, scaled(*aw.word, true));
+    if (aw.incremental) {
+      // U/W: relative to the current position in the work system (spec L4302-4386).
+      local_[ws][i] =
+          machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(ia) + v;
+    } else {
+      local_[ws][i] = v;
+    }
+  }
+  return true;
+}
+
+bool ProgramRun::run_restore_origin(int /*column*/) {
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    const AxisWords aw = axis_words(static_cast<int>(i));
+    if (aw.error) {
+      return false;
+    }
+    if (aw.word == nullptr) {
+      continue;
+    }
+    aw.word->used = true;
+    if (aw.incremental || aw.word->value != 0.0) {
+      return fail(alarm::kBadWordValue,
+                  "G50.3 restores the origin of an axis written with 0, e.g. X0", aw.word->column);
+    }
+    shift_[i] = 0.0;
+    for (auto& l : local_) {
+      l[i] = 0.0;
+    }
+  }
+  return true;
+}
+
+}  // namespace mcnc::interp

@@ -1,0 +1,225 @@
+// The system variables of spec dafeng §4.1 that the interpreter itself holds: tool offsets
+// (#2001-#2964, #10001-#19064), timers (#3001/#3002), date and time (#3011/#3012), part
+// counters (#3901/#3902), modal information (#4000-#4330), positions (#5001-#5200) and work
+// offsets (#5201-#5340, #7001-#7999). #3000 and #3006 are statements (program_run.cpp).
+#include "channel/interp/macro/macro_alarms.hpp"
+#include "channel/interp/program_run.hpp"
+
+namespace mcnc::interp {
+
+namespace {
+
+using macro::MacroAlarm;
+using macro::MacroValue;
+using macro::VariableRead;
+
+enum class ToolField : std::uint8_t { x, z, y, radius, tip };
+
+struct ToolVariable {
+  bool found = false;
+  bool geometry = false;
+  ToolField field = ToolField::x;
+  int offset = 0;
+};
+
+// #2001-#2964 (64 offsets; Y only 49) and the extended #10001-#19064 (spec L6520-6656).
+ToolVariable tool_variable(std::int64_t n) {
+  struct Range {
+    std::int64_t first;
+    int count;
+    bool geometry;
+    ToolField field;
+  };
+  static constexpr Range kRanges[] = {
+      {2001, 64, false, ToolField::x},      {2101, 64, false, ToolField::z},
+      {2201, 64, false, ToolField::radius}, {2301, 64, true, ToolField::tip},
+      {2401, 49, false, ToolField::y},      {2451, 49, true, ToolField::y},
+      {2701, 64, true, ToolField::x},       {2801, 64, true, ToolField::z},
+      {2901, 64, true, ToolField::radius},  {10001, 64, false, ToolField::x},
+      {11001, 64, false, ToolField::z},     {12001, 64, false, ToolField::radius},
+      {13001, 64, true, ToolField::tip},    {14001, 64, false, ToolField::y},
+      {15001, 64, true, ToolField::x},      {16001, 64, true, ToolField::z},
+      {17001, 64, true, ToolField::radius}, {19001, 64, true, ToolField::y},
+  };
+  for (const Range& r : kRanges) {
+    if (n >= r.first && n < r.first + r.count) {
+      return ToolVariable{true, r.geometry, r.field, static_cast<int>(n - r.first) + 1};
+    }
+  }
+  return {};
+}
+
+double* tool_slot(ToolOffsetValues& t, ToolField f) {
+  switch (f) {
+    case ToolField::x:
+      return &t.x;
+    case ToolField::z:
+      return &t.z;
+    case ToolField::y:
+      return &t.y;
+    case ToolField::radius:
+      return &t.radius;
+    case ToolField::tip:
+      return nullptr;
+  }
+  return nullptr;
+}
+
+VariableRead value(double v) {
+  return VariableRead{MacroValue::of(v), {}};
+}
+
+VariableRead undefined(std::int64_t n) {
+  return VariableRead{{},
+                      macro::make_alarm(macro::alarm::kUndefinedVariable, 0,
+                                        "variable #%lld does not exist", static_cast<long long>(n))};
+}
+
+}  // namespace
+
+VariableRead ProgramRun::read(std::int64_t n) const {
+  const int axes = static_cast<int>(config_.axes.size());
+  if (const ToolVariable tv = tool_variable(n); tv.found) {
+    const auto k = static_cast<std::size_t>(tv.offset);
+    const ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
+    if (tv.field == ToolField::tip) {
+      return value(t.tip);
+    }
+    return value(tv.field == ToolField::x   ? t.x
+                 : tv.field == ToolField::z ? t.z
+                 : tv.field == ToolField::y ? t.y
+                                            : t.radius);
+  }
+  switch (n) {
+    case 3000:
+    case 3006:
+      return VariableRead{};  // statements, not values
+    case 3001:
+      return value(environment_->milliseconds() - timer_ms_base_);
+    case 3002:
+      return value((environment_->milliseconds() - timer_hours_base_) / 3.6e6);
+    case 3011:
+      return value(environment_->date());
+    case 3012:
+      return value(environment_->time_of_day());
+    case 3901:
+      return value(parts_done_);
+    case 3902:
+      return value(parts_required_);
+    case 4000:
+      return value(main_number_);
+    default:
+      break;
+  }
+  // #4001-#4030 look-ahead modal state and #4201-#4230 the executing block's: the same for a
+  // pull-based interpreter, whose last pulled block is the one executing.
+  if ((n >= 4001 && n <= 4030) || (n >= 4201 && n <= 4230)) {
+    return value(modal_codes_[static_cast<std::size_t>(n % 100)]);
+  }
+  if (n == 4109 || n == 4309) {
+    return value(feed_ / (metric_ ? 1.0 : 25.4));
+  }
+  if (n == 4119 || n == 4319) {
+    return value(rpm_[1]);
+  }
+  if (n == 4120 || n == 4320) {
+    return value(t_value_);
+  }
+  if (n == 4115) {
+    const Frame& f = frames_.back();
+    return value(f.program->number.value_or(0));
+  }
+  if (n >= 5001 && n <= 5200) {
+    const int range = static_cast<int>((n - 5001) / 20);
+    const int axis = static_cast<int>((n - 5001) % 20);
+    if (axis >= axes) {
+      return VariableRead{};  // no such axis in this channel: null
+    }
+    const auto i = static_cast<std::size_t>(axis);
+    switch (range) {
+      case 0:  // #5001: workpiece position at the end of the block
+      case 2:  // #5041: current workpiece position (decision D20)
+        return value(program_position(axis));
+      case 1: {  // #5021: machine position, in programmed units (X as a diameter)
+        const AxisConfig& a = config_.axes[i];
+        double v = machine_[i] * (a.diameter ? 2.0 : 1.0);
+        return value(!a.rotary && !metric_ ? v / 25.4 : v);
+      }
+      case 3:  // #5061: skip position (G31 is not implemented: null)
+        return VariableRead{};
+      case 6:  // #5121: handwheel interrupt
+      case 9:  // #5181: distance to go (the interpreter's position is the block end)
+        return value(0.0);
+      default:
+        return undefined(n);
+    }
+  }
+  if (n >= 5201 && n <= 5340) {
+    const int system = static_cast<int>((n - 5201) / 20);  // 0 = EXT, 1-6 = G54-G59
+    const int axis = static_cast<int>((n - 5201) % 20);
+    if (axis >= axes) {
+      return VariableRead{};
+    }
+    return value(to_programmed(
+        axis, work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)], false));
+  }
+  if (n >= 7001 && n <= 7999) {
+    const int set = static_cast<int>((n - 7001) / 20) + 1;  // G54.1 P1-P50
+    const int axis = static_cast<int>((n - 7001) % 20);
+    if (axis >= axes) {
+      return VariableRead{};
+    }
+    return value(to_programmed(
+        axis, work_[static_cast<std::size_t>(6 + set)][static_cast<std::size_t>(axis)], false));
+  }
+  return undefined(n);
+}
+
+MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
+  const double x = v.number();
+  if (const ToolVariable tv = tool_variable(n); tv.found) {
+    const auto k = static_cast<std::size_t>(tv.offset);
+    ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
+    if (tv.field == ToolField::tip) {
+      t.tip = static_cast<int>(x);
+    } else {
+      *tool_slot(t, tv.field) = x;
+    }
+    return {};
+  }
+  switch (n) {
+    case 3001:
+      timer_ms_base_ = environment_->milliseconds() - x;
+      return {};
+    case 3002:
+      timer_hours_base_ = environment_->milliseconds() - x * 3.6e6;
+      return {};
+    case 3901:
+      parts_done_ = x;
+      return {};
+    case 3902:
+      parts_required_ = x;
+      return {};
+    default:
+      break;
+  }
+  if (n >= 5201 && n <= 5340) {
+    const int system = static_cast<int>((n - 5201) / 20);
+    const int axis = static_cast<int>((n - 5201) % 20);
+    if (axis >= static_cast<int>(config_.axes.size())) {
+      return macro::make_alarm(macro::alarm::kUndefinedVariable, 0,
+                               "variable #%lld: channel %d has no axis %d",
+                               static_cast<long long>(n), config_.channel, axis + 1);
+    }
+    work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)] =
+        to_physical(axis, x, false);
+    return {};
+  }
+  if (read(n).alarm) {
+    return undefined(n).alarm;
+  }
+  return macro::make_alarm(macro::alarm::kReadOnlyVariable, 0, "variable #%lld is read-only",
+                           static_cast<long long>(n));
+}
+
+}  // namespace mcnc::interp

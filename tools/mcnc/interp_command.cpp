@@ -1,0 +1,113 @@
+#include "tools/mcnc/interp_command.hpp"
+
+#include "channel/interp/interpreter.hpp"
+#include "channel/interp/output/command_json.hpp"
+#include "tools/mcnc/interp_params.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+namespace mcnc::tools {
+
+namespace {
+
+// The real clock and calendar for #3001/#3002 and #3011/#3012.
+class SystemEnvironment final : public interp::InterpreterEnvironment {
+ public:
+  double milliseconds() const override {
+    return std::chrono::duration<double, std::milli>(
+               std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+  }
+  double date() const override {
+    const std::tm t = now();
+    return (t.tm_year + 1900) * 10000.0 + (t.tm_mon + 1) * 100.0 + t.tm_mday;
+  }
+  double time_of_day() const override {
+    const std::tm t = now();
+    return t.tm_hour * 10000.0 + t.tm_min * 100.0 + t.tm_sec;
+  }
+
+ private:
+  static std::tm now() {
+    const std::time_t s = std::time(nullptr);
+    std::tm t{};
+    localtime_r(&s, &t);
+    return t;
+  }
+};
+
+void flush(std::string& buffer) {
+  std::fwrite(buffer.data(), 1, buffer.size(), stdout);
+  buffer.clear();
+}
+
+}  // namespace
+
+void add_interp_options(CLI::App& app, InterpArguments& args) {
+  app.add_option("--system", args.system, "G-code system A (default) or B")
+      ->check(CLI::IsMember({"A", "B"}));
+  app.add_option("--channel", args.channel, "channel number (default 1)")
+      ->check(CLI::Range(1, 255));
+  app.add_option("--param", args.param_file, "interpreter parameter file (YAML)")
+      ->check(CLI::ExistingFile);
+  app.add_option("--progdir", args.program_dir, "program directory searched by O number")
+      ->check(CLI::ExistingDirectory);
+  app.add_option("FILE", args.file, "program file")->required()->check(CLI::ExistingFile);
+}
+
+int execute_interp(const InterpArguments& args) {
+  interp::InterpreterConfig config;
+  try {
+    if (!args.param_file.empty()) {
+      load_interp_params(args.param_file, config);
+    }
+  } catch (const ParamError& e) {
+    std::fprintf(stderr, "mcnc interp: %s: %s\n", args.param_file.c_str(), e.what());
+    return 2;
+  }
+  if (!args.system.empty()) {
+    config.system = args.system == "A" ? interp::GCodeSystem::a : interp::GCodeSystem::b;
+  }
+  if (args.channel != 0) {
+    config.channel = args.channel;
+  }
+  if (!args.program_dir.empty()) {
+    config.program_dir = args.program_dir;
+  }
+  std::ifstream in(args.file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) {
+    std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
+    return 2;
+  }
+
+  SystemEnvironment environment;
+  interp::Interpreter interpreter(config, &environment);
+  std::string out;
+  out.reserve(1 << 17);
+  if (auto alarm = interpreter.start(text.str(), args.file)) {
+    interp::output::append_json(out, *alarm);
+    flush(out);
+    return 1;
+  }
+  while (auto result = interpreter.next()) {
+    if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*result)) {
+      interp::output::append_json(out, *alarm);
+      flush(out);
+      return 1;
+    }
+    interp::output::append_json(out, std::get<interp::Command>(*result), config.axes, args.file);
+    if (out.size() > (1 << 16)) {
+      flush(out);
+    }
+  }
+  flush(out);
+  return 0;
+}
+
+}  // namespace mcnc::tools

@@ -1,0 +1,342 @@
+#include "tools/mcnc/interp_params.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <set>
+
+namespace mcnc::tools {
+
+namespace {
+
+using interp::InterpreterConfig;
+
+[[noreturn]] void bad(const std::string& key, const std::string& why) {
+  throw ParamError(key + ": " + why);
+}
+
+void only_keys(const YAML::Node& node, const std::string& where,
+               std::initializer_list<const char*> keys) {
+  if (!node.IsMap()) {
+    bad(where, "must be a mapping");
+  }
+  const std::set<std::string> allowed(keys.begin(), keys.end());
+  for (const auto& kv : node) {
+    const auto k = kv.first.as<std::string>();
+    if (allowed.count(k) == 0) {
+      bad(where.empty() ? k : where + "." + k, "unknown key");
+    }
+  }
+}
+
+template <typename T>
+T get(const YAML::Node& n, const std::string& key) {
+  try {
+    return n.as<T>();
+  } catch (const YAML::Exception&) {
+    bad(key, "wrong type");
+  }
+}
+
+char axis_letter(const std::string& s, const std::string& key) {
+  if (s.size() != 1 || std::string("XYZABC").find(s[0]) == std::string::npos) {
+    bad(key, "an axis is one of X, Y, Z, A, B, C");
+  }
+  return s[0];
+}
+
+// Per-axis values keyed by letter, in programmed units (X as a diameter on diameter axes).
+void axis_values(const YAML::Node& node, const std::string& key, const InterpreterConfig& c,
+                 std::array<double, interp::kMaxChannelAxes>& out) {
+  if (!node.IsMap()) {
+    bad(key, "must map axis letters to values");
+  }
+  for (const auto& kv : node) {
+    const std::string k = key + "." + kv.first.as<std::string>();
+    const char letter = axis_letter(kv.first.as<std::string>(), k);
+    bool found = false;
+    for (std::size_t i = 0; i < c.axes.size(); ++i) {
+      if (c.axes[i].name == letter) {
+        found = true;
+        out[i] = get<double>(kv.second, k) / (c.axes[i].diameter ? 2.0 : 1.0);
+      }
+    }
+    if (!found) {
+      bad(k, "not an axis of this channel");
+    }
+  }
+}
+
+void tool_table(const YAML::Node& node, const std::string& key,
+                std::array<interp::ToolOffsetValues, interp::kMaxToolOffsets + 1>& table) {
+  if (!node.IsMap()) {
+    bad(key, "must map offset numbers to values");
+  }
+  for (const auto& kv : node) {
+    const int n = get<int>(kv.first, key);
+    const std::string k = key + "." + std::to_string(n);
+    if (n < 1 || n > interp::kMaxToolOffsets) {
+      bad(k, "offset numbers are 1-64");
+    }
+    only_keys(kv.second, k, {"X", "Z", "Y", "R", "tip"});
+    interp::ToolOffsetValues& t = table[static_cast<std::size_t>(n)];
+    if (kv.second["X"]) {
+      t.x = get<double>(kv.second["X"], k + ".X");
+    }
+    if (kv.second["Z"]) {
+      t.z = get<double>(kv.second["Z"], k + ".Z");
+    }
+    if (kv.second["Y"]) {
+      t.y = get<double>(kv.second["Y"], k + ".Y");
+    }
+    if (kv.second["R"]) {
+      t.radius = get<double>(kv.second["R"], k + ".R");
+    }
+    if (kv.second["tip"]) {
+      t.tip = get<int>(kv.second["tip"], k + ".tip");
+    }
+  }
+}
+
+std::vector<std::pair<int, int>> code_map(const YAML::Node& node, const std::string& key,
+                                          int scale) {
+  std::vector<std::pair<int, int>> out;
+  if (!node.IsMap()) {
+    bad(key, "must map codes to program numbers");
+  }
+  for (const auto& kv : node) {
+    const double code = get<double>(kv.first, key);
+    out.emplace_back(static_cast<int>(code * scale + 0.5), get<int>(kv.second, key));
+  }
+  return out;
+}
+
+void range(const YAML::Node& node, const std::string& key, int& count, int& program, int& first) {
+  only_keys(node, key, {"count", "program", "first"});
+  count = get<int>(node["count"], key + ".count");
+  program = get<int>(node["program"], key + ".program");
+  first = get<int>(node["first"], key + ".first");
+}
+
+}  // namespace
+
+void load_interp_params(const std::string& path, InterpreterConfig& c) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ParamError(path + ": " + e.what());
+  }
+  if (root.IsNull()) {
+    return;
+  }
+  only_keys(root, "",
+            {"system", "dialect", "channel", "decimal_point", "least_increment", "feed_mode",
+             "arc_check", "arc_tolerance", "dwell_in_revs_with_g99", "block_skip", "max_tool",
+             "statement_limit", "retained_file", "program_dir", "axes", "work_offsets",
+             "tool_geometry", "tool_wear", "macro_calls", "macro"});
+  if (root["system"]) {
+    const auto s = get<std::string>(root["system"], "system");
+    if (s != "A" && s != "B") {
+      bad("system", "A or B");
+    }
+    c.system = s == "A" ? interp::GCodeSystem::a : interp::GCodeSystem::b;
+  }
+  if (root["dialect"]) {
+    const auto s = get<std::string>(root["dialect"], "dialect");
+    if (s != "dafeng" && s != "gsk") {
+      bad("dialect", "dafeng or gsk");
+    }
+    c.dialect = s == "dafeng" ? interp::Dialect::dafeng : interp::Dialect::gsk;
+    if (c.dialect == interp::Dialect::gsk) {
+      c.macro.local_last = 33;
+      c.macro.common_last = 199;
+      c.macro.extended_common = false;
+      c.macro.vacant_ordering = interp::macro::VacantOrdering::kLiteralGskTable;
+    }
+  }
+  if (root["channel"]) {
+    c.channel = get<int>(root["channel"], "channel");
+    if (c.channel < 1 || c.channel > 255) {
+      bad("channel", "1-255");
+    }
+  }
+  if (root["decimal_point"]) {
+    const auto s = get<std::string>(root["decimal_point"], "decimal_point");
+    if (s != "calculator" && s != "increment") {
+      bad("decimal_point", "calculator or increment");
+    }
+    c.decimal_point =
+        s == "calculator" ? interp::DecimalPoint::calculator : interp::DecimalPoint::increment;
+  }
+  if (root["least_increment"]) {
+    c.least_increment = get<double>(root["least_increment"], "least_increment");
+    if (!(c.least_increment >= 1e-6 && c.least_increment <= 0.001)) {
+      bad("least_increment", "0.000001-0.001 mm");
+    }
+  }
+  if (root["feed_mode"]) {
+    const auto s = get<std::string>(root["feed_mode"], "feed_mode");
+    if (s != "per_min" && s != "per_rev") {
+      bad("feed_mode", "per_min or per_rev");
+    }
+    c.power_on_feed_mode = s == "per_min" ? interp::FeedMode::per_min : interp::FeedMode::per_rev;
+  }
+  if (root["arc_check"]) {
+    c.arc_check = get<bool>(root["arc_check"], "arc_check");
+  }
+  if (root["arc_tolerance"]) {
+    c.arc_tolerance = get<double>(root["arc_tolerance"], "arc_tolerance");
+  }
+  if (root["dwell_in_revs_with_g99"]) {
+    c.dwell_in_revs_with_g99 = get<bool>(root["dwell_in_revs_with_g99"], "dwell_in_revs_with_g99");
+  }
+  if (root["block_skip"]) {
+    for (const auto& n : root["block_skip"]) {
+      const int level = get<int>(n, "block_skip");
+      if (level < 1 || level > 9) {
+        bad("block_skip", "levels are 1-9");
+      }
+      c.block_skip[static_cast<std::size_t>(level)] = true;
+    }
+  }
+  if (root["max_tool"]) {
+    c.max_tool = get<int>(root["max_tool"], "max_tool");
+  }
+  if (root["statement_limit"]) {
+    c.statement_limit = get<std::uint64_t>(root["statement_limit"], "statement_limit");
+  }
+  if (root["retained_file"]) {
+    c.retained_file = get<std::string>(root["retained_file"], "retained_file");
+  }
+  if (root["program_dir"]) {
+    c.program_dir = get<std::string>(root["program_dir"], "program_dir");
+  }
+  if (root["axes"]) {
+    c.axes.clear();
+    int i = 0;
+    for (const auto& a : root["axes"]) {
+      const std::string k = "axes[" + std::to_string(i++) + "]";
+      only_keys(a, k, {"name", "diameter", "rotary", "start", "reference", "exchange"});
+      interp::AxisConfig ax;
+      ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
+      for (const auto& other : c.axes) {
+        if (other.name == ax.name) {
+          bad(k + ".name", "axis named twice");
+        }
+      }
+      ax.diameter = a["diameter"] && get<bool>(a["diameter"], k + ".diameter");
+      ax.rotary = a["rotary"] && get<bool>(a["rotary"], k + ".rotary");
+      const double unit = ax.diameter ? 2.0 : 1.0;
+      if (a["start"]) {
+        ax.start = get<double>(a["start"], k + ".start") / unit;
+      }
+      if (a["reference"]) {
+        std::size_t r = 0;
+        for (const auto& v : a["reference"]) {
+          if (r >= ax.reference.size()) {
+            bad(k + ".reference", "at most 4 reference points");
+          }
+          ax.reference[r++] = get<double>(v, k + ".reference") / unit;
+        }
+      }
+      if (a["exchange"]) {
+        ax.exchange = get<int>(a["exchange"], k + ".exchange");
+      }
+      c.axes.push_back(ax);
+    }
+    if (c.axes.empty() || c.axes.size() > interp::kMaxChannelAxes) {
+      bad("axes", "1-8 axes");
+    }
+  }
+  if (root["work_offsets"]) {
+    const YAML::Node& w = root["work_offsets"];
+    if (!w.IsMap()) {
+      bad("work_offsets", "must be a mapping");
+    }
+    for (const auto& kv : w) {
+      const auto name = kv.first.as<std::string>();
+      int system = -1;
+      if (name == "EXT") {
+        system = 0;
+      } else if (name.size() == 3 && name.rfind("G5", 0) == 0 && name[2] >= '4' &&
+                 name[2] <= '9') {
+        system = name[2] - '4' + 1;
+      } else if (name.rfind("G54.1 P", 0) == 0) {
+        system = 6 + std::atoi(name.c_str() + 7);
+        if (system < 7 || system > interp::kWorkSystems) {
+          system = -1;
+        }
+      }
+      if (system < 0) {
+        bad("work_offsets." + name, "EXT, G54-G59 or \"G54.1 P1\"-\"G54.1 P99\"");
+      }
+      axis_values(kv.second, "work_offsets." + name, c,
+                  c.work_offsets[static_cast<std::size_t>(system)]);
+    }
+  }
+  if (root["tool_geometry"]) {
+    tool_table(root["tool_geometry"], "tool_geometry", c.tool_geometry);
+  }
+  if (root["tool_wear"]) {
+    tool_table(root["tool_wear"], "tool_wear", c.tool_wear);
+  }
+  if (root["macro_calls"]) {
+    const YAML::Node& m = root["macro_calls"];
+    only_keys(m, "macro_calls",
+              {"t_program", "g_macro", "g_range", "m_subprogram", "m_subprogram_range", "m_macro",
+               "m_macro_range"});
+    interp::MacroCallTables& t = c.calls;
+    if (m["t_program"]) {
+      t.t_program = get<int>(m["t_program"], "macro_calls.t_program");
+    }
+    if (m["g_macro"]) {
+      t.g_macro = code_map(m["g_macro"], "macro_calls.g_macro", 10);
+    }
+    if (m["g_range"]) {
+      range(m["g_range"], "macro_calls.g_range", t.g_range_count, t.g_range_program,
+            t.g_range_first);
+    }
+    if (m["m_subprogram"]) {
+      t.m_subprogram = code_map(m["m_subprogram"], "macro_calls.m_subprogram", 1);
+    }
+    if (m["m_subprogram_range"]) {
+      range(m["m_subprogram_range"], "macro_calls.m_subprogram_range", t.m_sub_range_count,
+            t.m_sub_range_program, t.m_sub_range_first);
+    }
+    if (m["m_macro"]) {
+      t.m_macro = code_map(m["m_macro"], "macro_calls.m_macro", 1);
+    }
+    if (m["m_macro_range"]) {
+      range(m["m_macro_range"], "macro_calls.m_macro_range", t.m_macro_range_count,
+            t.m_macro_range_program, t.m_macro_range_first);
+    }
+  }
+  if (root["macro"]) {
+    const YAML::Node& m = root["macro"];
+    only_keys(m, "macro", {"locals", "commons", "vacant_ordering"});
+    if (m["locals"]) {
+      c.macro.local_last = get<int>(m["locals"], "macro.locals");
+      if (c.macro.local_last != 33 && c.macro.local_last != 99) {
+        bad("macro.locals", "33 or 99");
+      }
+    }
+    if (m["commons"]) {
+      c.macro.common_last = get<int>(m["commons"], "macro.commons");
+      if (c.macro.common_last != 199 && c.macro.common_last != 499) {
+        bad("macro.commons", "199 or 499");
+      }
+    }
+    if (m["vacant_ordering"]) {
+      const auto s = get<std::string>(m["vacant_ordering"], "macro.vacant_ordering");
+      if (s != "as_zero" && s != "gsk_table") {
+        bad("macro.vacant_ordering", "as_zero or gsk_table");
+      }
+      c.macro.vacant_ordering = s == "as_zero"
+                                    ? interp::macro::VacantOrdering::kAsZero
+                                    : interp::macro::VacantOrdering::kLiteralGskTable;
+    }
+  }
+}
+
+}  // namespace mcnc::tools

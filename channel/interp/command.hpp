@@ -10,6 +10,8 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mcnc::interp {
 
@@ -122,8 +124,7 @@ struct Command {
   int program = 0;
   bool wait = true;
   int repeat = 1;
-  std::array<double, kSubcallArgs> args{};
-  std::uint32_t args_set = 0;  // bit i: #(i+1) was given
+  std::vector<std::pair<int, double>> args;  // (#number, value) of the given arguments
 
   // message (#3006)
   std::string text;

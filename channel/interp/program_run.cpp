@@ -167,12 +167,15 @@ const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
 
 std::optional<InterpResult> ProgramRun::next() {
   auto pop = [this]() -> InterpResult {
-    Command c = std::move(out_.front());
-    out_.pop_front();
+    Command c = std::move(out_[out_head_++]);
+    if (out_head_ == out_.size()) {
+      out_.clear();  // keeps the capacity: no allocation per command
+      out_head_ = 0;
+    }
     c.n = ++sequence_;
     return c;
   };
-  if (!out_.empty()) {
+  if (out_head_ < out_.size()) {
     return pop();
   }
   if (!started_ || ended_ || alarm_) {
@@ -195,6 +198,7 @@ std::optional<InterpResult> ProgramRun::next() {
   }
   if (alarm_) {
     out_.clear();
+    out_head_ = 0;
     alarm_reported_ = true;
     return *alarm_;
   }
@@ -353,7 +357,7 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
 }
 
 bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
-  const macro::Assignment& a = s.assignment;
+  const macro::Assignment& a = *s.assignment;
   std::int64_t target = a.target;
   if (target < 0) {
     const macro::EvalResult r = macro::evaluate(a.target_index, vars_);

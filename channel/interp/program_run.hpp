@@ -7,7 +7,6 @@
 #include "channel/interp/parse/parsed_program.hpp"
 
 #include <array>
-#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -144,7 +143,8 @@ class ProgramRun final : public macro::VariableProvider {
   int main_number_ = 0;
 
   // Output
-  std::deque<Command> out_;
+  std::vector<Command> out_;  // commands of the last block; out_head_ is the next to pull
+  std::size_t out_head_ = 0;
   std::uint64_t sequence_ = 0;
   bool started_ = false;
   bool ended_ = false;

@@ -2,6 +2,7 @@
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -561,13 +562,20 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       p_is_spindle_address = false;
     }
   }
-  if (!run_spindle_words(p_is_spindle_address)) {
+  bool spindle_words = false;
+  bool m_words = false;
+  for (const BlockWord& w : words_) {
+    const char c = w.address.first;
+    spindle_words = spindle_words || c == 'S' || c == 'M';
+    m_words = m_words || w.address.is('M');
+  }
+  if (spindle_words && !run_spindle_words(p_is_spindle_address)) {
     return false;
   }
   if (!run_tool_word()) {
     return false;
   }
-  if (!run_m_codes(false)) {
+  if (m_words && !run_m_codes(false)) {
     return false;
   }
 
@@ -608,7 +616,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       return false;
     }
   }
-  return run_m_codes(true);
+  return !m_words || run_m_codes(true);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1293,10 +1301,10 @@ bool ProgramRun::run_channel_call(int column) {
       return fail(alarm::kWordNotAllowed, address_name(w.address) + " cannot be a G144 argument",
                   w.column);
     }
-    c.args[static_cast<std::size_t>(var - 1)] = w.value;
-    c.args_set |= 1U << (var - 1);
+    c.args.emplace_back(var, w.value);
     w.used = true;
   }
+  std::sort(c.args.begin(), c.args.end());
   c.barrier = c.wait;
   return true;
 }

@@ -353,17 +353,15 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       key(out, "args");
       out += '{';
       bool first = true;
-      for (int i = 0; i < kSubcallArgs; ++i) {
-        if ((c.args_set >> i) & 1U) {
-          if (!first) {
-            out += ',';
-          }
-          first = false;
-          out += '"';
-          integer(out, i + 1);
-          out += "\":";
-          number(out, c.args[static_cast<std::size_t>(i)]);
+      for (const auto& [var, value] : c.args) {
+        if (!first) {
+          out += ',';
         }
+        first = false;
+        out += '"';
+        integer(out, var);
+        out += "\":";
+        number(out, value);
       }
       out += '}';
       break;

@@ -53,7 +53,7 @@ std::string describe_char(char c) {
 // and cut at `;` or `//`.
 class LineParser {
  public:
-  LineParser(std::string text, LineParse& out) : text_(std::move(text)), out_(out) {}
+  LineParser(const std::string& text, LineParse& out) : text_(text), out_(out) {}
 
   void run() {
     skip_blanks();
@@ -228,7 +228,7 @@ class LineParser {
         fail_at_column(a.alarm.number, std::string(a.alarm.text()), a.alarm.column);
         return;
       }
-      s.assignment = std::move(a.assignment);
+      s.assignment = std::make_unique<macro::Assignment>(std::move(a.assignment));
       pos_ = text_.size();
       return;
     }
@@ -507,7 +507,7 @@ class LineParser {
     return n;
   }
 
-  std::string text_;
+  const std::string& text_;
   LineParse& out_;
   std::size_t pos_ = 0;
 };
@@ -521,7 +521,9 @@ LineParse parse_line(std::string_view text, int line_number) {
     text.remove_suffix(1);
   }
   // Blank comments (keeping columns), remember the first one, cut at `;` or `//`, upper-case.
-  std::string work(text);
+  // One buffer per thread: parsing a large file does not allocate a string per line.
+  thread_local std::string work;
+  work.assign(text);
   std::size_t end = work.size();
   bool have_message = false;
   for (std::size_t i = 0; i < work.size(); ++i) {
@@ -550,7 +552,7 @@ LineParse parse_line(std::string_view text, int line_number) {
     work[i] = to_upper(c);
   }
   work.resize(end);
-  LineParser parser(std::move(work), out);
+  LineParser parser(work, out);
   parser.run();
   return out;
 }

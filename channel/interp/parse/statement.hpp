@@ -56,7 +56,7 @@ struct Statement {
   StatementKind kind = StatementKind::empty;
   std::vector<Word> words;                      // block
   std::vector<macro::Expression> expressions;   // word values, conditions, targets
-  macro::Assignment assignment;                 // assignment
+  std::unique_ptr<macro::Assignment> assignment;  // assignment (held apart: most lines are blocks)
   int condition = -1;                           // IF / ELIF / WHILE: expression index
   int target = -1;                              // GOTO: expression index
   GotoDirection direction = GotoDirection::wrap;

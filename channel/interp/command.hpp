@@ -51,8 +51,8 @@ inline constexpr int kSubcallArgs = 26;  // #1-#26
 
 struct Command {
   Op op = Op::rapid;
-  std::uint64_t n = 0;  // 1-based sequence number of the command in this run
-  int line = 0;         // 1-based line of the block in its file
+  std::uint64_t n = 0;                // 1-based sequence number of the command in this run
+  int line = 0;                       // 1-based line of the block in its file
   const std::string* file = nullptr;  // the file of the block (owned by the interpreter)
   // The interpreter evaluated nothing after this block and will not until it is pulled past:
   // the read-ahead barriers of spec dafeng §4.3 and the multi-channel words.
@@ -79,12 +79,12 @@ struct Command {
   int channel = 0;
   SpindleDirection spindle_direction = SpindleDirection::stop;
   double rpm = 0.0;
-  bool css = false;        // constant surface speed: `surface` m/min, clamped at `max_rpm`
+  bool css = false;  // constant surface speed: `surface` m/min, clamped at `max_rpm`
   double surface = 0.0;
   double max_rpm = 0.0;    // 0: no G50 S clamp programmed
   bool has_angle = false;  // M05 PA: stop at `angle` degrees
   double angle = 0.0;
-  int divisions = 0;       // M05 PN: stop at the nearest multiple of 360/PN
+  int divisions = 0;  // M05 PN: stop at the nearest multiple of 360/PN
 
   // tool
   int tool = 0;

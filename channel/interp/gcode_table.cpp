@@ -4,10 +4,12 @@ namespace mcnc::interp {
 
 namespace {
 
-constexpr const char* kCycles = "canned cycles (G70-G76, G90/G92/G94, G8x) come with the next "
-                                "interpreter release";
-constexpr const char* kThreads = "threading (G32, G32.1, G32.2/G32.3, G34) comes with the next "
-                                 "interpreter release";
+constexpr const char* kCycles =
+    "canned cycles (G70-G76, G90/G92/G94, G8x) come with the next "
+    "interpreter release";
+constexpr const char* kThreads =
+    "threading (G32, G32.1, G32.2/G32.3, G34) comes with the next "
+    "interpreter release";
 constexpr const char* kTnrc =
     "tool-nose radius compensation (G41/G42) comes with the next interpreter release";
 constexpr const char* kOther = "this function of the dialect is not implemented";

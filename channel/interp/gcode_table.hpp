@@ -16,54 +16,54 @@ enum class GFunction : std::uint8_t {
   linear,
   arc_cw,
   arc_ccw,
-  dwell,           // G04
-  channel_sync,    // G04.1
-  exact_stop,      // G09
-  data_input,      // G10
+  dwell,         // G04
+  channel_sync,  // G04.1
+  exact_stop,    // G09
+  data_input,    // G10
   plane_xy,
   plane_zx,
   plane_yz,
   inch,
   metric,
-  reference_return,  // G28
-  reference_2_4,     // G30
-  tnrc_cancel,       // G40
-  coordinate_set,    // G50 (A) / G92 (B), also the S clamp
-  restore_origin,    // G50.3 (A) / G92.1 (B)
-  local_system,      // G52
-  machine_position,  // G53
-  work_system,       // G54-G59
-  work_system_ext,   // G54.1
-  exact_stop_mode,   // G61
-  cutting_mode,      // G64
-  macro_call,        // G65
-  modal_call,        // G66
-  modal_call_cancel, // G67
-  turret_mirror_on,  // G68
-  turret_mirror_off, // G69
-  drill_cancel,      // G80
-  css_on,            // G96
-  css_off,           // G97
-  feed_per_min,      // G98 (A) / G94 (B)
-  feed_per_rev,      // G99 (A) / G95 (B)
-  absolute,          // G90 (B)
-  incremental,       // G91 (B)
-  axis_sync_on,      // G51.4
-  axis_sync_off,     // G50.4
-  spindle_sync_off,  // G113
-  spindle_sync_on,   // G114.1
-  axis_release,      // G140
-  axis_acquire,      // G141
-  axis_restore,      // G142
-  channel_call,      // G144
-  channel_release,   // G145
-  return_initial,    // G98 (B): canned-cycle return level, kept for issue 4
-  return_r_level,    // G99 (B)
+  reference_return,   // G28
+  reference_2_4,      // G30
+  tnrc_cancel,        // G40
+  coordinate_set,     // G50 (A) / G92 (B), also the S clamp
+  restore_origin,     // G50.3 (A) / G92.1 (B)
+  local_system,       // G52
+  machine_position,   // G53
+  work_system,        // G54-G59
+  work_system_ext,    // G54.1
+  exact_stop_mode,    // G61
+  cutting_mode,       // G64
+  macro_call,         // G65
+  modal_call,         // G66
+  modal_call_cancel,  // G67
+  turret_mirror_on,   // G68
+  turret_mirror_off,  // G69
+  drill_cancel,       // G80
+  css_on,             // G96
+  css_off,            // G97
+  feed_per_min,       // G98 (A) / G94 (B)
+  feed_per_rev,       // G99 (A) / G95 (B)
+  absolute,           // G90 (B)
+  incremental,        // G91 (B)
+  axis_sync_on,       // G51.4
+  axis_sync_off,      // G50.4
+  spindle_sync_off,   // G113
+  spindle_sync_on,    // G114.1
+  axis_release,       // G140
+  axis_acquire,       // G141
+  axis_restore,       // G142
+  channel_call,       // G144
+  channel_release,    // G145
+  return_initial,     // G98 (B): canned-cycle return level, kept for issue 4
+  return_r_level,     // G99 (B)
 };
 
 struct GCodeInfo {
   GFunction function = GFunction::unknown;
-  int group = 0;  // 0: one-shot (group 00)
+  int group = 0;           // 0: one-shot (group 00)
   const char* topic = "";  // for not_in_this_version: what the code is
 };
 

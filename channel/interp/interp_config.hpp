@@ -19,10 +19,10 @@ enum class Dialect : std::uint8_t { dafeng, gsk };
 // Numbers without a decimal point: whole units (calculator type, spec D1) or least increments.
 enum class DecimalPoint : std::uint8_t { calculator, increment };
 
-inline constexpr int kMaxToolOffsets = 64;   // offset numbers 1-64 (spec L3626)
-inline constexpr int kExtendedWorkSystems = 99;  // G54.1 P1-P99
+inline constexpr int kMaxToolOffsets = 64;                     // offset numbers 1-64 (spec L3626)
+inline constexpr int kExtendedWorkSystems = 99;                // G54.1 P1-P99
 inline constexpr int kWorkSystems = 6 + kExtendedWorkSystems;  // G54-G59, then P1-P99
-inline constexpr int kReferencePoints = 4;   // G28 (1), G30 P2-P4
+inline constexpr int kReferencePoints = 4;                     // G28 (1), G30 P2-P4
 
 struct AxisConfig {
   char name = 'X';
@@ -30,7 +30,7 @@ struct AxisConfig {
   bool rotary = false;    // degrees (param 0001.2)
   double start = 0.0;     // machine position when the program starts (physical)
   std::array<double, kReferencePoints> reference{};  // machine positions (physical)
-  int exchange = 0;       // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
+  int exchange = 0;  // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.
@@ -49,7 +49,7 @@ struct MacroCallTables {
   int g_range_count = 0, g_range_program = 0, g_range_first = 0;  // 9034-9036
   std::vector<std::pair<int, int>> m_subprogram;                  // 9040-9053 (like M98)
   int m_sub_range_count = 0, m_sub_range_program = 0, m_sub_range_first = 0;  // 9054-9056
-  std::vector<std::pair<int, int>> m_macro;                       // 9060-9073 (like G65)
+  std::vector<std::pair<int, int>> m_macro;  // 9060-9073 (like G65)
   int m_macro_range_count = 0, m_macro_range_program = 0, m_macro_range_first = 0;  // 9074-9076
 };
 
@@ -59,10 +59,10 @@ struct InterpreterConfig {
   int channel = 1;
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
   DecimalPoint decimal_point = DecimalPoint::calculator;
-  double least_increment = 0.001;  // mm (param 0013)
+  double least_increment = 0.001;                   // mm (param 0013)
   FeedMode power_on_feed_mode = FeedMode::per_min;  // param 2201.3
-  bool arc_check = true;           // param 2203.1
-  double arc_tolerance = 0.01;     // mm, param 2210
+  bool arc_check = true;                            // param 2203.1
+  double arc_tolerance = 0.01;                      // mm, param 2210
   bool dwell_in_revs_with_g99 = false;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511

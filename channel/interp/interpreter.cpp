@@ -4,8 +4,7 @@
 
 namespace mcnc::interp {
 
-Interpreter::Interpreter(const InterpreterConfig& config,
-                         const InterpreterEnvironment* environment)
+Interpreter::Interpreter(const InterpreterConfig& config, const InterpreterEnvironment* environment)
     : run_(std::make_unique<ProgramRun>(config, environment)) {}
 
 Interpreter::~Interpreter() = default;

@@ -28,22 +28,22 @@ inline constexpr int kNegativeDwell = 1108;
 inline constexpr int kDwellTimeTwice = 1109;
 inline constexpr int kAxisInDwell = 1110;
 inline constexpr int kPWithoutDwell = 1111;
-inline constexpr int kArcGeometry = 1112;          // end point off the circle, R too small
-inline constexpr int kArcFullCircleWithR = 1113;   // start = end with R
-inline constexpr int kSequenceNotFound = 1115;     // GOTO / M99 P / M98 Q target missing
-inline constexpr int kCallNestingTooDeep = 1117;   // M98 > 16, G65/G66 > 5
-inline constexpr int kSubprogramEndMissing = 1118; // subprogram without M99
-inline constexpr int kWrongChannel = 1119;         // CH n in another channel
-inline constexpr int kBadWordValue = 1120;         // a value out of its range for this word
-inline constexpr int kWordNotAllowed = 1121;       // a word this code does not take
-inline constexpr int kNotInThisVersion = 1122;     // canned cycles, threading, G41/G42 ...
-inline constexpr int kReleasedAxis = 1123;         // an axis released by G140 is programmed
-inline constexpr int kStatementLimit = 1125;       // endless macro loop without a command
-inline constexpr int kSyncForm = 1126;             // G04.1 Q forms
-inline constexpr int kMustBeAlone = 1128;          // a code that needs its own block
-inline constexpr int kUserAlarmRange = 1129;       // #3000 = n with n outside 0-99
-inline constexpr int kLoopControl = 1130;          // BREAK outside WHILE, END without WHILE ...
-inline constexpr int kNoPlaneAxis = 1131;          // arc in a plane whose axes are missing
+inline constexpr int kArcGeometry = 1112;           // end point off the circle, R too small
+inline constexpr int kArcFullCircleWithR = 1113;    // start = end with R
+inline constexpr int kSequenceNotFound = 1115;      // GOTO / M99 P / M98 Q target missing
+inline constexpr int kCallNestingTooDeep = 1117;    // M98 > 16, G65/G66 > 5
+inline constexpr int kSubprogramEndMissing = 1118;  // subprogram without M99
+inline constexpr int kWrongChannel = 1119;          // CH n in another channel
+inline constexpr int kBadWordValue = 1120;          // a value out of its range for this word
+inline constexpr int kWordNotAllowed = 1121;        // a word this code does not take
+inline constexpr int kNotInThisVersion = 1122;      // canned cycles, threading, G41/G42 ...
+inline constexpr int kReleasedAxis = 1123;          // an axis released by G140 is programmed
+inline constexpr int kStatementLimit = 1125;        // endless macro loop without a command
+inline constexpr int kSyncForm = 1126;              // G04.1 Q forms
+inline constexpr int kMustBeAlone = 1128;           // a code that needs its own block
+inline constexpr int kUserAlarmRange = 1129;        // #3000 = n with n outside 0-99
+inline constexpr int kLoopControl = 1130;           // BREAK outside WHILE, END without WHILE ...
+inline constexpr int kNoPlaneAxis = 1131;           // arc in a plane whose axes are missing
 
 // #3000 = n (text): alarm 3000 + n (n = 0-99), as FANUC numbers macro alarms.
 inline constexpr int kUserAlarmBase = 3000;

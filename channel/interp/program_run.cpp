@@ -338,16 +338,16 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
                                                                : "CONTINUE outside a WHILE loop",
                     s.column);
       }
-      frames_.back().pc =
-          s.kind == parse::StatementKind::loop_break ? p.partner[static_cast<std::size_t>(w)] + 1
-                                                     : w;
+      frames_.back().pc = s.kind == parse::StatementKind::loop_break
+                              ? p.partner[static_cast<std::size_t>(w)] + 1
+                              : w;
       return true;
     }
     case parse::StatementKind::channel_only:
       if (s.label != config_.channel) {
         return fail(alarm::kWrongChannel,
-                    "this program may only run in channel " + std::to_string(s.label) +
-                        " (CH" + std::to_string(s.label) + "), not in channel " +
+                    "this program may only run in channel " + std::to_string(s.label) + " (CH" +
+                        std::to_string(s.label) + "), not in channel " +
                         std::to_string(config_.channel),
                     s.column);
       }
@@ -450,10 +450,10 @@ bool ProgramRun::jump_to_sequence(std::int64_t n, parse::GotoDirection direction
 bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, int column,
                                  bool t_call) {
   if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
-    return fail(alarm::kCallNestingTooDeep,
-                "subprogram calls nested deeper than " +
-                    std::to_string(config_.max_subprogram_nesting),
-                column);
+    return fail(
+        alarm::kCallNestingTooDeep,
+        "subprogram calls nested deeper than " + std::to_string(config_.max_subprogram_nesting),
+        column);
   }
   const parse::ParsedProgram* p =
       program < 0 ? frames_.back().program : find_program(program, column);
@@ -483,10 +483,10 @@ bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::Mac
                 column);
   }
   if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
-    return fail(alarm::kCallNestingTooDeep,
-                "subprogram calls nested deeper than " +
-                    std::to_string(config_.max_subprogram_nesting),
-                column);
+    return fail(
+        alarm::kCallNestingTooDeep,
+        "subprogram calls nested deeper than " + std::to_string(config_.max_subprogram_nesting),
+        column);
   }
   const parse::ParsedProgram* p = find_program(program, column);
   if (p == nullptr || repeat <= 0) {
@@ -511,8 +511,8 @@ bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column
     // M99 in the main program: back to its start (spec dafeng L6348-6350), or to N P.
     Frame& f = frames_.back();
     if (return_sequence >= 0) {
-      const int t = find_sequence(*f.program, return_sequence, -1,
-                                  parse::GotoDirection::forward, column);
+      const int t =
+          find_sequence(*f.program, return_sequence, -1, parse::GotoDirection::forward, column);
       if (t < 0) {
         return false;
       }
@@ -535,8 +535,8 @@ bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column
   frames_.pop_back();
   if (return_sequence >= 0) {
     Frame& caller = frames_.back();
-    const int t = find_sequence(*caller.program, return_sequence, -1,
-                                parse::GotoDirection::forward, column);
+    const int t =
+        find_sequence(*caller.program, return_sequence, -1, parse::GotoDirection::forward, column);
     if (t < 0) {
       return false;
     }

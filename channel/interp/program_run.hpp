@@ -113,8 +113,8 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_coordinate_set(int column);
   bool run_local_system(int column);
   bool run_restore_origin(int column);
-  double offset_sum(int axis) const;  // EXT + work + G50 shift + G52 (physical)
-  double tool_offset(int axis) const; // physical
+  double offset_sum(int axis) const;   // EXT + work + G50 shift + G52 (physical)
+  double tool_offset(int axis) const;  // physical
   double to_physical(int axis, double programmed, bool mirror = true) const;
   double to_programmed(int axis, double physical, bool mirror = true) const;
   bool check_feed(int column);
@@ -168,8 +168,8 @@ class ProgramRun final : public macro::VariableProvider {
   bool css_ = false;
   bool exact_stop_mode_ = false;
   bool turret_mirror_ = false;
-  bool incremental_mode_ = false;  // system B G91
-  int work_system_ = 1;            // 1-6 = G54-G59, 7.. = G54.1 P1..
+  bool incremental_mode_ = false;                       // system B G91
+  int work_system_ = 1;                                 // 1-6 = G54-G59, 7.. = G54.1 P1..
   std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
   double feed_ = 0.0;
   ModalCall modal_call_;

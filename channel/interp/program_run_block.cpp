@@ -221,8 +221,9 @@ bool ProgramRun::check_unused_words() {
     }
     if (w.address.comma) {
       return fail(alarm::kNotInThisVersion,
-                  name + ": automatic chamfer, corner rounding and angle programming come "
-                         "with the next interpreter release",
+                  name +
+                      ": automatic chamfer, corner rounding and angle programming come "
+                      "with the next interpreter release",
                   w.column);
     }
     return fail(alarm::kWordNotAllowed, name + " is not used by this block", w.column);
@@ -329,8 +330,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
     const GCodeInfo info = lookup_gcode(c, config_.system);
     if (info.function == GFunction::unknown) {
-      return fail(alarm::kUnsupportedG, g_name(c) + " is not a G code of this dialect",
-                  w.column);
+      return fail(alarm::kUnsupportedG, g_name(c) + " is not a G code of this dialect", w.column);
     }
     if (info.function == GFunction::not_in_this_version) {
       return fail(alarm::kNotInThisVersion, g_name(c) + ": " + info.topic, w.column);
@@ -369,8 +369,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (a.address.is('G') || a.address.is('M')) {
       continue;
     }
-    if (call_block && (a.address.is('I') || a.address.is('J') || a.address.is('K') ||
-                       a.address.is('Q'))) {
+    if (call_block &&
+        (a.address.is('I') || a.address.is('J') || a.address.is('K') || a.address.is('Q'))) {
       continue;
     }
     for (std::size_t j = i + 1; j < words_.size(); ++j) {
@@ -381,7 +381,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
   }
 
-  GFunction motion = GFunction::unknown;  // group 01 in this block
+  GFunction motion = GFunction::unknown;   // group 01 in this block
   GFunction primary = GFunction::unknown;  // the one-shot code that takes the words
   int primary_code = 0;
   int primary_column = 0;
@@ -405,8 +405,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
 
   // Macro calls take every other word as an argument.
   if (primary == GFunction::macro_call) {
-    if (words_.front().address != parse::Address{'G', 0, false} ||
-        words_.front().value != 65.0) {
+    if (words_.front().address != parse::Address{'G', 0, false} || words_.front().value != 65.0) {
       return fail(alarm::kWordNotAllowed, "G65 must come first in its block (only N before it)",
                   words_.front().column);
     }
@@ -418,8 +417,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       return fail(alarm::kBadWordValue, "G65 needs P<program number 0-9999>", primary_column);
     }
     if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
-      return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
-                  l->column);
+      return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0", l->column);
     }
     p->used = true;
     if (l != nullptr) {
@@ -531,7 +529,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   // Modal codes, in the order a control applies them before the block's motion.
   for (int i = 0; i < ng; ++i) {
     const BlockG& g = gs[static_cast<std::size_t>(i)];
-    if (g.info.group != 0 && g.info.group != 1 && !apply_modal(g.info.function, g.code10, g.column)) {
+    if (g.info.group != 0 && g.info.group != 1 &&
+        !apply_modal(g.info.function, g.code10, g.column)) {
       return false;
     }
   }
@@ -612,7 +611,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     for (const Frame& f : frames_) {
       inside = inside || f.modal_call;
     }
-    if (!inside && !call_macro(modal_call_.program, modal_call_.repeat, modal_call_.args, 0, true)) {
+    if (!inside &&
+        !call_macro(modal_call_.program, modal_call_.repeat, modal_call_.args, 0, true)) {
       return false;
     }
   }
@@ -654,7 +654,8 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       if (f == GFunction::work_system_ext || (code10 == 540 && p != nullptr)) {
         std::int64_t n = 0;
         if (p == nullptr || !whole_number(p->value, n) || n < 1 || n > kExtendedWorkSystems) {
-          return fail(alarm::kBadWordValue, "G54.1 needs P1-P99", p != nullptr ? p->column : column);
+          return fail(alarm::kBadWordValue, "G54.1 needs P1-P99",
+                      p != nullptr ? p->column : column);
         }
         p->used = true;
         work_system_ = 6 + static_cast<int>(n);
@@ -766,8 +767,8 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     bool clamp = false;
     for (const BlockWord& w : words_) {
       if (w.address.is('G')) {
-        const GCodeInfo info = lookup_gcode(static_cast<int>(std::lround(w.value * 10)),
-                                            config_.system);
+        const GCodeInfo info =
+            lookup_gcode(static_cast<int>(std::lround(w.value * 10)), config_.system);
         clamp = clamp || info.function == GFunction::coordinate_set;
       }
     }
@@ -814,7 +815,8 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       continue;
     }
     w.used = true;
-    if (addressed != 0 && addressed != spindle && (p != nullptr || (s != nullptr && s->index >= 0))) {
+    if (addressed != 0 && addressed != spindle &&
+        (p != nullptr || (s != nullptr && s->index >= 0))) {
       return fail(alarm::kBadWordValue,
                   "M" + std::to_string(m) + " is spindle " + std::to_string(spindle) +
                       " but the S word addresses spindle " + std::to_string(addressed),
@@ -871,8 +873,8 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     const SpindleDirection dir = spindle_direction_[static_cast<std::size_t>(sp)];
     const bool turning = dir == SpindleDirection::cw || dir == SpindleDirection::ccw;
     const bool css_here = css_ && sp == reference_spindle_;
-    const bool changed = css_here ? (surface_changed || clamp_changed)
-                                  : speed_changed[static_cast<std::size_t>(sp)];
+    const bool changed =
+        css_here ? (surface_changed || clamp_changed) : speed_changed[static_cast<std::size_t>(sp)];
     if (turning && changed) {
       spindle_command(sp, dir);
     }
@@ -909,8 +911,8 @@ bool ProgramRun::run_tool_word() {
                 t->column);
   }
   if (offset > kMaxToolOffsets) {
-    return fail(alarm::kBadWordValue,
-                "offset number " + std::to_string(offset) + " beyond 64", t->column);
+    return fail(alarm::kBadWordValue, "offset number " + std::to_string(offset) + " beyond 64",
+                t->column);
   }
   Command& c = emit(Op::tool);
   c.tool = tool;
@@ -933,8 +935,8 @@ bool ProgramRun::run_m_codes(bool after_motion) {
     if (!whole_number(w.value, m) || m < 0 || m > 9999) {
       return fail(alarm::kBadWordValue, "M needs a whole number 0-9999", w.column);
     }
-    const bool flow = m == 0 || m == 1 || m == 2 || m == 30 || m == 98 || m == 99 || m == 92 ||
-                      m == 91;
+    const bool flow =
+        m == 0 || m == 1 || m == 2 || m == 30 || m == 98 || m == 99 || m == 92 || m == 91;
     if (!after_motion) {
       if (flow) {
         w.used = true;  // runs after the motion; its words are checked then
@@ -984,8 +986,7 @@ bool ProgramRun::run_m_codes(bool after_motion) {
           if (program > 9999) {
             if (l != nullptr) {
               return fail(alarm::kBadWordValue,
-                          "M98 P<count><program> and L together: give the count once",
-                          p->column);
+                          "M98 P<count><program> and L together: give the count once", p->column);
             }
             repeat = program / 10000;  // P30001234: O1234 three times (spec L6326-6329)
             program %= 10000;
@@ -1004,8 +1005,7 @@ bool ProgramRun::run_m_codes(bool after_motion) {
           }
         }
         if (p == nullptr && q == nullptr) {
-          return fail(alarm::kBadWordValue, "M98 needs P<program> or Q<sequence number>",
-                      w.column);
+          return fail(alarm::kBadWordValue, "M98 needs P<program> or Q<sequence number>", w.column);
         }
         return call_subprogram(static_cast<int>(program), static_cast<int>(start),
                                static_cast<int>(repeat), w.column, false);
@@ -1257,8 +1257,7 @@ bool ProgramRun::run_channel_call(int column) {
                 n != nullptr ? n->column : column);
   }
   if (channel == config_.channel) {
-    return fail(alarm::kBadWordValue, "G144 N names this channel itself",
-                n->column);
+    return fail(alarm::kBadWordValue, "G144 N names this channel itself", n->column);
   }
   if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
     return fail(alarm::kBadWordValue, "G144 needs P<program number 0-9999>",
@@ -1269,8 +1268,7 @@ bool ProgramRun::run_channel_call(int column) {
   }
   if (l != nullptr) {
     if (wait == 0) {
-      return fail(alarm::kWordNotAllowed, "G144 L (repeat count) is only valid with H1",
-                  l->column);
+      return fail(alarm::kWordNotAllowed, "G144 L (repeat count) is only valid with H1", l->column);
     }
     if (!whole_number(l->value, repeat) || repeat < 1) {
       return fail(alarm::kBadWordValue, "G144 L needs a repeat count of at least 1", l->column);
@@ -1292,9 +1290,8 @@ bool ProgramRun::run_channel_call(int column) {
       continue;
     }
     const char letter = w.address.first;
-    const int var = w.address.second == 0 && !w.address.comma && w.index < 0 &&
-                            letter != 'N' && letter != 'P' && letter != 'H' && letter != 'L' &&
-                            letter != 'O'
+    const int var = w.address.second == 0 && !w.address.comma && w.index < 0 && letter != 'N' &&
+                            letter != 'P' && letter != 'H' && letter != 'L' && letter != 'O'
                         ? type_one_variable(letter)
                         : 0;
     if (var == 0 || var > kSubcallArgs) {
@@ -1434,8 +1431,7 @@ bool ProgramRun::run_spindle_sync(GFunction f) {
   if (BlockWord* k = word('K')) {
     k->used = true;
     if (!whole_number(k->value, v) || v < 1 || v > 3) {
-      return fail(alarm::kBadWordValue, "G114.1 K (synchronisation group) must be 1-3",
-                  k->column);
+      return fail(alarm::kBadWordValue, "G114.1 K (synchronisation group) must be 1-3", k->column);
     }
     c.sync_k = static_cast<int>(v);
   }

@@ -160,8 +160,7 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
 
 bool ProgramRun::check_feed(int column) {
   if (feed_ <= 0.0) {
-    return fail(alarm::kFeedMissing, "cutting move without feed: program F greater than 0",
-                column);
+    return fail(alarm::kFeedMissing, "cutting move without feed: program F greater than 0", column);
   }
   return true;
 }
@@ -183,8 +182,8 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
     }
   }
   if (motion == GFunction::arc_cw || motion == GFunction::arc_ccw) {
-    const bool arc_words = word('R') != nullptr || word('I') != nullptr ||
-                           word('J') != nullptr || word('K') != nullptr;
+    const bool arc_words = word('R') != nullptr || word('I') != nullptr || word('J') != nullptr ||
+                           word('K') != nullptr;
     if (!any && !arc_words) {
       return true;
     }
@@ -260,8 +259,7 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     const double d = std::hypot(dx, dy);
     if (d < 1e-9) {
       return fail(alarm::kArcFullCircleWithR,
-                  "a full circle cannot be programmed with R; give the centre with I/K",
-                  r->column);
+                  "a full circle cannot be programmed with R; give the centre with I/K", r->column);
     }
     double rr = std::fabs(radius);
     const double half = d / 2.0;
@@ -269,8 +267,8 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
       if (half - rr > tol) {
         return fail(alarm::kArcGeometry,
                     "arc radius R" + format_mm(std::fabs(radius)) +
-                        " is smaller than half the distance to the end point (" +
-                        format_mm(half) + ")",
+                        " is smaller than half the distance to the end point (" + format_mm(half) +
+                        ")",
                     r->column);
       }
       rr = half;
@@ -320,8 +318,7 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     l->used = true;
     const double v = l->value;
     if (v < 1.0 || std::fabs(v - std::round(v)) > 1e-9) {
-      return fail(alarm::kBadWordValue, "L (helical turns) must be a whole number >= 1",
-                  l->column);
+      return fail(alarm::kBadWordValue, "L (helical turns) must be a whole number >= 1", l->column);
     }
     turns = static_cast<int>(std::lround(v)) - 1;
   }
@@ -432,8 +429,7 @@ bool ProgramRun::run_local_system(int /*column*/) {
     const double v = to_physical(ia, scaled(*aw.word, true));
     if (aw.incremental) {
       // U/W: relative to the current position in the work system (spec L4302-4386).
-      local_[ws][i] =
-          machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(ia) + v;
+      local_[ws][i] = machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(ia) + v;
     } else {
       local_[ws][i] = v;
     }

@@ -70,9 +70,10 @@ VariableRead value(double v) {
 }
 
 VariableRead undefined(std::int64_t n) {
-  return VariableRead{{},
-                      macro::make_alarm(macro::alarm::kUndefinedVariable, 0,
-                                        "variable #%lld does not exist", static_cast<long long>(n))};
+  return VariableRead{
+      {},
+      macro::make_alarm(macro::alarm::kUndefinedVariable, 0, "variable #%lld does not exist",
+                        static_cast<long long>(n))};
 }
 
 }  // namespace

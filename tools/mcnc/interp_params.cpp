@@ -131,10 +131,26 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     return;
   }
   only_keys(root, "",
-            {"system", "dialect", "channel", "decimal_point", "least_increment", "feed_mode",
-             "arc_check", "arc_tolerance", "dwell_in_revs_with_g99", "block_skip", "max_tool",
-             "statement_limit", "retained_file", "program_dir", "axes", "work_offsets",
-             "tool_geometry", "tool_wear", "macro_calls", "macro"});
+            {"system",
+             "dialect",
+             "channel",
+             "decimal_point",
+             "least_increment",
+             "feed_mode",
+             "arc_check",
+             "arc_tolerance",
+             "dwell_in_revs_with_g99",
+             "block_skip",
+             "max_tool",
+             "statement_limit",
+             "retained_file",
+             "program_dir",
+             "axes",
+             "work_offsets",
+             "tool_geometry",
+             "tool_wear",
+             "macro_calls",
+             "macro"});
   if (root["system"]) {
     const auto s = get<std::string>(root["system"], "system");
     if (s != "A" && s != "B") {
@@ -259,8 +275,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       int system = -1;
       if (name == "EXT") {
         system = 0;
-      } else if (name.size() == 3 && name.rfind("G5", 0) == 0 && name[2] >= '4' &&
-                 name[2] <= '9') {
+      } else if (name.size() == 3 && name.rfind("G5", 0) == 0 && name[2] >= '4' && name[2] <= '9') {
         system = name[2] - '4' + 1;
       } else if (name.rfind("G54.1 P", 0) == 0) {
         system = 6 + std::atoi(name.c_str() + 7);
@@ -332,9 +347,8 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       if (s != "as_zero" && s != "gsk_table") {
         bad("macro.vacant_ordering", "as_zero or gsk_table");
       }
-      c.macro.vacant_ordering = s == "as_zero"
-                                    ? interp::macro::VacantOrdering::kAsZero
-                                    : interp::macro::VacantOrdering::kLiteralGskTable;
+      c.macro.vacant_ordering = s == "as_zero" ? interp::macro::VacantOrdering::kAsZero
+                                               : interp::macro::VacantOrdering::kLiteralGskTable;
     }
   }
 }

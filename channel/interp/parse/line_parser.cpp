@@ -348,8 +348,9 @@ class LineParser {
     if (run.size() >= 3) {
       std::string name(run);
       fail(alarm::kUnsupportedStatement,
-           name + " is not a statement this interpreter knows (macro functions such as DPRNT, "
-                  "SPSV or MBRD are not supported)",
+           name +
+               " is not a statement this interpreter knows (macro functions such as DPRNT, "
+               "SPSV or MBRD are not supported)",
            pos_);
       return;
     }
@@ -393,8 +394,8 @@ class LineParser {
           ++pos_;
         }
       } else if (c == '#') {
-        fail(alarm::kUnexpectedCharacter,
-             "a macro statement cannot follow NC words on one line", pos_);
+        fail(alarm::kUnexpectedCharacter, "a macro statement cannot follow NC words on one line",
+             pos_);
         return;
       } else {
         fail(alarm::kUnexpectedCharacter, "unexpected character " + describe_char(c), pos_);
@@ -460,7 +461,7 @@ class LineParser {
         }
       }
       if (digits == 0 || (i < text_.size() && (text_[i] == '.' || text_[i] == '#' ||
-                                                 text_[i] == '[' || text_[i] == '='))) {
+                                               text_[i] == '[' || text_[i] == '='))) {
         fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
                        w.column);
         return;
@@ -482,8 +483,8 @@ class LineParser {
       pos_ = i;
       return;
     }
-    if (at_end() || (!is_letter(peek()) && peek() != '#' && peek() != '[' && peek() != '-' &&
-                     peek() != '+')) {
+    if (at_end() ||
+        (!is_letter(peek()) && peek() != '#' && peek() != '[' && peek() != '-' && peek() != '+')) {
       fail_at_column(alarm::kMalformedNumber, name_of(w.address) + " needs a value", w.column);
       return;
     }

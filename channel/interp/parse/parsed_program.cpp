@@ -41,15 +41,15 @@ std::optional<ProgramAlarm> match_structure(ParsedProgram& p, StructureLimits li
     switch (s.kind) {
       case StatementKind::while_do:
         if (++whiles > limits.max_while_nesting) {
-          return alarm_at(p, i, alarm::kNestingTooDeep,
-                          "WHILE loops nested deeper than " +
-                              std::to_string(limits.max_while_nesting));
+          return alarm_at(
+              p, i, alarm::kNestingTooDeep,
+              "WHILE loops nested deeper than " + std::to_string(limits.max_while_nesting));
         }
         for (const Open& o : open) {
           if (o.kind == StatementKind::while_do && o.label == s.label) {
-            return alarm_at(p, i, alarm::kStructureMismatch,
-                            "WHILE ... DO" + std::to_string(s.label) +
-                                " inside a loop with the same label");
+            return alarm_at(
+                p, i, alarm::kStructureMismatch,
+                "WHILE ... DO" + std::to_string(s.label) + " inside a loop with the same label");
           }
         }
         open.push_back(Open{i, StatementKind::while_do, s.label, i, false});
@@ -58,11 +58,11 @@ std::optional<ProgramAlarm> match_structure(ParsedProgram& p, StructureLimits li
         if (open.empty() || open.back().kind != StatementKind::while_do ||
             open.back().label != s.label) {
           const bool in_if = !open.empty() && open.back().kind == StatementKind::if_block;
-          return alarm_at(p, i, alarm::kStructureMismatch,
-                          "END" + std::to_string(s.label) +
-                              (in_if ? " inside an IF block that is not closed"
-                                     : " without a matching WHILE ... DO" +
-                                           std::to_string(s.label)));
+          return alarm_at(
+              p, i, alarm::kStructureMismatch,
+              "END" + std::to_string(s.label) +
+                  (in_if ? " inside an IF block that is not closed"
+                         : " without a matching WHILE ... DO" + std::to_string(s.label)));
         }
         const int w = open.back().line;
         p.partner[static_cast<std::size_t>(w)] = i;
@@ -117,10 +117,9 @@ std::optional<ProgramAlarm> match_structure(ParsedProgram& p, StructureLimits li
   if (!open.empty()) {
     const Open& o = open.back();
     return alarm_at(p, o.line, alarm::kStructureMismatch,
-                    o.kind == StatementKind::while_do
-                        ? "WHILE ... DO" + std::to_string(o.label) + " without END" +
-                              std::to_string(o.label)
-                        : std::string("IF block without ENDIF"));
+                    o.kind == StatementKind::while_do ? "WHILE ... DO" + std::to_string(o.label) +
+                                                            " without END" + std::to_string(o.label)
+                                                      : std::string("IF block without ENDIF"));
   }
   return std::nullopt;
 }

@@ -34,44 +34,44 @@ struct Word {
 };
 
 enum class StatementKind : std::uint8_t {
-  empty,         // blank, comment only, the O line, a `%` line
-  block,         // NC words
-  assignment,    // #n = expr
-  go_to,         // GOTO / GOTOF / GOTOB target
-  if_then,       // IF[cond] <statement> (THEN optional): `then` holds the statement
-  if_block,      // IF[cond] alone: the block form up to ENDIF
-  elif,          // ELIF[cond] / ELSEIF[cond]
-  else_branch,   // ELSE
-  endif,         // ENDIF
-  while_do,      // WHILE[cond] DO m
-  loop_end,      // END m
-  loop_break,    // BREAK / BRK
-  loop_continue, // CONTINUE / CONT
-  channel_only,  // CH n
+  empty,          // blank, comment only, the O line, a `%` line
+  block,          // NC words
+  assignment,     // #n = expr
+  go_to,          // GOTO / GOTOF / GOTOB target
+  if_then,        // IF[cond] <statement> (THEN optional): `then` holds the statement
+  if_block,       // IF[cond] alone: the block form up to ENDIF
+  elif,           // ELIF[cond] / ELSEIF[cond]
+  else_branch,    // ELSE
+  endif,          // ENDIF
+  while_do,       // WHILE[cond] DO m
+  loop_end,       // END m
+  loop_break,     // BREAK / BRK
+  loop_continue,  // CONTINUE / CONT
+  channel_only,   // CH n
 };
 
 enum class GotoDirection : std::uint8_t { wrap, forward, backward };  // GOTO, GOTOF, GOTOB
 
 struct Statement {
   StatementKind kind = StatementKind::empty;
-  std::vector<Word> words;                      // block
-  std::vector<macro::Expression> expressions;   // word values, conditions, targets
+  std::vector<Word> words;                        // block
+  std::vector<macro::Expression> expressions;     // word values, conditions, targets
   std::unique_ptr<macro::Assignment> assignment;  // assignment (held apart: most lines are blocks)
-  int condition = -1;                           // IF / ELIF / WHILE: expression index
-  int target = -1;                              // GOTO: expression index
+  int condition = -1;                             // IF / ELIF / WHILE: expression index
+  int target = -1;                                // GOTO: expression index
   GotoDirection direction = GotoDirection::wrap;
-  int label = 0;                                // DO m / END m; CH n
-  int column = 0;                               // of the statement's first character
-  std::unique_ptr<Statement> then;              // if_then
+  int label = 0;                    // DO m / END m; CH n
+  int column = 0;                   // of the statement's first character
+  std::unique_ptr<Statement> then;  // if_then
 };
 
 struct Line {
-  int line = 0;          // 1-based line in the file
-  int skip_level = 0;    // `/` (1) or `/n`; 0: not skippable
+  int line = 0;                // 1-based line in the file
+  int skip_level = 0;          // `/` (1) or `/n`; 0: not skippable
   std::int64_t sequence = -1;  // N number, -1 when none
   int sequence_column = 0;
   Statement statement;
-  std::string message;   // text of the first `( )` comment: the #3000 / #3006 message
+  std::string message;  // text of the first `( )` comment: the #3000 / #3006 message
 };
 
 }  // namespace mcnc::interp::parse

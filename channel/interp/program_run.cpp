@@ -234,9 +234,11 @@ bool ProgramRun::step() {
 // ---------------------------------------------------------------------------------------------
 // Macro statements
 
-bool ProgramRun::evaluate(const parse::Statement& s, int expression, macro::MacroValue& out) {
+// Expressions live in the arena of the program being executed, which holds `s`.
+bool ProgramRun::evaluate(const parse::Statement& /*s*/, int expression, macro::MacroValue& out) {
   const macro::EvalResult r =
-      macro::evaluate(s.expressions[static_cast<std::size_t>(expression)], vars_);
+      macro::evaluate(frames_.back().program->arena.expressions[static_cast<std::size_t>(expression)],
+                      vars_);
   if (r.alarm) {
     return fail_macro(r.alarm);
   }

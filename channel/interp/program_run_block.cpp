@@ -175,7 +175,9 @@ double ProgramRun::scaled(const BlockWord& w, bool length) const {
 
 bool ProgramRun::evaluate_words(const parse::Statement& s) {
   words_.clear();
-  for (const parse::Word& pw : s.words) {
+  const parse::Arena& arena = frames_.back().program->arena;
+  for (std::uint32_t k = 0; k < s.word_count; ++k) {
+    const parse::Word& pw = arena.words[s.first_word + k];
     BlockWord w;
     w.address = pw.address;
     w.index = pw.index;

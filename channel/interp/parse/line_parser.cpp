@@ -53,7 +53,8 @@ std::string describe_char(char c) {
 // and cut at `;` or `//`.
 class LineParser {
  public:
-  LineParser(const std::string& text, LineParse& out) : text_(text), out_(out) {}
+  LineParser(const std::string& text, LineParse& out, Arena& arena)
+      : text_(text), out_(out), arena_(arena) {}
 
   void run() {
     skip_blanks();
@@ -172,8 +173,8 @@ class LineParser {
     }
   }
 
-  // Parses an expression at pos_ into `s.expressions`; returns its index or -1.
-  int expression(Statement& s, macro::ParseMode mode) {
+  // Parses an expression at pos_ into the arena; returns its index or -1.
+  int expression(Statement& /*s*/, macro::ParseMode mode) {
     const std::string_view rest = std::string_view(text_).substr(pos_);
     macro::ParseResult r = macro::parse_expression(rest, column(pos_), mode);
     if (r.alarm) {
@@ -185,8 +186,8 @@ class LineParser {
       return -1;
     }
     pos_ += r.end;
-    s.expressions.push_back(std::move(r.expression));
-    return static_cast<int>(s.expressions.size()) - 1;
+    arena_.expressions.push_back(std::move(r.expression));
+    return static_cast<int>(arena_.expressions.size()) - 1;
   }
 
   // `[cond]` after IF / ELIF / WHILE.
@@ -355,6 +356,7 @@ class LineParser {
       return;
     }
     s.kind = StatementKind::block;
+    s.first_word = static_cast<std::uint32_t>(arena_.words.size());
     parse_words(s);
   }
 
@@ -406,7 +408,8 @@ class LineParser {
         parse_value(s, w);
       }
       if (!failed()) {
-        s.words.push_back(w);
+        arena_.words.push_back(w);
+        ++s.word_count;
       }
     }
   }
@@ -510,12 +513,13 @@ class LineParser {
 
   const std::string& text_;
   LineParse& out_;
+  Arena& arena_;
   std::size_t pos_ = 0;
 };
 
 }  // namespace
 
-LineParse parse_line(std::string_view text, int line_number) {
+LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
   LineParse out;
   out.line.line = line_number;
   if (!text.empty() && text.back() == '\r') {
@@ -553,7 +557,7 @@ LineParse parse_line(std::string_view text, int line_number) {
     work[i] = to_upper(c);
   }
   work.resize(end);
-  LineParser parser(work, out);
+  LineParser parser(work, out, arena);
   parser.run();
   return out;
 }

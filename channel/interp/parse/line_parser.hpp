@@ -23,6 +23,7 @@ struct LineParse {
 };
 
 // `text` without its line terminator (a trailing '\r' is tolerated); `line_number` is stored.
-LineParse parse_line(std::string_view text, int line_number);
+// Words and expressions go to `arena`; the line refers to them by index.
+LineParse parse_line(std::string_view text, int line_number, Arena& arena);
 
 }  // namespace mcnc::interp::parse

@@ -132,8 +132,9 @@ ParsedProgramResult parse_program(const program::Program& program, StructureLimi
   p.number = program.number;
   p.file = program.file;
   p.lines.reserve(program.lines.size());
+  p.arena.words.reserve(program.lines.size() * 3);
   for (const program::ProgramLine& pl : program.lines) {
-    LineParse parsed = parse_line(pl.text, pl.line);
+    LineParse parsed = parse_line(pl.text, pl.line, p.arena);
     if (parsed.error) {
       out.alarm = ProgramAlarm{parsed.error->number, parsed.error->text, program.file, pl.line,
                                parsed.error->column};

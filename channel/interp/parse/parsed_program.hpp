@@ -22,6 +22,7 @@ struct ParsedProgram {
   std::optional<int> number;
   std::string file;
   std::vector<Line> lines;
+  Arena arena;  // the words and expressions of `lines`
   // For a WHILE or END line: the index of its partner. For IF / ELIF / ELSE: the next branch
   // line of the same IF (ELIF, ELSE or ENDIF); for ENDIF itself -1. -1 elsewhere.
   std::vector<int> partner;

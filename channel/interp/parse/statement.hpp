@@ -23,14 +23,14 @@ struct Address {
 };
 
 struct Word {
-  Address address;
-  int index = -1;  // the n of `S2=1000`, `Q1=2`, `PS1=500`; -1 when absent
-  // The value: a literal, or expression `expression` of the statement (`X#1`, `X[#1+2]`).
-  bool literal = true;
+  // The value: a literal, or expression `expression` of the arena (`X#1`, `X[#1+2]`).
   double value = 0.0;
+  std::int32_t expression = -1;  // index in the program's Arena
+  std::int32_t column = 0;       // 1-based column of the address
+  std::int16_t index = -1;       // the n of `S2=1000`, `Q1=2`, `PS1=500`; -1 when absent
+  Address address;
+  bool literal = true;
   bool has_point = false;  // literal written with a decimal point
-  int expression = -1;
-  int column = 0;  // 1-based column of the address
 };
 
 enum class StatementKind : std::uint8_t {
@@ -52,13 +52,20 @@ enum class StatementKind : std::uint8_t {
 
 enum class GotoDirection : std::uint8_t { wrap, forward, backward };  // GOTO, GOTOF, GOTOB
 
+// The words and expressions of a program's statements, in one place per program: a large
+// program costs no allocation per line. Statements refer to them by index.
+struct Arena {
+  std::vector<Word> words;
+  std::vector<macro::Expression> expressions;
+};
+
 struct Statement {
   StatementKind kind = StatementKind::empty;
-  std::vector<Word> words;                        // block
-  std::vector<macro::Expression> expressions;     // word values, conditions, targets
+  std::uint32_t first_word = 0;  // block: arena words [first_word, first_word + word_count)
+  std::uint32_t word_count = 0;
   std::unique_ptr<macro::Assignment> assignment;  // assignment (held apart: most lines are blocks)
-  int condition = -1;                             // IF / ELIF / WHILE: expression index
-  int target = -1;                                // GOTO: expression index
+  int condition = -1;                             // IF / ELIF / WHILE: arena expression index
+  int target = -1;                                // GOTO: arena expression index
   GotoDirection direction = GotoDirection::wrap;
   int label = 0;                    // DO m / END m; CH n
   int column = 0;                   // of the statement's first character

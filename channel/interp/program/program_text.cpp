@@ -215,7 +215,9 @@ std::string program_label(int number) {
 
 SplitResult split_programs(std::string_view text, const std::string& file_name) {
   SplitResult result;
-  const std::vector<RawLine> lines = split_lines(text);
+  // One copy of the text for all programs of the file; their lines point into it.
+  const auto source = std::make_shared<const std::string>(text);
+  const std::vector<RawLine> lines = split_lines(*source);
   const auto [begin, end] = tape_range(lines);
 
   std::vector<Program> programs;
@@ -270,7 +272,10 @@ SplitResult split_programs(std::string_view text, const std::string& file_name) 
       program.file = file_name;
       programs.push_back(std::move(program));
     }
-    programs.back().lines.push_back({raw.line, std::string(raw.text)});
+    if (!programs.back().source) {
+      programs.back().source = source;
+    }
+    programs.back().lines.push_back({raw.line, raw.text});
   }
   result.programs = std::move(programs);
   return result;

@@ -6,6 +6,7 @@
 // format".
 #include "channel/interp/canonical_command.hpp"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,8 +17,8 @@ namespace mcnc::interp::program {
 inline constexpr int kMaxProgramNumber = 9999;  // O + 4 digits (Dafeng spec L113, §1.10 L154)
 
 struct ProgramLine {
-  int line = 0;      // 1-based line number in the file
-  std::string text;  // without its line terminator ('\r' of CRLF removed)
+  int line = 0;           // 1-based line number in the file
+  std::string_view text;  // without its line terminator ('\r' of CRLF removed); in `source`
 };
 
 struct Program {
@@ -29,6 +30,7 @@ struct Program {
   // The O line itself (when there is one) and every following line up to the next O line or the
   // end of the tape, blank and comment-only lines included.
   std::vector<ProgramLine> lines;
+  std::shared_ptr<const std::string> source;  // the file's text, shared by its programs
 };
 
 // Either the programs of the file in file order, or the first alarm (then `programs` is empty:

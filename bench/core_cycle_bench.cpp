@@ -3,7 +3,7 @@
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "channel/control/channel_controller.hpp"
-#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/interp/interpreter_source.hpp"
 #include "channel/motion/trapezoid_planner.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 
@@ -16,6 +16,12 @@ using namespace mcnc;
 
 namespace {
 
+interp::InterpreterConfig xz_channel() {
+  interp::InterpreterConfig c;
+  c.axes = {interp::AxisConfig{'X', true}, interp::AxisConfig{'Z', false}};
+  return c;
+}
+
 std::string long_program(int blocks) {
   std::string text = "%\nO0001\n";
   for (int i = 0; i < blocks; ++i) {
@@ -25,7 +31,7 @@ std::string long_program(int blocks) {
 }
 
 void BM_ChannelControllerCycle(benchmark::State& state) {
-  interp::MinimalInterpreter interpreter({{'X', 'U', true}, {'Z', 'W', false}});
+  interp::InterpreterSource interpreter(xz_channel());
   interpreter.load(long_program(100000), "bench.nc");
   motion::TrapezoidPlanner planner(2, {{100, 100, 1000}, {100, 100, 1000}});
   channel::ChannelSetup setup{2, {1e9, 1e9}, 0.001};  // in position at once: the cost is the path
@@ -87,15 +93,15 @@ void BM_RpdoEncodeDecode(benchmark::State& state) {
 }
 BENCHMARK(BM_RpdoEncodeDecode);
 
-void BM_MinimalInterpreterLoad1000Blocks(benchmark::State& state) {
+void BM_InterpreterLoad1000Blocks(benchmark::State& state) {
   const std::string text = long_program(1000);
   for (auto _ : state) {
-    interp::MinimalInterpreter interpreter({{'X', 'U', true}, {'Z', 'W', false}});
-    benchmark::DoNotOptimize(interpreter.load(text, "bench.nc"));
+    interp::Interpreter interpreter(xz_channel());
+    benchmark::DoNotOptimize(interpreter.start(text, "bench.nc"));
   }
   state.SetItemsProcessed(state.iterations() * 1000);
 }
-BENCHMARK(BM_MinimalInterpreterLoad1000Blocks);
+BENCHMARK(BM_InterpreterLoad1000Blocks);
 
 }  // namespace
 

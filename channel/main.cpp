@@ -1,8 +1,9 @@
 // mcnc-channel: one machining channel. Interpreter -> planner -> one setpoint per owned axis per
 // cycle over DDS, feedback back. Wiring only: the behaviour is in ChannelController.
 #include "channel/control/channel_controller.hpp"
-#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/interp/interpreter_source.hpp"
 #include "channel/motion/trapezoid_planner.hpp"
+#include "channel/setup/interpreter_setup.hpp"
 #include "channel/wire/channel_outputs.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
@@ -64,20 +65,18 @@ int main(int argc, char** argv) {
 
   // The channel's axes, in program order.
   std::vector<const config::AxisConfig*> axes;
-  std::vector<interp::AxisAddress> addresses;
   std::vector<motion::AxisLimits> limits;
   channel::ChannelSetup setup;
   for (const std::string& name : ch->axes) {
     const config::AxisConfig* a = machine.find_axis(name);
     axes.push_back(a);
-    addresses.push_back(interp::lathe_axis_address(a->address, a->diameter));
     limits.push_back(motion::AxisLimits{a->rapid_rate / 60.0, a->max_feed / 60.0, a->acceleration});
     setup.in_position.push_back(a->in_position);
   }
   setup.axis_count = axes.size();
   setup.cycle_s = machine.cycle_s();
 
-  interp::MinimalInterpreter interpreter(addresses);
+  interp::InterpreterSource interpreter(channel::interpreter_config_for(machine, *ch));
   std::vector<std::string> program_lines;
   std::string program_name;
   std::optional<interp::ProgramAlarm> load_alarm;

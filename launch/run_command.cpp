@@ -1,6 +1,7 @@
 #include "launch/run_command.hpp"
 
-#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/interp/interpreter_source.hpp"
+#include "channel/setup/interpreter_setup.hpp"
 #include "common/process/startup.hpp"
 #include "launch/launcher.hpp"
 #include "launch/self_path.hpp"
@@ -17,23 +18,38 @@ namespace mcnc::launch {
 
 namespace {
 
-// Checks a program for the channel's axes; prints "FILE:LINE:COL: alarm N: text" when bad.
+// Checks a program before the machine starts: it is parsed, then interpreted to its end (at most
+// kDryRunCommands commands, since a program may loop for ever) from machine position 0, and every
+// command must be one the channel can execute. Prints "FILE:LINE:COL: alarm N: text" when bad.
+constexpr int kDryRunCommands = 1000000;
+
 bool program_is_good(const config::MachineConfig& machine, const config::ChannelConfig& ch,
                      const std::string& path) {
-  std::vector<interp::AxisAddress> addresses;
-  for (const auto& name : ch.axes) {
-    const config::AxisConfig* axis = machine.find_axis(name);
-    addresses.push_back(interp::lathe_axis_address(axis->address, axis->diameter));
-  }
   std::ifstream file(path);
   std::stringstream text;
   text << file.rdbuf();
-  interp::MinimalInterpreter interpreter(addresses);
   const std::string name = std::filesystem::path(path).filename().string();
-  if (auto alarm = interpreter.load(text.str(), name)) {
-    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line,
-                 alarm->column, alarm->number, alarm->text.c_str());
+  interp::InterpreterSource source(channel::interpreter_config_for(machine, ch));
+  auto report = [&](const interp::ProgramAlarm& alarm) {
+    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm.line,
+                 alarm.column, alarm.number, alarm.text.c_str());
     return false;
+  };
+  if (auto alarm = source.load(text.str(), name)) {
+    return report(*alarm);
+  }
+  source.rewind(interp::AxisVector{});
+  for (int i = 0; i < kDryRunCommands; ++i) {
+    auto pulled = source.next();
+    if (!pulled) {
+      return true;
+    }
+    if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*pulled)) {
+      return report(*alarm);
+    }
+    if (std::get<interp::CanonicalCommand>(*pulled).kind == interp::CommandKind::program_end) {
+      return true;
+    }
   }
   return true;
 }

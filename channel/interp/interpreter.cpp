@@ -34,6 +34,10 @@ double Interpreter::program_position(int axis) const {
   return run_->program_position(axis);
 }
 
+std::size_t Interpreter::main_block_count() const {
+  return run_->main_block_count();
+}
+
 std::optional<ProgramAlarm> Interpreter::save_retained() {
   return run_->save_retained();
 }

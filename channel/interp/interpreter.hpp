@@ -55,6 +55,8 @@ class Interpreter {
   const AxisVector& machine_position() const;
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
+  // The number of non-empty lines of the main program (0 before start).
+  std::size_t main_block_count() const;
   // Saves #500-#999 to the configured retained file (also done when the program ends).
   std::optional<ProgramAlarm> save_retained();
 

@@ -555,6 +555,17 @@ void ProgramRun::end_program(int code) {
   save_retained();
 }
 
+std::size_t ProgramRun::main_block_count() const {
+  if (frames_.empty()) {
+    return 0;
+  }
+  std::size_t n = 0;
+  for (const parse::Line& l : frames_.front().program->lines) {
+    n += l.statement.kind != parse::StatementKind::empty ? 1 : 0;
+  }
+  return n;
+}
+
 std::optional<ProgramAlarm> ProgramRun::save_retained() {
   if (config_.retained_file.empty()) {
     return std::nullopt;

@@ -39,6 +39,7 @@ class ProgramRun final : public macro::VariableProvider {
   const AxisVector& machine() const { return machine_; }
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
+  std::size_t main_block_count() const;
 
   macro::VariableRead read(std::int64_t number) const override;
   macro::MacroAlarm write(std::int64_t number, macro::MacroValue value) override;

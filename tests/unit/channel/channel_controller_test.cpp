@@ -1,5 +1,5 @@
 #include "channel/control/channel_controller.hpp"
-#include "channel/interp/minimal_interpreter.hpp"
+#include "channel/interp/interpreter_source.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/motion/trapezoid_planner.hpp"
 
@@ -99,10 +99,16 @@ struct LoggedEvent {
 
 // The channel with two simulated axes. The axes follow the last valid setpoint with a one-cycle
 // delay: the feedback used at cycle N is what the channel commanded at cycle N-1.
+interp::InterpreterConfig xz_channel() {
+  interp::InterpreterConfig c;
+  c.axes = {interp::AxisConfig{'X', true}, interp::AxisConfig{'Z', false}};
+  return c;
+}
+
 class Rig {
  public:
   explicit Rig(interp::CommandSource* scripted = nullptr, AxisVector start = xz(0.0, 0.0))
-      : interp_({{'X', 'U', true}, {'Z', 'W', false}}),
+      : interp_(xz_channel()),
         planner_(2, lathe_limits()),
         ctl_(ChannelSetup{2, {kInPos, kInPos}, kDt},
              scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
@@ -176,7 +182,7 @@ class Rig {
     return std::nullopt;
   }
 
-  interp::MinimalInterpreter interp_;
+  interp::InterpreterSource interp_;
   motion::TrapezoidPlanner planner_;
   ChannelController ctl_;
   std::vector<AxisFeedbackView> feedback_;

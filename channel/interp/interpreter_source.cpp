@@ -1,0 +1,134 @@
+#include "channel/interp/interpreter_source.hpp"
+
+#include "channel/interp/program_alarms.hpp"
+
+namespace mcnc::interp {
+
+namespace {
+
+const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
+  switch (op) {
+    case Op::arc:
+      return "an arc (G02/G03) needs the look-ahead planner; this channel executes G00, G01 and "
+             "G04";
+    case Op::linear:
+      return mode == FeedMode::per_rev
+                 ? "feed per revolution (G99) needs the spindle-synchronised planner"
+                 : nullptr;
+    case Op::dwell:
+      return in_revs ? "a dwell in spindle revolutions needs the spindle feedback" : nullptr;
+    case Op::spindle:
+    case Op::spindle_select:
+    case Op::tool:
+    case Op::aux:
+    case Op::wait_input:
+    case Op::stop:
+      return "spindle, tool, M-code and input commands need the PLC node";
+    case Op::sync:
+    case Op::axis_release:
+    case Op::axis_acquire:
+    case Op::axis_restore:
+    case Op::axis_couple:
+    case Op::axis_decouple:
+    case Op::spindle_sync:
+    case Op::spindle_unsync:
+    case Op::subcall:
+    case Op::subcall_release:
+      return "multi-channel commands need the channel coordination runtime";
+    case Op::message:
+      return "#3006 messages need the HMI";
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
+InterpreterSource::InterpreterSource(InterpreterConfig config) : config_(std::move(config)) {}
+
+InterpreterSource::~InterpreterSource() = default;
+
+std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_text,
+                                                    const std::string& program_name) {
+  text_ = program_text;
+  name_ = program_name;
+  loaded_ = true;
+  Interpreter probe(config_);
+  load_alarm_ = probe.start(text_, name_);
+  block_count_ = load_alarm_ ? 0 : probe.main_block_count();
+  interpreter_.reset();
+  return load_alarm_;
+}
+
+void InterpreterSource::rewind(const AxisVector& current) {
+  interpreter_.reset();
+  if (!loaded_ || load_alarm_) {
+    return;
+  }
+  InterpreterConfig c = config_;
+  for (std::size_t i = 0; i < c.axes.size() && i < kMaxChannelAxes; ++i) {
+    c.axes[i].start = current[i];
+  }
+  interpreter_ = std::make_unique<Interpreter>(c);
+  load_alarm_ = interpreter_->start(text_, name_);
+}
+
+std::optional<CanonicalCommand> InterpreterSource::for_channel(const Command& c,
+                                                               std::string& why) {
+  if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {
+    why = missing;
+    return std::nullopt;
+  }
+  CanonicalCommand out;
+  out.line = c.line;
+  out.block = static_cast<std::size_t>(c.n);
+  out.target = c.to;
+  switch (c.op) {
+    case Op::rapid:
+      out.kind = CommandKind::rapid;
+      break;
+    case Op::linear:
+      out.kind = CommandKind::linear;
+      out.feed = c.feed;
+      break;
+    case Op::dwell:
+      out.kind = CommandKind::dwell;
+      out.dwell_s = c.seconds;
+      break;
+    case Op::end:
+      out.kind = CommandKind::program_end;
+      out.end_code = c.code;
+      break;
+    default:
+      why = "this command cannot run in the channel yet";
+      return std::nullopt;
+  }
+  return out;
+}
+
+std::optional<PullResult> InterpreterSource::next() {
+  if (load_alarm_) {
+    return PullResult{*load_alarm_};  // the program stays stopped at its alarm
+  }
+  if (!interpreter_) {
+    return std::nullopt;
+  }
+  std::optional<InterpResult> r = interpreter_->next();
+  if (!r) {
+    return std::nullopt;
+  }
+  if (const auto* alarm = std::get_if<ProgramAlarm>(&*r)) {
+    load_alarm_ = *alarm;
+    return PullResult{*alarm};
+  }
+  const Command& c = std::get<Command>(*r);
+  std::string why;
+  if (auto converted = for_channel(c, why)) {
+    return PullResult{*converted};
+  }
+  load_alarm_ = ProgramAlarm{alarm::kNotInThisVersion, why,
+                             c.file != nullptr ? *c.file : name_, c.line, 0};
+  return PullResult{*load_alarm_};
+}
+
+}  // namespace mcnc::interp

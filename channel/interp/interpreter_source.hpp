@@ -1,0 +1,42 @@
+#pragma once
+// The interpreter behind the channel's CommandSource. It hands the channel the commands its
+// exact-stop planner executes (rapid, linear per minute, dwell in seconds, program end); any
+// other canonical command is a program alarm naming what the channel cannot execute yet, raised
+// before the block runs (arcs and feed per revolution come with the look-ahead planner, spindle,
+// tool and M codes with the PLC node, the multi-channel words with the coordination runtime).
+#include "channel/interp/command_source.hpp"
+#include "channel/interp/interpreter.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace mcnc::interp {
+
+class InterpreterSource final : public CommandSource {
+ public:
+  explicit InterpreterSource(InterpreterConfig config);
+  ~InterpreterSource() override;
+
+  // Parses the whole file (every program in it). Returns the first alarm, or nullopt.
+  std::optional<ProgramAlarm> load(const std::string& program_text,
+                                   const std::string& program_name);
+  void rewind(const AxisVector& current) override;
+  std::optional<PullResult> next() override;
+  [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
+
+  // Converts one canonical command for the channel; nullopt when the channel cannot execute it
+  // (then `why` says what is missing).
+  static std::optional<CanonicalCommand> for_channel(const Command& c, std::string& why);
+
+ private:
+  InterpreterConfig config_;
+  std::string text_;
+  std::string name_;
+  std::unique_ptr<Interpreter> interpreter_;
+  std::optional<ProgramAlarm> load_alarm_;
+  std::size_t block_count_ = 0;
+  bool loaded_ = false;
+};
+
+}  // namespace mcnc::interp

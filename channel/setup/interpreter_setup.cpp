@@ -1,0 +1,21 @@
+#include "channel/setup/interpreter_setup.hpp"
+
+namespace mcnc::channel {
+
+interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& machine,
+                                                 const config::ChannelConfig& channel) {
+  interp::InterpreterConfig c;
+  c.channel = channel.id;
+  c.axes.clear();
+  for (const std::string& name : channel.axes) {
+    const config::AxisConfig* a = machine.find_axis(name);
+    interp::AxisConfig axis;
+    axis.name = a->address;
+    axis.diameter = a->diameter;
+    axis.rotary = a->address == 'A' || a->address == 'B' || a->address == 'C';
+    c.axes.push_back(axis);
+  }
+  return c;
+}
+
+}  // namespace mcnc::channel

@@ -11,6 +11,8 @@ namespace mcnc::interp {
 
 namespace {
 
+constexpr double kMaxCoordinate = 999999.999;  // spec dafeng §1.3
+
 std::string format_mm(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.4f", v);
@@ -143,6 +145,11 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
     }
     given[i] = true;
     const double v = scaled(*aw.word, true);
+    if (std::fabs(v) > kMaxCoordinate) {
+      return fail(alarm::kValueOutOfRange,
+                  std::string(1, aw.word->address.first) + " beyond +-999999.999 (spec L116)",
+                  aw.word->column);
+    }
     if (aw.incremental) {
       if (machine_coordinates) {
         return fail(alarm::kWordNotAllowed, "G53 takes absolute machine positions only",

@@ -82,6 +82,14 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
 // ---------------------------------------------------------------------------------------------
 // Programs
 
+parse::StructureLimits ProgramRun::structure_limits() const {
+  parse::StructureLimits limits;
+  if (config_.dialect == Dialect::gsk) {
+    limits.max_loop_label = 3;  // GSK DO1-DO3 (gsk D2-38)
+  }
+  return limits;
+}
+
 std::optional<ProgramAlarm> ProgramRun::start_text(const std::string& text,
                                                    const std::string& file_name) {
   program::SplitResult split = program::split_programs(text, file_name);
@@ -92,7 +100,7 @@ std::optional<ProgramAlarm> ProgramRun::start_text(const std::string& text,
     return ProgramAlarm{alarm::kProgramEndMissing, "the file holds no program", file_name, 0, 0};
   }
   for (const program::Program& p : split.programs) {
-    parse::ParsedProgramResult parsed = parse::parse_program(p);
+    parse::ParsedProgramResult parsed = parse::parse_program(p, structure_limits());
     if (parsed.alarm) {
       return parsed.alarm;
     }
@@ -120,7 +128,7 @@ std::optional<ProgramAlarm> ProgramRun::start_number(int number) {
   if (found.alarm) {
     return found.alarm;
   }
-  parse::ParsedProgramResult parsed = parse::parse_program(*found.program);
+  parse::ParsedProgramResult parsed = parse::parse_program(*found.program, structure_limits());
   if (parsed.alarm) {
     return parsed.alarm;
   }
@@ -152,7 +160,7 @@ const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
     fail(found.alarm->number, found.alarm->text, column);
     return nullptr;
   }
-  parse::ParsedProgramResult parsed = parse::parse_program(*found.program);
+  parse::ParsedProgramResult parsed = parse::parse_program(*found.program, structure_limits());
   if (parsed.alarm) {
     alarm_ = parsed.alarm;  // points into the called file
     return nullptr;

@@ -64,7 +64,7 @@ class ProgramRun final : public macro::VariableProvider {
   };
 
   // ---- programs and flow (program_run.cpp)
-  bool load_main(const program::Program& program);
+  parse::StructureLimits structure_limits() const;
   const parse::ParsedProgram* find_program(int number, int column);
   bool step();
   bool execute(const parse::Line& line, int index, const parse::Statement& s);

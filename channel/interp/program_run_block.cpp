@@ -529,8 +529,14 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
 
   // Modal codes, in the order a control applies them before the block's motion.
+  // GSK: a G50 block ignores a work-system code beside it (gsk D2-16).
+  const bool ignore_work_system =
+      config_.dialect == Dialect::gsk && primary == GFunction::coordinate_set;
   for (int i = 0; i < ng; ++i) {
     const BlockG& g = gs[static_cast<std::size_t>(i)];
+    if (ignore_work_system && g.info.group == 14) {
+      continue;
+    }
     if (g.info.group != 0 && g.info.group != 1 &&
         !apply_modal(g.info.function, g.code10, g.column)) {
       return false;

@@ -264,6 +264,9 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     const double dx = ea - sa;
     const double dy = eb - sb;
     const double d = std::hypot(dx, dy);
+    if (d < 1e-9 && config_.dialect == Dialect::gsk) {
+      return true;  // GSK: R with no end point is a 0-degree arc, no motion (gsk D2-9)
+    }
     if (d < 1e-9) {
       return fail(alarm::kArcFullCircleWithR,
                   "a full circle cannot be programmed with R; give the centre with I/K", r->column);

@@ -169,6 +169,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       c.macro.common_last = 199;
       c.macro.extended_common = false;
       c.macro.vacant_ordering = interp::macro::VacantOrdering::kLiteralGskTable;
+      c.macro.round_to_integer = true;
     }
   }
   if (root["channel"]) {

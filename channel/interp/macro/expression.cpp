@@ -667,7 +667,11 @@ EvalResult evaluate(const Expression& expression, const VariableStore& store) {
         for (std::size_t i = 0; i < in.argc; ++i) {
           args[i] = stack[sp + i].number();
         }
-        const MathResult r = apply_function(in.function, args.data(), in.argc);
+        // FANUC and GSK round ROUND to a whole number; Dafeng keeps 3 decimals (decision D16).
+        const bool whole_round =
+            in.function == Function::kRound && store.dialect().round_to_integer;
+        const MathResult r = whole_round ? apply_function(Function::kInt, args.data(), 1)
+                                         : apply_function(in.function, args.data(), in.argc);
         if (!r.ok()) {
           return failed(make_alarm(alarm::kOutOfRange, in.column, "%s", r.error));
         }

@@ -32,6 +32,8 @@ struct MacroDialect {
   bool commons_cleared_by_reset = false;
   int max_call_levels = 16;  // local levels above the main program (M98 nests 16, L6335)
   VacantOrdering vacant_ordering = VacantOrdering::kAsZero;
+  // ROUND[x]: Dafeng rounds to 3 decimals (D16); FANUC/GSK to a whole number, halves away from 0.
+  bool round_to_integer = false;
   int channel = 1;  // the value of CHN and the own channel of #aa bbbbbb
 };
 

@@ -52,6 +52,11 @@ std::optional<ProgramAlarm> match_structure(ParsedProgram& p, StructureLimits li
                 "WHILE ... DO" + std::to_string(s.label) + " inside a loop with the same label");
           }
         }
+        if (limits.max_loop_label > 0 && s.label > limits.max_loop_label) {
+          return alarm_at(p, i, alarm::kBadWordValue,
+                          "DO" + std::to_string(s.label) + ": loop labels are 1-" +
+                              std::to_string(limits.max_loop_label));
+        }
         open.push_back(Open{i, StatementKind::while_do, s.label, i, false});
         break;
       case StatementKind::loop_end: {

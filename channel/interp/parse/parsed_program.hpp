@@ -16,6 +16,7 @@ namespace mcnc::interp::parse {
 struct StructureLimits {
   int max_while_nesting = 5;  // spec dafeng L7133
   int max_if_nesting = 10;    // spec dafeng L7035
+  int max_loop_label = 0;     // DO m: m up to this (GSK and FANUC: 3); 0 = any positive m
 };
 
 struct ParsedProgram {

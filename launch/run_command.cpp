@@ -18,11 +18,8 @@ namespace mcnc::launch {
 
 namespace {
 
-// Checks a program before the machine starts: it is parsed, then interpreted to its end (at most
-// kDryRunCommands commands, since a program may loop for ever) from machine position 0, and every
-// command must be one the channel can execute. Prints "FILE:LINE:COL: alarm N: text" when bad.
-constexpr int kDryRunCommands = 1000000;
-
+// Checks a program before the machine starts (InterpreterSource::load: parse and dry run).
+// Prints "FILE:LINE:COL: alarm N: text" when bad.
 bool program_is_good(const config::MachineConfig& machine, const config::ChannelConfig& ch,
                      const std::string& path) {
   std::ifstream file(path);
@@ -30,26 +27,10 @@ bool program_is_good(const config::MachineConfig& machine, const config::Channel
   text << file.rdbuf();
   const std::string name = std::filesystem::path(path).filename().string();
   interp::InterpreterSource source(channel::interpreter_config_for(machine, ch));
-  auto report = [&](const interp::ProgramAlarm& alarm) {
-    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm.line,
-                 alarm.column, alarm.number, alarm.text.c_str());
-    return false;
-  };
   if (auto alarm = source.load(text.str(), name)) {
-    return report(*alarm);
-  }
-  source.rewind(interp::AxisVector{});
-  for (int i = 0; i < kDryRunCommands; ++i) {
-    auto pulled = source.next();
-    if (!pulled) {
-      return true;
-    }
-    if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*pulled)) {
-      return report(*alarm);
-    }
-    if (std::get<interp::CanonicalCommand>(*pulled).kind == interp::CommandKind::program_end) {
-      return true;
-    }
+    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line,
+                 alarm->column, alarm->number, alarm->text.c_str());
+    return false;
   }
   return true;
 }

@@ -53,9 +53,29 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
   text_ = program_text;
   name_ = program_name;
   loaded_ = true;
-  Interpreter probe(config_);
+  InterpreterConfig dry = config_;
+  dry.retained_file.clear();  // a dry run must not write the retained variables
+  Interpreter probe(dry);
   load_alarm_ = probe.start(text_, name_);
   block_count_ = load_alarm_ ? 0 : probe.main_block_count();
+  for (int i = 0; i < kDryRunCommands && !load_alarm_; ++i) {
+    std::optional<InterpResult> r = probe.next();
+    if (!r) {
+      break;
+    }
+    if (const auto* alarm = std::get_if<ProgramAlarm>(&*r)) {
+      load_alarm_ = *alarm;
+      break;
+    }
+    const Command& c = std::get<Command>(*r);
+    std::string why;
+    if (!for_channel(c, why)) {
+      load_alarm_ = ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_,
+                                 c.line, 0};
+    } else if (c.op == Op::end) {
+      break;
+    }
+  }
   interpreter_.reset();
   return load_alarm_;
 }
@@ -73,8 +93,7 @@ void InterpreterSource::rewind(const AxisVector& current) {
   load_alarm_ = interpreter_->start(text_, name_);
 }
 
-std::optional<CanonicalCommand> InterpreterSource::for_channel(const Command& c,
-                                                               std::string& why) {
+std::optional<CanonicalCommand> InterpreterSource::for_channel(const Command& c, std::string& why) {
   if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {
     why = missing;
     return std::nullopt;
@@ -126,8 +145,8 @@ std::optional<PullResult> InterpreterSource::next() {
   if (auto converted = for_channel(c, why)) {
     return PullResult{*converted};
   }
-  load_alarm_ = ProgramAlarm{alarm::kNotInThisVersion, why,
-                             c.file != nullptr ? *c.file : name_, c.line, 0};
+  load_alarm_ =
+      ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_, c.line, 0};
   return PullResult{*load_alarm_};
 }
 

@@ -18,9 +18,13 @@ class InterpreterSource final : public CommandSource {
   explicit InterpreterSource(InterpreterConfig config);
   ~InterpreterSource() override;
 
-  // Parses the whole file (every program in it). Returns the first alarm, or nullopt.
+  // Parses the whole file, then interprets it to its end from machine position 0 (a dry run of
+  // at most kDryRunCommands commands, since a program may loop for ever), so that a bad block
+  // is an alarm before the program starts, including commands the channel cannot execute yet.
+  // Returns the first alarm, or nullopt.
   std::optional<ProgramAlarm> load(const std::string& program_text,
                                    const std::string& program_name);
+  static constexpr int kDryRunCommands = 1000000;
   void rewind(const AxisVector& current) override;
   std::optional<PullResult> next() override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }

@@ -244,9 +244,8 @@ bool ProgramRun::step() {
 
 // Expressions live in the arena of the program being executed, which holds `s`.
 bool ProgramRun::evaluate(const parse::Statement& /*s*/, int expression, macro::MacroValue& out) {
-  const macro::EvalResult r =
-      macro::evaluate(frames_.back().program->arena.expressions[static_cast<std::size_t>(expression)],
-                      vars_);
+  const macro::EvalResult r = macro::evaluate(
+      frames_.back().program->arena.expressions[static_cast<std::size_t>(expression)], vars_);
   if (r.alarm) {
     return fail_macro(r.alarm);
   }

@@ -809,6 +809,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
   };
 
   bool commanded = false;
+  std::uint32_t commanded_spindles = 0;
   for (BlockWord& w : words_) {
     if (!w.address.is('M')) {
       continue;
@@ -843,6 +844,11 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       commanded = true;
       continue;
     }
+    if (commanded_spindles & (1U << spindle)) {
+      return fail(alarm::kGroupConflict,
+                  "two M codes for spindle " + std::to_string(spindle) + " in one block", w.column);
+    }
+    commanded_spindles |= 1U << spindle;
     if (dir != SpindleDirection::orient) {
       spindle_direction_[static_cast<std::size_t>(spindle)] = dir;
     }

@@ -1,0 +1,9 @@
+#1=0
+WHILE[#1 LT 3] DO1
+#1=#1+1
+END1
+WHILE[#1 LT 5] DO1
+#1=#1+1
+END1
+G00 Z[#1]
+M30

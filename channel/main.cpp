@@ -52,6 +52,10 @@ int main(int argc, char** argv) {
   app.add_option("--program", program_path, "part program to run at cycle start")
       ->check(CLI::ExistingFile);
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
+  std::string retained_path;
+  app.add_option("--retained", retained_path,
+                 "keep the retained macro variables #500-#999 in FILE (loaded at start, saved "
+                 "at program end)");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
@@ -76,7 +80,9 @@ int main(int argc, char** argv) {
   setup.axis_count = axes.size();
   setup.cycle_s = machine.cycle_s();
 
-  interp::InterpreterSource interpreter(channel::interpreter_config_for(machine, *ch));
+  interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
+  interp_config.retained_file = retained_path;
+  interp::InterpreterSource interpreter(interp_config);
   std::vector<std::string> program_lines;
   std::string program_name;
   std::optional<interp::ProgramAlarm> load_alarm;

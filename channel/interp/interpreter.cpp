@@ -9,9 +9,8 @@ Interpreter::Interpreter(const InterpreterConfig& config, const InterpreterEnvir
 
 Interpreter::~Interpreter() = default;
 
-std::optional<ProgramAlarm> Interpreter::start(const std::string& text,
-                                               const std::string& file_name) {
-  return run_->start_text(text, file_name);
+std::optional<ProgramAlarm> Interpreter::start(std::string text, const std::string& file_name) {
+  return run_->start_text(std::move(text), file_name);
 }
 
 std::optional<ProgramAlarm> Interpreter::start_number(int number) {

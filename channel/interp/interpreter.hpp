@@ -42,7 +42,7 @@ class Interpreter {
   // Loads a program file's text: its first program is the main program; the others are found
   // by number (M98, G65, ...) before the program directory is searched. Every line of a program
   // is parsed when the program is loaded, so a syntax error is an alarm before anything moves.
-  std::optional<ProgramAlarm> start(const std::string& text, const std::string& file_name);
+  std::optional<ProgramAlarm> start(std::string text, const std::string& file_name);
   // Starts program O<number> of the program directory.
   std::optional<ProgramAlarm> start_number(int number);
 

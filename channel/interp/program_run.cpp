@@ -90,9 +90,9 @@ parse::StructureLimits ProgramRun::structure_limits() const {
   return limits;
 }
 
-std::optional<ProgramAlarm> ProgramRun::start_text(const std::string& text,
-                                                   const std::string& file_name) {
-  program::SplitResult split = program::split_programs(text, file_name);
+std::optional<ProgramAlarm> ProgramRun::start_text(std::string text, const std::string& file_name) {
+  program::SplitResult split =
+      program::split_programs(std::make_shared<const std::string>(std::move(text)), file_name);
   if (split.alarm) {
     return split.alarm;
   }
@@ -174,14 +174,16 @@ const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
 // Pulling
 
 std::optional<InterpResult> ProgramRun::next() {
-  auto pop = [this]() -> InterpResult {
-    Command c = std::move(out_[out_head_++]);
+  // The command is moved once, straight into the result.
+  auto pop = [this]() {
+    std::optional<InterpResult> r(std::in_place, std::in_place_type<Command>,
+                                  std::move(out_[out_head_++]));
+    std::get<Command>(*r).n = ++sequence_;
     if (out_head_ == out_.size()) {
       out_.clear();  // keeps the capacity: no allocation per command
       out_head_ = 0;
     }
-    c.n = ++sequence_;
-    return c;
+    return r;
   };
   if (out_head_ < out_.size()) {
     return pop();
@@ -365,6 +367,10 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
   return true;
 }
 
+const std::string& ProgramRun::message_of(const parse::Line& line) const {
+  return frames_.back().program->arena.messages[static_cast<std::size_t>(line.message)];
+}
+
 bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
   const macro::Assignment& a = *s.assignment;
   std::int64_t target = a.target;
@@ -389,9 +395,10 @@ bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
                     a.target_column);
       }
       return fail(alarm::kUserAlarmBase + static_cast<int>(n),
-                  line.message.empty() ? "macro alarm" : line.message, a.target_column);
+                  line.message < 0 ? std::string("macro alarm") : message_of(line),
+                  a.target_column);
     }
-    emit(Op::message).text = line.message;
+    emit(Op::message).text = line.message < 0 ? std::string() : message_of(line);
     Command& stop = emit(Op::stop);
     stop.code = 0;
     stop.barrier = true;

@@ -31,7 +31,7 @@ class ProgramRun final : public macro::VariableProvider {
  public:
   ProgramRun(const InterpreterConfig& config, const InterpreterEnvironment* environment);
 
-  std::optional<ProgramAlarm> start_text(const std::string& text, const std::string& file_name);
+  std::optional<ProgramAlarm> start_text(std::string text, const std::string& file_name);
   std::optional<ProgramAlarm> start_number(int number);
   std::optional<InterpResult> next();
 
@@ -71,6 +71,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool evaluate(const parse::Statement& s, int expression, macro::MacroValue& out);
   bool condition(const parse::Statement& s, int expression, bool& out);
   bool assign(const parse::Line& line, const parse::Statement& s);
+  const std::string& message_of(const parse::Line& line) const;
   bool jump_to_sequence(std::int64_t n, parse::GotoDirection direction, int column);
   int find_sequence(const parse::ParsedProgram& p, std::int64_t n, int from,
                     parse::GotoDirection direction, int column);

@@ -78,19 +78,27 @@ int execute_interp(const InterpArguments& args) {
   if (!args.program_dir.empty()) {
     config.program_dir = args.program_dir;
   }
-  std::ifstream in(args.file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  if (!in) {
-    std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
-    return 2;
+  std::string text;
+  {
+    std::ifstream in(args.file, std::ios::binary | std::ios::ate);
+    if (!in) {
+      std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
+      return 2;
+    }
+    text.resize(static_cast<std::size_t>(in.tellg()));
+    in.seekg(0);
+    in.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (!in) {
+      std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
+      return 2;
+    }
   }
 
   SystemEnvironment environment;
   interp::Interpreter interpreter(config, &environment);
   std::string out;
   out.reserve(1 << 17);
-  if (auto alarm = interpreter.start(text.str(), args.file)) {
+  if (auto alarm = interpreter.start(std::move(text), args.file)) {
     interp::output::append_json(out, *alarm);
     flush(out);
     return 1;

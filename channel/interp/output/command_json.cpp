@@ -55,10 +55,18 @@ void string(std::string& out, const std::string& s) {
   out += '"';
 }
 
-void key(std::string& out, const char* k) {
-  out += ",\"";
-  out += k;
-  out += "\":";
+// `,"k":` with the length of `k` known at compile time (this runs a few times per command).
+template <std::size_t N>
+void key(std::string& out, const char (&k)[N]) {
+  out.append(",\"", 2);
+  out.append(k, N - 1);
+  out.append("\":", 2);
+}
+
+void key(std::string& out, std::string_view k) {
+  out.append(",\"", 2);
+  out.append(k);
+  out.append("\":", 2);
 }
 
 void positions(std::string& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
@@ -203,7 +211,7 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       break;
     }
     case Op::dwell:
-      key(out, c.in_revs ? "revs" : "seconds");
+      key(out, std::string_view(c.in_revs ? "revs" : "seconds"));
       number(out, c.seconds);
       break;
     case Op::spindle:

@@ -545,7 +545,8 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
         return out;
       }
       if (!have_message) {
-        out.line.message = std::string(text.substr(i + 1, close - i - 1));
+        arena.messages.emplace_back(text.substr(i + 1, close - i - 1));
+        out.line.message = static_cast<int>(arena.messages.size()) - 1;
         have_message = true;
       }
       for (std::size_t j = i; j <= close; ++j) {

@@ -57,6 +57,7 @@ enum class GotoDirection : std::uint8_t { wrap, forward, backward };  // GOTO, G
 struct Arena {
   std::vector<Word> words;
   std::vector<macro::Expression> expressions;
+  std::vector<std::string> messages;  // the first `( )` comment of lines that have one
 };
 
 struct Statement {
@@ -78,7 +79,7 @@ struct Line {
   std::int64_t sequence = -1;  // N number, -1 when none
   int sequence_column = 0;
   Statement statement;
-  std::string message;  // text of the first `( )` comment: the #3000 / #3006 message
+  int message = -1;  // arena index of the first `( )` comment: the #3000 / #3006 message
 };
 
 }  // namespace mcnc::interp::parse

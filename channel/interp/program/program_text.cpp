@@ -214,9 +214,13 @@ std::string program_label(int number) {
 }
 
 SplitResult split_programs(std::string_view text, const std::string& file_name) {
-  SplitResult result;
   // One copy of the text for all programs of the file; their lines point into it.
-  const auto source = std::make_shared<const std::string>(text);
+  return split_programs(std::make_shared<const std::string>(text), file_name);
+}
+
+SplitResult split_programs(std::shared_ptr<const std::string> source,
+                           const std::string& file_name) {
+  SplitResult result;
   const std::vector<RawLine> lines = split_lines(*source);
   const auto [begin, end] = tape_range(lines);
 

@@ -41,6 +41,8 @@ struct SplitResult {
 };
 
 SplitResult split_programs(std::string_view text, const std::string& file_name);
+// The same without a copy: the programs' lines point into `text`, which they keep alive.
+SplitResult split_programs(std::shared_ptr<const std::string> text, const std::string& file_name);
 
 // "O0012": the spelling used in alarm texts and file names (4 digits, zero padded).
 std::string program_label(int number);

@@ -824,6 +824,12 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       continue;
     }
     w.used = true;
+    if (spindle > 9) {
+      return fail(alarm::kBadWordValue,
+                  "M" + std::to_string(m) + " would address spindle " + std::to_string(spindle) +
+                      "; spindles are 1-9",
+                  w.column);
+    }
     if (addressed != 0 && addressed != spindle &&
         (p != nullptr || (s != nullptr && s->index >= 0))) {
       return fail(alarm::kBadWordValue,

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <sstream>
@@ -43,6 +44,14 @@ class SystemEnvironment final : public interp::InterpreterEnvironment {
 void flush(std::string& buffer) {
   std::fwrite(buffer.data(), 1, buffer.size(), stdout);
   buffer.clear();
+}
+
+// Ends the process once everything is written: a large program's parsed form is not worth
+// freeing piece by piece just before the process ends (the retained variables were saved when
+// the program ended).
+[[noreturn]] void finish(int code) {
+  std::fflush(stdout);
+  std::_Exit(code);
 }
 
 }  // namespace
@@ -101,13 +110,13 @@ int execute_interp(const InterpArguments& args) {
   if (auto alarm = interpreter.start(std::move(text), args.file)) {
     interp::output::append_json(out, *alarm);
     flush(out);
-    return 1;
+    finish(1);
   }
   while (auto result = interpreter.next()) {
     if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*result)) {
       interp::output::append_json(out, *alarm);
       flush(out);
-      return 1;
+      finish(1);
     }
     interp::output::append_json(out, std::get<interp::Command>(*result), config.axes, args.file);
     if (out.size() > (1 << 16)) {
@@ -115,7 +124,7 @@ int execute_interp(const InterpArguments& args) {
     }
   }
   flush(out);
-  return 0;
+  finish(0);
 }
 
 }  // namespace mcnc::tools

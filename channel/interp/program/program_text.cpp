@@ -3,6 +3,7 @@
 #include "channel/interp/program/program_format_alarms.hpp"
 #include "channel/interp/program_chars.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 
@@ -17,6 +18,7 @@ struct RawLine {
 
 std::vector<RawLine> split_lines(std::string_view text) {
   std::vector<RawLine> lines;
+  lines.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
   int number = 1;
   std::size_t begin = 0;
   while (begin < text.size()) {

@@ -84,6 +84,10 @@ class ProgramRun final : public macro::VariableProvider {
   // ---- NC blocks (program_run_block.cpp)
   bool execute_block(const parse::Line& line, const parse::Statement& s);
   bool evaluate_words(const parse::Statement& s);
+  bool repeat_word(std::int64_t& repeat);
+  bool program_word(const char* code, int column, std::int64_t& program);
+  // A macro-type call (G65, G/M macro codes): L repeats, the other words are arguments.
+  bool call_with_arguments(int program, int column, bool p_is_program);
   bool collect_macro_args(std::array<macro::MacroValue, 33>& args, bool type_one_only,
                           bool reserve_p);
   bool apply_modal(GFunction f, int code10, int column);
@@ -107,6 +111,25 @@ class ProgramRun final : public macro::VariableProvider {
     bool error = false;  // an alarm was raised (absolute and incremental together)
   };
   AxisWords axis_words(int axis);
+  // Calls f(axis, word, incremental) for every channel axis the block programs, marking its word
+  // used; stops and returns false when f does or an alarm is raised.
+  template <typename F>
+  bool for_each_axis_word(F&& f) {
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      const AxisWords aw = axis_words(static_cast<int>(i));
+      if (aw.error) {
+        return false;
+      }
+      if (aw.word == nullptr) {
+        continue;
+      }
+      aw.word->used = true;
+      if (!f(static_cast<int>(i), *aw.word, aw.incremental)) {
+        return false;
+      }
+    }
+    return true;
+  }
   bool read_axis_targets(AxisVector& target, std::array<bool, kMaxChannelAxes>& given,
                          bool machine_coordinates);
   bool run_motion(GFunction motion, bool machine_coordinates, int column);

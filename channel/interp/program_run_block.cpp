@@ -277,6 +277,38 @@ bool ProgramRun::collect_macro_args(std::array<macro::MacroValue, 33>& args, boo
   return true;
 }
 
+bool ProgramRun::repeat_word(std::int64_t& repeat) {
+  repeat = 1;
+  BlockWord* l = word('L');
+  if (l == nullptr) {
+    return true;
+  }
+  l->used = true;
+  if (!whole_number(l->value, repeat) || repeat < 0) {
+    return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0", l->column);
+  }
+  return true;
+}
+
+bool ProgramRun::program_word(const char* code, int column, std::int64_t& program) {
+  BlockWord* p = word('P');
+  if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
+    return fail(alarm::kBadWordValue, std::string(code) + " needs P<program number 0-9999>",
+                p != nullptr ? p->column : column);
+  }
+  p->used = true;
+  return true;
+}
+
+bool ProgramRun::call_with_arguments(int program, int column, bool p_is_program) {
+  std::int64_t repeat = 1;
+  std::array<macro::MacroValue, 33> args{};
+  if (!repeat_word(repeat) || !collect_macro_args(args, false, p_is_program)) {
+    return false;
+  }
+  return call_macro(program, static_cast<int>(repeat), args, column, false);
+}
+
 // ---------------------------------------------------------------------------------------------
 // The block
 
@@ -315,20 +347,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       program = t.g_range_program + (c / 10 - t.g_range_first);
     }
     if (program != 0) {
-      std::array<macro::MacroValue, 33> args{};
-      BlockWord* l = word('L');
-      std::int64_t repeat = 1;
-      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
-        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
-                    l->column);
-      }
-      if (l != nullptr) {
-        l->used = true;
-      }
-      if (!collect_macro_args(args, false, false)) {
-        return false;
-      }
-      return call_macro(program, static_cast<int>(repeat), args, w.column, false);
+      return call_with_arguments(program, w.column, false);  // P is #16 here
     }
     const GCodeInfo info = lookup_gcode(c, config_.system);
     if (info.function == GFunction::unknown) {
@@ -411,48 +430,23 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       return fail(alarm::kWordNotAllowed, "G65 must come first in its block (only N before it)",
                   words_.front().column);
     }
-    BlockWord* p = word('P');
-    BlockWord* l = word('L');
     std::int64_t program = 0;
-    std::int64_t repeat = 1;
-    if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
-      return fail(alarm::kBadWordValue, "G65 needs P<program number 0-9999>", primary_column);
-    }
-    if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
-      return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0", l->column);
-    }
-    p->used = true;
-    if (l != nullptr) {
-      l->used = true;
-    }
-    std::array<macro::MacroValue, 33> args{};
-    if (!collect_macro_args(args, false, true)) {
+    if (!program_word("G65", primary_column, program)) {
       return false;
     }
     if (modal_call_.active) {
       modal_call_.active = false;  // G65 cancels a modal G66 call (gsk D2-37)
       modal_codes_[12] = 67;
     }
-    return call_macro(static_cast<int>(program), static_cast<int>(repeat), args, primary_column,
-                      false);
+    return call_with_arguments(static_cast<int>(program), primary_column, true);
   }
   for (int i = 0; i < ng; ++i) {
     const BlockG& g = gs[static_cast<std::size_t>(i)];
     if (g.info.function == GFunction::modal_call) {
-      BlockWord* p = word('P');
-      BlockWord* l = word('L');
       std::int64_t program = 0;
       std::int64_t repeat = 1;
-      if (p == nullptr || !whole_number(p->value, program) || program < 0 || program > 9999) {
-        return fail(alarm::kBadWordValue, "G66 needs P<program number 0-9999>", g.column);
-      }
-      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
-        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
-                    l->column);
-      }
-      p->used = true;
-      if (l != nullptr) {
-        l->used = true;
+      if (!program_word("G66", g.column, program) || !repeat_word(repeat)) {
+        return false;
       }
       ModalCall m;
       m.active = true;
@@ -510,20 +504,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
     w.used = true;
     if (as_macro) {
-      std::array<macro::MacroValue, 33> args{};
-      BlockWord* l = word('L');
-      std::int64_t repeat = 1;
-      if (l != nullptr && (!whole_number(l->value, repeat) || repeat < 0)) {
-        return fail(alarm::kBadWordValue, "L (repeat count) must be a whole number >= 0",
-                    l->column);
-      }
-      if (l != nullptr) {
-        l->used = true;
-      }
-      if (!collect_macro_args(args, false, false)) {
-        return false;
-      }
-      return call_macro(program, static_cast<int>(repeat), args, w.column, false);
+      return call_with_arguments(program, w.column, false);
     }
     return call_subprogram(program, -1, 1, w.column, false) && check_unused_words();
   }
@@ -1008,7 +989,7 @@ bool ProgramRun::run_m_codes(bool after_motion) {
               return fail(alarm::kBadWordValue,
                           "M98 P<count><program> and L together: give the count once", p->column);
             }
-            repeat = program / 10000;  // P30001234: O1234 three times (spec L6326-6329)
+            repeat = program / 10000;  // P30010: O0010 three times (gsk D2-20, decision D24)
             program %= 10000;
           }
         }
@@ -1496,21 +1477,12 @@ bool ProgramRun::run_data_input(int column) {
       }
       system = 6 + static_cast<int>(pv);
     }
-    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-      const int ia = static_cast<int>(i);
-      const AxisWords aw = axis_words(ia);
-      if (aw.error) {
-        return false;
-      }
-      if (aw.word == nullptr) {
-        continue;
-      }
-      aw.word->used = true;
-      double& slot = work_[static_cast<std::size_t>(system)][i];
-      const double v = to_physical(ia, scaled(*aw.word, true), false);
-      slot = aw.incremental ? slot + v : v;
-    }
-    return true;
+    return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+      double& slot = work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)];
+      const double v = to_physical(axis, scaled(w, true), false);
+      slot = incremental ? slot + v : v;
+      return true;
+    });
   }
   // Tool offsets: P1-P64 wear, P10001-P10064 geometry (spec dafeng L3620-3669).
   const bool geometry = pv >= 10001 && pv <= 10000 + kMaxToolOffsets;

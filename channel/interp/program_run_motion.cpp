@@ -126,43 +126,33 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
                                    bool machine_coordinates) {
   target = machine_;
   given.fill(false);
-  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-    const int ia = static_cast<int>(i);
-    const AxisWords aw = axis_words(ia);
-    if (aw.error) {
-      return false;
-    }
-    if (aw.word == nullptr) {
-      continue;
-    }
-    aw.word->used = true;
+  return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    const auto i = static_cast<std::size_t>(axis);
     if (released_[i]) {
       return fail(alarm::kReleasedAxis,
                   std::string(1, config_.axes[i].name) +
                       " was released to another channel by G140; acquire it (G141) or restore "
                       "(G142) first",
-                  aw.word->column);
+                  w.column);
     }
     given[i] = true;
-    const double v = scaled(*aw.word, true);
+    const double v = scaled(w, true);
     if (std::fabs(v) > kMaxCoordinate) {
       return fail(alarm::kValueOutOfRange,
-                  std::string(1, aw.word->address.first) + " beyond +-999999.999 (spec L116)",
-                  aw.word->column);
+                  std::string(1, w.address.first) + " beyond +-999999.999 (spec L116)", w.column);
     }
-    if (aw.incremental) {
+    if (incremental) {
       if (machine_coordinates) {
-        return fail(alarm::kWordNotAllowed, "G53 takes absolute machine positions only",
-                    aw.word->column);
+        return fail(alarm::kWordNotAllowed, "G53 takes absolute machine positions only", w.column);
       }
-      target[i] = machine_[i] + to_physical(ia, v);
+      target[i] = machine_[i] + to_physical(axis, v);
     } else if (machine_coordinates) {
-      target[i] = to_physical(ia, v, false);
+      target[i] = to_physical(axis, v, false);
     } else {
-      target[i] = to_physical(ia, v) + offset_sum(ia) + tool_offset(ia);
+      target[i] = to_physical(axis, v) + offset_sum(axis) + tool_offset(axis);
     }
-  }
-  return true;
+    return true;
+  });
 }
 
 bool ProgramRun::check_feed(int column) {
@@ -400,73 +390,48 @@ bool ProgramRun::run_reference_return(GFunction f, int column) {
 
 bool ProgramRun::run_coordinate_set(int /*column*/) {
   const auto ws = static_cast<std::size_t>(work_system_);
-  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-    const int ia = static_cast<int>(i);
-    const AxisWords aw = axis_words(ia);
-    if (aw.error) {
-      return false;
-    }
-    if (aw.word == nullptr) {
-      continue;
-    }
-    aw.word->used = true;
-    const double v = to_physical(ia, scaled(*aw.word, true));
-    if (aw.incremental) {
+  return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    const auto i = static_cast<std::size_t>(axis);
+    const double v = to_physical(axis, scaled(w, true));
+    if (incremental) {
       shift_[i] -= v;  // G50 U: the position reads U more (L4219-4232)
-      continue;
+      return true;
     }
     // The position before the tool offset reads v; G52 of this axis ends in every system.
     for (auto& l : local_) {
       l[i] = 0.0;
     }
     shift_[i] = machine_[i] - work_[0][i] - work_[ws][i] - v;
-  }
-  return true;
+    return true;
+  });
 }
 
 bool ProgramRun::run_local_system(int /*column*/) {
   const auto ws = static_cast<std::size_t>(work_system_);
-  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-    const int ia = static_cast<int>(i);
-    const AxisWords aw = axis_words(ia);
-    if (aw.error) {
-      return false;
-    }
-    if (aw.word == nullptr) {
-      continue;
-    }
-    aw.word->used = true;
-    const double v = to_physical(ia, scaled(*aw.word, true));
-    if (aw.incremental) {
-      // U/W: relative to the current position in the work system (spec L4302-4386).
-      local_[ws][i] = machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(ia) + v;
-    } else {
-      local_[ws][i] = v;
-    }
-  }
-  return true;
+  return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    const auto i = static_cast<std::size_t>(axis);
+    const double v = to_physical(axis, scaled(w, true));
+    // U/W: relative to the current position in the work system (spec L4302-4386).
+    local_[ws][i] =
+        incremental ? machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(axis) + v
+                    : v;
+    return true;
+  });
 }
 
 bool ProgramRun::run_restore_origin(int /*column*/) {
-  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-    const AxisWords aw = axis_words(static_cast<int>(i));
-    if (aw.error) {
-      return false;
-    }
-    if (aw.word == nullptr) {
-      continue;
-    }
-    aw.word->used = true;
-    if (aw.incremental || aw.word->value != 0.0) {
+  return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    if (incremental || w.value != 0.0) {
       return fail(alarm::kBadWordValue,
-                  "G50.3 restores the origin of an axis written with 0, e.g. X0", aw.word->column);
+                  "G50.3 restores the origin of an axis written with 0, e.g. X0", w.column);
     }
+    const auto i = static_cast<std::size_t>(axis);
     shift_[i] = 0.0;
     for (auto& l : local_) {
       l[i] = 0.0;
     }
-  }
-  return true;
+    return true;
+  });
 }
 
 }  // namespace mcnc::interp

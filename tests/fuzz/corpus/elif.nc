@@ -1,0 +1,16 @@
+0
+O0143
+#1=2
+IF[#1 EQ 1]
+  G00 X1
+ELSEIF[#1 EQ 2]
+  IF[#2 NE #0]
+    G00 X7
+  ENDIF
+  G00 X2
+ELIF[#1 EQ 3]
+  G00 X4
+ELSE
+  G00 X3
+ENDIF
+M30

@@ -422,8 +422,12 @@ bool ProgramRun::run_local_system(int /*column*/) {
 bool ProgramRun::run_restore_origin(int /*column*/) {
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     if (incremental || w.value != 0.0) {
+      // G50.3 in system A, G92.1 in system B: name the code the programmer wrote.
       return fail(alarm::kBadWordValue,
-                  "G50.3 restores the origin of an axis written with 0, e.g. X0", w.column);
+                  config_.system == GCodeSystem::a
+                      ? "G50.3 restores the origin of an axis written with 0, e.g. X0"
+                      : "G92.1 restores the origin of an axis written with 0, e.g. X0",
+                  w.column);
     }
     const auto i = static_cast<std::size_t>(axis);
     shift_[i] = 0.0;

@@ -100,6 +100,17 @@ TEST(InterpCoordinates, G52IsKeptPerWorkSystem) {
   EXPECT_AT(r.commands[1], 0, 20);   // G54 still has it
 }
 
+TEST(InterpCoordinates, G50_3RestoresTheOriginAndNamesItsCodePerSystem) {
+  RunResult r = run_ok("G52 X10 Z20\nG50.3 X0 Z0\nG00 X0 Z0\nM30\n");
+  EXPECT_AT(r.commands[0], 0, 0);
+  RunResult a = run_alarm("G50.3 Z5\nM30\n", alarm::kBadWordValue, 1);
+  EXPECT_NE(a.alarm->text.find("G50.3"), std::string::npos) << a.alarm->text;
+  InterpreterConfig c = lathe();
+  c.system = GCodeSystem::b;
+  RunResult b = run_alarm("G92.1 Z5\nM30\n", alarm::kBadWordValue, 1, -1, c);
+  EXPECT_NE(b.alarm->text.find("G92.1"), std::string::npos) << b.alarm->text;
+}
+
 TEST(InterpCoordinates, G53IsMachineAndOneShot) {
   InterpreterConfig c = lathe();
   c.work_offsets[1] = {50, 50};

@@ -1,0 +1,64 @@
+#pragma once
+// The hole cycles of spec dafeng §2.5 L1844-2198 and gsk A.6.34-A.6.35: drilling (G83/G87 and
+// their .5/.6/.7 peck forms), tapping (G84/G88 with M29 rigid or M28 follow tapping, .5/.6
+// peck forms) and boring (G85/G89), expanded for one hole into steps along the drilling axis
+// (Z for G83/G84/G85, X for G87/G88/G89). The caller positions the other axes on the hole first
+// and repeats the steps per hole (K, and the positioning-only blocks that follow).
+#include "channel/interp/path/plane_path.hpp"
+
+#include <vector>
+
+namespace mcnc::interp::cycles {
+
+enum class HoleKind : std::uint8_t {
+  drill,  // G83/G87: feed in, optionally in pecks
+  tap,    // G84/G88: feed in at the lead, spindle reversal, feed out at the lead
+  bore,   // G85/G89: feed in, dwell, feed out
+};
+
+enum class PeckMode : std::uint8_t {
+  none,        // one feed to the bottom (Q omitted or 0)
+  high_speed,  // .5: back off `retract` after each peck (param 5110 / 5211)
+  deep,        // .6: back to the R level after each peck, then rapid to `clearance` short of
+               // the last depth (param 5111)
+  high_speed_deep,  // .7: `retract` after each peck, full retract every ... (as .5 then .6)
+};
+
+struct HoleCycle {
+  HoleKind kind = HoleKind::drill;
+  PeckMode peck_mode = PeckMode::none;
+  double initial = 0.0;  // drilling-axis position when the cycle starts (initial level)
+  double r_level = 0.0;  // R: absolute position of the R point, reached at rapid
+  double bottom = 0.0;   // Z/W (X/U for the side forms): the hole bottom
+  double peck = 0.0;     // Q: depth of one peck, >= 0 (0: no pecking)
+  double retract = 0.0;    // high-speed back-off
+  double clearance = 0.0;  // deep-hole stop short of the last depth
+  double dwell_s = 0.0;    // P (ms in the program): dwell at the bottom
+  double feed = 0.0;       // drill/bore feed (channel feed mode)
+  double lead = 0.0;       // tap: F/I, mm/rev, < 0 for a left-hand tap
+  int clamp_code = 0;      // Mxx before each hole, Mxx+1 after (0: none)
+  bool return_to_initial = false;  // system B G98: back to `initial` instead of `r_level`
+};
+
+struct HoleStep {
+  enum class Kind : std::uint8_t {
+    rapid,    // to `to` on the drilling axis
+    feed,     // to `to` at the cycle's feed
+    tap,      // to `to` synchronised with the spindle at `lead` (in and out)
+    dwell,    // `seconds`
+    aux,      // M `code` (clamp before the hole, clamp + 1 after)
+    reverse,  // tapping: reverse the spindle for the way out (follow tapping, M28)
+    restore,  // tapping: the spindle's direction before the reversal
+  };
+  Kind kind = Kind::rapid;
+  double to = 0.0;
+  double seconds = 0.0;
+  int code = 0;
+};
+
+// One hole from `initial`: clamp, rapid to R, the in-feed (with pecks), dwell, the way out to
+// R (or `initial`), unclamp. Alarms: 1143 a negative peck/retract/clearance, R beyond the
+// bottom (the hole would be drilled backwards), lead 0 for a tap.
+path::PathResult expand_hole(const HoleCycle& cycle, std::vector<HoleStep>& out);
+
+}  // namespace mcnc::interp::cycles

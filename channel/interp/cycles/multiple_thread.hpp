@@ -1,0 +1,49 @@
+#pragma once
+// G76, the multiple thread-cutting cycle of spec dafeng §2.5 L1763-1843 and gsk A.6.32: roughing
+// passes of constant cut area (depth of pass n = first depth * sqrt(n), each at least the
+// minimum depth) down to the thread height minus the finishing allowance, then the finishing
+// passes at the full height, each pass infeeding along the flank of the tool angle, threading
+// to the end with the chamfer-out, retracting and returning to the start point.
+//
+// Z (the first axis, a) is always the long axis; the thread runs from the start's a to end.a.
+#include "channel/interp/path/plane_path.hpp"
+
+namespace mcnc::interp::cycles {
+
+enum class ThreadInfeed : std::uint8_t {
+  single_flank,  // every pass moves along one flank (J0, param 5035 = 0)
+  alternating,   // left and right flank by turns (J3)
+  radial,        // straight in along b (J1 read as "centre" when the dialect asks for it)
+};
+
+struct MultipleThread {
+  path::Point2 end;           // X/U Z/W: the thread's root at its end (physical, b = radius)
+  double taper = 0.0;         // R(i): b at the thread start minus b at its end (radius)
+  double height = 0.0;        // P(k): thread height, > 0 (radius)
+  double first_depth = 0.0;   // Q(d): depth of the first pass, > 0
+  double min_depth = 0.0;     // Q(dmin) of the first block: smallest depth increment
+  double finish_allowance = 0.0;  // R(d) of the first block
+  int finish_passes = 1;      // m, 1-99 (0 is taken as 1)
+  double chamfer = 0.0;       // r * lead / 10: pull-out length along a at the end; 0: none
+  double tool_angle = 60.0;   // a, degrees (0-99)
+  double lead = 0.0;          // F (or 25.4 / I), mm/rev along a
+  double lead_change = 0.0;   // K (dafeng): per revolution
+  int starts = 1;             // L (dafeng): start angles 360 / starts apart
+  ThreadInfeed infeed = ThreadInfeed::single_flank;
+};
+
+// `start` is the tool position at the cycle (point A); b must be outside the thread's crest on
+// the side away from the root. Each pass: rapid to the pass's infeed point, a `thread` move to
+// the chamfer start, a `thread` move through the chamfer, a rapid back to A's b, a rapid to A.
+// With several starts, each pass is repeated per start with start_angle 360 * s / starts.
+// Alarms: 1143 height, first depth or lead <= 0, finish_allowance >= height, first depth >
+// height; 1146 a lead that reaches 0 with lead_change.
+path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread& cycle,
+                                        path::PlanePath& out);
+
+// The depth (radius, from the crest) of each roughing pass, the last one height -
+// finish_allowance: d1 = first_depth, dn = first_depth * sqrt(n), increments below min_depth
+// raised to min_depth. Exposed for the golden and property tests.
+std::vector<double> thread_pass_depths(const MultipleThread& cycle);
+
+}  // namespace mcnc::interp::cycles

@@ -1,0 +1,31 @@
+#pragma once
+// Automatic chamfer and corner rounding between two moves (spec dafeng §2.4 L1257-1365 `,C`
+// `,R`; gsk A.6.10 `L` / `D`): the first move is shortened to the chamfer or tangent point, the
+// corner move is inserted, and the second move starts from the corner's other end. Line-line,
+// line-arc, arc-line and arc-arc corners.
+#include "channel/interp/path/plane_path.hpp"
+
+namespace mcnc::interp::path {
+
+enum class CornerKind : std::uint8_t {
+  chamfer_setback,  // ,C (dafeng) and gsk type II L: distance from the virtual corner to each
+                    // chamfer point, measured as a straight line from the corner
+  chamfer_length,   // gsk type I L: length of the chamfer line itself
+  round,            // ,R / D: an arc of this radius tangent to both moves
+};
+
+// `start` is where `first` starts; `first` ends where `second` starts (the virtual corner).
+// Both are feed or arc moves. On success `first` and `second` are changed in place and
+// `corner` is the inserted move (feed for a chamfer, arc for a round; feed = `feed`, source
+// -1). When the two moves leave the corner in the same direction (no corner) nothing changes
+// and `inserted` is false (gsk A.6.10 special case 1).
+// Alarms: 1147 the chamfer or round does not fit on either move (gsk A.6.10 special case 2),
+// or a size <= 0.
+struct CornerResult {
+  bool inserted = false;
+  PlaneMove corner;
+};
+PathResult insert_corner(Point2 start, PlaneMove& first, PlaneMove& second, CornerKind kind,
+                         double size, double feed, CornerResult& result);
+
+}  // namespace mcnc::interp::path

@@ -38,6 +38,7 @@ enum class Op : std::uint8_t {
   subcall,
   subcall_release,
   message,
+  thread,
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -69,6 +70,19 @@ struct Command {
   std::array<int, 2> center_axes{};
   std::array<double, 2> center{};
   int turns = 0;
+
+  // thread (G32, G34, G32.1, G32.2/G32.3 and the threading cycles): `to` as a linear move (an
+  // arc thread also has the arc fields); lead along the long axis (the plane axis that travels
+  // farther, physical), its change per revolution (G34), the spindle angle where the thread
+  // starts (degrees). continuous: starts without waiting for the one-revolution signal (the
+  // next block of a continuous thread, or NQ1). rpm > 0: interpolated thread (G32.1, G32.2 S):
+  // the spindle is a position-controlled axis turning at rpm. The reference spindle is
+  // `spindle`.
+  double lead = 0.0;
+  double lead_change = 0.0;
+  double start_angle = 0.0;
+  bool continuous = false;
+  bool thread_arc = false;
 
   // dwell: seconds, or spindle revolutions when in_revs.
   double seconds = 0.0;

@@ -4,14 +4,6 @@ namespace mcnc::interp {
 
 namespace {
 
-constexpr const char* kCycles =
-    "canned cycles (G70-G76, G90/G92/G94, G8x) come with the next "
-    "interpreter release";
-constexpr const char* kThreads =
-    "threading (G32, G32.1, G32.2/G32.3, G34) comes with the next "
-    "interpreter release";
-constexpr const char* kTnrc =
-    "tool-nose radius compensation (G41/G42) comes with the next interpreter release";
 constexpr const char* kOther = "this function of the dialect is not implemented";
 
 GCodeInfo not_yet(const char* topic) {
@@ -52,16 +44,21 @@ GCodeInfo common_code(int code10) {
     case 300:
       return {GFunction::reference_2_4, 0};
     case 320:
+      return {GFunction::thread, 1};
     case 321:
+      return {GFunction::thread_interpolated, 1};
     case 322:
+      return {GFunction::thread_arc_cw, 1};
     case 323:
+      return {GFunction::thread_arc_ccw, 1};
     case 340:
-      return not_yet(kThreads);
+      return {GFunction::thread_variable, 1};
     case 400:
       return {GFunction::tnrc_cancel, 7};
     case 410:
+      return {GFunction::tnrc_left, 7};
     case 420:
-      return not_yet(kTnrc);
+      return {GFunction::tnrc_right, 7};
     case 504:
       return {GFunction::axis_sync_off, 0};
     case 514:
@@ -94,29 +91,41 @@ GCodeInfo common_code(int code10) {
     case 690:
       return {GFunction::turret_mirror_off, 4};
     case 700:
+      return {GFunction::finishing_cycle, 0};
     case 710:
+      return {GFunction::rough_turning, 0};
     case 720:
+      return {GFunction::rough_facing, 0};
     case 730:
+      return {GFunction::pattern_repeat, 0};
     case 740:
+      return {GFunction::face_grooving, 0};
     case 750:
+      return {GFunction::od_grooving, 0};
     case 760:
+      return {GFunction::multiple_thread, 0};
     case 830:
     case 835:
     case 836:
     case 837:
-    case 840:
-    case 845:
-    case 846:
-    case 850:
+      return {GFunction::drill_face, 10};
     case 870:
     case 875:
     case 876:
     case 877:
+      return {GFunction::drill_side, 10};
+    case 840:
+    case 845:
+    case 846:
+      return {GFunction::tap_face, 10};
     case 880:
     case 885:
     case 886:
+      return {GFunction::tap_side, 10};
+    case 850:
+      return {GFunction::bore_face, 10};
     case 890:
-      return not_yet(kCycles);
+      return {GFunction::bore_side, 10};
     case 800:
       return {GFunction::drill_cancel, 10};
     case 960:
@@ -183,9 +192,11 @@ GCodeInfo lookup_gcode(int code10, GCodeSystem system) {
       case 503:
         return {GFunction::restore_origin, 0};
       case 900:
+        return {GFunction::turning_cycle, 1};
       case 920:
+        return {GFunction::thread_cycle, 1};
       case 940:
-        return not_yet(kCycles);
+        return {GFunction::facing_cycle, 1};
       case 980:
         return {GFunction::feed_per_min, 5};
       case 990:
@@ -200,9 +211,11 @@ GCodeInfo lookup_gcode(int code10, GCodeSystem system) {
     case 921:
       return {GFunction::restore_origin, 0};
     case 770:
+      return {GFunction::turning_cycle, 1};
     case 780:
+      return {GFunction::thread_cycle, 1};
     case 790:
-      return not_yet(kCycles);
+      return {GFunction::facing_cycle, 1};
     case 940:
       return {GFunction::feed_per_min, 5};
     case 950:

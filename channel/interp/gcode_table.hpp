@@ -57,8 +57,36 @@ enum class GFunction : std::uint8_t {
   axis_restore,       // G142
   channel_call,       // G144
   channel_release,    // G145
-  return_initial,     // G98 (B): canned-cycle return level, kept for issue 4
+  return_initial,     // G98 (B): canned-cycle return level
   return_r_level,     // G99 (B)
+  // Threading (group 01).
+  thread,               // G32
+  thread_interpolated,  // G32.1
+  thread_arc_cw,        // G32.2
+  thread_arc_ccw,       // G32.3
+  thread_variable,      // G34
+  // Single cycles (group 01): G90/G92/G94 in system A, G77/G78/G79 in B.
+  turning_cycle,
+  thread_cycle,
+  facing_cycle,
+  // Multiple repetitive cycles (group 00).
+  finishing_cycle,  // G70
+  rough_turning,    // G71
+  rough_facing,     // G72
+  pattern_repeat,   // G73
+  face_grooving,    // G74
+  od_grooving,      // G75
+  multiple_thread,  // G76
+  // Hole cycles (group 10, cancelled by G80 and by a group 01 code).
+  drill_face,  // G83, .5 .6 .7
+  drill_side,  // G87, .5 .6 .7
+  tap_face,    // G84, .5 .6
+  tap_side,    // G88, .5 .6
+  bore_face,   // G85
+  bore_side,   // G89
+  // Tool-nose radius compensation (group 07).
+  tnrc_left,   // G41
+  tnrc_right,  // G42
 };
 
 struct GCodeInfo {

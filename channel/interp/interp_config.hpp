@@ -64,6 +64,9 @@ struct InterpreterConfig {
   bool arc_check = true;                            // param 2203.1
   double arc_tolerance = 0.01;                      // mm, param 2210
   bool dwell_in_revs_with_g99 = false;
+  // G92 chamfer-out without J/K, in leads along Z and X at 45 degrees (Dafeng param 5012,
+  // GSK №19); 0: the thread runs to the end point and the tool leaves at rapid.
+  double thread_chamfer_leads = 0.0;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

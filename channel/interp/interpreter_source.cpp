@@ -37,6 +37,8 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
       return "multi-channel commands need the channel coordination runtime";
     case Op::message:
       return "#3006 messages need the HMI";
+    case Op::thread:
+      return "threading needs the spindle-synchronised planner";
     default:
       return nullptr;
   }

@@ -45,19 +45,19 @@ inline constexpr int kUserAlarmRange = 1129;        // #3000 = n with n outside 
 inline constexpr int kLoopControl = 1130;           // BREAK outside WHILE, END without WHILE ...
 inline constexpr int kNoPlaneAxis = 1131;           // arc in a plane whose axes are missing
 // Canned cycles, threading, corners and tool-nose compensation (issue 4).
-inline constexpr int kContourNotMonotonic = 1140;   // G71/G72 contour against its type's rule
-inline constexpr int kContourStart = 1141;          // first contour block not G00/G01 (or arc)
-inline constexpr int kContourTooLong = 1142;        // more than 100 contour blocks
-inline constexpr int kCycleValue = 1143;            // a cycle amount out of its range
-inline constexpr int kContourMissing = 1144;        // P/Q not found, empty or in wrong order
-inline constexpr int kContourForbidden = 1145;      // M98/M99/G65 ... inside the contour
-inline constexpr int kThreadLead = 1146;            // lead <= 0, G34 lead reaching 0
-inline constexpr int kCornerDoesNotFit = 1147;      // ,C ,R / L D larger than the moves
-inline constexpr int kAngleProgramming = 1148;      // ,A / Q: angle and coordinate contradict
-inline constexpr int kCompensationLookahead = 1149; // too many blocks without motion in G41/G42
-inline constexpr int kCompensationGeometry = 1150;  // the offset path cannot be made
-inline constexpr int kCompensationStart = 1151;     // start-up or cancel on an arc, ...
-inline constexpr int kCycleWordMissing = 1152;      // G74 X without P, G75 Z without Q, ...
+inline constexpr int kContourNotMonotonic = 1140;    // G71/G72 contour against its type's rule
+inline constexpr int kContourStart = 1141;           // first contour block not G00/G01 (or arc)
+inline constexpr int kContourTooLong = 1142;         // more than 100 contour blocks
+inline constexpr int kCycleValue = 1143;             // a cycle amount out of its range
+inline constexpr int kContourMissing = 1144;         // P/Q not found, empty or in wrong order
+inline constexpr int kContourForbidden = 1145;       // M98/M99/G65 ... inside the contour
+inline constexpr int kThreadLead = 1146;             // lead <= 0, G34 lead reaching 0
+inline constexpr int kCornerDoesNotFit = 1147;       // ,C ,R / L D larger than the moves
+inline constexpr int kAngleProgramming = 1148;       // ,A / Q: angle and coordinate contradict
+inline constexpr int kCompensationLookahead = 1149;  // too many blocks without motion in G41/G42
+inline constexpr int kCompensationGeometry = 1150;   // the offset path cannot be made
+inline constexpr int kCompensationStart = 1151;      // start-up or cancel on an arc, ...
+inline constexpr int kCycleWordMissing = 1152;       // G74 X without P, G75 Z without Q, ...
 
 // #3000 = n (text): alarm 3000 + n (n = 0-99), as FANUC numbers macro alarms.
 inline constexpr int kUserAlarmBase = 3000;

@@ -597,6 +597,7 @@ std::optional<ProgramAlarm> ProgramRun::save_retained() {
 Command& ProgramRun::emit(Op op) {
   Command& c = out_.emplace_back();
   c.op = op;
+  last_op_ = op;
   c.line = line_ != nullptr ? line_->line : 0;
   c.file = file_;
   c.to = machine_;

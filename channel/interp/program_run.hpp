@@ -1,10 +1,12 @@
 #pragma once
 // The state of one interpreter run and its execution, behind Interpreter (interpreter.hpp).
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
-// program_run_motion.cpp: coordinates and motion; system_variables.cpp: #2000-#19999.
+// program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
+// single cycles; system_variables.cpp: #2000-#19999.
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
+#include "channel/interp/path/plane_path.hpp"
 
 #include <array>
 #include <map>
@@ -144,6 +146,22 @@ class ProgramRun final : public macro::VariableProvider {
   double to_programmed(int axis, double physical, bool mirror = true) const;
   bool check_feed(int column);
   void apply_tool_offset(int offset);
+  // The channel axes of the current plane's first and second axis (-1 when missing).
+  std::array<int, 2> plane_axis_indices() const;
+  bool require_plane_axes(std::array<int, 2>& axes, int column);
+  // Centre of an arc from `from` to `target` in the current plane from R or I/J/K (the words of
+  // the block); with R the direction picks the side. Marks the words used.
+  bool arc_center(bool ccw, const std::array<int, 2>& axes, const AxisVector& target,
+                  std::array<double, 2>& center, int column);
+
+  // ---- threading and single cycles (program_run_thread.cpp)
+  bool run_thread(GFunction f, int column);
+  bool thread_lead(double& lead, int column);
+  bool thread_start_angle(double& angle);
+  bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);
+  // Emits the moves of a plane path from the current position; the other axes stay.
+  void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed);
+  bool fail_path(const path::PathError& e, int column);
 
   // ---- output and alarms
   Command& emit(Op op);
@@ -184,6 +202,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool block_barrier_ = false;
   bool block_moved_ = false;
   bool block_exact_stop_ = false;
+  bool block_motion_code_ = false;  // the block has a group 01 code
 
   // Modal state
   GFunction motion_ = GFunction::rapid;
@@ -198,6 +217,12 @@ class ProgramRun final : public macro::VariableProvider {
   std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
   double feed_ = 0.0;
   ModalCall modal_call_;
+  Op last_op_ = Op::end;      // the last command emitted: a thread after a thread continues it
+  double thread_lead_ = 0.0;  // the last thread lead (mm/rev): G32 blocks may omit F
+  // The modal single cycle (G90/G92/G94): its end point (machine), taper and lead, which the
+  // blocks that follow without the G code keep unless they give new ones.
+  AxisVector cycle_end_{};
+  double cycle_taper_ = 0.0;
 
   // Spindles of this channel (1-9), the reference spindle (SP) and G96 data.
   std::array<double, 10> rpm_{};

@@ -523,6 +523,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       return false;
     }
   }
+  block_motion_code_ = motion != GFunction::unknown;
   if (motion != GFunction::unknown) {
     motion_ = motion;
     for (int i = 0; i < ng; ++i) {
@@ -687,6 +688,15 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::modal_call:
     case GFunction::modal_call_cancel:
       return true;
+    case GFunction::tnrc_left:
+    case GFunction::tnrc_right:
+    case GFunction::drill_face:
+    case GFunction::drill_side:
+    case GFunction::tap_face:
+    case GFunction::tap_side:
+    case GFunction::bore_face:
+    case GFunction::bore_side:
+      return fail(alarm::kNotInThisVersion, g_name(code10) + " is not available yet", column);
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
   }
@@ -1093,6 +1103,14 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::spindle_sync_on:
     case GFunction::spindle_sync_off:
       return run_spindle_sync(f);
+    case GFunction::finishing_cycle:
+    case GFunction::rough_turning:
+    case GFunction::rough_facing:
+    case GFunction::pattern_repeat:
+    case GFunction::face_grooving:
+    case GFunction::od_grooving:
+    case GFunction::multiple_thread:
+      return fail(alarm::kNotInThisVersion, g_name(code10) + " is not available yet", column);
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
   }

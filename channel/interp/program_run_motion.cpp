@@ -163,6 +163,20 @@ bool ProgramRun::check_feed(int column) {
 }
 
 bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int column) {
+  switch (motion) {
+    case GFunction::thread:
+    case GFunction::thread_interpolated:
+    case GFunction::thread_arc_cw:
+    case GFunction::thread_arc_ccw:
+    case GFunction::thread_variable:
+      return run_thread(motion, column);
+    case GFunction::turning_cycle:
+    case GFunction::thread_cycle:
+    case GFunction::facing_cycle:
+      return run_single_cycle(motion, block_motion_code_, column);
+    default:
+      break;
+  }
   AxisVector target{};
   std::array<bool, kMaxChannelAxes> given{};
   if (!read_axis_targets(target, given, machine_coordinates)) {
@@ -205,42 +219,44 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   return true;
 }
 
-bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column) {
-  struct PlaneAxes {
-    char a, b;    // first and second axis of the plane
-    char ca, cb;  // their centre words
-  };
-  const PlaneAxes pa = plane_ == Plane::xy   ? PlaneAxes{'X', 'Y', 'I', 'J'}
-                       : plane_ == Plane::zx ? PlaneAxes{'Z', 'X', 'K', 'I'}
-                                             : PlaneAxes{'Y', 'Z', 'J', 'K'};
-  int ia = -1;
-  int ib = -1;
+std::array<int, 2> ProgramRun::plane_axis_indices() const {
+  const char first = plane_ == Plane::xy ? 'X' : plane_ == Plane::zx ? 'Z' : 'Y';
+  const char second = plane_ == Plane::xy ? 'Y' : plane_ == Plane::zx ? 'X' : 'Z';
+  std::array<int, 2> axes{-1, -1};
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-    ia = config_.axes[i].name == pa.a ? static_cast<int>(i) : ia;
-    ib = config_.axes[i].name == pa.b ? static_cast<int>(i) : ib;
+    axes[0] = config_.axes[i].name == first ? static_cast<int>(i) : axes[0];
+    axes[1] = config_.axes[i].name == second ? static_cast<int>(i) : axes[1];
   }
-  if (ia < 0 || ib < 0) {
-    return fail(alarm::kNoPlaneAxis,
-                std::string("an arc in the ") + pa.a + pa.b + " plane needs axes " + pa.a +
-                    " and " + pa.b + " in this channel",
-                column);
+  return axes;
+}
+
+bool ProgramRun::require_plane_axes(std::array<int, 2>& axes, int column) {
+  axes = plane_axis_indices();
+  if (axes[0] >= 0 && axes[1] >= 0) {
+    return true;
   }
-  const auto a = static_cast<std::size_t>(ia);
-  const auto b = static_cast<std::size_t>(ib);
+  const char* name = plane_ == Plane::xy ? "XY" : plane_ == Plane::zx ? "ZX" : "YZ";
+  return fail(alarm::kNoPlaneAxis,
+              std::string("this block works in the ") + name + " plane (G17/G18/G19), whose axes " +
+                  name[0] + " and " + name[1] + " this channel lacks",
+              column);
+}
+
+bool ProgramRun::arc_center(bool ccw, const std::array<int, 2>& axes, const AxisVector& target,
+                            std::array<double, 2>& center, int column) {
+  // The centre words of the plane: I/J (G17), K/I (G18), J/K (G19), first axis first.
+  const char ca = plane_ == Plane::xy ? 'I' : plane_ == Plane::zx ? 'K' : 'J';
+  const char cb = plane_ == Plane::xy ? 'J' : plane_ == Plane::zx ? 'I' : 'K';
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
   const double sa = machine_[a];
   const double sb = machine_[b];
   const double ea = target[a];
   const double eb = target[b];
-  ArcDirection dir = motion == GFunction::arc_cw ? ArcDirection::cw : ArcDirection::ccw;
-  if (turret_mirror_ && (pa.a == 'X' || pa.b == 'X')) {
-    dir = dir == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw;  // mirrored X
-  }
   const double inch = metric_ ? 1.0 : 25.4;
   BlockWord* r = word('R');
-  BlockWord* wa = word(pa.ca);
-  BlockWord* wb = word(pa.cb);
-  double ca = 0.0;
-  double cb = 0.0;
+  BlockWord* wa = word(ca);
+  BlockWord* wb = word(cb);
   const double tol = config_.arc_tolerance;
   if (r != nullptr) {
     r->used = true;
@@ -254,9 +270,6 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     const double dx = ea - sa;
     const double dy = eb - sb;
     const double d = std::hypot(dx, dy);
-    if (d < 1e-9 && config_.dialect == Dialect::gsk) {
-      return true;  // GSK: R with no end point is a 0-degree arc, no motion (gsk D2-9)
-    }
     if (d < 1e-9) {
       return fail(alarm::kArcFullCircleWithR,
                   "a full circle cannot be programmed with R; give the centre with I/K", r->column);
@@ -276,42 +289,66 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     const double h = std::sqrt(std::max(0.0, rr * rr - half * half));
     // The centre of the shorter arc lies left of the chord for CCW, right for CW; R < 0 takes
     // the longer arc (spec dafeng L475-560).
-    double side = dir == ArcDirection::ccw ? 1.0 : -1.0;
+    double side = ccw ? 1.0 : -1.0;
     if (radius < 0.0) {
       side = -side;
     }
-    ca = sa + dx / 2.0 + side * h * (-dy / d);
-    cb = sb + dy / 2.0 + side * h * (dx / d);
-  } else {
-    if (wa == nullptr && wb == nullptr) {
-      return fail(alarm::kArcGeometry,
-                  std::string("arc needs R or its centre (") + pa.ca + "/" + pa.cb + ")", column);
+    center = {sa + dx / 2.0 + side * h * (-dy / d), sb + dy / 2.0 + side * h * (dx / d)};
+    return true;
+  }
+  if (wa == nullptr && wb == nullptr) {
+    return fail(alarm::kArcGeometry,
+                std::string("arc needs R or its centre (") + ca + "/" + cb + ")", column);
+  }
+  auto offset = [&](BlockWord* w, std::size_t axis) {
+    if (w == nullptr) {
+      return 0.0;
     }
-    auto offset = [&](BlockWord* w, char axis) {
-      if (w == nullptr) {
-        return 0.0;
+    w->used = true;
+    double v = scaled(*w, true) * inch;  // I/J/K are radius values (spec L119-167)
+    if (turret_mirror_ && config_.axes[axis].name == 'X') {
+      v = -v;
+    }
+    return v;
+  };
+  center = {sa + offset(wa, a), sb + offset(wb, b)};
+  const double r0 = std::hypot(sa - center[0], sb - center[1]);
+  const double r1 = std::hypot(ea - center[0], eb - center[1]);
+  if (r0 < 1e-9) {
+    return fail(alarm::kArcGeometry, "arc centre at the start point (radius 0)", column);
+  }
+  if (config_.arc_check && std::fabs(r0 - r1) > tol) {
+    return fail(alarm::kArcGeometry,
+                "arc end point is not on the circle: radius " + format_mm(r0) + " at the start, " +
+                    format_mm(r1) + " at the end (tolerance " + format_mm(tol) + ")",
+                column);
+  }
+  return true;
+}
+
+bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column) {
+  std::array<int, 2> axes{};
+  if (!require_plane_axes(axes, column)) {
+    return false;
+  }
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  ArcDirection dir = motion == GFunction::arc_cw ? ArcDirection::cw : ArcDirection::ccw;
+  if (turret_mirror_ && (config_.axes[a].name == 'X' || config_.axes[b].name == 'X')) {
+    dir = dir == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw;  // mirrored X
+  }
+  if (word('R') != nullptr && config_.dialect == Dialect::gsk &&
+      std::hypot(target[a] - machine_[a], target[b] - machine_[b]) < 1e-9) {
+    for (const char c : {'R', 'I', 'J', 'K'}) {
+      if (BlockWord* w = word(c)) {
+        w->used = true;
       }
-      w->used = true;
-      double v = scaled(*w, true) * inch;  // I/J/K are radius values (spec L119-167)
-      if (turret_mirror_ && axis == 'X') {
-        v = -v;
-      }
-      return v;
-    };
-    ca = sa + offset(wa, pa.a);
-    cb = sb + offset(wb, pa.b);
-    const double r0 = std::hypot(sa - ca, sb - cb);
-    const double r1 = std::hypot(ea - ca, eb - cb);
-    if (r0 < 1e-9) {
-      return fail(alarm::kArcGeometry, "arc centre at the start point (radius 0)", column);
     }
-    if (config_.arc_check && std::fabs(r0 - r1) > tol) {
-      return fail(alarm::kArcGeometry,
-                  "arc end point is not on the circle: radius " + format_mm(r0) +
-                      " at the start, " + format_mm(r1) + " at the end (tolerance " +
-                      format_mm(tol) + ")",
-                  column);
-    }
+    return true;  // GSK: R with no end point is a 0-degree arc, no motion (gsk D2-9)
+  }
+  std::array<double, 2> center{};
+  if (!arc_center(dir == ArcDirection::ccw, axes, target, center, column)) {
+    return false;
   }
   int turns = 0;
   if (BlockWord* l = word('L')) {
@@ -330,8 +367,8 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
   c.to = target;
   c.plane = plane_;
   c.direction = dir;
-  c.center_axes = {ia, ib};
-  c.center = {ca, cb};
+  c.center_axes = axes;
+  c.center = center;
   c.turns = turns;
   c.feed = feed_;
   c.feed_mode = feed_mode_;

@@ -94,6 +94,24 @@ void feed(std::string& out, const Command& c) {
   }
 }
 
+// center, dir and plane of an arc (or arc thread).
+void arc_fields(std::string& out, const Command& c, const std::vector<AxisConfig>& axes) {
+  key(out, "center");
+  out += "{\"";
+  out += axes[static_cast<std::size_t>(c.center_axes[0])].name;
+  out += "\":";
+  number(out, c.center[0]);
+  out += ",\"";
+  out += axes[static_cast<std::size_t>(c.center_axes[1])].name;
+  out += "\":";
+  number(out, c.center[1]);
+  out += '}';
+  key(out, "dir");
+  out += c.direction == ArcDirection::cw ? "\"cw\"" : "\"ccw\"";
+  key(out, "plane");
+  out += c.plane == Plane::xy ? "\"XY\"" : c.plane == Plane::zx ? "\"ZX\"" : "\"YZ\"";
+}
+
 const char* op_name(Op op) {
   switch (op) {
     case Op::rapid:
@@ -140,6 +158,8 @@ const char* op_name(Op op) {
       return "subcall_release";
     case Op::message:
       return "message";
+    case Op::thread:
+      return "thread";
   }
   return "?";
 }
@@ -186,30 +206,39 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       positions(out, c.to, axes);
       feed(out, c);
       break;
-    case Op::arc: {
+    case Op::arc:
       key(out, "to");
       positions(out, c.to, axes);
-      key(out, "center");
-      out += "{\"";
-      out += axes[static_cast<std::size_t>(c.center_axes[0])].name;
-      out += "\":";
-      number(out, c.center[0]);
-      out += ",\"";
-      out += axes[static_cast<std::size_t>(c.center_axes[1])].name;
-      out += "\":";
-      number(out, c.center[1]);
-      out += '}';
-      key(out, "dir");
-      out += c.direction == ArcDirection::cw ? "\"cw\"" : "\"ccw\"";
-      key(out, "plane");
-      out += c.plane == Plane::xy ? "\"XY\"" : c.plane == Plane::zx ? "\"ZX\"" : "\"YZ\"";
+      arc_fields(out, c, axes);
       if (c.turns > 0) {
         key(out, "turns");
         integer(out, c.turns);
       }
       feed(out, c);
       break;
-    }
+    case Op::thread:
+      key(out, "to");
+      positions(out, c.to, axes);
+      key(out, "lead");
+      number(out, c.lead);
+      key(out, "lead_change");
+      number(out, c.lead_change);
+      key(out, "start_angle");
+      number(out, c.start_angle);
+      key(out, "spindle");
+      integer(out, c.spindle);
+      if (c.continuous) {
+        key(out, "continuous");
+        out += "true";
+      }
+      if (c.rpm > 0.0) {
+        key(out, "rpm");
+        number(out, c.rpm);
+      }
+      if (c.thread_arc) {
+        arc_fields(out, c, axes);
+      }
+      break;
     case Op::dwell:
       key(out, std::string_view(c.in_revs ? "revs" : "seconds"));
       number(out, c.seconds);

@@ -1,0 +1,352 @@
+// Threading G32/G34/G32.1/G32.2/G32.3 (spec dafeng §2.2 L850-1203, gsk A.6.37-A.6.40) and the
+// single cycles G90/G92/G94 (dafeng §2.5 L2199-2376, gsk A.6.26-A.6.28), and the emission of
+// plane paths that every cycle shares.
+#include "channel/interp/cycles/single_cycles.hpp"
+#include "channel/interp/program_alarms.hpp"
+#include "channel/interp/program_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace mcnc::interp {
+
+namespace {
+
+std::string format_value(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", v);
+  return buf;
+}
+
+}  // namespace
+
+bool ProgramRun::fail_path(const path::PathError& e, int column) {
+  return fail(e.alarm, e.text, column);
+}
+
+bool ProgramRun::thread_lead(double& lead, int column) {
+  BlockWord* f = word('F');
+  BlockWord* i = word('I');
+  if (f != nullptr && i != nullptr) {
+    return fail(alarm::kWordNotAllowed, "a thread takes the lead F or threads per inch I, not both",
+                i->column);
+  }
+  if (f != nullptr) {
+    f->used = true;
+    lead = f->value * (metric_ ? 1.0 : 25.4);
+  } else if (i != nullptr) {
+    i->used = true;
+    if (i->value <= 0.0) {
+      return fail(alarm::kThreadLead, "threads per inch I must be greater than 0", i->column);
+    }
+    lead = 25.4 / i->value;
+  } else {
+    lead = thread_lead_;  // continuous threading may omit the lead (spec L908-913)
+  }
+  if (lead <= 0.0) {
+    return fail(alarm::kThreadLead, "a thread needs its lead F (mm) or I (threads per inch) > 0",
+                f != nullptr ? f->column : column);
+  }
+  thread_lead_ = lead;
+  return true;
+}
+
+bool ProgramRun::thread_start_angle(double& angle) {
+  angle = 0.0;
+  BlockWord* q = word('Q');
+  if (q == nullptr) {
+    return true;
+  }
+  q->used = true;
+  // Dafeng: whole degrees (param 5000.3 = 0); GSK: 0.001 degree (gsk A.6.37).
+  const double degrees = config_.dialect == Dialect::gsk ? q->value / 1000.0 : q->value;
+  angle = std::fmod(degrees, 360.0);
+  if (angle < 0.0) {
+    angle += 360.0;
+  }
+  return true;
+}
+
+bool ProgramRun::run_thread(GFunction f, int column) {
+  AxisVector target{};
+  std::array<bool, kMaxChannelAxes> given{};
+  if (!read_axis_targets(target, given, false)) {
+    return false;
+  }
+  bool any = false;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    any = any || given[i];
+  }
+  if (!any) {
+    return true;  // G32 alone selects the mode
+  }
+  double lead = 0.0;
+  double angle = 0.0;
+  if (!thread_lead(lead, column) || !thread_start_angle(angle)) {
+    return false;
+  }
+  const bool gsk = config_.dialect == Dialect::gsk;
+  double lead_change = 0.0;
+  // The lead change per revolution: K in the Dafeng dialect (G32 and G34), R of G34 in GSK.
+  BlockWord* change = gsk ? (f == GFunction::thread_variable ? word('R') : nullptr) : word('K');
+  if (change != nullptr) {
+    change->used = true;
+    lead_change = change->value * (metric_ ? 1.0 : 25.4);
+  }
+  if (f == GFunction::thread_variable && change == nullptr) {
+    return fail(alarm::kWordNotAllowed,
+                std::string("G34 needs the lead change per revolution ") + (gsk ? "R" : "K"),
+                column);
+  }
+  if (BlockWord* j = word('J'); j != nullptr && !gsk) {
+    return fail(alarm::kNotInThisVersion,
+                "J (thread pull-out length) needs the high-precision threading mode of the "
+                "planner, not yet available",
+                j->column);
+  }
+  std::array<int, 2> axes{};
+  if (!require_plane_axes(axes, column)) {
+    return false;
+  }
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  // Over the length of the thread the lead must stay > 0: lead^2 = F^2 + 2 K s (gsk D2-34).
+  const double travel =
+      std::max(std::fabs(target[a] - machine_[a]), std::fabs(target[b] - machine_[b]));
+  if (lead * lead + 2.0 * lead_change * travel <= 0.0) {
+    return fail(alarm::kThreadLead,
+                "the lead change " + format_value(lead_change) + " brings the lead " +
+                    format_value(lead) + " to 0 within the thread",
+                change != nullptr ? change->column : column);
+  }
+  double rpm = 0.0;
+  if (f == GFunction::thread_interpolated) {
+    BlockWord* s = word('S');
+    if (s == nullptr || s->value <= 0.0) {
+      return fail(alarm::kWordNotAllowed, "G32.1 needs the spindle speed S > 0",
+                  s != nullptr ? s->column : column);
+    }
+    s->used = true;
+    rpm = s->value;
+    if (word('Q') != nullptr && !gsk) {
+      return fail(alarm::kWordNotAllowed,
+                  "G32.1 has no start angle Q: position the spindle with G00 first",
+                  word('Q')->column);
+    }
+  }
+  const bool arc = f == GFunction::thread_arc_cw || f == GFunction::thread_arc_ccw;
+  std::array<double, 2> center{};
+  if (arc) {
+    if (!arc_center(f == GFunction::thread_arc_ccw, axes, target, center, column)) {
+      return false;
+    }
+    if (BlockWord* s = word('S')) {
+      s->used = true;  // S given: interpolated like G32.1 (spec L1109-1159)
+      rpm = s->value;
+    }
+  }
+  // GSK run-out: over the last K of the long axis the short axis moves J (gsk A.6.37).
+  double runout_long = 0.0;
+  double runout_short = 0.0;
+  if (gsk && !arc) {
+    if (BlockWord* k = word('K')) {
+      k->used = true;
+      runout_long = std::fabs(scaled(*k, true));
+    }
+    if (BlockWord* j = word('J')) {
+      j->used = true;
+      runout_short = scaled(*j, true);
+    }
+  }
+  const bool continuous = last_op_ == Op::thread;
+  auto emit_thread = [&](const AxisVector& to, double lead_here, double start_angle, bool joins) {
+    Command& c = emit(Op::thread);
+    c.to = to;
+    c.lead = lead_here;
+    c.lead_change = lead_change;
+    c.start_angle = start_angle;
+    c.spindle = reference_spindle_;
+    c.continuous = joins;
+    c.rpm = rpm;
+    if (arc) {
+      c.thread_arc = true;
+      c.plane = plane_;
+      c.direction = f == GFunction::thread_arc_ccw ? ArcDirection::ccw : ArcDirection::cw;
+      c.center_axes = axes;
+      c.center = center;
+    }
+  };
+  if (runout_long > 0.0 || runout_short != 0.0) {
+    const bool a_long = std::fabs(target[a] - machine_[a]) >= std::fabs(target[b] - machine_[b]);
+    const std::size_t lng = a_long ? a : b;
+    const std::size_t sht = a_long ? b : a;
+    const double length = std::fabs(target[lng] - machine_[lng]);
+    if (runout_long > length) {
+      return fail(alarm::kCycleValue,
+                  "run-out K" + format_value(runout_long) + " is longer than the thread (" +
+                      format_value(length) + ")",
+                  word('K') != nullptr ? word('K')->column : column);
+    }
+    AxisVector before = target;
+    const double dir = target[lng] >= machine_[lng] ? 1.0 : -1.0;
+    const double fraction = length > 0.0 ? (length - runout_long) / length : 1.0;
+    before[lng] = target[lng] - dir * runout_long;
+    before[sht] = machine_[sht] + fraction * (target[sht] - machine_[sht]);
+    AxisVector after = target;
+    after[sht] = target[sht] + runout_short;
+    emit_thread(before, lead, angle, continuous);
+    emit_thread(after, lead, 0.0, true);
+    machine_ = after;
+  } else {
+    emit_thread(target, lead, angle, continuous);
+    machine_ = target;
+  }
+  block_moved_ = true;
+  return true;
+}
+
+void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes,
+                                 double feed) {
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  bool after_thread = false;
+  for (const path::PlaneMove& m : moves) {
+    AxisVector to = machine_;
+    to[a] = m.to.a;
+    to[b] = m.to.b;
+    switch (m.kind) {
+      case path::MoveKind::rapid:
+        emit(Op::rapid).to = to;
+        break;
+      case path::MoveKind::feed:
+      case path::MoveKind::arc: {
+        Command& c = emit(m.kind == path::MoveKind::arc ? Op::arc : Op::linear);
+        c.to = to;
+        c.feed = m.feed > 0.0 ? m.feed : feed;
+        c.feed_mode = feed_mode_;
+        if (m.kind == path::MoveKind::arc) {
+          c.plane = plane_;
+          c.direction = m.ccw ? ArcDirection::ccw : ArcDirection::cw;
+          c.center_axes = axes;
+          c.center = {m.center.a, m.center.b};
+        }
+        break;
+      }
+      case path::MoveKind::thread: {
+        Command& c = emit(Op::thread);
+        c.to = to;
+        c.lead = m.lead;
+        c.lead_change = m.lead_change;
+        c.start_angle = m.start_angle;
+        c.spindle = reference_spindle_;
+        c.continuous = after_thread;  // a chamfer-out continues its thread
+        break;
+      }
+      case path::MoveKind::dwell: {
+        Command& c = emit(Op::dwell);
+        c.seconds = m.seconds;
+        break;
+      }
+    }
+    after_thread = m.kind == path::MoveKind::thread;
+    machine_ = to;
+  }
+  block_moved_ = block_moved_ || !moves.empty();
+}
+
+bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int column) {
+  std::array<int, 2> axes{};
+  if (!require_plane_axes(axes, column)) {
+    return false;
+  }
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  AxisVector target{};
+  std::array<bool, kMaxChannelAxes> given{};
+  if (!read_axis_targets(target, given, false)) {
+    return false;
+  }
+  if (!given[a] && !given[b]) {
+    return true;  // the code alone selects the cycle
+  }
+  // Blocks that repeat the modal cycle keep its other end coordinate and taper (spec L2199-
+  // 2265: "later blocks may give only X/U"); a block with the code starts from scratch.
+  if (!cycle_code_in_block) {
+    target[a] = given[a] ? target[a] : cycle_end_[a];
+    target[b] = given[b] ? target[b] : cycle_end_[b];
+  }
+  double taper = cycle_code_in_block ? 0.0 : cycle_taper_;
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    // R is a radius difference in X (G90/G92) or a Z difference (G94): physical either way.
+    const double inch = metric_ ? 1.0 : 25.4;
+    taper = scaled(*r, true) * inch;
+  }
+  cycle_end_ = target;
+  cycle_taper_ = taper;
+
+  cycles::SingleCycle c;
+  c.kind = f == GFunction::turning_cycle  ? cycles::SingleCycleKind::turning
+           : f == GFunction::facing_cycle ? cycles::SingleCycleKind::facing
+                                          : cycles::SingleCycleKind::thread;
+  c.end = {target[a], target[b]};
+  c.taper = taper;
+  if (c.kind == cycles::SingleCycleKind::thread) {
+    if (!thread_lead(c.lead, column) || !thread_start_angle(c.start_angle)) {
+      return false;
+    }
+    const bool gsk = config_.dialect == Dialect::gsk;
+    if (BlockWord* p = word('P')) {
+      return fail(alarm::kNotInThisVersion,
+                  gsk ? "G92 P (thread repair) needs a recorded repair position, not yet available"
+                      : "G92 P (thread feed start height) is not implemented",
+                  p->column);
+    }
+    if (BlockWord* l = word('L')) {
+      l->used = true;
+      if (l->value < 1.0 || l->value > 99.0 || l->value != std::floor(l->value)) {
+        return fail(alarm::kCycleValue, "L (number of starts) must be a whole number 1-99",
+                    l->column);
+      }
+      c.starts = static_cast<int>(l->value);
+    }
+    // The chamfer-out: Dafeng J = its length along Z at 45 degrees (param 5017); GSK J = the
+    // rise along X (radius) and K = the length along Z. Without them the parameter, in leads.
+    const double chamfer = config_.thread_chamfer_leads * c.lead;
+    c.chamfer_a = chamfer;
+    c.chamfer_b = chamfer;
+    if (BlockWord* j = word('J')) {
+      j->used = true;
+      const double v = std::fabs(scaled(*j, true));
+      if (gsk) {
+        c.chamfer_b = v;
+      } else {
+        c.chamfer_a = v;
+        c.chamfer_b = v;
+      }
+    }
+    if (BlockWord* k = word('K')) {
+      k->used = true;
+      if (gsk) {
+        c.chamfer_a = std::fabs(scaled(*k, true));
+      } else {
+        c.lead_change = k->value * (metric_ ? 1.0 : 25.4);
+      }
+    }
+  } else {
+    BlockWord* fw = word('F');
+    if (!check_feed(fw != nullptr ? fw->column : column)) {
+      return false;
+    }
+    c.feed = feed_;
+  }
+  path::PlanePath moves;
+  if (const path::PathResult r =
+          cycles::expand_single_cycle({machine_[a], machine_[b]}, c, moves)) {
+    return fail_path(*r, column);
+  }
+  emit_plane_path(moves, axes, feed_);
+  return true;
+}
+
+}  // namespace mcnc::interp

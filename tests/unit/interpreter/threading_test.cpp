@@ -1,0 +1,161 @@
+// Threading G32/G34/G32.1/G32.2/G32.3 and the single cycles G90/G92/G94 (spec dafeng §2.2
+// L850-1203 and §2.5 L2199-2376; gsk A.6.26-A.6.28, A.6.37-A.6.40, D2-1..D2-5, D2-33, D2-34).
+#include "tests/unit/interpreter/interp_test_support.hpp"
+
+#include <cmath>
+
+namespace mcnc::interp::test {
+namespace {
+
+TEST(InterpThreading, G32LeadFromFOrThreadsPerInch) {
+  RunResult r = run_ok("G00 X20 Z5\nG32 W-20 F1.5\nG00 U10\nG00 Z5\nG32 X20 W-20 I8\nM30\n");
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t[0].lead, 1.5);
+  EXPECT_AT(t[0], 10, -15);
+  EXPECT_DOUBLE_EQ(t[1].lead, 25.4 / 8);
+  EXPECT_FALSE(t[0].continuous);
+  EXPECT_FALSE(t[1].continuous);  // a rapid in between: the thread waits for the signal again
+}
+
+TEST(InterpThreading, InchLead) {
+  RunResult r = run_ok("G20\nG00 X1 Z0.2\nG32 W-1 F0.1\nM30\n");
+  EXPECT_NEAR(r.of(Op::thread)[0].lead, 2.54, 1e-12);
+}
+
+TEST(InterpThreading, StartAngleDegreesDafengThousandthsGsk) {
+  RunResult d = run_ok("G00 X20 Z5\nG32 W-10 F1 Q450\nM30\n");
+  EXPECT_DOUBLE_EQ(d.of(Op::thread)[0].start_angle, 90.0);  // modulo 360 (spec L869)
+  RunResult g = run_ok("G00 X20 Z5\nG32 W-10 F1 Q90000\nM30\n", gsk());
+  EXPECT_DOUBLE_EQ(g.of(Op::thread)[0].start_angle, 90.0);
+}
+
+// gsk D2-33: two G32 blocks join; only the first block's Q matters to the control, which the
+// continuous flag tells it.
+TEST(InterpThreading, ContinuousThreadJoinsBlocksWithoutMotionBetween) {
+  RunResult r = run_ok("G00 X50 Z5\nG32 Z-20 F2 Q0\n#1=1\nG32 X40 Z-30 F2 Q90000\nM30\n", gsk());
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_FALSE(t[0].continuous);
+  EXPECT_TRUE(t[1].continuous);
+}
+
+TEST(InterpThreading, NonMotionBlockBetweenThreadsBreaksContinuity) {
+  // spec L915-917: a G04, M, S or T block makes the next G32 wait for the one-rev signal.
+  RunResult r = run_ok("G00 X50 Z5\nG32 W-10 F2\nM08\nG32 W-10\nM30\n");
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_FALSE(t[1].continuous);
+  EXPECT_DOUBLE_EQ(t[1].lead, 2.0);  // the lead is modal
+}
+
+TEST(InterpThreading, LeadAlarms) {
+  run_alarm("G00 X20 Z5\nG32 W-10\nM30\n", alarm::kThreadLead, 2);
+  run_alarm("G00 X20 Z5\nG32 W-10 F1 I8\nM30\n", alarm::kWordNotAllowed, 2);
+  run_alarm("G00 X20 Z5\nG32 W-10 I0\nM30\n", alarm::kThreadLead, 2);
+}
+
+TEST(InterpThreading, G34LeadChangeAndItsLimit) {
+  RunResult r = run_ok("G00 X30 Z0\nG34 W-30 F4 K0.2\nM30\n");
+  EXPECT_DOUBLE_EQ(r.of(Op::thread)[0].lead_change, 0.2);
+  // gsk D2-34: F2 reaches lead 0 after 4 mm, the thread is 10 long.
+  run_alarm("G00 X30 Z0\nG34 W-10 F2 R-0.5\nM30\n", alarm::kThreadLead, 2, -1, gsk());
+  run_alarm("G00 X30 Z0\nG34 W-10 F2\nM30\n", alarm::kWordNotAllowed, 2);
+}
+
+TEST(InterpThreading, G32_1NeedsSpeedAndHasNoStartAngle) {
+  RunResult r = run_ok("G00 X20 Z5\nG32.1 W-20 F20 S30\nM30\n");
+  EXPECT_DOUBLE_EQ(r.of(Op::thread)[0].rpm, 30.0);
+  run_alarm("G00 X20 Z5\nG32.1 W-20 F20\nM30\n", alarm::kWordNotAllowed, 2);
+  run_alarm("G00 X20 Z5\nG32.1 W-20 F20 S30 Q10\nM30\n", alarm::kWordNotAllowed, 2);
+}
+
+// Dafeng L1143-1157: G32.3 W-10 R20 F2 from X30 Z5, a CCW arc thread.
+TEST(InterpThreading, ArcThreadCarriesItsCentre) {
+  RunResult r = run_ok("G00 X30 Z5\nG32.3 W-10 R20 F2\nM30\n");
+  const Command t = r.of(Op::thread)[0];
+  EXPECT_TRUE(t.thread_arc);
+  EXPECT_EQ(t.direction, ArcDirection::ccw);
+  EXPECT_AT(t, 15, -5);
+  // Chord along -Z from (Z5, X15) to (Z-5, X15), R20 CCW: centre left of the chord.
+  const double h = std::sqrt(400.0 - 25.0);
+  EXPECT_NEAR(t.center[0], 0.0, 1e-9);
+  EXPECT_NEAR(t.center[1], 15.0 - h, 1e-9);
+}
+
+TEST(InterpThreading, GskRunOutOverTheLastK) {
+  // G32 W-20 F2 J1 K3 from X20 Z0: thread to Z-17, then the run-out to Z-20 rising 1 (radius).
+  RunResult r = run_ok("G00 X20 Z0\nG32 W-20 F2 J1 K3\nM30\n", gsk());
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_AT(t[0], 10, -17);
+  EXPECT_AT(t[1], 11, -20);
+  EXPECT_TRUE(t[1].continuous);
+}
+
+TEST(InterpThreading, DafengPullOutJIsNotYetAvailable) {
+  run_alarm("G00 X20 Z0\nG32 W-20 F2 J1\nM30\n", alarm::kNotInThisVersion, 2);
+}
+
+// ---- single cycles
+
+TEST(InterpSingleCycles, G92MultiStartRepeatsPerStart) {
+  RunResult r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F4 L2\nM30\n");
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_DOUBLE_EQ(t[0].start_angle, 0.0);
+  EXPECT_DOUBLE_EQ(t[1].start_angle, 180.0);
+  EXPECT_EQ(r.of(Op::rapid).size(), 1u + 6u);
+}
+
+TEST(InterpSingleCycles, G92ChamferOutFromParameterAndJ) {
+  InterpreterConfig c = lathe();
+  c.thread_chamfer_leads = 1.0;
+  RunResult r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2\nM30\n", c);
+  auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_AT(t[0], 24, -28);  // the chamfer starts one lead before the end
+  EXPECT_AT(t[1], 26, -30);  // and rises one lead at 45 degrees
+  EXPECT_TRUE(t[1].continuous);
+  RunResult j = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 J3\nM30\n");
+  t = j.of(Op::thread);
+  EXPECT_AT(t[0], 24, -27);
+  EXPECT_AT(t[1], 27, -30);
+  // GSK: J the rise (radius), K the length along Z.
+  RunResult g = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 J1 K4\nM30\n", gsk());
+  t = g.of(Op::thread);
+  EXPECT_AT(t[0], 24, -26);
+  EXPECT_AT(t[1], 25, -30);
+}
+
+TEST(InterpSingleCycles, G92Alarms) {
+  run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 J40\nM30\n", alarm::kCycleValue, 2);
+  run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 L0\nM30\n", alarm::kCycleValue, 2);
+  run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", alarm::kNotInThisVersion, 2);
+  run_alarm("G00 X60 Z5\nG92 X48 Z-30\nM30\n", alarm::kThreadLead, 2);
+}
+
+TEST(InterpSingleCycles, G90NeedsFeedAndTheCodeAloneDoesNothing) {
+  run_alarm("G00 X60 Z5\nG90 X50 Z-10\nM30\n", alarm::kFeedMissing, 2);
+  RunResult r = run_ok("G00 X60 Z5\nG90\nM30\n");
+  EXPECT_EQ(r.commands.size(), 2u);
+}
+
+TEST(InterpSingleCycles, AnotherGroupOneCodeEndsTheCycle) {
+  RunResult r = run_ok("G00 X60 Z5\nG90 X50 Z-10 F100\nG00 X40\nM30\n");
+  EXPECT_EQ(r.at_line(3).size(), 1u);
+  EXPECT_AT(r.at_line(3)[0], 20, 5);
+}
+
+TEST(InterpSingleCycles, SystemBNamesThemG77G78G79) {
+  InterpreterConfig c = lathe();
+  c.system = GCodeSystem::b;
+  RunResult r =
+      run_ok("G00 X60 Z5\nG77 X50 Z-10 F100\nG79 X40 Z-2 F100\nG78 X48 Z-30 F2\nM30\n", c);
+  EXPECT_EQ(r.at_line(2).size(), 4u);
+  EXPECT_EQ(r.at_line(3).size(), 4u);
+  EXPECT_EQ(r.of(Op::thread).size(), 1u);
+}
+
+}  // namespace
+}  // namespace mcnc::interp::test

@@ -140,6 +140,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "arc_check",
              "arc_tolerance",
              "dwell_in_revs_with_g99",
+             "thread_chamfer_leads",
              "block_skip",
              "max_tool",
              "statement_limit",
@@ -204,6 +205,12 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
   }
   if (root["arc_tolerance"]) {
     c.arc_tolerance = get<double>(root["arc_tolerance"], "arc_tolerance");
+  }
+  if (root["thread_chamfer_leads"]) {
+    c.thread_chamfer_leads = get<double>(root["thread_chamfer_leads"], "thread_chamfer_leads");
+    if (c.thread_chamfer_leads < 0.0 || c.thread_chamfer_leads > 9.9) {
+      bad("thread_chamfer_leads", "0-9.9 (leads)");
+    }
   }
   if (root["dwell_in_revs_with_g99"]) {
     c.dwell_in_revs_with_g99 = get<bool>(root["dwell_in_revs_with_g99"], "dwell_in_revs_with_g99");

@@ -465,6 +465,9 @@ bool ProgramRun::jump_to_sequence(std::int64_t n, parse::GotoDirection direction
 
 bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, int column,
                                  bool t_call) {
+  if (contour_mode_ != ContourMode::none) {
+    return contour_forbids("a subprogram call (M98, T or M code)", column);  // gsk A.6.30 rule 4
+  }
   if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
     return fail(
         alarm::kCallNestingTooDeep,
@@ -492,6 +495,9 @@ bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, in
 
 bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::MacroValue, 33>& args,
                             int column, bool modal) {
+  if (contour_mode_ != ContourMode::none) {
+    return contour_forbids("a macro call (G65, G66, G/M-code macros)", column);
+  }
   if (macro_depth_ >= config_.max_macro_nesting) {
     return fail(alarm::kCallNestingTooDeep,
                 "macro calls (G65, G66, macro-type G/M codes) nested deeper than " +
@@ -523,6 +529,9 @@ bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::Mac
 }
 
 bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column) {
+  if (contour_mode_ != ContourMode::none) {
+    return contour_forbids("M99", column);
+  }
   if (frames_.size() == 1) {
     // M99 in the main program: back to its start (spec dafeng L6348-6350), or to N P.
     Frame& f = frames_.back();

@@ -163,6 +163,34 @@ class ProgramRun final : public macro::VariableProvider {
   void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed);
   bool fail_path(const path::PathError& e, int column);
 
+  // ---- the P..Q contour of G70-G73 (program_run_contour.cpp)
+  enum class ContourMode : std::uint8_t {
+    none,
+    finish,   // G70: the blocks run as written, F S T effective
+    capture,  // G71-G73: the blocks are read for their geometry; F S T M are ignored
+  };
+  struct BlockContext {  // the executing block's state, kept while the contour's blocks run
+    const parse::Line* line = nullptr;
+    const std::string* file = nullptr;
+    std::vector<BlockWord> words;
+    std::size_t out_start = 0;
+    bool barrier = false;
+    bool moved = false;
+    bool exact_stop = false;
+    bool motion_code = false;
+  };
+  BlockContext save_block() const;
+  void restore_block(BlockContext&& b);
+  // P and Q of the cycle block: the line indices of N(P) and N(Q) in the running program.
+  bool find_contour(const char* code, int& first, int& last, int column);
+  bool run_contour(int first, int last, ContourMode mode, int column);
+  bool run_finishing_cycle(int column);
+  // The contour's moves in the plane from the current position, which is kept; type2 when its
+  // first block gives both plane axes (gsk A.6.30 "type selection").
+  bool capture_contour(const char* code, const std::array<int, 2>& axes, path::PlanePath& contour,
+                       bool& type2, int column);
+  bool contour_forbids(const char* what, int column);
+
   // ---- output and alarms
   Command& emit(Op op);
   bool fail(int number, std::string text, int column);
@@ -217,6 +245,9 @@ class ProgramRun final : public macro::VariableProvider {
   std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
   double feed_ = 0.0;
   ModalCall modal_call_;
+  ContourMode contour_mode_ = ContourMode::none;
+  int contour_motions_ = 0;                   // motion blocks of the contour so far
+  std::array<bool, 2> contour_first_axes_{};  // plane axes the first one gives
   Op last_op_ = Op::end;      // the last command emitted: a thread after a thread continues it
   double thread_lead_ = 0.0;  // the last thread lead (mm/rev): G32 blocks may omit F
   // The modal single cycle (G90/G92/G94): its end point (machine), taper and lead, which the

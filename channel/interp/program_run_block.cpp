@@ -518,6 +518,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (ignore_work_system && g.info.group == 14) {
       continue;
     }
+    if (contour_mode_ == ContourMode::capture && g.info.group == 2) {
+      continue;  // G96/G97 in a G71-G73 contour are the finishing pass's (spec L1527)
+    }
     if (g.info.group != 0 && g.info.group != 1 &&
         !apply_modal(g.info.function, g.code10, g.column)) {
       return false;
@@ -532,7 +535,23 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       }
     }
   }
-  if (BlockWord* f = word('F')) {
+  // G71-G73 read the contour's geometry only: its F, S, T and M codes are the finishing pass's
+  // (spec L1524-1530); the calls among them are refused by the calls themselves.
+  if (contour_mode_ == ContourMode::capture) {
+    for (BlockWord& w : words_) {
+      const char c = w.address.first;
+      if (w.address.second == 0 && !w.address.comma && (c == 'F' || c == 'S' || c == 'T')) {
+        w.used = true;
+      }
+      if (w.address.is('M')) {
+        if (w.value == 98.0 || w.value == 99.0) {
+          return contour_forbids(w.value == 98.0 ? "M98" : "M99", w.column);
+        }
+        w.used = true;
+      }
+    }
+  }
+  if (BlockWord* f = word('F'); f != nullptr && !f->used) {
     f->used = true;
     if (f->value < 0.0) {
       return fail(alarm::kNegativeFeed, "feed F must not be negative", f->column);
@@ -553,7 +572,11 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   bool spindle_words = false;
   bool m_words = false;
+  const bool capture = contour_mode_ == ContourMode::capture;
   for (const BlockWord& w : words_) {
+    if (capture) {
+      break;
+    }
     const char c = w.address.first;
     spindle_words = spindle_words || c == 'S' || c == 'M';
     m_words = m_words || w.address.is('M');
@@ -561,7 +584,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (spindle_words && !run_spindle_words(p_is_spindle_address)) {
     return false;
   }
-  if (!run_tool_word()) {
+  if (!capture && !run_tool_word()) {
     return false;
   }
   if (m_words && !run_m_codes(false)) {
@@ -1104,6 +1127,7 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::spindle_sync_off:
       return run_spindle_sync(f);
     case GFunction::finishing_cycle:
+      return run_finishing_cycle(column);
     case GFunction::rough_turning:
     case GFunction::rough_facing:
     case GFunction::pattern_repeat:

@@ -8,9 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 
 namespace mcnc::interp::path::test {
 namespace {
@@ -45,67 +47,156 @@ void expect_point(Point2 p, double a, double b, double tol = kTol) {
   EXPECT_NEAR(p.b, b, tol);
 }
 
+// Alarm 1147 whose text contains `part`.
+void expect_does_not_fit(const PathResult& e, const std::string& part) {
+  ASSERT_TRUE(e.has_value()) << part;
+  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
+  EXPECT_NE(e->text.find(part), std::string::npos) << e->text;
+}
+
 // dafeng §2.4 L473-477: all from G00 X40 Z150 (a = Z, b = X / 2), the corner at X110 Z120.
 constexpr Point2 kStart{150, 20};
 constexpr Point2 kCorner{120, 55};
 constexpr Point2 kEnd{30, 60};  // X120 Z30
 
-struct Golden {
-  PlaneMove first;
-  PlaneMove second;
-  CornerKind kind;
-  Point2 first_end;
-  Point2 corner_end;
-  Point2 center{};  // round
-  bool ccw = false;
+// The moves of the examples: the first ends at the corner, the second starts there.
+enum class Example : std::uint8_t {
+  line,         // G01 X110 Z120 (first) or G01 X120 Z30 (second)
+  g03_r50,      // G03 X110 Z120 R50 (first)
+  g02_r60_z20,  // G02 X110 Z20 R60 (second; the spec's R30 cannot span the 100 mm chord)
+  g03_r60,      // G03 X120 Z30 R60 (second)
+  g02_r60,      // G02 X120 Z30 R60 (second)
 };
 
-void check_golden(const Golden& g) {
-  PlaneMove first = g.first;
-  PlaneMove second = g.second;
+PlaneMove example_move(Example e) {
+  switch (e) {
+    case Example::g03_r50:
+      return arc_r(kStart, kCorner, 50, true);
+    case Example::g02_r60_z20:
+      return arc_r(kCorner, {20, 55}, 60, false);
+    case Example::g03_r60:
+      return arc_r(kCorner, kEnd, 60, true);
+    case Example::g02_r60:
+      return arc_r(kCorner, kEnd, 60, false);
+    case Example::line:
+      break;
+  }
+  return line_to(kEnd);
+}
+
+struct Golden {
+  const char* blocks;
+  Example first;
+  Example second;
+  CornerKind kind;
+  // The first move's new end, the second's new start and the round's centre (a, b), computed
+  // to 1e-9 by a separate program (bisection along the moves).
+  std::array<double, 6> points;
+  bool ccw;  // round
+};
+
+class CornerGolden : public ::testing::TestWithParam<Golden> {};
+
+TEST_P(CornerGolden, DafengExample) {
+  const Golden& g = GetParam();
+  SCOPED_TRACE(g.blocks);
+  const PlaneMove first_before =
+      g.first == Example::line ? line_to(kCorner) : example_move(g.first);
+  const PlaneMove second_before = example_move(g.second);
+  PlaneMove first = first_before;
+  PlaneMove second = second_before;
   CornerResult r;
   ASSERT_EQ(insert_corner(kStart, first, second, g.kind, 10, 250, r), std::nullopt);
   ASSERT_TRUE(r.inserted);
-  expect_point(first.to, g.first_end.a, g.first_end.b);
-  EXPECT_EQ(first.kind, g.first.kind);
-  expect_point(first.center, g.first.center.a, g.first.center.b, 0.0);
-  expect_point(r.corner.to, g.corner_end.a, g.corner_end.b);
-  expect_point(second.to, g.second.to.a, g.second.to.b, 0.0);
-  EXPECT_EQ(second.kind, g.second.kind);
+  expect_point(first.to, g.points[0], g.points[1]);
+  EXPECT_EQ(first.kind, first_before.kind);
+  expect_point(first.center, first_before.center.a, first_before.center.b, 0.0);
+  expect_point(r.corner.to, g.points[2], g.points[3]);
+  expect_point(second.to, second_before.to.a, second_before.to.b, 0.0);
+  EXPECT_EQ(second.kind, second_before.kind);
   EXPECT_EQ(r.corner.feed, 250);
   EXPECT_EQ(r.corner.source, -1);
   if (g.kind == CornerKind::round) {
     ASSERT_EQ(r.corner.kind, MoveKind::arc);
-    expect_point(r.corner.center, g.center.a, g.center.b);
+    expect_point(r.corner.center, g.points[4], g.points[5]);
     EXPECT_EQ(r.corner.ccw, g.ccw);
   } else {
     EXPECT_EQ(r.corner.kind, MoveKind::feed);
   }
 }
 
-// G01 X110 Z120 F500 ,C10; G01 X120 Z30 (dafeng L473).
-TEST(CornerGolden, DafengLineLineChamfer) {
-  check_golden({line_to(kCorner),
-                line_to(kEnd),
-                CornerKind::chamfer_setback,
-                {126.507913735, 47.407433976},
-                {110.015396468, 55.554700196}});
-}
-
-// The same with ,R10 (dafeng L474): the path turns left, so the round is a G03.
-TEST(CornerGolden, DafengLineLineRound) {
-  check_golden({line_to(kCorner),
-                line_to(kEnd),
-                CornerKind::round,
-                {122.777127526, 51.760017886},
-                {115.739261699, 55.236707683},
-                {115.184561503, 45.252104151},
-                true});
-}
+// dafeng §2.4 L473-477, each with ,C10 and ,R10 (L474: "the same with ,R10").
+INSTANTIATE_TEST_SUITE_P(
+    Dafeng, CornerGolden,
+    ::testing::Values(Golden{"G01 X110 Z120 ,C10; G01 X120 Z30",
+                             Example::line,
+                             Example::line,
+                             CornerKind::chamfer_setback,
+                             {126.507913735, 47.407433976, 110.015396468, 55.554700196, 0, 0},
+                             false},
+                      Golden{"G01 X110 Z120 ,R10; G01 X120 Z30 (turns left: G03)",
+                             Example::line,
+                             Example::line,
+                             CornerKind::round,
+                             {122.777127526, 51.760017886, 115.739261699, 55.236707683,
+                              115.184561503, 45.252104151},
+                             true},
+                      Golden{"G01 X110 Z120 ,C10; G02 X110 Z20 R60",
+                             Example::line,
+                             Example::g02_r60_z20,
+                             CornerKind::chamfer_setback,
+                             {126.507913735, 47.407433976, 113.797074440, 47.156294594, 0, 0},
+                             false},
+                      Golden{"G01 X110 Z120 ,R10; G02 X110 Z20 R60",
+                             Example::line,
+                             Example::g02_r60_z20,
+                             CornerKind::round,
+                             {127.801375800, 45.898394900, 113.036122665, 46.358447843,
+                              120.208809776, 39.390481166},
+                             true},
+                      Golden{"G03 X110 Z120 R50 ,C10; G01 X120 Z30",
+                             Example::g03_r50,
+                             Example::line,
+                             CornerKind::chamfer_setback,
+                             {128.854934610, 50.353481620, 110.015396468, 55.554700196, 0, 0},
+                             false},
+                      Golden{"G03 X110 Z120 R50 ,R10; G01 X120 Z30",
+                             Example::g03_r50,
+                             Example::line,
+                             CornerKind::round,
+                             {121.797649253, 54.234420857, 118.255085645, 55.096939686,
+                              117.700385449, 45.112336154},
+                             true},
+                      Golden{"G03 X110 Z120 R50 ,C10; G03 X120 Z30 R60",
+                             Example::g03_r50,
+                             Example::g03_r60,
+                             CornerKind::chamfer_setback,
+                             {128.854934610, 50.353481620, 113.191550810, 62.324276048, 0, 0},
+                             false},
+                      Golden{"G03 X110 Z120 R50 ,R10; G03 X120 Z30 R60 (turns right: G02)",
+                             Example::g03_r50,
+                             Example::g03_r60,
+                             CornerKind::round,
+                             {122.049917018, 54.120272117, 118.569825755, 56.752956445,
+                              126.197634374, 63.219527071},
+                             false},
+                      Golden{"G03 X110 Z120 R50 ,R10; G02 X120 Z30 R60",
+                             Example::g03_r50,
+                             Example::g02_r60,
+                             CornerKind::round,
+                             {126.817887526, 51.628828876, 115.356640338, 50.744806104,
+                              121.716576067, 43.027862570},
+                             true},
+                      Golden{"G03 X110 Z120 R50 ,C10; G02 X120 Z30 R60",
+                             Example::g03_r50,
+                             Example::g02_r60,
+                             CornerKind::chamfer_setback,
+                             {128.854934610, 50.353481620, 112.422144535, 48.474963100, 0, 0},
+                             false}));
 
 // Line-line round by the textbook formula: setback R / tan(half the inner angle), centre on
 // the bisector at R / sin(half the inner angle).
-TEST(CornerGolden, DafengLineLineRoundMatchesTheFilletFormula) {
+TEST(CornerFormula, DafengLineLineRoundIsTheTextbookFillet) {
   const Point2 u1 = unit(kStart - kCorner);
   const Point2 u2 = unit(kEnd - kCorner);
   const double half = 0.5 * std::acos(dot(u1, u2));
@@ -119,77 +210,6 @@ TEST(CornerGolden, DafengLineLineRoundMatchesTheFilletFormula) {
   expect_point(first.to, t1.a, t1.b, 1e-9);
   expect_point(r.corner.to, t2.a, t2.b, 1e-9);
   expect_point(r.corner.center, c.a, c.b, 1e-9);
-}
-
-// G01 X110 Z120 F500 ,C10; G02 X110 Z20 R30 (dafeng L475). R30 cannot join Z120 to Z20 (the
-// chord is 100 mm), so the arc here has R60.
-TEST(CornerGolden, DafengLineArcChamferAndRound) {
-  const PlaneMove arc = arc_r(kCorner, {20, 55}, 60, false);
-  check_golden({line_to(kCorner),
-                arc,
-                CornerKind::chamfer_setback,
-                {126.507913735, 47.407433976},
-                {113.797074440, 47.156294594}});
-  check_golden({line_to(kCorner),
-                arc,
-                CornerKind::round,
-                {127.801375800, 45.898394900},
-                {113.036122665, 46.358447843},
-                {120.208809776, 39.390481166},
-                true});
-}
-
-// G03 X110 Z120 R50 F500 ,C10; G01 X120 Z30 (dafeng L476), and the ,R10 variant.
-TEST(CornerGolden, DafengArcLineChamferAndRound) {
-  const PlaneMove arc = arc_r(kStart, kCorner, 50, true);
-  check_golden({arc,
-                line_to(kEnd),
-                CornerKind::chamfer_setback,
-                {128.854934610, 50.353481620},
-                {110.015396468, 55.554700196}});
-  check_golden({arc,
-                line_to(kEnd),
-                CornerKind::round,
-                {121.797649253, 54.234420857},
-                {118.255085645, 55.096939686},
-                {117.700385449, 45.112336154},
-                true});
-}
-
-// G03 X110 Z120 R50 F500 ,C10; G03 X120 Z30 R60 (dafeng L477): here the path turns right.
-TEST(CornerGolden, DafengArcArcChamferAndRound) {
-  const PlaneMove first = arc_r(kStart, kCorner, 50, true);
-  const PlaneMove second = arc_r(kCorner, kEnd, 60, true);
-  check_golden({first,
-                second,
-                CornerKind::chamfer_setback,
-                {128.854934610, 50.353481620},
-                {113.191550810, 62.324276048}});
-  check_golden({first,
-                second,
-                CornerKind::round,
-                {122.049917018, 54.120272117},
-                {118.569825755, 56.752956445},
-                {126.197634374, 63.219527071},
-                false});
-}
-
-// The ,R10 variant with a G02 second arc (dafeng L477).
-TEST(CornerGolden, DafengArcArcWithG02SecondArc) {
-  const PlaneMove first = arc_r(kStart, kCorner, 50, true);
-  const PlaneMove second = arc_r(kCorner, kEnd, 60, false);
-  check_golden({first,
-                second,
-                CornerKind::round,
-                {126.817887526, 51.628828876},
-                {115.356640338, 50.744806104},
-                {121.716576067, 43.027862570},
-                true});
-  check_golden({first,
-                second,
-                CornerKind::chamfer_setback,
-                {128.854934610, 50.353481620},
-                {112.422144535, 48.474963100}});
 }
 
 // gsk D2-12 (L1388-1393): G01 Z-20 L2; G01 X40; from X0 Z0: a perpendicular corner at Z-20.
@@ -232,8 +252,7 @@ TEST_F(GskPerpendicularCorner, LargerThanASegmentIsAlarm1147) {
     PlaneMove f = first;
     PlaneMove s = second;
     const PathResult e = insert_corner({0, 0}, f, s, kind, 20.5, 0, r);
-    ASSERT_TRUE(e.has_value());
-    EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
+    expect_does_not_fit(e, "20.500 does not fit");
     EXPECT_EQ(e->source, 4);
     EXPECT_FALSE(r.inserted);
     expect_point(f.to, -20, 0, 0.0);  // nothing changed
@@ -245,10 +264,8 @@ TEST_F(GskPerpendicularCorner, LargerThanASegmentIsAlarm1147) {
             std::nullopt);
   expect_point(f.to, 0, 0, 1e-9);
   const PathResult e = insert_corner({0, 0}, first, second, CornerKind::chamfer_length, 28.3, 0, r);
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-  EXPECT_EQ(e->text,
-            "chamfer length 28.300 does not fit between the moves (20.000 and 20.000 long)");
+  expect_does_not_fit(
+      e, "chamfer length 28.300 does not fit between the moves (20.000 and 20.000 long)");
 }
 
 TEST_F(GskPerpendicularCorner, ExactlyTheSegmentFits) {
@@ -262,9 +279,7 @@ TEST_F(GskPerpendicularCorner, SizeNotPositiveIsAlarm1147) {
   for (double size : {0.0, -2.0, std::numeric_limits<double>::quiet_NaN()}) {
     const PathResult e =
         insert_corner({0, 0}, first, second, CornerKind::chamfer_setback, size, 0, r);
-    ASSERT_TRUE(e.has_value()) << size;
-    EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-    EXPECT_NE(e->text.find("not greater than 0"), std::string::npos) << e->text;
+    expect_does_not_fit(e, "not greater than 0");
   }
 }
 
@@ -290,22 +305,16 @@ TEST(CornerAlarm, ReversalRapidAndZeroLength) {
   PlaneMove first = line_to({-20, 0});
   PlaneMove back = line_to({-10, 0});
   PathResult e = insert_corner({0, 0}, first, back, CornerKind::chamfer_setback, 2, 0, r);
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-  EXPECT_NE(e->text.find("turns back"), std::string::npos) << e->text;
+  expect_does_not_fit(e, "turns back");
 
   PlaneMove rapid = line_to({-20, 20});
   rapid.kind = MoveKind::rapid;
   e = insert_corner({0, 0}, first, rapid, CornerKind::chamfer_setback, 2, 0, r);
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-  EXPECT_NE(e->text.find("G01/G02/G03"), std::string::npos) << e->text;
+  expect_does_not_fit(e, "G01/G02/G03");
 
   PlaneMove still = line_to({-20, 0});
   e = insert_corner({0, 0}, first, still, CornerKind::round, 2, 0, r);
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-  EXPECT_NE(e->text.find("length 0"), std::string::npos) << e->text;
+  expect_does_not_fit(e, "length 0");
 }
 
 TEST(CornerAlarm, TextNamesTheSizeAndWhatFits) {
@@ -330,9 +339,7 @@ TEST(CornerAlarm, RoundAsLargeAsTheArcInside) {
   PlaneMove second = line_to({-10, 4});
   CornerResult r;
   const PathResult e = insert_corner({5, 0}, first, second, CornerKind::round, 5, 0, r);
-  ASSERT_TRUE(e.has_value());
-  EXPECT_EQ(e->alarm, alarm::kCornerDoesNotFit);
-  EXPECT_NE(e->text.find("corner radius 5.000 does not fit"), std::string::npos) << e->text;
+  expect_does_not_fit(e, "corner radius 5.000 does not fit");
   // A smaller round fits inside.
   first.to = {0, 5};
   EXPECT_EQ(insert_corner({5, 0}, first, second, CornerKind::round, 1, 0, r), std::nullopt);
@@ -412,33 +419,30 @@ RandomCorner make_corner(std::mt19937& rng) {
   std::uniform_real_distribution<double> sweep(0.3, 1.8 * kPi);
   std::uniform_int_distribution<int> coin(0, 1);
   const Point2 corner = polar(len(rng), angle(rng));
+  // An arc through the corner; `to` is `sweep` further round in its direction (backwards for
+  // `behind`: the start of a first move).
+  const auto arc_through_corner = [&](bool behind) {
+    const double r = radius(rng);
+    const double at = angle(rng);
+    PlaneMove m;
+    m.kind = MoveKind::arc;
+    m.ccw = coin(rng) == 0;
+    const double s = (m.ccw != behind ? 1.0 : -1.0) * sweep(rng);
+    m.center = corner - polar(r, at);
+    m.to = m.center + polar(r, at + s);
+    return m;
+  };
   RandomCorner c;
   if (coin(rng) == 0) {
     c.start = corner - polar(len(rng), angle(rng));
     c.first = line_to(corner);
   } else {
-    const double r = radius(rng);
-    const double at = angle(rng);
-    const bool ccw = coin(rng) == 0;
-    const double s = ccw ? sweep(rng) : -sweep(rng);
-    c.first.kind = MoveKind::arc;
-    c.first.center = corner - polar(r, at);
-    c.first.ccw = ccw;
+    c.first = arc_through_corner(true);
+    c.start = c.first.to;
     c.first.to = corner;
-    c.start = c.first.center + polar(r, at - s);
   }
-  if (coin(rng) == 0) {
-    c.second = line_to(corner + polar(len(rng), angle(rng)));
-  } else {
-    const double r = radius(rng);
-    const double at = angle(rng);
-    const bool ccw = coin(rng) == 0;
-    const double s = ccw ? sweep(rng) : -sweep(rng);
-    c.second.kind = MoveKind::arc;
-    c.second.center = corner - polar(r, at);
-    c.second.ccw = ccw;
-    c.second.to = c.second.center + polar(r, at + s);
-  }
+  c.second =
+      coin(rng) == 0 ? line_to(corner + polar(len(rng), angle(rng))) : arc_through_corner(false);
   return c;
 }
 

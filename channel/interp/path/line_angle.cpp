@@ -11,9 +11,9 @@
 namespace mcnc::interp::path {
 namespace {
 
-std::string degrees_text(double degrees) {
+std::string three_decimals(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3f", degrees);
+  std::snprintf(buf, sizeof buf, "%.3f", v);
   return buf;
 }
 
@@ -51,10 +51,10 @@ PathResult line_end_from_angle(Point2 start, double degrees, KnownAxis known, do
   // The axis of the known coordinate: X (b) known is a line along a, Z (a) known one along b.
   const double axis_degrees = b_known ? 0.0 : 90.0;
   if (nearly_parallel(degrees, axis_degrees)) {
-    return angle_alarm(std::string("a line at ") + degrees_text(degrees) +
+    return angle_alarm(std::string("a line at ") + three_decimals(degrees) +
                        " degrees runs within 1 degree of the " + (b_known ? "first" : "second") +
                        " axis: it has no end point at " + (b_known ? "second" : "first") +
-                       "-axis coordinate " + degrees_text(value));
+                       "-axis coordinate " + three_decimals(value));
   }
   const Point2 dir = direction_of(degrees);
   const Point2 known_line = b_known ? Point2{0.0, value} : Point2{value, 0.0};
@@ -69,8 +69,8 @@ PathResult line_end_from_angle(Point2 start, double degrees, KnownAxis known, do
 PathResult angle_lines_corner(Point2 start, double first_degrees, Point2 second_end,
                               double second_degrees, Point2& corner) {
   if (nearly_parallel(first_degrees, second_degrees)) {
-    return angle_alarm("lines at " + degrees_text(first_degrees) + " and " +
-                       degrees_text(second_degrees) +
+    return angle_alarm("lines at " + three_decimals(first_degrees) + " and " +
+                       three_decimals(second_degrees) +
                        " degrees are less than 1 degree apart: no intersection");
   }
   const Point2 dir = direction_of(first_degrees);

@@ -97,7 +97,8 @@ bool within_arc(Point2 from, const PlaneMove& arc, Point2 p, double tolerance) {
 LineHits intersect_lines(Point2 p0, Point2 d0, Point2 p1, Point2 d1) {
   LineHits hits;
   const double den = cross(d0, d1);
-  if (std::fabs(den) <= 1e-12 * std::max(1.0, length(d0) * length(d1))) {
+  // Relative to the lengths: short direction vectors are as good as long ones.
+  if (std::fabs(den) <= 1e-12 * length(d0) * length(d1)) {
     return hits;
   }
   hits.count = 1;
@@ -115,8 +116,9 @@ LineHits intersect_line_circle(Point2 p, Point2 d, Point2 center, double radius)
   const double bb = 2.0 * dot(f, d);
   const double cc = dot(f, f) - radius * radius;
   double disc = bb * bb - 4.0 * aa * cc;
-  // A tangent line computed in floating point may miss the circle by a rounding error.
-  const double slack = 1e-12 * std::max(1.0, bb * bb);
+  // A tangent line computed in floating point may miss the circle by a rounding error, which
+  // scales with every term of the discriminant (bb is 0 when p is the tangent point itself).
+  const double slack = 1e-12 * (bb * bb + 4.0 * aa * (dot(f, f) + radius * radius));
   if (disc < -slack) {
     return hits;
   }

@@ -275,6 +275,9 @@ TEST(MultipleThread, PropertiesOfGeneratedCycles) {
         const double shift = along * (m[0].to.a - start.a);
         if (c.infeed == ThreadInfeed::single_flank) {
           EXPECT_NEAR(shift, depth * t, 1e-9);
+        } else if (c.infeed == ThreadInfeed::alternating) {
+          // Trailing flank on even passes, leading flank on odd ones.
+          EXPECT_NEAR(shift, p % 2 == 0 ? depth * t : (2.0 * c.height - depth) * t, 1e-9);
         } else if (c.infeed == ThreadInfeed::radial) {
           EXPECT_NEAR(shift, 0.0, 1e-12);
         }

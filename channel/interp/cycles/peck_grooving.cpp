@@ -14,7 +14,6 @@ namespace {
 using path::mm_text;
 using path::PathError;
 using path::PathResult;
-using path::PlaneMove;
 using path::PlanePath;
 using path::Point2;
 
@@ -43,7 +42,7 @@ double strides_over(double span, double stride) {
 }
 
 // Appends `m` unless it would not move from the end of `out` (or from `start`).
-void push_moving(Point2 start, const PlaneMove& m, PlanePath& out) {
+void push_moving(Point2 start, const path::PlaneMove& m, PlanePath& out) {
   const Point2 from = out.empty() ? start : out.back().to;
   if (!path::same_point(from, m.to)) {
     out.push_back(m);

@@ -3,10 +3,11 @@
 #include "channel/interp/cycles/hole_cycles.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include "tests/unit/cycles/cycle_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 namespace mcnc::interp::cycles::test {
 namespace {
@@ -289,28 +290,25 @@ TEST(HoleCycles, AppendsToTheSteps) {
 // Generated holes: the peck depths, no rapid into uncut material, tapping synchronised inside
 // the hole with the spindle reversed on the way out, and the exit level.
 TEST(HoleCycles, PropertiesOfGeneratedHoles) {
-  std::mt19937 rng(83083);
-  auto uniform = [&rng](double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-  };
+  Uniform uniform(83083);
   for (int n = 0; n < 500; ++n) {
     SCOPED_TRACE(n);
     HoleCycle c;
-    c.kind = static_cast<HoleKind>(static_cast<int>(uniform(0.0, 2.999)));
-    c.peck_mode = static_cast<PeckMode>(static_cast<int>(uniform(0.0, 3.999)));
-    const double in = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    c.kind = static_cast<HoleKind>(uniform.below(3));
+    c.peck_mode = static_cast<PeckMode>(uniform.below(4));
+    const double in = uniform.chance(0.5) ? -1.0 : 1.0;
     c.r_level = uniform(-20.0, 20.0);
-    c.initial = c.r_level - in * (uniform(0.0, 1.0) < 0.3 ? 0.0 : uniform(0.1, 10.0));
+    c.initial = c.r_level - in * (uniform.chance(0.3) ? 0.0 : uniform(0.1, 10.0));
     const double depth = uniform(0.5, 40.0);
     c.bottom = c.r_level + in * depth;
-    c.peck = uniform(0.0, 1.0) < 0.2 ? 0.0 : uniform(0.3, 8.0);
-    c.retract = uniform(0.0, 1.0) < 0.2 ? 0.0 : uniform(0.1, 2.0);
+    c.peck = uniform.chance(0.2) ? 0.0 : uniform(0.3, 8.0);
+    c.retract = uniform.chance(0.2) ? 0.0 : uniform(0.1, 2.0);
     c.clearance = uniform(0.0, 1.5);
-    c.full_retract_depth = uniform(0.0, 1.0) < 0.3 ? 0.0 : uniform(1.0, 15.0);
-    c.dwell_s = uniform(0.0, 1.0) < 0.5 ? 0.0 : uniform(0.1, 2.0);
+    c.full_retract_depth = uniform.chance(0.3) ? 0.0 : uniform(1.0, 15.0);
+    c.dwell_s = uniform.chance(0.5) ? 0.0 : uniform(0.1, 2.0);
     c.lead = uniform(0.5, 3.0);
-    c.clamp_code = uniform(0.0, 1.0) < 0.5 ? 0 : 68;
-    c.return_to_initial = uniform(0.0, 1.0) < 0.5;
+    c.clamp_code = uniform.chance(0.5) ? 0 : 68;
+    c.return_to_initial = uniform.chance(0.5);
 
     std::vector<HoleStep> out;
     ASSERT_FALSE(expand_hole(c, out));

@@ -4,10 +4,11 @@
 #include "channel/interp/path/plane_geometry.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include "tests/unit/cycles/cycle_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 namespace mcnc::interp::cycles::test {
 namespace {
@@ -21,12 +22,6 @@ constexpr double kEps = 1e-9;
 
 double flank_tan(double angle) {
   return std::tan(angle * path::kPi / 360.0);
-}
-
-void expect_at(const PlaneMove& m, MoveKind kind, double a, double b) {
-  EXPECT_EQ(m.kind, kind);
-  EXPECT_NEAR(m.to.a, a, 1e-6);
-  EXPECT_NEAR(m.to.b, b, 1e-6);
 }
 
 // dafeng §7 item 15 (spec L2344; manual L1829-1835): G00 X68 Z50; G76 P010060 R0.2;
@@ -63,11 +58,11 @@ TEST(MultipleThread, DafengExamplePathEndsAtTheMinorDiameter) {
   for (int p = 0; p < 5; ++p) {
     const PlaneMove* m = &out[static_cast<std::size_t>(4 * p)];
     // Infeed along the flank: Z moves towards the chuck by depth * tan 30.
-    expect_at(m[0], MoveKind::rapid, 50.0 - depths[p] * t, crest - depths[p]);
-    expect_at(m[1], MoveKind::thread, 25.0, crest - depths[p]);
+    expect_move(m[0], MoveKind::rapid, 50.0 - depths[p] * t, crest - depths[p]);
+    expect_move(m[1], MoveKind::thread, 25.0, crest - depths[p]);
     EXPECT_DOUBLE_EQ(m[1].lead, 6.0);
-    expect_at(m[2], MoveKind::rapid, 25.0, 34.0);
-    expect_at(m[3], MoveKind::rapid, 50.0, 34.0);
+    expect_move(m[2], MoveKind::rapid, 25.0, 34.0);
+    expect_move(m[3], MoveKind::rapid, 50.0, 34.0);
   }
   // The finishing pass cuts the root: X60.4.
   EXPECT_NEAR(out[17].to.b * 2.0, 60.4, 1e-9);
@@ -104,15 +99,15 @@ TEST(MultipleThread, GskD2_29TwoFinishingPassesWithChamfer) {
   const double t = flank_tan(60.0);
   // Roughing ends at depth 1.1 (X 13.9 radius at the chamfer start).
   const PlaneMove* last_rough = &out[6 * 5];
-  expect_at(last_rough[1], MoveKind::thread, -28.0, 13.9);
+  expect_move(last_rough[1], MoveKind::thread, -28.0, 13.9);
   for (int f = 7; f < 9; ++f) {
     const PlaneMove* m = &out[static_cast<std::size_t>(5 * f)];
-    expect_at(m[0], MoveKind::rapid, 3.0 - 1.2 * t, 13.8);
-    expect_at(m[1], MoveKind::thread, -28.0, 13.8);  // at the root, up to the chamfer
-    expect_at(m[2], MoveKind::thread, -30.0, 15.8);  // 45 degrees out over 2 mm
+    expect_move(m[0], MoveKind::rapid, 3.0 - 1.2 * t, 13.8);
+    expect_move(m[1], MoveKind::thread, -28.0, 13.8);  // at the root, up to the chamfer
+    expect_move(m[2], MoveKind::thread, -30.0, 15.8);  // 45 degrees out over 2 mm
     EXPECT_DOUBLE_EQ(m[2].lead, 2.0);
-    expect_at(m[3], MoveKind::rapid, -30.0, 16.0);
-    expect_at(m[4], MoveKind::rapid, 3.0, 16.0);
+    expect_move(m[3], MoveKind::rapid, -30.0, 16.0);
+    expect_move(m[4], MoveKind::rapid, 3.0, 16.0);
   }
 }
 
@@ -139,11 +134,11 @@ TEST(MultipleThread, TaperedInsideThreadFollowsTheRootLine) {
   // Depths 0.5, 0.707, 0.866, 1.0, then the finishing pass at 1.0.
   ASSERT_EQ(out.size(), 5u * 4u);
   const PlaneMove* fin = &out[16];
-  expect_at(fin[0], MoveKind::rapid, 2.0, 14.5);  // root at the start: 15 - 0.5
-  expect_at(fin[1], MoveKind::thread, -20.0, 15.0);
+  expect_move(fin[0], MoveKind::rapid, 2.0, 14.5);  // root at the start: 15 - 0.5
+  expect_move(fin[1], MoveKind::thread, -20.0, 15.0);
   const PlaneMove* first = &out[0];
-  expect_at(first[0], MoveKind::rapid, 2.0, 14.5 - 0.5);  // crest 13.5 + 0.5 towards the root
-  expect_at(first[1], MoveKind::thread, -20.0, 15.0 - 0.5);
+  expect_move(first[0], MoveKind::rapid, 2.0, 14.5 - 0.5);  // crest 13.5 + 0.5 towards the root
+  expect_move(first[1], MoveKind::thread, -20.0, 15.0 - 0.5);
 }
 
 TEST(MultipleThread, MultipleStartsRepeatEachPass) {
@@ -192,27 +187,24 @@ TEST(MultipleThread, LeadChangeGivesTheChamferTheLeadReached) {
 
 // Generated cycles: the depth law, and every pass on its line inside the finished thread.
 TEST(MultipleThread, PropertiesOfGeneratedCycles) {
-  std::mt19937 rng(76076);
-  auto uniform = [&rng](double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-  };
+  Uniform uniform(76076);
   for (int n = 0; n < 400; ++n) {
     MultipleThread c;
     c.height = uniform(0.3, 4.0);
     c.finish_allowance = uniform(0.0, 0.3) * c.height;
     c.first_depth = uniform(0.1, 0.7) * c.height;
     c.min_depth = uniform(0.0, 0.15);
-    c.finish_passes = static_cast<int>(uniform(0.0, 4.0));
+    c.finish_passes = uniform.below(4);
     c.tool_angle = std::floor(uniform(0.0, 99.99));
     c.lead = uniform(0.5, 6.0);
-    c.starts = 1 + static_cast<int>(uniform(0.0, 3.0));
-    c.infeed = static_cast<ThreadInfeed>(static_cast<int>(uniform(0.0, 2.999)));
+    c.starts = 1 + uniform.below(3);
+    c.infeed = static_cast<ThreadInfeed>(uniform.below(3));
     c.taper = uniform(-2.0, 2.0);
-    const double along = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
-    const double outward = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+    const double along = uniform.chance(0.5) ? -1.0 : 1.0;
+    const double outward = uniform.chance(0.5) ? -1.0 : 1.0;
     const Point2 start{uniform(-50.0, 50.0), uniform(20.0, 40.0)};
     const double len = uniform(15.0, 60.0);
-    c.chamfer = uniform(0.0, 1.0) < 0.5 ? 0.0 : uniform(0.1, 5.0);
+    c.chamfer = uniform.chance(0.5) ? 0.0 : uniform(0.1, 5.0);
     // Root at the end so that the start lies 0-2 mm beyond the crest at both ends.
     const double clearance = uniform(0.0, 2.0);
     c.end = {start.a + along * len,
@@ -295,8 +287,8 @@ TEST(MultipleThread, PropertiesOfGeneratedCycles) {
           EXPECT_NEAR(outward * (m[2].to.b - m[1].to.b), c.chamfer, 1e-9);  // 45 degrees
           back = &m[3];
         }
-        expect_at(back[0], MoveKind::rapid, c.end.a, start.b);
-        expect_at(back[1], MoveKind::rapid, start.a, start.b);
+        expect_move(back[0], MoveKind::rapid, c.end.a, start.b);
+        expect_move(back[1], MoveKind::rapid, start.a, start.b);
       }
     }
   }

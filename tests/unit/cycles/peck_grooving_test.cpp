@@ -3,24 +3,18 @@
 #include "channel/interp/cycles/peck_grooving.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include "tests/unit/cycles/cycle_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <random>
 
 namespace mcnc::interp::cycles::test {
 namespace {
 
 using path::MoveKind;
-using path::PlaneMove;
 using path::PlanePath;
 using path::Point2;
-
-void expect_at(const PlaneMove& m, MoveKind kind, double a, double b) {
-  EXPECT_EQ(m.kind, kind);
-  EXPECT_NEAR(m.to.a, a, 1e-9);
-  EXPECT_NEAR(m.to.b, b, 1e-9);
-}
 
 // gsk D2-27 (L1508-1510): from X0 Z2, G74 R1; G74 Z-20 Q5000 F0.1; (Q in microns).
 TEST(PeckGrooving, GskD2_27CentreDrilling) {
@@ -33,7 +27,7 @@ TEST(PeckGrooving, GskD2_27CentreDrilling) {
   const double stops[] = {-3, -2, -8, -7, -13, -12, -18, -17, -20, 2};
   ASSERT_EQ(out.size(), 10u);
   for (std::size_t i = 0; i < out.size(); ++i) {
-    expect_at(out[i], i % 2 == 0 && i < 9 ? MoveKind::feed : MoveKind::rapid, stops[i], 0.0);
+    expect_move(out[i], i % 2 == 0 && i < 9 ? MoveKind::feed : MoveKind::rapid, stops[i], 0.0);
   }
   EXPECT_DOUBLE_EQ(out[0].feed, 0.1);
 }
@@ -54,14 +48,14 @@ TEST(PeckGrooving, GskD2_28FourGroovesOfTwoPecks) {
   std::size_t i = 0;
   for (double z : {-10.0, -14.0, -18.0, -20.0}) {
     if (z != -10.0) {
-      expect_at(out[i++], MoveKind::rapid, z, 26.0);  // step along Z at the start diameter
+      expect_move(out[i++], MoveKind::rapid, z, 26.0);  // step along Z at the start diameter
     }
-    expect_at(out[i++], MoveKind::feed, z, 23.0);   // X46
-    expect_at(out[i++], MoveKind::rapid, z, 23.5);  // back 0.5
-    expect_at(out[i++], MoveKind::feed, z, 20.0);   // X40: the bottom
-    expect_at(out[i++], MoveKind::rapid, z, 26.0);  // out to X52
+    expect_move(out[i++], MoveKind::feed, z, 23.0);   // X46
+    expect_move(out[i++], MoveKind::rapid, z, 23.5);  // back 0.5
+    expect_move(out[i++], MoveKind::feed, z, 20.0);   // X40: the bottom
+    expect_move(out[i++], MoveKind::rapid, z, 26.0);  // out to X52
   }
-  expect_at(out[i], MoveKind::rapid, -10.0, 26.0);
+  expect_move(out[i], MoveKind::rapid, -10.0, 26.0);
 }
 
 TEST(PeckGrooving, GskD2_28WithDiameterPecksHasFourPecksPerGroove) {
@@ -71,7 +65,7 @@ TEST(PeckGrooving, GskD2_28WithDiameterPecksHasFourPecksPerGroove) {
   PlanePath out;
   ASSERT_FALSE(expand_peck_grooving({-10.0, 26.0}, c, out));
   int feeds = 0;
-  for (const PlaneMove& m : out) {
+  for (const path::PlaneMove& m : out) {
     feeds += m.kind == MoveKind::feed ? 1 : 0;
   }
   EXPECT_EQ(feeds, 4 * 4);
@@ -92,13 +86,13 @@ TEST(PeckGrooving, FaceGroovesReliefAwayFromTheNextGroove) {
   std::size_t i = 0;
   for (double x : {10.0, 13.0, 15.0}) {
     if (x != 10.0) {
-      expect_at(out[i++], MoveKind::rapid, 1.0, x);
+      expect_move(out[i++], MoveKind::rapid, 1.0, x);
     }
-    expect_at(out[i++], MoveKind::feed, -5.0, x);         // Q omitted: one feed to the bottom
-    expect_at(out[i++], MoveKind::rapid, -5.0, x - 0.5);  // relief
-    expect_at(out[i++], MoveKind::rapid, 1.0, x - 0.5);   // out to the start Z
+    expect_move(out[i++], MoveKind::feed, -5.0, x);         // Q omitted: one feed to the bottom
+    expect_move(out[i++], MoveKind::rapid, -5.0, x - 0.5);  // relief
+    expect_move(out[i++], MoveKind::rapid, 1.0, x - 0.5);   // out to the start Z
   }
-  expect_at(out[i], MoveKind::rapid, 1.0, 10.0);
+  expect_move(out[i], MoveKind::rapid, 1.0, 10.0);
 }
 
 TEST(PeckGrooving, RetractStopsAtTheStartLevel) {
@@ -106,10 +100,10 @@ TEST(PeckGrooving, RetractStopsAtTheStartLevel) {
   PlanePath out;
   ASSERT_FALSE(expand_peck_grooving({0.0, 5.0}, c, out));
   ASSERT_GE(out.size(), 3u);
-  expect_at(out[0], MoveKind::feed, -2.0, 5.0);
-  expect_at(out[1], MoveKind::rapid, 0.0, 5.0);  // 3 asked, 2 possible
-  expect_at(out[2], MoveKind::feed, -4.0, 5.0);
-  expect_at(out[3], MoveKind::rapid, -1.0, 5.0);
+  expect_move(out[0], MoveKind::feed, -2.0, 5.0);
+  expect_move(out[1], MoveKind::rapid, 0.0, 5.0);  // 3 asked, 2 possible
+  expect_move(out[2], MoveKind::feed, -4.0, 5.0);
+  expect_move(out[3], MoveKind::rapid, -1.0, 5.0);
 }
 
 TEST(PeckGrooving, AppendsToThePath) {
@@ -117,29 +111,26 @@ TEST(PeckGrooving, AppendsToThePath) {
   const PeckGrooving c{.axis = PeckAxis::a, .end = {-4.0, 0.0}};
   ASSERT_FALSE(expand_peck_grooving({0.0, 0.0}, c, out));
   ASSERT_EQ(out.size(), 4u);
-  expect_at(out[2], MoveKind::feed, -4.0, 0.0);
-  expect_at(out[3], MoveKind::rapid, 0.0, 0.0);
+  expect_move(out[2], MoveKind::feed, -4.0, 0.0);
+  expect_move(out[3], MoveKind::rapid, 0.0, 0.0);
 }
 
 // Generated cycles: groove positions, peck depths, retracts, and no rapid into uncut material.
 TEST(PeckGrooving, PropertiesOfGeneratedCycles) {
-  std::mt19937 rng(74075);
-  auto uniform = [&rng](double lo, double hi) {
-    return std::uniform_real_distribution<double>(lo, hi)(rng);
-  };
+  Uniform uniform(74075);
   for (int n = 0; n < 400; ++n) {
     SCOPED_TRACE(n);
     PeckGrooving c;
-    c.axis = uniform(0.0, 1.0) < 0.5 ? PeckAxis::a : PeckAxis::b;
+    c.axis = uniform.chance(0.5) ? PeckAxis::a : PeckAxis::b;
     const Point2 start{uniform(-20.0, 20.0), uniform(0.0, 30.0)};
     c.end = {start.a + uniform(-15.0, 15.0), start.b + uniform(-15.0, 15.0)};
-    if (uniform(0.0, 1.0) < 0.2) {  // a single groove
+    if (uniform.chance(0.2)) {  // a single groove
       (c.axis == PeckAxis::a ? c.end.b : c.end.a) = c.axis == PeckAxis::a ? start.b : start.a;
     }
-    c.peck = uniform(0.0, 1.0) < 0.2 ? 0.0 : uniform(0.5, 6.0);
+    c.peck = uniform.chance(0.2) ? 0.0 : uniform(0.5, 6.0);
     c.step = uniform(0.5, 5.0);
-    c.relief = uniform(0.0, 1.0) < 0.5 ? 0.0 : uniform(0.1, 0.4);
-    c.retract = uniform(0.0, 1.0) < 0.2 ? 0.0 : uniform(0.1, 2.0);
+    c.relief = uniform.chance(0.5) ? 0.0 : uniform(0.1, 0.4);
+    c.retract = uniform.chance(0.2) ? 0.0 : uniform(0.1, 2.0);
     c.feed = uniform(0.01, 0.3);
     auto peck_of = [&c](Point2 p) { return c.axis == PeckAxis::a ? p.a : p.b; };
     auto step_of = [&c](Point2 p) { return c.axis == PeckAxis::a ? p.b : p.a; };
@@ -162,7 +153,7 @@ TEST(PeckGrooving, PropertiesOfGeneratedCycles) {
     int peck_in_groove = 0;
     double reached = 0.0;  // depth cut in the current groove
     double groove_at = 0.0;
-    for (const PlaneMove& m : out) {
+    for (const path::PlaneMove& m : out) {
       ASSERT_GT(std::hypot(m.to.a - at.a, m.to.b - at.b), 1e-9) << "zero-length move";
       const double from_depth = pdir * (peck_of(at) - peck_of(start));
       const double to_depth = pdir * (peck_of(m.to) - peck_of(start));

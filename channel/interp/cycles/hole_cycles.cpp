@@ -3,7 +3,9 @@
 #include "channel/interp/path/path_text.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace mcnc::interp::cycles {
 

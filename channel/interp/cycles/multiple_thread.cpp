@@ -5,7 +5,9 @@
 #include "channel/interp/path/plane_geometry.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace mcnc::interp::cycles {
 

@@ -21,23 +21,26 @@ enum class PeckMode : std::uint8_t {
   high_speed,  // .5: back off `retract` after each peck (param 5110 / 5211)
   deep,        // .6: back to the R level after each peck, then rapid to `clearance` short of
                // the last depth (param 5111)
-  high_speed_deep,  // .7: `retract` after each peck, full retract every ... (as .5 then .6)
+  // .7: pecks as .5, and a full retract as .6 after the peck that completes
+  // `full_retract_depth` of drilling since the last one (0: after every peck).
+  high_speed_deep,
 };
 
 struct HoleCycle {
   HoleKind kind = HoleKind::drill;
   PeckMode peck_mode = PeckMode::none;
-  double initial = 0.0;  // drilling-axis position when the cycle starts (initial level)
-  double r_level = 0.0;  // R: absolute position of the R point, reached at rapid
-  double bottom = 0.0;   // Z/W (X/U for the side forms): the hole bottom
-  double peck = 0.0;     // Q: depth of one peck, >= 0 (0: no pecking)
-  double retract = 0.0;    // high-speed back-off
-  double clearance = 0.0;  // deep-hole stop short of the last depth
-  double dwell_s = 0.0;    // P (ms in the program): dwell at the bottom
-  double feed = 0.0;       // drill/bore feed (channel feed mode)
-  double lead = 0.0;       // tap: F/I, mm/rev, < 0 for a left-hand tap
-  int clamp_code = 0;      // Mxx before each hole, Mxx+1 after (0: none)
-  bool return_to_initial = false;  // system B G98: back to `initial` instead of `r_level`
+  double initial = 0.0;             // drilling-axis position when the cycle starts (initial level)
+  double r_level = 0.0;             // R: absolute position of the R point, reached at rapid
+  double bottom = 0.0;              // Z/W (X/U for the side forms): the hole bottom
+  double peck = 0.0;                // Q: depth of one peck, >= 0 (0: no pecking)
+  double retract = 0.0;             // high-speed back-off
+  double clearance = 0.0;           // deep-hole stop short of the last depth
+  double dwell_s = 0.0;             // P (ms in the program): dwell at the bottom
+  double feed = 0.0;                // drill/bore feed (channel feed mode)
+  double lead = 0.0;                // tap: F/I, mm/rev, < 0 for a left-hand tap
+  int clamp_code = 0;               // Mxx before each hole, Mxx+1 after (0: none)
+  bool return_to_initial = false;   // system B G98: back to `initial` instead of `r_level`
+  double full_retract_depth = 0.0;  // .7: depth drilled between full retracts, >= 0
 };
 
 struct HoleStep {
@@ -57,8 +60,20 @@ struct HoleStep {
 };
 
 // One hole from `initial`: clamp, rapid to R, the in-feed (with pecks), dwell, the way out to
-// R (or `initial`), unclamp. Alarms: 1143 a negative peck/retract/clearance, R beyond the
-// bottom (the hole would be drilled backwards), lead 0 for a tap.
+// R (or `initial`), unclamp. Pecks end at R + Q, R + 2Q, ..., the bottom; between them:
+//   drill .5: rapid back `retract` (not beyond R); the next feed starts there.
+//   drill .6: rapid to R, rapid to `clearance` short of the depth reached (not beyond R).
+//   drill .7: as .5, or as .6 after the peck that completes `full_retract_depth`.
+//   tap (any peck mode): reverse, tap back as the drill would move (.5 by `retract`, else to
+//   R; never a rapid inside the thread), restore, tap on to the next depth.
+//   bore: no pecks.
+// .5 with `retract` 0 drills straight to the bottom (gsk A.6.34 rule 6). The way out: drill
+// rapid, tap reverse / tap to R / restore, bore feed to R; with return_to_initial a rapid from
+// R (the drill: from the bottom) to `initial`. Steps that would not move are left out; the
+// steps are appended to `out`.
+// Alarms (nothing is appended): 1143 a negative peck/retract/clearance/dwell/full-retract
+// depth, R at the bottom, R beyond the bottom seen from `initial` (the hole would be drilled
+// backwards) or `initial` inside the hole, lead 0 for a tap, more than 100000 pecks.
 path::PathResult expand_hole(const HoleCycle& cycle, std::vector<HoleStep>& out);
 
 }  // namespace mcnc::interp::cycles

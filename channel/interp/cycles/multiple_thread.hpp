@@ -8,6 +8,8 @@
 // Z (the first axis, a) is always the long axis; the thread runs from the start's a to end.a.
 #include "channel/interp/path/plane_path.hpp"
 
+#include <vector>
+
 namespace mcnc::interp::cycles {
 
 enum class ThreadInfeed : std::uint8_t {
@@ -17,33 +19,45 @@ enum class ThreadInfeed : std::uint8_t {
 };
 
 struct MultipleThread {
-  path::Point2 end;           // X/U Z/W: the thread's root at its end (physical, b = radius)
-  double taper = 0.0;         // R(i): b at the thread start minus b at its end (radius)
-  double height = 0.0;        // P(k): thread height, > 0 (radius)
-  double first_depth = 0.0;   // Q(d): depth of the first pass, > 0
-  double min_depth = 0.0;     // Q(dmin) of the first block: smallest depth increment
+  path::Point2 end;               // X/U Z/W: the thread's root at its end (physical, b = radius)
+  double taper = 0.0;             // R(i): b at the thread start minus b at its end (radius)
+  double height = 0.0;            // P(k): thread height, > 0 (radius)
+  double first_depth = 0.0;       // Q(d): depth of the first pass, > 0
+  double min_depth = 0.0;         // Q(dmin) of the first block: smallest depth increment
   double finish_allowance = 0.0;  // R(d) of the first block
-  int finish_passes = 1;      // m, 1-99 (0 is taken as 1)
-  double chamfer = 0.0;       // r * lead / 10: pull-out length along a at the end; 0: none
-  double tool_angle = 60.0;   // a, degrees (0-99)
-  double lead = 0.0;          // F (or 25.4 / I), mm/rev along a
-  double lead_change = 0.0;   // K (dafeng): per revolution
-  int starts = 1;             // L (dafeng): start angles 360 / starts apart
+  int finish_passes = 1;          // m, 1-99 (0 is taken as 1)
+  double chamfer = 0.0;           // r * lead / 10: pull-out length along a at the end; 0: none
+  double tool_angle = 60.0;       // a, degrees (0-99)
+  double lead = 0.0;              // F (or 25.4 / I), mm/rev along a
+  double lead_change = 0.0;       // K (dafeng): per revolution
+  int starts = 1;                 // L (dafeng): start angles 360 / starts apart
   ThreadInfeed infeed = ThreadInfeed::single_flank;
 };
 
 // `start` is the tool position at the cycle (point A); b must be outside the thread's crest on
-// the side away from the root. Each pass: rapid to the pass's infeed point, a `thread` move to
-// the chamfer start, a `thread` move through the chamfer, a rapid back to A's b, a rapid to A.
+// the side away from the root, at both ends of the thread. Each pass: rapid to the pass's infeed
+// point, a `thread` move to the chamfer start, a `thread` move through the chamfer (out at 45
+// degrees: `chamfer` along a and along b; its lead is the one reached there with lead_change),
+// a rapid back to A's b, a rapid to A. Without a chamfer the first thread move ends at end.a.
 // With several starts, each pass is repeated per start with start_angle 360 * s / starts.
-// Alarms: 1143 height, first depth or lead <= 0, finish_allowance >= height, first depth >
-// height; 1146 a lead that reaches 0 with lead_change.
+//
+// Infeed point of the pass at `depth` (t = tan(tool_angle / 2), along the cutting direction
+// from A): single_flank depth * t, so that the tool's trailing flank stays on the finished
+// thread's flank, whose bottom lies height * t ahead of A; alternating the same on even passes
+// (0, 2, ...) and (2 * height - depth) * t, on the leading flank, on odd ones; radial 0. Its b
+// lies `depth` below the crest on the root line (parallel to the taper).
+//
+// Alarms (nothing is appended): 1143 height, first depth or lead <= 0, first depth > height,
+// finish_allowance >= height, a negative minimum depth, allowance or chamfer, finish_passes or
+// tool_angle outside 0-99, starts < 1, end.a = start.a, A on or inside the thread, a pass whose
+// infeed point is not before the chamfer start, more than 20000 passes (all starts); 1146 a lead
+// that reaches 0 with lead_change.
 path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread& cycle,
                                         path::PlanePath& out);
 
 // The depth (radius, from the crest) of each roughing pass, the last one height -
-// finish_allowance: d1 = first_depth, dn = first_depth * sqrt(n), increments below min_depth
-// raised to min_depth. Exposed for the golden and property tests.
+// finish_allowance: dn = first_depth * sqrt(n), each increment (the first one too) at least
+// min_depth, capped at the last. Exposed for the golden and property tests.
 std::vector<double> thread_pass_depths(const MultipleThread& cycle);
 
 }  // namespace mcnc::interp::cycles

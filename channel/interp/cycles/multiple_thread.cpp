@@ -1,0 +1,234 @@
+#include "channel/interp/cycles/multiple_thread.hpp"
+
+#include "channel/interp/cycles/cycle_moves.hpp"
+#include "channel/interp/path/path_text.hpp"
+#include "channel/interp/path/plane_geometry.hpp"
+#include "channel/interp/program_alarms.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mcnc::interp::cycles {
+
+namespace {
+
+using path::mm_text;
+using path::PathError;
+using path::PathResult;
+using path::PlaneMove;
+using path::PlanePath;
+using path::Point2;
+
+constexpr double kTolerance = 1e-9;  // mm
+constexpr double kDegree = path::kPi / 180.0;
+// Passes of all starts together: a bound against a first depth of a few microns that would
+// make millions of moves; real threads need tens.
+constexpr std::size_t kMaxPasses = 20000;
+
+PathResult value_error(const std::string& text) {
+  return PathError{alarm::kCycleValue, "G76 " + text, -1};
+}
+
+PathResult check_amounts(const MultipleThread& c) {
+  if (!(c.height > 0.0)) {
+    return value_error("thread height P" + mm_text(c.height) + " must be positive");
+  }
+  if (!(c.first_depth > 0.0)) {
+    return value_error("first depth Q" + mm_text(c.first_depth) + " must be positive");
+  }
+  if (c.first_depth > c.height + kTolerance) {
+    return value_error("first depth Q" + mm_text(c.first_depth) + " is larger than the height P" +
+                       mm_text(c.height));
+  }
+  if (c.min_depth < 0.0 || c.finish_allowance < 0.0 || c.chamfer < 0.0) {
+    return value_error("minimum depth " + mm_text(c.min_depth) + ", finishing allowance " +
+                       mm_text(c.finish_allowance) + " and chamfer " + mm_text(c.chamfer) +
+                       " must not be negative");
+  }
+  if (c.finish_allowance >= c.height) {
+    return value_error("finishing allowance R" + mm_text(c.finish_allowance) +
+                       " leaves nothing to rough of the height P" + mm_text(c.height));
+  }
+  if (c.finish_passes < 0 || c.finish_passes > 99) {
+    return value_error("finishing passes " + std::to_string(c.finish_passes) + " outside 0-99");
+  }
+  if (c.tool_angle < 0.0 || c.tool_angle > 99.0) {
+    return value_error("tool angle " + mm_text(c.tool_angle) + " outside 0-99 degrees");
+  }
+  if (c.starts < 1) {
+    return value_error("number of starts L" + std::to_string(c.starts) + " must be at least 1");
+  }
+  if (!(c.lead > 0.0)) {
+    return value_error("lead F" + mm_text(c.lead) + " must be positive");
+  }
+  return std::nullopt;
+}
+
+// The thread's root runs from (start.a, end.b + taper) to end; the crest lies `height` from it
+// on the side of the start point.
+struct ThreadLine {
+  Point2 start;    // A
+  Point2 end;      // root at the end
+  double taper;    // root b at start.a minus root b at end.a
+  double height;   // crest to root
+  double along;    // +1 when the thread runs towards +a
+  double outward;  // +1 when the crest lies at larger b than the root (an outside thread)
+
+  double root(double a) const { return end.b + taper * (a - end.a) / (start.a - end.a); }
+  // b of the tool tip `depth` below the crest at `a`.
+  double at_depth(double a, double depth) const { return root(a) + outward * (height - depth); }
+};
+
+PathResult check_start_outside(const ThreadLine& t) {
+  for (double a : {t.start.a, t.end.a}) {
+    const double crest = t.at_depth(a, 0.0);
+    if (t.outward * (t.start.b - crest) < -kTolerance) {
+      return value_error("start point X" + mm_text(t.start.b) +
+                         " (radius) lies inside the thread: crest X" + mm_text(crest) + " at Z" +
+                         mm_text(a));
+    }
+  }
+  return std::nullopt;
+}
+
+// Where along a the pass at `depth` starts, relative to A: flank infeed keeps one flank of the
+// tool on one flank of the finished thread, whose bottom lies height * tan(angle / 2) ahead of A
+// in the cutting direction; alternating infeed uses the other flank every second pass.
+double infeed_shift(const MultipleThread& c, double depth, std::size_t pass) {
+  const double flank = std::tan(c.tool_angle * kDegree / 2.0);
+  switch (c.infeed) {
+    case ThreadInfeed::radial:
+      return 0.0;
+    case ThreadInfeed::alternating:
+      return pass % 2 == 0 ? depth * flank : (2.0 * c.height - depth) * flank;
+    case ThreadInfeed::single_flank:
+      break;
+  }
+  return depth * flank;
+}
+
+struct Pass {
+  double depth;
+  double start_a;
+};
+
+// The lead along a after `distance` of thread: lead + change * revolutions, with distance =
+// lead * rev + change * rev^2 / 2.
+double lead_after(const MultipleThread& c, double distance) {
+  return std::sqrt(std::max(c.lead * c.lead + 2.0 * c.lead_change * distance, 0.0));
+}
+
+PathResult check_pass(const MultipleThread& c, const ThreadLine& t, const Pass& p) {
+  const double chamfer_start = t.end.a - t.along * c.chamfer;
+  if (t.along * (chamfer_start - p.start_a) <= kTolerance) {
+    return value_error("pass at depth " + mm_text(p.depth) + " starts at Z" + mm_text(p.start_a) +
+                       ", not before the end of its thread at Z" + mm_text(chamfer_start) +
+                       " (chamfer " + mm_text(c.chamfer) + ")");
+  }
+  const double length = std::fabs(t.end.a - p.start_a);
+  if (c.lead * c.lead + 2.0 * c.lead_change * length <= kTolerance) {
+    return PathError{alarm::kThreadLead,
+                     "G76 lead F" + mm_text(c.lead) + " changing by K" + mm_text(c.lead_change) +
+                         " per revolution reaches 0 within the thread of length " + mm_text(length),
+                     -1};
+  }
+  return std::nullopt;
+}
+
+void emit_pass(const MultipleThread& c, const ThreadLine& t, const Pass& p, double start_angle,
+               PlanePath& out) {
+  const double chamfer_start = t.end.a - t.along * c.chamfer;
+  out.push_back(rapid_to({p.start_a, t.at_depth(p.start_a, p.depth)}));
+  PlaneMove thread;
+  thread.kind = path::MoveKind::thread;
+  thread.to = {chamfer_start, t.at_depth(chamfer_start, p.depth)};
+  thread.lead = c.lead;
+  thread.lead_change = c.lead_change;
+  thread.start_angle = start_angle;
+  out.push_back(thread);
+  if (c.chamfer > 0.0) {
+    // Out at 45 degrees: as far along b as along a.
+    PlaneMove chamfer = thread;
+    chamfer.to = {t.end.a, thread.to.b + t.outward * c.chamfer};
+    chamfer.lead = lead_after(c, std::fabs(chamfer_start - p.start_a));
+    out.push_back(chamfer);
+  }
+  out.push_back(rapid_to({t.end.a, t.start.b}));
+  out.push_back(rapid_to(t.start));
+}
+
+}  // namespace
+
+std::vector<double> thread_pass_depths(const MultipleThread& cycle) {
+  std::vector<double> depths;
+  const double last = cycle.height - cycle.finish_allowance;
+  if (!(cycle.first_depth > 0.0) || !(last > 0.0)) {
+    return depths;
+  }
+  const double min_step = std::max(cycle.min_depth, 0.0);
+  double depth = 0.0;
+  // One pass beyond the bound tells the caller that there are too many.
+  for (std::size_t n = 1; depth < last && depths.size() <= kMaxPasses; ++n) {
+    depth = std::max(cycle.first_depth * std::sqrt(static_cast<double>(n)), depth + min_step);
+    if (depth >= last - kTolerance) {
+      depth = last;
+    }
+    depths.push_back(depth);
+  }
+  return depths;
+}
+
+path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread& cycle,
+                                        path::PlanePath& out) {
+  if (PathResult e = check_amounts(cycle)) {
+    return e;
+  }
+  if (std::fabs(cycle.end.a - start.a) <= kTolerance) {
+    return value_error("thread has no length: end Z" + mm_text(cycle.end.a) +
+                       " equals the start Z");
+  }
+  const double root_at_start = cycle.end.b + cycle.taper;
+  if (std::fabs(start.b - root_at_start) <= kTolerance) {
+    return value_error("start point X" + mm_text(start.b) + " (radius) lies on the thread's root");
+  }
+  const ThreadLine line{.start = start,
+                        .end = cycle.end,
+                        .taper = cycle.taper,
+                        .height = cycle.height,
+                        .along = cycle.end.a > start.a ? 1.0 : -1.0,
+                        .outward = start.b > root_at_start ? 1.0 : -1.0};
+  if (PathResult e = check_start_outside(line)) {
+    return e;
+  }
+
+  const std::vector<double> roughing = thread_pass_depths(cycle);
+  const std::size_t finishing = cycle.finish_passes == 0 ? 1 : cycle.finish_passes;
+  const std::size_t starts = static_cast<std::size_t>(cycle.starts);
+  if ((roughing.size() + finishing) * starts > kMaxPasses) {
+    return value_error("needs more than " + std::to_string(kMaxPasses) + " passes (first depth Q" +
+                       mm_text(cycle.first_depth) + ", minimum depth " + mm_text(cycle.min_depth) +
+                       ", " + std::to_string(starts) + " starts)");
+  }
+  std::vector<Pass> passes;
+  for (double depth : roughing) {
+    passes.push_back({depth, 0.0});
+  }
+  // The first finishing pass removes the allowance, the others are spring passes.
+  passes.insert(passes.end(), finishing, Pass{cycle.height, 0.0});
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    passes[i].start_a = start.a + line.along * infeed_shift(cycle, passes[i].depth, i);
+    if (PathResult e = check_pass(cycle, line, passes[i])) {
+      return e;
+    }
+  }
+
+  for (const Pass& p : passes) {
+    for (std::size_t s = 0; s < starts; ++s) {
+      emit_pass(cycle, line, p, 360.0 * static_cast<double>(s) / static_cast<double>(starts), out);
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace mcnc::interp::cycles

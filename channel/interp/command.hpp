@@ -143,6 +143,18 @@ struct Command {
   // message (#3006)
   std::string text;
 
+  // What the block asks of the look-ahead that follows the interpreter's blocks (not printed:
+  // the look-ahead consumes them): the corner to insert after this move (,C ,R / L D) and the
+  // tool-nose compensation in effect for the move.
+  enum class Corner : std::uint8_t { none, chamfer_setback, chamfer_length, round };
+  Corner corner = Corner::none;
+  double corner_size = 0.0;
+  double corner_feed = 0.0;  // the corner's feed (E); 0: the move's feed
+  enum class Compensation : std::uint8_t { off, left, right };
+  Compensation compensation = Compensation::off;
+  double nose_radius = 0.0;
+  int nose_tip = 0;
+
   void set_channel(int c) { channels[static_cast<std::size_t>(c) / 64] |= 1ULL << (c % 64); }
   bool has_channel(int c) const {
     return (channels[static_cast<std::size_t>(c) / 64] >> (c % 64)) & 1ULL;

@@ -53,6 +53,29 @@ struct MacroCallTables {
   int m_macro_range_count = 0, m_macro_range_program = 0, m_macro_range_first = 0;  // 9074-9076
 };
 
+// The parameters the canned cycles take when their first block is not programmed (spec dafeng
+// §2.5: params 5030-5036, 5110-5111, 5130-5136, 5200-5211). Lengths physical mm (radius).
+struct CycleDefaults {
+  double rough_depth = 1.0;           // G71 U(d) / G72 W(d), param 5130
+  double rough_retract = 0.5;         // R(e), param 5131
+  bool rough_retract_along_contour = false;  // J1, param 5120.3
+  double pattern_relief_x = 0.0;      // G73 U(i) (radius), W(k)
+  double pattern_relief_z = 0.0;
+  int pattern_passes = 1;             // G73 R(d)
+  double groove_retract = 0.5;        // G74/G75 R(e), param 5136
+  int thread_finish_passes = 1;       // G76 m, param 5032
+  int thread_chamfer = 10;            // G76 r in 0.1 leads, param 5033
+  int thread_angle = 60;              // G76 a, degrees, param 5034
+  double thread_min_depth = 0.1;      // G76 Q(dmin), param 5030
+  double thread_allowance = 0.0;      // G76 R(d), param 5031
+  bool thread_alternating = false;    // param 5035 = 1: alternating flanks
+  bool drill_high_speed = true;       // param 5100.1: G83 = G83.5 (true) or G83.6
+  double drill_retract = 0.5;         // high-speed back-off r, param 5110
+  double drill_clearance = 0.5;       // deep-hole clearance c, param 5111
+  bool tap_high_speed = true;         // param 5200.1: G84 Q = G84.5 (true) or G84.6
+  double tap_retract = 0.5;           // param 5211
+};
+
 struct InterpreterConfig {
   GCodeSystem system = GCodeSystem::a;
   Dialect dialect = Dialect::dafeng;
@@ -67,6 +90,12 @@ struct InterpreterConfig {
   // G92 chamfer-out without J/K, in leads along Z and X at 45 degrees (Dafeng param 5012,
   // GSK №19); 0: the thread runs to the end point and the tool leaves at rapid.
   double thread_chamfer_leads = 0.0;
+  CycleDefaults cycles;
+  // GSK L (chamfer): the chamfer's own length (type I, status param 181.0 = 1) instead of the
+  // distance from the corner (type II, as Dafeng ,C).
+  bool chamfer_is_length = false;
+  // Blocks in a row without a move that G41/G42 tolerates (0: the dialect's, Dafeng 4, GSK 7).
+  int compensation_idle_blocks = 0;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

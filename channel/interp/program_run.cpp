@@ -56,6 +56,9 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
     machine_[i] = config_.axes[i].start;
   }
+  lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect == Dialect::gsk});
+  lookahead_.reset(machine_);
+  cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
   feed_mode_ = config_.power_on_feed_mode;
@@ -177,15 +180,15 @@ std::optional<InterpResult> ProgramRun::next() {
   // The command is moved once, straight into the result.
   auto pop = [this]() {
     std::optional<InterpResult> r(std::in_place, std::in_place_type<Command>,
-                                  std::move(out_[out_head_++]));
+                                  std::move(ready_[ready_head_++]));
     std::get<Command>(*r).n = ++sequence_;
-    if (out_head_ == out_.size()) {
-      out_.clear();  // keeps the capacity: no allocation per command
-      out_head_ = 0;
+    if (ready_head_ == ready_.size()) {
+      ready_.clear();  // keeps the capacity: no allocation per command
+      ready_head_ = 0;
     }
     return r;
   };
-  if (out_head_ < out_.size()) {
+  if (ready_head_ < ready_.size()) {
     return pop();
   }
   if (!started_ || ended_ || alarm_) {
@@ -196,7 +199,7 @@ std::optional<InterpResult> ProgramRun::next() {
     return std::nullopt;
   }
   std::uint64_t statements = 0;
-  while (out_.empty() && !ended_ && !alarm_) {
+  while (ready_.empty() && !ended_ && !alarm_) {
     if (++statements > config_.statement_limit) {
       fail(alarm::kStatementLimit,
            "more than " + std::to_string(config_.statement_limit) +
@@ -205,17 +208,58 @@ std::optional<InterpResult> ProgramRun::next() {
       break;
     }
     step();
+    if (!out_.empty() && !alarm_) {
+      release_block();
+    }
   }
   if (alarm_) {
     out_.clear();
-    out_head_ = 0;
+    ready_.clear();
+    ready_head_ = 0;
     alarm_reported_ = true;
     return *alarm_;
   }
-  if (!out_.empty()) {
+  if (!ready_.empty()) {
     return pop();
   }
   return std::nullopt;
+}
+
+void ProgramRun::release_block() {
+  bool needed = lookahead_.holding();
+  for (const Command& c : out_) {
+    needed =
+        needed || c.corner != Command::Corner::none || c.compensation != Command::Compensation::off;
+  }
+  if (!needed) {
+    for (auto c = out_.rbegin(); c != out_.rend(); ++c) {
+      if (c->op == Op::rapid || c->op == Op::linear || c->op == Op::arc || c->op == Op::thread) {
+        lookahead_.passed(c->to);
+        break;
+      }
+    }
+    std::swap(ready_, out_);  // nothing waits: the block's commands are ready as they are
+    out_.clear();
+    return;
+  }
+  const std::array<int, 2> axes = plane_axis_indices();
+  if (axes[0] >= 0 && axes[1] >= 0) {
+    lookahead_.set_plane(axes, plane_);
+  }
+  path::PathResult e;
+  for (Command& c : out_) {
+    e = lookahead_.push(std::move(c), ready_);
+    if (e) {
+      break;
+    }
+  }
+  out_.clear();
+  if (!e && ended_) {
+    e = lookahead_.flush(ready_);
+  }
+  if (e) {
+    fail(e->alarm, e->text, 0);
+  }
 }
 
 bool ProgramRun::step() {
@@ -607,6 +651,15 @@ Command& ProgramRun::emit(Op op) {
   Command& c = out_.emplace_back();
   c.op = op;
   last_op_ = op;
+  if (compensation_ != Command::Compensation::off &&
+      (op == Op::rapid || op == Op::linear || op == Op::arc)) {
+    c.compensation = compensation_;
+    if (offset_ > 0) {
+      const auto o = static_cast<std::size_t>(offset_);
+      c.nose_radius = geometry_[o].radius + wear_[o].radius;
+      c.nose_tip = geometry_[o].tip;
+    }
+  }
   c.line = line_ != nullptr ? line_->line : 0;
   c.file = file_;
   c.to = machine_;

@@ -3,6 +3,7 @@
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
 // program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
 // single cycles; system_variables.cpp: #2000-#19999.
+#include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
@@ -136,6 +137,13 @@ class ProgramRun final : public macro::VariableProvider {
                          bool machine_coordinates);
   bool run_motion(GFunction motion, bool machine_coordinates, int column);
   bool run_arc(GFunction motion, const AxisVector& target, int column);
+  // ,C ,R and E (Dafeng) or L D (GSK) of a G01/G02/G03 block: the corner after its move.
+  bool take_corner_request();
+  void mark_corner(Command& c) const;
+  // ,A (Dafeng) or Q (GSK) of a G01/G00 block: completes `target`; false after an alarm. Sets
+  // `deferred` when the block gives the angle only and its end comes with the next block.
+  bool apply_line_angle(AxisVector& target, std::array<bool, kMaxChannelAxes>& given,
+                        bool& deferred, int column);
   bool run_reference_return(GFunction f, int column);
   bool run_coordinate_set(int column);
   bool run_local_system(int column);
@@ -161,6 +169,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);
   // Emits the moves of a plane path from the current position; the other axes stay.
   void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed);
+  // A cycle's alarm; an error of a contour element names the contour block's line.
   bool fail_path(const path::PathError& e, int column);
 
   // ---- the P..Q contour of G70-G73 (program_run_contour.cpp)
@@ -191,14 +200,38 @@ class ProgramRun final : public macro::VariableProvider {
                        bool& type2, int column);
   bool contour_forbids(const char* what, int column);
 
+  // ---- canned cycles G71-G76 and the hole cycles (program_run_cycles.cpp)
+  bool require_turning_plane(const char* code, std::array<int, 2>& axes, int column);
+  // G74-G76: the plane axes and the block's end point; second_block when it gives one.
+  bool cycle_end_point(const char* code, std::array<int, 2>& axes, AxisVector& target,
+                       bool& second_block, int column);
+  // A cycle amount: mm with a decimal point, least increments without one (FANUC/GSK rule for
+  // the P/Q/R amounts of G71-G76, gsk A.6.31-A.6.32).
+  double cycle_amount(const BlockWord& w) const;
+  bool run_rough_cycle(GFunction f, int column);   // G71, G72
+  bool run_pattern_cycle(int column);              // G73
+  bool run_groove_cycle(GFunction f, int column);  // G74, G75
+  bool run_multiple_thread(int column);            // G76
+  bool run_contour_cycle(const char* code, const path::PlanePath& moves,
+                         const std::array<int, 2>& axes, int first, int last);
+  // Hole cycles: whether this block drills (a group 10 code, or the modal cycle and positioning
+  // words), the words of such a block, and the holes.
+  bool hole_cycle_block(bool group10_in_block, bool motion_code_in_block) const;
+  bool take_hole_words(int column);
+  bool run_hole_cycle(int column);
+
   // ---- output and alarms
   Command& emit(Op op);
+  // Moves the executed block's commands through the look-ahead (corners, nose compensation).
+  void release_block();
   bool fail(int number, std::string text, int column);
   bool fail_macro(const macro::MacroAlarm& a);
   BlockWord* word(char letter);
   BlockWord* word(char a, char b);
+  BlockWord* comma_word(char letter);  // ,C ,R ,A
   int count_words(char letter) const;
   double scaled(const BlockWord& w, bool length) const;
+  double length_of(const BlockWord& w) const;  // a length word in mm (inch converted)
 
   InterpreterConfig config_;
   const InterpreterEnvironment* environment_;
@@ -214,8 +247,10 @@ class ProgramRun final : public macro::VariableProvider {
   int main_number_ = 0;
 
   // Output
-  std::vector<Command> out_;  // commands of the last block; out_head_ is the next to pull
-  std::size_t out_head_ = 0;
+  std::vector<Command> out_;    // commands of the block being executed
+  std::vector<Command> ready_;  // commands the look-ahead released; ready_head_ is the next
+  std::size_t ready_head_ = 0;
+  BlockLookahead lookahead_;
   std::uint64_t sequence_ = 0;
   bool started_ = false;
   bool ended_ = false;
@@ -246,9 +281,47 @@ class ProgramRun final : public macro::VariableProvider {
   double feed_ = 0.0;
   ModalCall modal_call_;
   ContourMode contour_mode_ = ContourMode::none;
+  std::vector<int> contour_lines_;  // the program line of each captured contour element
+  int contour_first_ = 0;           // the last captured contour's line range (for the resume point)
+  int contour_last_ = 0;
+  // The modal amounts of the cycles' first blocks (G71 U R, G73 U W R, G74 R, G76 P Q R).
+  CycleDefaults cycle_memory_;
+  // The modal hole cycle (group 10): its code and the amounts later blocks keep.
+  struct HoleMode {
+    GFunction function = GFunction::unknown;
+    int code10 = 0;
+    bool has_r = false;
+    double r_level = 0.0;  // physical, on the drilling axis (machine)
+    bool has_bottom = false;
+    double bottom = 0.0;
+    double peck = 0.0;
+    double retract = -1.0;  // gsk R: the high-speed back-off (-1: the parameter)
+    int peck_type = -1;     // gsk J: 0 high-speed, 1 deep (-1: by the code)
+    double dwell_s = 0.0;
+    double lead = 0.0;
+    int clamp = 0;
+    int repeat = 1;
+  };
+  HoleMode hole_;
   int contour_motions_ = 0;                   // motion blocks of the contour so far
   std::array<bool, 2> contour_first_axes_{};  // plane axes the first one gives
-  Op last_op_ = Op::end;      // the last command emitted: a thread after a thread continues it
+  Command::Compensation compensation_ = Command::Compensation::off;  // G40/G41/G42
+  int idle_blocks_ = 0;  // blocks without a move in a row under compensation
+  Op last_op_ = Op::end;
+  // The corner the current block asks for after its move, and the modal corner feed E.
+  Command::Corner corner_kind_ = Command::Corner::none;
+  double corner_size_ = 0.0;
+  double corner_feed_ = 0.0;
+  // An angle-only G01 (`G01 ,A135`): its start and angle wait for the next block's end point.
+  struct AngleStart {
+    bool active = false;
+    AxisVector from{};
+    double degrees = 0.0;
+    int line = 0;
+    double feed = 0.0;
+    int idle_blocks = 0;
+  };
+  AngleStart angle_start_;    // the last command emitted: a thread after a thread continues it
   double thread_lead_ = 0.0;  // the last thread lead (mm/rev): G32 blocks may omit F
   // The modal single cycle (G90/G92/G94): its end point (machine), taper and lead, which the
   // blocks that follow without the G code keep unless they give new ones.

@@ -143,6 +143,15 @@ BlockWord* ProgramRun::word(char a, char b) {
   return nullptr;
 }
 
+BlockWord* ProgramRun::comma_word(char letter) {
+  for (BlockWord& w : words_) {
+    if (w.address.comma && w.address.first == letter) {
+      return &w;
+    }
+  }
+  return nullptr;
+}
+
 int ProgramRun::count_words(char letter) const {
   int n = 0;
   for (const BlockWord& w : words_) {
@@ -171,6 +180,10 @@ double ProgramRun::scaled(const BlockWord& w, bool length) const {
     return nearest * inc;
   }
   return (config_.dialect == Dialect::gsk ? nearest : std::trunc(units)) * inc;
+}
+
+double ProgramRun::length_of(const BlockWord& w) const {
+  return scaled(w, true) * (metric_ ? 1.0 : 25.4);
 }
 
 bool ProgramRun::evaluate_words(const parse::Statement& s) {
@@ -222,11 +235,8 @@ bool ProgramRun::check_unused_words() {
       }
     }
     if (w.address.comma) {
-      return fail(alarm::kNotInThisVersion,
-                  name +
-                      ": automatic chamfer, corner rounding and angle programming come "
-                      "with the next interpreter release",
-                  w.column);
+      return fail(alarm::kWordNotAllowed,
+                  name + " belongs to a G01 (,A ,C ,R) or G02/G03 (,C ,R) move", w.column);
     }
     return fail(alarm::kWordNotAllowed, name + " is not used by this block", w.column);
   }
@@ -527,6 +537,29 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
   }
   block_motion_code_ = motion != GFunction::unknown;
+  bool group10 = false;
+  for (int i = 0; i < ng; ++i) {
+    group10 = group10 || gs[static_cast<std::size_t>(i)].info.group == 10;
+  }
+  if (motion != GFunction::unknown && !group10 && hole_.function != GFunction::unknown) {
+    hole_ = HoleMode{};  // a group 01 code ends the hole cycle (spec L1938)
+    modal_codes_[10] = 80.0;
+  }
+  // A hole block: the cycle's code, or positioning words while the cycle is modal.
+  bool hole_block = group10 && hole_.function != GFunction::unknown;
+  if (!hole_block && hole_.function != GFunction::unknown && motion == GFunction::unknown &&
+      primary == GFunction::unknown) {
+    for (std::size_t i = 0; i < config_.axes.size() && !hole_block; ++i) {
+      const AxisWords aw = axis_words(static_cast<int>(i));
+      if (aw.error) {
+        return false;
+      }
+      hole_block = aw.word != nullptr;
+    }
+  }
+  if (hole_block && !take_hole_words(0)) {
+    return false;
+  }
   if (motion != GFunction::unknown) {
     motion_ = motion;
     for (int i = 0; i < ng; ++i) {
@@ -607,7 +640,11 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
         return fail(alarm::kWordNotAllowed, "G53 moves with G00 or G01 only", primary_column);
       }
     }
-    if (!run_motion(m, g53, g53 ? primary_column : 0)) {
+    if (hole_block && !g53) {
+      if (!run_hole_cycle(0)) {
+        return false;
+      }
+    } else if (!run_motion(m, g53, g53 ? primary_column : 0)) {
       return false;
     }
   }
@@ -617,6 +654,35 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   if (!check_unused_words()) {
     return false;
+  }
+  // An angle-only G01 waits for the next block's end point: one block without motion may come
+  // between them (gsk A.6.11 rule 7), nothing that stops the read-ahead.
+  if (angle_start_.active && line_ != nullptr && angle_start_.line != line_->line &&
+      !block_moved_) {
+    if (++angle_start_.idle_blocks > 1 || block_barrier_ ||
+        (!out_.empty() && out_.back().barrier)) {
+      return fail(alarm::kAngleProgramming,
+                  "the angle-only G01 of line " + std::to_string(angle_start_.line) +
+                      " needs the next move block right after it",
+                  0);
+    }
+  }
+  // Under compensation the look-ahead needs moves: too many blocks in a row without one leave
+  // it blind (spec L3735-3740: 4 of 5; gsk A.6.22 rule 1: 7).
+  if (compensation_ != Command::Compensation::off && contour_mode_ != ContourMode::capture) {
+    idle_blocks_ = block_moved_ ? 0 : idle_blocks_ + 1;
+    const int limit = config_.compensation_idle_blocks > 0 ? config_.compensation_idle_blocks
+                      : config_.dialect == Dialect::gsk    ? 7
+                                                           : 4;
+    if (idle_blocks_ >= limit) {
+      return fail(alarm::kCompensationLookahead,
+                  std::to_string(idle_blocks_) +
+                      " blocks in a row without a move under G41/G42: the compensation cannot "
+                      "see where the path goes",
+                  0);
+    }
+  } else {
+    idle_blocks_ = 0;
   }
   // A modal G66 call follows every block that moved an axis, outside the called macro.
   if (block_moved_ && modal_call_.active) {
@@ -656,9 +722,11 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       modal_codes_[6] = value;
       return true;
     case GFunction::tnrc_cancel:
+      compensation_ = Command::Compensation::off;
       modal_codes_[7] = value;
       return true;
     case GFunction::drill_cancel:
+      hole_ = HoleMode{};
       modal_codes_[10] = value;
       return true;
     case GFunction::work_system:
@@ -713,13 +781,20 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       return true;
     case GFunction::tnrc_left:
     case GFunction::tnrc_right:
+      compensation_ =
+          f == GFunction::tnrc_left ? Command::Compensation::left : Command::Compensation::right;
+      modal_codes_[7] = value;
+      return true;
     case GFunction::drill_face:
     case GFunction::drill_side:
     case GFunction::tap_face:
     case GFunction::tap_side:
     case GFunction::bore_face:
     case GFunction::bore_side:
-      return fail(alarm::kNotInThisVersion, g_name(code10) + " is not available yet", column);
+      hole_.function = f;
+      hole_.code10 = code10;
+      modal_codes_[10] = value;
+      return true;
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
   }
@@ -948,6 +1023,11 @@ bool ProgramRun::run_tool_word() {
     return fail(alarm::kBadWordValue, "offset number " + std::to_string(offset) + " beyond 64",
                 t->column);
   }
+  if (compensation_ != Command::Compensation::off) {
+    // A T command cancels tool-nose radius compensation (spec L3789).
+    compensation_ = Command::Compensation::off;
+    modal_codes_[7] = 40;
+  }
   Command& c = emit(Op::tool);
   c.tool = tool;
   c.offset = offset;
@@ -1003,6 +1083,12 @@ bool ProgramRun::run_m_codes(bool after_motion) {
       }
       case 2:
       case 30:
+        if (angle_start_.active) {
+          return fail(alarm::kAngleProgramming,
+                      "the angle-only G01 of line " + std::to_string(angle_start_.line) +
+                          " has no end point before the program end",
+                      w.column);
+        }
         end_program(static_cast<int>(m));
         return true;
       case 98: {
@@ -1130,11 +1216,14 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
       return run_finishing_cycle(column);
     case GFunction::rough_turning:
     case GFunction::rough_facing:
+      return run_rough_cycle(f, column);
     case GFunction::pattern_repeat:
+      return run_pattern_cycle(column);
     case GFunction::face_grooving:
     case GFunction::od_grooving:
+      return run_groove_cycle(f, column);
     case GFunction::multiple_thread:
-      return fail(alarm::kNotInThisVersion, g_name(code10) + " is not available yet", column);
+      return run_multiple_thread(column);
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
   }

@@ -177,6 +177,8 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   if (!find_contour(code, first, last, column)) {
     return false;
   }
+  contour_first_ = first;
+  contour_last_ = last;
   const AxisVector start = machine_;
   const GFunction motion = motion_;
   const double motion_code = modal_codes_[1];
@@ -188,6 +190,7 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
   contour.clear();
+  contour_lines_.clear();
   for (std::size_t k = from; k < out_.size(); ++k) {
     const Command& c = out_[k];
     path::PlaneMove m;
@@ -215,6 +218,7 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
     m.feed = c.feed;
     m.source = static_cast<int>(contour.size());
     contour.push_back(m);
+    contour_lines_.push_back(c.line);
   }
   out_.resize(from);
   machine_ = start;

@@ -182,6 +182,28 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   if (!read_axis_targets(target, given, machine_coordinates)) {
     return false;
   }
+  const bool cutting =
+      motion == GFunction::linear || motion == GFunction::arc_cw || motion == GFunction::arc_ccw;
+  if (cutting && !machine_coordinates && !take_corner_request()) {
+    return false;
+  }
+  if (angle_start_.active && motion != GFunction::linear) {
+    return fail(alarm::kAngleProgramming,
+                "an angle-only G01 (line " + std::to_string(angle_start_.line) +
+                    ") must be followed by a G01 with its end point and angle",
+                column);
+  }
+  if ((motion == GFunction::linear ||
+       (motion == GFunction::rapid && config_.dialect == Dialect::gsk)) &&
+      !machine_coordinates) {
+    bool deferred = false;
+    if (!apply_line_angle(target, given, deferred, column)) {
+      return false;
+    }
+    if (deferred) {
+      return true;
+    }
+  }
   bool any = false;
   int first_column = column;
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
@@ -221,6 +243,9 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   c.feed = feed_;
   c.feed_mode = feed_mode_;
   c.exact_stop = motion == GFunction::linear && (block_exact_stop_ || exact_stop_mode_);
+  if (motion == GFunction::linear) {
+    mark_corner(c);
+  }
   machine_ = target;
   block_moved_ = true;
   return true;
@@ -358,7 +383,8 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     return false;
   }
   int turns = 0;
-  if (BlockWord* l = word('L')) {
+  BlockWord* l = config_.dialect == Dialect::gsk ? nullptr : word('L');  // GSK L: a chamfer
+  if (l != nullptr) {
     l->used = true;
     const double v = l->value;
     if (v < 1.0 || std::fabs(v - std::round(v)) > 1e-9) {
@@ -380,6 +406,7 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
   c.feed = feed_;
   c.feed_mode = feed_mode_;
   c.exact_stop = block_exact_stop_ || exact_stop_mode_;
+  mark_corner(c);
   machine_ = target;
   block_moved_ = true;
   return true;

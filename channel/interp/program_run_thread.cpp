@@ -21,6 +21,12 @@ std::string format_value(double v) {
 }  // namespace
 
 bool ProgramRun::fail_path(const path::PathError& e, int column) {
+  if (e.source >= 0 && static_cast<std::size_t>(e.source) < contour_lines_.size()) {
+    return fail(e.alarm,
+                e.text + " (contour block at line " +
+                    std::to_string(contour_lines_[static_cast<std::size_t>(e.source)]) + ")",
+                column);
+  }
   return fail(e.alarm, e.text, column);
 }
 

@@ -38,6 +38,59 @@ T get(const YAML::Node& n, const std::string& key) {
   }
 }
 
+// The canned cycles' parameters (interp::CycleDefaults), lengths in mm (radius).
+void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
+  only_keys(node, "cycles",
+            {"rough_depth", "rough_retract", "rough_retract_along_contour", "pattern_relief_x",
+             "pattern_relief_z", "pattern_passes", "groove_retract", "thread_finish_passes",
+             "thread_chamfer", "thread_angle", "thread_min_depth", "thread_allowance",
+             "thread_alternating", "drill_high_speed", "drill_retract", "drill_clearance",
+             "tap_high_speed", "tap_retract"});
+  const auto length = [&](const char* k, double& v) {
+    if (node[k]) {
+      v = get<double>(node[k], std::string("cycles.") + k);
+      if (v < 0.0) {
+        bad(std::string("cycles.") + k, "must be >= 0");
+      }
+    }
+  };
+  const auto count = [&](const char* k, int& v, int low, int high) {
+    if (node[k]) {
+      v = get<int>(node[k], std::string("cycles.") + k);
+      if (v < low || v > high) {
+        bad(std::string("cycles.") + k, std::to_string(low) + "-" + std::to_string(high));
+      }
+    }
+  };
+  const auto flag = [&](const char* k, bool& v) {
+    if (node[k]) {
+      v = get<bool>(node[k], std::string("cycles.") + k);
+    }
+  };
+  length("rough_depth", d.rough_depth);
+  length("rough_retract", d.rough_retract);
+  flag("rough_retract_along_contour", d.rough_retract_along_contour);
+  if (node["pattern_relief_x"]) {
+    d.pattern_relief_x = get<double>(node["pattern_relief_x"], "cycles.pattern_relief_x");
+  }
+  if (node["pattern_relief_z"]) {
+    d.pattern_relief_z = get<double>(node["pattern_relief_z"], "cycles.pattern_relief_z");
+  }
+  count("pattern_passes", d.pattern_passes, 1, 999);
+  length("groove_retract", d.groove_retract);
+  count("thread_finish_passes", d.thread_finish_passes, 0, 99);
+  count("thread_chamfer", d.thread_chamfer, 0, 99);
+  count("thread_angle", d.thread_angle, 0, 99);
+  length("thread_min_depth", d.thread_min_depth);
+  length("thread_allowance", d.thread_allowance);
+  flag("thread_alternating", d.thread_alternating);
+  flag("drill_high_speed", d.drill_high_speed);
+  length("drill_retract", d.drill_retract);
+  length("drill_clearance", d.drill_clearance);
+  flag("tap_high_speed", d.tap_high_speed);
+  length("tap_retract", d.tap_retract);
+}
+
 char axis_letter(const std::string& s, const std::string& key) {
   if (s.size() != 1 || std::string("XYZABC").find(s[0]) == std::string::npos) {
     bad(key, "an axis is one of X, Y, Z, A, B, C");
@@ -141,6 +194,9 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "arc_tolerance",
              "dwell_in_revs_with_g99",
              "thread_chamfer_leads",
+             "chamfer_is_length",
+             "compensation_idle_blocks",
+             "cycles",
              "block_skip",
              "max_tool",
              "statement_limit",
@@ -211,6 +267,19 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     if (c.thread_chamfer_leads < 0.0 || c.thread_chamfer_leads > 9.9) {
       bad("thread_chamfer_leads", "0-9.9 (leads)");
     }
+  }
+  if (root["chamfer_is_length"]) {
+    c.chamfer_is_length = get<bool>(root["chamfer_is_length"], "chamfer_is_length");
+  }
+  if (root["compensation_idle_blocks"]) {
+    c.compensation_idle_blocks =
+        get<int>(root["compensation_idle_blocks"], "compensation_idle_blocks");
+    if (c.compensation_idle_blocks < 0 || c.compensation_idle_blocks > 99) {
+      bad("compensation_idle_blocks", "0 (the dialect's) to 99");
+    }
+  }
+  if (root["cycles"]) {
+    cycle_defaults(root["cycles"], c.cycles);
   }
   if (root["dwell_in_revs_with_g99"]) {
     c.dwell_in_revs_with_g99 = get<bool>(root["dwell_in_revs_with_g99"], "dwell_in_revs_with_g99");

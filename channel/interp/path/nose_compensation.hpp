@@ -53,17 +53,33 @@ class NoseCompensation {
   PathResult cancel(const PlaneMove* programmed, PlanePath& out);
 
  private:
-  // Suggested state; the implementation may change the private part.
+  // Appends `programmed` with its end (and centre) moved to the nose-centre point `nose_to`
+  // (`nose_center`) plus the tip offset.
+  void emit(const PlaneMove& programmed, Point2 nose_to, Point2 nose_center, PlanePath& out) const;
+  // Appends the held move's offset copy ending at `nose_to`, `end_trim` mm before its offset end
+  // (left out when trimmed to nothing).
+  void emit_held(Point2 nose_to, double end_trim, PlanePath& out) const;
+  // Appends an arc of the nose radius about the programmed `corner` to `nose_to`.
+  void emit_corner_arc(Point2 corner, Point2 nose_to, double feed, PlanePath& out);
+  void hold(const PlaneMove& programmed);
+  // Finishes the held move at its corner with `programmed` (inside: intersection, outside:
+  // corner arc); `next_start_trim` = how far along its offset `programmed` then starts.
+  PathResult join_corner(const PlaneMove& programmed, PlanePath& out, double& next_start_trim);
+  // Joins the flushed point to the offset start of `programmed`.
+  void join_after_flush(const PlaneMove& programmed, PlanePath& out);
+
   bool active_ = false;
   bool holding_ = false;
-  bool started_ = false;  // the start-up move has been made
+  bool started_ = false;  // the start-up move has been made (or flushed)
   CompensationSide side_ = CompensationSide::left;
   double radius_ = 0.0;
   int tip_ = 0;
   Point2 programmed_at_;  // programmed end of the last pushed move
-  Point2 offset_at_;      // compensated (nose-centre) position reached by the output so far
+  Point2 offset_at_;      // nose-centre position reached by the output so far
   PlaneMove held_;        // the programmed move not yet final
   Point2 held_from_;      // its programmed start
+  double held_start_trim_ = 0.0;  // mm of the held move's offset cut off at its start
+  int last_source_ = -1;          // source of the last finished move (for a corner arc)
 };
 
 }  // namespace mcnc::interp::path

@@ -1,0 +1,126 @@
+// Canned cycles in the interpreter: the words, modal amounts and units of G74/G75/G76 and the
+// hole cycles G83-G89 (spec dafeng §2.5, gsk A.6.31-A.6.35 and D2-27..D2-30). The expansions
+// themselves are tested in tests/unit/cycles/.
+#include "tests/unit/interpreter/interp_test_support.hpp"
+
+namespace mcnc::interp::test {
+namespace {
+
+InterpreterConfig lathe_xzc() {
+  InterpreterConfig c;
+  c.axes = {AxisConfig{'X', true}, AxisConfig{'Z', false}, AxisConfig{'C', false, true}};
+  return c;
+}
+
+// gsk D2-27: G74 R1; G74 Z-20 Q5000 F0.1 from (X0, Z2): Q without a point is in 0.001 mm.
+TEST(InterpCycles, G74PeckDrillingFromTheFirstBlocksRetract) {
+  RunResult r = run_ok("G00 X0 Z2\nG74 R1\nG74 Z-20 Q5000 F0.1\nM30\n");
+  const auto feeds = r.of(Op::linear);
+  ASSERT_EQ(feeds.size(), 5u);
+  const double ends[] = {-3, -8, -13, -18, -20};
+  for (std::size_t i = 0; i < 5; ++i) {
+    EXPECT_AT(feeds[i], 0, ends[i]);
+  }
+  EXPECT_AT(r.commands[r.commands.size() - 2], 0, 2);  // back to the start
+}
+
+// gsk D2-28: grooves at Z-10, -14, -18, -20 with P3000 (3 mm radius pecks) Q4000.
+TEST(InterpCycles, G75GroovesSteppedByQ) {
+  RunResult r = run_ok("G00 X52 Z-10\nG75 R0.5\nG75 X40 Z-20 P3000 Q4000 F0.05\nM30\n");
+  const auto feeds = r.of(Op::linear);
+  ASSERT_EQ(feeds.size(), 8u);  // 4 grooves x 2 pecks
+  EXPECT_AT(feeds[1], 20, -10);
+  EXPECT_AT(feeds[3], 20, -14);
+  EXPECT_AT(feeds[7], 20, -20);
+}
+
+TEST(InterpCycles, GroovingAlarms) {
+  run_alarm("G00 X52 Z-10\nG75 X40 Z-20 P3000 F0.05\nM30\n", alarm::kCycleWordMissing, 2);
+  run_alarm("G00 X52 Z-10\nG17 G75 X40 Z-20 P3000 Q4000 F0.05\nM30\n", alarm::kNoPlaneAxis, 2);
+  run_alarm("G00 X52 Z-10\nG75 X40 Z-20 P3000 Q4000\nM30\n", alarm::kFeedMissing, 2);
+}
+
+// Dafeng §7-15 (L1829-1835): the first block's P010060 R0.2 stay for the second block.
+TEST(InterpCycles, G76FirstBlockIsModal) {
+  RunResult r = run_ok("G00 X68 Z50\nG76 P010060 R0.2\nG76 X60.4 Z25 P3.68 Q1.8 F6\nM30\n");
+  const auto threads = r.of(Op::thread);
+  ASSERT_EQ(threads.size(), 5u);  // 4 roughing passes and 1 finishing pass
+  EXPECT_NEAR(threads.back().to[0], 30.2, 1e-9);
+  EXPECT_NEAR(threads[0].to[0], 34.0 - 0.12 - 1.8, 1e-9);  // crest 33.88, first depth 1.8
+  for (const Command& t : threads) {
+    EXPECT_DOUBLE_EQ(t.lead, 6.0);
+  }
+  // gsk D2-29: P021060 = 2 finishing passes, chamfer 1.0 lead, 60 degrees; Q100 = 0.1 mm.
+  RunResult g = run_ok("G00 X32 Z3\nG76 P021060 Q100 R0.1\nG76 X27.6 Z-30 P1200 Q400 F2\nM30\n",
+                       gsk());
+  const auto gt = g.of(Op::thread);
+  ASSERT_EQ(gt.size(), 2u * (7u + 2u));  // each pass threads, then chamfers out
+  EXPECT_NEAR(gt[gt.size() - 2].to[0], 13.8, 1e-9);
+  EXPECT_TRUE(gt.back().continuous);
+}
+
+TEST(InterpCycles, G76NeedsHeightAndFirstDepth) {
+  run_alarm("G00 X68 Z50\nG76 X60.4 Z25 P3.68 F6\nM30\n", alarm::kCycleWordMissing, 2);
+  run_alarm("G00 X68 Z50\nG76 P1234567\nM30\n", alarm::kCycleValue, 2);
+}
+
+// Dafeng §7-21 (L1907-1940): G83.5 with M12, then H90 K3: four holes at C 0/90/180/270, each
+// between M12 and M13, cancelled by G00.
+TEST(InterpCycles, G83HolesRepeatWithIncrementalPositioning) {
+  RunResult r = run_ok(
+      "G98 G00 Z5\nG00 X100\nG83.5 Z-10 C0 R1 Q4 F300 M12\nH90 K3\nG00 Z100\nM30\n",
+      lathe_xzc());
+  const auto aux = r.of(Op::aux);
+  ASSERT_EQ(aux.size(), 8u);
+  for (std::size_t i = 0; i < aux.size(); ++i) {
+    EXPECT_EQ(aux[i].code, i % 2 == 0 ? 12 : 13);
+  }
+  double bottoms = 0;
+  for (const Command& c : r.of(Op::linear)) {
+    bottoms += c.to[1] == -10.0 ? 1 : 0;
+  }
+  EXPECT_EQ(bottoms, 4);
+  // The last hole at C270, then G00 Z100 ends the cycle and moves.
+  const Command last = r.at_line(5)[0];
+  EXPECT_EQ(last.op, Op::rapid);
+  EXPECT_NEAR(last.to[2], 270.0, 1e-9);
+  EXPECT_NEAR(last.to[1], 100.0, 1e-9);
+}
+
+TEST(InterpCycles, G80EndsTheHoleCycle) {
+  RunResult r = run_ok("G00 X0 Z5\nG83 Z-10 R1 F100\nG80\nZ10\nM30\n");
+  EXPECT_EQ(r.at_line(4).size(), 1u);  // a plain rapid again
+  EXPECT_EQ(r.at_line(4)[0].op, Op::rapid);
+}
+
+TEST(InterpCycles, TappingUsesTheLeadAndReversesATurningSpindle) {
+  RunResult r = run_ok("M03 S500\nG00 X0 Z5\nG84 Z-10 R1 F1.25\nG80\nM30\n");
+  const auto taps = r.of(Op::thread);
+  ASSERT_EQ(taps.size(), 2u);  // in and out, synchronised
+  EXPECT_DOUBLE_EQ(taps[0].lead, 1.25);
+  EXPECT_AT(taps[0], 0, -10);
+  const auto spindles = r.of(Op::spindle);
+  ASSERT_EQ(spindles.size(), 3u);
+  EXPECT_EQ(spindles[1].spindle_direction, SpindleDirection::ccw);
+  EXPECT_EQ(spindles[2].spindle_direction, SpindleDirection::cw);
+  run_alarm("G00 X0 Z5\nG84 Z-10 R1\nM30\n", alarm::kThreadLead, 2);
+}
+
+TEST(InterpCycles, HoleCycleNeedsItsBottom) {
+  run_alarm("G00 X0 Z5\nG83 R1 F100\nX10\nM30\n", alarm::kCycleWordMissing, 2);
+}
+
+// GSK: R is the back-off, J0/J1 the peck type, Q in 0.001 mm (gsk D2-30).
+TEST(InterpCycles, GskDrillingWords) {
+  RunResult r = run_ok("G00 X0 Z0\nG83 Z-10 Q3000 R1 P500 F0.1 J0\nG80\nM30\n", gsk());
+  const auto feeds = r.of(Op::linear);
+  ASSERT_EQ(feeds.size(), 4u);
+  EXPECT_AT(feeds[0], 0, -3);
+  EXPECT_AT(feeds[1], 0, -6);
+  EXPECT_AT(feeds[3], 0, -10);
+  ASSERT_EQ(r.of(Op::dwell).size(), 1u);
+  EXPECT_DOUBLE_EQ(r.of(Op::dwell)[0].seconds, 0.5);
+}
+
+}  // namespace
+}  // namespace mcnc::interp::test

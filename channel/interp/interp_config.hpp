@@ -56,24 +56,24 @@ struct MacroCallTables {
 // The parameters the canned cycles take when their first block is not programmed (spec dafeng
 // §2.5: params 5030-5036, 5110-5111, 5130-5136, 5200-5211). Lengths physical mm (radius).
 struct CycleDefaults {
-  double rough_depth = 1.0;           // G71 U(d) / G72 W(d), param 5130
-  double rough_retract = 0.5;         // R(e), param 5131
+  double rough_depth = 1.0;                  // G71 U(d) / G72 W(d), param 5130
+  double rough_retract = 0.5;                // R(e), param 5131
   bool rough_retract_along_contour = false;  // J1, param 5120.3
-  double pattern_relief_x = 0.0;      // G73 U(i) (radius), W(k)
+  double pattern_relief_x = 0.0;             // G73 U(i) (radius), W(k)
   double pattern_relief_z = 0.0;
-  int pattern_passes = 1;             // G73 R(d)
-  double groove_retract = 0.5;        // G74/G75 R(e), param 5136
-  int thread_finish_passes = 1;       // G76 m, param 5032
-  int thread_chamfer = 10;            // G76 r in 0.1 leads, param 5033
-  int thread_angle = 60;              // G76 a, degrees, param 5034
-  double thread_min_depth = 0.1;      // G76 Q(dmin), param 5030
-  double thread_allowance = 0.0;      // G76 R(d), param 5031
-  bool thread_alternating = false;    // param 5035 = 1: alternating flanks
-  bool drill_high_speed = true;       // param 5100.1: G83 = G83.5 (true) or G83.6
-  double drill_retract = 0.5;         // high-speed back-off r, param 5110
-  double drill_clearance = 0.5;       // deep-hole clearance c, param 5111
-  bool tap_high_speed = true;         // param 5200.1: G84 Q = G84.5 (true) or G84.6
-  double tap_retract = 0.5;           // param 5211
+  int pattern_passes = 1;           // G73 R(d)
+  double groove_retract = 0.5;      // G74/G75 R(e), param 5136
+  int thread_finish_passes = 1;     // G76 m, param 5032
+  int thread_chamfer = 10;          // G76 r in 0.1 leads, param 5033
+  int thread_angle = 60;            // G76 a, degrees, param 5034
+  double thread_min_depth = 0.1;    // G76 Q(dmin), param 5030
+  double thread_allowance = 0.0;    // G76 R(d), param 5031
+  bool thread_alternating = false;  // param 5035 = 1: alternating flanks
+  bool drill_high_speed = true;     // param 5100.1: G83 = G83.5 (true) or G83.6
+  double drill_retract = 0.5;       // high-speed back-off r, param 5110
+  double drill_clearance = 0.5;     // deep-hole clearance c, param 5111
+  bool tap_high_speed = true;       // param 5200.1: G84 Q = G84.5 (true) or G84.6
+  double tap_retract = 0.5;         // param 5211
 };
 
 struct InterpreterConfig {

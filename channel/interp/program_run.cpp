@@ -651,7 +651,7 @@ Command& ProgramRun::emit(Op op) {
   Command& c = out_.emplace_back();
   c.op = op;
   last_op_ = op;
-  if (compensation_ != Command::Compensation::off &&
+  if (compensation_ != Command::Compensation::off && !cycle_output_ &&
       (op == Op::rapid || op == Op::linear || op == Op::arc)) {
     c.compensation = compensation_;
     if (offset_ > 0) {

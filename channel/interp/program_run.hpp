@@ -307,6 +307,9 @@ class ProgramRun final : public macro::VariableProvider {
   std::array<bool, 2> contour_first_axes_{};  // plane axes the first one gives
   Command::Compensation compensation_ = Command::Compensation::off;  // G40/G41/G42
   int idle_blocks_ = 0;  // blocks without a move in a row under compensation
+  // The moves of a cycle are not compensated again: G71-G73 rough the compensated contour,
+  // G74-G76 and the hole cycles suspend the compensation (gsk A.6.22 rule 5).
+  bool cycle_output_ = false;
   Op last_op_ = Op::end;
   // The corner the current block asks for after its move, and the modal corner feed E.
   Command::Corner corner_kind_ = Command::Corner::none;

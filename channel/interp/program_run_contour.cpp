@@ -191,6 +191,21 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   const auto b = static_cast<std::size_t>(axes[1]);
   contour.clear();
   contour_lines_.clear();
+  // Nose compensation of the contour (spec L3743: active in G70-G73): the side, radius and tip
+  // in effect at the cycle, or of the first compensated contour block.
+  Command::Compensation side = compensation_;
+  double radius = 0.0;
+  int tip = 0;
+  if (offset_ > 0) {
+    const auto o = static_cast<std::size_t>(offset_);
+    radius = geometry_[o].radius + wear_[o].radius;
+    tip = geometry_[o].tip;
+  }
+  for (std::size_t k = from; k < out_.size() && side == Command::Compensation::off; ++k) {
+    side = out_[k].compensation;
+    radius = out_[k].nose_radius;
+    tip = out_[k].nose_tip;
+  }
   for (std::size_t k = from; k < out_.size(); ++k) {
     const Command& c = out_[k];
     path::PlaneMove m;
@@ -228,6 +243,30 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
     return fail(alarm::kContourMissing, std::string(code) + " contour N(P)..N(Q) has no motion",
                 column);
   }
+  // GSK: G71-G73 cancel the compensation (gsk A.6.22 rule 6); Dafeng roughs the compensated
+  // contour, so the passes and the semi-finishing pass keep the nose radius off the part.
+  if (side == Command::Compensation::off || radius <= 0.0 || config_.dialect == Dialect::gsk) {
+    return true;
+  }
+  path::NoseCompensation nose;
+  nose.start({machine_[a], machine_[b]},
+             side == Command::Compensation::left ? path::CompensationSide::left
+                                                 : path::CompensationSide::right,
+             radius, tip);
+  path::PlanePath compensated;
+  for (const path::PlaneMove& m : contour) {
+    if (const path::PathResult e = nose.push(m, compensated)) {
+      return fail_path(*e, column);
+    }
+  }
+  if (const path::PathResult e = nose.cancel(nullptr, compensated)) {
+    return fail_path(*e, column);
+  }
+  // The first move stays the approach to B, with the first block's speed type.
+  if (!compensated.empty()) {
+    compensated.front().kind = contour.front().kind;
+  }
+  contour = std::move(compensated);
   return true;
 }
 

@@ -55,7 +55,7 @@ bool ProgramRun::take_hole_words(int column) {
   if (BlockWord* r = word('R')) {
     r->used = true;
     if (gsk) {
-      h.retract = std::fabs(cycle_amount(*r));  // gsk: the back-off after each peck
+      h.retract = std::fabs(length_of(*r));  // gsk: the back-off after each peck (gsk D2-30)
     } else {
       h.has_r = true;  // Dafeng: the R point, an absolute coordinate of the drilling axis
       const std::array<int, 2> axes = plane_axis_indices();
@@ -142,6 +142,11 @@ bool ProgramRun::run_hole_cycle(int column) {
     }
   }
   bool first = true;
+  // Reset on every way out: the alarms below return early, and an alarm ends the run anyway.
+  struct CycleOutput {
+    bool& flag;
+    ~CycleOutput() { flag = false; }
+  } cycle_output{cycle_output_ = true};
   for (int k = 0; k < h.repeat; ++k) {
     AxisVector target{};
     std::array<bool, kMaxChannelAxes> given{};

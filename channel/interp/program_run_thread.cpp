@@ -215,6 +215,7 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
                                  double feed) {
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
+  cycle_output_ = true;
   bool after_thread = false;
   for (const path::PlaneMove& m : moves) {
     AxisVector to = machine_;
@@ -257,6 +258,7 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
     after_thread = m.kind == path::MoveKind::thread;
     machine_ = to;
   }
+  cycle_output_ = false;
   block_moved_ = block_moved_ || !moves.empty();
 }
 

@@ -157,24 +157,8 @@ Point2 touch_point(const Side& s, const Offset& o, Point2 c) {
 }
 
 PointHits fillet_centres(const Offset& o1, const Offset& o2) {
-  PointHits hits;
-  if (o1.circle && o2.circle) {
-    return intersect_circles(o1.point, o1.radius, o2.point, o2.radius);
-  }
-  if (!o1.circle && !o2.circle) {
-    const LineHits h = intersect_lines(o1.point, o1.direction, o2.point, o2.direction);
-    hits.count = h.count;
-    hits.p[0] = o1.point + h.t[0] * o1.direction;
-    return hits;
-  }
-  const Offset& line = o1.circle ? o2 : o1;
-  const Offset& circle = o1.circle ? o1 : o2;
-  const LineHits h = intersect_line_circle(line.point, line.direction, circle.point, circle.radius);
-  hits.count = h.count;
-  for (int i = 0; i < h.count; ++i) {
-    hits.p[i] = line.point + h.t[i] * line.direction;
-  }
-  return hits;
+  return intersect(LineOrCircle{o1.circle, o1.point, o1.direction, o1.radius},
+                   LineOrCircle{o2.circle, o2.point, o2.direction, o2.radius});
 }
 
 struct Fillet {

@@ -25,10 +25,14 @@ struct OffsetElement {
   double length = 0.0;  // line length or arc length
 };
 
-bool is_arc(const PlaneMove& m) { return m.kind == MoveKind::arc; }
+bool is_arc(const PlaneMove& m) {
+  return m.kind == MoveKind::arc;
+}
 
 // Signed length that moves the nose to the compensation side: + left of travel (G41).
-double side_sign(CompensationSide side) { return side == CompensationSide::left ? 1.0 : -1.0; }
+double side_sign(CompensationSide side) {
+  return side == CompensationSide::left ? 1.0 : -1.0;
+}
 
 // `shift` = side sign * nose radius. False when an arc's offset radius would be <= 0.
 bool make_offset(Point2 from, const PlaneMove& m, double shift, OffsetElement& el) {
@@ -89,34 +93,9 @@ bool is_outside_turn(Point2 from_vector, Point2 to_vector, CompensationSide side
   return side == CompensationSide::left ? c < 0.0 : c > 0.0;
 }
 
-struct Hits {
-  int count = 0;
-  Point2 p[2];
-};
-
-Hits intersect(const OffsetElement& e1, const OffsetElement& e2) {
-  Hits hits;
-  if (!e1.arc && !e2.arc) {
-    const LineHits h = intersect_lines(e1.start, e1.dir, e2.start, e2.dir);
-    hits.count = h.count;
-    hits.p[0] = e1.start + h.t[0] * e1.dir;
-    return hits;
-  }
-  if (e1.arc && e2.arc) {
-    const PointHits h = intersect_circles(e1.center, e1.radius, e2.center, e2.radius);
-    hits.count = h.count;
-    hits.p[0] = h.p[0];
-    hits.p[1] = h.p[1];
-    return hits;
-  }
-  const OffsetElement& line = e1.arc ? e2 : e1;
-  const OffsetElement& circle = e1.arc ? e1 : e2;
-  const LineHits h = intersect_line_circle(line.start, line.dir, circle.center, circle.radius);
-  hits.count = h.count;
-  for (int i = 0; i < h.count; ++i) {
-    hits.p[i] = line.start + h.t[i] * line.dir;
-  }
-  return hits;
+PointHits intersect(const OffsetElement& e1, const OffsetElement& e2) {
+  return path::intersect(LineOrCircle{e1.arc, e1.arc ? e1.center : e1.start, e1.dir, e1.radius},
+                         LineOrCircle{e2.arc, e2.arc ? e2.center : e2.start, e2.dir, e2.radius});
 }
 
 PathError geometry_error(const char* what, const PlaneMove& m, double radius) {
@@ -130,8 +109,8 @@ PathError geometry_error(const char* what, const PlaneMove& m, double radius) {
 
 Point2 tip_offset(int tip, double radius) {
   // Unit directions of tips 0-9 (a, b); 0 and 9 are the centre.
-  static constexpr double kTip[10][2] = {{0, 0},  {1, 1},  {-1, 1}, {-1, -1}, {1, -1},
-                                         {1, 0},  {0, 1},  {-1, 0}, {0, -1},  {0, 0}};
+  static constexpr double kTip[10][2] = {{0, 0}, {1, 1}, {-1, 1}, {-1, -1}, {1, -1},
+                                         {1, 0}, {0, 1}, {-1, 0}, {0, -1},  {0, 0}};
   if (tip < 0 || tip > 9) {
     return {};
   }
@@ -175,8 +154,7 @@ void NoseCompensation::emit_held(Point2 nose_to, double end_trim, PlanePath& out
   }
 }
 
-void NoseCompensation::emit_corner_arc(Point2 corner, Point2 nose_to, double feed,
-                                       PlanePath& out) {
+void NoseCompensation::emit_corner_arc(Point2 corner, Point2 nose_to, double feed, PlanePath& out) {
   PlaneMove arc;
   arc.kind = MoveKind::arc;
   arc.ccw = side_ == CompensationSide::right;  // G42 goes round left turns
@@ -278,7 +256,7 @@ PathResult NoseCompensation::join_corner(const PlaneMove& programmed, PlanePath&
   // after the point where that one starts and on the next one before its offset end, or the
   // path would go backwards (FANUC "interference"). Of two valid points the one nearer the
   // corner along both elements is taken.
-  const Hits hits = intersect(held, next);
+  const PointHits hits = intersect(held, next);
   const double available = held.length - held_start_trim_;
   int best = -1;
   double best_trim = 0.0;
@@ -300,8 +278,8 @@ PathResult NoseCompensation::join_corner(const PlaneMove& programmed, PlanePath&
   }
   if (best < 0) {
     if (hits.count == 0) {
-      return geometry_error("the offsets of the two moves at the inside corner do not meet",
-                            held_, radius_);
+      return geometry_error("the offsets of the two moves at the inside corner do not meet", held_,
+                            radius_);
     }
     return held_too_short
                ? geometry_error("the move before the inside corner is too short", held_, radius_)

@@ -5,18 +5,26 @@
 
 namespace mcnc::interp::path {
 
-double length(Point2 p) { return std::hypot(p.a, p.b); }
+double length(Point2 p) {
+  return std::hypot(p.a, p.b);
+}
 
 Point2 unit(Point2 p) {
   const double n = length(p);
   return n > 0.0 ? Point2{p.a / n, p.b / n} : Point2{};
 }
 
-Point2 left_normal(Point2 dir) { return {-dir.b, dir.a}; }
+Point2 left_normal(Point2 dir) {
+  return {-dir.b, dir.a};
+}
 
-bool same_point(Point2 p, Point2 q, double tolerance) { return length(p - q) <= tolerance; }
+bool same_point(Point2 p, Point2 q, double tolerance) {
+  return length(p - q) <= tolerance;
+}
 
-double arc_radius(Point2 from, const PlaneMove& arc) { return length(from - arc.center); }
+double arc_radius(Point2 from, const PlaneMove& arc) {
+  return length(from - arc.center);
+}
 
 double arc_sweep(Point2 from, const PlaneMove& arc) {
   const Point2 s = from - arc.center;
@@ -160,6 +168,28 @@ PointHits intersect_circles(Point2 c0, double r0, Point2 c1, double r1) {
   hits.count = 2;
   hits.p[0] = mid + h * left_normal(u);
   hits.p[1] = mid - h * left_normal(u);
+  return hits;
+}
+
+PointHits intersect(const LineOrCircle& e1, const LineOrCircle& e2) {
+  if (e1.circle && e2.circle) {
+    return intersect_circles(e1.point, e1.radius, e2.point, e2.radius);
+  }
+  PointHits hits;
+  if (!e1.circle && !e2.circle) {
+    const LineHits h = intersect_lines(e1.point, e1.direction, e2.point, e2.direction);
+    hits.count = h.count;
+    hits.p[0] = e1.point + h.t[0] * e1.direction;
+    return hits;
+  }
+  const LineOrCircle& line = e1.circle ? e2 : e1;
+  const LineOrCircle& circle = e1.circle ? e1 : e2;
+  const LineHits h = intersect_line_circle(line.point, line.direction, circle.point, circle.radius);
+  hits.count = h.count;
+  for (int i = 0; i < h.count; ++i) {
+    hits.p[static_cast<std::size_t>(i)] =
+        line.point + h.t[static_cast<std::size_t>(i)] * line.direction;
+  }
   return hits;
 }
 

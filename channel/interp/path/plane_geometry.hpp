@@ -42,6 +42,15 @@ struct PointHits {
 };
 // Parallel lines (|cross| below 1e-12 of their lengths) have no hit.
 LineHits intersect_lines(Point2 p0, Point2 d0, Point2 p1, Point2 d1);
+// A straight line through `point` along `direction`, or a circle about `point` of `radius`: the
+// offset elements that corners and compensation intersect.
+struct LineOrCircle {
+  bool circle = false;
+  Point2 point;
+  Point2 direction;
+  double radius = 0.0;
+};
+PointHits intersect(const LineOrCircle& e1, const LineOrCircle& e2);
 LineHits intersect_line_circle(Point2 p, Point2 d, Point2 center, double radius);
 PointHits intersect_circles(Point2 c0, double r0, Point2 c1, double r1);
 

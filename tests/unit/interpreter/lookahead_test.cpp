@@ -138,6 +138,25 @@ TEST(InterpCompensation, TooManyBlocksWithoutMotion) {
          with_nose(0.8, 3));
 }
 
+// gsk D2-19: six blocks without motion under G41/G42 are fine, the seventh is an alarm; G71
+// entered under G42 roughs without compensation (gsk A.6.22 rule 6).
+TEST(InterpCompensation, GskSevenBlocksAndG71WithoutCompensation) {
+  const std::string six = "M08\nM09\nM08\nM09\nM08\nM09\n";
+  run_ok("T0101\nG00 X20 Z5\nG42 G01 X20 Z2 F100\n" + six + "G01 Z-20\nG40 X30\nM30\n",
+         with_nose(0.8, 3, gsk()));
+  run_alarm("T0101\nG00 X20 Z5\nG42 G01 X20 Z2 F100\n" + six + "M08\nG01 Z-20\nM30\n",
+            alarm::kCompensationLookahead, 10, -1, with_nose(0.8, 3, gsk()));
+  const std::string g71 =
+      "T0101\nG00 X102 Z2\nG42\nG71 U2 R1 F0.2\nG71 P40 Q60 U0 W0\nN40 G00 X80\nN50 G01 "
+      "Z-30\nN60 X100\nG40 G00 X120\nM30\n";
+  RunResult g = run_ok(g71, with_nose(0.8, 3, gsk()));
+  RunResult d = run_ok(g71, with_nose(0.8, 3));
+  // The semi-finishing pass's shoulder: on the contour in GSK, the nose-compensated tip path
+  // (1.6 short on the diameter at the corner's end) in Dafeng.
+  EXPECT_AT(g.at_line(5)[g.at_line(5).size() - 2], 50, -30);
+  EXPECT_AT(d.at_line(5)[d.at_line(5).size() - 2], 49.2, -30);
+}
+
 TEST(InterpCompensation, ABarrierReleasesTheWaitingMove) {
   // M00 stops the read-ahead: the move before it ends normal to itself, in order before the stop.
   RunResult r = run_ok(

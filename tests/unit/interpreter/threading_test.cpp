@@ -135,6 +135,29 @@ TEST(InterpSingleCycles, G92Alarms) {
   run_alarm("G00 X60 Z5\nG92 X48 Z-30\nM30\n", alarm::kThreadLead, 2);
 }
 
+// The four quadrants (spec L2230-2240): the signs of U/W/R relative to the start decide the
+// direction of each leg; the cycle ends at the start in every case.
+TEST(InterpSingleCycles, G90InAllFourQuadrants) {
+  struct Case {
+    const char* block;
+    double cut_x, end_x, end_z;  // radius
+  } cases[] = {
+      {"G90 U-20 W-30 R-2 F1", 38, 40, -25},  // OD, towards the chuck, taper
+      {"G90 U20 W-30 R2 F1", 62, 60, -25},    // ID (start inside the bore)
+      {"G90 U-20 W30 R-2 F1", 38, 40, 35},    // OD, away from the chuck
+      {"G90 U20 W30 R2 F1", 62, 60, 35},
+  };
+  for (const Case& k : cases) {
+    RunResult r = run_ok(std::string("G00 X100 Z5\n") + k.block + "\nM30\n");
+    const auto moves = r.at_line(2);
+    ASSERT_EQ(moves.size(), 4u) << k.block;
+    EXPECT_AT(moves[0], k.cut_x, 5);
+    EXPECT_AT(moves[1], k.end_x, k.end_z);
+    EXPECT_AT(moves[2], 50, k.end_z);
+    EXPECT_AT(moves[3], 50, 5);
+  }
+}
+
 TEST(InterpSingleCycles, G90NeedsFeedAndTheCodeAloneDoesNothing) {
   run_alarm("G00 X60 Z5\nG90 X50 Z-10\nM30\n", alarm::kFeedMissing, 2);
   RunResult r = run_ok("G00 X60 Z5\nG90\nM30\n");

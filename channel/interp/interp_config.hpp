@@ -72,6 +72,7 @@ struct CycleDefaults {
   bool drill_high_speed = true;     // param 5100.1: G83 = G83.5 (true) or G83.6
   double drill_retract = 0.5;       // high-speed back-off r, param 5110
   double drill_clearance = 0.5;     // deep-hole clearance c, param 5111
+  double drill_full_retract = 0.0;  // G83.7: depth between full retracts (0: every peck)
   bool tap_high_speed = true;       // param 5200.1: G84 Q = G84.5 (true) or G84.6
   double tap_retract = 0.5;         // param 5211
 };

@@ -194,6 +194,7 @@ bool ProgramRun::run_hole_cycle(int column) {
     } else if (kind == cycles::HoleKind::drill) {
       c.retract = h.retract >= 0.0 ? h.retract : d.drill_retract;
       c.clearance = h.retract >= 0.0 ? h.retract : d.drill_clearance;
+      c.full_retract_depth = d.drill_full_retract;
       const bool high_speed = h.peck_type >= 0 ? h.peck_type == 0 : d.drill_high_speed;
       c.peck_mode = h.peck <= 0.0  ? cycles::PeckMode::none
                     : variant == 5 ? cycles::PeckMode::high_speed

@@ -45,7 +45,7 @@ void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
              "pattern_relief_z", "pattern_passes", "groove_retract", "thread_finish_passes",
              "thread_chamfer", "thread_angle", "thread_min_depth", "thread_allowance",
              "thread_alternating", "drill_high_speed", "drill_retract", "drill_clearance",
-             "tap_high_speed", "tap_retract"});
+             "drill_full_retract", "tap_high_speed", "tap_retract"});
   const auto length = [&](const char* k, double& v) {
     if (node[k]) {
       v = get<double>(node[k], std::string("cycles.") + k);
@@ -87,6 +87,7 @@ void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
   flag("drill_high_speed", d.drill_high_speed);
   length("drill_retract", d.drill_retract);
   length("drill_clearance", d.drill_clearance);
+  length("drill_full_retract", d.drill_full_retract);
   flag("tap_high_speed", d.tap_high_speed);
   length("tap_retract", d.tap_retract);
 }

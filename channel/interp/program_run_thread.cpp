@@ -157,11 +157,11 @@ bool ProgramRun::run_thread(GFunction f, int column) {
   if (gsk && !arc) {
     if (BlockWord* k = word('K')) {
       k->used = true;
-      runout_long = std::fabs(scaled(*k, true));
+      runout_long = std::fabs(length_of(*k));
     }
     if (BlockWord* j = word('J')) {
       j->used = true;
-      runout_short = scaled(*j, true);
+      runout_short = length_of(*j);
     }
   }
   const bool continuous = last_op_ == Op::thread;
@@ -325,7 +325,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
     c.chamfer_b = chamfer;
     if (BlockWord* j = word('J')) {
       j->used = true;
-      const double v = std::fabs(scaled(*j, true));
+      const double v = std::fabs(length_of(*j));
       if (gsk) {
         c.chamfer_b = v;
       } else {
@@ -336,7 +336,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
     if (BlockWord* k = word('K')) {
       k->used = true;
       if (gsk) {
-        c.chamfer_a = std::fabs(scaled(*k, true));
+        c.chamfer_a = std::fabs(length_of(*k));
       } else {
         c.lead_change = k->value * (metric_ ? 1.0 : 25.4);
       }

@@ -212,8 +212,9 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_pattern_cycle(int column);              // G73
   bool run_groove_cycle(GFunction f, int column);  // G74, G75
   bool run_multiple_thread(int column);            // G76
-  bool run_contour_cycle(const char* code, const path::PlanePath& moves,
-                         const std::array<int, 2>& axes, int first, int last);
+  // Emits a contour cycle's moves; execution goes on after N(Q) when the contour follows.
+  bool run_contour_cycle(const path::PlanePath& moves, const std::array<int, 2>& axes, int first,
+                         int last);
   // Hole cycles: whether this block drills (a group 10 code, or the modal cycle and positioning
   // words), the words of such a block, and the holes.
   bool hole_cycle_block(bool group10_in_block, bool motion_code_in_block) const;

@@ -44,9 +44,8 @@ double ProgramRun::cycle_amount(const BlockWord& w) const {
   return w.value * inch;
 }
 
-bool ProgramRun::run_contour_cycle(const char* code, const path::PlanePath& moves,
-                                   const std::array<int, 2>& axes, int first, int last) {
-  (void)code;
+bool ProgramRun::run_contour_cycle(const path::PlanePath& moves, const std::array<int, 2>& axes,
+                                   int first, int last) {
   emit_plane_path(moves, axes, feed_);
   // The contour follows the cycle block: execution goes on after N(Q) (gsk A.6.30 step 8).
   Frame& f = frames_.back();
@@ -138,7 +137,7 @@ bool ProgramRun::run_rough_cycle(GFunction f, int column) {
           cycles::expand_rough_turning({machine_[a], machine_[b]}, contour, p, moves)) {
     return fail_path(*e, column);
   }
-  return run_contour_cycle(code, moves, axes, contour_first_, contour_last_);
+  return run_contour_cycle(moves, axes, contour_first_, contour_last_);
 }
 
 bool ProgramRun::run_pattern_cycle(int column) {
@@ -199,7 +198,7 @@ bool ProgramRun::run_pattern_cycle(int column) {
           cycles::expand_pattern_repeat({machine_[a], machine_[b]}, contour, p, moves)) {
     return fail_path(*e, column);
   }
-  return run_contour_cycle("G73", moves, axes, contour_first_, contour_last_);
+  return run_contour_cycle(moves, axes, contour_first_, contour_last_);
 }
 
 bool ProgramRun::run_groove_cycle(GFunction f, int column) {

@@ -45,6 +45,8 @@ GCodeInfo common_code(int code10) {
       return {GFunction::reference_2_4, 0};
     case 320:
       return {GFunction::thread, 1};
+    case 330:
+      return {GFunction::flexible_tap, 1};
     case 321:
       return {GFunction::thread_interpolated, 1};
     case 322:

@@ -65,6 +65,7 @@ enum class GFunction : std::uint8_t {
   thread_arc_cw,        // G32.2
   thread_arc_ccw,       // G32.3
   thread_variable,      // G34
+  flexible_tap,         // G33 (GSK): tapping with a spindle stop and reversal
   // Single cycles (group 01): G90/G92/G94 in system A, G77/G78/G79 in B.
   turning_cycle,
   thread_cycle,

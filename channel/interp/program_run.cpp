@@ -512,6 +512,11 @@ bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, in
   if (contour_mode_ != ContourMode::none) {
     return contour_forbids("a subprogram call (M98, T or M code)", column);  // gsk A.6.30 rule 4
   }
+  if (config_.dialect == Dialect::gsk && compensation_ != Command::Compensation::off && !t_call) {
+    // GSK: compensation is cancelled before M98 and set up again inside (gsk A.6.22 rule 4).
+    return fail(alarm::kCompensationStart,
+                "cancel the tool-nose compensation (G40) before calling a subprogram", column);
+  }
   if (static_cast<int>(frames_.size()) > config_.max_subprogram_nesting) {
     return fail(
         alarm::kCallNestingTooDeep,

@@ -164,6 +164,7 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
+  bool run_flexible_tap(int column);  // G33 (GSK)
   bool thread_lead(double& lead, int column);
   bool thread_start_angle(double& angle);
   bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);

@@ -170,6 +170,8 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
     case GFunction::thread_arc_ccw:
     case GFunction::thread_variable:
       return run_thread(motion, column);
+    case GFunction::flexible_tap:
+      return run_flexible_tap(column);
     case GFunction::turning_cycle:
     case GFunction::thread_cycle:
     case GFunction::facing_cycle:

@@ -211,6 +211,81 @@ bool ProgramRun::run_thread(GFunction f, int column) {
   return true;
 }
 
+bool ProgramRun::run_flexible_tap(int column) {
+  // GSK G33 (gsk A.6.36, D2-32): tap in synchronised, stop the spindle, reverse it, tap out,
+  // stop; L times. The Dafeng manual has no G33.
+  if (config_.dialect != Dialect::gsk) {
+    return fail(alarm::kUnsupportedG, "G33 (flexible tapping) is a code of the GSK dialect",
+                column);
+  }
+  std::array<int, 2> axes{};
+  if (!require_plane_axes(axes, column)) {
+    return false;
+  }
+  const auto drill = static_cast<std::size_t>(axes[0]);
+  AxisVector target{};
+  std::array<bool, kMaxChannelAxes> given{};
+  if (!read_axis_targets(target, given, false)) {
+    return false;
+  }
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    if (given[i] && i != drill) {
+      return fail(alarm::kWordNotAllowed, "G33 taps along Z only: give the hole bottom Z/W",
+                  column);
+    }
+  }
+  if (!given[drill]) {
+    return true;  // G33 alone selects the mode
+  }
+  double lead = 0.0;
+  if (!thread_lead(lead, column)) {
+    return false;
+  }
+  int times = 1;
+  if (BlockWord* l = word('L')) {
+    l->used = true;
+    if (l->value < 1.0 || l->value > 99.0 || l->value != std::floor(l->value)) {
+      return fail(alarm::kCycleValue, "G33 L must be a whole number 1-99", l->column);
+    }
+    times = static_cast<int>(l->value);
+  }
+  const auto s = static_cast<std::size_t>(reference_spindle_);
+  const SpindleDirection turning = spindle_direction_[s];
+  if (turning != SpindleDirection::cw && turning != SpindleDirection::ccw) {
+    return fail(alarm::kWordNotAllowed, "G33 needs the spindle turning (M03/M04) before it",
+                column);
+  }
+  const SpindleDirection back =
+      turning == SpindleDirection::cw ? SpindleDirection::ccw : SpindleDirection::cw;
+  const AxisVector top = machine_;
+  auto spindle = [&](SpindleDirection d) {
+    Command& c = emit(Op::spindle);
+    c.spindle = reference_spindle_;
+    c.spindle_direction = d;
+    c.rpm = rpm_[s];
+  };
+  auto tap = [&](const AxisVector& to) {
+    Command& c = emit(Op::thread);
+    c.to = to;
+    c.lead = lead;
+    c.spindle = reference_spindle_;
+  };
+  for (int i = 0; i < times; ++i) {
+    if (i > 0) {
+      spindle(turning);  // each repetition starts like the first, the spindle turning
+    }
+    tap(target);
+    spindle(SpindleDirection::stop);
+    spindle(back);
+    tap(top);
+    spindle(SpindleDirection::stop);
+  }
+  spindle_direction_[s] = SpindleDirection::stop;  // the cycle leaves the spindle stopped
+  machine_ = top;
+  block_moved_ = true;
+  return true;
+}
+
 void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes,
                                  double feed) {
   const auto a = static_cast<std::size_t>(axes[0]);

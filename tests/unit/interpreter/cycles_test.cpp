@@ -51,8 +51,8 @@ TEST(InterpCycles, G76FirstBlockIsModal) {
     EXPECT_DOUBLE_EQ(t.lead, 6.0);
   }
   // gsk D2-29: P021060 = 2 finishing passes, chamfer 1.0 lead, 60 degrees; Q100 = 0.1 mm.
-  RunResult g = run_ok("G00 X32 Z3\nG76 P021060 Q100 R0.1\nG76 X27.6 Z-30 P1200 Q400 F2\nM30\n",
-                       gsk());
+  RunResult g =
+      run_ok("G00 X32 Z3\nG76 P021060 Q100 R0.1\nG76 X27.6 Z-30 P1200 Q400 F2\nM30\n", gsk());
   const auto gt = g.of(Op::thread);
   ASSERT_EQ(gt.size(), 2u * (7u + 2u));  // each pass threads, then chamfers out
   EXPECT_NEAR(gt[gt.size() - 2].to[0], 13.8, 1e-9);
@@ -68,8 +68,7 @@ TEST(InterpCycles, G76NeedsHeightAndFirstDepth) {
 // between M12 and M13, cancelled by G00.
 TEST(InterpCycles, G83HolesRepeatWithIncrementalPositioning) {
   RunResult r = run_ok(
-      "G98 G00 Z5\nG00 X100\nG83.5 Z-10 C0 R1 Q4 F300 M12\nH90 K3\nG00 Z100\nM30\n",
-      lathe_xzc());
+      "G98 G00 Z5\nG00 X100\nG83.5 Z-10 C0 R1 Q4 F300 M12\nH90 K3\nG00 Z100\nM30\n", lathe_xzc());
   const auto aux = r.of(Op::aux);
   ASSERT_EQ(aux.size(), 8u);
   for (std::size_t i = 0; i < aux.size(); ++i) {
@@ -120,6 +119,33 @@ TEST(InterpCycles, GskDrillingWords) {
   EXPECT_AT(feeds[3], 0, -10);
   ASSERT_EQ(r.of(Op::dwell).size(), 1u);
   EXPECT_DOUBLE_EQ(r.of(Op::dwell)[0].seconds, 0.5);
+}
+
+// gsk D2-32: G33 Z-15 F1.5 from Z5 with M03: tap in, M05, M04, tap out, M05; L2 twice.
+TEST(InterpCycles, GskG33FlexibleTapping) {
+  RunResult r = run_ok("M03 S300\nG00 X0 Z5\nG33 Z-15 F1.5\nM30\n", gsk());
+  const auto cycle = r.at_line(3);
+  ASSERT_EQ(cycle.size(), 5u);
+  EXPECT_EQ(cycle[0].op, Op::thread);
+  EXPECT_AT(cycle[0], 0, -15);
+  EXPECT_DOUBLE_EQ(cycle[0].lead, 1.5);
+  EXPECT_EQ(cycle[1].spindle_direction, SpindleDirection::stop);
+  EXPECT_EQ(cycle[2].spindle_direction, SpindleDirection::ccw);
+  EXPECT_EQ(cycle[3].op, Op::thread);
+  EXPECT_AT(cycle[3], 0, 5);
+  EXPECT_EQ(cycle[4].spindle_direction, SpindleDirection::stop);
+  RunResult twice = run_ok("M03 S300\nG00 X0 Z5\nG33 Z-15 F1.5 L2\nM30\n", gsk());
+  EXPECT_EQ(twice.at_line(3).size(), 11u);  // the second one starts the spindle again
+  run_alarm("G00 X0 Z5\nG33 Z-15 F1.5\nM30\n", alarm::kWordNotAllowed, 2, -1, gsk());
+  run_alarm("M03 S300\nG00 X0 Z5\nG33 Z-15 F1.5\nM30\n", alarm::kUnsupportedG, 3);
+}
+
+// gsk A.6.22 rule 4: M98 under compensation is an alarm in the GSK dialect.
+TEST(InterpCycles, GskSubprogramCallUnderCompensation) {
+  InterpreterConfig c = gsk();
+  c.tool_geometry[1].radius = 0.4;
+  run_alarm("O1\nT0101\nG42 G00 X20 Z5\nM98 P100\nM30\nO100\nG01 Z0 F1\nM99\n",
+            alarm::kCompensationStart, 4, -1, c);
 }
 
 }  // namespace

@@ -197,6 +197,9 @@ GCodeInfo lookup_gcode(int code10, GCodeSystem system) {
         return {GFunction::turning_cycle, 1};
       case 920:
         return {GFunction::thread_cycle, 1};
+      case 921:  // GSK G92.1, the interpolated threading cycle (gsk A.6.29)
+      case 780:  // GSK G78, the extended multiple threading cycle (gsk A.6.33)
+        return not_yet(kOther);
       case 940:
         return {GFunction::facing_cycle, 1};
       case 980:

@@ -170,12 +170,17 @@ path::PathResult expand_rough_turning(Point2 start, const PlanePath& contour,
   }
 
   const MoveKind infeed = first.kind;  // the speed type of the first block (gsk A.6.30 step 2)
+  Point2 at_pos = start;               // where the moves so far end
   auto push = [&](MoveKind kind, Point2 to) {
+    if (path::same_point(at_pos, to)) {
+      return;  // a move that goes nowhere is left out
+    }
     PlaneMove m;
     m.kind = kind;
     m.to = to;
     m.feed = kind == MoveKind::feed ? p.feed : 0.0;
     out.push_back(m);
+    at_pos = to;
   };
   if (!path::same_point(start, a_prime)) {
     push(MoveKind::rapid, a_prime);
@@ -272,30 +277,40 @@ path::PathResult expand_rough_turning(Point2 start, const PlanePath& contour,
         // Into a pocket: over the part at the start level, down at rapid to the last level
         // (cut by the passes before), then in at feed.
         detour = true;
-        push(MoveKind::rapid, x.point(x.c(out.empty() ? start : out.back().to), s_a));
+        push(MoveKind::rapid, x.point(x.c(at_pos), s_a));
         push(MoveKind::rapid, x.point(c0, s_a));
         push(MoveKind::rapid, x.point(c0, prev_level));
         push(MoveKind::feed, x.point(c0, level));
       }
       push(MoveKind::feed, x.point(c1, level));
-      // The retract: 45 degrees back off the contour, or along it (J1).
-      Point2 lifted = x.point(c1 - cut_dir * p.retract, level + lift);
+      // The retract: 45 degrees back off the contour, but within the cut just made (a narrow
+      // pocket's entry wall stands right behind it), or along the contour (J1) where the
+      // straight lift stays off the part.
+      const double back_off = std::min(p.retract, std::fabs(c1 - c0));
+      Point2 lifted = x.point(c1 - cut_dir * back_off, level + lift);
       if (p.retract_along_contour && p.retract > 0.0) {
-        std::vector<double> back;
+        std::vector<double> ahead;
         Point2 from = rough.b_prime;
         for (const PlaneMove& m : rough.moves) {
-          crossings(x, from, m, level + lift, back);
+          crossings(x, from, m, level + lift, ahead);
           from = m.to;
         }
         bool any = false;
         double best = 0.0;
-        for (const double b : back) {
-          if ((b - c1) * cut_dir <= kEps && (!any || (b - best) * cut_dir > 0.0)) {
+        for (const double b : ahead) {
+          if ((b - c1) * cut_dir >= -kEps && (!any || (b - best) * cut_dir < 0.0)) {
             best = b;
             any = true;
           }
         }
-        if (any) {
+        bool clear = any;
+        for (int k = 1; clear && k < 16; ++k) {
+          const double c = c1 + (best - c1) * k / 16.0;
+          const double line_s = level + lift * k / 16.0;
+          const std::optional<double> surface = contour_s(c);
+          clear = !surface || (line_s - *surface) * -in_dir >= -1e-9;
+        }
+        if (clear) {
           lifted = x.point(best, level + lift);
         }
       }
@@ -306,7 +321,7 @@ path::PathResult expand_rough_turning(Point2 start, const PlanePath& contour,
     if (cuts.empty()) {
       continue;
     }
-    const Point2 here = out.back().to;
+    const Point2 here = at_pos;
     if (detour) {
       push(MoveKind::rapid, x.point(x.c(here), s_a));  // out over the part
       push(MoveKind::rapid, x.point(c_a, s_a));
@@ -318,6 +333,7 @@ path::PathResult expand_rough_turning(Point2 start, const PlanePath& contour,
   push(infeed, rough.b_prime);
   for (const PlaneMove& m : rough.moves) {
     out.push_back(m);
+    at_pos = m.to;
   }
   push(MoveKind::rapid, start);
   return std::nullopt;

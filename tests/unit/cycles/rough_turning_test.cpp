@@ -165,6 +165,59 @@ TEST(RoughTurning, TypeTwoCutsThePocket) {
   EXPECT_EQ(e->alarm, alarm::kContourNotMonotonic);
 }
 
+// A pocket narrower than the retract: the 45-degree lift must not reach behind the pocket's
+// entry wall into the part.
+TEST(RoughTurning, NarrowPocketRetractStaysInThePocket) {
+  const PlanePath contour{mv(MoveKind::rapid, 2, 22),    mv(MoveKind::feed, -10, 22),
+                          mv(MoveKind::feed, -10, 19),   mv(MoveKind::feed, -10.5, 19),
+                          mv(MoveKind::feed, -10.5, 22), mv(MoveKind::feed, -20, 22),
+                          mv(MoveKind::feed, -20, 25)};
+  RoughingParams p;
+  p.depth = 1;
+  p.retract = 1;
+  p.feed = 0.2;
+  p.type2 = true;
+  PlanePath out;
+  ASSERT_FALSE(expand_rough_turning({2, 26}, contour, p, out));
+  auto surface = [](double c) { return c < -10 + 1e-9 && c > -10.5 - 1e-9 ? 19.0 : 22.0; };
+  Point2 from{2, 26};
+  bool pocket_cut = false;
+  for (const PlaneMove& m : out) {
+    for (int k = 1; k <= 20; ++k) {
+      const Point2 q = from + (k / 20.0) * (m.to - from);
+      if (q.a > -20 && q.a < 2) {
+        EXPECT_GE(q.b, surface(q.a) - 1e-9) << "(" << q.a << ", " << q.b << ") inside the part";
+      }
+    }
+    pocket_cut = pocket_cut || (m.kind == MoveKind::feed && std::fabs(m.to.b - 19) < 1e-9 &&
+                                std::fabs(m.to.a + 10.5) < 1e-9);
+    from = m.to;
+  }
+  EXPECT_TRUE(pocket_cut);
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    EXPECT_FALSE(path::same_point(out[i - 1].to, out[i].to)) << "a move that goes nowhere at " << i;
+  }
+}
+
+// J1: the retract follows a taper up to the lifted level instead of backing off at 45 degrees.
+TEST(RoughTurning, RetractAlongTheContourFollowsATaper) {
+  const PlanePath contour{mv(MoveKind::rapid, 2, 10), mv(MoveKind::feed, -10, 10),
+                          mv(MoveKind::feed, -20, 20), mv(MoveKind::feed, -30, 20)};
+  RoughingParams p;
+  p.depth = 1;
+  p.retract = 1;
+  p.feed = 0.2;
+  p.retract_along_contour = true;
+  PlanePath out;
+  ASSERT_FALSE(expand_rough_turning({2, 25}, contour, p, out));
+  bool along = false;
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    along = along ||
+            (path::same_point(out[i - 1].to, {-19, 19}) && path::same_point(out[i].to, {-20, 20}));
+  }
+  EXPECT_TRUE(along);
+}
+
 TEST(RoughTurning, Alarms) {
   RoughingParams p;
   p.depth = 1;

@@ -47,19 +47,19 @@ ProfileResult JerkLimitedProfile::plan(double distance, double v_start, double v
                                        const JerkLimits& limits, JerkLimitedProfile& out) noexcept {
   const JerkLimits& l = limits;
   if (!(l.velocity > 0.0) || !(l.acceleration > 0.0) || !(l.jerk > 0.0) || !(distance >= 0.0) ||
-      !(v_start >= 0.0) || !(v_end >= 0.0) || v_start > l.velocity * (1.0 + 1e-12) ||
-      v_end > l.velocity * (1.0 + 1e-12)) {
+      !(v_start >= 0.0) || !(v_end >= 0.0) || v_end > l.velocity * (1.0 + 1e-12)) {
     return ProfileResult::bad_limits;
   }
   const auto needed = [&](double vp) {
     return speed_change_distance(v_start, vp, l) + speed_change_distance(vp, v_end, l);
   };
-  double low = std::max(v_start, v_end);
-  if (needed(low) > distance * (1.0 + 1e-12) + 1e-12) {
+  const bool above = v_start > l.velocity;  // slows down to the limit first
+  double low = above ? l.velocity : std::max(v_start, v_end);
+  if (needed(low) > distance * (1.0 + 1e-9) + 1e-9) {  // 1 nm of rounding
     return ProfileResult::unreachable;
   }
   double vp = l.velocity;
-  if (needed(vp) > distance) {
+  if (!above && needed(vp) > distance) {
     // The distance is too short for the limit: the peak where up and down meet. needed() grows
     // with vp; bisection to the last representable digit keeps it deterministic.
     double high = l.velocity;
@@ -69,14 +69,15 @@ ProfileResult JerkLimitedProfile::plan(double distance, double v_start, double v
     }
     vp = low;
   }
-  const ChangeTimes up = change_times(vp - v_start, l);
+  const ChangeTimes up = change_times(std::fabs(vp - v_start), l);
+  const double up_sign = vp >= v_start ? 1.0 : -1.0;
   const ChangeTimes down = change_times(vp - v_end, l);
   const double cruise = vp > 0.0 ? std::max(0.0, (distance - needed(vp)) / vp) : 0.0;
   JerkLimitedProfile p;
   const double j = l.jerk;
-  const std::array<std::pair<double, double>, 7> plan{{{up.jerk, j},
+  const std::array<std::pair<double, double>, 7> plan{{{up.jerk, up_sign * j},
                                                        {up.constant, 0.0},
-                                                       {up.jerk, -j},
+                                                       {up.jerk, -up_sign * j},
                                                        {cruise, 0.0},
                                                        {down.jerk, -j},
                                                        {down.constant, 0.0},

@@ -13,7 +13,7 @@ namespace mcnc::motion {
 
 enum class ProfileResult : std::uint8_t {
   ok,
-  bad_limits,   // a limit <= 0, a negative distance or velocity, a start/end above v_max
+  bad_limits,   // a limit <= 0, a negative distance or velocity, an end above v_max
   unreachable,  // the end velocity cannot be reached within the distance
 };
 
@@ -33,7 +33,8 @@ class JerkLimitedProfile {
   JerkLimitedProfile() = default;
 
   // The fastest profile: up to the highest velocity the distance allows (at most the limit),
-  // cruise, down to v_end. `out` is unchanged unless the result is ok.
+  // cruise, down to v_end. A start above the limit (an override lowered under way) first slows
+  // down to the limit. `out` is unchanged unless the result is ok.
   static ProfileResult plan(double distance, double v_start, double v_end, const JerkLimits& limits,
                             JerkLimitedProfile& out) noexcept;
 

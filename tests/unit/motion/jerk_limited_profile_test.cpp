@@ -57,7 +57,25 @@ TEST(JerkLimitedProfile, EndVelocityAndUnreachable) {
   EXPECT_EQ(JerkLimitedProfile::plan(15.0, 100.0, 0.0, l, p), ProfileResult::ok);
   EXPECT_EQ(JerkLimitedProfile::plan(1.0, 0.0, 0.0, JerkLimits{0.0, 1.0, 1.0}, p),
             ProfileResult::bad_limits);
-  EXPECT_EQ(JerkLimitedProfile::plan(1.0, 200.0, 0.0, l, p), ProfileResult::bad_limits);
+  EXPECT_EQ(JerkLimitedProfile::plan(1.0, 0.0, 120.0, l, p), ProfileResult::bad_limits);
+}
+
+TEST(JerkLimitedProfile, StartAboveTheLimitSlowsDownFirst) {
+  // An override lowered under way: from 150 down to the limit 100, cruise, then to 0. Slowing
+  // 150 -> 100 takes 50/400 + 400/8000 = 0.175 s over 125 * 0.175 = 21.875 mm.
+  const JerkLimits l{100.0, 400.0, 8000.0};
+  JerkLimitedProfile p;
+  ASSERT_EQ(JerkLimitedProfile::plan(100.0, 150.0, 0.0, l, p), ProfileResult::ok);
+  EXPECT_DOUBLE_EQ(p.peak_velocity(), 100.0);
+  EXPECT_NEAR(p.at(0.175).v, 100.0, 1e-9);
+  EXPECT_NEAR(p.at(0.175).s, 21.875, 1e-9);
+  for (double t = 0.0; t < 0.175; t += 0.005) {
+    EXPECT_LE(p.at(t + 0.005).v, p.at(t).v + 1e-12);  // only slows down
+  }
+  EXPECT_DOUBLE_EQ(p.at(p.duration()).s, 100.0);
+  // Too short to slow down to the limit and stop: 21.875 + 15 mm needed.
+  EXPECT_EQ(JerkLimitedProfile::plan(36.8, 150.0, 0.0, l, p), ProfileResult::unreachable);
+  EXPECT_EQ(JerkLimitedProfile::plan(36.9, 150.0, 0.0, l, p), ProfileResult::ok);
 }
 
 // Random blocks sampled every 50 us: velocity, acceleration and jerk within their limits, the

@@ -260,7 +260,6 @@ class MotionPlanner {
   double thread_next_angle0_ = 0.0;
   bool thread_chain_ = false;
   double prev_angle_ = 0.0;
-  bool have_prev_angle_ = false;
   MotionOutput out_{};
 };
 

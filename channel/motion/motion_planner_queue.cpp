@@ -234,7 +234,14 @@ bool MotionPlanner::try_blend(std::size_t prev_index, Segment& next) noexcept {
   const double sin_half = std::sin(half);
   double radius = config_.path_tolerance * sin_half / (1.0 - sin_half);
   double setback = radius / std::tan(half);
-  const double room = 0.5 * std::min(prev.full_length, next.full_length);
+  // Each blend may take what the blend before left of the line in front of it, and half of
+  // the next line (the other half is for the next corner). A sliver left of the line would be
+  // a straight piece between two arcs, a curvature step for nothing: the blend takes it too.
+  const double prev_left = prev.geometry.length();
+  double room = std::min(prev_left, 0.5 * next.full_length);
+  if (prev_left - room < 0.01 * prev_left && prev_left <= 0.75 * next.full_length) {
+    room = prev_left;
+  }
   if (setback > room) {
     setback = room;
     radius = setback * std::tan(half);

@@ -137,23 +137,26 @@ bool MotionPlanner::plan_run(double v, double a, bool may_end_faster) noexcept {
 // A feed hold's or reset's stop: the quickest stop on the path with the limits of the runs it
 // may cross.
 void MotionPlanner::start_stop(double scale) noexcept {
-  JerkLimits lim{kInf, kInf, kInf};
-  JerkPhases stop;
+  const Item& head = item(item_head_);
+  JerkLimits lim{kInf, head.limits.acceleration * scale, head.limits.jerk * scale};
+  JerkPhases stop = speed_transition(v_, a_, 0.0, lim);
   for (int round = 0; round < 3; ++round) {
-    double reach = 0.0;
-    lim = JerkLimits{kInf, kInf, kInf};
-    for (std::size_t i = item_head_; i < item_head_ + item_count_; ++i) {
+    // The runs the stop reaches may allow less: take theirs and plan again.
+    JerkLimits wider = lim;
+    double reach = -s_;
+    for (std::size_t i = item_head_; i < item_head_ + item_count_ && reach < stop.end().s; ++i) {
       const Item& it = item(i);
       if (it.kind != ItemKind::path) {
         break;
       }
-      lim.acceleration = std::min(lim.acceleration, it.limits.acceleration * scale);
-      lim.jerk = std::min(lim.jerk, it.limits.jerk * scale);
-      reach += it.length - (i == item_head_ ? s_ : 0.0);
-      if (round > 0 && reach > stop.end().s) {
-        break;
-      }
+      wider.acceleration = std::min(wider.acceleration, it.limits.acceleration * scale);
+      wider.jerk = std::min(wider.jerk, it.limits.jerk * scale);
+      reach += it.length;
     }
+    if (wider.acceleration == lim.acceleration && wider.jerk == lim.jerk) {
+      break;
+    }
+    lim = wider;
     stop = speed_transition(v_, a_, 0.0, lim);
   }
   piece_ = Piece{};
@@ -425,7 +428,6 @@ void MotionPlanner::step_thread() noexcept {
       out_.block = it.block;
       out_.line = it.line;
       prev_angle_ = angle;
-      have_prev_angle_ = true;
       return;
     }
     const double margin = 1.0 + std::max(0.0, config_.thread_speed_margin);
@@ -442,8 +444,11 @@ void MotionPlanner::step_thread() noexcept {
     g.path_change = it.lead_change;
     g.ramp_in = !chained;
     g.ramp_out = it.ramp_out;
-    const JerkLimits l{kInf, it.limits.acceleration / (margin * margin),
-                       it.limits.jerk / (margin * margin * margin)};
+    // The ramps are laid out in revolutions: a faster spindle scales their acceleration with
+    // the square and their jerk with the cube of the speed; the spindle's own acceleration
+    // adds lead * dn/dt and 3 s'' n dn/dt, for which a tenth and a quarter stay in reserve.
+    const JerkLimits l{kInf, it.limits.acceleration / (margin * margin * 1.1),
+                       it.limits.jerk / (margin * margin * margin * 1.25)};
     if (!thread_.plan(g, n, l)) {
       out_.fault = MotionFault::unplannable;
       out_.state = MotionState::fault;
@@ -463,9 +468,7 @@ void MotionPlanner::step_thread() noexcept {
       thread_angle0_ = angle;
     } else {
       thread_started_ = false;
-      if (!have_prev_angle_) {
-        prev_angle_ = angle;
-      }
+      prev_angle_ = angle;  // the start angle counts from now on, never from an earlier pass
     }
   }
   if (!thread_started_) {
@@ -473,7 +476,6 @@ void MotionPlanner::step_thread() noexcept {
     const double from = prev_angle_;
     const double to = angle;
     prev_angle_ = angle;
-    have_prev_angle_ = true;
     const double d = thread_dir_ * (to - from);
     if (d > 0.0) {
       const double base = thread_dir_ > 0.0 ? from : -from;

@@ -32,7 +32,7 @@ struct MotionConfig {
   double path_tolerance = 0.01;    // G64: how far a blended corner may leave the corner point
   bool jerk_limited = true;        // false: trapezoidal feed profiles
   bool rapid_interpolated = true;  // G00 on a straight line; false: each axis at its own rate
-  double curve_acceleration_share = 0.5;  // on arcs: the share of acceleration for the curve
+  double curve_acceleration_share = 0.8;  // on arcs: the curve's share of the acceleration
   double reset_deceleration_scale = 1.0;  // reset: the axes' acceleration and jerk times this
   double thread_speed_margin = 0.1;       // thread ramps stay in limits up to this speed rise
   int css_axis = -1;                      // G96: the axis whose distance from the centre counts
@@ -93,10 +93,17 @@ class MotionPlanner {
   MotionPlanner(const MotionConfig& config, const AxisVector& start);
 
   // Queues a rapid, linear, arc, thread or dwell; a spindle command sets the speed the
-  // following blocks command (G96 included). Never moves anything by itself.
+  // following blocks command (G96 included). Never moves anything by itself. The backward pass
+  // over what was queued runs once, at the next step() or update_lookahead().
   PushResult push(const interp::Command& command) noexcept;
 
   const MotionOutput& step(const CycleInput& input) noexcept;
+  // The backward pass over the blocks queued since the last one (step() runs it first).
+  void update_lookahead() noexcept {
+    if (backward_pending_) {
+      backward_pass(false);
+    }
+  }
 
   // Single block: stop at the end of every block (from the next block end that can be reached
   // within the limits), and go on at resume().
@@ -197,7 +204,8 @@ class MotionPlanner {
   [[nodiscard]] double factor(Feed kind) const noexcept;
   [[nodiscard]] double cap_of(const Item& it) const noexcept;
   [[nodiscard]] double end_target(std::size_t index) const noexcept;
-  void backward_from(std::size_t index, bool all) noexcept;
+  void touch(std::size_t index) noexcept;
+  void backward_pass(bool all) noexcept;
 
   // interpolation
   void step_path(double dt) noexcept;
@@ -227,6 +235,9 @@ class MotionPlanner {
   bool single_block_ = false;
   bool resume_requested_ = false;
   bool replan_needed_ = false;
+  static constexpr std::size_t kNoneChanged = ~std::size_t{0};
+  std::size_t first_changed_ = kNoneChanged;  // the first run changed since the backward pass
+  bool backward_pending_ = false;
   bool reset_requested_ = false;
 
   // interpolator state

@@ -100,8 +100,11 @@ void MotionPlanner::set_segment_limits(Segment& s) const noexcept {
     return;
   }
   // An arc: the acceleration and jerk vectors turn with it, so every moving axis may take all
-  // of them: the smallest axis limits bound the path. The curve's own acceleration v^2 k and
-  // jerk 3 k v a_t + v^3 k' take their shares (docs/motion.md).
+  // of them: the smallest axis limits bound the path. Tangent T and curvature direction N are
+  // orthogonal, so an axis sees at most sqrt(a_t^2 + (v^2 k)^2): the curve takes `share` of
+  // the acceleration, the path sqrt(1 - share^2) of it. The jerk is j_t - k^2 v^3 along T,
+  // 3 k v a_t along N and k t v^3 across: budgets of J/2, J/5, 0.68 J keep the sum of
+  // squares below J^2 (docs/motion.md).
   double v_axes = kInf;
   double a = kInf;
   double j = kInf;
@@ -119,18 +122,18 @@ void MotionPlanner::set_segment_limits(Segment& s) const noexcept {
     s.limits = JerkLimits{kInf, 1.0, 1.0};
     return;
   }
-  const double share = std::clamp(config_.curve_acceleration_share, 0.05, 0.95);
-  const double a_t = (1.0 - share) * a;
-  const double j_t = j / 3.0;
+  const double share = std::clamp(config_.curve_acceleration_share, 0.1, 0.95);
+  const double a_t = std::sqrt(1.0 - share * share) * a;
+  const double j_t = j / 2.0;
   const double k = g.curvature_norm();
   const double k3 = g.curvature_rate();
   double v = v_axes;
   if (k > 0.0) {
     v = std::min(v, std::sqrt(share * a / k));
-    v = std::min(v, j / (9.0 * k * a_t));
+    v = std::min(v, 0.68 * j / (3.0 * k * a_t));
   }
   if (k3 > 0.0) {
-    v = std::min(v, std::cbrt(j / (3.0 * k3)));
+    v = std::min(v, std::cbrt(j / (5.0 * k3)));
   }
   s.v_geometry = v;
   s.limits = JerkLimits{kInf, a_t, j_t};
@@ -251,6 +254,7 @@ bool MotionPlanner::try_blend(std::size_t prev_index, Segment& next) noexcept {
   }
   prev.geometry.trim_line_end(setback);
   item(item_head_ + item_count_ - 1).length -= setback;
+  touch(item_head_ + item_count_ - 1);
   next.geometry.trim_line_start(setback);
   Segment blend = next;
   blend.geometry =
@@ -338,7 +342,7 @@ void MotionPlanner::append_segment(const Segment& s, double cap) noexcept {
     it.block = s.block;
     it.line = s.line;
   }
-  backward_from(item_head_ + item_count_ - 1, false);
+  touch(item_head_ + item_count_ - 1);
 }
 
 PushResult MotionPlanner::push_path(const interp::Command& c, Feed feed_kind) noexcept {
@@ -470,7 +474,7 @@ PushResult MotionPlanner::push_dwell(const interp::Command& c) noexcept {
   it.line = c.line;
   it.spindle = spindle_;
   it.to = tail_pos_;
-  backward_from(item_head_ + item_count_ - 1, false);
+  touch(item_head_ + item_count_ - 1);
   return PushResult::accepted;
 }
 
@@ -495,11 +499,24 @@ double MotionPlanner::end_target(std::size_t index) const noexcept {
   return next.kind == ItemKind::path ? std::min(next.vb, next.start_cap) : 0.0;
 }
 
-// Backward pass from item `index` toward the head: each run's highest start speed such that it
-// can still slow down to what the next allows. Stops where nothing changes (unless `all`).
-void MotionPlanner::backward_from(std::size_t index, bool all) noexcept {
+void MotionPlanner::touch(std::size_t index) noexcept {
+  first_changed_ = std::min(first_changed_, index);
+  backward_pending_ = true;
+}
+
+// Backward pass from the last run toward the head: each run's highest start speed such that it
+// can still slow down to what the next allows. Runs at or after the first one changed since the
+// last pass are all recomputed; before them it stops where a speed no longer changes (unless
+// `all`: after an override change every run's limit moved).
+void MotionPlanner::backward_pass(bool all) noexcept {
+  backward_pending_ = false;
+  if (item_count_ == 0) {
+    first_changed_ = kNoneChanged;
+    return;
+  }
   const std::size_t first = item_head_ + (active_ ? 1 : 0);
-  for (std::size_t i = index + 1; i-- > first;) {
+  const std::size_t last = item_head_ + item_count_ - 1;
+  for (std::size_t i = last + 1; i-- > first;) {
     Item& it = item(i);
     double vb = 0.0;
     if (it.kind == ItemKind::path) {
@@ -507,11 +524,14 @@ void MotionPlanner::backward_from(std::size_t index, bool all) noexcept {
       const JerkLimits l{std::max(cap, 1e-12), it.limits.acceleration, it.limits.jerk};
       vb = std::min({cap, it.start_cap, max_speed_within(it.length, end_target(i), l)});
     }
-    if (!all && i != index && vb == it.vb) {
+    // Appending gives the runs before more room, never less: where a run's speed no longer
+    // changes (to rounding), nothing before it does.
+    if (!all && i < first_changed_ && std::fabs(vb - it.vb) <= 1e-12 * (1.0 + vb)) {
       break;
     }
     it.vb = vb;
   }
+  first_changed_ = kNoneChanged;
 }
 
 }  // namespace mcnc::motion

@@ -531,11 +531,10 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     feed_factor_ = feed;
     rapid_factor_ = rapid;
     rev_factor_ = rev;
-    if (item_count_ > 0) {
-      backward_from(item_head_ + item_count_ - 1, true);
-    }
+    backward_pass(true);
     replan_needed_ = true;
   }
+  update_lookahead();
   if (out_.state == MotionState::fault) {
     return out_;
   }

@@ -34,20 +34,4 @@ JerkLimits line_limits(const interp::AxisVector& direction, std::span<const Axis
   return l;
 }
 
-double corner_velocity(const interp::AxisVector& in, const interp::AxisVector& out,
-                       std::size_t axis_count, double tolerance, double acceleration) noexcept {
-  double cos_theta = 0.0;  // cos of the angle between -in and out
-  const std::size_t n = std::min(axis_count, in.size());
-  for (std::size_t i = 0; i < n; ++i) {
-    cos_theta -= in[i] * out[i];
-  }
-  cos_theta = std::clamp(cos_theta, -1.0, 1.0);
-  const double sin_half = std::sqrt((1.0 - cos_theta) / 2.0);
-  if (sin_half >= 1.0 - 1e-12) {
-    return std::numeric_limits<double>::infinity();  // straight on
-  }
-  const double radius = tolerance * sin_half / (1.0 - sin_half);
-  return std::sqrt(std::max(0.0, acceleration * radius));
-}
-
 }  // namespace mcnc::motion

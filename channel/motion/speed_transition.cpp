@@ -79,6 +79,9 @@ double max_speed_within(double distance, double v_other, const JerkLimits& limit
   if (!(distance > 0.0)) {
     return std::min(w, limits.velocity);
   }
+  if (w <= limits.velocity && speed_change_distance(limits.velocity, w, limits) <= distance) {
+    return limits.velocity;  // the common case: room to change from the limit itself
+  }
   double dv = 0.0;
   // With a constant-acceleration phase (dv >= a^2/j):
   //   distance = (2w + dv)/2 * (dv/a + a/j), a quadratic in dv.

@@ -70,20 +70,5 @@ TEST(PathLimits, RandomDirectionsNeverOverloadAnAxis) {
   }
 }
 
-TEST(PathLimits, CornerVelocityFromTheBlendTolerance) {
-  // A right angle with 0.01 mm tolerance at 1000 mm/s^2: R = 0.01 sin45/(1 - sin45).
-  const double s = std::sqrt(0.5);
-  const double v = corner_velocity(vec(1, 0), vec(0, 1), 2, 0.01, 1000);
-  EXPECT_NEAR(v, std::sqrt(1000 * 0.01 * s / (1 - s)), 1e-12);
-  EXPECT_EQ(corner_velocity(vec(1, 0), vec(1, 0), 2, 0.01, 1000),
-            std::numeric_limits<double>::infinity());
-  EXPECT_DOUBLE_EQ(corner_velocity(vec(1, 0), vec(-1, 0), 2, 0.01, 1000), 0.0);
-  // A gentler turn allows more; a larger tolerance allows more.
-  const double shallow =
-      corner_velocity(vec(1, 0), vec(std::cos(0.2), std::sin(0.2)), 2, 0.01, 1000);
-  EXPECT_GT(shallow, v);
-  EXPECT_GT(corner_velocity(vec(1, 0), vec(0, 1), 2, 0.05, 1000), v);
-}
-
 }  // namespace
 }  // namespace mcnc::motion::test

@@ -4,7 +4,7 @@
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
-#include "channel/motion/trapezoid_planner.hpp"
+#include "channel/motion/motion_planner.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 
 #include <benchmark/benchmark.h>
@@ -33,7 +33,13 @@ std::string long_program(int blocks) {
 void BM_ChannelControllerCycle(benchmark::State& state) {
   interp::InterpreterSource interpreter(xz_channel());
   interpreter.load(long_program(100000), "bench.nc");
-  motion::TrapezoidPlanner planner(2, {{100, 100, 1000}, {100, 100, 1000}});
+  motion::MotionConfig motion;
+  motion.axis_count = 2;
+  for (std::size_t i = 0; i < 2; ++i) {
+    motion.axes[i] = motion::AxisDynamics{100.0, 1000.0, 50000.0};
+    motion.rapid_rate[i] = 100.0;
+  }
+  motion::MotionPlanner planner(motion, interp::AxisVector{});
   channel::ChannelSetup setup{2, {1e9, 1e9}, 0.001};  // in position at once: the cost is the path
   channel::ChannelController controller(setup, interpreter, planner);
   std::array<channel::AxisFeedbackView, 2> feedback{};

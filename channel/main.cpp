@@ -2,8 +2,9 @@
 // cycle over DDS, feedback back. Wiring only: the behaviour is in ChannelController.
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
-#include "channel/motion/trapezoid_planner.hpp"
+#include "channel/motion/motion_planner.hpp"
 #include "channel/setup/interpreter_setup.hpp"
+#include "channel/setup/motion_setup.hpp"
 #include "channel/wire/channel_outputs.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
@@ -69,12 +70,10 @@ int main(int argc, char** argv) {
 
   // The channel's axes, in program order.
   std::vector<const config::AxisConfig*> axes;
-  std::vector<motion::AxisLimits> limits;
   channel::ChannelSetup setup;
   for (const std::string& name : ch->axes) {
     const config::AxisConfig* a = machine.find_axis(name);
     axes.push_back(a);
-    limits.push_back(motion::AxisLimits{a->rapid_rate / 60.0, a->max_feed / 60.0, a->acceleration});
     setup.in_position.push_back(a->in_position);
   }
   setup.axis_count = axes.size();
@@ -94,7 +93,7 @@ int main(int argc, char** argv) {
     program_name = program_path.substr(program_path.find_last_of('/') + 1);
     load_alarm = interpreter.load(text.str(), program_name);
   }
-  motion::TrapezoidPlanner planner(axes.size(), limits);
+  motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   channel::ChannelController controller(setup, interpreter, planner);
 
   try {

@@ -25,8 +25,10 @@ const char* to_string(ChannelState state) noexcept {
 }
 
 ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& source,
-                                     motion::BlockPlanner& planner)
-    : setup_(std::move(setup)), source_(source), planner_(planner) {}
+                                     motion::MotionPlanner& planner)
+    : setup_(std::move(setup)), source_(source), planner_(planner) {
+  queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
+}
 
 void ChannelController::axis_lost(std::size_t axis) noexcept {
   if (lost_axis_ == 0) {
@@ -65,7 +67,7 @@ void ChannelController::raise(int number, const char* text, int line, int column
   event.alarm_number = number;
   push_event(event);
   set_state(ChannelState::alarm);
-  phase_ = Phase::done;
+  halted_ = true;
 }
 
 void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept {
@@ -81,13 +83,14 @@ bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) 
   return true;
 }
 
-bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback) const noexcept {
+bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
+                                    const AxisVector& at) const noexcept {
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
     if (i >= feedback.size()) {
       return false;
     }
     const double width = i < setup_.in_position.size() ? setup_.in_position[i] : 0.0;
-    if (std::fabs(feedback[i].act - commanded_[i]) > width) {
+    if (std::fabs(feedback[i].act - at[i]) > width) {
       return false;
     }
   }
@@ -118,13 +121,12 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   if (estop_requested_) {
     // Latched in any state, also before the axes came up: reset, and stay there.
     estop_requested_ = false;
-    phase_ = Phase::done;
+    halted_ = true;
     start_requested_ = false;
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
-  if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) &&
-      phase_ == Phase::done) {
+  if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) && halted_) {
     hold_outputs(false);
     return out_;
   }
@@ -136,12 +138,12 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
         char text[96];
         std::snprintf(text, sizeof text, "axis %zu of the channel has an alarm: motion stopped",
                       i + 1);
-        raise(kAlarmAxisAlarm, text, current_.line, 0, static_cast<int>(i + 1));
+        raise(kAlarmAxisAlarm, text, out_.line, 0, static_cast<int>(i + 1));
         break;
       }
     }
     if (lost_axis_ != 0 && out_.state != ChannelState::alarm) {
-      raise(kAlarmAxisLost, "axis node lost: no feedback", current_.line, 0,
+      raise(kAlarmAxisLost, "axis node lost: no feedback", out_.line, 0,
             static_cast<int>(lost_axis_));
     }
   }
@@ -168,7 +170,14 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   if (out_.state == ChannelState::idle && start_requested_) {
     start_requested_ = false;
     source_.rewind(commanded_);
-    phase_ = Phase::fetch;
+    planner_.restart(commanded_);
+    halted_ = false;
+    queued_head_ = 0;
+    queued_count_ = 0;
+    queued_started_ = 0;
+    end_pulled_ = false;
+    end_started_ = false;
+    source_alarm_.reset();
     out_.program_end = false;
     out_.end_code = -1;
     out_.run_start_cycle = cycle;
@@ -184,85 +193,150 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   return out_;
 }
 
+// Pulls what the look-ahead takes: up to the window, the program end or an alarm. A bad block
+// is an alarm only when the blocks before it have run (what a control shows when it gets there);
+// it never reaches the planner.
+void ChannelController::fill() noexcept {
+  // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
+  // can throw. Out of memory stops the program with an alarm rather than the process.
+  try {
+    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
+                            planner_.accepts() && queued_count_ < queued_.size();
+         ++k) {
+      auto pulled = source_.next();
+      if (!pulled) {
+        source_alarm_ = interp::ProgramAlarm{kAlarmPlannerRejected,
+                                             "program ended without M30 or M02", "", out_.line, 0};
+        return;
+      }
+      if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*pulled)) {
+        source_alarm_ = *alarm;
+        return;
+      }
+      const auto* c = std::get_if<interp::Command>(&*pulled);
+      if (c == nullptr) {
+        return;
+      }
+      if (c->op == interp::Op::end) {
+        end_ = *c;
+        end_pulled_ = true;
+        return;
+      }
+      if (planner_.push(*c) != motion::PushResult::accepted) {
+        source_alarm_ = interp::ProgramAlarm{kAlarmPlannerRejected,
+                                             "block cannot be planned (feed or target invalid)", "",
+                                             c->line, 0};
+        return;
+      }
+      QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
+      q = QueuedBlock{c->n, c->line, c->op == interp::Op::dwell ? planner_.queue_end() : c->to,
+                      c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell};
+      ++queued_count_;
+    }
+  } catch (...) {
+    raise(kAlarmPlannerRejected, "the interpreter ran out of memory", out_.line, 0, 0);
+  }
+}
+
+// Start events up to the block under way, end events up to the last block passed; an exact
+// stop ends when every axis is in position.
+void ChannelController::block_events(const motion::MotionOutput& m,
+                                     std::span<const AxisFeedbackView> feedback) noexcept {
+  // An idle planner has run everything it took, blocks that did not move included.
+  const std::uint64_t done = planner_.idle() ? ~std::uint64_t{0} : m.completed_block;
+  while (queued_started_ < queued_count_) {
+    const QueuedBlock& q = queued_[(queued_head_ + queued_started_) % queued_.size()];
+    if (q.n > m.block && q.n > done) {
+      break;
+    }
+    ChannelEvent started;
+    started.kind = ChannelEventKind::block_started;
+    started.line = q.line;
+    started.block = q.n;
+    push_event(started);
+    ++queued_started_;
+  }
+  while (queued_count_ > 0 && queued_started_ > 0) {
+    const QueuedBlock& q = queued_[queued_head_];
+    // A block the path stopped at is an exact stop, whatever made it stop (G09/G61, a rapid,
+    // a dwell or the program end after it, a corner the look-ahead would not blend).
+    const bool stopped_here = q.n == m.completed_block && m.path_velocity <= 0.0;
+    if (q.n > done || ((q.exact_stop || stopped_here) && !in_position(feedback, q.to))) {
+      break;
+    }
+    ChannelEvent ended;
+    ended.kind = ChannelEventKind::block_ended;
+    ended.line = q.line;
+    ended.block = q.n;
+    ended.pos = q.to;
+    push_event(ended);
+    queued_head_ = (queued_head_ + 1) % queued_.size();
+    --queued_count_;
+    --queued_started_;
+  }
+}
+
 void ChannelController::run_blocks(std::uint64_t cycle,
                                    std::span<const AxisFeedbackView> feedback) noexcept {
-  // A few zero-time blocks may finish in one cycle; the bound keeps the cycle short.
-  for (int guard = 0; guard < 16 && out_.state == ChannelState::running; ++guard) {
-    switch (phase_) {
-      case Phase::fetch: {
-        auto pulled = source_.next();
-        if (!pulled) {
-          raise(kAlarmPlannerRejected, "program ended without M30 or M02", current_.line, 0, 0);
-          return;
-        }
-        if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*pulled)) {
-          raise_program_alarm(*alarm);
-          return;
-        }
-        current_ = std::get<interp::CanonicalCommand>(*pulled);
-        out_.block = current_.block;
-        out_.line = current_.line;
-        ChannelEvent started;
-        started.kind = ChannelEventKind::block_started;
-        started.line = current_.line;
-        started.block = current_.block;
-        push_event(started);
-        if (current_.kind == interp::CommandKind::program_end) {
-          phase_ = Phase::ending;
-          continue;
-        }
-        if (!planner_.begin(current_, commanded_)) {
-          raise(kAlarmPlannerRejected, "block cannot be planned (feed or target invalid)",
-                current_.line, 0, 0);
-          return;
-        }
-        phase_ = Phase::moving;
-        continue;
-      }
-      case Phase::moving: {
-        motion::MotionSample sample;
-        const motion::StepResult result = planner_.step(setup_.cycle_s, sample);
-        for (std::size_t i = 0; i < setup_.axis_count; ++i) {
-          commanded_[i] = sample.pos[i];
-          out_.setpoints[i] = AxisSetpointOut{sample.pos[i], sample.vel[i], sample.acc[i], true};
-        }
-        if (result == motion::StepResult::block_done) {
-          phase_ = Phase::settling;
-        }
-        return;  // one motion sample per cycle
-      }
-      case Phase::settling:
-      case Phase::ending: {
-        hold_outputs(true);
-        if (!in_position(feedback)) {
-          return;  // exact stop: wait for every axis inside its in-position width
-        }
-        ChannelEvent ended;
-        ended.kind = ChannelEventKind::block_ended;
-        ended.line = current_.line;
-        ended.block = current_.block;
-        ended.pos = commanded_;
-        push_event(ended);
-        if (phase_ == Phase::ending) {
-          out_.program_end = true;
-          out_.end_code = current_.end_code;
-          out_.end_cycle = cycle;
-          ChannelEvent end;
-          end.kind = ChannelEventKind::program_end;
-          end.line = current_.line;
-          end.end_code = current_.end_code;
-          push_event(end);
-          phase_ = Phase::done;
-          set_state(ChannelState::idle);
-          return;
-        }
-        phase_ = Phase::fetch;
-        continue;
-      }
-      case Phase::done:
-        return;
-    }
+  const bool in_pos = in_position(feedback, commanded_);
+  fill();
+  motion::CycleInput input;
+  input.in_position = in_pos;
+  const motion::MotionOutput& m = planner_.step(input);
+  if (m.state == motion::MotionState::fault) {
+    raise(kAlarmPlannerRejected, "block cannot be planned (the axes' limits leave no profile)",
+          m.line, 0, 0);
+    return;
   }
+  for (std::size_t i = 0; i < setup_.axis_count; ++i) {
+    commanded_[i] = m.sample.pos[i];
+    out_.setpoints[i] = AxisSetpointOut{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
+  }
+  if (m.block != 0) {
+    out_.block = m.block;
+    out_.line = m.line;
+  }
+  block_events(m, feedback);
+  if (!planner_.idle() || queued_count_ > 0) {
+    return;
+  }
+  // Everything pulled so far has run.
+  if (source_alarm_) {
+    raise_program_alarm(*source_alarm_);
+    source_alarm_.reset();
+    return;
+  }
+  if (!end_pulled_) {
+    return;
+  }
+  if (!end_started_) {
+    end_started_ = true;
+    out_.block = end_.n;
+    out_.line = end_.line;
+    ChannelEvent started;
+    started.kind = ChannelEventKind::block_started;
+    started.line = end_.line;
+    started.block = end_.n;
+    push_event(started);
+  }
+  if (!in_pos) {
+    return;  // the program ends when every axis stands in position
+  }
+  ChannelEvent ended;
+  ended.kind = ChannelEventKind::block_ended;
+  ended.line = end_.line;
+  ended.block = end_.n;
+  ended.pos = commanded_;
+  push_event(ended);
+  out_.program_end = true;
+  out_.end_code = end_.code;
+  out_.end_cycle = cycle;
+  ChannelEvent end;
+  end.kind = ChannelEventKind::program_end;
+  end.line = end_.line;
+  end.end_code = end_.code;
+  push_event(end);
+  set_state(ChannelState::idle);
 }
 
 }  // namespace mcnc::channel

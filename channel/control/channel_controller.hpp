@@ -1,10 +1,11 @@
 #pragma once
 // The channel's cyclic core: the channel state machine (reset / idle / running / alarm) that
-// pulls canonical commands from its CommandSource, hands them to its BlockPlanner, checks the
-// in-position window at every exact stop, and yields one setpoint per axis per cycle plus the
-// events of that cycle. Pure and deterministic: inputs and cycle number in, outputs out.
+// pulls canonical commands from its CommandSource as far as its look-ahead planner takes them,
+// steps the planner once per cycle, holds every exact stop until the axes are in position, and
+// yields one setpoint per axis per cycle plus the events of that cycle. Pure and deterministic:
+// inputs and cycle number in, outputs out.
 #include "channel/interp/command_source.hpp"
-#include "channel/motion/block_planner.hpp"
+#include "channel/motion/motion_planner.hpp"
 
 #include <array>
 #include <cstddef>
@@ -40,7 +41,7 @@ struct AxisSetpointOut {
 enum class ChannelEventKind : std::uint8_t {
   state_changed,
   block_started,  // command.line / command.block
-  block_ended,    // exact stop reached (in position)
+  block_ended,    // the path passed the block's end (an exact stop: and every axis is in position)
   alarm,          // alarm_number / alarm text via last_alarm()
   program_end,    // end_code
 };
@@ -72,7 +73,7 @@ struct ChannelOutput {
   int end_code = -1;
   std::uint64_t run_start_cycle = 0;  // cycle the program started (valid once it has run)
   std::uint64_t end_cycle = 0;        // cycle of its program end (valid when program_end)
-  static constexpr std::size_t kMaxEvents = 8;
+  static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
 };
@@ -81,6 +82,7 @@ struct ChannelSetup {
   std::size_t axis_count = 0;
   std::vector<double> in_position;  // per axis, units
   double cycle_s = 0.001;
+  std::size_t pulls_per_cycle = 64;  // commands pulled into the look-ahead per cycle at most
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -92,7 +94,7 @@ inline constexpr int kAlarmEmergencyStop = 1203;
 class ChannelController {
  public:
   ChannelController(ChannelSetup setup, interp::CommandSource& source,
-                    motion::BlockPlanner& planner);
+                    motion::MotionPlanner& planner);
 
   // Cycle start: the program runs as soon as every axis is enabled (from idle or reset). A
   // start while the program runs is ignored, as on a control panel.
@@ -124,15 +126,25 @@ class ChannelController {
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
   void raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept;
   bool all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept;
-  bool in_position(std::span<const AxisFeedbackView> feedback) const noexcept;
+  // Every axis's actual position within its in-position width of `at`.
+  bool in_position(std::span<const AxisFeedbackView> feedback, const AxisVector& at) const noexcept;
   void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void fill() noexcept;
+  void block_events(const motion::MotionOutput& m,
+                    std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
 
-  enum class Phase : std::uint8_t { fetch, moving, settling, ending, done };
+  // A block handed to the planner, until its end event.
+  struct QueuedBlock {
+    std::uint64_t n = 0;
+    int line = 0;
+    AxisVector to{};
+    bool exact_stop = false;
+  };
 
   ChannelSetup setup_;
   interp::CommandSource& source_;
-  motion::BlockPlanner& planner_;
+  motion::MotionPlanner& planner_;
   ChannelOutput out_{};
   ChannelAlarm alarm_{};
   std::size_t alarm_count_ = 0;
@@ -140,9 +152,16 @@ class ChannelController {
   bool position_known_ = false;
   bool start_requested_ = false;
   bool estop_requested_ = false;
-  std::size_t lost_axis_ = 0;  // axis index + 1
-  Phase phase_ = Phase::fetch;
-  interp::CanonicalCommand current_{};
+  std::size_t lost_axis_ = 0;        // axis index + 1
+  bool halted_ = false;              // an alarm or emergency stop ended the run
+  std::vector<QueuedBlock> queued_;  // a ring: the planner's window and a little more
+  std::size_t queued_head_ = 0;
+  std::size_t queued_count_ = 0;
+  std::size_t queued_started_ = 0;  // of the queued blocks, how many had their start event
+  interp::Command end_{};           // the program end, once pulled
+  bool end_pulled_ = false;
+  bool end_started_ = false;
+  std::optional<interp::ProgramAlarm> source_alarm_;  // raised when the blocks before it ran
   std::optional<interp::ProgramAlarm> pending_alarm_;
   bool first_cycle_ = true;
 };

@@ -1,7 +1,6 @@
 #pragma once
-// The pull-based source of canonical commands the channel reads from. The interpreter issue
-// replaces the minimal interpreter behind this interface; the channel does not change.
-#include "channel/interp/canonical_command.hpp"
+// The pull-based source of canonical commands the channel reads from.
+#include "channel/interp/command.hpp"
 
 #include <optional>
 #include <variant>
@@ -9,7 +8,7 @@
 namespace mcnc::interp {
 
 // next(): a command, or an alarm (the program stops there), or nullopt when nothing is left.
-using PullResult = std::variant<CanonicalCommand, ProgramAlarm>;
+using PullResult = std::variant<Command, ProgramAlarm>;
 
 class CommandSource {
  public:

@@ -9,14 +9,13 @@ namespace {
 const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
   switch (op) {
     case Op::arc:
-      return "an arc (G02/G03) needs the look-ahead planner; this channel executes G00, G01 and "
-             "G04";
     case Op::linear:
       return mode == FeedMode::per_rev
-                 ? "feed per revolution (G99) needs the spindle-synchronised planner"
+                 ? "feed per revolution (G99) needs the spindle's feedback in the channel"
                  : nullptr;
     case Op::dwell:
-      return in_revs ? "a dwell in spindle revolutions needs the spindle feedback" : nullptr;
+      return in_revs ? "a dwell in spindle revolutions needs the spindle's feedback in the channel"
+                     : nullptr;
     case Op::spindle:
     case Op::spindle_select:
     case Op::tool:
@@ -38,7 +37,7 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::message:
       return "#3006 messages need the HMI";
     case Op::thread:
-      return "threading needs the spindle-synchronised planner";
+      return "threading needs the spindle's feedback in the channel";
     default:
       return nullptr;
   }
@@ -95,36 +94,22 @@ void InterpreterSource::rewind(const AxisVector& current) {
   load_alarm_ = interpreter_->start(text_, name_);
 }
 
-std::optional<CanonicalCommand> InterpreterSource::for_channel(const Command& c, std::string& why) {
+bool InterpreterSource::for_channel(const Command& c, std::string& why) {
   if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {
     why = missing;
-    return std::nullopt;
+    return false;
   }
-  CanonicalCommand out;
-  out.line = c.line;
-  out.block = static_cast<std::size_t>(c.n);
-  out.target = c.to;
   switch (c.op) {
     case Op::rapid:
-      out.kind = CommandKind::rapid;
-      break;
     case Op::linear:
-      out.kind = CommandKind::linear;
-      out.feed = c.feed;
-      break;
+    case Op::arc:
     case Op::dwell:
-      out.kind = CommandKind::dwell;
-      out.dwell_s = c.seconds;
-      break;
     case Op::end:
-      out.kind = CommandKind::program_end;
-      out.end_code = c.code;
-      break;
+      return true;
     default:
       why = "this command cannot run in the channel yet";
-      return std::nullopt;
+      return false;
   }
-  return out;
 }
 
 std::optional<PullResult> InterpreterSource::next() {
@@ -144,8 +129,8 @@ std::optional<PullResult> InterpreterSource::next() {
   }
   const Command& c = std::get<Command>(*r);
   std::string why;
-  if (auto converted = for_channel(c, why)) {
-    return PullResult{*converted};
+  if (for_channel(c, why)) {
+    return PullResult{c};
   }
   load_alarm_ =
       ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_, c.line, 0};

@@ -1,9 +1,10 @@
 #pragma once
 // The interpreter behind the channel's CommandSource. It hands the channel the commands its
-// exact-stop planner executes (rapid, linear per minute, dwell in seconds, program end); any
-// other canonical command is a program alarm naming what the channel cannot execute yet, raised
-// before the block runs (arcs and feed per revolution come with the look-ahead planner, spindle,
-// tool and M codes with the PLC node, the multi-channel words with the coordination runtime).
+// planner executes (rapid, linear and arc per minute, dwell in seconds, program end); any other
+// canonical command is a program alarm naming what the channel cannot execute yet, raised
+// before the program starts (feed per revolution, threads and dwells in revolutions need the
+// spindle's feedback, spindle, tool and M codes the PLC node, the multi-channel words the
+// coordination runtime).
 #include "channel/interp/command_source.hpp"
 #include "channel/interp/interpreter.hpp"
 
@@ -29,9 +30,8 @@ class InterpreterSource final : public CommandSource {
   std::optional<PullResult> next() override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
 
-  // Converts one canonical command for the channel; nullopt when the channel cannot execute it
-  // (then `why` says what is missing).
-  static std::optional<CanonicalCommand> for_channel(const Command& c, std::string& why);
+  // Whether the channel can execute `c`; when not, `why` says what is missing.
+  static bool for_channel(const Command& c, std::string& why);
 
  private:
   InterpreterConfig config_;

@@ -4,12 +4,17 @@
 // jerk down, cruise, and the mirrored deceleration). The look-ahead chains these along the path;
 // a block's junction velocities come from its backward and forward passes. Pure math, no
 // allocation, no exceptions.
-#include "channel/motion/trapezoid_profile.hpp"
-
 #include <array>
 #include <cstdint>
 
 namespace mcnc::motion {
+
+// The state of a 1-D motion along its path.
+struct ProfileSample {
+  double s = 0.0;  // distance travelled
+  double v = 0.0;  // velocity
+  double a = 0.0;  // acceleration
+};
 
 enum class ProfileResult : std::uint8_t {
   ok,

@@ -10,7 +10,6 @@
 // pass), and replans the run under way when the window grows, the override changes or a feed
 // hold comes. docs/motion.md gives the rules and the reasons.
 #include "channel/interp/command.hpp"
-#include "channel/motion/block_planner.hpp"
 #include "channel/motion/path_limits.hpp"
 #include "channel/motion/path_segment.hpp"
 #include "channel/motion/speed_transition.hpp"
@@ -21,6 +20,13 @@
 #include <vector>
 
 namespace mcnc::motion {
+
+// One cycle's setpoint of every axis of the channel.
+struct MotionSample {
+  AxisVector pos{};
+  AxisVector vel{};
+  AxisVector acc{};  // feed-forward
+};
 
 struct MotionConfig {
   std::size_t axis_count = 0;
@@ -48,6 +54,9 @@ struct CycleInput {
   double feed_override = 1.0;   // 0..2
   double rapid_override = 1.0;  // 0..1
   bool feed_hold = false;
+  // Every axis is inside its in-position width: after an exact stop the next block waits for it
+  // (the channel checks the drives' feedback).
+  bool in_position = true;
 };
 
 enum class PushResult : std::uint8_t {
@@ -111,10 +120,14 @@ class MotionPlanner {
   void resume() noexcept { resume_requested_ = true; }
   // Stops with the reset deceleration and forgets the queue. Done when idle().
   void reset() noexcept { reset_requested_ = true; }
+  // Forgets everything at once and stands at `at` (the axes' position when a program starts,
+  // or after an emergency stop, where the drives stopped on their own).
+  void restart(const AxisVector& at) noexcept;
 
   [[nodiscard]] bool idle() const noexcept { return out_.state == MotionState::idle; }
   [[nodiscard]] bool accepts() const noexcept;
   [[nodiscard]] std::size_t queued_blocks() const noexcept { return item_count_; }
+  [[nodiscard]] std::size_t window_blocks() const noexcept { return config_.lookahead_blocks; }
   [[nodiscard]] const AxisVector& queue_end() const noexcept { return tail_pos_; }
   [[nodiscard]] const MotionOutput& output() const noexcept { return out_; }
 

@@ -26,6 +26,26 @@ ProfileSample MotionPlanner::Piece::at(double t) const noexcept {
   return ProfileSample{head.s + p.s, p.v, p.a};
 }
 
+void MotionPlanner::restart(const AxisVector& at) noexcept {
+  resetting_ = false;
+  stopping_ = false;
+  held_ = false;
+  block_stopped_ = false;
+  reset_requested_ = false;
+  resume_requested_ = false;
+  item_head_ += item_count_;
+  item_count_ = 0;
+  seg_head_ = seg_tail_;
+  active_ = false;
+  thread_chain_ = false;
+  first_changed_ = kNoneChanged;
+  backward_pending_ = false;
+  tail_pos_ = at;
+  write_rest(at);
+  out_.state = MotionState::idle;
+  out_.fault = MotionFault::none;
+}
+
 void MotionPlanner::set_single_block(bool on) noexcept {
   if (on != single_block_) {
     single_block_ = on;
@@ -174,8 +194,11 @@ void MotionPlanner::finish_item() noexcept {
   }
   const Item& it = item(item_head_);
   if (it.count > 0) {
+    // A run may end inside a block (a blend belongs to the block after the corner): the blocks
+    // before it are done, that block only at its own end.
     const Segment& last = seg(it.first + it.count - 1);
-    out_.completed_block = std::max(out_.completed_block, last.block);
+    out_.completed_block =
+        std::max(out_.completed_block, last.block_end ? last.block : last.block - 1);
     seg_head_ = it.first + it.count;
   } else {
     out_.completed_block = std::max(out_.completed_block, it.block);
@@ -553,18 +576,7 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
       step_path(dt);
     }
     if (!stopping_) {
-      // Forget the queue; the next block starts from where the axes stand.
-      resetting_ = false;
-      held_ = false;
-      block_stopped_ = false;
-      item_head_ += item_count_;
-      item_count_ = 0;
-      seg_head_ = seg_tail_;
-      active_ = false;
-      thread_chain_ = false;
-      tail_pos_ = out_.sample.pos;
-      write_rest(out_.sample.pos);
-      out_.state = MotionState::idle;
+      restart(out_.sample.pos);  // the next block starts from where the axes stand
     }
     return out_;
   }
@@ -576,6 +588,11 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     return out_;
   }
   const Item& head = item(item_head_);
+  if (!active_ && v_ <= kTiny && !input.in_position) {
+    write_rest(out_.sample.pos);  // an exact stop: the next block waits for in-position
+    out_.state = MotionState::moving;
+    return out_;
+  }
   switch (head.kind) {
     case ItemKind::path: {
       if (input.feed_hold && active_ && !stopping_ && !held_) {

@@ -144,8 +144,30 @@ BusConfig parse_bus(const YamlValue& value) {
   return bus;
 }
 
+ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
+  const YamlMap map = value.map({"lookahead_blocks", "path_tolerance", "profile", "rapid"});
+  ChannelMotionConfig motion;
+  read_optional_int(map, "lookahead_blocks", 2, 100000, motion.lookahead_blocks);
+  read_optional_positive(map, "path_tolerance", motion.path_tolerance);
+  if (auto profile = map.optional("profile")) {
+    const std::string text = profile->string();
+    if (text != "s_curve" && text != "trapezoid") {
+      profile->fail("profile must be s_curve or trapezoid, got '" + text + "'");
+    }
+    motion.jerk_limited = text == "s_curve";
+  }
+  if (auto rapid = map.optional("rapid")) {
+    const std::string text = rapid->string();
+    if (text != "interpolated" && text != "axis") {
+      rapid->fail("rapid must be interpolated or axis, got '" + text + "'");
+    }
+    motion.rapid_interpolated = text == "interpolated";
+  }
+  return motion;
+}
+
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs) {
-  const YamlMap map = value.map({"name", "axes"});
+  const YamlMap map = value.map({"name", "axes", "motion"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   const YamlValue axes = map.required("axes");
@@ -155,6 +177,9 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   for (const YamlValue& ref : axis_refs) {
     channel.axes.push_back(read_name(ref));
+  }
+  if (auto motion = map.optional("motion")) {
+    channel.motion = parse_channel_motion(*motion);
   }
   return channel;
 }
@@ -171,7 +196,7 @@ DriveSimConfig parse_drive(const YamlValue& value) {
 AxisConfig parse_axis(const YamlValue& value) {
   const YamlMap map =
       value.map({"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit",
-                 "rapid_rate", "max_feed", "acceleration", "in_position", "drive"});
+                 "rapid_rate", "max_feed", "acceleration", "jerk", "in_position", "drive"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -206,6 +231,10 @@ AxisConfig parse_axis(const YamlValue& value) {
   read_optional_positive(map, "rapid_rate", axis.rapid_rate);
   read_optional_positive(map, "max_feed", axis.max_feed);
   read_optional_positive(map, "acceleration", axis.acceleration);
+  read_optional_positive(map, "jerk", axis.jerk);
+  if (axis.jerk == 0.0) {
+    axis.jerk = 50.0 * axis.acceleration;  // 20 ms to reach the acceleration
+  }
   read_optional_positive(map, "in_position", axis.in_position);
   if (auto drive = map.optional("drive")) {
     axis.drive = parse_drive(*drive);

@@ -42,6 +42,7 @@ struct AxisConfig {
   double rapid_rate = 12000.0;       // units/min (G00)
   double max_feed = 6000.0;          // units/min (feed clamp)
   double acceleration = 1000.0;      // units/s^2
+  double jerk = 0.0;                 // units/s^3; 0 (absent): 50 x acceleration
   double in_position = 0.0005;       // units; in-position width for exact stop
   DriveSimConfig drive;
 };
@@ -53,10 +54,19 @@ struct BusConfig {
   std::string sync_producer;  // axis name whose node produces SYNC on this bus
 };
 
+// The look-ahead planner of a channel (docs/motion.md).
+struct ChannelMotionConfig {
+  int lookahead_blocks = 200;
+  double path_tolerance = 0.01;    // G64: how far a blended corner leaves the corner point
+  bool jerk_limited = true;        // profile: s_curve (true) or trapezoid
+  bool rapid_interpolated = true;  // rapid: interpolated (straight line) or axis (each its own)
+};
+
 struct ChannelConfig {
   std::string name;               // "CH1"
   int id = 0;                     // 1-based position in `channels`
   std::vector<std::string> axes;  // axis names, in program order
+  ChannelMotionConfig motion;
 };
 
 struct MachineConfig {

@@ -1,7 +1,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/interp/program_alarms.hpp"
-#include "channel/motion/trapezoid_planner.hpp"
+#include "channel/motion/motion_planner.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,8 +27,8 @@ static void PrintTo(ChannelState state, std::ostream* os) {
 
 namespace {
 
-using interp::CanonicalCommand;
-using interp::CommandKind;
+using interp::Command;
+using interp::Op;
 using interp::ProgramAlarm;
 
 constexpr double kDt = 0.001;
@@ -36,8 +36,14 @@ constexpr double kInPos = 0.01;
 // Axis 0: X (diameter programmed), axis 1: Z.
 constexpr double kRapid[2] = {100.0, 200.0};
 
-std::vector<motion::AxisLimits> lathe_limits() {
-  return {{kRapid[0], 50.0, 1000.0}, {kRapid[1], 100.0, 2000.0}};
+motion::MotionConfig lathe_motion() {
+  motion::MotionConfig c;
+  c.axis_count = 2;
+  c.axes[0] = motion::AxisDynamics{50.0, 1000.0, 50000.0};
+  c.axes[1] = motion::AxisDynamics{100.0, 2000.0, 100000.0};
+  c.rapid_rate = {kRapid[0], kRapid[1]};
+  c.cycle_s = kDt;
+  return c;
 }
 
 AxisVector xz(double x, double z) {
@@ -72,23 +78,24 @@ class ScriptedSource final : public interp::CommandSource {
   std::size_t cursor_ = 0;
 };
 
-CanonicalCommand command(CommandKind kind, const AxisVector& target, int line, std::size_t block,
-                         double feed = 0.0) {
-  CanonicalCommand c;
-  c.kind = kind;
-  c.target = target;
+// A scripted block stops exactly at its end, as every block of the walking skeleton did.
+Command command(Op op, const AxisVector& target, int line, std::size_t block, double feed = 0.0) {
+  Command c;
+  c.op = op;
+  c.to = target;
   c.feed = feed;
   c.line = line;
-  c.block = block;
+  c.n = block;
+  c.exact_stop = true;
   return c;
 }
 
-CanonicalCommand program_end(int line, std::size_t block, int code = 30) {
-  CanonicalCommand c;
-  c.kind = CommandKind::program_end;
-  c.end_code = code;
+Command program_end(int line, std::size_t block, int code = 30) {
+  Command c;
+  c.op = Op::end;
+  c.code = code;
   c.line = line;
-  c.block = block;
+  c.n = block;
   return c;
 }
 
@@ -109,7 +116,7 @@ class Rig {
  public:
   explicit Rig(interp::CommandSource* scripted = nullptr, AxisVector start = xz(0.0, 0.0))
       : interp_(xz_channel()),
-        planner_(2, lathe_limits()),
+        planner_(lathe_motion(), AxisVector{}),
         ctl_(ChannelSetup{2, {kInPos, kInPos}, kDt},
              scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
              planner_) {
@@ -183,7 +190,7 @@ class Rig {
   }
 
   interp::InterpreterSource interp_;
-  motion::TrapezoidPlanner planner_;
+  motion::MotionPlanner planner_;
   ChannelController ctl_;
   std::vector<AxisFeedbackView> feedback_;
   std::uint64_t cycle_ = 1;
@@ -388,16 +395,16 @@ TEST(ChannelController, BlockEndsOnlyWhenEveryAxisIsInPosition) {
   Rig rig;
   rig.load("G00 X20 Z10\nG00 Z0\nM30\n");
   rig.ctl_.request_start();
-  // Until the planner has reached the end point of block 1.
+  // Half way, the axes stop following: Z lags outside its width, X is in.
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.setpoints[1].pos >= 5.0; }));
+  rig.follow = false;
+  rig.feedback_[0].act = 10.0;
+  rig.feedback_[1].act = 10.0 - 5 * kInPos;
+  // Until the planner has reached the end point of block 1: the block must not end.
   ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) {
     return o.setpoints[0].pos == 10.0 && o.setpoints[1].pos == 10.0;
   }));
   EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
-
-  // Z lags outside its width, X is in: the block must not end.
-  rig.follow = false;
-  rig.feedback_[0].act = 10.0;
-  rig.feedback_[1].act = 10.0 - 5 * kInPos;
   for (int i = 0; i < 30; ++i) {
     const auto& out = rig.step();
     EXPECT_EQ(out.state, ChannelState::running);
@@ -729,7 +736,7 @@ TEST(ChannelController, RestartAfterEndRunsFromTheCurrentPosition) {
 
 TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
   ProgramAlarm bad{1101, "G02 is not supported yet", "S.nc", 12, 4};
-  ScriptedSource source({interp::PullResult{command(CommandKind::rapid, xz(0, 5), 10, 1)},
+  ScriptedSource source({interp::PullResult{command(Op::rapid, xz(0, 5), 10, 1)},
                          interp::PullResult{bad}, interp::PullResult{program_end(14, 3)}});
   Rig rig(&source);
   rig.ctl_.request_start();
@@ -756,7 +763,7 @@ TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
 }
 
 TEST(ChannelController, PlannerRejectingABlockGives1200) {
-  ScriptedSource source({interp::PullResult{command(CommandKind::linear, xz(0, 5), 3, 1, 0.0)},
+  ScriptedSource source({interp::PullResult{command(Op::linear, xz(0, 5), 3, 1, 0.0)},
                          interp::PullResult{program_end(4, 2)}});
   Rig rig(&source, xz(1.0, 2.0));
   rig.ctl_.request_start();
@@ -774,7 +781,7 @@ TEST(ChannelController, PlannerRejectingABlockGives1200) {
 }
 
 TEST(ChannelController, SourceEndingWithoutProgramEndGives1200) {
-  ScriptedSource source({interp::PullResult{command(CommandKind::rapid, xz(0, 1), 1, 1)}});
+  ScriptedSource source({interp::PullResult{command(Op::rapid, xz(0, 1), 1, 1)}});
   Rig rig(&source);
   rig.ctl_.request_start();
   ASSERT_TRUE(

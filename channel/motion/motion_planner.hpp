@@ -223,6 +223,7 @@ class MotionPlanner {
   // interpolation
   void step_path(double dt) noexcept;
   void step_rapid_axes(double dt) noexcept;
+  bool plan_rapid_axes(const Item& it) noexcept;
   void step_dwell(double dt) noexcept;
   void step_thread() noexcept;
   void finish_item() noexcept;
@@ -276,6 +277,9 @@ class MotionPlanner {
   // rapid_axes
   std::array<JerkLimitedProfile, interp::kMaxChannelAxes> axis_profiles_{};
   std::array<double, interp::kMaxChannelAxes> axis_sign_{};
+  AxisVector axis_start_{};  // where each axis's profile starts
+  std::array<JerkPhases, interp::kMaxChannelAxes> axis_stops_{};
+  bool rapid_stopping_ = false;
   // thread
   ThreadFollower thread_;
   bool thread_started_ = false;

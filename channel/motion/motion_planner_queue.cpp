@@ -131,6 +131,8 @@ void MotionPlanner::set_segment_limits(Segment& s) const noexcept {
   if (k > 0.0) {
     v = std::min(v, std::sqrt(share * a / k));
     v = std::min(v, 0.68 * j / (3.0 * k * a_t));
+    // The chord between two cycle samples sags v^2 t^2 k / 8: at most the path tolerance.
+    v = std::min(v, std::sqrt(8.0 * config_.path_tolerance / k) / config_.cycle_s);
   }
   if (k3 > 0.0) {
     v = std::min(v, std::cbrt(j / (5.0 * k3)));

@@ -394,42 +394,84 @@ void MotionPlanner::step_dwell(double dt) noexcept {
   }
 }
 
+// Plans every axis of an axis-wise rapid from rest where it stands to the rapid's end.
+bool MotionPlanner::plan_rapid_axes(const Item& it) noexcept {
+  t_ = 0.0;
+  for (std::size_t i = 0; i < config_.axis_count; ++i) {
+    const double d = it.to[i] - out_.sample.pos[i];
+    axis_start_[i] = out_.sample.pos[i];
+    axis_sign_[i] = d < 0.0 ? -1.0 : 1.0;
+    const JerkLimits l{config_.rapid_rate[i] * std::max(rapid_factor_, 1e-3),
+                       config_.axes[i].acceleration, config_.axes[i].jerk};
+    if (JerkLimitedProfile::plan(std::fabs(d), 0.0, 0.0, l, axis_profiles_[i]) !=
+        ProfileResult::ok) {
+      return false;
+    }
+  }
+  return true;
+}
+
 void MotionPlanner::step_rapid_axes(double dt) noexcept {
   Item& it = item(item_head_);
   const std::size_t n = config_.axis_count;
   if (!active_) {
     active_ = true;
     it.frozen = true;
-    t_ = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double d = it.to[i] - it.from[i];
-      axis_sign_[i] = d < 0.0 ? -1.0 : 1.0;
-      const JerkLimits l{config_.rapid_rate[i] * std::max(rapid_factor_, 1e-3),
-                         config_.axes[i].acceleration, config_.axes[i].jerk};
-      if (JerkLimitedProfile::plan(std::fabs(d), 0.0, 0.0, l, axis_profiles_[i]) !=
-          ProfileResult::ok) {
-        out_.fault = MotionFault::unplannable;
-        out_.state = MotionState::fault;
-        return;
-      }
+    rapid_stopping_ = false;
+    out_.sample.pos = it.from;
+    if (!plan_rapid_axes(it)) {
+      out_.fault = MotionFault::unplannable;
+      out_.state = MotionState::fault;
+      return;
     }
-  }
-  t_ += dt;
-  bool done = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    const ProfileSample p = axis_profiles_[i].at(t_);
-    done = done && t_ >= axis_profiles_[i].duration();
-    out_.sample.pos[i] =
-        t_ >= axis_profiles_[i].duration() ? it.to[i] : it.from[i] + axis_sign_[i] * p.s;
-    out_.sample.vel[i] = axis_sign_[i] * p.v;
-    out_.sample.acc[i] = axis_sign_[i] * p.a;
   }
   out_.block = it.block;
   out_.line = it.line;
   out_.css = it.spindle.css;
   out_.spindle_rpm = spindle_rpm_at(it.spindle, it.to);
-  out_.state = MotionState::moving;
-  if (done) {
+  // Feed hold: each axis stops as quickly as it can; it goes on from there at the release.
+  if (in_.feed_hold && !rapid_stopping_ && !held_) {
+    rapid_stopping_ = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      const ProfileSample p = axis_profiles_[i].at(t_);
+      axis_stops_[i] = speed_transition(
+          p.v, p.a, 0.0, JerkLimits{kInf, config_.axes[i].acceleration, config_.axes[i].jerk});
+      axis_start_[i] += axis_sign_[i] * p.s;
+    }
+    t_ = 0.0;
+  }
+  if (!in_.feed_hold && held_) {
+    held_ = false;
+    if (!plan_rapid_axes(it)) {
+      out_.fault = MotionFault::unplannable;
+      out_.state = MotionState::fault;
+      return;
+    }
+  }
+  if (held_) {
+    write_rest(out_.sample.pos);
+    out_.state = MotionState::held;
+    return;
+  }
+  t_ += dt;
+  bool done = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool ended =
+        rapid_stopping_ ? t_ >= axis_stops_[i].duration() : t_ >= axis_profiles_[i].duration();
+    const ProfileSample p = rapid_stopping_ ? axis_stops_[i].at(t_) : axis_profiles_[i].at(t_);
+    done = done && ended;
+    out_.sample.pos[i] =
+        ended && !rapid_stopping_ ? it.to[i] : axis_start_[i] + axis_sign_[i] * p.s;
+    out_.sample.vel[i] = axis_sign_[i] * p.v;
+    out_.sample.acc[i] = axis_sign_[i] * p.a;
+  }
+  out_.state = rapid_stopping_ ? MotionState::stopping : MotionState::moving;
+  if (done && rapid_stopping_) {
+    rapid_stopping_ = false;
+    held_ = true;
+    write_rest(out_.sample.pos);
+    out_.state = MotionState::held;
+  } else if (done) {
     write_rest(it.to);
     finish_item();
     out_.state = item_count_ == 0 ? MotionState::idle : MotionState::moving;

@@ -114,6 +114,40 @@ TEST(Run, RealtimeMoveEndsOnTheProgrammedPoint) {
   expect_xz_move_result(read_trace(trace));
 }
 
+TEST(Run, LockstepArcContourEndsOnItsPoints) {
+  // The look-ahead channel on real processes: two arcs, G64 corners blended, a G09 exact stop.
+  TestMachine machine("small_lathe.yaml", 30);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--program",
+           "CH1=" + source("launch/programs/arc_contour.nc"), "--trace", trace_file},
+          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+  std::vector<int> lines;
+  for (const auto& b : events(trace, "block", "CH1")) {
+    lines.push_back(b["line"].get<int>());
+  }
+  EXPECT_EQ(lines, (std::vector<int>{3, 4, 5, 6, 7, 8, 9, 10, 11}));
+  // N70 (G09) stops on X50 (r 25) Z-30 with every axis in position; the program ends on
+  // X60 (r 30) Z10.
+  bool stop = false;
+  for (const auto& e : events(trace, "pos", "CH1")) {
+    if (e["axis"] == "Z1" && std::fabs(e["cmd"].get<double>() + 30.0) < 1e-9) {
+      stop = true;
+      EXPECT_NEAR(e["act"].get<double>(), -30.0, 0.001);
+    }
+  }
+  EXPECT_TRUE(stop);
+  auto last = last_positions(trace);
+  EXPECT_NEAR(last.at("X1")["cmd"].get<double>(), 30.0, 1e-9);
+  EXPECT_NEAR(last.at("Z1")["cmd"].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(last.at("X1")["act"].get<double>(), 30.0, 0.001);
+  EXPECT_NEAR(last.at("Z1")["act"].get<double>(), 10.0, 0.001);
+}
+
 TEST(Run, LockstepIsDeterministic) {
   std::vector<std::vector<nlohmann::json>> runs;
   for (int i = 0; i < 2; ++i) {

@@ -242,6 +242,26 @@ TEST(Rapid, NotInterpolatedEachAxisAtItsOwnRate) {
   EXPECT_LE(r.jerk, 1.0 + 1e-6);
 }
 
+TEST(Rapid, NotInterpolatedStopsOnFeedHoldAndGoesOn) {
+  MotionConfig c = test_machine(2);
+  c.rapid_interpolated = false;
+  MotionPlanner p(c, AxisVector{});
+  const auto trace = run(p, {rapid_to({300.0, 10.0}, 1)}, [](std::size_t cycle) {
+    CycleInput in;
+    in.feed_hold = cycle >= 300 && cycle < 800;
+    return in;
+  });
+  EXPECT_EQ(trace[790].state, MotionState::held);
+  EXPECT_EQ(trace[790].s.vel[0], 0.0);
+  EXPECT_EQ(trace[790].s.pos, trace[700].s.pos);  // standing still
+  EXPECT_LT(trace[790].s.pos[0], 300.0);
+  EXPECT_EQ(trace.back().s.pos[0], 300.0);
+  EXPECT_EQ(trace.back().s.pos[1], 10.0);
+  const auto r = check_limits(trace, c, AxisVector{});
+  EXPECT_LE(r.acceleration, 1.0 + 1e-6);
+  EXPECT_LE(r.jerk, 1.0 + 1e-6);
+}
+
 TEST(MotionPlanner, AMillionBlocksEndExactlyWithoutDrift) {
   // 1 000 000 short G64 moves along a gentle wave: positions come from each segment's own end
   // points, never from summed steps, so the end is exact.

@@ -162,23 +162,38 @@ void check_program(const MotionConfig& c, std::uint32_t seed) {
     EXPECT_LE(r.jerk, 1.0 + 1e-6) << "cycle " << r.worst_cycle;
   }
 
-  // Path deviation: every sample within the blend tolerance of its block or a neighbour.
+  // Path deviation: every sample, and the middle of the chord to the next one (what a drive
+  // interpolating linearly between setpoints follows), within the blend tolerance of its
+  // block or a neighbour.
+  const auto deviation = [&](std::uint64_t block, const AxisVector& p) {
+    const std::size_t b = block - 1;
+    double d = distance_to(prog.geometry[b], p, 3);
+    if (b > 0) {
+      d = std::min(d, distance_to(prog.geometry[b - 1], p, 3));
+    }
+    if (b + 1 < prog.geometry.size()) {
+      d = std::min(d, distance_to(prog.geometry[b + 1], p, 3));
+    }
+    return d;
+  };
   double worst = 0.0;
-  for (const auto& s : trace) {
+  double worst_chord = 0.0;
+  for (std::size_t k = 0; k < trace.size(); ++k) {
+    const auto& s = trace[k];
     if (s.block == 0) {
       continue;
     }
-    const std::size_t b = s.block - 1;
-    double d = distance_to(prog.geometry[b], s.s.pos, 3);
-    if (b > 0) {
-      d = std::min(d, distance_to(prog.geometry[b - 1], s.s.pos, 3));
+    worst = std::max(worst, deviation(s.block, s.s.pos));
+    if (k + 1 < trace.size() && trace[k + 1].block == s.block) {
+      AxisVector mid{};
+      for (std::size_t i = 0; i < 3; ++i) {
+        mid[i] = (s.s.pos[i] + trace[k + 1].s.pos[i]) / 2.0;
+      }
+      worst_chord = std::max(worst_chord, deviation(s.block, mid));
     }
-    if (b + 1 < prog.geometry.size()) {
-      d = std::min(d, distance_to(prog.geometry[b + 1], s.s.pos, 3));
-    }
-    worst = std::max(worst, d);
   }
   EXPECT_LE(worst, c.path_tolerance + 1e-9);
+  EXPECT_LE(worst_chord, c.path_tolerance + 1e-9);
 
   // Exact-stop blocks end exactly on their end points: some sample is that point.
   for (std::size_t b = 0; b < prog.geometry.size(); ++b) {

@@ -1,0 +1,52 @@
+#pragma once
+// Heartbeat (CiA 301 §7.2.8.3.2): the producer sends its NMT state every producer time; a
+// consumer that hears nothing from a node for its consumer time reports it lost, once, until
+// the node is heard again. A boot-up (state 0) is told apart. Pure: frames and time in.
+#include "axisnode/cia402/canopen_frames.hpp"
+
+#include <cstdint>
+
+namespace mcnc::canopen {
+
+class HeartbeatConsumer {
+ public:
+  enum class Event : std::uint8_t { none, heard, bootup, lost };
+
+  HeartbeatConsumer(std::uint8_t node, std::uint64_t consumer_time_us) noexcept
+      : node_(node), consumer_time_us_(consumer_time_us) {}
+
+  // A frame from the bus: heard / bootup for this node's heartbeat, none for anything else.
+  Event on_frame(const can::CanFrame& frame, std::uint64_t now_us) noexcept;
+  // lost once when the consumer time has passed since the last heartbeat; the time starts at
+  // the first heartbeat (CiA 301: monitoring starts with the first one received).
+  Event on_time(std::uint64_t now_us) noexcept;
+
+  [[nodiscard]] bool alive() const noexcept { return heard_ && !lost_; }
+  [[nodiscard]] NmtState state() const noexcept { return state_; }
+  [[nodiscard]] std::uint64_t malformed() const noexcept { return malformed_; }
+
+ private:
+  std::uint8_t node_;
+  std::uint64_t consumer_time_us_;
+  std::uint64_t last_us_ = 0;
+  bool heard_ = false;
+  bool lost_ = false;
+  NmtState state_ = NmtState::bootup;
+  std::uint64_t malformed_ = 0;
+};
+
+class HeartbeatProducer {
+ public:
+  HeartbeatProducer(std::uint8_t node, std::uint64_t producer_time_us) noexcept
+      : node_(node), producer_time_us_(producer_time_us) {}
+  // True with the heartbeat in `out` when one is due (the first at once). A producer time of
+  // 0 disables it.
+  bool due(std::uint64_t now_us, NmtState state, can::CanFrame& out) noexcept;
+
+ private:
+  std::uint8_t node_;
+  std::uint64_t producer_time_us_;
+  std::uint64_t next_us_ = 0;
+};
+
+}  // namespace mcnc::canopen

@@ -1,0 +1,179 @@
+#include "axisnode/canopen/node_startup.hpp"
+
+#include "axisnode/canopen/sdo_abort.hpp"
+#include "axisnode/cia402/canopen_frames.hpp"
+
+#include <cstdio>
+
+namespace mcnc::canopen {
+
+const char* object_name(std::uint16_t index) noexcept {
+  if (index >= 0x1400 && index <= 0x1403) {
+    return "RPDO communication parameter";
+  }
+  if (index >= 0x1600 && index <= 0x1603) {
+    return "RPDO mapping";
+  }
+  if (index >= 0x1800 && index <= 0x1803) {
+    return "TPDO communication parameter";
+  }
+  if (index >= 0x1A00 && index <= 0x1A03) {
+    return "TPDO mapping";
+  }
+  switch (index) {
+    case 0x1000:
+      return "device type";
+    case 0x1008:
+      return "device name";
+    case 0x1017:
+      return "producer heartbeat time";
+    case 0x6040:
+      return "controlword";
+    case 0x6041:
+      return "statusword";
+    case 0x6060:
+      return "modes of operation";
+    case 0x6061:
+      return "modes of operation display";
+    case 0x6064:
+      return "position actual value";
+    case 0x606C:
+      return "velocity actual value";
+    case 0x607A:
+      return "target position";
+    case 0x60F4:
+      return "following error actual value";
+    case 0x60FF:
+      return "target velocity";
+    default:
+      return "object";
+  }
+}
+
+NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
+    : config_(config), sdo_(config.node, config.sdo_timeout_us) {
+  // Everything written after the boot-up, in order.
+  const auto add = [&](std::uint16_t index, std::uint8_t sub, std::uint32_t value,
+                       std::uint8_t size) {
+    if (write_count_ < writes_.size()) {
+      writes_[write_count_++] = SdoWrite{index, sub, value, size};
+    }
+  };
+  add(0x1017, 0, config.heartbeat_ms, 2);
+  for (const PdoConfig* pdo : {&config.pdos.rpdo1, &config.pdos.tpdo1, &config.pdos.tpdo2}) {
+    SdoWriteList list;
+    if (pdo->count > 0 && pdo_configuration(config.node, *pdo, list)) {
+      for (std::size_t i = 0; i < list.count; ++i) {
+        add(list.writes[i].index, list.writes[i].sub, list.writes[i].value, list.writes[i].size);
+      }
+    }
+  }
+  add(0x6060, 0, static_cast<std::uint8_t>(config.mode), 1);
+}
+
+void NodeStartup::begin(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  status_ = Status::running;
+  phase_ = Phase::bootup;
+  attempts_ = 1;
+  attempt_started_us_ = now_us;
+  next_write_ = 0;
+  error_[0] = '\0';
+  out = encode_nmt(NmtCommand::reset_communication, config_.node);
+}
+
+void NodeStartup::fail_sdo(const char* doing) noexcept {
+  status_ = Status::failed;
+  const std::uint32_t code = sdo_.abort_code();
+  std::snprintf(error_.data(), error_.size(),
+                "node %u: %s 0x%04X:%02X (%s) %s: %s (SDO abort 0x%08X)", config_.node, doing,
+                sdo_.index(), sdo_.sub(), object_name(sdo_.index()),
+                sdo_.aborted_by_server() ? "was refused" : "failed", sdo_abort_text(code), code);
+}
+
+// The next SDO request after the one that just completed, or NMT start after the last.
+bool NodeStartup::next_request(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  if (next_write_ >= write_count_) {
+    phase_ = Phase::started;
+    status_ = Status::done;
+    out = encode_nmt(NmtCommand::start, config_.node);
+    return true;
+  }
+  const SdoWrite& w = writes_[next_write_++];
+  const std::uint8_t bytes[4] = {
+      static_cast<std::uint8_t>(w.value), static_cast<std::uint8_t>(w.value >> 8),
+      static_cast<std::uint8_t>(w.value >> 16), static_cast<std::uint8_t>(w.value >> 24)};
+  return sdo_.download(w.index, w.sub, bytes, w.size, now_us, out);
+}
+
+bool NodeStartup::on_frame(const can::CanFrame& in, std::uint64_t now_us,
+                           can::CanFrame& out) noexcept {
+  if (status_ != Status::running) {
+    return false;
+  }
+  if (phase_ == Phase::bootup) {
+    if (in.id != kHeartbeatBase + config_.node || decode_heartbeat(in) != NmtState::bootup) {
+      return false;
+    }
+    if (config_.device_type != 0) {
+      phase_ = Phase::device_type;
+      return sdo_.upload(0x1000, 0, now_us, out);
+    }
+    phase_ = Phase::writes;
+    return next_request(now_us, out);
+  }
+  const bool send = sdo_.on_frame(in, now_us, out);
+  if (sdo_.state() == SdoClient::State::aborted) {
+    fail_sdo(phase_ == Phase::device_type ? "reading" : "writing");
+    return send;  // our abort, if the client sent one
+  }
+  if (sdo_.state() != SdoClient::State::done) {
+    return send;
+  }
+  if (phase_ == Phase::device_type) {
+    const SdoValue& v = sdo_.value();
+    const std::uint32_t type = v.size >= 4 ? static_cast<std::uint32_t>(v.bytes[0]) |
+                                                 (static_cast<std::uint32_t>(v.bytes[1]) << 8) |
+                                                 (static_cast<std::uint32_t>(v.bytes[2]) << 16) |
+                                                 (static_cast<std::uint32_t>(v.bytes[3]) << 24)
+                                           : 0;
+    if (type != config_.device_type) {
+      status_ = Status::failed;
+      std::snprintf(
+          error_.data(), error_.size(),
+          "node %u: device type 0x1000 is 0x%08X, expected 0x%08X (a CiA 402 servo drive)",
+          config_.node, type, config_.device_type);
+      return false;
+    }
+    phase_ = Phase::writes;
+  }
+  return next_request(now_us, out);
+}
+
+bool NodeStartup::on_time(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  if (status_ != Status::running) {
+    return false;
+  }
+  if (phase_ == Phase::bootup) {
+    if (now_us - attempt_started_us_ <= config_.bootup_timeout_us) {
+      return false;
+    }
+    if (attempts_ >= config_.bootup_attempts) {
+      status_ = Status::failed;
+      std::snprintf(error_.data(), error_.size(),
+                    "node %u: no boot-up after %d NMT resets of communication", config_.node,
+                    attempts_);
+      return false;
+    }
+    ++attempts_;
+    attempt_started_us_ = now_us;
+    out = encode_nmt(NmtCommand::reset_communication, config_.node);
+    return true;
+  }
+  const bool send = sdo_.on_time(now_us, out);
+  if (sdo_.state() == SdoClient::State::aborted) {
+    fail_sdo(phase_ == Phase::device_type ? "reading" : "writing");
+  }
+  return send;
+}
+
+}  // namespace mcnc::canopen

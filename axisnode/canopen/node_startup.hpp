@@ -16,7 +16,7 @@ struct NodeStartupConfig {
   std::uint8_t node = 1;
   std::uint32_t device_type = 0x00020192;  // CiA 402 servo drive; 0: not checked
   std::uint16_t heartbeat_ms = 100;        // the node's producer time (0x1017); 0: off
-  AxisPdos pdos = axis_pdos(false, false);
+  AxisPdos pdos = axis_pdos(false, false, false);
   std::int8_t mode = 8;                      // 0x6060: 8 CSP, 9 CSV, 6 homing
   std::uint64_t bootup_timeout_us = 500000;  // per attempt; the reset is repeated
   int bootup_attempts = 4;

@@ -59,14 +59,19 @@ bool pdo_configuration(std::uint8_t node, const PdoConfig& pdo, SdoWriteList& ou
   return true;
 }
 
-AxisPdos axis_pdos(bool velocity_mode, bool following_error) noexcept {
+AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_error) noexcept {
   AxisPdos p;
   p.rpdo1 = pdo(
       true, 1,
       {{0x6040, 0, 16}, {velocity_mode ? std::uint16_t{0x60FF} : std::uint16_t{0x607A}, 0, 32}});
   p.tpdo1 = pdo(false, 1, {{0x6041, 0, 16}, {0x6064, 0, 32}});
-  p.tpdo2 = following_error ? pdo(false, 2, {{0x606C, 0, 32}, {0x60F4, 0, 32}})
-                            : pdo(false, 2, {{0x606C, 0, 32}});
+  p.tpdo2 = pdo(false, 2, {});
+  if (velocity_actual) {
+    p.tpdo2.objects[p.tpdo2.count++] = MappedObject{0x606C, 0, 32};
+  }
+  if (following_error) {
+    p.tpdo2.objects[p.tpdo2.count++] = MappedObject{0x60F4, 0, 32};
+  }
   return p;
 }
 

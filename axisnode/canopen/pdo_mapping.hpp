@@ -44,12 +44,13 @@ bool pdo_configuration(std::uint8_t node, const PdoConfig& pdo, SdoWriteList& ou
 
 // The PDOs of an axis drive (CiA 402): RPDO1 controlword 0x6040 and target position 0x607A
 // (CSP) or target velocity 0x60FF (CSV); TPDO1 statusword 0x6041 and position actual 0x6064;
-// TPDO2 velocity actual 0x606C and, when asked, following error actual 0x60F4.
+// TPDO2, only when asked (it costs a frame per axis and cycle on the bus), velocity actual
+// 0x606C and/or following error actual 0x60F4. A PDO with count 0 is left as the node has it.
 struct AxisPdos {
   PdoConfig rpdo1;
   PdoConfig tpdo1;
   PdoConfig tpdo2;
 };
-AxisPdos axis_pdos(bool velocity_mode, bool following_error) noexcept;
+AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_error) noexcept;
 
 }  // namespace mcnc::canopen

@@ -64,7 +64,7 @@ TEST(Emcy, CodesInWords) {
 }
 
 TEST(PdoMapping, RpdoOfACspAxisInTheOrderTheStandardRequires) {
-  const AxisPdos pdos = axis_pdos(false, false);
+  const AxisPdos pdos = axis_pdos(false, false, false);
   SdoWriteList w;
   ASSERT_TRUE(pdo_configuration(3, pdos.rpdo1, w));
   const std::vector<std::tuple<int, int, std::uint32_t, int>> expected{
@@ -96,7 +96,7 @@ TEST(PdoMapping, RpdoOfACspAxisInTheOrderTheStandardRequires) {
 }
 
 TEST(PdoMapping, TpdosAndLimits) {
-  const AxisPdos csv = axis_pdos(true, true);
+  const AxisPdos csv = axis_pdos(true, true, true);
   EXPECT_EQ(csv.rpdo1.objects[1].index, 0x60FF);
   SdoWriteList w;
   ASSERT_TRUE(pdo_configuration(3, csv.tpdo2, w));
@@ -112,6 +112,7 @@ TEST(PdoMapping, TpdosAndLimits) {
   EXPECT_FALSE(pdo_configuration(3, big, w));
   PdoConfig empty;
   EXPECT_FALSE(pdo_configuration(3, empty, w));
+  EXPECT_EQ(axis_pdos(false, false, false).tpdo2.count, 0U);  // no second TPDO unless asked
 }
 
 }  // namespace

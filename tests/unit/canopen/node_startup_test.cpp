@@ -91,7 +91,9 @@ std::vector<can::CanFrame> run_startup(NodeStartup& s, RecordingDictionary& od, 
 
 TEST(NodeStartup, ResetsChecksMapsSetsTheModeAndStarts) {
   RecordingDictionary od;
-  NodeStartup s(NodeStartupConfig{kNode});
+  NodeStartupConfig config{kNode};
+  config.pdos = axis_pdos(false, true, false);  // with velocity actual in TPDO2
+  NodeStartup s(config);
   const auto sent = run_startup(s, od, false);
   ASSERT_EQ(s.status(), NodeStartup::Status::done) << s.error();
   // NMT reset communication to node 3 first, NMT start last.

@@ -1,0 +1,268 @@
+#include "axisnode/drivesim/drive_objects.hpp"
+
+#include "axisnode/canopen/sdo_abort.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace mcnc::drivesim {
+
+namespace {
+
+namespace abort = canopen::sdo_abort;
+
+template <typename T>
+std::uint32_t put(canopen::SdoValue& out, T value) noexcept {
+  out.size = sizeof(T);
+  std::memcpy(out.bytes.data(), &value, sizeof(T));  // little endian host, as CANopen
+  return 0;
+}
+
+std::uint32_t value_of(const std::uint8_t* data, std::size_t size) noexcept {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < size && i < 4; ++i) {
+    v |= static_cast<std::uint32_t>(data[i]) << (8 * i);
+  }
+  return v;
+}
+
+// The size of the object's data type, for a write's length check.
+std::uint32_t expect_size(std::size_t size, std::size_t wanted) noexcept {
+  if (size == wanted) {
+    return 0;
+  }
+  return size > wanted ? abort::kLengthTooHigh : abort::kLengthTooLow;
+}
+
+bool mappable(bool receive, std::uint16_t index) noexcept {
+  if (receive) {
+    return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060;
+  }
+  return index == 0x6041 || index == 0x6064 || index == 0x606C || index == 0x60F4 ||
+         index == 0x6061;
+}
+
+}  // namespace
+
+DriveObjects::DriveObjects(std::uint8_t node) noexcept {
+  // CiA 301 pre-defined connection set: RPDO1/TPDO1 valid, the others not.
+  rpdo_[0].cob_id = 0x200U + node;
+  rpdo_[1].cob_id = 0x80000000U | (0x300U + node);
+  tpdo_[0].cob_id = 0x180U + node;
+  tpdo_[1].cob_id = 0x80000000U | (0x280U + node);
+  rpdo_[0].entries[0] = 0x60400010U;
+  rpdo_[0].entries[1] = 0x607A0020U;
+  rpdo_[0].count = 2;
+  tpdo_[0].entries[0] = 0x60410010U;
+  tpdo_[0].entries[1] = 0x60640020U;
+  tpdo_[0].count = 2;
+}
+
+std::uint32_t DriveObjects::read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,
+                                     canopen::SdoValue& out) const noexcept {
+  if (mapping) {
+    if (sub == 0) {
+      return put<std::uint8_t>(out, pdo.count);
+    }
+    if (sub > 8) {
+      return abort::kNoSubindex;
+    }
+    return put<std::uint32_t>(out, pdo.entries[sub - 1U]);
+  }
+  switch (sub) {
+    case 0:
+      return put<std::uint8_t>(out, 2);
+    case 1:
+      return put<std::uint32_t>(out, pdo.cob_id);
+    case 2:
+      return put<std::uint8_t>(out, pdo.transmission_type);
+    default:
+      return abort::kNoSubindex;
+  }
+}
+
+std::uint32_t DriveObjects::write_pdo(Pdo& pdo, bool receive, bool mapping, std::uint8_t sub,
+                                      std::uint32_t value, std::size_t size) noexcept {
+  if (!mapping) {
+    if (sub == 1) {
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      pdo.cob_id = value;
+      return 0;
+    }
+    if (sub == 2) {
+      if (const std::uint32_t e = expect_size(size, 1)) {
+        return e;
+      }
+      if (value > 240 && value < 254) {
+        return abort::kInvalidValue;  // reserved transmission types
+      }
+      pdo.transmission_type = static_cast<std::uint8_t>(value);
+      return 0;
+    }
+    return sub == 0 ? abort::kReadOnly : abort::kNoSubindex;
+  }
+  if (pdo.valid()) {
+    return abort::kDeviceState;  // CiA 301: invalidate the PDO before changing its mapping
+  }
+  if (sub == 0) {
+    if (const std::uint32_t e = expect_size(size, 1)) {
+      return e;
+    }
+    if (value > 8) {
+      return abort::kValueTooHigh;
+    }
+    unsigned bits = 0;
+    for (std::uint32_t i = 0; i < value; ++i) {
+      bits += pdo.entries[i] & 0xFFU;
+    }
+    if (bits > 64) {
+      return abort::kPdoTooLong;
+    }
+    pdo.count = static_cast<std::uint8_t>(value);
+    return 0;
+  }
+  if (sub > 8) {
+    return abort::kNoSubindex;
+  }
+  if (pdo.count != 0) {
+    return abort::kDeviceState;  // entries change only while the count is 0
+  }
+  if (const std::uint32_t e = expect_size(size, 4)) {
+    return e;
+  }
+  const auto index = static_cast<std::uint16_t>(value >> 16);
+  const std::uint32_t bits = value & 0xFFU;
+  if (!mappable(receive, index) || (bits != 8 && bits != 16 && bits != 32)) {
+    return abort::kNotMappable;
+  }
+  pdo.entries[sub - 1U] = value;
+  return 0;
+}
+
+std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
+                                 canopen::SdoValue& out) noexcept {
+  if (refused_code_ != 0 && index == refused_index_) {
+    return refused_code_;
+  }
+  if (index >= 0x1400 && index <= 0x1401) {
+    return read_pdo(rpdo_[index - 0x1400U], false, sub, out);
+  }
+  if (index >= 0x1600 && index <= 0x1601) {
+    return read_pdo(rpdo_[index - 0x1600U], true, sub, out);
+  }
+  if (index >= 0x1800 && index <= 0x1801) {
+    return read_pdo(tpdo_[index - 0x1800U], false, sub, out);
+  }
+  if (index >= 0x1A00 && index <= 0x1A01) {
+    return read_pdo(tpdo_[index - 0x1A00U], true, sub, out);
+  }
+  if (sub != 0) {
+    return abort::kNoSubindex;
+  }
+  switch (index) {
+    case 0x1000:
+      return put<std::uint32_t>(out, kDeviceType);
+    case 0x1008: {
+      constexpr char kName[] = "mcnc drivesim";
+      out.size = sizeof kName - 1;
+      std::copy_n(kName, out.size, out.bytes.begin());
+      return 0;
+    }
+    case 0x1017:
+      return put<std::uint16_t>(out, heartbeat_ms_);
+    case 0x6040:
+      return put<std::uint16_t>(out, controlword_);
+    case 0x6041:
+      return put<std::uint16_t>(out, live.statusword);
+    case 0x6060:
+    case 0x6061:
+      return put<std::int8_t>(out, mode_);
+    case 0x6064:
+      return put<std::int32_t>(out, live.position);
+    case 0x606C:
+      return put<std::int32_t>(out, live.velocity);
+    case 0x607A:
+      return put<std::int32_t>(out, target_position_);
+    case 0x60F4:
+      return put<std::int32_t>(out, live.following_error);
+    case 0x60FF:
+      return put<std::int32_t>(out, target_velocity_);
+    default:
+      return abort::kNoObject;
+  }
+}
+
+std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const std::uint8_t* data,
+                                  std::size_t size) noexcept {
+  if (refused_code_ != 0 && index == refused_index_) {
+    return refused_code_;
+  }
+  const std::uint32_t value = value_of(data, size);
+  if (index >= 0x1400 && index <= 0x1401) {
+    return write_pdo(rpdo_[index - 0x1400U], true, false, sub, value, size);
+  }
+  if (index >= 0x1600 && index <= 0x1601) {
+    return write_pdo(rpdo_[index - 0x1600U], true, true, sub, value, size);
+  }
+  if (index >= 0x1800 && index <= 0x1801) {
+    return write_pdo(tpdo_[index - 0x1800U], false, false, sub, value, size);
+  }
+  if (index >= 0x1A00 && index <= 0x1A01) {
+    return write_pdo(tpdo_[index - 0x1A00U], false, true, sub, value, size);
+  }
+  if (sub != 0) {
+    return index == 0x1000 || (index >= 0x6040 && index <= 0x60FF) ? abort::kNoSubindex
+                                                                   : abort::kNoObject;
+  }
+  switch (index) {
+    case 0x1000:
+    case 0x1008:
+    case 0x6041:
+    case 0x6061:
+    case 0x6064:
+    case 0x606C:
+    case 0x60F4:
+      return abort::kReadOnly;
+    case 0x1017:
+      if (const std::uint32_t e = expect_size(size, 2)) {
+        return e;
+      }
+      heartbeat_ms_ = static_cast<std::uint16_t>(value);
+      return 0;
+    case 0x6040:
+      if (const std::uint32_t e = expect_size(size, 2)) {
+        return e;
+      }
+      controlword_ = static_cast<std::uint16_t>(value);
+      return 0;
+    case 0x6060: {
+      if (const std::uint32_t e = expect_size(size, 1)) {
+        return e;
+      }
+      const auto mode = static_cast<std::int8_t>(value);
+      if (mode != 6 && mode != 8 && mode != 9) {
+        return abort::kInvalidValue;  // homing, CSP and CSV are what this drive does
+      }
+      mode_ = mode;
+      return 0;
+    }
+    case 0x607A:
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      target_position_ = static_cast<std::int32_t>(value);
+      return 0;
+    case 0x60FF:
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      target_velocity_ = static_cast<std::int32_t>(value);
+      return 0;
+    default:
+      return abort::kNoObject;
+  }
+}
+
+}  // namespace mcnc::drivesim

@@ -1,0 +1,72 @@
+#pragma once
+// The object dictionary of one simulated CiA 402 drive, as its SDO server sees it: the
+// communication objects a master configures at start-up (device type, heartbeat time, the
+// PDOs' communication and mapping parameters) and the drive-profile objects (controlword,
+// statusword, modes of operation and display, position, velocity, following error). Mapping
+// follows CiA 301: a PDO's mapping changes only while the PDO is invalid (COB-ID bit 31) and
+// its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
+// object. Pure.
+#include "axisnode/canopen/object_access.hpp"
+
+#include <array>
+#include <cstdint>
+
+namespace mcnc::drivesim {
+
+// What the drive's objects show of its live state (the drive updates it every cycle).
+struct DriveLiveValues {
+  std::uint16_t statusword = 0;
+  std::int32_t position = 0;         // counts (0x6064)
+  std::int32_t velocity = 0;         // counts/s (0x606C)
+  std::int32_t following_error = 0;  // counts (0x60F4)
+};
+
+class DriveObjects final : public canopen::ObjectAccess {
+ public:
+  static constexpr std::uint32_t kDeviceType = 0x00020192;  // CiA 402 servo drive
+
+  struct Pdo {
+    std::uint32_t cob_id = 0;
+    std::uint8_t transmission_type = 1;
+    std::array<std::uint32_t, 8> entries{};
+    std::uint8_t count = 0;
+    [[nodiscard]] bool valid() const noexcept { return (cob_id & 0x80000000U) == 0; }
+  };
+
+  explicit DriveObjects(std::uint8_t node) noexcept;
+
+  std::uint32_t read(std::uint16_t index, std::uint8_t sub,
+                     canopen::SdoValue& out) noexcept override;
+  std::uint32_t write(std::uint16_t index, std::uint8_t sub, const std::uint8_t* data,
+                      std::size_t size) noexcept override;
+
+  // Every SDO access to `index` is refused with `code` (fault injection; 0: none).
+  void refuse(std::uint16_t index, std::uint32_t code) noexcept {
+    refused_index_ = index;
+    refused_code_ = code;
+  }
+
+  [[nodiscard]] std::int8_t mode() const noexcept { return mode_; }
+  [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
+  [[nodiscard]] const Pdo& rpdo(std::size_t n) const noexcept { return rpdo_[n]; }
+  [[nodiscard]] const Pdo& tpdo(std::size_t n) const noexcept { return tpdo_[n]; }
+  DriveLiveValues live{};
+
+ private:
+  std::uint32_t read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,
+                         canopen::SdoValue& out) const noexcept;
+  std::uint32_t write_pdo(Pdo& pdo, bool receive, bool mapping, std::uint8_t sub,
+                          std::uint32_t value, std::size_t size) noexcept;
+
+  std::array<Pdo, 2> rpdo_{};
+  std::array<Pdo, 2> tpdo_{};
+  std::int8_t mode_ = 0;
+  std::uint16_t heartbeat_ms_ = 0;
+  std::uint16_t controlword_ = 0;
+  std::int32_t target_position_ = 0;
+  std::int32_t target_velocity_ = 0;
+  std::uint16_t refused_index_ = 0;
+  std::uint32_t refused_code_ = 0;
+};
+
+}  // namespace mcnc::drivesim

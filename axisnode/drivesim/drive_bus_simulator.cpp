@@ -1,5 +1,8 @@
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 
+#include "axisnode/canopen/sdo_abort.hpp"
+#include "axisnode/canopen/sdo_client.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -26,7 +29,32 @@ DriveBusSimulator::DriveBusSimulator(const std::vector<DriveParams>& drives, dou
     index_by_node_[params.node_id] = static_cast<std::int16_t>(drives_.size());
     drives_.emplace_back(params, cycle_s);
   }
+  sdo_.reserve(drives_.size());
+  for (SimulatedDrive& drive : drives_) {
+    sdo_.emplace_back(drive.node_id(), drive.objects());
+  }
   fed_.assign(drives_.size(), false);
+}
+
+bool DriveBusSimulator::refuse_sdo(std::uint8_t node, std::uint16_t index) noexcept {
+  SimulatedDrive* drive = find_mutable(node);
+  if (drive == nullptr) {
+    return false;
+  }
+  drive->objects().refuse(index, canopen::sdo_abort::kDeviceState);
+  return true;
+}
+
+std::size_t DriveBusSimulator::handle_sdo(const CanFrame& in, std::span<CanFrame> out) noexcept {
+  const auto node = static_cast<std::uint8_t>(in.id - canopen::kSdoRequestBase);
+  if (node >= index_by_node_.size() || index_by_node_[node] == kNoDrive || out.empty()) {
+    return 0;
+  }
+  const auto i = static_cast<std::size_t>(index_by_node_[node]);
+  if (drives_[i].nmt_state() == NmtState::bootup || drives_[i].nmt_state() == NmtState::stopped) {
+    return 0;  // no SDO before the boot-up, nor in stopped (CiA 301)
+  }
+  return sdo_[i].on_frame(in, out[0]) ? 1 : 0;
 }
 
 std::size_t DriveBusSimulator::power_on(std::span<CanFrame> out) noexcept {
@@ -51,6 +79,9 @@ std::size_t DriveBusSimulator::handle(const CanFrame& in, std::span<CanFrame> ou
       handle_rpdo(in, cls.node);
       return 0;
     default:
+      if (in.id > canopen::kSdoRequestBase && in.id < canopen::kSdoRequestBase + 0x80) {
+        return handle_sdo(in, out);
+      }
       return 0;
   }
 }
@@ -95,9 +126,15 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
     if (drive.nmt_state() != NmtState::operational) {
       continue;
     }
-    const canopen::TxPdoCsp tpdo = drive.on_sync();
-    if (written < out.size()) {
-      out[written++] = canopen::encode_tpdo_csp(drive.node_id(), tpdo);
+    drive.on_sync();
+    for (std::size_t n = 0; n < 2; ++n) {
+      CanFrame tpdo;
+      if (written < out.size() && drive.objects().encode_tpdo(n, tpdo)) {
+        out[written++] = tpdo;
+      }
+    }
+    if (written < out.size() && drive.heartbeat_due()) {
+      out[written++] = canopen::encode_heartbeat(drive.node_id(), NmtState::operational);
     }
   }
   return written;

@@ -2,6 +2,7 @@
 // Simulated CiA 402 drives of one CAN bus, driven only by the frames they receive: NMT,
 // RPDO1 (latched) and SYNC (applies the latched RPDO, steps each drive by one cycle, answers
 // with TPDO1). Deterministic: the same frames give the same positions, whatever the clock.
+#include "axisnode/canopen/sdo_server.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/simulated_drive.hpp"
@@ -14,15 +15,25 @@
 
 namespace mcnc::drivesim {
 
-// The drives of one bus. Frames for node ids it does not own, and frames a drive does not
-// consume (TPDOs, heartbeats, EMCYs of other nodes), are ignored. An NMT, SYNC or RPDO1 frame
+// The drives of one bus. Each answers SDO requests from its object dictionary, sends its
+// TPDOs as mapped (while valid) and its heartbeat every producer time. Frames for node ids it
+// does not own, and frames a drive does not consume (TPDOs, heartbeats, EMCYs of other
+// nodes), are ignored. An NMT, SYNC or RPDO1 frame
 // it would consume but that does not decode (wrong length, unknown NMT command, SYNC counter
 // outside 1..240) is dropped and counted in malformed_count(). Outputs that do not fit in
-// `out` are dropped (the state still advances); size `out` for one frame per drive.
+// `out` are dropped (the state still advances); size `out` for kFramesPerDrive per drive.
 class DriveBusSimulator {
  public:
   // Throws std::invalid_argument on a node id outside 1..127 or used twice.
   DriveBusSimulator(const std::vector<DriveParams>& drives, double cycle_s);
+  // Each drive's SDO server refers to that drive's objects: not copied, not moved.
+  DriveBusSimulator(const DriveBusSimulator&) = delete;
+  DriveBusSimulator& operator=(const DriveBusSimulator&) = delete;
+  // Frames one SYNC may produce per drive: TPDO1, TPDO2 and a heartbeat.
+  static constexpr std::size_t kFramesPerDrive = 3;
+  // Fault injection: every SDO access to `index` of `node` is refused (device state). False
+  // for a node not on this bus.
+  bool refuse_sdo(std::uint8_t node, std::uint16_t index) noexcept;
   // Boot-up messages every drive sends at power on (heartbeat with state bootup).
   std::size_t power_on(std::span<canopen::CanFrame> out) noexcept;
   // Handles one received frame; writes the frames to send into `out` (boot-up after an NMT
@@ -48,7 +59,9 @@ class DriveBusSimulator {
   std::size_t handle_sync(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
   void handle_rpdo(const canopen::CanFrame& in, std::uint8_t node) noexcept;
 
+  std::size_t handle_sdo(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
   std::vector<SimulatedDrive> drives_;
+  std::vector<canopen::SdoServer> sdo_;            // one per drive, in the same order
   std::array<std::int16_t, 128> index_by_node_{};  // node id -> position in drives_
   unsigned long malformed_ = 0;
   std::vector<bool> fed_;  // per drive: sent an RPDO in the previous cycle (awaited now)

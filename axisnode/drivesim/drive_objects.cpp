@@ -44,7 +44,15 @@ bool mappable(bool receive, std::uint16_t index) noexcept {
 
 }  // namespace
 
-DriveObjects::DriveObjects(std::uint8_t node) noexcept {
+DriveObjects::DriveObjects(std::uint8_t node) noexcept : node_(node) {
+  reset_communication();
+}
+
+void DriveObjects::reset_communication() noexcept {
+  const std::uint8_t node = node_;
+  rpdo_ = {};
+  tpdo_ = {};
+  heartbeat_ms_ = 0;
   // CiA 301 pre-defined connection set: RPDO1/TPDO1 valid, the others not.
   rpdo_[0].cob_id = 0x200U + node;
   rpdo_[1].cob_id = 0x80000000U | (0x300U + node);
@@ -56,6 +64,45 @@ DriveObjects::DriveObjects(std::uint8_t node) noexcept {
   tpdo_[0].entries[0] = 0x60410010U;
   tpdo_[0].entries[1] = 0x60640020U;
   tpdo_[0].count = 2;
+}
+
+bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept {
+  const Pdo& pdo = tpdo_[n];
+  if (!pdo.valid() || n >= tpdo_.size()) {
+    return false;
+  }
+  out = can::CanFrame{};
+  out.id = pdo.cob_id & can::kSffMask;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < pdo.count; ++i) {
+    const auto index = static_cast<std::uint16_t>(pdo.entries[i] >> 16);
+    const std::size_t bytes = (pdo.entries[i] & 0xFFU) / 8;
+    std::int64_t value = 0;
+    switch (index) {
+      case 0x6041:
+        value = live.statusword;
+        break;
+      case 0x6061:
+        value = mode_;
+        break;
+      case 0x6064:
+        value = live.position;
+        break;
+      case 0x606C:
+        value = live.velocity;
+        break;
+      case 0x60F4:
+        value = live.following_error;
+        break;
+      default:
+        break;
+    }
+    for (std::size_t b = 0; b < bytes && at < 8; ++b) {
+      out.data[at++] = static_cast<std::uint8_t>(static_cast<std::uint64_t>(value) >> (8 * b));
+    }
+  }
+  out.dlc = static_cast<std::uint8_t>(at);
+  return true;
 }
 
 std::uint32_t DriveObjects::read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,

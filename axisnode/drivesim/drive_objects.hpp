@@ -7,6 +7,7 @@
 // its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
 // object. Pure.
 #include "axisnode/canopen/object_access.hpp"
+#include "common/can/can_frame.hpp"
 
 #include <array>
 #include <cstdint>
@@ -34,6 +35,11 @@ class DriveObjects final : public canopen::ObjectAccess {
   };
 
   explicit DriveObjects(std::uint8_t node) noexcept;
+
+  // NMT reset communication: the communication objects (0x1000-0x1FFF) back to their defaults.
+  void reset_communication() noexcept;
+  // The TPDO `n` (0 or 1) as its mapping says, from the live values; false while it is invalid.
+  bool encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept;
 
   std::uint32_t read(std::uint16_t index, std::uint8_t sub,
                      canopen::SdoValue& out) noexcept override;
@@ -67,6 +73,7 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::int32_t target_velocity_ = 0;
   std::uint16_t refused_index_ = 0;
   std::uint32_t refused_code_ = 0;
+  std::uint8_t node_ = 0;
 };
 
 }  // namespace mcnc::drivesim

@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
                  machine.cycle_us);
 
     // One TPDO per drive per SYNC at most; sized once so the loop does not allocate.
-    std::vector<canopen::CanFrame> out(drives.size() + 1);
+    std::vector<canopen::CanFrame> out(
+        drives.size() * drivesim::DriveBusSimulator::kFramesPerDrive + 1);
     unsigned long send_failures = 0;
     const auto send_all = [&](std::size_t count) {
       for (std::size_t i = 0; i < count; ++i) {

@@ -14,7 +14,8 @@ SimulatedDrive::SimulatedDrive(const DriveParams& params, double cycle_s) noexce
     : params_(params),
       cycle_s_(cycle_s),
       position_(params.initial_position),
-      target_(params.initial_position) {}
+      target_(params.initial_position),
+      objects_(params.node_id) {}
 
 std::uint8_t SimulatedDrive::node_id() const noexcept {
   return params_.node_id;
@@ -56,6 +57,7 @@ void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
       nmt_ = NmtState::preoperational;
       break;
     case NmtCommand::reset_node:
+      objects_ = DriveObjects(params_.node_id);
       device_ = cia402::DeviceStateMachine{};
       device_.power_on();
       latched_ = {};
@@ -65,6 +67,7 @@ void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
       nmt_ = NmtState::preoperational;
       break;
     case NmtCommand::reset_communication:
+      objects_.reset_communication();
       latched_ = {};
       rpdo_since_sync_ = false;
       nmt_ = NmtState::preoperational;
@@ -101,7 +104,22 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   canopen::TxPdoCsp out;
   out.statusword = cia402::encode_statusword(now, target_reached());
   out.position_actual = to_counts(position_);
+  objects_.live.statusword = out.statusword;
+  objects_.live.position = out.position_actual;
+  objects_.live.velocity = to_counts(velocity_);
+  objects_.live.following_error = to_counts(target_ - position_);
+  ++syncs_;
   return out;
+}
+
+bool SimulatedDrive::heartbeat_due() const noexcept {
+  const std::uint16_t ms = objects_.heartbeat_ms();
+  if (ms == 0) {
+    return false;
+  }
+  const auto every = std::max<std::uint64_t>(
+      1, static_cast<std::uint64_t>(std::llround(ms * 1e-3 / cycle_s_)));
+  return syncs_ % every == 0;
 }
 
 void SimulatedDrive::move_one_cycle() noexcept {

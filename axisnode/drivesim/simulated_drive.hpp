@@ -3,6 +3,7 @@
 // through on_sync(), one cycle per call, so a run is a pure function of the frames received.
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/cia402/cia402_state.hpp"
+#include "axisnode/drivesim/drive_objects.hpp"
 
 #include <cstdint>
 
@@ -46,6 +47,11 @@ class SimulatedDrive {
   [[nodiscard]] bool rpdo_since_sync() const noexcept { return rpdo_since_sync_; }
   // One cycle: apply the latched controlword/target, move; the TPDO to answer with.
   canopen::TxPdoCsp on_sync() noexcept;
+  // The drive's object dictionary (what its SDO server reads and writes).
+  [[nodiscard]] DriveObjects& objects() noexcept { return objects_; }
+  [[nodiscard]] const DriveObjects& objects() const noexcept { return objects_; }
+  // A heartbeat is due after this SYNC (every producer time 0x1017, counted in cycles).
+  [[nodiscard]] bool heartbeat_due() const noexcept;
 
  private:
   void move_one_cycle() noexcept;
@@ -62,6 +68,8 @@ class SimulatedDrive {
   double position_;
   double velocity_ = 0.0;
   double target_;
+  DriveObjects objects_;
+  std::uint64_t syncs_ = 0;
 };
 
 }  // namespace mcnc::drivesim

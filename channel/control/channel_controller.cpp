@@ -222,6 +222,7 @@ void ChannelController::fill() noexcept {
         end_pulled_ = true;
         return;
       }
+      const AxisVector start = planner_.queue_end();  // where the block starts
       if (planner_.push(*c) != motion::PushResult::accepted) {
         source_alarm_ = interp::ProgramAlarm{kAlarmPlannerRejected,
                                              "block cannot be planned (feed or target invalid)", "",
@@ -229,8 +230,10 @@ void ChannelController::fill() noexcept {
         return;
       }
       QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
-      q = QueuedBlock{c->n, c->line, c->op == interp::Op::dwell ? planner_.queue_end() : c->to,
-                      c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell};
+      q = QueuedBlock{
+          c->n, c->line, c->op == interp::Op::dwell ? start : c->to,
+          c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell,
+          (c->op == interp::Op::rapid || c->op == interp::Op::linear) && c->to == start};
       ++queued_count_;
     }
   } catch (...) {
@@ -238,31 +241,35 @@ void ChannelController::fill() noexcept {
   }
 }
 
-// Start events up to the block under way, end events up to the last block passed; an exact
-// stop ends when every axis is in position.
+// Block events in program order, each block's end before the next one's start: a block
+// starts when the planner is in it (or past it), ends when the path passed its end (a stop
+// there: and every axis is in position); a block that does not move passes at once. Events
+// that do not fit in this cycle's output come in the next.
 void ChannelController::block_events(const motion::MotionOutput& m,
                                      std::span<const AxisFeedbackView> feedback) noexcept {
-  // An idle planner has run everything it took, blocks that did not move included.
+  // An idle planner has run everything it took.
   const std::uint64_t done = planner_.idle() ? ~std::uint64_t{0} : m.completed_block;
-  while (queued_started_ < queued_count_) {
-    const QueuedBlock& q = queued_[(queued_head_ + queued_started_) % queued_.size()];
-    if (q.n > m.block && q.n > done) {
-      break;
-    }
-    ChannelEvent started;
-    started.kind = ChannelEventKind::block_started;
-    started.line = q.line;
-    started.block = q.n;
-    push_event(started);
-    ++queued_started_;
-  }
-  while (queued_count_ > 0 && queued_started_ > 0) {
+  constexpr std::size_t kKeepFree = 4;  // for a program end in the same cycle
+  while (out_.event_count + kKeepFree < ChannelOutput::kMaxEvents && queued_count_ > 0) {
     const QueuedBlock& q = queued_[queued_head_];
+    if (queued_started_ == 0) {
+      if (q.n > m.block && q.n > done && !q.still) {
+        return;
+      }
+      ChannelEvent started;
+      started.kind = ChannelEventKind::block_started;
+      started.line = q.line;
+      started.block = q.n;
+      push_event(started);
+      queued_started_ = 1;
+      continue;
+    }
     // A block the path stopped at is an exact stop, whatever made it stop (G09/G61, a rapid,
     // a dwell or the program end after it, a corner the look-ahead would not blend).
     const bool stopped_here = q.n == m.completed_block && m.path_velocity <= 0.0;
-    if (q.n > done || ((q.exact_stop || stopped_here) && !in_position(feedback, q.to))) {
-      break;
+    if (!q.still &&
+        (q.n > done || ((q.exact_stop || stopped_here) && !in_position(feedback, q.to)))) {
+      return;
     }
     ChannelEvent ended;
     ended.kind = ChannelEventKind::block_ended;
@@ -272,7 +279,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
     push_event(ended);
     queued_head_ = (queued_head_ + 1) % queued_.size();
     --queued_count_;
-    --queued_started_;
+    queued_started_ = 0;
   }
 }
 

@@ -140,6 +140,7 @@ class ChannelController {
     int line = 0;
     AxisVector to{};
     bool exact_stop = false;
+    bool still = false;  // a move to where the axes already are
   };
 
   ChannelSetup setup_;
@@ -157,7 +158,7 @@ class ChannelController {
   std::vector<QueuedBlock> queued_;  // a ring: the planner's window and a little more
   std::size_t queued_head_ = 0;
   std::size_t queued_count_ = 0;
-  std::size_t queued_started_ = 0;  // of the queued blocks, how many had their start event
+  std::size_t queued_started_ = 0;  // 1 when the oldest queued block had its start event
   interp::Command end_{};           // the program end, once pulled
   bool end_pulled_ = false;
   bool end_started_ = false;

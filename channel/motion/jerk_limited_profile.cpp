@@ -53,12 +53,30 @@ ProfileResult JerkLimitedProfile::plan(double distance, double v_start, double v
   const auto needed = [&](double vp) {
     return speed_change_distance(v_start, vp, l) + speed_change_distance(vp, v_end, l);
   };
+  constexpr double kRounding = 1e-9;        // 1 nm (relative and absolute) of rounding
   const bool above = v_start > l.velocity;  // slows down to the limit first
-  double low = above ? l.velocity : std::max(v_start, v_end);
-  if (needed(low) > distance * (1.0 + 1e-9) + 1e-9) {  // 1 nm of rounding
+  double vp = l.velocity;
+  if (above) {
+    // Down to a plateau at most the limit, then to the end. A plateau on the way costs
+    // distance: with no room for the limit the plateau is lower, down to one straight change
+    // to the end speed.
+    if (needed(v_end) > distance * (1.0 + kRounding) + kRounding) {
+      return ProfileResult::unreachable;
+    }
+    if (needed(vp) > distance) {
+      double low = v_end;
+      double high = l.velocity;
+      for (int i = 0; i < 64 && high - low > 1e-15 * high; ++i) {
+        const double mid = (low + high) / 2.0;
+        (needed(mid) > distance ? high : low) = mid;
+      }
+      vp = low;
+    }
+  }
+  double low = above ? vp : std::max(v_start, v_end);
+  if (!above && needed(low) > distance * (1.0 + kRounding) + kRounding) {
     return ProfileResult::unreachable;
   }
-  double vp = l.velocity;
   if (!above && needed(vp) > distance) {
     // The distance is too short for the limit: the peak where up and down meet. needed() grows
     // with vp; bisection to the last representable digit keeps it deterministic.

@@ -81,7 +81,6 @@ enum class MotionState : std::uint8_t {
 enum class MotionFault : std::uint8_t {
   none,
   thread_too_fast,  // lead x spindle speed above the axes' limits
-  no_spindle,       // a thread or a dwell in revolutions without a turning spindle
   unplannable,      // limits that leave no profile (a machine-file error)
 };
 
@@ -274,6 +273,8 @@ class MotionPlanner {
   bool resetting_ = false;
   double dwell_left_ = 0.0;
   double dwell_angle_ = 0.0;
+  double dwell_last_angle_ = 0.0;
+  double stop_scale_ = 1.0;  // the limits' scale of the stop under way (reset: its own)
   // rapid_axes
   std::array<JerkLimitedProfile, interp::kMaxChannelAxes> axis_profiles_{};
   std::array<double, interp::kMaxChannelAxes> axis_sign_{};
@@ -282,6 +283,10 @@ class MotionPlanner {
   bool rapid_stopping_ = false;
   // thread
   ThreadFollower thread_;
+  ThreadGeometry thread_geometry_{};  // what thread_ was planned with
+  double thread_rev_per_s_ = 0.0;
+  JerkLimits thread_limits_{};
+  bool thread_drop_ramp_out_ = false;  // a continuous block came after this thread started
   bool thread_started_ = false;
   double thread_angle0_ = 0.0;
   double thread_dir_ = 1.0;

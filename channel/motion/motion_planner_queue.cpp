@@ -439,8 +439,10 @@ PushResult MotionPlanner::push_thread(const interp::Command& c) noexcept {
   // A continuous thread goes on from the one before at speed.
   if (c.continuous && item_count_ > 0) {
     Item& prev = item(item_head_ + item_count_ - 1);
-    if (prev.kind == ItemKind::thread && !prev.frozen) {
+    if (prev.kind == ItemKind::thread && prev.ramp_out) {
+      // Under way already: it drops its ramp-out if it has not begun it (step_thread).
       prev.ramp_out = false;
+      thread_drop_ramp_out_ = prev.frozen;
     }
   }
   seg(seg_tail_) = s;

@@ -38,12 +38,17 @@ void MotionPlanner::restart(const AxisVector& at) noexcept {
   seg_head_ = seg_tail_;
   active_ = false;
   thread_chain_ = false;
+  thread_drop_ramp_out_ = false;
   first_changed_ = kNoneChanged;
   backward_pending_ = false;
   tail_pos_ = at;
+  rapid_stopping_ = false;
   write_rest(at);
   out_.state = MotionState::idle;
   out_.fault = MotionFault::none;
+  out_.block = 0;
+  out_.line = 0;
+  out_.completed_block = 0;
 }
 
 void MotionPlanner::set_single_block(bool on) noexcept {
@@ -154,37 +159,64 @@ bool MotionPlanner::plan_run(double v, double a, bool may_end_faster) noexcept {
   return true;
 }
 
-// A feed hold's or reset's stop: the quickest stop on the path with the limits of the runs it
-// may cross.
+// A feed hold's or reset's stop on the path, run by run so that each run's own limits hold:
+// the quickest stop with this run's limits if it ends inside the run; otherwise the run goes
+// on to its end as slowly as its limits allow (never faster than the plan, which respected
+// every corner and exact stop), and at that knot, where the acceleration is zero, the stop
+// starts over with the next run's limits.
 void MotionPlanner::start_stop(double scale) noexcept {
+  stopping_ = true;
+  stop_scale_ = scale;
   const Item& head = item(item_head_);
-  JerkLimits lim{kInf, head.limits.acceleration * scale, head.limits.jerk * scale};
-  JerkPhases stop = speed_transition(v_, a_, 0.0, lim);
-  for (int round = 0; round < 3; ++round) {
-    // The runs the stop reaches may allow less: take theirs and plan again.
-    JerkLimits wider = lim;
-    double reach = -s_;
-    for (std::size_t i = item_head_; i < item_head_ + item_count_ && reach < stop.end().s; ++i) {
-      const Item& it = item(i);
-      if (it.kind != ItemKind::path) {
+  const JerkLimits own{kInf, head.limits.acceleration * scale, head.limits.jerk * scale};
+  const JerkPhases stop = speed_transition(v_, a_, 0.0, own);
+  if (stop.end().s <= head.length - s_ || head.kind != ItemKind::path) {
+    piece_ = Piece{};
+    piece_.prefix = stop;
+    piece_.stop_only = true;
+    piece_.origin = s_;
+    t_ = 0.0;
+    return;
+  }
+  // To the end of the run as slowly as it can: the lowest end speed its length allows.
+  JerkPhases prefix(ProfileSample{0.0, v_, 0.0});
+  if (std::fabs(a_) > kTiny) {
+    prefix = speed_transition(v_, a_, released_velocity(v_, a_, own.jerk), own);
+  }
+  const double v1 = std::max(0.0, prefix.end().v);
+  const double distance = std::max(0.0, head.length - s_ - prefix.end().s);
+  double low = 0.0;
+  double high = std::max(v1, 1e-12);
+  JerkLimitedProfile best;
+  bool found = false;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = k == 0 ? 0.0 : (low + high) / 2.0;
+    JerkLimitedProfile trial;
+    const JerkLimits l{std::max(v1, mid), own.acceleration, own.jerk};
+    if (JerkLimitedProfile::plan(distance, v1, mid, l, trial) == ProfileResult::ok) {
+      best = trial;
+      found = true;
+      high = mid;
+      if (k == 0) {
         break;
       }
-      wider.acceleration = std::min(wider.acceleration, it.limits.acceleration * scale);
-      wider.jerk = std::min(wider.jerk, it.limits.jerk * scale);
-      reach += it.length;
+    } else {
+      low = mid;
     }
-    if (wider.acceleration == lim.acceleration && wider.jerk == lim.jerk) {
-      break;
-    }
-    lim = wider;
-    stop = speed_transition(v_, a_, 0.0, lim);
+  }
+  const double slowest = found ? best.at(best.duration()).v : kInf;
+  const bool plan_to_end = !piece_.stop_only && piece_.target >= head.length - 1e-12;
+  if (!found || (plan_to_end && planned_end_v_ <= slowest)) {
+    // The plan under way (already braking, say) ends the run at least as slowly: keep it.
+    return;
   }
   piece_ = Piece{};
-  piece_.prefix = stop;
-  piece_.stop_only = true;
+  piece_.prefix = prefix;
+  piece_.profile = best;
   piece_.origin = s_;
+  piece_.target = head.length;
+  planned_end_v_ = slowest;
   t_ = 0.0;
-  stopping_ = true;
 }
 
 // Moves to the next queued item; the run-local position restarts at 0.
@@ -221,7 +253,9 @@ void MotionPlanner::write_path_sample(const ProfileSample& p) noexcept {
     const double length = item(item_head_).length;
     piece_.origin -= length;
     const double keep_s = s_ - length;
+    const double keep_t = t_;  // the stop goes on where it is, not from its start
     finish_item();
+    t_ = keep_t;
     item(item_head_).frozen = true;
     active_ = true;
     cur_seg_ = item(item_head_).first;
@@ -341,6 +375,10 @@ void MotionPlanner::step_path(double dt) noexcept {
       if (stop_here && item_count_ > 0) {
         block_stopped_ = true;
       }
+      if (stopping_) {
+        stopping_ = false;  // the stop ended at a knot: held there (or reset)
+        held_ = !resetting_ && item_count_ > 0;
+      }
       out_.state = item_count_ == 0 ? MotionState::idle : MotionState::moving;
       out_.sample.vel = AxisVector{};
       out_.sample.acc = AxisVector{};
@@ -353,6 +391,12 @@ void MotionPlanner::step_path(double dt) noexcept {
     cur_seg_ = next.first;
     seg_base_ = 0.0;
     s_ = 0.0;
+    if (stopping_) {
+      a_ = 0.0;
+      start_stop(stop_scale_);  // a knot: the stop goes on with this run's limits
+      t_ = leftover;
+      continue;
+    }
     if (!plan_run(v_end, 0.0, true)) {
       out_.fault = MotionFault::unplannable;
       out_.state = MotionState::fault;
@@ -372,6 +416,7 @@ void MotionPlanner::step_dwell(double dt) noexcept {
     it.frozen = true;
     dwell_left_ = it.dwell;
     dwell_angle_ = in_.spindle_angle;
+    dwell_last_angle_ = in_.spindle_angle;
   }
   write_rest(it.to);
   out_.block = it.block;
@@ -381,6 +426,10 @@ void MotionPlanner::step_dwell(double dt) noexcept {
   out_.state = MotionState::dwelling;
   bool done = false;
   if (it.in_revs) {
+    if (in_.feed_hold) {
+      dwell_angle_ += in_.spindle_angle - dwell_last_angle_;  // held turns do not count
+    }
+    dwell_last_angle_ = in_.spindle_angle;
     done = std::fabs(in_.spindle_angle - dwell_angle_) >= 360.0 * it.dwell - 1e-9;
   } else {
     if (!in_.feed_hold) {
@@ -430,7 +479,7 @@ void MotionPlanner::step_rapid_axes(double dt) noexcept {
   out_.css = it.spindle.css;
   out_.spindle_rpm = spindle_rpm_at(it.spindle, it.to);
   // Feed hold: each axis stops as quickly as it can; it goes on from there at the release.
-  if (in_.feed_hold && !rapid_stopping_ && !held_) {
+  if ((in_.feed_hold || resetting_) && !rapid_stopping_ && !held_) {
     rapid_stopping_ = true;
     for (std::size_t i = 0; i < n; ++i) {
       const ProfileSample p = axis_profiles_[i].at(t_);
@@ -440,7 +489,7 @@ void MotionPlanner::step_rapid_axes(double dt) noexcept {
     }
     t_ = 0.0;
   }
-  if (!in_.feed_hold && held_) {
+  if (!in_.feed_hold && held_ && !resetting_) {
     held_ = false;
     if (!plan_rapid_axes(it)) {
       out_.fault = MotionFault::unplannable;
@@ -519,6 +568,10 @@ void MotionPlanner::step_thread() noexcept {
       out_.state = MotionState::fault;
       return;
     }
+    thread_geometry_ = g;
+    thread_rev_per_s_ = n;
+    thread_limits_ = l;
+    thread_drop_ramp_out_ = false;
     it.frozen = true;
     active_ = true;
     cur_seg_ = it.first;
@@ -561,6 +614,17 @@ void MotionPlanner::step_thread() noexcept {
   prev_angle_ = angle;
   const double n_now = std::fabs(in_.spindle_rpm) / 60.0;
   const double u = thread_dir_ * (angle - thread_angle0_) / 360.0;
+  if (thread_drop_ramp_out_) {
+    // A continuous block came after this one started: the ramp-in and the synchronous part do
+    // not depend on the ramp-out, so the thread goes on unchanged, at speed into the next.
+    thread_drop_ramp_out_ = false;
+    if (u < thread_.ramp_out_start()) {
+      thread_geometry_.ramp_out = false;
+      thread_.plan(thread_geometry_, thread_rev_per_s_, thread_limits_);
+    } else {
+      it.ramp_out = true;  // too late: it stops, the next block starts from rest
+    }
+  }
   const ThreadSample ts = thread_.at(u);
   write_path_sample(ProfileSample{ts.s, ts.ds_du * n_now, ts.d2s_du2 * n_now * n_now});
   out_.state = MotionState::moving;
@@ -606,18 +670,22 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
   if (reset_requested_) {
     reset_requested_ = false;
     resetting_ = true;
-    if (item_count_ > 0 && item(item_head_).kind == ItemKind::path && active_ &&
-        (v_ > kTiny || std::fabs(a_) > kTiny)) {
-      start_stop(std::max(config_.reset_deceleration_scale, 1e-3));
+    const bool moving = item_count_ > 0 && active_ && (v_ > kTiny || std::fabs(a_) > kTiny);
+    const ItemKind kind = item_count_ > 0 ? item(item_head_).kind : ItemKind::dwell;
+    if (moving && (kind == ItemKind::path || kind == ItemKind::thread)) {
+      start_stop(std::max(config_.reset_deceleration_scale, 1e-3));  // a thread stops on its path
     } else {
       stopping_ = false;
     }
   }
   if (resetting_) {
+    const bool axes = item_count_ > 0 && active_ && item(item_head_).kind == ItemKind::rapid_axes;
     if (stopping_) {
       step_path(dt);
+    } else if (axes && !held_) {
+      step_rapid_axes(dt);  // each axis stops on its own ramp
     }
-    if (!stopping_) {
+    if (!stopping_ && (!axes || held_)) {
       restart(out_.sample.pos);  // the next block starts from where the axes stand
     }
     return out_;
@@ -637,12 +705,12 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
   }
   switch (head.kind) {
     case ItemKind::path: {
-      if (input.feed_hold && active_ && !stopping_ && !held_) {
+      if (input.feed_hold && active_ && !stopping_ && !held_ && !block_stopped_) {
         start_stop(1.0);
       }
       if (!input.feed_hold && held_) {
         held_ = false;
-        if (!plan_run(0.0, 0.0, true)) {
+        if (active_ && !plan_run(0.0, 0.0, true)) {
           held_ = true;
         }
       }

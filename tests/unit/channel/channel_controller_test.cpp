@@ -926,3 +926,77 @@ TEST(ChannelController, ReportsTheCyclesItsProgramStartedAndEnded) {
 
 }  // namespace
 }  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+// Start and end events alternate in program order, one block at a time.
+void expect_alternating(const std::vector<LoggedEvent>& events, std::size_t blocks) {
+  std::vector<std::pair<ChannelEventKind, std::size_t>> seq;
+  for (const auto& e : events) {
+    if (e.event.kind == ChannelEventKind::block_started ||
+        e.event.kind == ChannelEventKind::block_ended) {
+      seq.emplace_back(e.event.kind, e.event.block);
+    }
+  }
+  ASSERT_EQ(seq.size(), 2 * blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    EXPECT_EQ(seq[2 * b].first, ChannelEventKind::block_started) << b;
+    EXPECT_EQ(seq[2 * b + 1].first, ChannelEventKind::block_ended) << b;
+    EXPECT_EQ(seq[2 * b].second, seq[2 * b + 1].second) << b;
+    if (b > 0) {
+      EXPECT_GT(seq[2 * b].second, seq[2 * b - 1].second) << b;
+    }
+  }
+}
+
+TEST(ChannelController, BlendedBlocksEndBeforeTheNextStarts) {
+  Rig rig;
+  rig.load("G01 X10 Z-10 F600\nX20 Z-10\nX20 Z-20\nX30 Z-25\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  expect_alternating(rig.events, 5);
+}
+
+TEST(ChannelController, ManyBlocksThatDoNotMoveLoseNoEvents) {
+  std::string program = "G01 X10 Z-10 F600\n";
+  for (int i = 0; i < 100; ++i) {
+    program += "G01 X10 Z-10\n";  // already there
+  }
+  program += "G01 X20 Z-20\nM30\n";
+  Rig rig;
+  rig.load(program);
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  expect_alternating(rig.events, 103);
+  EXPECT_EQ(rig.events_of(ChannelEventKind::program_end).size(), 1U);
+  // The blocks that do not move (lines 2-101) end before the last move (line 102) ends.
+  const auto still_done = rig.first_cycle_of(ChannelEventKind::block_ended, 101);
+  const auto last_done = rig.first_cycle_of(ChannelEventKind::block_ended, 102);
+  ASSERT_TRUE(still_done && last_done);
+  EXPECT_LT(*still_done + 10, *last_done);
+}
+
+TEST(ChannelController, ASecondRunReportsItsOwnBlocks) {
+  Rig rig;
+  rig.load("G01 X10 Z-10 F600\nX20 Z-20\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  const std::size_t first_run = rig.events.size();
+  rig.ctl_.request_start();
+  const std::uint64_t start = rig.cycle_;
+  ASSERT_TRUE(
+      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::running; }));
+  ASSERT_TRUE(rig.run_to_end());
+  std::size_t ended_in_first_cycles = 0;
+  for (std::size_t i = first_run; i < rig.events.size(); ++i) {
+    if (rig.events[i].event.kind == ChannelEventKind::block_ended &&
+        rig.events[i].cycle <= start + 2) {
+      ++ended_in_first_cycles;
+    }
+  }
+  EXPECT_EQ(ended_in_first_cycles, 0U);
+}
+
+}  // namespace
+}  // namespace mcnc::channel

@@ -73,9 +73,18 @@ TEST(JerkLimitedProfile, StartAboveTheLimitSlowsDownFirst) {
     EXPECT_LE(p.at(t + 0.005).v, p.at(t).v + 1e-12);  // only slows down
   }
   EXPECT_DOUBLE_EQ(p.at(p.duration()).s, 100.0);
-  // Too short to slow down to the limit and stop: 21.875 + 15 mm needed.
-  EXPECT_EQ(JerkLimitedProfile::plan(36.8, 150.0, 0.0, l, p), ProfileResult::unreachable);
-  EXPECT_EQ(JerkLimitedProfile::plan(36.9, 150.0, 0.0, l, p), ProfileResult::ok);
+  // Slowing to the limit and stopping needs 21.875 + 15 mm; with less room the plateau is
+  // lower, down to one straight stop from 150: 75 * (150/400 + 400/8000) = 31.875 mm.
+  ASSERT_EQ(JerkLimitedProfile::plan(36.9, 150.0, 0.0, l, p), ProfileResult::ok);
+  EXPECT_DOUBLE_EQ(p.peak_velocity(), 100.0);
+  ASSERT_EQ(JerkLimitedProfile::plan(33.0, 150.0, 0.0, l, p), ProfileResult::ok);
+  EXPECT_LT(p.peak_velocity(), 100.0);
+  for (double t = 0.0; t < p.duration(); t += 0.005) {
+    EXPECT_LE(p.at(t + 0.005).v, p.at(t).v + 1e-12);  // only slows down
+  }
+  EXPECT_DOUBLE_EQ(p.at(p.duration()).s, 33.0);
+  EXPECT_EQ(JerkLimitedProfile::plan(31.8, 150.0, 0.0, l, p), ProfileResult::unreachable);
+  EXPECT_EQ(JerkLimitedProfile::plan(31.9, 150.0, 0.0, l, p), ProfileResult::ok);
 }
 
 // Random blocks sampled every 50 us: velocity, acceleration and jerk within their limits, the

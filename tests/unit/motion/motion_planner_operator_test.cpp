@@ -291,3 +291,162 @@ TEST(MotionPlanner, AMillionBlocksEndExactlyWithoutDrift) {
 
 }  // namespace
 }  // namespace mcnc::motion
+
+namespace mcnc::motion {
+namespace {
+
+using testing::arc_to;
+
+// Feed hold pressed at every cycle of a stretch: each held run must keep the limits, never go
+// back, and stand on the path before the corner it had to stop at.
+TEST(FeedHold, AcrossARunBoundaryTheStopGoesOnWhereItIs) {
+  const MotionConfig c = test_machine();
+  const std::vector<interp::Command> prog{line_to({50.0, 0.0, 0.0}, 12000.0, 1),
+                                          line_to({100.0, 0.0, 0.0}, 6000.0, 2)};
+  for (std::size_t hold_at = 330; hold_at < 420; hold_at += 3) {
+    MotionPlanner p(c, AxisVector{});
+    const auto trace = run(p, prog, [&](std::size_t cycle) {
+      CycleInput in;
+      in.feed_hold = cycle >= hold_at && cycle < hold_at + 300;
+      return in;
+    });
+    const auto r = check_limits(trace, c, AxisVector{});
+    EXPECT_LE(r.acceleration, 1.0 + 1e-6) << hold_at;
+    EXPECT_LE(r.jerk, 1.0 + 1e-6) << hold_at;
+    for (std::size_t k = 1; k < trace.size(); ++k) {
+      ASSERT_GE(trace[k].s.pos[0], trace[k - 1].s.pos[0]) << hold_at << " cycle " << k;
+    }
+    EXPECT_EQ(trace.back().s.pos[0], 100.0);
+  }
+}
+
+TEST(FeedHold, NeverRunsThroughACornerThePlanStopsAt) {
+  // A line into an arc at a right angle: the plan stops at X20. A hold pressed before it stops
+  // on the line, within the limits.
+  const MotionConfig c = test_machine();
+  const std::vector<interp::Command> prog{line_to({20.0, 0.0, 0.0}, 6000.0, 1),
+                                          arc_to({30.0, 0.0, 0.0}, 25.0, 0.0, true, 6000.0, 2)};
+  for (std::size_t hold_at = 150; hold_at < 330; hold_at += 4) {
+    MotionPlanner p(c, AxisVector{});
+    const auto trace = run(p, prog, [&](std::size_t cycle) {
+      CycleInput in;
+      in.feed_hold = cycle >= hold_at && cycle < hold_at + 400;
+      return in;
+    });
+    ASSERT_GT(trace.size(), hold_at + 390);
+    if (trace[hold_at].s.pos[0] < 20.0) {  // pressed before the axes reached the corner
+      const AxisVector& held = trace[hold_at + 390].s.pos;
+      EXPECT_LE(held[0], 20.0 + 1e-9) << hold_at;
+      EXPECT_EQ(held[1], 0.0) << hold_at;
+    }
+    const auto r = check_limits(trace, c, AxisVector{});
+    EXPECT_LE(r.acceleration, 1.0 + 1e-6) << hold_at;
+    EXPECT_LE(r.jerk, 1.0 + 1e-6) << hold_at;
+  }
+}
+
+TEST(FeedHold, DuringASingleBlockStopLeavesHoldWorking) {
+  const MotionConfig c = test_machine();
+  std::vector<interp::Command> prog;
+  for (int i = 1; i <= 6; ++i) {
+    prog.push_back(line_to({10.0 * i, 0.0, 0.0}, 6000.0, static_cast<std::uint64_t>(i)));
+  }
+  MotionPlanner p(c, AxisVector{});
+  std::size_t next = 0;
+  bool hold = false;
+  int phase = 0;
+  double held_x = -1.0;
+  for (std::size_t cycle = 0; cycle < 100000 && !(next == prog.size() && p.idle()); ++cycle) {
+    while (next < prog.size() && p.push(prog[next]) == PushResult::accepted) {
+      ++next;
+    }
+    if (cycle == 50) {
+      p.set_single_block(true);
+    }
+    CycleInput in;
+    in.feed_hold = hold;
+    const MotionOutput& o = p.step(in);
+    if (phase == 0 && o.state == MotionState::block_stop) {
+      hold = true;  // hold pressed while stopped at the block end...
+      phase = 1;
+    } else if (phase == 1 && o.state == MotionState::block_stop) {
+      hold = false;  // ... released, then cycle start
+      p.set_single_block(false);
+      p.resume();
+      phase = 2;
+    } else if (phase == 2 && o.path_velocity > 50.0) {
+      hold = true;  // a later hold must still stop the axes
+      phase = 3;
+    } else if (phase == 3 && o.state == MotionState::held) {
+      held_x = o.sample.pos[0];
+      phase = 4;
+    } else if (phase == 4 && hold) {
+      EXPECT_EQ(o.sample.pos[0], held_x) << "cycle " << cycle;
+      hold = cycle < 2000;  // held for a while, then released to the end
+    }
+  }
+  EXPECT_EQ(phase, 4);
+  EXPECT_GT(held_x, 0.0);
+  EXPECT_LT(held_x, 60.0);
+  EXPECT_EQ(p.output().sample.pos[0], 60.0);
+}
+
+TEST(Restart, ForgetsTheBlocksOfTheLastRun) {
+  const MotionConfig c = test_machine();
+  MotionPlanner p(c, AxisVector{});
+  run(p, {line_to({10.0, 0.0, 0.0}, 6000.0, 1), line_to({20.0, 0.0, 0.0}, 6000.0, 2)});
+  EXPECT_EQ(p.output().completed_block, 2U);
+  p.restart(p.output().sample.pos);
+  EXPECT_EQ(p.output().completed_block, 0U);
+  EXPECT_EQ(p.output().block, 0U);
+}
+
+TEST(Reset, StopsAThreadAndAnAxisWiseRapidWithinTheLimits) {
+  MotionConfig c = test_machine(2);
+  c.rapid_interpolated = false;
+  interp::Command thread;
+  thread.op = interp::Op::thread;
+  thread.to = {0.0, -60.0};
+  thread.lead = 2.0;
+  thread.n = 1;
+  for (const interp::Command& cmd : {thread, rapid_to({300.0, 10.0}, 1)}) {
+    MotionPlanner p(c, AxisVector{});
+    const auto trace = run(
+        p, {cmd},
+        [](std::size_t cycle) {
+          CycleInput in = testing::steady_spindle(cycle);
+          return in;
+        },
+        2'000'000,
+        [](std::size_t cycle, MotionPlanner& planner) {
+          if (cycle == 400) {
+            planner.reset();
+          }
+        });
+    ASSERT_TRUE(p.idle());
+    const auto r = check_limits(trace, c, AxisVector{});
+    EXPECT_LE(r.acceleration, 1.0 + 1e-6);
+    EXPECT_LE(r.jerk, 1.0 + 1e-6);
+    EXPECT_GT(trace.size(), 405U);  // it took a ramp to stop
+  }
+}
+
+TEST(Dwell, InRevolutionsPausesUnderFeedHold) {
+  const MotionConfig c = test_machine(2);
+  interp::Command revs;
+  revs.op = interp::Op::dwell;
+  revs.seconds = 2.0;
+  revs.in_revs = true;
+  revs.n = 1;
+  MotionPlanner p(c, AxisVector{});
+  const auto trace = run(p, {revs}, [](std::size_t cycle) {
+    CycleInput in = testing::steady_spindle(cycle);
+    in.feed_hold = cycle >= 50 && cycle < 150;
+    return in;
+  });
+  // Two revolutions at 600 rpm are 200 cycles; 100 held cycles do not count.
+  EXPECT_NEAR(static_cast<double>(trace.size()), 300.0, 2.0);
+}
+
+}  // namespace
+}  // namespace mcnc::motion

@@ -239,6 +239,58 @@ TEST_P(RandomPrograms, Trapezoidal) {
   check_program(c, GetParam());
 }
 
+// The same programs with the operator at the panel: feed holds and override changes (0-200 %)
+// at random cycles. Limits, tolerance and the end point must hold all the same.
+void check_with_operator(const MotionConfig& c, std::uint32_t seed) {
+  const RandomProgram prog = random_program(seed, 150);
+  std::mt19937 rng(seed * 7919U);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<std::pair<std::size_t, CycleInput>> changes;  // from cycle on
+  std::size_t at = 0;
+  for (int i = 0; i < 200; ++i) {
+    at += 20 + static_cast<std::size_t>(unit(rng) * 600.0);
+    CycleInput in;
+    const double pick = unit(rng);
+    in.feed_hold = pick < 0.3;
+    in.feed_override = pick < 0.4 ? 1.0 : (pick < 0.5 ? 0.0 : 2.0 * unit(rng));
+    changes.emplace_back(at, in);
+  }
+  MotionPlanner p(c, AxisVector{});
+  const auto trace = run(p, prog.commands, [&](std::size_t cycle) {
+    CycleInput in;
+    for (const auto& [from, change] : changes) {
+      if (from > cycle) {
+        break;
+      }
+      in = change;
+    }
+    if (cycle > at) {
+      in = CycleInput{};  // the operator lets it finish
+    }
+    return in;
+  });
+  ASSERT_TRUE(p.idle());
+  const auto r = check_limits(trace, c, AxisVector{});
+  EXPECT_LE(r.velocity, 1.0 + 1e-6) << "cycle " << r.worst_cycle;
+  EXPECT_LE(r.acceleration, 1.0 + 1e-6) << "cycle " << r.worst_cycle;
+  if (c.jerk_limited) {
+    EXPECT_LE(r.jerk, 1.0 + 1e-6) << "cycle " << r.worst_jerk_cycle;
+  }
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(trace.back().s.pos[i], prog.geometry.back().to[i], 1e-9);
+  }
+}
+
+TEST_P(RandomPrograms, WithRandomHoldsAndOverrides) {
+  check_with_operator(test_machine(), GetParam());
+}
+
+TEST_P(RandomPrograms, TrapezoidalWithRandomHoldsAndOverrides) {
+  MotionConfig c = test_machine();
+  c.jerk_limited = false;
+  check_with_operator(c, GetParam());
+}
+
 INSTANTIATE_TEST_SUITE_P(Seeds, RandomPrograms, ::testing::Range(1u, 51u));
 
 }  // namespace

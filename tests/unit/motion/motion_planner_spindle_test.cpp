@@ -178,6 +178,35 @@ TEST(Threading, ContinuousThreadGoesOnAtSpeedIntoTheNextBlock) {
   EXPECT_EQ(trace.back().s.pos[1], -40.0);
 }
 
+TEST(Threading, ContinuousBlocksPushedWhileTheThreadRunsStillChain) {
+  // A window of two blocks: each continuous block arrives after the one before has started.
+  MotionConfig c = test_machine(2);
+  c.lookahead_blocks = 2;
+  std::vector<interp::Command> prog{spindle_on(kRpm)};
+  for (int b = 1; b <= 4; ++b) {
+    interp::Command t = thread_to({0.0, -20.0 * b}, 2.0, 0.0, static_cast<std::uint64_t>(b));
+    t.continuous = b > 1;
+    prog.push_back(t);
+  }
+  MotionPlanner p(c, AxisVector{});
+  const auto trace = run(p, prog, SwingingSpindle{});
+  ASSERT_TRUE(p.idle());
+  double reference = 0.0;
+  bool have = false;
+  for (const auto& s : trace) {
+    if (s.s.pos[1] < -5.0 && s.s.pos[1] > -75.0) {
+      const double phase = s.s.pos[1] + 2.0 * s.spindle_angle / 360.0;
+      if (!have) {
+        reference = phase;
+        have = true;
+      }
+      EXPECT_NEAR(phase, reference, 1e-3) << "z " << s.s.pos[1];
+    }
+  }
+  EXPECT_TRUE(have);
+  EXPECT_EQ(trace.back().s.pos[1], -80.0);
+}
+
 TEST(Threading, WaitsForATurningSpindleAndRefusesALeadTooFastForTheAxes) {
   const MotionConfig c = test_machine(2);
   {
@@ -264,9 +293,7 @@ TEST(Dwell, SecondsAndRevolutions) {
   MotionPlanner p(c, AxisVector{});
   // 600 rpm = 3.6 degrees per 1 ms cycle: two revolutions take 200 cycles.
   const auto input = [](std::size_t cycle) {
-    CycleInput in;
-    in.spindle_rpm = 600.0;
-    in.spindle_angle = 3.6 * static_cast<double>(cycle + 1);
+    CycleInput in = testing::steady_spindle(cycle);
     return in;
   };
   const auto trace = run(p, {seconds, revs}, input);

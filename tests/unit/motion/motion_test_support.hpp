@@ -69,6 +69,14 @@ struct Sample {
 
 using InputFn = std::function<CycleInput(std::size_t cycle)>;
 
+// A spindle turning steadily at `rpm` (600: 3.6 degrees per 1 ms cycle), as seen at `cycle`.
+inline CycleInput steady_spindle(std::size_t cycle, double rpm = 600.0, double cycle_s = 0.001) {
+  CycleInput in;
+  in.spindle_rpm = rpm;
+  in.spindle_angle = 6.0 * rpm * cycle_s * static_cast<double>(cycle + 1);
+  return in;
+}
+
 // Pushes the commands as the window takes them and steps until everything has run (or
 // max_cycles). `input` gives each cycle's input; `each` sees the planner before each step.
 inline std::vector<Sample> run(MotionPlanner& p, const std::vector<interp::Command>& program,

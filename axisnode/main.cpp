@@ -1,6 +1,7 @@
 // mcnc-axisnode: one axis. DDS on one side (setpoints from its owner channel, feedback out),
 // CAN on the other (CiA 402 drive in cyclic synchronous position). Wiring only: the behaviour
 // is in AxisNodeController and DriveLink.
+#include "axisnode/canopen/emcy_codes.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/link/drive_link.hpp"
 #include "common/clock/cycle_clock.hpp"
@@ -108,11 +109,14 @@ int main(int argc, char** argv) {
     dds::Writer<AxisFeedback> feedback_writer(node.participant());
 
     axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
-    if (!link.bring_up(10s)) {
-      spdlog::error("drive node {} on {} does not answer (no boot-up)", node_id, bus->uri);
-      node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_lost),
-                       ("drive does not answer on " + bus->uri).c_str(), 0, 0, axis->id);
-      node.announce(PHASE_FAILED, 0, "drive does not answer");
+    canopen::NodeStartupConfig startup;
+    startup.node = node_id;
+    startup.bootup_attempts = 20;  // 20 x 500 ms
+    if (const auto error = link.bring_up(startup, 10s)) {
+      spdlog::error("drive on {}: {}", bus->uri, *error);
+      node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
+                       error->c_str(), 0, 0, axis->id);
+      node.announce(PHASE_FAILED, 0, *error);
       return 1;
     }
 
@@ -134,6 +138,8 @@ int main(int argc, char** argv) {
     setup.counts_per_unit = axis->counts_per_unit;
     setup.cycle_s = machine.cycle_s();
     setup.deadline_cycles = machine.deadline_cycles;
+    // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles.
+    setup.heartbeat_cycles = static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us);
     axisnode::AxisNodeController controller(setup);
     bool owner_loss_checked = false;
     std::uint64_t last_tpdo_count = 0;
@@ -196,6 +202,7 @@ int main(int argc, char** argv) {
       }
       in.owner_lost = lost_now;
       in.emergency_stop = estop;
+      in.heartbeats = link.heartbeats();
 
       const axisnode::AxisNodeOutput& out = controller.cycle(cycle, in);
 
@@ -220,6 +227,12 @@ int main(int argc, char** argv) {
       if (out.new_alarm != axisnode::AxisAlarm::none) {
         const int number = axisnode::kAlarmBase + static_cast<int>(out.new_alarm);
         const char* text = axisnode::to_text(out.new_alarm);
+        char with_emcy[160];
+        if (out.new_alarm == axisnode::AxisAlarm::drive_fault && link.last_emcy() != 0) {
+          std::snprintf(with_emcy, sizeof with_emcy, "drive fault: EMCY 0x%04X %s",
+                        link.last_emcy(), canopen::emcy_text(link.last_emcy()));
+          text = with_emcy;
+        }
         tracer.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"", number, text,
                     axis->name.c_str());
         node.raise_alarm(static_cast<std::uint32_t>(number), text, cycle, 0, axis->id);

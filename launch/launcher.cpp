@@ -141,6 +141,10 @@ LaunchResult Launcher::run(
   for (const auto& bus : machine_.buses) {
     std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path,
                                   "--bus", bus.name};
+    if (const auto extra = options_.drivesim_args.find(bus.name);
+        extra != options_.drivesim_args.end()) {
+      args.insert(args.end(), extra->second.begin(), extra->second.end());
+    }
     children.emplace_back("drivesim-" + bus.name, common_args(args));
   }
   for (const auto& axis : machine_.axes) {

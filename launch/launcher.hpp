@@ -25,6 +25,8 @@ struct LaunchOptions {
   std::string log_level;
   double start_timeout_s = 60.0;  // discovery and drive bring-up
   double run_timeout_s = 0.0;     // 0: no limit
+  // Extra arguments of each bus's mcnc-drivesim (fault injection), by bus name.
+  std::map<std::string, std::vector<std::string>> drivesim_args;
 };
 
 struct ChannelProgress {

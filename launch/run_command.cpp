@@ -73,6 +73,12 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--report", args.report_dir, "write a run report into DIR");
   app.add_option("--log-level", args.log_level, "log level of every process");
   app.add_option("--timeout", args.timeout_s, "E-stop the run after this many seconds (0: none)");
+  app.add_option("--drive-fault", args.drive_faults,
+                 "fault injection: BUS:NODE:KIND@SYNC, KIND overcurrent, following_error or "
+                 "heartbeat_stop (repeatable)");
+  app.add_option("--drive-refuse-sdo", args.drive_sdo_refusals,
+                 "fault injection: BUS:NODE:INDEX, the drive refuses SDO access to that object "
+                 "(repeatable)");
 }
 
 int execute_run(const RunArguments& args) {
@@ -114,6 +120,22 @@ int execute_run(const RunArguments& args) {
   options.bin_dir = executable_dir();
   options.log_level = args.log_level;
   options.run_timeout_s = args.timeout_s;
+  // Fault injection goes to the simulator of the named bus, which checks the rest.
+  for (const auto& [specs, flag] : {std::pair{&args.drive_faults, "--fault"},
+                                    std::pair{&args.drive_sdo_refusals, "--refuse-sdo"}}) {
+    for (const std::string& spec : *specs) {
+      const auto colon = spec.find(':');
+      if (colon == std::string::npos || machine.find_bus(spec.substr(0, colon)) == nullptr) {
+        std::fprintf(stderr, "error: %s %s: expected a bus of %s first (BUS:...)\n",
+                     flag == std::string("--fault") ? "--drive-fault" : "--drive-refuse-sdo",
+                     spec.c_str(), args.machine_path.c_str());
+        return 2;
+      }
+      auto& extra = options.drivesim_args[spec.substr(0, colon)];
+      extra.emplace_back(flag);
+      extra.push_back(spec.substr(colon + 1));
+    }
+  }
 
   if (!options.trace_path.empty()) {
     const auto dir = std::filesystem::absolute(options.trace_path).parent_path();

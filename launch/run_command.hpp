@@ -22,6 +22,8 @@ struct RunArguments {
   std::string report_dir;
   std::string log_level;
   double timeout_s = 0.0;
+  std::vector<std::string> drive_faults;        // BUS:NODE:KIND@SYNC (fault injection)
+  std::vector<std::string> drive_sdo_refusals;  // BUS:NODE:INDEX (fault injection)
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

@@ -16,6 +16,10 @@ const char* to_text(AxisAlarm alarm) noexcept {
       return "drive fault";
     case AxisAlarm::drive_lost:
       return "drive does not answer SYNC: quick stop";
+    case AxisAlarm::drive_startup:
+      return "drive start-up failed";
+    case AxisAlarm::heartbeat_lost:
+      return "no heartbeat from the drive within the consumer time: quick stop";
   }
   return "unknown alarm";
 }
@@ -61,6 +65,14 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   if (out_.drive_state == cia402::State::fault ||
       out_.drive_state == cia402::State::fault_reaction_active) {
     raise(AxisAlarm::drive_fault);
+  }
+  // Heartbeat consumer: watched from the first heartbeat on.
+  if (in.heartbeats != heartbeats_) {
+    heartbeats_ = in.heartbeats;
+    last_heartbeat_cycle_ = cycle;
+  } else if (setup_.heartbeat_cycles > 0 && heartbeats_ > 0 &&
+             cycle - last_heartbeat_cycle_ > static_cast<std::uint64_t>(setup_.heartbeat_cycles)) {
+    raise(AxisAlarm::heartbeat_lost);
   }
 
   if (in.emergency_stop) {

@@ -14,6 +14,9 @@ struct AxisNodeSetup {
   double counts_per_unit = 10000.0;
   double cycle_s = 0.001;
   int deadline_cycles = 5;
+  // Heartbeat consumer time in cycles (CiA 301: monitoring starts with the first heartbeat);
+  // 0: not monitored.
+  int heartbeat_cycles = 0;
 };
 
 struct AxisNodeInput {
@@ -26,6 +29,7 @@ struct AxisNodeInput {
   std::int32_t position_counts = 0;
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
+  std::uint64_t heartbeats = 0;  // the drive's heartbeats received so far
 };
 
 enum class AxisAlarm : std::uint8_t {
@@ -33,7 +37,9 @@ enum class AxisAlarm : std::uint8_t {
   setpoint_deadline = 1,  // no setpoint for deadline_cycles
   owner_lost = 2,
   drive_fault = 3,
-  drive_lost = 4,  // no TPDO for deadline_cycles
+  drive_lost = 4,      // no TPDO for deadline_cycles
+  drive_startup = 5,   // the drive could not be brought up (no boot-up, a refused SDO)
+  heartbeat_lost = 6,  // no heartbeat from the drive for the consumer time
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;
@@ -74,6 +80,8 @@ class AxisNodeController {
   std::uint64_t last_cycle_ = 0;
   bool owner_seen_ = false;  // the setpoint deadline runs once the owner has sent a setpoint
   double last_setpoint_vel_ = 0.0;
+  std::uint64_t heartbeats_ = 0;
+  std::uint64_t last_heartbeat_cycle_ = 0;
 };
 
 }  // namespace mcnc::axisnode

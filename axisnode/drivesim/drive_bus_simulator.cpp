@@ -36,6 +36,16 @@ DriveBusSimulator::DriveBusSimulator(const std::vector<DriveParams>& drives, dou
   fed_.assign(drives_.size(), false);
 }
 
+bool DriveBusSimulator::schedule_fault(std::uint8_t node, DriveFault fault,
+                                       std::uint64_t at_sync) noexcept {
+  SimulatedDrive* drive = find_mutable(node);
+  if (drive == nullptr) {
+    return false;
+  }
+  drive->schedule_fault(fault, at_sync);
+  return true;
+}
+
 bool DriveBusSimulator::refuse_sdo(std::uint8_t node, std::uint16_t index) noexcept {
   SimulatedDrive* drive = find_mutable(node);
   if (drive == nullptr) {
@@ -127,6 +137,10 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
       continue;
     }
     drive.on_sync();
+    const canopen::Emcy emcy = drive.take_emcy();
+    if (emcy.error_code != 0 && written < out.size()) {
+      out[written++] = canopen::encode_emcy(drive.node_id(), emcy);
+    }
     for (std::size_t n = 0; n < 2; ++n) {
       CanFrame tpdo;
       if (written < out.size() && drive.objects().encode_tpdo(n, tpdo)) {

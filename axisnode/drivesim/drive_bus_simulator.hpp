@@ -29,8 +29,11 @@ class DriveBusSimulator {
   // Each drive's SDO server refers to that drive's objects: not copied, not moved.
   DriveBusSimulator(const DriveBusSimulator&) = delete;
   DriveBusSimulator& operator=(const DriveBusSimulator&) = delete;
-  // Frames one SYNC may produce per drive: TPDO1, TPDO2 and a heartbeat.
-  static constexpr std::size_t kFramesPerDrive = 3;
+  // Frames one SYNC may produce per drive: an EMCY, TPDO1, TPDO2 and a heartbeat.
+  static constexpr std::size_t kFramesPerDrive = 4;
+  // Fault injection: the drive of `node` has `fault` at its SYNC number `at_sync`. False for a
+  // node not on this bus.
+  bool schedule_fault(std::uint8_t node, DriveFault fault, std::uint64_t at_sync) noexcept;
   // Fault injection: every SDO access to `index` of `node` is refused (device state). False
   // for a node not on this bus.
   bool refuse_sdo(std::uint8_t node, std::uint16_t index) noexcept;

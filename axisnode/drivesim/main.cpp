@@ -47,6 +47,14 @@ int main(int argc, char** argv) {
   // order senders the way a bus does).
   process::add_shell_options(app, shell);
   app.add_option("--bus", bus_name, "name of the bus to simulate (buses[].name)")->required();
+  std::vector<std::string> refusals;
+  std::vector<std::string> faults;
+  app.add_option("--fault", faults,
+                 "fault injection: NODE:KIND@SYNC, KIND overcurrent (EMCY 0x2310), "
+                 "following_error (EMCY 0x8611) or heartbeat_stop, at the drive's SYNC number");
+  app.add_option("--refuse-sdo", refusals,
+                 "fault injection: NODE:INDEX, the drive refuses every SDO access to that object "
+                 "(abort 0x08000022), e.g. 1:0x6060");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
@@ -81,6 +89,55 @@ int main(int argc, char** argv) {
 
   try {
     drivesim::DriveBusSimulator simulator(drives, machine.cycle_s());
+    for (const std::string& refusal : refusals) {
+      const auto colon = refusal.find(':');
+      unsigned long node = 0;
+      unsigned long index = 0;
+      try {
+        node = std::stoul(refusal.substr(0, colon));
+        index = std::stoul(refusal.substr(colon + 1), nullptr, 0);
+      } catch (const std::exception&) {
+        node = 0;
+      }
+      if (colon == std::string::npos || node > 127 || index > 0xFFFF ||
+          !simulator.refuse_sdo(static_cast<std::uint8_t>(node),
+                                static_cast<std::uint16_t>(index))) {
+        std::fprintf(stderr, "mcnc-drivesim: --refuse-sdo %s: want NODE:INDEX of a drive on %s\n",
+                     refusal.c_str(), bus_name.c_str());
+        return 2;
+      }
+      spdlog::info("fault injection: node {} refuses SDO access to 0x{:04X}", node, index);
+    }
+    for (const std::string& spec : faults) {
+      const auto colon = spec.find(':');
+      const auto at = spec.find('@');
+      unsigned long node = 0;
+      unsigned long long sync = 0;
+      drivesim::DriveFault fault = drivesim::DriveFault::none;
+      if (colon != std::string::npos && at != std::string::npos && at > colon) {
+        const std::string kind = spec.substr(colon + 1, at - colon - 1);
+        fault = kind == "overcurrent"       ? drivesim::DriveFault::overcurrent
+                : kind == "following_error" ? drivesim::DriveFault::following_error
+                : kind == "heartbeat_stop"  ? drivesim::DriveFault::heartbeat_stop
+                                            : drivesim::DriveFault::none;
+        try {
+          node = std::stoul(spec.substr(0, colon));
+          sync = std::stoull(spec.substr(at + 1));
+        } catch (const std::exception&) {
+          fault = drivesim::DriveFault::none;
+        }
+      }
+      if (fault == drivesim::DriveFault::none || node > 127 || sync == 0 ||
+          !simulator.schedule_fault(static_cast<std::uint8_t>(node), fault, sync)) {
+        std::fprintf(stderr,
+                     "mcnc-drivesim: --fault %s: want NODE:KIND@SYNC, KIND overcurrent, "
+                     "following_error or heartbeat_stop, for a drive on %s\n",
+                     spec.c_str(), bus_name.c_str());
+        return 2;
+      }
+      spdlog::info("fault injection: node {} has {} at SYNC {}", node, spec.substr(colon + 1),
+                   sync);
+    }
     std::unique_ptr<can::CanBus> bus = can::open_can_bus(bus_config->uri);
     spdlog::info("{} drive(s) on {} ({}), cycle {} us", drives.size(), bus_name, bus_config->uri,
                  machine.cycle_us);

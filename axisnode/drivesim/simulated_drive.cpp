@@ -109,16 +109,26 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   objects_.live.velocity = to_counts(velocity_);
   objects_.live.following_error = to_counts(target_ - position_);
   ++syncs_;
+  if (fault_ != DriveFault::none && syncs_ == fault_at_) {
+    if (fault_ == DriveFault::heartbeat_stop) {
+      heartbeat_stopped_ = true;
+    } else {
+      // Error register 0x01 (generic) plus the class bit: current 0x02, or generic only.
+      emcy_ = fault_ == DriveFault::overcurrent ? canopen::Emcy{0x2310, 0x03}
+                                                : canopen::Emcy{0x8611, 0x01};
+      device_.on_fault();
+    }
+  }
   return out;
 }
 
 bool SimulatedDrive::heartbeat_due() const noexcept {
   const std::uint16_t ms = objects_.heartbeat_ms();
-  if (ms == 0) {
+  if (ms == 0 || heartbeat_stopped_) {
     return false;
   }
-  const auto every = std::max<std::uint64_t>(
-      1, static_cast<std::uint64_t>(std::llround(ms * 1e-3 / cycle_s_)));
+  const auto every =
+      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(ms * 1e-3 / cycle_s_)));
   return syncs_ % every == 0;
 }
 
@@ -132,7 +142,8 @@ void SimulatedDrive::move_one_cycle() noexcept {
       position_ += velocity_ * dt;
       break;
     }
-    case State::quick_stop_active: {
+    case State::quick_stop_active:
+    case State::fault_reaction_active: {
       const double step = params_.quick_stop_decel * dt;
       if (std::abs(velocity_) <= step) {
         velocity_ = 0.0;
@@ -141,6 +152,9 @@ void SimulatedDrive::move_one_cycle() noexcept {
       }
       position_ += velocity_ * dt;
       target_ = position_;
+      if (velocity_ == 0.0 && device_.state() == State::fault_reaction_active) {
+        device_.on_fault_reaction_done();  // standing still: fault
+      }
       break;
     }
     default:

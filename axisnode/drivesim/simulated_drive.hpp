@@ -9,6 +9,14 @@
 
 namespace mcnc::drivesim {
 
+// Faults a simulated drive can be told to have (fault injection for tests and demos).
+enum class DriveFault : std::uint8_t {
+  none,
+  overcurrent,      // EMCY 0x2310, CiA 402 fault (fault reaction: quick-stop ramp)
+  following_error,  // EMCY 0x8611, CiA 402 fault
+  heartbeat_stop,   // the heartbeat producer falls silent; everything else goes on
+};
+
 struct DriveParams {
   std::uint8_t node_id = 1;
   double counts_per_unit = 10000.0;
@@ -28,7 +36,8 @@ struct DriveParams {
 // Motion per on_sync() with dt = cycle_s:
 //  - operation_enabled: v = (target - pos) / max(tau, dt), clamped to +-max_velocity;
 //    pos += v * dt (tau below one cycle would make the discrete loop overshoot).
-//  - quick_stop_active: |v| decreases by quick_stop_decel * dt, never past 0; pos += v * dt.
+//  - quick_stop_active and fault_reaction_active: |v| decreases by quick_stop_decel * dt,
+//    never past 0; pos += v * dt; the fault reaction ends in fault at standstill.
 //  - otherwise v = 0 and pos stays.
 // The target is taken from RPDOs received after the SYNC that enabled operation; until then
 // (and in every other state) it follows the actual position, so enabling never jumps.
@@ -52,6 +61,17 @@ class SimulatedDrive {
   [[nodiscard]] const DriveObjects& objects() const noexcept { return objects_; }
   // A heartbeat is due after this SYNC (every producer time 0x1017, counted in cycles).
   [[nodiscard]] bool heartbeat_due() const noexcept;
+  // The fault happens at the SYNC with this number (counted from 1 after power on).
+  void schedule_fault(DriveFault fault, std::uint64_t at_sync) noexcept {
+    fault_ = fault;
+    fault_at_ = at_sync;
+  }
+  // The EMCY the drive has to send (once), error code 0 when none.
+  [[nodiscard]] canopen::Emcy take_emcy() noexcept {
+    const canopen::Emcy e = emcy_;
+    emcy_ = {};
+    return e;
+  }
 
  private:
   void move_one_cycle() noexcept;
@@ -70,6 +90,10 @@ class SimulatedDrive {
   double target_;
   DriveObjects objects_;
   std::uint64_t syncs_ = 0;
+  DriveFault fault_ = DriveFault::none;
+  std::uint64_t fault_at_ = 0;
+  bool heartbeat_stopped_ = false;
+  canopen::Emcy emcy_{};
 };
 
 }  // namespace mcnc::drivesim

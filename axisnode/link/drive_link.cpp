@@ -63,14 +63,34 @@ void DriveLink::receive_loop() {
           if (state && *state == canopen::NmtState::bootup) {
             wakeup_.update([&] { ++bootups_; });
           }
+          if (state) {
+            ++heartbeats_;
+          } else {
+            ++malformed_;
+          }
+          wakeup_.update([&] {
+            if (starting_) {
+              startup_frames_.push_back(frame);
+            }
+          });
         }
         break;
       case canopen::FrameKind::emcy:
         if (cls.node == node_id_) {
           if (auto emcy = canopen::decode_emcy(frame)) {
+            last_emcy_ = emcy->error_code;
             ++emcys_;
             spdlog::warn("EMCY from node {}: error code 0x{:04x}", node_id_, emcy->error_code);
           }
+        }
+        break;
+      case canopen::FrameKind::other:
+        if (frame.id == canopen::kSdoResponseBase + node_id_) {
+          wakeup_.update([&] {
+            if (starting_) {
+              startup_frames_.push_back(frame);
+            }
+          });
         }
         break;
       default:
@@ -79,18 +99,48 @@ void DriveLink::receive_loop() {
   }
 }
 
-bool DriveLink::bring_up(std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    const std::uint64_t before = bootups_.load();
-    send_nmt(canopen::NmtCommand::reset_communication);
-    if (wakeup_.wait_for([&] { return bootups_.load() > before; }, 500ms)) {
-      send_nmt(canopen::NmtCommand::start);
-      return true;
+std::optional<std::string> DriveLink::bring_up(const canopen::NodeStartupConfig& config,
+                                               std::chrono::milliseconds timeout) {
+  canopen::NodeStartup startup(config);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto now_us = [&] {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0)
+            .count());
+  };
+  wakeup_.update([&] {
+    startup_frames_.clear();
+    starting_ = true;
+  });
+  canopen::CanFrame out;
+  startup.begin(now_us(), out);
+  bus_->send(out);
+  std::deque<canopen::CanFrame> got;
+  while (startup.status() == canopen::NodeStartup::Status::running &&
+         std::chrono::steady_clock::now() - t0 < timeout) {
+    wakeup_.wait_for([&] { return !startup_frames_.empty(); }, 10ms);
+    wakeup_.with_lock([&] { got.swap(startup_frames_); });
+    for (const canopen::CanFrame& frame : got) {
+      if (startup.on_frame(frame, now_us(), out)) {
+        bus_->send(out);
+      }
     }
-    spdlog::info("node {}: no boot-up yet, resetting communication again", node_id_);
+    got.clear();
+    if (startup.on_time(now_us(), out)) {
+      bus_->send(out);
+    }
   }
-  return false;
+  wakeup_.update([&] { starting_ = false; });
+  switch (startup.status()) {
+    case canopen::NodeStartup::Status::done:
+      return std::nullopt;
+    case canopen::NodeStartup::Status::failed:
+      return std::string(startup.error());
+    case canopen::NodeStartup::Status::running:
+      break;
+  }
+  return "node " + std::to_string(node_id_) + ": start-up not finished within " +
+         std::to_string(timeout.count()) + " ms";
 }
 
 void DriveLink::send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept {

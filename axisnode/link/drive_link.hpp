@@ -3,6 +3,7 @@
 // bus said (boot-up, SYNC count, this node's TPDO, which other nodes sent their RPDO since the
 // last SYNC) and wakes the cyclic loop. In lockstep the SYNC producer sends SYNC only after
 // every node of the bus has sent its RPDO for the cycle, so the drives step in step.
+#include "axisnode/canopen/node_startup.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/process/process_node.hpp"
@@ -11,8 +12,11 @@
 #include <bitset>
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -31,9 +35,11 @@ class DriveLink {
   DriveLink(const DriveLink&) = delete;
   DriveLink& operator=(const DriveLink&) = delete;
 
-  // NMT reset communication, wait for the boot-up, NMT start. False when the drive never
-  // answered within `timeout` (retrying the reset).
-  bool bring_up(std::chrono::milliseconds timeout);
+  // The node's start-up by this master (canopen::NodeStartup: reset communication, boot-up,
+  // device type, heartbeat time, PDO mapping, mode of operation, NMT start). nullopt when the
+  // node is started; otherwise why not, naming the object a refused SDO was about.
+  std::optional<std::string> bring_up(const canopen::NodeStartupConfig& config,
+                                      std::chrono::milliseconds timeout);
   void send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept;
   void send_sync() noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
@@ -51,6 +57,10 @@ class DriveLink {
   [[nodiscard]] TpdoSample tpdo() noexcept;
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
+  // The error code of the last EMCY (0: none yet).
+  [[nodiscard]] std::uint16_t last_emcy() const noexcept { return last_emcy_.load(); }
+  // Heartbeats of this node received so far (any NMT state).
+  [[nodiscard]] std::uint64_t heartbeats() const noexcept { return heartbeats_.load(); }
 
  private:
   void receive_loop();
@@ -66,6 +76,12 @@ class DriveLink {
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> syncs_{0};
   std::atomic<std::uint64_t> bootups_{0};
+  std::atomic<std::uint64_t> heartbeats_{0};
+  std::atomic<std::uint16_t> last_emcy_{0};
+  // While bring_up() runs: this node's SDO responses and heartbeats, for the start-up
+  // (guarded by the wakeup's lock).
+  bool starting_ = false;
+  std::deque<canopen::CanFrame> startup_frames_;
   std::atomic<std::uint64_t> emcys_{0};
   std::atomic<std::uint64_t> malformed_{0};
   std::atomic<std::uint64_t> tpdo_count_{0};

@@ -204,3 +204,35 @@ TEST(AxisNodeController, SkippedCyclesCountTowardTheDeadline) {
   EXPECT_EQ(loop.node.cycle(last + 4, none).new_alarm, AxisAlarm::none);  // ticks skipped
   EXPECT_EQ(loop.node.cycle(last + 5, none).new_alarm, AxisAlarm::setpoint_deadline);
 }
+
+TEST(AxisNodeController, HeartbeatLostIsAnAlarmAndQuickStopAfterTheConsumerTime) {
+  // Heartbeats every 100 cycles, consumer time 150 cycles: the alarm comes 151 cycles after
+  // the last one, not before; not at all while they come.
+  AxisNodeController node(axisnode::AxisNodeSetup{10000.0, kCycle, 5, 150});
+  drivesim::SimulatedDrive drive(drivesim::DriveParams{1, 10000.0, 0.004, 500.0, 5000.0, 0.0},
+                                 kCycle);
+  drive.power_on();
+  drive.on_nmt(canopen::NmtCommand::start);
+  canopen::TxPdoCsp tpdo{};
+  std::uint64_t heartbeats = 0;
+  std::uint64_t alarm_cycle = 0;
+  for (std::uint64_t cycle = 0; cycle < 1000 && alarm_cycle == 0; ++cycle) {
+    if (cycle % 100 == 0 && cycle <= 400) {
+      ++heartbeats;  // the last one at cycle 400
+    }
+    AxisNodeInput in = setpoint(0.0);
+    in.have_tpdo = cycle > 0;
+    in.statusword = tpdo.statusword;
+    in.position_counts = tpdo.position_actual;
+    in.heartbeats = heartbeats;
+    const auto& out = node.cycle(cycle, in);
+    drive.on_rpdo(canopen::RxPdoCsp{out.controlword, out.target_counts});
+    tpdo = drive.on_sync();
+    if (out.new_alarm == AxisAlarm::heartbeat_lost) {
+      alarm_cycle = cycle;
+      EXPECT_TRUE(out.quick_stop);
+      EXPECT_FALSE(out.enabled);
+    }
+  }
+  EXPECT_EQ(alarm_cycle, 551U);
+}

@@ -1,0 +1,87 @@
+// The axis node brings its drive up by CANopen (boot-up, SDO configuration, NMT start) against
+// the real simulator process over the bus; a drive that refuses an SDO is a clear alarm at
+// start-up that names the object, and nothing moves.
+#include "harness.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace mcnc::test;
+using namespace std::chrono_literals;
+
+namespace {
+
+TEST(DriveStartup, ARefusedSdoIsAnAlarmNamingTheObject) {
+  TestMachine machine("small_lathe.yaml", 31);
+  Background drives({bin("mcnc-drivesim"), "--machine", machine.path(), "--bus", "can0",
+                     "--refuse-sdo", "1:0x6060"},
+                    machine.domain(), machine.file("drivesim.log"));
+  const RunResult r = run({bin("mcnc-axisnode"), "--machine", machine.path(), "--axis", "X1"},
+                          machine.domain(), 60s);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const std::string said = r.out + r.err;
+  EXPECT_NE(said.find("node 1: writing 0x6060:00 (modes of operation) was refused: data cannot be "
+                      "transferred or stored because of the present device state (SDO abort "
+                      "0x08000022)"),
+            std::string::npos)
+      << said;
+}
+
+TEST(DriveStartup, TheOtherDriveOfTheBusComesUp) {
+  // The same bus, the same refusal for node 1: node 2 (Z1) is configured and started.
+  TestMachine machine("small_lathe.yaml", 32);
+  Background drives({bin("mcnc-drivesim"), "--machine", machine.path(), "--bus", "can0",
+                     "--refuse-sdo", "1:0x6060"},
+                    machine.domain(), machine.file("drivesim.log"));
+  Background axis({bin("mcnc-axisnode"), "--machine", machine.path(), "--axis", "Z1"},
+                  machine.domain(), machine.file("z1.log"));
+  // Started, it waits for its channel (which is not there): it must not have exited.
+  std::this_thread::sleep_for(3s);
+  EXPECT_EQ(axis.wait(0s), -1000) << "the axis node of a healthy drive exited";
+}
+
+}  // namespace
+
+namespace {
+
+// Runs the xz program with one injected drive fault; the trace.
+std::vector<nlohmann::json> run_with_fault(int domain, const std::string& fault) {
+  TestMachine machine("small_lathe.yaml", domain);
+  const std::string trace = machine.file("trace.jsonl");
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--program",
+           "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace, "--drive-fault", fault},
+          -1, 180s);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // the run ends in an alarm
+  return read_trace(trace);
+}
+
+TEST(DriveFaults, OverCurrentEmcyIsAnAxisAlarmWithTheErrorInWords) {
+  const auto trace = run_with_fault(33, "can0:1:overcurrent@2000");
+  bool found = false;
+  for (const auto& a : events(trace, "alarm", "X1")) {
+    if (a["number"] == 2003) {
+      found = true;
+      EXPECT_EQ(a["text"], "drive fault: EMCY 0x2310 continuous over-current");
+      EXPECT_GE(a["cycle"].get<std::uint64_t>(), 1990U);
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(DriveFaults, SilentHeartbeatIsAnAlarmWithinTheConsumerTime) {
+  // Heartbeats every 100 cycles (0x1017 = 100 ms at 1 ms), consumer time 150 cycles: the last
+  // one before SYNC 1500 comes at 1400, the alarm at most 151 cycles later.
+  const auto trace = run_with_fault(34, "can0:2:heartbeat_stop@1500");
+  bool found = false;
+  for (const auto& a : events(trace, "alarm", "Z1")) {
+    if (a["number"] == 2006) {
+      found = true;
+      const auto cycle = a["cycle"].get<std::uint64_t>();
+      EXPECT_GE(cycle, 1500U);
+      EXPECT_LE(cycle, 1400U + 151U + 20U);  // a few cycles of start-up offset
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+}  // namespace

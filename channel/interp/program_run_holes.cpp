@@ -58,7 +58,10 @@ bool ProgramRun::take_hole_words(int column) {
       h.retract = std::fabs(length_of(*r));  // gsk: the back-off after each peck (gsk D2-30)
     } else {
       h.has_r = true;  // Dafeng: the R point, an absolute coordinate of the drilling axis
-      const std::array<int, 2> axes = plane_axis_indices();
+      std::array<int, 2> axes{};
+      if (!require_plane_axes(axes, r->column)) {
+        return false;  // a plane (G17/G19) whose axes this channel lacks: no drilling axis
+      }
       const int drill = side_cycle(h.function) ? axes[1] : axes[0];
       h.r_level = to_physical(drill, scaled(*r, true)) + offset_sum(drill) + tool_offset(drill);
     }

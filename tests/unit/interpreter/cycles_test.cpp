@@ -105,6 +105,12 @@ TEST(InterpCycles, TappingUsesTheLeadAndReversesATurningSpindle) {
   run_alarm("G00 X0 Z5\nG84 Z-10 R1\nM30\n", alarm::kThreadLead, 2);
 }
 
+TEST(InterpCycles, HoleCycleRPointInAPlaneWithoutItsAxes) {
+  // G19 (YZ) on an X/Z lathe: no drilling axis for the R point. Found by the fuzzer: an alarm
+  // on the R word, never an axis index out of range.
+  run_alarm("G00 X0 Z5\nG19\nG83 Z-10 R1 F100\nM30\n", alarm::kNoPlaneAxis, 3);
+}
+
 TEST(InterpCycles, HoleCycleNeedsItsBottom) {
   run_alarm("G00 X0 Z5\nG83 R1 F100\nX10\nM30\n", alarm::kCycleWordMissing, 2);
 }

@@ -203,6 +203,7 @@ int main(int argc, char** argv) {
       in.owner_lost = lost_now;
       in.emergency_stop = estop;
       in.heartbeats = link.heartbeats();
+      in.bus_off = link.bus_off();
 
       const axisnode::AxisNodeOutput& out = controller.cycle(cycle, in);
 

@@ -20,6 +20,8 @@ const char* to_text(AxisAlarm alarm) noexcept {
       return "drive start-up failed";
     case AxisAlarm::heartbeat_lost:
       return "no heartbeat from the drive within the consumer time: quick stop";
+    case AxisAlarm::bus_off:
+      return "CAN bus off: the drive cannot be reached";
   }
   return "unknown alarm";
 }
@@ -75,6 +77,9 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     raise(AxisAlarm::heartbeat_lost);
   }
 
+  if (in.bus_off) {
+    raise(AxisAlarm::bus_off);
+  }
   if (in.emergency_stop) {
     out_.quick_stop = true;
   }

@@ -30,6 +30,7 @@ struct AxisNodeInput {
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
   std::uint64_t heartbeats = 0;  // the drive's heartbeats received so far
+  bool bus_off = false;          // the CAN controller went bus off
 };
 
 enum class AxisAlarm : std::uint8_t {
@@ -40,6 +41,7 @@ enum class AxisAlarm : std::uint8_t {
   drive_lost = 4,      // no TPDO for deadline_cycles
   drive_startup = 5,   // the drive could not be brought up (no boot-up, a refused SDO)
   heartbeat_lost = 6,  // no heartbeat from the drive for the consumer time
+  bus_off = 7,         // the CAN controller went bus off
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;

@@ -1,6 +1,7 @@
 // mcnc-drivesim: the simulated CiA 402 drives of one CAN bus of a machine. Process shell only:
 // parse the command line, load the machine file, open the bus, pump frames through the
 // DriveBusSimulator until SIGTERM/SIGINT.
+#include "axisnode/canopen/bus_filters.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"
@@ -11,6 +12,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -31,6 +33,8 @@ const char* result_name(mcnc::can::BusResult result) {
       return "malformed";
     case mcnc::can::BusResult::error:
       return "error";
+    case mcnc::can::BusResult::bus_off:
+      return "bus off";
   }
   return "?";
 }
@@ -139,6 +143,18 @@ int main(int argc, char** argv) {
                    sync);
     }
     std::unique_ptr<can::CanBus> bus = can::open_can_bus(bus_config->uri);
+    {
+      // Only what the drives need reaches the simulator (in the kernel on SocketCAN).
+      std::vector<std::uint8_t> nodes;
+      for (const drivesim::DriveParams& d : drives) {
+        nodes.push_back(d.node_id);
+      }
+      std::array<can::CanFilter, can::kMaxFilters> filters{};
+      const std::size_t n = canopen::device_filters(nodes, filters);
+      if (!bus->set_filters(std::span(filters.data(), n))) {
+        spdlog::warn("the bus refused the receive filter; receiving every frame");
+      }
+    }
     spdlog::info("{} drive(s) on {} ({}), cycle {} us", drives.size(), bus_name, bus_config->uri,
                  machine.cycle_us);
 

@@ -1,5 +1,7 @@
 #include "axisnode/link/drive_link.hpp"
 
+#include "axisnode/canopen/bus_filters.hpp"
+
 #include <spdlog/spdlog.h>
 
 namespace mcnc::axisnode {
@@ -12,6 +14,12 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
       node_id_(node_id),
       other_nodes_(std::move(other_nodes)),
       wakeup_(wakeup) {
+  // Only what this node's master needs reaches it (in the kernel on SocketCAN).
+  std::array<can::CanFilter, can::kMaxFilters> filters{};
+  const std::size_t n = canopen::master_filters(node_id_, other_nodes_, filters);
+  if (!bus_->set_filters(std::span(filters.data(), n))) {
+    spdlog::warn("node {}: the bus refused the receive filter; receiving every frame", node_id_);
+  }
   thread_ = std::thread([this] { receive_loop(); });
 }
 
@@ -26,6 +34,13 @@ void DriveLink::receive_loop() {
     const can::BusResult result = bus_->receive(frame, 50ms);
     if (result == can::BusResult::malformed) {
       ++malformed_;
+      continue;
+    }
+    if (result == can::BusResult::bus_off) {
+      if (!bus_off_.exchange(true)) {
+        spdlog::error("node {}: the CAN controller went bus off", node_id_);
+      }
+      wakeup_.notify();
       continue;
     }
     if (result != can::BusResult::ok) {

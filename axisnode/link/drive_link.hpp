@@ -59,6 +59,8 @@ class DriveLink {
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
   // The error code of the last EMCY (0: none yet).
   [[nodiscard]] std::uint16_t last_emcy() const noexcept { return last_emcy_.load(); }
+  // The bus went bus off (an error frame said so; SocketCAN).
+  [[nodiscard]] bool bus_off() const noexcept { return bus_off_.load(); }
   // Heartbeats of this node received so far (any NMT state).
   [[nodiscard]] std::uint64_t heartbeats() const noexcept { return heartbeats_.load(); }
 
@@ -77,6 +79,7 @@ class DriveLink {
   std::atomic<std::uint64_t> syncs_{0};
   std::atomic<std::uint64_t> bootups_{0};
   std::atomic<std::uint64_t> heartbeats_{0};
+  std::atomic<bool> bus_off_{false};
   std::atomic<std::uint16_t> last_emcy_{0};
   // While bring_up() runs: this node's SDO responses and heartbeats, for the start-up
   // (guarded by the wakeup's lock).

@@ -9,6 +9,7 @@
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
+#include <array>
 #include <cerrno>
 #include <cstddef>
 #include <cstring>
@@ -95,7 +96,29 @@ BusResult SocketCanBus::receive(CanFrame& frame, std::chrono::microseconds timeo
   frame.id = in.can_id;
   frame.dlc = in.len;
   std::memcpy(frame.data.data(), in.data, sizeof(in.data));
-  return (in.can_id & CAN_ERR_FLAG) != 0 ? BusResult::error : BusResult::ok;
+  if ((in.can_id & CAN_ERR_FLAG) != 0) {
+    return (in.can_id & CAN_ERR_BUSOFF) != 0 ? BusResult::bus_off : BusResult::error;
+  }
+  return BusResult::ok;
+}
+
+bool SocketCanBus::set_filters(std::span<const CanFilter> filters) noexcept {
+  if (filters.size() > kMaxFilters) {
+    return false;
+  }
+  std::array<can_filter, kMaxFilters> kernel{};
+  for (std::size_t i = 0; i < filters.size(); ++i) {
+    kernel[i].can_id = filters[i].id;
+    kernel[i].can_mask = filters[i].mask;
+  }
+  // An empty set: the default filter that lets every frame in.
+  if (filters.empty()) {
+    kernel[0].can_id = 0;
+    kernel[0].can_mask = 0;
+  }
+  const std::size_t count = filters.empty() ? 1 : filters.size();
+  return ::setsockopt(fd_, SOL_CAN_RAW, CAN_RAW_FILTER, kernel.data(),
+                      static_cast<socklen_t>(count * sizeof(can_filter))) == 0;
 }
 
 unsigned long SocketCanBus::malformed_count() const noexcept {

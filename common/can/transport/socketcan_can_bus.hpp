@@ -20,6 +20,7 @@ class SocketCanBus final : public CanBus {
   BusResult send(const CanFrame& frame) noexcept override;
   BusResult receive(CanFrame& frame, std::chrono::microseconds timeout) noexcept override;
   [[nodiscard]] unsigned long malformed_count() const noexcept override;
+  bool set_filters(std::span<const CanFilter> filters) noexcept override;
   [[nodiscard]] int native_handle() const noexcept override;
 
  private:

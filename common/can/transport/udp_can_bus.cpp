@@ -152,9 +152,16 @@ BusResult UdpCanBus::receive(CanFrame& frame, std::chrono::microseconds timeout)
       ++malformed_;
       return BusResult::malformed;
     }
+    if (!filters_.passes(received)) {
+      continue;  // not for this endpoint
+    }
     frame = received;
     return BusResult::ok;
   }
+}
+
+bool UdpCanBus::set_filters(std::span<const CanFilter> filters) noexcept {
+  return filters_.assign(filters);
 }
 
 unsigned long UdpCanBus::malformed_count() const noexcept {

@@ -21,6 +21,7 @@ class UdpCanBus final : public CanBus {
   BusResult send(const CanFrame& frame) noexcept override;
   BusResult receive(CanFrame& frame, std::chrono::microseconds timeout) noexcept override;
   [[nodiscard]] unsigned long malformed_count() const noexcept override;
+  bool set_filters(std::span<const CanFilter> filters) noexcept override;
   [[nodiscard]] int native_handle() const noexcept override;
 
  private:
@@ -29,6 +30,7 @@ class UdpCanBus final : public CanBus {
   sockaddr_in destination_{};
   sockaddr_in own_source_{};  // the send socket's address: datagrams from it are our own
   unsigned long malformed_ = 0;
+  CanFilterSet filters_;  // applied in receive(): UDP has no kernel filter
 };
 
 }  // namespace mcnc::can

@@ -193,3 +193,33 @@ TEST(UdpCanBus, TimeoutAndNativeHandle) {
 
 }  // namespace
 }  // namespace mcnc::can
+
+namespace mcnc::can {
+namespace {
+
+TEST(UdpCanBus, ReceivesOnlyWhatItsFiltersLetThrough) {
+  const Endpoint e = test_endpoint();
+  auto a = open_can_bus(e.uri());
+  auto b = open_can_bus(e.uri());
+  const std::array<CanFilter, 2> filters{CanFilter{0x181}, CanFilter{0x080}};
+  ASSERT_TRUE(b->set_filters(filters));
+  for (const std::uint32_t id : {0x182U, 0x181U, 0x201U, 0x080U}) {
+    ASSERT_EQ(a->send(frame(id, {1})), BusResult::ok);
+  }
+  CanFrame got;
+  ASSERT_EQ(b->receive(got, 1s), BusResult::ok);
+  EXPECT_EQ(got.id, 0x181U);
+  ASSERT_EQ(b->receive(got, 1s), BusResult::ok);
+  EXPECT_EQ(got.id, 0x080U);
+  EXPECT_EQ(b->receive(got, 50ms), BusResult::timeout);
+  // Back to everything.
+  ASSERT_TRUE(b->set_filters({}));
+  ASSERT_EQ(a->send(frame(0x182, {1})), BusResult::ok);
+  ASSERT_EQ(b->receive(got, 1s), BusResult::ok);
+  EXPECT_EQ(got.id, 0x182U);
+  const std::vector<CanFilter> too_many(kMaxFilters + 1);
+  EXPECT_FALSE(b->set_filters(too_many));
+}
+
+}  // namespace
+}  // namespace mcnc::can

@@ -138,6 +138,10 @@ int main(int argc, char** argv) {
     setup.counts_per_unit = axis->counts_per_unit;
     setup.cycle_s = machine.cycle_s();
     setup.deadline_cycles = machine.deadline_cycles;
+    setup.has_soft_limits = axis->has_soft_limits;
+    setup.soft_min = axis->soft_limit_min;
+    setup.soft_max = axis->soft_limit_max;
+    setup.following_error_limit = axis->following_error_limit;
     // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles.
     setup.heartbeat_cycles = static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us);
     axisnode::AxisNodeController controller(setup);

@@ -22,6 +22,10 @@ const char* to_text(AxisAlarm alarm) noexcept {
       return "no heartbeat from the drive within the consumer time: quick stop";
     case AxisAlarm::bus_off:
       return "CAN bus off: the drive cannot be reached";
+    case AxisAlarm::soft_limit:
+      return "setpoint beyond the axis's soft limits: quick stop";
+    case AxisAlarm::following_error:
+      return "following error above its limit: quick stop";
   }
   return "unknown alarm";
 }
@@ -30,7 +34,7 @@ AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept : se
 
 void AxisNodeController::raise(AxisAlarm alarm) noexcept {
   out_.quick_stop = true;
-  const auto bit = static_cast<std::uint8_t>(1U << static_cast<unsigned>(alarm));
+  const auto bit = static_cast<std::uint16_t>(1U << static_cast<unsigned>(alarm));
   if ((raised_ & bit) != 0) {
     return;
   }
@@ -99,7 +103,10 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       owner_seen_ = true;
       last_setpoint_cycle_ = cycle;
       out_.missing_setpoints = 0;
-      if (in.setpoint_valid) {
+      if (in.setpoint_valid && setup_.has_soft_limits &&
+          (in.setpoint_pos < setup_.soft_min || in.setpoint_pos > setup_.soft_max)) {
+        raise(AxisAlarm::soft_limit);  // never commanded: the drive stops where it is
+      } else if (in.setpoint_valid) {
         out_.cmd = in.setpoint_pos;
         last_setpoint_vel_ = in.setpoint_vel;
       } else {
@@ -113,6 +120,10 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
         raise(AxisAlarm::setpoint_deadline);
       }
     }
+  }
+  if (was_enabled_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
+      std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
+    raise(AxisAlarm::following_error);
   }
   if (out_.quick_stop) {
     out_.cmd = out_.act;  // the drive ramps down itself; the target follows it

@@ -17,6 +17,13 @@ struct AxisNodeSetup {
   // Heartbeat consumer time in cycles (CiA 301: monitoring starts with the first heartbeat);
   // 0: not monitored.
   int heartbeat_cycles = 0;
+  // A setpoint outside [soft_min, soft_max] is not followed: alarm and quick stop.
+  bool has_soft_limits = false;
+  double soft_min = 0.0;
+  double soft_max = 0.0;
+  // More than this between the command and the actual position: alarm and quick stop
+  // (0: not checked).
+  double following_error_limit = 0.0;
 };
 
 struct AxisNodeInput {
@@ -38,10 +45,12 @@ enum class AxisAlarm : std::uint8_t {
   setpoint_deadline = 1,  // no setpoint for deadline_cycles
   owner_lost = 2,
   drive_fault = 3,
-  drive_lost = 4,      // no TPDO for deadline_cycles
-  drive_startup = 5,   // the drive could not be brought up (no boot-up, a refused SDO)
-  heartbeat_lost = 6,  // no heartbeat from the drive for the consumer time
-  bus_off = 7,         // the CAN controller went bus off
+  drive_lost = 4,       // no TPDO for deadline_cycles
+  drive_startup = 5,    // the drive could not be brought up (no boot-up, a refused SDO)
+  heartbeat_lost = 6,   // no heartbeat from the drive for the consumer time
+  bus_off = 7,          // the CAN controller went bus off
+  soft_limit = 8,       // a setpoint beyond the axis's soft limits
+  following_error = 9,  // command and actual position too far apart
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;
@@ -74,7 +83,7 @@ class AxisNodeController {
 
   AxisNodeSetup setup_;
   AxisNodeOutput out_{};
-  std::uint8_t raised_ = 0;  // bit per AxisAlarm: each is raised once, then stays active
+  std::uint16_t raised_ = 0;  // bit per AxisAlarm: each is raised once, then stays active
   bool have_position_ = false;
   bool was_enabled_ = false;
   std::uint64_t last_tpdo_cycle_ = 0;

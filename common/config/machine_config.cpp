@@ -196,7 +196,8 @@ DriveSimConfig parse_drive(const YamlValue& value) {
 AxisConfig parse_axis(const YamlValue& value) {
   const YamlMap map =
       value.map({"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit",
-                 "rapid_rate", "max_feed", "acceleration", "jerk", "in_position", "drive"});
+                 "rapid_rate", "max_feed", "acceleration", "jerk", "in_position", "drive",
+                 "soft_limits", "following_error_limit"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -236,6 +237,19 @@ AxisConfig parse_axis(const YamlValue& value) {
     axis.jerk = 50.0 * axis.acceleration;  // 20 ms to reach the acceleration
   }
   read_optional_positive(map, "in_position", axis.in_position);
+  read_optional_positive(map, "following_error_limit", axis.following_error_limit);
+  if (auto limits = map.optional("soft_limits")) {
+    const std::vector<YamlValue> pair = limits->list();
+    if (pair.size() != 2) {
+      limits->fail("soft_limits must be [min, max]");
+    }
+    axis.soft_limit_min = pair[0].number();
+    axis.soft_limit_max = pair[1].number();
+    if (!(axis.soft_limit_min < axis.soft_limit_max)) {
+      limits->fail("soft_limits: min must be below max");
+    }
+    axis.has_soft_limits = true;
+  }
   if (auto drive = map.optional("drive")) {
     axis.drive = parse_drive(*drive);
   }

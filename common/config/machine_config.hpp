@@ -44,6 +44,10 @@ struct AxisConfig {
   double acceleration = 1000.0;      // units/s^2
   double jerk = 0.0;                 // units/s^3; 0 (absent): 50 x acceleration
   double in_position = 0.0005;       // units; in-position width for exact stop
+  bool has_soft_limits = false;      // soft_limits given
+  double soft_limit_min = 0.0;       // units (physical: radius on a diameter axis)
+  double soft_limit_max = 0.0;
+  double following_error_limit = 2.0;  // units; more between command and actual: alarm
   DriveSimConfig drive;
 };
 

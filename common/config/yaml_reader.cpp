@@ -148,7 +148,7 @@ std::int64_t YamlValue::integer(std::int64_t min, std::int64_t max) const {
   return value;
 }
 
-double YamlValue::positive_number() const {
+double YamlValue::number() const {
   const std::string& raw = plain_scalar("a number");
   const std::string_view text = strip_plus(raw);
   double value = 0.0;
@@ -157,8 +157,13 @@ double YamlValue::positive_number() const {
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
     fail("expected a number, got '" + raw + "'");
   }
+  return value;
+}
+
+double YamlValue::positive_number() const {
+  const double value = number();
   if (!(value > 0.0)) {
-    fail("value " + raw + " must be greater than 0");
+    fail("value " + plain_scalar("a number") + " must be greater than 0");
   }
   return value;
 }

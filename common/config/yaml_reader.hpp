@@ -40,6 +40,8 @@ class YamlValue {
   [[nodiscard]] std::string string() const;
   // A plain (unquoted) decimal integer within [min, max].
   [[nodiscard]] std::int64_t integer(std::int64_t min, std::int64_t max) const;
+  // A plain finite decimal number.
+  [[nodiscard]] double number() const;
   // A plain finite decimal number strictly greater than zero.
   [[nodiscard]] double positive_number() const;
   // A plain true or false.

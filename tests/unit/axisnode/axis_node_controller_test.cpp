@@ -236,3 +236,42 @@ TEST(AxisNodeController, HeartbeatLostIsAnAlarmAndQuickStopAfterTheConsumerTime)
   }
   EXPECT_EQ(alarm_cycle, 551U);
 }
+
+TEST(AxisNodeController, ASetpointBeyondTheSoftLimitIsNotFollowed) {
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.has_soft_limits = true;
+  setup.soft_min = -50.0;
+  setup.soft_max = 20.0;
+  Loop loop;
+  loop.node = AxisNodeController(setup);
+  loop.enable();
+  // Up to the limit at 10 mm/s, as a channel would move it, then one setpoint beyond.
+  for (int k = 1; k <= 750; ++k) {  // 12.51 ... 20.00
+    ASSERT_EQ(loop.step(setpoint(12.5 + 0.01 * k, 10.0)).new_alarm, AxisAlarm::none) << k;
+  }
+  const auto& out = loop.step(setpoint(20.01, 10.0));
+  EXPECT_EQ(out.new_alarm, AxisAlarm::soft_limit);
+  EXPECT_TRUE(out.quick_stop);
+  EXPECT_LE(out.cmd, 20.0);  // never commanded
+  for (int i = 0; i < 50; ++i) {
+    const auto& o = loop.step(setpoint(20.01 + 0.01 * i, 10.0));
+    EXPECT_LT(o.cmd, 20.01);  // the quick stop from 10 mm/s ends within 0.01 mm
+  }
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::soft_limit);
+}
+
+TEST(AxisNodeController, AFollowingErrorAboveItsLimitStopsTheAxis) {
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.following_error_limit = 0.5;
+  Loop loop;
+  loop.node = AxisNodeController(setup);
+  loop.enable();
+  // A step of 0.4 mm is followed; one of 1 mm leaves the drive (4 ms loop) too far behind.
+  EXPECT_EQ(loop.step(setpoint(12.9)).new_alarm, AxisAlarm::none);
+  for (int i = 0; i < 10; ++i) {
+    loop.step(setpoint(12.9));
+  }
+  const auto& out = loop.step(setpoint(13.9));
+  EXPECT_EQ(out.new_alarm, AxisAlarm::following_error);
+  EXPECT_TRUE(out.quick_stop);
+}

@@ -178,6 +178,53 @@ axes: [{name: A, address: C, type: rotary, bus: b, node_id: 127}]
   EXPECT_DOUBLE_EQ(a.drive.time_constant_s, 0.004);
   EXPECT_DOUBLE_EQ(a.drive.max_velocity, 500.0);
   EXPECT_DOUBLE_EQ(a.drive.quick_stop_decel, 5000.0);
+  EXPECT_DOUBLE_EQ(a.jerk, 50000.0);  // 50 x acceleration
+  EXPECT_FALSE(a.has_soft_limits);
+  EXPECT_DOUBLE_EQ(a.following_error_limit, 2.0);
+  EXPECT_EQ(config.channels[0].motion.lookahead_blocks, 200);
+  EXPECT_TRUE(config.channels[0].motion.jerk_limited);
+}
+
+TEST(MachineConfig, MotionAndLimitKeys) {
+  const MachineConfig config = parse_machine_yaml(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: A}]
+channels: [{name: C, axes: [A], motion: {lookahead_blocks: 1000, path_tolerance: 0.05, profile: trapezoid, rapid: axis}}]
+axes: [{name: A, address: X, bus: b, node_id: 1, jerk: 20000, soft_limits: [-120.5, 3], following_error_limit: 0.8}]
+)");
+  const AxisConfig& a = config.axes[0];
+  EXPECT_DOUBLE_EQ(a.jerk, 20000.0);
+  EXPECT_TRUE(a.has_soft_limits);
+  EXPECT_DOUBLE_EQ(a.soft_limit_min, -120.5);
+  EXPECT_DOUBLE_EQ(a.soft_limit_max, 3.0);
+  EXPECT_DOUBLE_EQ(a.following_error_limit, 0.8);
+  const ChannelMotionConfig& m = config.channels[0].motion;
+  EXPECT_EQ(m.lookahead_blocks, 1000);
+  EXPECT_DOUBLE_EQ(m.path_tolerance, 0.05);
+  EXPECT_FALSE(m.jerk_limited);
+  EXPECT_FALSE(m.rapid_interpolated);
+  const auto rejects = [](const std::string& text, const std::string& path) {
+    try {
+      (void)parse_machine_yaml(text);
+      ADD_FAILURE() << "accepted: " << path;
+    } catch (const ConfigError& e) {
+      EXPECT_EQ(e.key_path(), path) << e.what();
+    }
+  };
+  const std::string head =
+      "machine: {name: m}\nbuses: [{name: b, uri: \"socketcan:can0\", sync_producer: A}]\n";
+  rejects(head +
+              "channels: [{name: C, axes: [A]}]\naxes: [{name: A, address: X, bus: b, node_id: 1, "
+              "soft_limits: [3, -3]}]\n",
+          "axes[0].soft_limits");
+  rejects(head +
+              "channels: [{name: C, axes: [A], motion: {profile: smooth}}]\naxes: [{name: A, "
+              "address: X, bus: b, node_id: 1}]\n",
+          "channels[0].motion.profile");
+  rejects(head +
+              "channels: [{name: C, axes: [A], motion: {lookahead_blocks: 1}}]\naxes: [{name: A, "
+              "address: X, bus: b, node_id: 1}]\n",
+          "channels[0].motion.lookahead_blocks");
 }
 
 TEST(MachineConfig, IdsChannelsAndLookups) {

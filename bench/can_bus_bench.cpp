@@ -1,0 +1,108 @@
+// CAN bus figures of a machine (bench/README.md): frames and bus load per bus at the machine's
+// cycle, and the round trip RPDO + SYNC -> TPDO on a transport, measured against the drive
+// simulator on the same bus (UDP here; SocketCAN inside user-mode Linux). Not a test.
+//   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N]
+#include "axisnode/cia402/canopen_frames.hpp"
+#include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "common/can/can_bus.hpp"
+#include "common/config/machine_config.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using namespace mcnc;
+using Clock = std::chrono::steady_clock;
+
+void print_load(const config::MachineConfig& machine) {
+  std::printf("machine %s, cycle %d us\n", machine.name.c_str(), machine.cycle_us);
+  std::printf(
+      "| bus | bit/s | axes | frames per cycle | frames per axis per cycle | bits per cycle | load "
+      "|\n");
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (const config::BusConfig& bus : machine.buses) {
+    int axes = 0;
+    for (const config::AxisConfig& a : machine.axes) {
+      axes += a.bus == bus.name ? 1 : 0;
+    }
+    const int bits = config::bus_bits_per_cycle(axes);
+    std::printf("| %s | %d | %d | %d | 2 (RPDO1, TPDO1) | %d | %.1f %% |\n", bus.name.c_str(),
+                bus.bitrate, axes, 1 + 2 * axes, bits,
+                100.0 * config::bus_load(axes, bus.bitrate, machine.cycle_us));
+  }
+}
+
+// The master sends RPDO1 then SYNC; the simulated drive answers SYNC with TPDO1. The time from
+// the RPDO's send to the TPDO's arrival.
+void round_trip(const std::string& uri, int cycles) {
+  auto master = can::open_can_bus(uri);
+  auto device = can::open_can_bus(uri);
+  drivesim::DriveBusSimulator sim({drivesim::DriveParams{}}, 0.001);
+  std::array<can::CanFrame, 8> out{};
+  sim.power_on(out);
+  std::atomic<bool> stop{false};
+  std::thread drive([&] {
+    can::CanFrame in;
+    while (!stop) {
+      if (device->receive(in, std::chrono::milliseconds(50)) != can::BusResult::ok) {
+        continue;
+      }
+      const std::size_t n = sim.handle(in, out);
+      for (std::size_t i = 0; i < n; ++i) {
+        device->send(out[i]);
+      }
+    }
+  });
+  master->send(canopen::encode_nmt(canopen::NmtCommand::start, 1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::vector<double> us;
+  us.reserve(static_cast<std::size_t>(cycles));
+  can::CanFrame in;
+  for (int k = 0; k < cycles + 200; ++k) {
+    const auto t0 = Clock::now();
+    master->send(canopen::encode_rpdo_csp(1, canopen::RxPdoCsp{0x0F, k}));
+    master->send(canopen::encode_sync(static_cast<std::uint8_t>(k % 240 + 1)));
+    bool got = false;
+    while (!got) {
+      if (master->receive(in, std::chrono::milliseconds(100)) != can::BusResult::ok) {
+        break;
+      }
+      got = in.id == 0x181;
+    }
+    if (got && k >= 200) {  // 200 to warm up
+      us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+    }
+  }
+  stop = true;
+  drive.join();
+  std::sort(us.begin(), us.end());
+  if (us.empty()) {
+    std::printf("%s: no answer\n", uri.c_str());
+    return;
+  }
+  std::printf("round trip RPDO + SYNC -> TPDO on %s: %zu samples, median %.0f us, p99 %.0f us\n",
+              uri.c_str(), us.size(), us[us.size() / 2], us[us.size() * 99 / 100]);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"CAN bus figures: bus load per machine, RPDO -> TPDO round trip per transport"};
+  std::string machine_path;
+  std::string uri = "udp:239.255.77.1:24077";
+  int cycles = 10000;
+  app.add_option("machine", machine_path, "machine file")->required();
+  app.add_option("--uri", uri, "transport for the round trip (udp:... or socketcan:IF)");
+  app.add_option("--cycles", cycles, "round trips to measure");
+  CLI11_PARSE(app, argc, argv);
+  print_load(config::load_machine_file(machine_path));
+  round_trip(uri, cycles);
+  return 0;
+}

@@ -5,6 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
 using namespace mcnc::test;
 using namespace std::chrono_literals;
 
@@ -82,6 +87,45 @@ TEST(DriveFaults, SilentHeartbeatIsAnAlarmWithinTheConsumerTime) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(DriveCsp, TenThousandCyclesWithinAFollowingErrorBound) {
+  // The drives follow for over 10 000 cycles with a 1.2 mm following-error limit: no alarm,
+  // and every recorded |cmd - act| below the bound.
+  TestMachine machine("small_lathe.yaml", 35);
+  {
+    std::ifstream in(machine.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string bounded =
+        std::regex_replace(text.str(), std::regex("(\\n    in_position: [^\\n]*)"),
+                           "$1\n    following_error_limit: 1.2");
+    std::ofstream(machine.path()) << bounded;
+  }
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("tests/integration/programs/csp_back_and_forth.nc"),
+                           "--trace", trace_file, "--trace-pos-every", "5"},
+                          -1, 300s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  EXPECT_GE(trace.back()["cycles"].get<std::uint64_t>(), 10000U);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  double worst = 0.0;
+  std::size_t samples = 0;
+  for (const auto& p : events(trace, "pos")) {
+    if (p["src"] == "X1" || p["src"] == "Z1") {
+      worst = std::max(worst, std::fabs(p["cmd"].get<double>() - p["act"].get<double>()));
+      ++samples;
+    }
+  }
+  EXPECT_GT(samples, 3000U);
+  EXPECT_LT(worst, 1.2);
+  EXPECT_GT(worst, 0.1);  // the drives really moved at speed
 }
 
 }  // namespace

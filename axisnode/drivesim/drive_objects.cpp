@@ -234,6 +234,10 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::int32_t>(out, target_position_);
     case 0x60F4:
       return put<std::int32_t>(out, live.following_error);
+    case 0x607C:
+      return put<std::int32_t>(out, home_offset_);
+    case 0x6098:
+      return put<std::int8_t>(out, homing_method_);
     case 0x60FF:
       return put<std::int32_t>(out, target_velocity_);
     default:
@@ -307,6 +311,23 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
       }
       target_velocity_ = static_cast<std::int32_t>(value);
       return 0;
+    case 0x607C:
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      home_offset_ = static_cast<std::int32_t>(value);
+      return 0;
+    case 0x6098: {
+      if (const std::uint32_t e = expect_size(size, 1)) {
+        return e;
+      }
+      const auto method = static_cast<std::int8_t>(value);
+      if (method != 35 && method != 37) {
+        return abort::kInvalidValue;  // no switches on a simulated axis: only "here is home"
+      }
+      homing_method_ = method;
+      return 0;
+    }
     default:
       return abort::kNoObject;
   }

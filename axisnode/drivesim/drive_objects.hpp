@@ -53,6 +53,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   }
 
   [[nodiscard]] std::int8_t mode() const noexcept { return mode_; }
+  [[nodiscard]] std::int32_t home_offset() const noexcept { return home_offset_; }
+  [[nodiscard]] std::int8_t homing_method() const noexcept { return homing_method_; }
   [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
   [[nodiscard]] const Pdo& rpdo(std::size_t n) const noexcept { return rpdo_[n]; }
   [[nodiscard]] const Pdo& tpdo(std::size_t n) const noexcept { return tpdo_[n]; }
@@ -67,6 +69,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::array<Pdo, 2> rpdo_{};
   std::array<Pdo, 2> tpdo_{};
   std::int8_t mode_ = 0;
+  std::int32_t home_offset_ = 0;    // counts (0x607C)
+  std::int8_t homing_method_ = 37;  // 0x6098: 35/37, the current position is home
   std::uint16_t heartbeat_ms_ = 0;
   std::uint16_t controlword_ = 0;
   std::int32_t target_position_ = 0;

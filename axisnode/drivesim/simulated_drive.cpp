@@ -90,11 +90,30 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   device_.apply(latched_.controlword);
   const State now = device_.state();
 
+  const std::int8_t mode = objects_.mode();
+  const bool homing_bit = (latched_.controlword & 0x0010U) != 0;
+  if (mode != 6) {
+    homing_attained_ = false;
+  }
   if (now == State::operation_enabled && before == State::operation_enabled && rpdo_since_sync_) {
-    target_ = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
+    const double value = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
+    if (mode == 9) {
+      velocity_target_ = value;  // CSV: the 32-bit value is the target velocity
+    } else if (mode != 6) {
+      target_ = value;
+    }
   } else if (now != State::operation_enabled) {
     target_ = position_;
+    velocity_target_ = 0.0;
   }
+  if (mode == 6 && now == State::operation_enabled && homing_bit && !homing_bit_) {
+    // Methods 35/37: here is home. The position value jumps, the motor does not move.
+    position_ = static_cast<double>(objects_.home_offset()) / params_.counts_per_unit;
+    target_ = position_;
+    velocity_ = 0.0;
+    homing_attained_ = true;
+  }
+  homing_bit_ = homing_bit;
   // On the SYNC that enables operation the target stays at the actual position: the latched
   // target was written while disabled and may be stale.
   rpdo_since_sync_ = false;
@@ -103,6 +122,9 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
 
   canopen::TxPdoCsp out;
   out.statusword = cia402::encode_statusword(now, target_reached());
+  if (homing_attained_) {
+    out.statusword |= 0x1000U;  // bit 12: homing attained
+  }
   out.position_actual = to_counts(position_);
   objects_.live.statusword = out.statusword;
   objects_.live.position = out.position_actual;
@@ -137,6 +159,19 @@ void SimulatedDrive::move_one_cycle() noexcept {
   switch (device_.state()) {
     case State::operation_enabled: {
       const double tau = std::max(params_.time_constant_s, dt);
+      if (objects_.mode() == 9) {
+        // CSV: the velocity follows its target with the loop's time constant.
+        velocity_ += (std::clamp(velocity_target_, -params_.max_velocity, params_.max_velocity) -
+                      velocity_) *
+                     std::min(1.0, dt / tau);
+        position_ += velocity_ * dt;
+        target_ = position_;
+        break;
+      }
+      if (objects_.mode() == 6) {
+        velocity_ = 0.0;  // homing by method 35/37 does not move
+        break;
+      }
       velocity_ =
           std::clamp((target_ - position_) / tau, -params_.max_velocity, params_.max_velocity);
       position_ += velocity_ * dt;

@@ -41,6 +41,12 @@ struct DriveParams {
 //  - otherwise v = 0 and pos stays.
 // The target is taken from RPDOs received after the SYNC that enabled operation; until then
 // (and in every other state) it follows the actual position, so enabling never jumps.
+//
+// Modes of operation (0x6060): 8 CSP (and 0, as before any was set); 9 CSV: the RPDO's 32-bit
+// value is the target velocity (counts/s), followed with the loop's time constant; 6 homing:
+// methods 35 and 37 only (no switches on a simulated axis): on the rising edge of controlword
+// bit 4 in operation enabled the current position becomes the home offset (0x607C), without
+// moving, and statusword bit 12 (homing attained) is set until the mode changes.
 class SimulatedDrive {
  public:
   SimulatedDrive(const DriveParams& params, double cycle_s) noexcept;
@@ -93,6 +99,9 @@ class SimulatedDrive {
   DriveFault fault_ = DriveFault::none;
   std::uint64_t fault_at_ = 0;
   bool heartbeat_stopped_ = false;
+  double velocity_target_ = 0.0;  // CSV: units/s
+  bool homing_attained_ = false;
+  bool homing_bit_ = false;  // controlword bit 4 at the last SYNC (homing starts on its edge)
   canopen::Emcy emcy_{};
 };
 

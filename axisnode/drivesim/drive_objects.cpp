@@ -83,7 +83,7 @@ bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept
         value = live.statusword;
         break;
       case 0x6061:
-        value = mode_;
+        value = mode_;  // NOLINT(bugprone-signed-char-misuse): INTEGER8 sign-extends
         break;
       case 0x6064:
         value = live.position;

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -126,6 +127,36 @@ TEST(DriveCsp, TenThousandCyclesWithinAFollowingErrorBound) {
   EXPECT_GT(samples, 3000U);
   EXPECT_LT(worst, 1.2);
   EXPECT_GT(worst, 0.1);  // the drives really moved at speed
+}
+
+}  // namespace
+
+namespace {
+
+TEST(BadFrames, AreCountedAndMoveNothing) {
+  // Bad frames on the bus for the first four seconds of the run: the program still ends on its
+  // points without an alarm, and the nodes say they dropped malformed frames.
+  TestMachine machine("small_lathe.yaml", 37);
+  Background noise(
+      {source("tests/integration/bad_frames.py"), "239.255.37.1", std::to_string(24000 + 37), "4"},
+      -1, machine.file("noise.log"));
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace_file},
+                          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  std::map<std::string, nlohmann::json> last;
+  for (const auto& e : events(trace, "pos")) {
+    last[e["axis"]] = e;
+  }
+  EXPECT_NEAR(last.at("X1")["act"].get<double>(), 30.0, 0.001);
+  EXPECT_NEAR(last.at("Z1")["act"].get<double>(), 10.0, 0.001);
+  const std::string said = r.out + r.err;
+  const std::regex counted(R"(\[X1\] \[info\] stopped: \d+ EMCY, ([1-9]\d*) malformed frames)");
+  EXPECT_TRUE(std::regex_search(said, counted))
+      << said.substr(said.size() > 3000 ? said.size() - 3000 : 0);
 }
 
 }  // namespace

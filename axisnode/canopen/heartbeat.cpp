@@ -2,8 +2,14 @@
 
 namespace mcnc::canopen {
 
+void HeartbeatConsumer::heard(std::uint64_t now) noexcept {
+  last_ = now;
+  heard_ = true;
+  lost_ = false;
+}
+
 HeartbeatConsumer::Event HeartbeatConsumer::on_frame(const can::CanFrame& frame,
-                                                     std::uint64_t now_us) noexcept {
+                                                     std::uint64_t now) noexcept {
   if (frame.id != kHeartbeatBase + node_) {
     return Event::none;
   }
@@ -13,30 +19,29 @@ HeartbeatConsumer::Event HeartbeatConsumer::on_frame(const can::CanFrame& frame,
     return Event::none;
   }
   state_ = *state;
-  last_us_ = now_us;
-  heard_ = true;
-  lost_ = false;
+  heard(now);
   return *state == NmtState::bootup ? Event::bootup : Event::heard;
 }
 
-HeartbeatConsumer::Event HeartbeatConsumer::on_time(std::uint64_t now_us) noexcept {
-  if (!heard_ || lost_ || consumer_time_us_ == 0 || now_us - last_us_ <= consumer_time_us_) {
+HeartbeatConsumer::Event HeartbeatConsumer::on_time(std::uint64_t now) noexcept {
+  if (!heard_ || lost_ || consumer_time_ == 0 || now - last_ <= consumer_time_) {
     return Event::none;
   }
   lost_ = true;
   return Event::lost;
 }
 
-bool HeartbeatProducer::due(std::uint64_t now_us, NmtState state, can::CanFrame& out) noexcept {
-  if (producer_time_us_ == 0 || now_us < next_us_) {
+bool HeartbeatProducer::due(std::uint64_t now, NmtState state, can::CanFrame& out) noexcept {
+  if (producer_time_ == 0 || (started_ && now < next_)) {
     return false;
   }
   out = encode_heartbeat(node_, state);
   // Keep the period, not the moment of the call: a late call does not shift the next one.
-  next_us_ = next_us_ == 0 ? now_us + producer_time_us_ : next_us_ + producer_time_us_;
-  if (next_us_ <= now_us) {
-    next_us_ = now_us + producer_time_us_;
+  next_ = started_ ? next_ + producer_time_ : now + producer_time_;
+  if (next_ <= now) {
+    next_ = now + producer_time_;
   }
+  started_ = true;
   return true;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Heartbeat (CiA 301 §7.2.8.3.2): the producer sends its NMT state every producer time; a
 // consumer that hears nothing from a node for its consumer time reports it lost, once, until
-// the node is heard again. A boot-up (state 0) is told apart. Pure: frames and time in.
+// the node is heard again. A boot-up (state 0) is told apart. Pure: frames and time in; time
+// in any monotonic unit (microseconds, or cycles in a lockstep run), the same for both.
 #include "axisnode/cia402/canopen_frames.hpp"
 
 #include <cstdint>
@@ -12,14 +13,16 @@ class HeartbeatConsumer {
  public:
   enum class Event : std::uint8_t { none, heard, bootup, lost };
 
-  HeartbeatConsumer(std::uint8_t node, std::uint64_t consumer_time_us) noexcept
-      : node_(node), consumer_time_us_(consumer_time_us) {}
+  HeartbeatConsumer(std::uint8_t node, std::uint64_t consumer_time) noexcept
+      : node_(node), consumer_time_(consumer_time) {}
 
   // A frame from the bus: heard / bootup for this node's heartbeat, none for anything else.
-  Event on_frame(const can::CanFrame& frame, std::uint64_t now_us) noexcept;
+  Event on_frame(const can::CanFrame& frame, std::uint64_t now) noexcept;
+  // A heartbeat of the node was heard (told by whoever decodes the frames).
+  void heard(std::uint64_t now) noexcept;
   // lost once when the consumer time has passed since the last heartbeat; the time starts at
   // the first heartbeat (CiA 301: monitoring starts with the first one received).
-  Event on_time(std::uint64_t now_us) noexcept;
+  Event on_time(std::uint64_t now) noexcept;
 
   [[nodiscard]] bool alive() const noexcept { return heard_ && !lost_; }
   [[nodiscard]] NmtState state() const noexcept { return state_; }
@@ -27,8 +30,8 @@ class HeartbeatConsumer {
 
  private:
   std::uint8_t node_;
-  std::uint64_t consumer_time_us_;
-  std::uint64_t last_us_ = 0;
+  std::uint64_t consumer_time_;
+  std::uint64_t last_ = 0;
   bool heard_ = false;
   bool lost_ = false;
   NmtState state_ = NmtState::bootup;
@@ -37,16 +40,17 @@ class HeartbeatConsumer {
 
 class HeartbeatProducer {
  public:
-  HeartbeatProducer(std::uint8_t node, std::uint64_t producer_time_us) noexcept
-      : node_(node), producer_time_us_(producer_time_us) {}
+  HeartbeatProducer(std::uint8_t node, std::uint64_t producer_time) noexcept
+      : node_(node), producer_time_(producer_time) {}
   // True with the heartbeat in `out` when one is due (the first at once). A producer time of
   // 0 disables it.
-  bool due(std::uint64_t now_us, NmtState state, can::CanFrame& out) noexcept;
+  bool due(std::uint64_t now, NmtState state, can::CanFrame& out) noexcept;
 
  private:
   std::uint8_t node_;
-  std::uint64_t producer_time_us_;
-  std::uint64_t next_us_ = 0;
+  std::uint64_t producer_time_;
+  std::uint64_t next_ = 0;
+  bool started_ = false;
 };
 
 }  // namespace mcnc::canopen

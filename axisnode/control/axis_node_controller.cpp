@@ -1,5 +1,6 @@
 #include "axisnode/control/axis_node_controller.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mcnc::axisnode {
@@ -30,7 +31,9 @@ const char* to_text(AxisAlarm alarm) noexcept {
   return "unknown alarm";
 }
 
-AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept : setup_(setup) {}
+AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept
+    : setup_(setup),
+      heartbeat_(0, static_cast<std::uint64_t>(std::max(0, setup.heartbeat_cycles))) {}
 
 void AxisNodeController::raise(AxisAlarm alarm) noexcept {
   out_.quick_stop = true;
@@ -72,12 +75,11 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       out_.drive_state == cia402::State::fault_reaction_active) {
     raise(AxisAlarm::drive_fault);
   }
-  // Heartbeat consumer: watched from the first heartbeat on.
+  // Heartbeat consumer, in cycles: watched from the first heartbeat on.
   if (in.heartbeats != heartbeats_) {
     heartbeats_ = in.heartbeats;
-    last_heartbeat_cycle_ = cycle;
-  } else if (setup_.heartbeat_cycles > 0 && heartbeats_ > 0 &&
-             cycle - last_heartbeat_cycle_ > static_cast<std::uint64_t>(setup_.heartbeat_cycles)) {
+    heartbeat_.heard(cycle);
+  } else if (heartbeat_.on_time(cycle) == canopen::HeartbeatConsumer::Event::lost) {
     raise(AxisAlarm::heartbeat_lost);
   }
 

@@ -2,6 +2,7 @@
 // The axis node's cyclic core: follows its owner channel's setpoints, brings its CiA 402 drive
 // to operation enabled, and goes to quick stop when the owner's setpoints stop (deadline), the
 // owner is gone, or the machine is E-stopped (ARCHITECTURE.md §6). Pure and deterministic.
+#include "axisnode/canopen/heartbeat.hpp"
 #include "axisnode/cia402/cia402_state.hpp"
 
 #include <array>
@@ -92,7 +93,7 @@ class AxisNodeController {
   bool owner_seen_ = false;  // the setpoint deadline runs once the owner has sent a setpoint
   double last_setpoint_vel_ = 0.0;
   std::uint64_t heartbeats_ = 0;
-  std::uint64_t last_heartbeat_cycle_ = 0;
+  canopen::HeartbeatConsumer heartbeat_;  // in cycles
 };
 
 }  // namespace mcnc::axisnode

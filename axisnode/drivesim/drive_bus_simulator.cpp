@@ -147,8 +147,9 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
         out[written++] = tpdo;
       }
     }
-    if (written < out.size() && drive.heartbeat_due()) {
-      out[written++] = canopen::encode_heartbeat(drive.node_id(), NmtState::operational);
+    CanFrame heartbeat;
+    if (written < out.size() && drive.heartbeat(heartbeat)) {
+      out[written++] = heartbeat;
     }
   }
   return written;

@@ -144,14 +144,17 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   return out;
 }
 
-bool SimulatedDrive::heartbeat_due() const noexcept {
-  const std::uint16_t ms = objects_.heartbeat_ms();
-  if (ms == 0 || heartbeat_stopped_) {
+bool SimulatedDrive::heartbeat(can::CanFrame& out) noexcept {
+  if (heartbeat_stopped_) {
     return false;
   }
-  const auto every =
-      std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(ms * 1e-3 / cycle_s_)));
-  return syncs_ % every == 0;
+  if (objects_.heartbeat_ms() != heartbeat_ms_) {
+    heartbeat_ms_ = objects_.heartbeat_ms();
+    heartbeat_ = canopen::HeartbeatProducer(params_.node_id, heartbeat_ms_ * 1000ULL);
+  }
+  const auto now_us =
+      static_cast<std::uint64_t>(std::llround(static_cast<double>(syncs_) * cycle_s_ * 1e6));
+  return heartbeat_.due(now_us, nmt_, out);
 }
 
 void SimulatedDrive::move_one_cycle() noexcept {

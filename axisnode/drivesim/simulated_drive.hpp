@@ -1,6 +1,7 @@
 #pragma once
 // One simulated CiA 402 servo drive in cyclic synchronous position mode. Time advances only
 // through on_sync(), one cycle per call, so a run is a pure function of the frames received.
+#include "axisnode/canopen/heartbeat.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/drive_objects.hpp"
@@ -65,8 +66,9 @@ class SimulatedDrive {
   // The drive's object dictionary (what its SDO server reads and writes).
   [[nodiscard]] DriveObjects& objects() noexcept { return objects_; }
   [[nodiscard]] const DriveObjects& objects() const noexcept { return objects_; }
-  // A heartbeat is due after this SYNC (every producer time 0x1017, counted in cycles).
-  [[nodiscard]] bool heartbeat_due() const noexcept;
+  // The heartbeat to send after this SYNC, when one is due (every producer time 0x1017, in
+  // SYNC-counted time so that lockstep runs see it at the same cycles every time).
+  bool heartbeat(can::CanFrame& out) noexcept;
   // The fault happens at the SYNC with this number (counted from 1 after power on).
   void schedule_fault(DriveFault fault, std::uint64_t at_sync) noexcept {
     fault_ = fault;
@@ -99,7 +101,9 @@ class SimulatedDrive {
   DriveFault fault_ = DriveFault::none;
   std::uint64_t fault_at_ = 0;
   bool heartbeat_stopped_ = false;
-  double velocity_target_ = 0.0;  // CSV: units/s
+  canopen::HeartbeatProducer heartbeat_{0, 0};
+  std::uint16_t heartbeat_ms_ = 0;  // the producer time heartbeat_ runs with
+  double velocity_target_ = 0.0;    // CSV: units/s
   bool homing_attained_ = false;
   bool homing_bit_ = false;  // controlword bit 4 at the last SYNC (homing starts on its edge)
   canopen::Emcy emcy_{};

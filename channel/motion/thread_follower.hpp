@@ -32,7 +32,6 @@ class ThreadFollower {
   [[nodiscard]] ThreadSample at(double u) const noexcept;
   // Revolutions from the start angle to the end of the thread.
   [[nodiscard]] double end_revolutions() const noexcept { return u_end_; }
-  [[nodiscard]] double ramp_in_revolutions() const noexcept { return u_in_; }
   [[nodiscard]] double ramp_out_start() const noexcept { return u_out_; }
 
  private:

@@ -209,6 +209,13 @@ int main(int argc, char** argv) {
       in.heartbeats = link.heartbeats();
       in.bus_off = link.bus_off();
 
+      while (const auto request = node.take_operator_request(cycle)) {
+        if (request->action == process::OperatorActionKind::reset && request->concerns(owner_id)) {
+          controller.reset();
+          tracer.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"",
+                      axis->name.c_str());
+        }
+      }
       const axisnode::AxisNodeOutput& out = controller.cycle(cycle, in);
 
       // 3. Feedback stamped N.

@@ -179,6 +179,18 @@ int main(int argc, char** argv) {
         estop_seen = true;
         controller.emergency_stop();
       }
+      while (const auto request = node.take_operator_request(cycle)) {
+        if (!request->concerns(static_cast<std::uint32_t>(ch->id))) {
+          continue;
+        }
+        if (request->action == process::OperatorActionKind::reset) {
+          controller.request_reset();
+        } else if (request->action == process::OperatorActionKind::cycle_start) {
+          controller.request_start();
+        }
+        tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\"", ch->name.c_str(),
+                    process::to_string(request->action));
+      }
 
       // An axis node leaving may be the end of the run, not a failure. In realtime, feedback
       // older than the deadline counts as the axis being gone (ARCHITECTURE.md §6).

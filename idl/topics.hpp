@@ -24,6 +24,7 @@ MCNC_TOPIC(ChannelStatus, cyclic)
 MCNC_TOPIC(Alarm, event)
 MCNC_TOPIC(RunControl, state)
 MCNC_TOPIC(ProcessState, state)
+MCNC_TOPIC(OperatorCommand, event)
 
 #undef MCNC_TOPIC
 

@@ -111,6 +111,15 @@ LaunchResult Launcher::run(
     seen.alarms.push_back(a);
   });
   dds::Writer<RunControl> control_writer(node.participant());
+  dds::Writer<OperatorCommand> operator_writer(node.participant());
+  std::uint64_t script_end = 0;    // the last scripted command's cycle
+  std::uint64_t alarms_after = 0;  // alarms from this cycle on stop the run
+  for (const auto& c : options_.operator_script) {
+    script_end = std::max(script_end, c.cycle);
+    if (c.action == OP_RESET) {
+      alarms_after = std::max(alarms_after, c.cycle);
+    }
+  }
   std::uint64_t generation = 0;
   auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
     RunControl rc;
@@ -131,7 +140,7 @@ LaunchResult Launcher::run(
     args.emplace_back("--clock");
     args.emplace_back(options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
     if (!options_.log_level.empty()) {
-      args.push_back("--log-level");
+      args.emplace_back("--log-level");
       args.push_back(options_.log_level);
     }
     return args;
@@ -255,6 +264,17 @@ LaunchResult Launcher::run(
                  options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
     // Realtime: cycle 0 a little in the future so every process starts on the same tick.
     send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
+    std::uint64_t operator_seq = 0;
+    for (const auto& c : options_.operator_script) {
+      OperatorCommand cmd;
+      cmd.seq(++operator_seq);
+      cmd.generation(generation);
+      cmd.cycle(c.cycle);
+      cmd.channel(c.channel);
+      cmd.action(c.action);
+      cmd.origin("launch");
+      operator_writer.write(cmd);
+    }
     const bool any_program = !options_.programs.empty();
     const auto run_start = std::chrono::steady_clock::now();
     auto last_progress = std::chrono::steady_clock::now() - 1s;
@@ -284,12 +304,16 @@ LaunchResult Launcher::run(
       }
       // An alarm anywhere stops the run: wait until the channels have reacted (alarm, end or
       // reset), at most a second, then stop cleanly. The alarm makes the result a failure.
+      // A scripted operator still to act keeps the run going.
+      const bool script_pending = last_cycle <= script_end;
       std::size_t alarm_count = 0;
       {
         std::lock_guard<std::mutex> lock(seen.mutex);
-        alarm_count = seen.alarms.size();
+        for (const auto& a : seen.alarms) {
+          alarm_count += a.cycle() >= alarms_after ? 1 : 0;
+        }
       }
-      if (alarm_count > 0) {
+      if (alarm_count > 0 && !script_pending) {
         if (!alarm_since) {
           alarm_since = std::chrono::steady_clock::now();
         }
@@ -302,7 +326,7 @@ LaunchResult Launcher::run(
           break;
         }
       }
-      if (any_program) {
+      if (any_program && !script_pending) {
         bool all_done = true;
         for (const auto& p : list) {
           if (p.has_program) {

@@ -14,6 +14,14 @@
 
 namespace mcnc::launch {
 
+// An operator command the launcher sends at a given cycle (`mcnc run --operator`): a scripted
+// operator, deterministic in lockstep.
+struct ScriptedOperatorCommand {
+  std::uint64_t cycle = 0;
+  std::uint32_t channel = 0;  // 0: the whole machine
+  OperatorAction action = OP_NONE;
+};
+
 struct LaunchOptions {
   std::string machine_path;
   std::map<std::string, std::string> programs;  // channel name -> program file
@@ -27,6 +35,10 @@ struct LaunchOptions {
   double run_timeout_s = 0.0;     // 0: no limit
   // Extra arguments of each bus's mcnc-drivesim (fault injection), by bus name.
   std::map<std::string, std::vector<std::string>> drivesim_args;
+  // Sent with the run start, each taking effect at its cycle. The run goes on past alarms
+  // until the last of them has taken effect; then alarms raised before the last reset no
+  // longer stop it (they still make the result a failure).
+  std::vector<ScriptedOperatorCommand> operator_script;
 };
 
 struct ChannelProgress {

@@ -9,9 +9,12 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace mcnc::launch {
@@ -59,6 +62,40 @@ void write_report(const std::string& dir, const config::MachineConfig& machine,
   }
 }
 
+std::optional<ScriptedOperatorCommand> parse_operator_command(const config::MachineConfig& machine,
+                                                              const std::string& spec) {
+  const auto at = spec.rfind('@');
+  if (at == std::string::npos) {
+    return std::nullopt;
+  }
+  ScriptedOperatorCommand command;
+  const std::string cycle = spec.substr(at + 1);
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(cycle.c_str(), &end, 10);
+  if (cycle.empty() || *end != '\0' || errno != 0 || value == 0 || cycle[0] == '-') {
+    return std::nullopt;
+  }
+  command.cycle = value;
+  std::string action = spec.substr(0, at);
+  if (const auto colon = action.find(':'); colon != std::string::npos) {
+    const config::ChannelConfig* ch = machine.find_channel(action.substr(colon + 1));
+    if (ch == nullptr) {
+      return std::nullopt;
+    }
+    command.channel = static_cast<std::uint32_t>(ch->id);
+    action.resize(colon);
+  }
+  if (action == "reset") {
+    command.action = OP_RESET;
+  } else if (action == "cycle_start") {
+    command.action = OP_CYCLE_START;
+  } else {
+    return std::nullopt;
+  }
+  return command;
+}
+
 }  // namespace
 
 void add_run_options(CLI::App& app, RunArguments& args) {
@@ -79,6 +116,9 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--drive-refuse-sdo", args.drive_sdo_refusals,
                  "fault injection: BUS:NODE:INDEX, the drive refuses SDO access to that object "
                  "(repeatable)");
+  app.add_option("--operator", args.operator_script,
+                 "scripted operator: ACTION[:CHANNEL]@CYCLE, ACTION reset or cycle_start, for "
+                 "one channel or (without CHANNEL) the whole machine (repeatable)");
 }
 
 int execute_run(const RunArguments& args) {
@@ -135,6 +175,18 @@ int execute_run(const RunArguments& args) {
       extra.emplace_back(flag);
       extra.push_back(spec.substr(colon + 1));
     }
+  }
+
+  for (const std::string& spec : args.operator_script) {
+    const auto command = parse_operator_command(machine, spec);
+    if (!command) {
+      std::fprintf(stderr,
+                   "error: --operator %s: expected ACTION[:CHANNEL]@CYCLE with ACTION reset or "
+                   "cycle_start, a channel of %s and a cycle > 0\n",
+                   spec.c_str(), args.machine_path.c_str());
+      return 2;
+    }
+    options.operator_script.push_back(*command);
   }
 
   if (!options.trace_path.empty()) {

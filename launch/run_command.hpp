@@ -24,6 +24,7 @@ struct RunArguments {
   double timeout_s = 0.0;
   std::vector<std::string> drive_faults;        // BUS:NODE:KIND@SYNC (fault injection)
   std::vector<std::string> drive_sdo_refusals;  // BUS:NODE:INDEX (fault injection)
+  std::vector<std::string> operator_script;     // ACTION[:CHANNEL]@CYCLE (scripted operator)
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

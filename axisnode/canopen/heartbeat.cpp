@@ -8,6 +8,13 @@ void HeartbeatConsumer::heard(std::uint64_t now) noexcept {
   lost_ = false;
 }
 
+void HeartbeatConsumer::restart(std::uint64_t now) noexcept {
+  if (heard_) {
+    last_ = now;
+    lost_ = false;
+  }
+}
+
 HeartbeatConsumer::Event HeartbeatConsumer::on_frame(const can::CanFrame& frame,
                                                      std::uint64_t now) noexcept {
   if (frame.id != kHeartbeatBase + node_) {

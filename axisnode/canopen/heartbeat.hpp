@@ -23,6 +23,9 @@ class HeartbeatConsumer {
   // lost once when the consumer time has passed since the last heartbeat; the time starts at
   // the first heartbeat (CiA 301: monitoring starts with the first one received).
   Event on_time(std::uint64_t now) noexcept;
+  // Monitoring starts again from `now` (an operator reset): a node heard before and still
+  // silent is reported lost again after the consumer time.
+  void restart(std::uint64_t now) noexcept;
 
   [[nodiscard]] bool alive() const noexcept { return heard_ && !lost_; }
   [[nodiscard]] NmtState state() const noexcept { return state_; }

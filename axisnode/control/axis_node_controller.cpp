@@ -57,6 +57,18 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   const std::uint64_t elapsed = cycle > last_cycle_ ? cycle - last_cycle_ : 1;
   last_cycle_ = cycle;
   const auto deadline = static_cast<std::uint64_t>(setup_.deadline_cycles);
+  if (reset_requested_) {
+    reset_requested_ = false;
+    raised_ = 0;
+    out_.alarm = AxisAlarm::none;
+    out_.quick_stop = false;
+    following_ = false;
+    resetting_ = true;
+    reset_cycle_ = cycle;
+    last_tpdo_cycle_ = cycle;
+    last_setpoint_cycle_ = cycle;
+    heartbeat_.restart(cycle);
+  }
 
   // Drive side: what the drive reported for the last SYNC.
   if (in.have_tpdo) {
@@ -71,8 +83,14 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= deadline) {
     raise(AxisAlarm::drive_lost);
   }
-  if (out_.drive_state == cia402::State::fault ||
-      out_.drive_state == cia402::State::fault_reaction_active) {
+  const bool faulted = out_.drive_state == cia402::State::fault ||
+                       out_.drive_state == cia402::State::fault_reaction_active;
+  if (resetting_ &&
+      (out_.drive_state == cia402::State::operation_enabled ||
+       cycle - reset_cycle_ >= static_cast<std::uint64_t>(setup_.fault_reset_cycles))) {
+    resetting_ = false;
+  }
+  if (faulted && !resetting_) {
     raise(AxisAlarm::drive_fault);
   }
   // Heartbeat consumer, in cycles: watched from the first heartbeat on.
@@ -94,13 +112,14 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   }
 
   const bool operating = out_.drive_state == cia402::State::operation_enabled;
-  if (operating && !was_enabled_) {
+  if (operating && !following_) {
     out_.cmd = out_.act;  // take over where the drive stands: no jump on enable
     was_enabled_ = true;
   }
+  following_ = operating;
 
   // Owner side: follow, extrapolate a missing setpoint, or stop after the deadline.
-  if (was_enabled_ && !out_.quick_stop) {
+  if (following_ && !out_.quick_stop) {
     if (in.have_setpoint) {
       owner_seen_ = true;
       last_setpoint_cycle_ = cycle;
@@ -123,7 +142,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     }
   }
-  if (was_enabled_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
+  if (following_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
       std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
     raise(AxisAlarm::following_error);
   }
@@ -132,7 +151,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   }
 
   const cia402::Goal goal = out_.quick_stop ? cia402::Goal::quick_stop : cia402::Goal::enabled;
-  out_.controlword = cia402::next_controlword(out_.drive_state, goal, false);
+  out_.controlword = cia402::next_controlword(out_.drive_state, goal, resetting_);
   out_.enabled = operating && !out_.quick_stop;
   out_.target_counts = static_cast<std::int32_t>(std::llround(out_.cmd * setup_.counts_per_unit));
   return out_;

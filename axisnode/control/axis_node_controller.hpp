@@ -25,6 +25,8 @@ struct AxisNodeSetup {
   // More than this between the command and the actual position: alarm and quick stop
   // (0: not checked).
   double following_error_limit = 0.0;
+  // After an operator reset, a drive still in fault this many cycles later is alarmed again.
+  int fault_reset_cycles = 100;
 };
 
 struct AxisNodeInput {
@@ -78,6 +80,12 @@ class AxisNodeController {
   // cycles without input.
   const AxisNodeOutput& cycle(std::uint64_t cycle, const AxisNodeInput& in) noexcept;
   [[nodiscard]] const AxisNodeOutput& output() const noexcept { return out_; }
+  // Operator reset, applied at the next cycle(): clears the alarms and the quick-stop latch. A
+  // drive in fault gets a fault reset (controlword bit 7 rising), then the enable sequence;
+  // the node takes over the drive's position again when it is back in operation. A cause that
+  // is still there raises its alarm again: a drive still in fault after fault_reset_cycles, a
+  // heartbeat still silent after the consumer time, bus off and E-stop at once.
+  void reset() noexcept { reset_requested_ = true; }
 
  private:
   void raise(AxisAlarm alarm) noexcept;
@@ -86,7 +94,11 @@ class AxisNodeController {
   AxisNodeOutput out_{};
   std::uint16_t raised_ = 0;  // bit per AxisAlarm: each is raised once, then stays active
   bool have_position_ = false;
-  bool was_enabled_ = false;
+  bool was_enabled_ = false;  // the drive has been in operation (drive and owner watched)
+  bool following_ = false;    // in operation and following since the last take-over
+  bool reset_requested_ = false;
+  bool resetting_ = false;  // a reset under way: the drive's fault is being reset
+  std::uint64_t reset_cycle_ = 0;
   std::uint64_t last_tpdo_cycle_ = 0;
   std::uint64_t last_setpoint_cycle_ = 0;
   std::uint64_t last_cycle_ = 0;

@@ -76,7 +76,7 @@ void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) n
 
 bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept {
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
-    if (i >= feedback.size() || !feedback[i].present || !feedback[i].enabled) {
+    if (i >= feedback.size() || !feedback[i].present || !feedback[i].enabled || feedback[i].alarm) {
       return false;
     }
   }
@@ -103,6 +103,29 @@ void ChannelController::hold_outputs(bool valid) noexcept {
   }
 }
 
+void ChannelController::forget_program_run() noexcept {
+  halted_ = false;
+  queued_head_ = 0;
+  queued_count_ = 0;
+  queued_started_ = 0;
+  end_pulled_ = false;
+  end_started_ = false;
+  source_alarm_.reset();
+  out_.program_end = false;
+  out_.end_code = -1;
+}
+
+void ChannelController::finish_reset() noexcept {
+  resetting_ = false;
+  forget_program_run();
+  pending_alarm_.reset();
+  out_.block = 0;
+  out_.line = 0;
+  position_known_ = false;  // re-read where the axes are once they are enabled again
+  after_reset_ = true;
+  set_state(ChannelState::reset);
+}
+
 const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
                                               std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
@@ -126,13 +149,35 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
+  if (reset_requested_) {
+    reset_requested_ = false;
+    start_requested_ = false;
+    if (out_.state == ChannelState::running && !planner_.idle()) {
+      planner_.reset();  // ramp down first
+      resetting_ = true;
+    } else {
+      finish_reset();
+    }
+  }
+  if (resetting_) {
+    const motion::MotionOutput& m = planner_.step(motion::CycleInput{});
+    for (std::size_t i = 0; i < setup_.axis_count; ++i) {
+      commanded_[i] = m.sample.pos[i];
+      out_.setpoints[i] = AxisSetpointOut{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
+    }
+    if (!planner_.idle() && m.state != motion::MotionState::fault) {
+      return out_;
+    }
+    finish_reset();
+  }
   if ((out_.state == ChannelState::reset || out_.state == ChannelState::alarm) && halted_) {
     hold_outputs(false);
     return out_;
   }
 
-  // An axis alarm or a lost axis stops the channel in any state.
-  if (out_.state != ChannelState::alarm) {
+  // An axis alarm or a lost axis stops the channel in any state (after a reset: once the axes
+  // are back).
+  if (out_.state != ChannelState::alarm && !after_reset_) {
     for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
       if (feedback[i].alarm) {
         char text[96];
@@ -162,6 +207,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
       commanded_[i] = feedback[i].cmd;
     }
     position_known_ = true;
+    after_reset_ = false;
     if (out_.state == ChannelState::reset) {
       set_state(ChannelState::idle);
     }
@@ -171,15 +217,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     start_requested_ = false;
     source_.rewind(commanded_);
     planner_.restart(commanded_);
-    halted_ = false;
-    queued_head_ = 0;
-    queued_count_ = 0;
-    queued_started_ = 0;
-    end_pulled_ = false;
-    end_started_ = false;
-    source_alarm_.reset();
-    out_.program_end = false;
-    out_.end_code = -1;
+    forget_program_run();
     out_.run_start_cycle = cycle;
     set_state(ChannelState::running);
   }

@@ -103,6 +103,11 @@ class ChannelController {
       start_requested_ = true;
     }
   }
+  // Reset (the RESET key): a moving channel ramps down with the planner's reset deceleration;
+  // then the alarms are cleared, the program rewinds and the channel is in reset. It comes back
+  // to idle once every axis is enabled again without an alarm (the axis nodes reset their drives
+  // on the same command); a cycle start then runs the program from its start.
+  void request_reset() noexcept { reset_requested_ = true; }
   // Emergency stop: motion ends at once, the channel goes to reset and stays there.
   void emergency_stop() noexcept { estop_requested_ = true; }
   // A program alarm found before the run (e.g. when the program was loaded): raised at the next
@@ -133,6 +138,8 @@ class ChannelController {
   void block_events(const motion::MotionOutput& m,
                     std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
+  void finish_reset() noexcept;
+  void forget_program_run() noexcept;  // the queue, the end and the alarms of a program run
 
   // A block handed to the planner, until its end event.
   struct QueuedBlock {
@@ -153,8 +160,11 @@ class ChannelController {
   bool position_known_ = false;
   bool start_requested_ = false;
   bool estop_requested_ = false;
-  std::size_t lost_axis_ = 0;        // axis index + 1
-  bool halted_ = false;              // an alarm or emergency stop ended the run
+  bool reset_requested_ = false;
+  bool resetting_ = false;     // ramping down for a reset
+  bool after_reset_ = false;   // reset done, waiting for the axes to be enabled without alarms
+  std::size_t lost_axis_ = 0;  // axis index + 1
+  bool halted_ = false;        // an alarm or emergency stop ended the run
   std::vector<QueuedBlock> queued_;  // a ring: the planner's window and a little more
   std::size_t queued_head_ = 0;
   std::size_t queued_count_ = 0;

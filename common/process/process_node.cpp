@@ -32,13 +32,37 @@ ProcessNode::ProcessNode(int domain, std::string name)
       participant_(domain, name_),
       state_writer_(participant_),
       alarm_writer_(participant_),
-      run_control_reader_(participant_, [this](const RunControl& rc, const dds::WriterId&) {
+      run_control_reader_(participant_,
+                          [this](const RunControl& rc, const dds::WriterId&) {
+                            wakeup_.update([&] {
+                              rc_command_.store(rc.command());
+                              rc_clock_.store(rc.clock());
+                              rc_start_ns_.store(rc.start_ns());
+                              rc_pace_.store(rc.pace());
+                              rc_generation_.store(rc.generation());
+                            });
+                          }),
+      operator_reader_(participant_, [this](const OperatorCommand& c, const dds::WriterId&) {
+        OperatorRequest r;
+        r.seq = c.seq();
+        r.generation = c.generation();
+        r.cycle = c.cycle();
+        r.channel = c.channel();
+        switch (c.action()) {
+          case OP_RESET:
+            r.action = OperatorActionKind::reset;
+            break;
+          case OP_CYCLE_START:
+            r.action = OperatorActionKind::cycle_start;
+            break;
+          default:
+            operator_dropped_.fetch_add(1);  // an action this build does not know
+            return;
+        }
         wakeup_.update([&] {
-          rc_command_.store(rc.command());
-          rc_clock_.store(rc.clock());
-          rc_start_ns_.store(rc.start_ns());
-          rc_pace_.store(rc.pace());
-          rc_generation_.store(rc.generation());
+          if (!operator_inbox_.put(r)) {
+            operator_dropped_.fetch_add(1);
+          }
         });
       }) {
   alarm_thread_ = std::thread([this] { publish_alarms(); });
@@ -62,6 +86,13 @@ RunControlView ProcessNode::run_control() const noexcept {
   view.start_ns = rc_start_ns_.load();
   view.pace = rc_pace_.load();
   return view;
+}
+
+std::optional<OperatorRequest> ProcessNode::take_operator_request(std::uint64_t cycle) noexcept {
+  std::optional<OperatorRequest> due;
+  const std::uint64_t generation = rc_generation_.load();
+  wakeup_.with_lock([&] { due = operator_inbox_.take_due(cycle, generation); });
+  return due;
 }
 
 bool ProcessNode::stop_arrives_within(std::chrono::milliseconds grace) {

@@ -2,6 +2,7 @@
 // What every mcnc process that speaks DDS has: its participant, its ProcessState announcement,
 // the run control from mcnc-launch, the alarm writer, and one wake-up that DDS callbacks and
 // other receive threads signal so that the cyclic loop can wait for "something arrived".
+#include "common/process/operator_inbox.hpp"
 #include "idl/dds_participant.hpp"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -103,6 +105,12 @@ class ProcessNode {
   bool raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle, int channel = 0,
                    int axis = 0, int line = 0) noexcept;
   [[nodiscard]] std::uint64_t alarms_lost() const noexcept { return alarms_lost_.load(); }
+  // The oldest operator command due at `cycle` of the current run (OperatorInbox). Short lock,
+  // no allocation: callable from the cyclic loop.
+  std::optional<OperatorRequest> take_operator_request(std::uint64_t cycle) noexcept;
+  [[nodiscard]] std::uint64_t operator_requests_dropped() const noexcept {
+    return operator_dropped_.load();
+  }
   ~ProcessNode();
 
  private:
@@ -118,6 +126,9 @@ class ProcessNode {
   std::atomic<std::int64_t> rc_start_ns_{0};
   std::atomic<bool> rc_pace_{false};
   dds::Reader<RunControl> run_control_reader_;
+  OperatorInbox operator_inbox_;  // under wakeup_'s lock
+  std::atomic<std::uint64_t> operator_dropped_{0};
+  dds::Reader<OperatorCommand> operator_reader_;
 
   struct AlarmRecord {
     std::uint32_t number = 0;

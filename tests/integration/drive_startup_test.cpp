@@ -94,6 +94,63 @@ TEST(DriveFaults, SilentHeartbeatIsAnAlarmWithinTheConsumerTime) {
 
 namespace {
 
+TEST(DriveFaults, AnOperatorResetBringsTheDriveBackAndTheProgramRunsAgain) {
+  // Over-current at SYNC 2000, the operator's RESET at cycle 3000 and CYCLE START at 3100.
+  TestMachine machine("small_lathe.yaml", 38);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run(
+      {bin("mcnc"), "run", machine.path(), "--program",
+       "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace_file, "--drive-fault",
+       "can0:1:overcurrent@2000", "--operator", "reset@3000", "--operator", "cycle_start:CH1@3100"},
+      -1, 180s);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // the alarm stays in the result
+  const auto trace = read_trace(trace_file);
+  // The fault: an alarm with the EMCY in words, then the drive in fault.
+  const auto alarms = events(trace, "alarm");
+  ASSERT_EQ(alarms.size(), 2U);  // X1's and the channel's, nothing after the reset
+  EXPECT_EQ(alarms[0]["number"], 2003);
+  EXPECT_EQ(alarms[0]["text"], "drive fault: EMCY 0x2310 continuous over-current");
+  EXPECT_EQ(alarms[1]["number"], 1201);
+  for (const auto& a : alarms) {
+    EXPECT_LT(a["cycle"].get<std::uint64_t>(), 3000U);
+  }
+  // After the reset X1's drive walks back to operation enabled, in CiA 402 order.
+  std::vector<std::string> after;
+  for (const auto& d : events(trace, "drive", "X1")) {
+    if (d["cycle"].get<std::uint64_t>() >= 3000) {
+      after.push_back(d["state"]);
+      EXPECT_LE(d["cycle"].get<std::uint64_t>(), 3010U);
+    }
+  }
+  EXPECT_EQ(after, (std::vector<std::string>{"switch_on_disabled", "ready_to_switch_on",
+                                             "switched_on", "operation_enabled"}));
+  // The channel: reset, idle once the drive is back, running at the cycle start, program end.
+  std::vector<std::pair<std::uint64_t, std::string>> states;
+  for (const auto& s : events(trace, "state")) {
+    if (s["cycle"].get<std::uint64_t>() >= 3000) {
+      states.emplace_back(s["cycle"].get<std::uint64_t>(), s["state"]);
+    }
+  }
+  ASSERT_EQ(states.size(), 4U);
+  EXPECT_EQ(states[0], (std::pair<std::uint64_t, std::string>{3000, "reset"}));
+  EXPECT_EQ(states[1].second, "idle");
+  EXPECT_GT(states[1].first, 3003U);
+  EXPECT_EQ(states[2], (std::pair<std::uint64_t, std::string>{3100, "running"}));
+  EXPECT_EQ(states[3].second, "idle");
+  const auto ends = events(trace, "end");
+  ASSERT_EQ(ends.size(), 1U);
+  EXPECT_EQ(ends[0]["code"], 30);
+  EXPECT_GT(ends[0]["cycle"].get<std::uint64_t>(), 3100U);
+  // And the axes got to the program's last point (X60 Z10: X1 at radius 30).
+  double x1 = 0.0;
+  double z1 = 0.0;
+  for (const auto& p : events(trace, "pos")) {
+    (p["src"] == "X1" ? x1 : z1) = p["cmd"].get<double>();
+  }
+  EXPECT_NEAR(x1, 30.0, 1e-6);
+  EXPECT_NEAR(z1, 10.0, 1e-6);
+}
+
 TEST(DriveCsp, TenThousandCyclesWithinAFollowingErrorBound) {
   // The drives follow for over 10 000 cycles with a 1.2 mm following-error limit: no alarm,
   // and every recorded |cmd - act| below the bound.

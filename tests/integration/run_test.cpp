@@ -208,6 +208,21 @@ TEST(Run, BadProgramExits2WithLineAndColumnAndMovesNothing) {
   EXPECT_TRUE(pids_with_arg(machine.path()).empty());
 }
 
+TEST(Run, ABadScriptedOperatorCommandExits2AndStartsNothing) {
+  TestMachine machine("small_lathe.yaml", 17);
+  for (const std::string spec : {"reset", "reset@0", "reset@-5", "jog@100", "reset:CH9@100",
+                                 "cycle_start:CH1@x", "reset@99999999999999999999999"}) {
+    const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                             "CH1=" + source("launch/programs/xz_move.nc"), "--operator", spec},
+                            -1, 60s);
+    EXPECT_EQ(r.exit_code, 2) << spec << r.out << r.err;
+    EXPECT_NE(r.err.find("--operator " + spec + ": expected ACTION[:CHANNEL]@CYCLE"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(pids_with_arg(machine.path()).empty());
+  }
+}
+
 TEST(Run, ProgramForUnknownChannelExits2) {
   TestMachine machine("small_lathe.yaml", 17);
   const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",

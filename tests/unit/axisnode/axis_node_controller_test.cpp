@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 using namespace mcnc;
 using axisnode::AxisAlarm;
@@ -274,4 +275,96 @@ TEST(AxisNodeController, AFollowingErrorAboveItsLimitStopsTheAxis) {
   const auto& out = loop.step(setpoint(13.9));
   EXPECT_EQ(out.new_alarm, AxisAlarm::following_error);
   EXPECT_TRUE(out.quick_stop);
+}
+
+TEST(AxisNodeController, AnOperatorResetClearsADriveFaultAndTheDriveRunsAgain) {
+  Loop loop;
+  loop.enable();
+  for (int i = 0; i < 20; ++i) {
+    loop.step(setpoint(12.5 + 0.001 * i, 1.0));
+  }
+  loop.drive.schedule_fault(drivesim::DriveFault::overcurrent, loop.cycle + 1);  // next SYNC
+  AxisAlarm raised = AxisAlarm::none;
+  for (int i = 0; i < 10; ++i) {
+    const auto& out = loop.step(setpoint(12.52));
+    if (out.new_alarm != AxisAlarm::none) {
+      raised = out.new_alarm;
+    }
+  }
+  ASSERT_EQ(raised, AxisAlarm::drive_fault);
+  ASSERT_EQ(loop.drive.state(), cia402::State::fault);
+  // Without a reset the node leaves the fault alone: controlword 0 (disable voltage).
+  EXPECT_EQ(loop.step(setpoint(12.52)).controlword, 0x0000);
+
+  loop.node.reset();
+  // The controlwords from the reset on: fault reset (bit 7 rising), then the enable sequence
+  // of CiA 402: shutdown, switch on, enable operation.
+  std::vector<std::uint16_t> controlwords;
+  for (int i = 0; i < 10; ++i) {
+    const auto& out = loop.step(setpoint(12.52));
+    if (controlwords.empty() || controlwords.back() != out.controlword) {
+      controlwords.push_back(out.controlword);
+    }
+    EXPECT_EQ(out.new_alarm, AxisAlarm::none);
+  }
+  EXPECT_EQ(controlwords, (std::vector<std::uint16_t>{0x0080, 0x0006, 0x0007, 0x000F}));
+  EXPECT_EQ(loop.drive.state(), cia402::State::operation_enabled);
+  EXPECT_TRUE(loop.node.output().enabled);
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
+  EXPECT_FALSE(loop.node.output().quick_stop);
+  // It follows again, from where the drive stood.
+  for (int i = 0; i < 400; ++i) {
+    loop.step(setpoint(15.0));
+  }
+  EXPECT_NEAR(loop.drive.position(), 15.0, 1e-6);
+}
+
+TEST(AxisNodeController, AFaultThatStaysIsAlarmedAgainAfterTheResetTime) {
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.fault_reset_cycles = 20;
+  AxisNodeController node(setup);
+  AxisNodeInput faulted;
+  faulted.have_tpdo = true;
+  faulted.have_setpoint = true;
+  faulted.statusword = cia402::encode_statusword(cia402::State::fault, false);
+  EXPECT_EQ(node.cycle(0, faulted).new_alarm, AxisAlarm::drive_fault);
+  node.reset();
+  std::uint64_t again = 0;
+  for (std::uint64_t c = 1; c < 100 && again == 0; ++c) {
+    const auto& out = node.cycle(c, faulted);
+    if (out.new_alarm == AxisAlarm::drive_fault) {
+      again = c;
+    }
+    if (c == 1) {
+      EXPECT_EQ(out.controlword, 0x0080);
+    }
+  }
+  EXPECT_EQ(again, 21U);
+}
+
+TEST(AxisNodeController, AResetWithTheHeartbeatStillSilentIsAlarmedAgain) {
+  AxisNodeController node(axisnode::AxisNodeSetup{10000.0, kCycle, 5, 150});
+  AxisNodeInput in;
+  in.have_tpdo = true;
+  in.statusword = cia402::encode_statusword(cia402::State::operation_enabled, false);
+  in.heartbeats = 1;
+  std::uint64_t lost = 0;
+  for (std::uint64_t c = 0; c < 400 && lost == 0; ++c) {
+    if (node.cycle(c, in).new_alarm == AxisAlarm::heartbeat_lost) {
+      lost = c;
+    }
+  }
+  ASSERT_EQ(lost, 151U);
+  node.reset();
+  std::uint64_t again = 0;
+  for (std::uint64_t c = 300; c < 800 && again == 0; ++c) {
+    const auto& out = node.cycle(c, in);
+    if (c == 300) {
+      EXPECT_EQ(out.alarm, AxisAlarm::none);
+    }
+    if (out.new_alarm == AxisAlarm::heartbeat_lost) {
+      again = c;
+    }
+  }
+  EXPECT_EQ(again, 451U);
 }

@@ -924,9 +924,6 @@ TEST(ChannelController, ReportsTheCyclesItsProgramStartedAndEnded) {
   EXPECT_EQ(rig.last.end_cycle, *ended);
 }
 
-}  // namespace
-}  // namespace mcnc::channel
-
 namespace mcnc::channel {
 namespace {
 
@@ -996,6 +993,79 @@ TEST(ChannelController, ASecondRunReportsItsOwnBlocks) {
     }
   }
   EXPECT_EQ(ended_in_first_cycles, 0U);
+}
+
+}  // namespace
+}  // namespace mcnc::channel
+
+TEST(ChannelController, ResetAfterAnAxisAlarmWaitsForTheAxesThenRunsTheProgramAgain) {
+  Rig rig;
+  rig.load("G00 X10\nG00 X40 Z80\nM30\n");
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 2; }));
+  rig.feedback_[1].alarm = true;
+  rig.feedback_[1].enabled = false;
+  rig.step();
+  ASSERT_EQ(rig.last.state, ChannelState::alarm);
+  const double z = rig.last.setpoints[1].pos;
+
+  // Reset while the axis still reports its alarm (its reset is on the way): the channel goes to
+  // reset, commands nothing and raises nothing more.
+  rig.ctl_.request_reset();
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::reset);
+  EXPECT_FALSE(rig.last.program_end);
+  for (int i = 0; i < 20; ++i) {
+    const auto& o = rig.step();
+    EXPECT_EQ(o.state, ChannelState::reset);
+    EXPECT_FALSE(o.setpoints[1].valid);
+  }
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+  // The axis is back: idle, from where the axis stands, without moving.
+  rig.feedback_[1].alarm = false;
+  rig.feedback_[1].enabled = true;
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::idle);
+  EXPECT_EQ(rig.last.setpoints[1].pos, z);
+  // A cycle start runs the program from its start, to its end.
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_NEAR(rig.last.setpoints[0].pos, 20.0, 1e-9);  // X40 in diameter
+  EXPECT_NEAR(rig.last.setpoints[1].pos, 80.0, 1e-9);
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+  EXPECT_TRUE(rig.first_cycle_of(ChannelEventKind::block_started, 1).has_value());
+}
+
+TEST(ChannelController, ResetWhileMovingRampsDownThenRewinds) {
+  Rig rig;
+  rig.load("G01 Z200 F6000\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 600; ++i) {
+    rig.step();
+  }
+  ASSERT_EQ(rig.last.state, ChannelState::running);
+  const std::size_t from = rig.outputs.size();
+  rig.ctl_.request_reset();
+  // Reset, and at once idle again (the axes are enabled without alarms).
+  ASSERT_TRUE(
+      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }, 5000));
+  const auto changes = rig.events_of(ChannelEventKind::state_changed);
+  ASSERT_GE(changes.size(), 2u);
+  EXPECT_EQ(changes[changes.size() - 2].state, ChannelState::reset);
+  // The ramp: no jump and more than a few cycles from full feed to rest.
+  std::vector<ChannelOutput> ramp(rig.outputs.begin() + static_cast<long>(from) - 1,
+                                  rig.outputs.end());
+  expect_no_jumps(ramp);
+  EXPECT_GT(ramp.size(), 10u);
+  const double stopped = rig.last.setpoints[1].pos;
+  EXPECT_LT(stopped, 200.0);
+  for (int i = 0; i < 20; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.last.state, ChannelState::idle);
+  EXPECT_EQ(rig.last.setpoints[1].pos, stopped);
+  EXPECT_EQ(rig.ctl_.alarm_count(), 0u);
+  EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
 }
 
 }  // namespace

@@ -1,0 +1,50 @@
+#include "common/process/operator_inbox.hpp"
+
+namespace mcnc::process {
+
+const char* to_string(OperatorActionKind action) noexcept {
+  switch (action) {
+    case OperatorActionKind::none:
+      return "none";
+    case OperatorActionKind::reset:
+      return "reset";
+    case OperatorActionKind::cycle_start:
+      return "cycle_start";
+  }
+  return "none";
+}
+
+bool OperatorInbox::put(const OperatorRequest& request) noexcept {
+  if (count_ == kSlots) {
+    return false;
+  }
+  slots_[count_++] = request;
+  return true;
+}
+
+void OperatorInbox::remove(std::size_t index) noexcept {
+  for (std::size_t i = index + 1; i < count_; ++i) {
+    slots_[i - 1] = slots_[i];
+  }
+  --count_;
+}
+
+std::optional<OperatorRequest> OperatorInbox::take_due(std::uint64_t cycle,
+                                                       std::uint64_t generation) noexcept {
+  std::size_t i = 0;
+  while (i < count_) {
+    const OperatorRequest r = slots_[i];
+    if (r.generation != 0 && r.generation != generation) {
+      remove(i);
+      continue;
+    }
+    if (r.cycle <= cycle) {
+      remove(i);
+      return r;
+    }
+    ++i;
+  }
+  return std::nullopt;
+}
+
+}  // namespace mcnc::process

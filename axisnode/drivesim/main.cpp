@@ -85,6 +85,11 @@ int main(int argc, char** argv) {
     params.time_constant_s = axis.drive.time_constant_s;
     params.max_velocity = axis.drive.max_velocity;
     params.quick_stop_decel = axis.drive.quick_stop_decel;
+    params.units_per_rev = axis.drive.units_per_rev;
+    params.inertia = axis.drive.inertia;
+    params.friction = axis.drive.friction;
+    params.torque_limit = axis.drive.torque_limit;
+    params.velocity_bandwidth_hz = axis.drive.velocity_bandwidth_hz;
     drives.push_back(params);
   }
 

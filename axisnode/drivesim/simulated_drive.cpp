@@ -15,7 +15,9 @@ SimulatedDrive::SimulatedDrive(const DriveParams& params, double cycle_s) noexce
       cycle_s_(cycle_s),
       position_(params.initial_position),
       target_(params.initial_position),
-      objects_(params.node_id) {}
+      objects_(params.node_id) {
+  previous_target_ = params.initial_position;
+}
 
 std::uint8_t SimulatedDrive::node_id() const noexcept {
   return params_.node_id;
@@ -157,49 +159,100 @@ bool SimulatedDrive::heartbeat(can::CanFrame& out) noexcept {
   return heartbeat_.due(now_us, nmt_, out);
 }
 
+void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
+  constexpr int kSteps = 8;
+  constexpr double kTwoPi = 6.283185307179586;
+  const double h = dt / kSteps;
+  const double rad_per_unit = kTwoPi / params_.units_per_rev;
+  const double j = params_.inertia;
+  const double kv = j * kTwoPi * params_.velocity_bandwidth_hz;  // N m per rad/s
+  const double ki = kv * kTwoPi * params_.velocity_bandwidth_hz / 4.0;
+  const double kp = 1.0 / std::max(params_.time_constant_s, dt);
+  const double t_max = params_.torque_limit;
+  for (int i = 0; i < kSteps; ++i) {
+    double command = 0.0;       // units/s
+    double feed_forward = 0.0;  // N m: the torque a known acceleration takes
+    switch (loop) {
+      case Loop::position: {
+        // Fine interpolation, as CSP drives do: the target moves from the last SYNC's to this
+        // one's in even steps over the cycle.
+        const double fraction = static_cast<double>(i + 1) / kSteps;
+        const double target = previous_target_ + (target_ - previous_target_) * fraction;
+        command =
+            std::clamp((target - position_) * kp, -params_.max_velocity, params_.max_velocity);
+        break;
+      }
+      case Loop::velocity:
+        command = std::clamp(velocity_target_, -params_.max_velocity, params_.max_velocity);
+        break;
+      case Loop::ramp_down: {
+        const double step = params_.quick_stop_decel * h;
+        const double before = ramp_;
+        ramp_ = std::abs(ramp_) <= step ? 0.0 : ramp_ - std::copysign(step, ramp_);
+        command = ramp_;
+        feed_forward = j * (ramp_ - before) / h * rad_per_unit;  // the drive knows its ramp
+        break;
+      }
+    }
+    const double w = velocity_ * rad_per_unit;
+    const double error = (command - velocity_) * rad_per_unit;
+    double torque = kv * error + integral_ + feed_forward;
+    if (std::abs(torque) > t_max) {
+      torque = std::copysign(t_max, torque);  // saturated: the integral holds (anti-windup)
+    } else {
+      integral_ = std::clamp(integral_ + ki * error * h, -t_max, t_max);
+    }
+    torque_ = torque;
+    const double w_next = w + (torque - params_.friction * w) / j * h;
+    velocity_ = w_next / rad_per_unit;
+    position_ += velocity_ * h;
+  }
+}
+
 void SimulatedDrive::move_one_cycle() noexcept {
   const double dt = cycle_s_;
-  switch (device_.state()) {
+  const State state = device_.state();
+  if (state != State::quick_stop_active && state != State::fault_reaction_active) {
+    ramp_ = velocity_;  // a quick stop ramps down from wherever it finds the motor
+  }
+  switch (state) {
     case State::operation_enabled: {
-      const double tau = std::max(params_.time_constant_s, dt);
       if (objects_.mode() == 9) {
-        // CSV: the velocity follows its target with the loop's time constant.
-        velocity_ += (std::clamp(velocity_target_, -params_.max_velocity, params_.max_velocity) -
-                      velocity_) *
-                     std::min(1.0, dt / tau);
-        position_ += velocity_ * dt;
+        run_loops(Loop::velocity, dt);
         target_ = position_;
         break;
       }
       if (objects_.mode() == 6) {
         velocity_ = 0.0;  // homing by method 35/37 does not move
+        integral_ = 0.0;
+        torque_ = 0.0;
         break;
       }
-      velocity_ =
-          std::clamp((target_ - position_) / tau, -params_.max_velocity, params_.max_velocity);
-      position_ += velocity_ * dt;
+      run_loops(Loop::position, dt);
       break;
     }
     case State::quick_stop_active:
     case State::fault_reaction_active: {
-      const double step = params_.quick_stop_decel * dt;
-      if (std::abs(velocity_) <= step) {
-        velocity_ = 0.0;
-      } else {
-        velocity_ -= std::copysign(step, velocity_);
-      }
-      position_ += velocity_ * dt;
+      run_loops(Loop::ramp_down, dt);
       target_ = position_;
-      if (velocity_ == 0.0 && device_.state() == State::fault_reaction_active) {
-        device_.on_fault_reaction_done();  // standing still: fault
+      if (ramp_ == 0.0 && std::abs(velocity_) * params_.counts_per_unit < 0.5 / dt) {
+        velocity_ = 0.0;  // standing still (under an increment per cycle): the brake holds
+        integral_ = 0.0;
+        torque_ = 0.0;
+        if (state == State::fault_reaction_active) {
+          device_.on_fault_reaction_done();
+        }
       }
       break;
     }
     default:
       velocity_ = 0.0;
+      integral_ = 0.0;
+      torque_ = 0.0;
       target_ = position_;
       break;
   }
+  previous_target_ = target_;
 }
 
 bool SimulatedDrive::target_reached() const noexcept {

@@ -21,10 +21,16 @@ enum class DriveFault : std::uint8_t {
 struct DriveParams {
   std::uint8_t node_id = 1;
   double counts_per_unit = 10000.0;
-  double time_constant_s = 0.004;    // first-order position loop (following error = v * tau)
+  double time_constant_s = 0.004;    // position loop: gain 1 / tau (following error ~ v * tau)
   double max_velocity = 500.0;       // units/s
   double quick_stop_decel = 5000.0;  // units/s^2
   double initial_position = 0.0;     // units
+  // The mechanics, at the motor shaft: J w' = T - B w, |T| <= torque_limit.
+  double units_per_rev = 10.0;           // load units per motor revolution (lead, 360 / ratio)
+  double inertia = 0.0005;               // J, kg m^2 (motor and load, reflected)
+  double friction = 0.001;               // B, N m s/rad (viscous)
+  double torque_limit = 10.0;            // N m
+  double velocity_bandwidth_hz = 200.0;  // the velocity loop (PI) is tuned for this
 };
 
 // One drive in cyclic synchronous position mode.
@@ -34,12 +40,16 @@ struct DriveParams {
 // the boot-up). Reset node also restarts the CiA 402 state machine (switch on disabled) and
 // clears the latched RPDO; the position is kept, as a motor does not move on a reset.
 //
-// Motion per on_sync() with dt = cycle_s:
-//  - operation_enabled: v = (target - pos) / max(tau, dt), clamped to +-max_velocity;
-//    pos += v * dt (tau below one cycle would make the discrete loop overshoot).
-//  - quick_stop_active and fault_reaction_active: |v| decreases by quick_stop_decel * dt,
-//    never past 0; pos += v * dt; the fault reaction ends in fault at standstill.
-//  - otherwise v = 0 and pos stays.
+// Motion per on_sync(), integrated in 8 steps per cycle (a drive's inner loops run faster than
+// the bus): a cascade like a real servo drive's.
+//  - the velocity command: CSP P-position loop, (target - pos) / tau, clamped to
+//    +-max_velocity; CSV the target velocity, clamped; quick stop and fault reaction a ramp
+//    from the velocity at its start to 0 at quick_stop_decel.
+//  - a PI velocity loop (gain J * 2 pi f, integral with anti-windup) gives the torque, limited
+//    to torque_limit; the mechanics J w' = T - B w move the motor, and the load by
+//    units_per_rev per revolution.
+//  - the fault reaction ends in fault at standstill; in every other state the brake holds:
+//    v = 0 and pos stays.
 // The target is taken from RPDOs received after the SYNC that enabled operation; until then
 // (and in every other state) it follows the actual position, so enabling never jumps.
 //
@@ -57,6 +67,7 @@ class SimulatedDrive {
   [[nodiscard]] double position() const noexcept;  // units
   [[nodiscard]] double velocity() const noexcept;  // units/s
   [[nodiscard]] double target() const noexcept;    // units, the target the loop follows
+  [[nodiscard]] double torque() const noexcept { return torque_; }  // N m, the last one applied
   void power_on() noexcept;  // bootup -> pre-operational, CiA 402 -> switch on disabled
   void on_nmt(canopen::NmtCommand command) noexcept;    // ignored before power_on()
   void on_rpdo(const canopen::RxPdoCsp& pdo) noexcept;  // latched until the next SYNC
@@ -83,6 +94,9 @@ class SimulatedDrive {
 
  private:
   void move_one_cycle() noexcept;
+  // The velocity and mechanics for one cycle; velocity command from the mode (see above).
+  enum class Loop : std::uint8_t { position, velocity, ramp_down };
+  void run_loops(Loop loop, double dt) noexcept;
   [[nodiscard]] bool target_reached() const noexcept;
   [[nodiscard]] std::int32_t to_counts(double units) const noexcept;
 
@@ -96,6 +110,10 @@ class SimulatedDrive {
   double position_;
   double velocity_ = 0.0;
   double target_;
+  double previous_target_ = 0.0;  // CSP: the last SYNC's target (fine interpolation)
+  double torque_ = 0.0;
+  double integral_ = 0.0;  // the velocity loop's integral part, N m
+  double ramp_ = 0.0;      // quick stop: the ramp's velocity command, units/s
   DriveObjects objects_;
   std::uint64_t syncs_ = 0;
   DriveFault fault_ = DriveFault::none;

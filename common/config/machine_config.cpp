@@ -185,11 +185,18 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
 }
 
 DriveSimConfig parse_drive(const YamlValue& value) {
-  const YamlMap map = value.map({"time_constant_s", "max_velocity", "quick_stop_decel"});
+  const YamlMap map =
+      value.map({"time_constant_s", "max_velocity", "quick_stop_decel", "units_per_rev", "inertia",
+                 "friction", "torque_limit", "velocity_bandwidth_hz"});
   DriveSimConfig drive;
   read_optional_positive(map, "time_constant_s", drive.time_constant_s);
   read_optional_positive(map, "max_velocity", drive.max_velocity);
   read_optional_positive(map, "quick_stop_decel", drive.quick_stop_decel);
+  read_optional_positive(map, "units_per_rev", drive.units_per_rev);
+  read_optional_positive(map, "inertia", drive.inertia);
+  read_optional_positive(map, "friction", drive.friction);
+  read_optional_positive(map, "torque_limit", drive.torque_limit);
+  read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
   return drive;
 }
 

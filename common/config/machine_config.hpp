@@ -24,9 +24,14 @@ enum class AxisType { linear, rotary };
 
 // Parameters of the simulated drive behind an axis (mcnc-drivesim only).
 struct DriveSimConfig {
-  double time_constant_s = 0.004;    // first-order position loop: following error = v * tau
+  double time_constant_s = 0.004;    // position loop gain 1 / tau: following error ~ v * tau
   double max_velocity = 500.0;       // units/s, the drive's own limit
   double quick_stop_decel = 5000.0;  // units/s^2
+  double units_per_rev = 10.0;       // load units per motor revolution (lead, 360 / ratio)
+  double inertia = 0.0005;           // kg m^2 at the motor, load included
+  double friction = 0.001;           // N m s/rad, viscous
+  double torque_limit = 10.0;        // N m
+  double velocity_bandwidth_hz = 200.0;
 };
 
 struct AxisConfig {

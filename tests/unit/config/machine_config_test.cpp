@@ -185,6 +185,24 @@ axes: [{name: A, address: C, type: rotary, bus: b, node_id: 127}]
   EXPECT_TRUE(config.channels[0].motion.jerk_limited);
 }
 
+TEST(MachineConfig, DriveMechanicsKeys) {
+  const MachineConfig config = parse_machine_yaml(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: A}]
+channels: [{name: C, axes: [A]}]
+axes: [{name: A, address: X, bus: b, node_id: 1, drive: {units_per_rev: 5, inertia: 0.002, friction: 0.01, torque_limit: 2.5, velocity_bandwidth_hz: 120}}]
+)");
+  const DriveSimConfig& d = config.axes[0].drive;
+  EXPECT_DOUBLE_EQ(d.units_per_rev, 5.0);
+  EXPECT_DOUBLE_EQ(d.inertia, 0.002);
+  EXPECT_DOUBLE_EQ(d.friction, 0.01);
+  EXPECT_DOUBLE_EQ(d.torque_limit, 2.5);
+  EXPECT_DOUBLE_EQ(d.velocity_bandwidth_hz, 120.0);
+  EXPECT_DOUBLE_EQ(d.max_velocity, 500.0);  // the defaults beside them
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["drive"]["inertia"] = 0; })),
+            "axes[0].drive.inertia");
+}
+
 TEST(MachineConfig, MotionAndLimitKeys) {
   const MachineConfig config = parse_machine_yaml(R"(
 machine: {name: m}

@@ -133,6 +133,13 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = loop.lockstep();
+    if (sync_producer && !lockstep) {
+      // Realtime: SYNC at a fixed offset inside every cycle, from a timer of its own.
+      constexpr std::int64_t kNsPerUs = 1000;
+      link.start_sync_timer(canopen::SyncSchedule(node.run_control().start_ns,
+                                                  machine.cycle_us * kNsPerUs,
+                                                  bus->sync_offset_us * kNsPerUs));
+    }
 
     axisnode::AxisNodeSetup setup;
     setup.counts_per_unit = axis->counts_per_unit;
@@ -259,6 +266,7 @@ int main(int argc, char** argv) {
                     tpdo.count, abandon_bus_wait, std::chrono::milliseconds(stall_ms));
     }
 
+    link.stop_sync_timer();
     link.send_rpdo(cia402::encode_controlword(cia402::Command::disable_voltage),
                    controller.output().target_counts);
     link.send_nmt(canopen::NmtCommand::enter_preoperational);

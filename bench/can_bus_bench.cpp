@@ -1,10 +1,13 @@
 // CAN bus figures of a machine (bench/README.md): frames and bus load per bus at the machine's
 // cycle, and the round trip RPDO + SYNC -> TPDO on a transport, measured against the drive
 // simulator on the same bus (UDP here; SocketCAN inside user-mode Linux). Not a test.
-//   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N]
+// Also how punctually the realtime SYNC timer sends at its offset inside the cycle.
+//   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N] [--sync-seconds S]
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "axisnode/link/drive_link.hpp"
 #include "common/can/can_bus.hpp"
+#include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 
 #include <CLI/CLI.hpp>
@@ -91,6 +94,33 @@ void round_trip(const std::string& uri, int cycles) {
               uri.c_str(), us.size(), us[us.size() / 2], us[us.size() * 99 / 100]);
 }
 
+// The SYNC timer of the first bus's producer, as the axis node runs it in realtime: how late
+// after its due time (start + n cycles + offset) each SYNC went out.
+void sync_timing(const config::MachineConfig& machine, const std::string& uri, double seconds) {
+  process::Wakeup wake;
+  axisnode::DriveLink link(can::open_can_bus(uri), 1, {}, wake);
+  const std::int64_t period = static_cast<std::int64_t>(machine.cycle_us) * 1000;
+  const std::int64_t offset =
+      static_cast<std::int64_t>(machine.buses.front().sync_offset_us) * 1000;
+  link.start_sync_timer(canopen::SyncSchedule(clock::monotonic_ns() + 10'000'000, period, offset));
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  link.stop_sync_timer();
+  std::vector<std::int64_t> late = link.sync_lateness();
+  if (late.empty()) {
+    std::printf("SYNC timer: nothing sent\n");
+    return;
+  }
+  std::sort(late.begin(), late.end());
+  std::printf(
+      "SYNC timer on %s, offset %d us of %d us: %zu SYNCs (the last ones kept), late by median "
+      "%.1f us, p99 %.1f us, max %.1f us; %llu skipped\n",
+      uri.c_str(), machine.buses.front().sync_offset_us, machine.cycle_us, late.size(),
+      static_cast<double>(late[late.size() / 2]) / 1e3,
+      static_cast<double>(late[late.size() * 99 / 100]) / 1e3,
+      static_cast<double>(late.back()) / 1e3,
+      static_cast<unsigned long long>(link.syncs_skipped()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,8 +131,16 @@ int main(int argc, char** argv) {
   app.add_option("machine", machine_path, "machine file")->required();
   app.add_option("--uri", uri, "transport for the round trip (udp:... or socketcan:IF)");
   app.add_option("--cycles", cycles, "round trips to measure");
+  double sync_seconds = 5.0;
+  app.add_option("--sync-seconds", sync_seconds, "how long to time the SYNC timer (0: not)");
   CLI11_PARSE(app, argc, argv);
-  print_load(config::load_machine_file(machine_path));
+  // As the realtime processes do: timer slack 1 ns, SCHED_FIFO where permitted.
+  std::printf("realtime: %s\n", clock::prepare_realtime_process());
+  const config::MachineConfig machine = config::load_machine_file(machine_path);
+  print_load(machine);
   round_trip(uri, cycles);
+  if (sync_seconds > 0.0) {
+    sync_timing(machine, uri, sync_seconds);
+  }
   return 0;
 }

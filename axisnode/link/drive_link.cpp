@@ -1,8 +1,11 @@
 #include "axisnode/link/drive_link.hpp"
 
 #include "axisnode/canopen/bus_filters.hpp"
+#include "common/clock/cycle_clock.hpp"
 
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
 
 namespace mcnc::axisnode {
 
@@ -24,8 +27,49 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
 }
 
 DriveLink::~DriveLink() {
+  stop_sync_timer();
   stop_ = true;
   thread_.join();
+}
+
+void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
+  stop_sync_timer();
+  sync_stop_ = false;
+  sync_late_ns_.assign(kLatenessRecords, 0);
+  sync_late_count_ = 0;
+  sync_thread_ = std::thread([this, schedule] {
+    std::uint64_t next = 0;
+    while (!sync_stop_) {
+      // Wake at the due time, or within 50 ms to notice a stop.
+      const std::int64_t now = clock::monotonic_ns();
+      clock::sleep_until_ns(std::min(schedule.due(next), now + 50'000'000));
+      std::uint64_t index = 0;
+      const std::int64_t woke = clock::monotonic_ns();
+      if (sync_stop_ || !schedule.to_send(woke, next, index)) {
+        continue;
+      }
+      send_sync();
+      syncs_skipped_ += index - next;
+      sync_late_ns_[sync_late_count_++ % kLatenessRecords] = woke - schedule.due(index);
+      next = index + 1;
+    }
+  });
+}
+
+void DriveLink::stop_sync_timer() {
+  if (sync_thread_.joinable()) {
+    sync_stop_ = true;
+    sync_thread_.join();
+  }
+}
+
+std::vector<std::int64_t> DriveLink::sync_lateness() const {
+  std::vector<std::int64_t> out;
+  const std::uint64_t n = std::min<std::uint64_t>(sync_late_count_, kLatenessRecords);
+  for (std::uint64_t i = sync_late_count_ - n; i < sync_late_count_; ++i) {
+    out.push_back(sync_late_ns_[i % kLatenessRecords]);
+  }
+  return out;
 }
 
 void DriveLink::receive_loop() {
@@ -193,10 +237,10 @@ void DriveLink::exchange(std::uint16_t controlword, std::int32_t target_counts, 
     }
   };
   const std::uint64_t syncs_before = syncs_.load();
-  if (sync_producer && !lockstep) {
+  send_rpdo(controlword, target_counts);
+  if (sync_producer && !lockstep && !sync_timer_running()) {
     send_sync();
   }
-  send_rpdo(controlword, target_counts);
   if (!lockstep) {
     return;
   }

@@ -4,6 +4,7 @@
 // last SYNC) and wakes the cyclic loop. In lockstep the SYNC producer sends SYNC only after
 // every node of the bus has sent its RPDO for the cycle, so the drives step in step.
 #include "axisnode/canopen/node_startup.hpp"
+#include "axisnode/canopen/sync_schedule.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/process/process_node.hpp"
@@ -44,8 +45,21 @@ class DriveLink {
   void send_sync() noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
 
-  // One cycle on the bus. Realtime (`lockstep` false): the SYNC producer opens the cycle with
-  // SYNC, then the RPDO goes out (applied at the next SYNC, the same for every drive). Lockstep:
+  // Realtime SYNC production: a thread of its own sends SYNC at the schedule's fixed offset
+  // inside each cycle, whatever the cyclic loop is doing (a late wake-up skips, never bursts).
+  // Stops with stop_sync_timer() or the link.
+  void start_sync_timer(const canopen::SyncSchedule& schedule);
+  void stop_sync_timer();
+  [[nodiscard]] bool sync_timer_running() const noexcept { return sync_thread_.joinable(); }
+  [[nodiscard]] std::uint64_t syncs_skipped() const noexcept { return syncs_skipped_.load(); }
+  // How late each timed SYNC went out (ns after its due time), the last kLatenessRecords of
+  // them in order; read after stop_sync_timer() (benchmarks).
+  static constexpr std::size_t kLatenessRecords = 1U << 14;
+  [[nodiscard]] std::vector<std::int64_t> sync_lateness() const;
+
+  // One cycle on the bus. Realtime (`lockstep` false): the RPDO goes out, applied by the drive
+  // at the next SYNC; the producer sends that SYNC here only when no SYNC timer runs (a lockstep
+  // run winding down in real time). Lockstep:
   // RPDO; the producer sends SYNC once every node's RPDO of the cycle is seen; then wait for the
   // drive's answer to it (TPDO count past `tpdos_seen`). A lockstep wait never gives up on its
   // own, which would make results depend on load: it ends when `abandon()` says so (stop,
@@ -94,6 +108,11 @@ class DriveLink {
   std::bitset<128> rpdo_seen_;
   std::uint8_t sync_counter_ = 0;
   std::thread thread_;
+  std::thread sync_thread_;
+  std::atomic<bool> sync_stop_{false};
+  std::atomic<std::uint64_t> syncs_skipped_{0};
+  std::vector<std::int64_t> sync_late_ns_;  // a ring, written by the SYNC thread only
+  std::uint64_t sync_late_count_ = 0;
 };
 
 }  // namespace mcnc::axisnode

@@ -133,7 +133,7 @@ void parse_machine_section(const YamlValue& value, MachineConfig& out) {
 }
 
 BusConfig parse_bus(const YamlValue& value) {
-  const YamlMap map = value.map({"name", "uri", "bitrate", "sync_producer"});
+  const YamlMap map = value.map({"name", "uri", "bitrate", "sync_producer", "sync_offset_us"});
   BusConfig bus;
   bus.name = read_name(map.required("name"));
   const YamlValue uri = map.required("uri");
@@ -141,6 +141,7 @@ BusConfig parse_bus(const YamlValue& value) {
   check_uri(uri, bus.uri);
   read_optional_int(map, "bitrate", 10000, 1000000, bus.bitrate);
   bus.sync_producer = read_name(map.required("sync_producer"));
+  read_optional_int(map, "sync_offset_us", 0, 1000000, bus.sync_offset_us);
   return bus;
 }
 
@@ -377,7 +378,14 @@ MachineConfig parse_document(const YAML::Node& root) {
   }
 
   for (std::size_t b = 0; b < config.buses.size(); ++b) {
-    const BusConfig& bus = config.buses[b];
+    BusConfig& bus = config.buses[b];
+    if (bus.sync_offset_us < 0) {
+      bus.sync_offset_us = config.cycle_us / 2;
+    } else if (bus.sync_offset_us >= config.cycle_us) {
+      buses[b]
+          .child("sync_offset_us")
+          .fail("must be below the cycle (" + std::to_string(config.cycle_us) + " us)");
+    }
     const auto on_bus = nodes.find(bus.name);
     if (on_bus == nodes.end()) {
       buses[b].fail("no axis is on bus " + bus.name);

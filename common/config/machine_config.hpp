@@ -61,6 +61,9 @@ struct BusConfig {
   std::string uri;            // "udp:239.255.42.1:42000" or "socketcan:can0"
   int bitrate = 1000000;      // bit/s
   std::string sync_producer;  // axis name whose node produces SYNC on this bus
+  // Realtime: SYNC goes out this long after each cycle's start, so that every node's RPDO of
+  // the cycle is on the bus before it. Absent: half the cycle.
+  int sync_offset_us = -1;
 };
 
 // The look-ahead planner of a channel (docs/motion.md).

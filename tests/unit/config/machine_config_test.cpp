@@ -203,6 +203,17 @@ axes: [{name: A, address: X, bus: b, node_id: 1, drive: {units_per_rev: 5, inert
             "axes[0].drive.inertia");
 }
 
+TEST(MachineConfig, SyncOffsetIsHalfTheCycleUnlessGivenAndStaysInsideIt) {
+  EXPECT_EQ(parse_machine_yaml(kBase).buses[0].sync_offset_us, 500);  // 1000 us cycle
+  const MachineConfig given =
+      parse_machine_yaml(mutated([](YAML::Node& r) { r["buses"][0]["sync_offset_us"] = 700; }));
+  EXPECT_EQ(given.buses[0].sync_offset_us, 700);
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["buses"][0]["sync_offset_us"] = 1000; })),
+            "buses[0].sync_offset_us");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["buses"][0]["sync_offset_us"] = -1; })),
+            "buses[0].sync_offset_us");
+}
+
 TEST(MachineConfig, MotionAndLimitKeys) {
   const MachineConfig config = parse_machine_yaml(R"(
 machine: {name: m}

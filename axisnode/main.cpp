@@ -109,9 +109,15 @@ int main(int argc, char** argv) {
     dds::Writer<AxisFeedback> feedback_writer(node.participant());
 
     axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
+    const bool spindle = axis->type == config::AxisType::spindle;
     canopen::NodeStartupConfig startup;
     startup.node = node_id;
     startup.bootup_attempts = 20;  // 20 x 500 ms
+    if (spindle) {
+      startup.pdos = canopen::spindle_pdos();
+      startup.mode = axisnode::kModeCsv;
+    }
+    link.set_spindle(spindle);
     if (const auto error = link.bring_up(startup, 10s)) {
       spdlog::error("drive on {}: {}", bus->uri, *error);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
@@ -151,6 +157,7 @@ int main(int argc, char** argv) {
     setup.following_error_limit = axis->following_error_limit;
     // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles.
     setup.heartbeat_cycles = static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us);
+    setup.spindle = spindle;
     axisnode::AxisNodeController controller(setup);
     bool owner_loss_checked = false;
     std::uint64_t last_tpdo_count = 0;
@@ -199,12 +206,14 @@ int main(int argc, char** argv) {
         in.setpoint_pos = sp.pos();
         in.setpoint_vel = sp.vel();
         in.setpoint_valid = sp.valid();
+        in.setpoint_velocity = sp.mode() == SP_VELOCITY;
       }
       const axisnode::TpdoSample tpdo = link.tpdo();
       in.have_tpdo = tpdo.count > last_tpdo_count;
       last_tpdo_count = tpdo.count;
       in.statusword = tpdo.pdo.statusword;
       in.position_counts = tpdo.pdo.position_actual;
+      in.mode_display = tpdo.pdo.mode_display;
       if (lost_now && !owner_loss_checked) {
         owner_loss_checked = true;
         if (node.stop_arrives_within(300ms)) {  // the owner left because the run ends
@@ -236,9 +245,16 @@ int main(int argc, char** argv) {
       fb.statusword(in.statusword);
       fb.drive_state(to_wire(out.drive_state));
       fb.enabled(out.enabled);
+      fb.following_error(out.cmd - out.act);
+      fb.last_emcy(link.last_emcy());
+      fb.mode_display(out.mode_display);
       fb.alarm(out.alarm != axisnode::AxisAlarm::none);
       feedback_writer.write(fb);
 
+      if (out.mode_changed) {
+        tracer.emit(cycle, "mode", "\"axis\":\"%s\",\"mode\":\"%s\"", axis->name.c_str(),
+                    out.mode_display == axisnode::kModeCsv ? "csv" : "csp");
+      }
       if (out.drive_state_changed) {
         tracer.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", axis->name.c_str(),
                     drive_state_name(out.drive_state));
@@ -262,13 +278,16 @@ int main(int argc, char** argv) {
       }
 
       // 4. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
-      link.exchange(out.controlword, out.target_counts, sync_producer, lockstep && !degraded,
-                    tpdo.count, abandon_bus_wait, std::chrono::milliseconds(stall_ms));
+      link.exchange(axisnode::DriveCommand{out.controlword, out.target_counts,
+                                           out.target_velocity_counts, out.mode},
+                    sync_producer, lockstep && !degraded, tpdo.count, abandon_bus_wait,
+                    std::chrono::milliseconds(stall_ms));
     }
 
     link.stop_sync_timer();
-    link.send_rpdo(cia402::encode_controlword(cia402::Command::disable_voltage),
-                   controller.output().target_counts);
+    link.send_rpdo(
+        axisnode::DriveCommand{cia402::encode_controlword(cia402::Command::disable_voltage),
+                               controller.output().target_counts, 0, controller.output().mode});
     link.send_nmt(canopen::NmtCommand::enter_preoperational);
     tracer.flush();
     spdlog::info("stopped: {} EMCY, {} malformed frames, {} trace events dropped",

@@ -143,7 +143,11 @@ int main(int argc, char** argv) {
             }
           });
         });
-    channel::ChannelOutputs outputs(node, tracer, *ch, axes, program_name, program_lines);
+    std::vector<const config::AxisConfig*> spindles;
+    for (const std::string& name : ch->spindles) {
+      spindles.push_back(machine.find_axis(name));
+    }
+    channel::ChannelOutputs outputs(node, tracer, *ch, axes, spindles, program_name, program_lines);
 
     // Discovery: every axis node's feedback writer and setpoint reader matched.
     const int total_axes = static_cast<int>(machine.axes.size());

@@ -60,7 +60,8 @@ NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
     }
   };
   add(0x1017, 0, config.heartbeat_ms, 2);
-  for (const PdoConfig* pdo : {&config.pdos.rpdo1, &config.pdos.tpdo1, &config.pdos.tpdo2}) {
+  for (const PdoConfig* pdo :
+       {&config.pdos.rpdo1, &config.pdos.rpdo2, &config.pdos.tpdo1, &config.pdos.tpdo2}) {
     SdoWriteList list;
     if (pdo->count > 0 && pdo_configuration(config.node, *pdo, list)) {
       for (std::size_t i = 0; i < list.count; ++i) {

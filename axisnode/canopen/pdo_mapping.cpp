@@ -64,6 +64,7 @@ AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_erro
   p.rpdo1 = pdo(
       true, 1,
       {{0x6040, 0, 16}, {velocity_mode ? std::uint16_t{0x60FF} : std::uint16_t{0x607A}, 0, 32}});
+  p.rpdo2 = pdo(true, 2, {});
   p.tpdo1 = pdo(false, 1, {{0x6041, 0, 16}, {0x6064, 0, 32}});
   p.tpdo2 = pdo(false, 2, {});
   if (velocity_actual) {
@@ -72,6 +73,15 @@ AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_erro
   if (following_error) {
     p.tpdo2.objects[p.tpdo2.count++] = MappedObject{0x60F4, 0, 32};
   }
+  return p;
+}
+
+AxisPdos spindle_pdos() noexcept {
+  AxisPdos p;
+  p.rpdo1 = pdo(true, 1, {{0x6040, 0, 16}, {0x607A, 0, 32}, {0x6060, 0, 8}});
+  p.rpdo2 = pdo(true, 2, {{0x60FF, 0, 32}});
+  p.tpdo1 = pdo(false, 1, {{0x6041, 0, 16}, {0x6064, 0, 32}, {0x6061, 0, 8}});
+  p.tpdo2 = pdo(false, 2, {});
   return p;
 }
 

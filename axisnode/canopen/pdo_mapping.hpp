@@ -48,9 +48,16 @@ bool pdo_configuration(std::uint8_t node, const PdoConfig& pdo, SdoWriteList& ou
 // 0x606C and/or following error actual 0x60F4. A PDO with count 0 is left as the node has it.
 struct AxisPdos {
   PdoConfig rpdo1;
+  PdoConfig rpdo2;
   PdoConfig tpdo1;
   PdoConfig tpdo2;
 };
 AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_error) noexcept;
+
+// The PDOs of a spindle drive that switches between CSV (turning) and CSP (positioning,
+// synchronisation) in operation, cycle by cycle: RPDO1 controlword 0x6040, target position
+// 0x607A and modes of operation 0x6060 (7 bytes); RPDO2 target velocity 0x60FF; TPDO1
+// statusword 0x6041, position actual 0x6064 and modes of operation display 0x6061 (7 bytes).
+AxisPdos spindle_pdos() noexcept;
 
 }  // namespace mcnc::canopen

@@ -108,9 +108,26 @@ CanFrame encode_rpdo_csp(std::uint8_t node, const RxPdoCsp& pdo) noexcept {
 }
 
 CanFrame encode_tpdo_csp(std::uint8_t node, const TxPdoCsp& pdo) noexcept {
-  CanFrame frame = make_frame(kTpdo1Base + node, 6);
+  CanFrame frame = make_frame(kTpdo1Base + node, pdo.has_mode_display ? 7 : 6);
   put_u16(frame, 0, pdo.statusword);
   put_i32(frame, 2, pdo.position_actual);
+  if (pdo.has_mode_display) {
+    frame.data[6] = static_cast<std::uint8_t>(pdo.mode_display);
+  }
+  return frame;
+}
+
+CanFrame encode_rpdo1_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept {
+  CanFrame frame = make_frame(kRpdo1Base + node, 7);
+  put_u16(frame, 0, pdo.controlword);
+  put_i32(frame, 2, pdo.target_position);
+  frame.data[6] = static_cast<std::uint8_t>(pdo.mode);
+  return frame;
+}
+
+CanFrame encode_rpdo2_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept {
+  CanFrame frame = make_frame(kRpdo2Base + node, 4);
+  put_i32(frame, 0, pdo.target_velocity);
   return frame;
 }
 
@@ -127,6 +144,10 @@ FrameClass classify(const CanFrame& frame) noexcept {
     result.kind = FrameKind::tpdo1;
   } else if (node_id_in(id, kRpdo1Base, result.node)) {
     result.kind = FrameKind::rpdo1;
+  } else if (node_id_in(id, kTpdo2Base, result.node)) {
+    result.kind = FrameKind::tpdo2;
+  } else if (node_id_in(id, kRpdo2Base, result.node)) {
+    result.kind = FrameKind::rpdo2;
   } else if (node_id_in(id, kHeartbeatBase, result.node)) {
     result.kind = FrameKind::heartbeat;
   }
@@ -180,12 +201,17 @@ std::optional<RxPdoCsp> decode_rpdo_csp(const CanFrame& frame) noexcept {
   return RxPdoCsp{get_u16(frame, 0), get_i32(frame, 2)};
 }
 
-std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame) noexcept {
+std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame, bool with_mode) noexcept {
   std::uint8_t node = 0;
-  if (!node_id_in(frame.id, kTpdo1Base, node) || frame.dlc != 6) {
+  if (!node_id_in(frame.id, kTpdo1Base, node) || frame.dlc != (with_mode ? 7 : 6)) {
     return std::nullopt;
   }
-  return TxPdoCsp{get_u16(frame, 0), get_i32(frame, 2)};
+  TxPdoCsp pdo{get_u16(frame, 0), get_i32(frame, 2)};
+  if (with_mode) {
+    pdo.mode_display = static_cast<std::int8_t>(frame.data[6]);
+    pdo.has_mode_display = true;
+  }
+  return pdo;
 }
 
 }  // namespace mcnc::canopen

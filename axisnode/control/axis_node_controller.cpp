@@ -33,7 +33,11 @@ const char* to_text(AxisAlarm alarm) noexcept {
 
 AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept
     : setup_(setup),
-      heartbeat_(0, static_cast<std::uint64_t>(std::max(0, setup.heartbeat_cycles))) {}
+      requested_mode_(setup.spindle ? kModeCsv : kModeCsp),
+      heartbeat_(0, static_cast<std::uint64_t>(std::max(0, setup.heartbeat_cycles))) {
+  out_.mode = requested_mode_;
+  out_.mode_display = requested_mode_;  // what the start-up wrote
+}
 
 void AxisNodeController::raise(AxisAlarm alarm) noexcept {
   out_.quick_stop = true;
@@ -54,6 +58,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
                                                 const AxisNodeInput& in) noexcept {
   out_.new_alarm = AxisAlarm::none;
   out_.drive_state_changed = false;
+  out_.mode_changed = false;
   const std::uint64_t elapsed = cycle > last_cycle_ ? cycle - last_cycle_ : 1;
   last_cycle_ = cycle;
   const auto deadline = static_cast<std::uint64_t>(setup_.deadline_cycles);
@@ -80,6 +85,13 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     const cia402::State state = cia402::decode_statusword(in.statusword);
     out_.drive_state_changed = state != out_.drive_state;
     out_.drive_state = state;
+    if (setup_.spindle && in.mode_display != out_.mode_display) {
+      out_.mode_changed = true;
+      out_.mode_display = in.mode_display;
+      // Into CSP while turning: the position target takes over one cycle ahead of the actual
+      // position at the actual speed, so the drive does not brake on the switch.
+      out_.cmd = out_.act + out_.vel * setup_.cycle_s;
+    }
   } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= deadline) {
     raise(AxisAlarm::drive_lost);
   }
@@ -118,14 +130,29 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   }
   following_ = operating;
 
+  // A spindle: the mode its owner asks for goes out with the RPDO; the drive's display says
+  // when it runs in it.
+  if (setup_.spindle && in.have_setpoint && in.setpoint_valid) {
+    requested_mode_ = in.setpoint_velocity ? kModeCsv : kModeCsp;
+  }
+  out_.mode = requested_mode_;
+  const bool velocity_mode = setup_.spindle && out_.mode_display == kModeCsv;
+  if (velocity_mode && in.have_setpoint && following_ && !out_.quick_stop) {
+    out_.vel_cmd = in.setpoint_valid && in.setpoint_velocity ? in.setpoint_vel : out_.vel_cmd;
+  }
+
   // Owner side: follow, extrapolate a missing setpoint, or stop after the deadline.
   if (following_ && !out_.quick_stop) {
     if (in.have_setpoint) {
       owner_seen_ = true;
       last_setpoint_cycle_ = cycle;
       out_.missing_setpoints = 0;
-      if (in.setpoint_valid && setup_.has_soft_limits &&
-          (in.setpoint_pos < setup_.soft_min || in.setpoint_pos > setup_.soft_max)) {
+      if (velocity_mode) {
+        // CSV: the position is the drive's; a position setpoint waits for the switch to CSP.
+      } else if (in.setpoint_valid && in.setpoint_velocity) {
+        out_.cmd += in.setpoint_vel * setup_.cycle_s;  // leaving CSP: keep turning meanwhile
+      } else if (in.setpoint_valid && setup_.has_soft_limits &&
+                 (in.setpoint_pos < setup_.soft_min || in.setpoint_pos > setup_.soft_max)) {
         raise(AxisAlarm::soft_limit);  // never commanded: the drive stops where it is
       } else if (in.setpoint_valid) {
         out_.cmd = in.setpoint_pos;
@@ -135,20 +162,30 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     } else if (owner_seen_) {
       out_.missing_setpoints = static_cast<int>(cycle - last_setpoint_cycle_);
-      // A late sample continues the motion.
-      out_.cmd += last_setpoint_vel_ * setup_.cycle_s * static_cast<double>(elapsed);
+      // A late sample continues the motion (in CSV the drive keeps its velocity by itself).
+      if (!velocity_mode) {
+        out_.cmd += last_setpoint_vel_ * setup_.cycle_s * static_cast<double>(elapsed);
+      }
       if (cycle - last_setpoint_cycle_ >= deadline) {
         raise(AxisAlarm::setpoint_deadline);
       }
     }
   }
+  if (velocity_mode) {
+    out_.cmd = out_.act;  // no position loop in CSV: no following error either
+  }
   if (following_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
       std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
     raise(AxisAlarm::following_error);
   }
+  if (out_.quick_stop || !following_) {
+    out_.vel_cmd = 0.0;
+  }
   if (out_.quick_stop) {
     out_.cmd = out_.act;  // the drive ramps down itself; the target follows it
   }
+  out_.target_velocity_counts =
+      static_cast<std::int32_t>(std::llround(out_.vel_cmd * setup_.counts_per_unit));
 
   const cia402::Goal goal = out_.quick_stop ? cia402::Goal::quick_stop : cia402::Goal::enabled;
   out_.controlword = cia402::next_controlword(out_.drive_state, goal, resetting_);

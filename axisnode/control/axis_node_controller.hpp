@@ -27,14 +27,22 @@ struct AxisNodeSetup {
   double following_error_limit = 0.0;
   // After an operator reset, a drive still in fault this many cycles later is alarmed again.
   int fault_reset_cycles = 100;
+  // A spindle: its drive starts in CSV and switches between CSV and CSP in operation as the
+  // owner's setpoints ask (modes of operation in its RPDO, the display in its TPDO).
+  bool spindle = false;
 };
+
+inline constexpr std::int8_t kModeCsp = 8;
+inline constexpr std::int8_t kModeCsv = 9;
 
 struct AxisNodeInput {
   bool have_setpoint = false;  // a setpoint from the owner stamped N-1 arrived
   double setpoint_pos = 0.0;
   double setpoint_vel = 0.0;
-  bool setpoint_valid = false;  // the owner commands (false: hold)
-  bool have_tpdo = false;       // the drive answered this cycle's SYNC
+  bool setpoint_valid = false;     // the owner commands (false: hold)
+  bool setpoint_velocity = false;  // a spindle: the owner commands velocity (CSV), not position
+  std::int8_t mode_display = 0;    // a spindle: 0x6061 from its TPDO
+  bool have_tpdo = false;          // the drive answered this cycle's SYNC
   std::uint16_t statusword = 0;
   std::int32_t position_counts = 0;
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
@@ -61,9 +69,14 @@ const char* to_text(AxisAlarm alarm) noexcept;
 struct AxisNodeOutput {
   std::uint16_t controlword = 0;
   std::int32_t target_counts = 0;
-  double cmd = 0.0;  // commanded position (units)
-  double act = 0.0;  // actual position (units)
-  double vel = 0.0;  // actual velocity (units/s)
+  double cmd = 0.0;      // commanded position (units)
+  double act = 0.0;      // actual position (units)
+  double vel = 0.0;      // actual velocity (units/s)
+  double vel_cmd = 0.0;  // a spindle in CSV: commanded velocity (units/s)
+  std::int32_t target_velocity_counts = 0;
+  std::int8_t mode = kModeCsp;          // modes of operation to send (a spindle's RPDO)
+  std::int8_t mode_display = kModeCsp;  // the mode the drive runs in
+  bool mode_changed = false;            // the drive switched modes this cycle
   cia402::State drive_state = cia402::State::not_ready_to_switch_on;
   bool enabled = false;                   // operation enabled and following setpoints
   bool quick_stop = false;                // quick stop commanded (latched until restart)
@@ -105,6 +118,7 @@ class AxisNodeController {
   bool owner_seen_ = false;  // the setpoint deadline runs once the owner has sent a setpoint
   double last_setpoint_vel_ = 0.0;
   std::uint64_t heartbeats_ = 0;
+  std::int8_t requested_mode_ = kModeCsp;
   canopen::HeartbeatConsumer heartbeat_;  // in cycles
 };
 

@@ -86,7 +86,10 @@ std::size_t DriveBusSimulator::handle(const CanFrame& in, std::span<CanFrame> ou
     case FrameKind::sync:
       return handle_sync(in, out);
     case FrameKind::rpdo1:
-      handle_rpdo(in, cls.node);
+      handle_rpdo(in, cls.node, 0);
+      return 0;
+    case FrameKind::rpdo2:
+      handle_rpdo(in, cls.node, 1);
       return 0;
     default:
       if (in.id > canopen::kSdoRequestBase && in.id < canopen::kSdoRequestBase + 0x80) {
@@ -173,18 +176,18 @@ void DriveBusSimulator::stop_awaiting_silent_drives() noexcept {
   }
 }
 
-void DriveBusSimulator::handle_rpdo(const CanFrame& in, std::uint8_t node) noexcept {
+void DriveBusSimulator::handle_rpdo(const CanFrame& in, std::uint8_t node, std::size_t n) noexcept {
   SimulatedDrive* drive = find_mutable(node);
   if (drive == nullptr) {
     return;  // another node's RPDO: not ours to judge
   }
-  const auto pdo = canopen::decode_rpdo_csp(in);
-  if (!pdo) {
-    ++malformed_;
+  RpdoValues values;
+  if (!drive->objects().decode_rpdo(n, in, values)) {
+    ++malformed_;  // not mapped, or not the mapped length
     return;
   }
   if (drive->nmt_state() == NmtState::operational) {
-    drive->on_rpdo(*pdo);
+    drive->on_rpdo(values);
   }
 }
 

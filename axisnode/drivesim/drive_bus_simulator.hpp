@@ -60,7 +60,7 @@ class DriveBusSimulator {
   SimulatedDrive* find_mutable(std::uint8_t node_id) noexcept;
   std::size_t handle_nmt(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
   std::size_t handle_sync(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
-  void handle_rpdo(const canopen::CanFrame& in, std::uint8_t node) noexcept;
+  void handle_rpdo(const canopen::CanFrame& in, std::uint8_t node, std::size_t n) noexcept;
 
   std::size_t handle_sdo(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
   std::vector<SimulatedDrive> drives_;

@@ -105,6 +105,71 @@ bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept
   return true;
 }
 
+void RpdoValues::merge(const RpdoValues& other) noexcept {
+  if (other.has_controlword) {
+    controlword = other.controlword;
+    has_controlword = true;
+  }
+  if (other.has_target_position) {
+    target_position = other.target_position;
+    has_target_position = true;
+  }
+  if (other.has_target_velocity) {
+    target_velocity = other.target_velocity;
+    has_target_velocity = true;
+  }
+  if (other.has_mode) {
+    mode = other.mode;
+    has_mode = true;
+  }
+}
+
+bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
+                               RpdoValues& out) const noexcept {
+  if (n >= rpdo_.size() || !rpdo_[n].valid()) {
+    return false;
+  }
+  const Pdo& pdo = rpdo_[n];
+  std::size_t bytes = 0;
+  for (std::size_t i = 0; i < pdo.count; ++i) {
+    bytes += (pdo.entries[i] & 0xFFU) / 8;
+  }
+  if (frame.dlc != bytes || bytes > 8) {
+    return false;
+  }
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < pdo.count; ++i) {
+    const auto index = static_cast<std::uint16_t>(pdo.entries[i] >> 16);
+    const std::size_t size = (pdo.entries[i] & 0xFFU) / 8;
+    std::uint32_t raw = 0;
+    for (std::size_t b = 0; b < size; ++b) {
+      raw |= static_cast<std::uint32_t>(frame.data[at + b]) << (8 * b);
+    }
+    at += size;
+    switch (index) {
+      case 0x6040:
+        out.controlword = static_cast<std::uint16_t>(raw);
+        out.has_controlword = true;
+        break;
+      case 0x607A:
+        out.target_position = static_cast<std::int32_t>(raw);
+        out.has_target_position = true;
+        break;
+      case 0x60FF:
+        out.target_velocity = static_cast<std::int32_t>(raw);
+        out.has_target_velocity = true;
+        break;
+      case 0x6060:
+        out.mode = static_cast<std::int8_t>(raw);
+        out.has_mode = true;
+        break;
+      default:
+        break;
+    }
+  }
+  return true;
+}
+
 std::uint32_t DriveObjects::read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,
                                      canopen::SdoValue& out) const noexcept {
   if (mapping) {

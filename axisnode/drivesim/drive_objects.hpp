@@ -22,6 +22,20 @@ struct DriveLiveValues {
   std::int32_t following_error = 0;  // counts (0x60F4)
 };
 
+// What an RPDO carried, by its mapping: only the objects it maps are set.
+struct RpdoValues {
+  std::uint16_t controlword = 0;
+  std::int32_t target_position = 0;  // counts (0x607A)
+  std::int32_t target_velocity = 0;  // counts/s (0x60FF)
+  std::int8_t mode = 0;              // 0x6060
+  bool has_controlword = false;
+  bool has_target_position = false;
+  bool has_target_velocity = false;
+  bool has_mode = false;
+  // Takes what `other` carries, keeps the rest.
+  void merge(const RpdoValues& other) noexcept;
+};
+
 class DriveObjects final : public canopen::ObjectAccess {
  public:
   static constexpr std::uint32_t kDeviceType = 0x00020192;  // CiA 402 servo drive
@@ -40,6 +54,9 @@ class DriveObjects final : public canopen::ObjectAccess {
   void reset_communication() noexcept;
   // The TPDO `n` (0 or 1) as its mapping says, from the live values; false while it is invalid.
   bool encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept;
+  // RPDO `n` (0 or 1) read by its mapping; false (not processed) while it is invalid or when the
+  // frame's length is not the mapped length (CiA 301: a PDO length error).
+  bool decode_rpdo(std::size_t n, const can::CanFrame& frame, RpdoValues& out) const noexcept;
 
   std::uint32_t read(std::uint16_t index, std::uint8_t sub,
                      canopen::SdoValue& out) noexcept override;

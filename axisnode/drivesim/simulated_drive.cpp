@@ -81,7 +81,19 @@ void SimulatedDrive::on_rpdo(const canopen::RxPdoCsp& pdo) noexcept {
   if (nmt_ != NmtState::operational) {
     return;
   }
-  latched_ = pdo;
+  RpdoValues values;
+  values.controlword = pdo.controlword;
+  values.target_position = pdo.target_position;
+  values.has_controlword = true;
+  values.has_target_position = true;
+  on_rpdo(values);
+}
+
+void SimulatedDrive::on_rpdo(const RpdoValues& values) noexcept {
+  if (nmt_ != NmtState::operational) {
+    return;
+  }
+  latched_.merge(values);
   rpdo_since_sync_ = true;
 }
 
@@ -91,6 +103,10 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   // (like a real drive, one transition per evaluation).
   device_.apply(latched_.controlword);
   const State now = device_.state();
+  if (latched_.has_mode && rpdo_since_sync_) {
+    const auto value = static_cast<std::uint8_t>(latched_.mode);
+    (void)objects_.write(0x6060, 0, &value, 1);  // a mode it does not have is not taken
+  }
 
   const std::int8_t mode = objects_.mode();
   const bool homing_bit = (latched_.controlword & 0x0010U) != 0;
@@ -98,11 +114,10 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
     homing_attained_ = false;
   }
   if (now == State::operation_enabled && before == State::operation_enabled && rpdo_since_sync_) {
-    const double value = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
     if (mode == 9) {
-      velocity_target_ = value;  // CSV: the 32-bit value is the target velocity
+      velocity_target_ = static_cast<double>(latched_.target_velocity) / params_.counts_per_unit;
     } else if (mode != 6) {
-      target_ = value;
+      target_ = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
     }
   } else if (now != State::operation_enabled) {
     target_ = position_;

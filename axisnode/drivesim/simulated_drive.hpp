@@ -53,8 +53,8 @@ struct DriveParams {
 // The target is taken from RPDOs received after the SYNC that enabled operation; until then
 // (and in every other state) it follows the actual position, so enabling never jumps.
 //
-// Modes of operation (0x6060): 8 CSP (and 0, as before any was set); 9 CSV: the RPDO's 32-bit
-// value is the target velocity (counts/s), followed with the loop's time constant; 6 homing:
+// Modes of operation (0x6060, by SDO or in an RPDO): 8 CSP (and 0, as before any was set); 9
+// CSV: the target velocity 0x60FF (counts/s) is the velocity loop's command; 6 homing:
 // methods 35 and 37 only (no switches on a simulated axis): on the rising edge of controlword
 // bit 4 in operation enabled the current position becomes the home offset (0x607C), without
 // moving, and statusword bit 12 (homing attained) is set until the mode changes.
@@ -71,6 +71,9 @@ class SimulatedDrive {
   void power_on() noexcept;  // bootup -> pre-operational, CiA 402 -> switch on disabled
   void on_nmt(canopen::NmtCommand command) noexcept;    // ignored before power_on()
   void on_rpdo(const canopen::RxPdoCsp& pdo) noexcept;  // latched until the next SYNC
+  // An RPDO read by the drive's mapping (DriveObjects::decode_rpdo): what it carries is latched
+  // until the next SYNC, where a mode of operation (0x6060) in it takes effect.
+  void on_rpdo(const RpdoValues& values) noexcept;
   [[nodiscard]] bool rpdo_since_sync() const noexcept { return rpdo_since_sync_; }
   // One cycle: apply the latched controlword/target, move; the TPDO to answer with.
   canopen::TxPdoCsp on_sync() noexcept;
@@ -105,7 +108,7 @@ class SimulatedDrive {
   canopen::NmtState nmt_ = canopen::NmtState::bootup;
   bool powered_ = false;
   cia402::DeviceStateMachine device_;
-  canopen::RxPdoCsp latched_{};
+  RpdoValues latched_{};
   bool rpdo_since_sync_ = false;
   double position_;
   double velocity_ = 0.0;

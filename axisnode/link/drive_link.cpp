@@ -105,10 +105,11 @@ void DriveLink::receive_loop() {
         break;
       case canopen::FrameKind::tpdo1:
         if (cls.node == node_id_) {
-          if (auto pdo = canopen::decode_tpdo_csp(frame)) {
+          if (auto pdo = canopen::decode_tpdo_csp(frame, spindle_)) {
             wakeup_.update([&] {
               tpdo_statusword_ = pdo->statusword;
               tpdo_position_ = pdo->position_actual;
+              tpdo_mode_display_ = pdo->mode_display;
               ++tpdo_count_;
             });
           } else {
@@ -202,8 +203,17 @@ std::optional<std::string> DriveLink::bring_up(const canopen::NodeStartupConfig&
          std::to_string(timeout.count()) + " ms";
 }
 
-void DriveLink::send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept {
-  bus_->send(canopen::encode_rpdo_csp(node_id_, canopen::RxPdoCsp{controlword, target_counts}));
+void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
+  if (!spindle_) {
+    bus_->send(canopen::encode_rpdo_csp(
+        node_id_, canopen::RxPdoCsp{command.controlword, command.target_counts}));
+    return;
+  }
+  const canopen::RxPdoSpindle pdo{command.controlword, command.target_counts, command.mode,
+                                  command.target_velocity_counts};
+  // RPDO2 first: the SYNC producer waits for RPDO1, so both are in before the SYNC.
+  bus_->send(canopen::encode_rpdo2_spindle(node_id_, pdo));
+  bus_->send(canopen::encode_rpdo1_spindle(node_id_, pdo));
 }
 
 void DriveLink::send_sync() noexcept {
@@ -220,9 +230,9 @@ void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {
   bus_->send(canopen::encode_nmt(command, node_id_));
 }
 
-void DriveLink::exchange(std::uint16_t controlword, std::int32_t target_counts, bool sync_producer,
-                         bool lockstep, std::uint64_t tpdos_seen,
-                         const std::function<bool()>& abandon, std::chrono::milliseconds slow) {
+void DriveLink::exchange(const DriveCommand& command, bool sync_producer, bool lockstep,
+                         std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
+                         std::chrono::milliseconds slow) {
   const auto wait = [&](auto&& arrived, const char* what) {
     const auto since = std::chrono::steady_clock::now();
     bool warned = false;
@@ -237,7 +247,7 @@ void DriveLink::exchange(std::uint16_t controlword, std::int32_t target_counts, 
     }
   };
   const std::uint64_t syncs_before = syncs_.load();
-  send_rpdo(controlword, target_counts);
+  send_rpdo(command);
   if (sync_producer && !lockstep && !sync_timer_running()) {
     send_sync();
   }
@@ -280,6 +290,8 @@ TpdoSample DriveLink::tpdo() noexcept {
   wakeup_.with_lock([&] {
     sample.pdo.statusword = tpdo_statusword_.load();
     sample.pdo.position_actual = tpdo_position_.load();
+    sample.pdo.mode_display = tpdo_mode_display_.load();
+    sample.pdo.has_mode_display = spindle_;
     sample.count = tpdo_count_.load();
   });
   return sample;

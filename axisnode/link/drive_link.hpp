@@ -28,6 +28,15 @@ struct TpdoSample {
   std::uint64_t count = 0;  // TPDOs received so far
 };
 
+// What the node sends its drive each cycle. `mode` and `target_velocity_counts` go out only
+// for a spindle (its RPDO1 carries 0x6060, its RPDO2 0x60FF).
+struct DriveCommand {
+  std::uint16_t controlword = 0;
+  std::int32_t target_counts = 0;
+  std::int32_t target_velocity_counts = 0;
+  std::int8_t mode = 8;
+};
+
 class DriveLink {
  public:
   DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
@@ -41,7 +50,9 @@ class DriveLink {
   // node is started; otherwise why not, naming the object a refused SDO was about.
   std::optional<std::string> bring_up(const canopen::NodeStartupConfig& config,
                                       std::chrono::milliseconds timeout);
-  void send_rpdo(std::uint16_t controlword, std::int32_t target_counts) noexcept;
+  // A spindle's drive (canopen::spindle_pdos): set before bring_up().
+  void set_spindle(bool spindle) noexcept { spindle_ = spindle; }
+  void send_rpdo(const DriveCommand& command) noexcept;
   void send_sync() noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
 
@@ -64,8 +75,8 @@ class DriveLink {
   // drive's answer to it (TPDO count past `tpdos_seen`). A lockstep wait never gives up on its
   // own, which would make results depend on load: it ends when `abandon()` says so (stop,
   // E-stop, owner gone), and logs when it has waited longer than `slow`.
-  void exchange(std::uint16_t controlword, std::int32_t target_counts, bool sync_producer,
-                bool lockstep, std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
+  void exchange(const DriveCommand& command, bool sync_producer, bool lockstep,
+                std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
                 std::chrono::milliseconds slow);
 
   [[nodiscard]] TpdoSample tpdo() noexcept;
@@ -104,6 +115,8 @@ class DriveLink {
   std::atomic<std::uint64_t> tpdo_count_{0};
   std::atomic<std::uint16_t> tpdo_statusword_{0};
   std::atomic<std::int32_t> tpdo_position_{0};
+  std::atomic<std::int8_t> tpdo_mode_display_{0};
+  bool spindle_ = false;
   // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
   std::bitset<128> rpdo_seen_;
   std::uint8_t sync_counter_ = 0;

@@ -129,6 +129,10 @@ void ChannelController::finish_reset() noexcept {
 const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
                                               std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
+  if (out_.state != ChannelState::hold) {
+    out_.spindle_rpm = 0.0;  // running sets it again; a feed hold keeps the spindle turning
+    out_.spindle_direction = 0;
+  }
   if (first_cycle_) {
     first_cycle_ = false;
     ChannelEvent initial;
@@ -328,6 +332,8 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   motion::CycleInput input;
   input.in_position = in_pos;
   const motion::MotionOutput& m = planner_.step(input);
+  out_.spindle_rpm = m.spindle_rpm;
+  out_.spindle_direction = m.spindle_direction;
   if (m.state == motion::MotionState::fault) {
     raise(kAlarmPlannerRejected, "block cannot be planned (the axes' limits leave no profile)",
           m.line, 0, 0);

@@ -73,6 +73,10 @@ struct ChannelOutput {
   int end_code = -1;
   std::uint64_t run_start_cycle = 0;  // cycle the program started (valid once it has run)
   std::uint64_t end_cycle = 0;        // cycle of its program end (valid when program_end)
+  // The channel's spindle (S1) as its program commands it: speed and direction (+1 M03,
+  // -1 M04, 0 stopped). Stopped whenever no program runs (reset, idle, alarm, end).
+  double spindle_rpm = 0.0;
+  int spindle_direction = 0;
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;

@@ -92,7 +92,8 @@ struct MotionOutput {
   int line = 0;
   std::uint64_t completed_block = 0;  // the last block whose end was passed
   double path_velocity = 0.0;
-  double spindle_rpm = 0.0;  // commanded speed (G96 computed from the current position)
+  double spindle_rpm = 0.0;   // commanded speed (G96 computed from the current position)
+  int spindle_direction = 0;  // +1 M03 (clockwise), -1 M04, 0 stopped (M05, M19)
   bool css = false;
 };
 
@@ -136,6 +137,7 @@ class MotionPlanner {
 
   struct SpindleCommand {
     bool css = false;
+    int direction = 0;  // +1, -1, 0
     double rpm = 0.0;
     double surface = 0.0;
     double max_rpm = 0.0;

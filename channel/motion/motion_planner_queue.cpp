@@ -46,6 +46,20 @@ PushResult MotionPlanner::push(const interp::Command& c) noexcept {
           c.css ? 0.0 : (c.spindle_direction == interp::SpindleDirection::stop ? 0.0 : c.rpm);
       spindle_.surface = c.surface;
       spindle_.max_rpm = c.max_rpm;
+      switch (c.spindle_direction) {
+        case interp::SpindleDirection::cw:
+          spindle_.direction = 1;
+          break;
+        case interp::SpindleDirection::ccw:
+          spindle_.direction = -1;
+          break;
+        case interp::SpindleDirection::stop:
+        case interp::SpindleDirection::orient:
+          spindle_.direction = 0;
+          break;
+        case interp::SpindleDirection::keep:
+          break;
+      }
     }
     return PushResult::accepted;
   }

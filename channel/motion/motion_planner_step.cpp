@@ -288,6 +288,7 @@ void MotionPlanner::write_path_sample(const ProfileSample& p) noexcept {
   // FANUC practice: G96 during a rapid computes the speed for the rapid's end point.
   out_.spindle_rpm =
       spindle_rpm_at(s.spindle, s.feed_kind == Feed::rapid ? g.end() : out_.sample.pos);
+  out_.spindle_direction = s.spindle.direction;
 }
 
 void MotionPlanner::maybe_replan() noexcept {
@@ -423,6 +424,7 @@ void MotionPlanner::step_dwell(double dt) noexcept {
   out_.line = it.line;
   out_.css = it.spindle.css;
   out_.spindle_rpm = spindle_rpm_at(it.spindle, it.to);
+  out_.spindle_direction = it.spindle.direction;
   out_.state = MotionState::dwelling;
   bool done = false;
   if (it.in_revs) {
@@ -478,6 +480,7 @@ void MotionPlanner::step_rapid_axes(double dt) noexcept {
   out_.line = it.line;
   out_.css = it.spindle.css;
   out_.spindle_rpm = spindle_rpm_at(it.spindle, it.to);
+  out_.spindle_direction = it.spindle.direction;
   // Feed hold: each axis stops as quickly as it can; it goes on from there at the release.
   if ((in_.feed_hold || resetting_) && !rapid_stopping_ && !held_) {
     rapid_stopping_ = true;

@@ -17,11 +17,13 @@ namespace {
 ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
                                const config::ChannelConfig& channel,
                                std::vector<const config::AxisConfig*> axes,
+                               std::vector<const config::AxisConfig*> spindles,
                                std::string program_name, std::vector<std::string> program_lines)
     : node_(node),
       tracer_(tracer),
       channel_(channel),
       axes_(std::move(axes)),
+      spindles_(std::move(spindles)),
       program_name_(std::move(program_name)),
       program_lines_(std::move(program_lines)),
       setpoints_(node.participant()),
@@ -40,6 +42,22 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.acc(out.setpoints[i].acc);
     sp.valid(out.setpoints[i].valid);
     setpoints_.write(sp);
+  }
+  const double rpm = out.spindle_rpm * out.spindle_direction;
+  for (std::size_t i = 0; i < spindles_.size(); ++i) {
+    AxisSetpoint sp;
+    sp.axis(static_cast<std::uint32_t>(spindles_[i]->id));
+    sp.channel(static_cast<std::uint32_t>(channel_.id));
+    sp.cycle(cycle);
+    sp.vel(i == 0 ? rpm * 6.0 : 0.0);  // rpm to degrees per second
+    sp.valid(true);
+    sp.mode(SP_VELOCITY);
+    setpoints_.write(sp);
+  }
+  if (!spindles_.empty() && rpm != spindle_rpm_) {
+    spindle_rpm_ = rpm;
+    tracer_.emit(cycle, "spindle", "\"ch\":\"%s\",\"spindle\":\"%s\",\"rpm\":%.3f",
+                 channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
   ::mcnc::ChannelStatus status;
   status.channel(static_cast<std::uint32_t>(channel_.id));

@@ -18,9 +18,11 @@ class ChannelOutputs {
  public:
   ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
                  const config::ChannelConfig& channel, std::vector<const config::AxisConfig*> axes,
-                 std::string program_name, std::vector<std::string> program_lines);
+                 std::vector<const config::AxisConfig*> spindles, std::string program_name,
+                 std::vector<std::string> program_lines);
 
-  // Publishes this cycle's setpoints and status and records its events. `views` is the
+  // Publishes this cycle's setpoints (axes in position, spindles in velocity: the first turns
+  // as the program commands, the others stand) and status and records its events. `views` is the
   // feedback the controller saw (for the act of block-end positions).
   void publish(std::uint64_t cycle, const ChannelController& controller, const ChannelOutput& out,
                std::span<const AxisFeedbackView> views, std::uint32_t block_total,
@@ -36,6 +38,8 @@ class ChannelOutputs {
   trace::TraceWriter& tracer_;
   const config::ChannelConfig& channel_;
   std::vector<const config::AxisConfig*> axes_;
+  std::vector<const config::AxisConfig*> spindles_;
+  double spindle_rpm_ = 0.0;  // signed, as last traced
   std::string program_name_;
   std::vector<std::string> program_lines_;
   dds::Writer<AxisSetpoint> setpoints_;

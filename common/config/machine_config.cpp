@@ -167,8 +167,9 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
   return motion;
 }
 
-ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs) {
-  const YamlMap map = value.map({"name", "axes", "motion"});
+ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
+                            std::vector<YamlValue>& spindle_refs) {
+  const YamlMap map = value.map({"name", "axes", "spindles", "motion"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   const YamlValue axes = map.required("axes");
@@ -178,6 +179,12 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   for (const YamlValue& ref : axis_refs) {
     channel.axes.push_back(read_name(ref));
+  }
+  if (auto spindles = map.optional("spindles")) {
+    spindle_refs = spindles->list();
+    for (const YamlValue& ref : spindle_refs) {
+      channel.spindles.push_back(read_name(ref));
+    }
   }
   if (auto motion = map.optional("motion")) {
     channel.motion = parse_channel_motion(*motion);
@@ -209,28 +216,39 @@ AxisConfig parse_axis(const YamlValue& value) {
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
-  const YamlValue address = map.required("address");
-  const std::string letter = address.string();
-  if (letter.size() != 1 || std::string_view("XYZABC").find(letter[0]) == std::string_view::npos) {
-    address.fail("address must be one of X Y Z A B C, got '" + letter + "'");
-  }
-  axis.address = letter[0];
-
   if (auto type = map.optional("type")) {
     const std::string text = type->string();
     if (text == "linear") {
       axis.type = AxisType::linear;
     } else if (text == "rotary") {
       axis.type = AxisType::rotary;
+    } else if (text == "spindle") {
+      axis.type = AxisType::spindle;
     } else {
-      type->fail("type must be linear or rotary, got '" + text + "'");
+      type->fail("type must be linear, rotary or spindle, got '" + text + "'");
     }
+  }
+
+  if (axis.type == AxisType::spindle) {
+    // A spindle is commanded by S and M codes, not by an address of its own.
+    if (auto address = map.optional("address")) {
+      address->fail("a spindle has no program address");
+    }
+    axis.address = 'S';
+  } else {
+    const YamlValue address = map.required("address");
+    const std::string letter = address.string();
+    if (letter.size() != 1 ||
+        std::string_view("XYZABC").find(letter[0]) == std::string_view::npos) {
+      address.fail("address must be one of X Y Z A B C, got '" + letter + "'");
+    }
+    axis.address = letter[0];
   }
   if (auto diameter = map.optional("diameter")) {
     axis.diameter = diameter->boolean();
     // Diameter programming halves a length; an angle has no diameter.
-    if (axis.diameter && axis.type == AxisType::rotary) {
-      diameter->fail("a rotary axis cannot be programmed in diameter");
+    if (axis.diameter && axis.type != AxisType::linear) {
+      diameter->fail("only a linear axis can be programmed in diameter");
     }
   }
   axis.bus = read_name(map.required("bus"));
@@ -321,9 +339,10 @@ MachineConfig parse_document(const YAML::Node& root) {
     channels_value.fail("a machine needs at least one channel");
   }
   std::vector<std::vector<YamlValue>> channel_refs(channels.size());
+  std::vector<std::vector<YamlValue>> spindle_refs(channels.size());
   std::map<std::string, std::size_t> channel_index;
   for (std::size_t i = 0; i < channels.size(); ++i) {
-    config.channels.push_back(parse_channel(channels[i], channel_refs[i]));
+    config.channels.push_back(parse_channel(channels[i], channel_refs[i], spindle_refs[i]));
     config.channels[i].id = static_cast<int>(i) + 1;
     check_unique(channel_index, config.channels[i].name, channels[i], i, "channels", "channel");
   }
@@ -336,26 +355,39 @@ MachineConfig parse_document(const YAML::Node& root) {
     }
   }
 
+  // A channel's axes and spindles: each known, of the right kind, in one channel only.
+  const auto claim = [&](const YamlValue& ref, const std::string& name, const std::string& channel,
+                         bool spindle) -> AxisConfig& {
+    const auto found = axis_index.find(name);
+    if (found == axis_index.end()) {
+      ref.fail("unknown axis " + name);
+    }
+    AxisConfig& axis = config.axes[found->second];
+    if (!axis.channel.empty()) {
+      ref.fail("axis " + axis.name + " is already in channel " + axis.channel);
+    }
+    if (spindle != (axis.type == AxisType::spindle)) {
+      ref.fail(spindle ? "axis " + axis.name + " is not a spindle (type: spindle)"
+                       : "axis " + axis.name + " is a spindle: list it in the channel's spindles");
+    }
+    axis.channel = channel;
+    return axis;
+  };
   for (std::size_t c = 0; c < config.channels.size(); ++c) {
     ChannelConfig& channel = config.channels[c];
     std::map<char, std::string> addresses;  // address -> axis name, within this channel
     for (std::size_t j = 0; j < channel.axes.size(); ++j) {
       const YamlValue& ref = channel_refs[c][j];
-      const auto found = axis_index.find(channel.axes[j]);
-      if (found == axis_index.end()) {
-        ref.fail("unknown axis " + channel.axes[j]);
-      }
-      AxisConfig& axis = config.axes[found->second];
-      if (!axis.channel.empty()) {
-        ref.fail("axis " + axis.name + " is already in channel " + axis.channel);
-      }
-      axis.channel = channel.name;
+      const AxisConfig& axis = claim(ref, channel.axes[j], channel.name, false);
       // One address per channel: X also claims its incremental twin U, Z claims W, and so on.
       const auto [other, inserted] = addresses.emplace(axis.address, axis.name);
       if (!inserted) {
         ref.fail("axis " + axis.name + " has address " + std::string(1, axis.address) +
                  ", already used by axis " + other->second + " in channel " + channel.name);
       }
+    }
+    for (std::size_t j = 0; j < channel.spindles.size(); ++j) {
+      claim(spindle_refs[c][j], channel.spindles[j], channel.name, true);
     }
   }
 
@@ -399,18 +431,26 @@ MachineConfig parse_document(const YAML::Node& root) {
           .child("sync_producer")
           .fail("axis " + bus.sync_producer + " is not on bus " + bus.name);
     }
-    const int count = static_cast<int>(on_bus->second.size());
+    int count = 0;
+    int spindle_count = 0;
+    for (const auto& [node, name] : on_bus->second) {
+      (config.axes[axis_index.at(name)].type == AxisType::spindle ? spindle_count : count) += 1;
+    }
     // Integer comparison, so a bus exactly at the limit is accepted on every platform.
-    const long long bits = bus_bits_per_cycle(count);
+    const long long bits = bus_bits_per_cycle(count, spindle_count);
     const long long capacity =
         static_cast<long long>(bus.bitrate) * config.cycle_us;  // 1e6 x bits/cycle
     if (bits * 1000000LL * 100 > capacity * kMaxBusLoadPercent) {
       std::ostringstream reason;
       reason.precision(1);
-      reason << std::fixed << count << (count == 1 ? " axis needs " : " axes need ") << bits
-             << " bits per " << config.cycle_us << " us cycle, "
-             << 100.0 * bus_load(count, bus.bitrate, config.cycle_us) << " % of " << bus.bitrate
-             << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
+      reason << std::fixed << count << (count == 1 ? " axis" : " axes");
+      if (spindle_count > 0) {
+        reason << " and " << spindle_count << (spindle_count == 1 ? " spindle" : " spindles");
+      }
+      reason << (count + spindle_count == 1 ? " needs " : " need ") << bits << " bits per "
+             << config.cycle_us << " us cycle, "
+             << 100.0 * bus_load(count, bus.bitrate, config.cycle_us, spindle_count) << " % of "
+             << bus.bitrate << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
       buses[b].fail(reason.str());
     }
   }
@@ -452,17 +492,21 @@ int can_frame_bits(int data_bytes) noexcept {
   return 47 + 8 * data_bytes + (34 + 8 * data_bytes - 1) / 4;
 }
 
-int bus_bits_per_cycle(int axis_count) noexcept {
+int bus_bits_per_cycle(int axis_count, int spindle_count) noexcept {
   constexpr int kSyncBytes = 1;  // SYNC carries the 1-byte counter
   constexpr int kPdoBytes = 6;   // CSP: controlword + target position / statusword + position
-  return can_frame_bits(kSyncBytes) + axis_count * 2 * can_frame_bits(kPdoBytes);
+  // A spindle: RPDO1 and TPDO1 carry the mode (7 bytes), RPDO2 the target velocity (4).
+  constexpr int kSpindlePdoBytes = 7;
+  constexpr int kVelocityBytes = 4;
+  return can_frame_bits(kSyncBytes) + axis_count * 2 * can_frame_bits(kPdoBytes) +
+         spindle_count * (2 * can_frame_bits(kSpindlePdoBytes) + can_frame_bits(kVelocityBytes));
 }
 
-double bus_load(int axis_count, int bitrate, int cycle_us) noexcept {
+double bus_load(int axis_count, int bitrate, int cycle_us, int spindle_count) noexcept {
   if (bitrate <= 0 || cycle_us <= 0) {
     return 0.0;
   }
-  const double bits_per_cycle = bus_bits_per_cycle(axis_count);
+  const double bits_per_cycle = bus_bits_per_cycle(axis_count, spindle_count);
   return bits_per_cycle / (static_cast<double>(bitrate) * cycle_us * 1e-6);
 }
 

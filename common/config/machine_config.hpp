@@ -20,7 +20,9 @@ class ConfigError : public std::runtime_error {
   std::string key_path_;
 };
 
-enum class AxisType { linear, rotary };
+// spindle: a drive in CSV that switches to CSP to position (docs/drives.md); in a channel's
+// `spindles`, not its program axes.
+enum class AxisType { linear, rotary, spindle };
 
 // Parameters of the simulated drive behind an axis (mcnc-drivesim only).
 struct DriveSimConfig {
@@ -75,9 +77,10 @@ struct ChannelMotionConfig {
 };
 
 struct ChannelConfig {
-  std::string name;               // "CH1"
-  int id = 0;                     // 1-based position in `channels`
-  std::vector<std::string> axes;  // axis names, in program order
+  std::string name;                   // "CH1"
+  int id = 0;                         // 1-based position in `channels`
+  std::vector<std::string> axes;      // axis names, in program order
+  std::vector<std::string> spindles;  // spindle axis names: S1, S2, ... of the channel
   ChannelMotionConfig motion;
 };
 
@@ -104,12 +107,13 @@ MachineConfig load_machine_file(const std::string& path);
 // CAN bus load check (docs/configuration.md, "Bus load"). Worst-case bits on the wire of one
 // classic CAN frame with an 11-bit identifier and `data_bytes` data bytes, bit stuffing included.
 [[nodiscard]] int can_frame_bits(int data_bytes) noexcept;
-// Bits per cycle on one bus: one SYNC (1 data byte), and one RPDO and one TPDO (6 data bytes each)
-// per axis on it.
-[[nodiscard]] int bus_bits_per_cycle(int axis_count) noexcept;
+// Bits per cycle on one bus: one SYNC (1 data byte), one RPDO and one TPDO (6 data bytes each)
+// per axis on it, and per spindle an RPDO and a TPDO of 7 bytes and an RPDO of 4.
+[[nodiscard]] int bus_bits_per_cycle(int axis_count, int spindle_count = 0) noexcept;
 // Share of the bit rate that traffic takes at the given cycle; the loader rejects a bus above
 // kMaxBusLoad so that SDO, EMCY and heartbeat frames still fit.
-[[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us) noexcept;
+[[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us,
+                              int spindle_count = 0) noexcept;
 inline constexpr double kMaxBusLoad = 0.70;
 
 }  // namespace mcnc::config

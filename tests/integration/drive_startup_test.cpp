@@ -144,8 +144,8 @@ TEST(DriveFaults, AnOperatorResetBringsTheDriveBackAndTheProgramRunsAgain) {
   // And the axes got to the program's last point (X60 Z10: X1 at radius 30).
   double x1 = 0.0;
   double z1 = 0.0;
-  for (const auto& p : events(trace, "pos")) {
-    (p["src"] == "X1" ? x1 : z1) = p["cmd"].get<double>();
+  for (const auto& p : events(trace, "pos")) {  // the last of the axis nodes' and the channel's
+    (p["axis"] == "X1" ? x1 : z1) = p["cmd"].get<double>();
   }
   EXPECT_NEAR(x1, 30.0, 1e-6);
   EXPECT_NEAR(z1, 10.0, 1e-6);

@@ -484,7 +484,7 @@ INSTANTIATE_TEST_SUITE_P(
                    "axes[1].address"},
         RejectCase{"AddressTwoLetters", [](YAML::Node& r) { r["axes"][1]["address"] = "ZZ"; },
                    "axes[1].address"},
-        RejectCase{"TypeUnknown", [](YAML::Node& r) { r["axes"][1]["type"] = "spindle"; },
+        RejectCase{"TypeUnknown", [](YAML::Node& r) { r["axes"][1]["type"] = "turret"; },
                    "axes[1].type"},
         RejectCase{"RotaryInDiameter", [](YAML::Node& r) { r["axes"][0]["type"] = "rotary"; },
                    "axes[0].diameter"},

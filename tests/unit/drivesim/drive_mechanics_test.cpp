@@ -112,10 +112,15 @@ TEST(DriveMechanics, HoldingASpeedTakesTheFrictionTorque) {
   DriveParams p = params();
   p.friction = 0.002;
   SimulatedDrive d = enabled(p);
-  const std::uint8_t csv = 9;
-  ASSERT_EQ(d.objects().write(0x6060, 0, &csv, 1), 0U);
+  const std::uint8_t csv_mode = 9;
+  ASSERT_EQ(d.objects().write(0x6060, 0, &csv_mode, 1), 0U);
+  RpdoValues csv;
+  csv.controlword = 0x0F;
+  csv.has_controlword = true;
+  csv.target_velocity = 300000;  // 30 units/s in 0x60FF
+  csv.has_target_velocity = true;
   for (int n = 0; n < 1000; ++n) {
-    d.on_rpdo(canopen::RxPdoCsp{0x0F, 300000});  // 30 units/s
+    d.on_rpdo(csv);
     d.on_sync();
   }
   EXPECT_NEAR(d.velocity(), 30.0, 1e-6);

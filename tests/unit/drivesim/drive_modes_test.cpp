@@ -42,16 +42,22 @@ TEST(DriveModes, CsvFollowsTheTargetVelocity) {
   ASSERT_EQ(d.state(), cia402::State::operation_enabled);
   write_i8(d, 0x6060, 9);
   // 20 mm/s = 200 000 counts/s for 0.5 s: about 10 mm, the velocity settled on its target.
+  RpdoValues csv;
+  csv.controlword = 0x0F;
+  csv.has_controlword = true;
+  csv.target_velocity = 200000;  // 0x60FF
+  csv.has_target_velocity = true;
   for (int i = 0; i < 500; ++i) {
-    d.on_rpdo(canopen::RxPdoCsp{0x0F, 200000});
+    d.on_rpdo(csv);
     d.on_sync();
   }
   EXPECT_NEAR(d.velocity(), 20.0, 1e-6);
   // Less the velocity loop's lag (a few milliseconds at 20 mm/s): under 0.1 mm.
   EXPECT_NEAR(d.position(), 15.0, 0.1);
   // Velocity 0: it stops where it is (no position target pulls it back).
+  csv.target_velocity = 0;
   for (int i = 0; i < 100; ++i) {
-    d.on_rpdo(canopen::RxPdoCsp{0x0F, 0});
+    d.on_rpdo(csv);
     d.on_sync();
   }
   EXPECT_NEAR(d.velocity(), 0.0, 1e-6);

@@ -103,6 +103,7 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   // (like a real drive, one transition per evaluation).
   device_.apply(latched_.controlword);
   const State now = device_.state();
+  const std::int8_t mode_before = objects_.mode();
   if (latched_.has_mode && rpdo_since_sync_) {
     const auto value = static_cast<std::uint8_t>(latched_.mode);
     (void)objects_.write(0x6060, 0, &value, 1);  // a mode it does not have is not taken
@@ -118,6 +119,11 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
       velocity_target_ = static_cast<double>(latched_.target_velocity) / params_.counts_per_unit;
     } else if (mode != 6) {
       target_ = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
+      if (mode_before == 9) {
+        // Into CSP while turning: the fine interpolation starts where the target was a cycle
+        // ago at the present speed, not from a standstill.
+        previous_target_ = target_ - velocity_ * cycle_s_;
+      }
     }
   } else if (now != State::operation_enabled) {
     target_ = position_;

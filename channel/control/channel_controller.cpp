@@ -272,10 +272,13 @@ void ChannelController::fill() noexcept {
         return;
       }
       QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
-      q = QueuedBlock{
-          c->n, c->line, c->op == interp::Op::dwell ? start : c->to,
-          c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell,
-          (c->op == interp::Op::rapid || c->op == interp::Op::linear) && c->to == start};
+      // A spindle command takes effect where the planner reaches it; as a block it does not
+      // move and passes at once.
+      const bool spindle = c->op == interp::Op::spindle;
+      q = QueuedBlock{c->n, c->line, c->op == interp::Op::dwell || spindle ? start : c->to,
+                      c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell,
+                      spindle || ((c->op == interp::Op::rapid || c->op == interp::Op::linear) &&
+                                  c->to == start)};
       ++queued_count_;
     }
   } catch (...) {

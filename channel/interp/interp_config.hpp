@@ -81,6 +81,7 @@ struct InterpreterConfig {
   GCodeSystem system = GCodeSystem::a;
   Dialect dialect = Dialect::dafeng;
   int channel = 1;
+  int spindles = 0;  // spindles the channel drives (S1 first); their commands run, not alarm
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
   DecimalPoint decimal_point = DecimalPoint::calculator;
   double least_increment = 0.001;                   // mm (param 0013)

@@ -70,7 +70,7 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
     }
     const Command& c = std::get<Command>(*r);
     std::string why;
-    if (!for_channel(c, why)) {
+    if (!for_channel(c, why, config_.spindles)) {
       load_alarm_ = ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_,
                                  c.line, 0};
     } else if (c.op == Op::end) {
@@ -94,7 +94,18 @@ void InterpreterSource::rewind(const AxisVector& current) {
   load_alarm_ = interpreter_->start(text_, name_);
 }
 
-bool InterpreterSource::for_channel(const Command& c, std::string& why) {
+bool InterpreterSource::for_channel(const Command& c, std::string& why, int spindles) {
+  if (c.op == Op::spindle && spindles > 0) {
+    if (c.channel != 0 || c.spindle > 1) {
+      why = "only the channel's first spindle can be commanded in this version";
+      return false;
+    }
+    if (c.spindle_direction == SpindleDirection::orient) {
+      why = "spindle orientation (M19) needs spindle positioning, not in this version";
+      return false;
+    }
+    return true;
+  }
   if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {
     why = missing;
     return false;
@@ -129,7 +140,7 @@ std::optional<PullResult> InterpreterSource::next() {
   }
   const Command& c = std::get<Command>(*r);
   std::string why;
-  if (for_channel(c, why)) {
+  if (for_channel(c, why, config_.spindles)) {
     return PullResult{c};
   }
   load_alarm_ =

@@ -3,8 +3,8 @@
 // planner executes (rapid, linear and arc per minute, dwell in seconds, program end); any other
 // canonical command is a program alarm naming what the channel cannot execute yet, raised
 // before the program starts (feed per revolution, threads and dwells in revolutions need the
-// spindle's feedback, spindle, tool and M codes the PLC node, the multi-channel words the
-// coordination runtime).
+// spindle's feedback, tool and M codes the PLC node, the multi-channel words the coordination
+// runtime). Its own first spindle's speed and direction it runs.
 #include "channel/interp/command_source.hpp"
 #include "channel/interp/interpreter.hpp"
 
@@ -30,8 +30,10 @@ class InterpreterSource final : public CommandSource {
   std::optional<PullResult> next() override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
 
-  // Whether the channel can execute `c`; when not, `why` says what is missing.
-  static bool for_channel(const Command& c, std::string& why);
+  // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
+  // spindle turns its first (M03/M04/M05 with S, G96/G97); orientation (M19) and other
+  // spindles are not in this version.
+  static bool for_channel(const Command& c, std::string& why, int spindles);
 
  private:
   InterpreterConfig config_;

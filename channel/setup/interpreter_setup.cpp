@@ -6,6 +6,7 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
                                                  const config::ChannelConfig& channel) {
   interp::InterpreterConfig c;
   c.channel = channel.id;
+  c.spindles = static_cast<int>(channel.spindles.size());
   c.axes.clear();
   for (const std::string& name : channel.axes) {
     const config::AxisConfig* a = machine.find_axis(name);

@@ -89,10 +89,20 @@ TestMachine::TestMachine(const std::string& machine_file, int domain, int deadli
   char tmpl[] = "/tmp/mcnc-test-XXXXXX";
   dir_ = mkdtemp(tmpl);
   std::string text = slurp(source("launch/machines/" + machine_file));
-  // Private bus: group and port derived from the domain.
-  text = std::regex_replace(
-      text, std::regex(R"(udp:[0-9.]+:[0-9]+)"),
-      "udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
+  // Private buses: group and port derived from the domain, the k-th bus in group .k.
+  {
+    const std::regex uri(R"(udp:[0-9.]+:[0-9]+)");
+    std::string out;
+    std::smatch m;
+    int k = 0;
+    while (std::regex_search(text, m, uri)) {
+      out += m.prefix().str() + "udp:239.255." + std::to_string(domain) + "." +
+             std::to_string(k + 1) + ":" + std::to_string(24000 + domain + 300 * k);
+      ++k;
+      text = m.suffix().str();
+    }
+    text = out + text;
+  }
   text = std::regex_replace(text, std::regex(R"(\n  domain: *[0-9]+)"), "");
   text = std::regex_replace(text, std::regex(R"(machine:\n)"),
                             "machine:\n  domain: " + std::to_string(domain) + "\n");

@@ -114,8 +114,13 @@ interp::InterpreterConfig xz_channel() {
 
 class Rig {
  public:
-  explicit Rig(interp::CommandSource* scripted = nullptr, AxisVector start = xz(0.0, 0.0))
-      : interp_(xz_channel()),
+  explicit Rig(interp::CommandSource* scripted = nullptr, AxisVector start = xz(0.0, 0.0),
+               int spindles = 0)
+      : interp_([&] {
+          interp::InterpreterConfig c = xz_channel();
+          c.spindles = spindles;
+          return c;
+        }()),
         planner_(lathe_motion(), AxisVector{}),
         ctl_(ChannelSetup{2, {kInPos, kInPos}, kDt},
              scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
@@ -1066,6 +1071,48 @@ TEST(ChannelController, ResetWhileMovingRampsDownThenRewinds) {
   EXPECT_EQ(rig.last.setpoints[1].pos, stopped);
   EXPECT_EQ(rig.ctl_.alarm_count(), 0u);
   EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
+}
+
+TEST(ChannelController, TheSpindleTurnsAsTheBlocksRunAndStopsWithoutAProgram) {
+  Rig rig(nullptr, xz(0.0, 0.0), 1);
+  rig.load("M03 S600\nG01 Z10 F600\nM04 S300\nG01 Z20\nM05\nG01 Z30\nM30\n");
+  EXPECT_EQ(rig.step().spindle_direction, 0);  // idle: stopped
+  rig.ctl_.request_start();
+  std::vector<std::pair<double, int>> seen;  // (rpm, direction) as they change
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+    if (o.state == ChannelState::running &&
+        (seen.empty() || seen.back() != std::pair{o.spindle_rpm, o.spindle_direction})) {
+      seen.emplace_back(o.spindle_rpm, o.spindle_direction);
+    }
+    // Each speed holds while its move runs.
+    if (o.setpoints[1].pos > 2.0 && o.setpoints[1].pos < 8.0) {
+      EXPECT_EQ(o.spindle_direction, 1);
+    }
+    if (o.setpoints[1].pos > 12.0 && o.setpoints[1].pos < 18.0) {
+      EXPECT_EQ(o.spindle_direction, -1);
+      EXPECT_EQ(o.spindle_rpm, 300.0);
+    }
+    return o.program_end;
+  }));
+  ASSERT_GE(seen.size(), 3u);
+  EXPECT_EQ(seen[0], (std::pair<double, int>{600.0, 1}));
+  EXPECT_EQ(seen[1], (std::pair<double, int>{300.0, -1}));
+  EXPECT_EQ(seen.back().second, 0);
+  EXPECT_EQ(rig.step().spindle_direction, 0);
+}
+
+TEST(ChannelController, SpindleOrientationAndOtherSpindlesAreAlarmsBeforeTheRun) {
+  for (const char* program : {"M19\nM30\n", "M103 S2=500\nM30\n"}) {
+    interp::InterpreterConfig c = xz_channel();
+    c.spindles = 1;
+    interp::InterpreterSource source(c);
+    const auto alarm = source.load(program, "T.nc");
+    ASSERT_TRUE(alarm.has_value()) << program;
+    EXPECT_EQ(alarm->line, 1) << program;
+  }
+  // Without a spindle in the machine file, M03 is still for the PLC node.
+  interp::InterpreterSource none(xz_channel());
+  ASSERT_TRUE(none.load("M03 S600\nM30\n", "T.nc").has_value());
 }
 
 }  // namespace

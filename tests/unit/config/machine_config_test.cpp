@@ -214,6 +214,40 @@ TEST(MachineConfig, SyncOffsetIsHalfTheCycleUnlessGivenAndStaysInsideIt) {
             "buses[0].sync_offset_us");
 }
 
+TEST(MachineConfig, SpindlesBelongToAChannelAndWeighMoreOnTheBus) {
+  const std::string base = R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+axes:
+  - {name: X, address: X, bus: b, node_id: 1}
+  - {name: S1, type: spindle, bus: b, node_id: 2, counts_per_unit: 1000}
+)";
+  const MachineConfig config =
+      parse_machine_yaml(base + "channels: [{name: C, axes: [X], spindles: [S1]}]\n");
+  ASSERT_EQ(config.channels[0].spindles, std::vector<std::string>{"S1"});
+  const AxisConfig* s1 = config.find_axis("S1");
+  ASSERT_NE(s1, nullptr);
+  EXPECT_EQ(s1->type, AxisType::spindle);
+  EXPECT_EQ(s1->channel, "C");
+  // A spindle takes an RPDO and a TPDO of 7 bytes and an RPDO of 4 per cycle.
+  EXPECT_EQ(bus_bits_per_cycle(1, 1) - bus_bits_per_cycle(1, 0),
+            2 * can_frame_bits(7) + can_frame_bits(4));
+
+  EXPECT_EQ(rejection_path(base + "channels: [{name: C, axes: [X, S1]}]\n"), "channels[0].axes[1]");
+  EXPECT_EQ(rejection_path(base + "channels: [{name: C, axes: [X], spindles: [X]}]\n"),
+            "channels[0].spindles[0]");
+  EXPECT_EQ(rejection_path(base + "channels: [{name: C, axes: [X]}]\n"), "axes[1]");  // in none
+  EXPECT_EQ(rejection_path(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+axes:
+  - {name: X, address: X, bus: b, node_id: 1}
+  - {name: S1, type: spindle, address: C, bus: b, node_id: 2}
+channels: [{name: C, axes: [X], spindles: [S1]}]
+)"),
+            "axes[1].address");
+}
+
 TEST(MachineConfig, MotionAndLimitKeys) {
   const MachineConfig config = parse_machine_yaml(R"(
 machine: {name: m}

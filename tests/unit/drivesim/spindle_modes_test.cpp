@@ -1,0 +1,230 @@
+// A spindle drive switching modes in operation, frame by frame: the master maps the spindle's
+// PDOs by SDO (canopen::spindle_pdos), then the modes of operation travel in RPDO1 (0x6060) and
+// come back in TPDO1 (0x6061); the target velocity in RPDO2 (0x60FF). The simulator reads each
+// RPDO by its mapping; a frame of another length is not processed.
+#include "axisnode/canopen/pdo_mapping.hpp"
+#include "axisnode/cia402/canopen_frames.hpp"
+#include "axisnode/control/axis_node_controller.hpp"
+#include "axisnode/drivesim/drive_bus_simulator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+namespace mcnc::drivesim {
+namespace {
+
+using canopen::CanFrame;
+using cia402::State;
+
+constexpr double kCycle = 0.001;
+constexpr std::uint8_t kNode = 3;
+
+DriveParams spindle_params() {
+  DriveParams p;
+  p.node_id = kNode;
+  p.counts_per_unit = 1000.0;  // per degree
+  p.max_velocity = 30000.0;    // deg/s (5000 rpm)
+  p.quick_stop_decel = 20000.0;
+  p.units_per_rev = 360.0;  // direct drive
+  return p;
+}
+
+TEST(SpindleFrames, RpdosAndTpdoCarryTheModes) {
+  const canopen::RxPdoSpindle pdo{0x000F, -123456, 9, 3600000};
+  const CanFrame r1 = canopen::encode_rpdo1_spindle(kNode, pdo);
+  EXPECT_EQ(r1.id, 0x203U);
+  ASSERT_EQ(r1.dlc, 7);
+  EXPECT_EQ((std::array<std::uint8_t, 7>{r1.data[0], r1.data[1], r1.data[2], r1.data[3], r1.data[4],
+                                         r1.data[5], r1.data[6]}),
+            (std::array<std::uint8_t, 7>{0x0F, 0x00, 0xC0, 0x1D, 0xFE, 0xFF, 0x09}));
+  const CanFrame r2 = canopen::encode_rpdo2_spindle(kNode, pdo);
+  EXPECT_EQ(r2.id, 0x303U);
+  ASSERT_EQ(r2.dlc, 4);
+  EXPECT_EQ((std::array<std::uint8_t, 4>{r2.data[0], r2.data[1], r2.data[2], r2.data[3]}),
+            (std::array<std::uint8_t, 4>{0x80, 0xEE, 0x36, 0x00}));  // 3 600 000
+  EXPECT_EQ(canopen::classify(r2).kind, canopen::FrameKind::rpdo2);
+
+  canopen::TxPdoCsp t{0x0237, 42, 8, true};
+  const CanFrame f = canopen::encode_tpdo_csp(kNode, t);
+  ASSERT_EQ(f.dlc, 7);
+  const auto back = canopen::decode_tpdo_csp(f, true);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->mode_display, 8);
+  EXPECT_FALSE(canopen::decode_tpdo_csp(f, false));  // 7 bytes where 6 are mapped
+  t.has_mode_display = false;
+  EXPECT_FALSE(canopen::decode_tpdo_csp(canopen::encode_tpdo_csp(kNode, t), true));
+}
+
+TEST(SpindleFrames, TheMappingIsWrittenInTheStandardsOrder) {
+  const canopen::AxisPdos p = canopen::spindle_pdos();
+  canopen::SdoWriteList w;
+  ASSERT_TRUE(canopen::pdo_configuration(kNode, p.rpdo1, w));
+  ASSERT_EQ(w.count, 8U);  // invalidate, type, count 0, 3 entries, count, validate
+  EXPECT_EQ(w.writes[3].value, 0x60400010U);
+  EXPECT_EQ(w.writes[4].value, 0x607A0020U);
+  EXPECT_EQ(w.writes[5].value, 0x60600008U);
+  EXPECT_EQ(w.writes[6].value, 3U);
+  ASSERT_TRUE(canopen::pdo_configuration(kNode, p.rpdo2, w));
+  EXPECT_EQ(w.writes[0].index, 0x1401);
+  EXPECT_EQ(w.writes[0].value, 0x80000303U);  // RPDO2 of node 3, invalid while mapped
+  EXPECT_EQ(w.writes[3].value, 0x60FF0020U);
+  EXPECT_EQ(w.writes[w.count - 1].value, 0x303U);
+  ASSERT_TRUE(canopen::pdo_configuration(kNode, p.tpdo1, w));
+  EXPECT_EQ(w.writes[5].value, 0x60610008U);
+}
+
+// The simulator with one spindle drive, mapped as the master maps it, started and enabled.
+class SpindleBus {
+ public:
+  SpindleBus() : sim_({spindle_params()}, kCycle) {
+    sim_.power_on(out_);
+    DriveObjects& od = const_cast<SimulatedDrive&>(*sim_.find(kNode)).objects();
+    const canopen::AxisPdos p = canopen::spindle_pdos();
+    for (const canopen::PdoConfig* pdo : {&p.rpdo1, &p.rpdo2, &p.tpdo1}) {
+      canopen::SdoWriteList w;
+      EXPECT_TRUE(canopen::pdo_configuration(kNode, *pdo, w));
+      for (std::size_t i = 0; i < w.count; ++i) {
+        const std::uint32_t v = w.writes[i].value;
+        const std::uint8_t bytes[4] = {
+            static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8),
+            static_cast<std::uint8_t>(v >> 16), static_cast<std::uint8_t>(v >> 24)};
+        EXPECT_EQ(od.write(w.writes[i].index, w.writes[i].sub, bytes, w.writes[i].size), 0U)
+            << std::hex << w.writes[i].index;
+      }
+    }
+    sim_.handle(canopen::encode_nmt(canopen::NmtCommand::start, kNode), out_);
+  }
+
+  // One cycle: RPDO2, RPDO1, SYNC; TPDO1 decoded as a spindle's.
+  std::optional<canopen::TxPdoCsp> cycle(const canopen::RxPdoSpindle& pdo) {
+    sim_.handle(canopen::encode_rpdo2_spindle(kNode, pdo), out_);
+    sim_.handle(canopen::encode_rpdo1_spindle(kNode, pdo), out_);
+    const std::size_t n = sim_.handle(canopen::encode_sync(1), out_);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (out_[i].id == 0x180U + kNode) {
+        return canopen::decode_tpdo_csp(out_[i], true);
+      }
+    }
+    return std::nullopt;
+  }
+
+  const SimulatedDrive& drive() const { return *sim_.find(kNode); }
+  DriveBusSimulator& sim() { return sim_; }
+
+ private:
+  DriveBusSimulator sim_;
+  std::array<CanFrame, 8> out_{};
+};
+
+TEST(SpindleModes, TheModeInTheRpdoTakesEffectAtTheSyncAndIsDisplayed) {
+  SpindleBus bus;
+  canopen::RxPdoSpindle pdo{0x0006, 0, 9, 0};
+  for (const std::uint16_t cw : {0x06, 0x07, 0x0F}) {
+    pdo.controlword = cw;
+    bus.cycle(pdo);
+  }
+  ASSERT_EQ(bus.drive().state(), State::operation_enabled);
+  // CSV at 3600 deg/s (600 rpm).
+  pdo.target_velocity = 3600000;
+  std::optional<canopen::TxPdoCsp> t;
+  for (int i = 0; i < 500; ++i) {
+    t = bus.cycle(pdo);
+  }
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->mode_display, 9);
+  EXPECT_NEAR(bus.drive().velocity(), 3600.0, 1e-3);
+  // To CSP at a target ahead of where it turns by a cycle and the position loop's lag (4 ms at
+  // 3600 deg/s): the drive takes it at the SYNC and keeps turning.
+  const double at = bus.drive().position();
+  pdo.mode = 8;
+  pdo.target_position = static_cast<std::int32_t>(std::lround((at + 3.6 + 14.4) * 1000.0));
+  t = bus.cycle(pdo);
+  EXPECT_EQ(t->mode_display, 8);
+  EXPECT_EQ(bus.drive().objects().mode(), 8);
+  EXPECT_NEAR(bus.drive().velocity(), 3600.0, 100.0);  // no brake on the switch
+  // Back to CSV.
+  pdo.mode = 9;
+  t = bus.cycle(pdo);
+  EXPECT_EQ(t->mode_display, 9);
+  // A mode it does not have (1, profile position) is not taken.
+  pdo.mode = 1;
+  t = bus.cycle(pdo);
+  EXPECT_EQ(t->mode_display, 9);
+}
+
+TEST(SpindleModes, AnRpdoOfTheWrongLengthIsNotProcessed) {
+  SpindleBus bus;
+  const auto before = bus.sim().malformed_count();
+  CanFrame six = canopen::encode_rpdo_csp(kNode, canopen::RxPdoCsp{0x0F, 5});  // 6 bytes
+  std::array<CanFrame, 8> out{};
+  bus.sim().handle(six, out);
+  CanFrame two = canopen::encode_rpdo2_spindle(kNode, canopen::RxPdoSpindle{});
+  two.dlc = 2;
+  bus.sim().handle(two, out);
+  EXPECT_EQ(bus.sim().malformed_count(), before + 2);
+  EXPECT_FALSE(bus.drive().rpdo_since_sync());
+}
+
+// The axis node's core and the drive in closed loop through the spindle's PDOs.
+TEST(SpindleModes, TheNodeSwitchesCsvToCspAndBackWithoutAJump) {
+  SpindleBus bus;
+  axisnode::AxisNodeSetup setup{1000.0, kCycle, 5};
+  setup.spindle = true;
+  setup.following_error_limit = 20.0;  // degrees
+  axisnode::AxisNodeController node(setup);
+  std::optional<canopen::TxPdoCsp> t;
+  auto step = [&](std::uint64_t c, bool velocity, double pos, double vel) {
+    axisnode::AxisNodeInput in;
+    in.have_setpoint = true;
+    in.setpoint_valid = true;
+    in.setpoint_velocity = velocity;
+    in.setpoint_pos = pos;
+    in.setpoint_vel = vel;
+    in.have_tpdo = t.has_value();
+    if (t) {
+      in.statusword = t->statusword;
+      in.position_counts = t->position_actual;
+      in.mode_display = t->mode_display;
+    }
+    const auto& out = node.cycle(c, in);
+    t = bus.cycle(canopen::RxPdoSpindle{out.controlword, out.target_counts, out.mode,
+                                        out.target_velocity_counts});
+    return out;
+  };
+  std::uint64_t c = 0;
+  for (; c < 600; ++c) {
+    const auto& out = step(c, true, 0.0, 3600.0);
+    EXPECT_EQ(out.new_alarm, axisnode::AxisAlarm::none) << c;
+  }
+  ASSERT_EQ(node.output().mode_display, axisnode::kModeCsv);
+  EXPECT_NEAR(bus.drive().velocity(), 3600.0, 1e-3);
+  // The owner takes the spindle in position, continuing its turn at 3600 deg/s, then stops it
+  // with a ramp to rest: the node switches, and the turn goes on without a brake or an alarm.
+  double pos = node.output().act + 2 * 3.6;
+  double vel = 3600.0;
+  bool switched = false;
+  for (int i = 0; i < 1200; ++i, ++c) {
+    vel = std::max(0.0, vel - 6000.0 * kCycle);
+    pos += vel * kCycle;
+    const auto& out = step(c, false, pos, vel);
+    EXPECT_EQ(out.new_alarm, axisnode::AxisAlarm::none) << c;
+    switched = switched || out.mode_changed;
+  }
+  EXPECT_TRUE(switched);
+  EXPECT_EQ(node.output().mode_display, axisnode::kModeCsp);
+  EXPECT_NEAR(bus.drive().position(), pos, 0.01);  // positioned where the owner said
+  EXPECT_NEAR(bus.drive().velocity(), 0.0, 1e-3);
+  // And back to turning.
+  for (int i = 0; i < 600; ++i, ++c) {
+    step(c, true, 0.0, -1200.0);
+  }
+  EXPECT_EQ(node.output().mode_display, axisnode::kModeCsv);
+  EXPECT_NEAR(bus.drive().velocity(), -1200.0, 1e-3);
+  EXPECT_EQ(node.output().alarm, axisnode::AxisAlarm::none);
+}
+
+}  // namespace
+}  // namespace mcnc::drivesim

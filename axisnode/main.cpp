@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
@@ -116,8 +117,14 @@ int main(int argc, char** argv) {
     if (spindle) {
       startup.pdos = canopen::spindle_pdos();
       startup.mode = axisnode::kModeCsv;
+    } else if (axis->has_homing) {
+      startup.pdos = canopen::homing_axis_pdos();
+      startup.mode = axisnode::kModeHoming;
+      startup.homing_method = static_cast<std::int8_t>(axis->homing_method);
+      startup.home_offset =
+          static_cast<std::int32_t>(std::llround(axis->home_offset * axis->counts_per_unit));
     }
-    link.set_spindle(spindle);
+    link.set_pdo_layout(spindle || axis->has_homing, spindle);
     if (const auto error = link.bring_up(startup, 10s)) {
       spdlog::error("drive on {}: {}", bus->uri, *error);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
@@ -158,6 +165,7 @@ int main(int argc, char** argv) {
     // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles.
     setup.heartbeat_cycles = static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us);
     setup.spindle = spindle;
+    setup.homing = axis->has_homing;
     axisnode::AxisNodeController controller(setup);
     bool owner_loss_checked = false;
     std::uint64_t last_tpdo_count = 0;
@@ -253,7 +261,7 @@ int main(int argc, char** argv) {
 
       if (out.mode_changed) {
         tracer.emit(cycle, "mode", "\"axis\":\"%s\",\"mode\":\"%s\"", axis->name.c_str(),
-                    out.mode_display == axisnode::kModeCsv ? "csv" : "csp");
+                    axisnode::mode_name(out.mode_display));
       }
       if (out.drive_state_changed) {
         tracer.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", axis->name.c_str(),

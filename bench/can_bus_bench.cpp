@@ -26,19 +26,22 @@ using Clock = std::chrono::steady_clock;
 
 void print_load(const config::MachineConfig& machine) {
   std::printf("machine %s, cycle %d us\n", machine.name.c_str(), machine.cycle_us);
-  std::printf(
-      "| bus | bit/s | axes | frames per cycle | frames per axis per cycle | bits per cycle | load "
-      "|\n");
+  std::printf("| bus | bit/s | axes | spindles | frames per cycle | bits per cycle | load |\n");
   std::printf("|---|---|---|---|---|---|---|\n");
   for (const config::BusConfig& bus : machine.buses) {
     int axes = 0;
+    int spindles = 0;
+    int bits = config::can_frame_bits(1);  // SYNC
     for (const config::AxisConfig& a : machine.axes) {
-      axes += a.bus == bus.name ? 1 : 0;
+      if (a.bus != bus.name) {
+        continue;
+      }
+      (a.type == config::AxisType::spindle ? spindles : axes) += 1;
+      bits += config::axis_bits_per_cycle(a);
     }
-    const int bits = config::bus_bits_per_cycle(axes);
-    std::printf("| %s | %d | %d | %d | 2 (RPDO1, TPDO1) | %d | %.1f %% |\n", bus.name.c_str(),
-                bus.bitrate, axes, 1 + 2 * axes, bits,
-                100.0 * config::bus_load(axes, bus.bitrate, machine.cycle_us));
+    std::printf("| %s | %d | %d | %d | %d | %d | %.1f %% |\n", bus.name.c_str(), bus.bitrate, axes,
+                spindles, 1 + 2 * axes + 3 * spindles, bits,
+                100.0 * bits / (static_cast<double>(bus.bitrate) * machine.cycle_us * 1e-6));
   }
 }
 

@@ -102,15 +102,23 @@ int main(int argc, char** argv) {
     node.announce(PHASE_STARTING);
     process::Wakeup& wake = node.wakeup();
 
-    // Feedback of the channel's axes, by cycle, and the lockstep gate over them.
-    std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(axes.size());
-    cycle::LockstepGate gate(axes.size());
-    std::vector<dds::WriterId> axis_writer(axes.size());
-    std::vector<bool> axis_writer_known(axes.size(), false);
-    std::vector<bool> axis_lost(axes.size(), false);
+    // Feedback of the nodes the channel commands (its axes, then its spindles), by cycle, and
+    // the lockstep gate over them: a node runs cycle N on the channel's setpoint N-1, so the
+    // channel must not run ahead of any of them.
+    std::vector<const config::AxisConfig*> spindles;
+    for (const std::string& name : ch->spindles) {
+      spindles.push_back(machine.find_axis(name));
+    }
+    std::vector<const config::AxisConfig*> fed = axes;
+    fed.insert(fed.end(), spindles.begin(), spindles.end());
+    std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
+    cycle::LockstepGate gate(fed.size());
+    std::vector<dds::WriterId> axis_writer(fed.size());
+    std::vector<bool> axis_writer_known(fed.size(), false);
+    std::vector<bool> axis_lost(fed.size(), false);
     auto slot_of = [&](std::uint32_t axis_id) -> int {
-      for (std::size_t i = 0; i < axes.size(); ++i) {
-        if (static_cast<std::uint32_t>(axes[i]->id) == axis_id) {
+      for (std::size_t i = 0; i < fed.size(); ++i) {
+        if (static_cast<std::uint32_t>(fed[i]->id) == axis_id) {
           return static_cast<int>(i);
         }
       }
@@ -135,7 +143,7 @@ int main(int argc, char** argv) {
             return;
           }
           wake.update([&] {
-            for (std::size_t i = 0; i < axes.size(); ++i) {
+            for (std::size_t i = 0; i < fed.size(); ++i) {
               if (axis_writer_known[i] && axis_writer[i] == writer) {
                 axis_lost[i] = true;
                 gate.set_expected(i, false);
@@ -143,10 +151,6 @@ int main(int argc, char** argv) {
             }
           });
         });
-    std::vector<const config::AxisConfig*> spindles;
-    for (const std::string& name : ch->spindles) {
-      spindles.push_back(machine.find_axis(name));
-    }
     channel::ChannelOutputs outputs(node, tracer, *ch, axes, spindles, program_name, program_lines);
 
     // Discovery: every axis node's feedback writer and setpoint reader matched.
@@ -170,7 +174,7 @@ int main(int argc, char** argv) {
     }
 
     std::vector<channel::AxisFeedbackView> views(axes.size());
-    std::vector<bool> reported_lost(axes.size(), false);
+    std::vector<bool> reported_lost(fed.size(), false);
     bool estop_seen = false;
     // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
     for (std::uint64_t cycle = 0; loop.next(
@@ -200,7 +204,7 @@ int main(int argc, char** argv) {
       // older than the deadline counts as the axis being gone (ARCHITECTURE.md §6).
       bool newly_lost = false;
       wake.update([&] {
-        for (std::size_t i = 0; i < axes.size(); ++i) {
+        for (std::size_t i = 0; i < fed.size(); ++i) {
           const AxisFeedback* latest = feedback[i].latest();
           if (!lockstep && latest != nullptr &&
               controller.state() != channel::ChannelState::reset &&
@@ -214,12 +218,12 @@ int main(int argc, char** argv) {
         break;
       }
       wake.update([&] {
-        for (std::size_t i = 0; i < axes.size(); ++i) {
+        for (std::size_t i = 0; i < fed.size(); ++i) {
           const AxisFeedback* fb = cycle > 0 ? feedback[i].at(cycle - 1) : nullptr;
           if (fb == nullptr && !lockstep) {
             fb = feedback[i].latest();
           }
-          if (fb != nullptr) {
+          if (fb != nullptr && i < views.size()) {
             views[i] =
                 channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
           }

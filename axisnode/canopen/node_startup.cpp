@@ -41,6 +41,10 @@ const char* object_name(std::uint16_t index) noexcept {
       return "velocity actual value";
     case 0x607A:
       return "target position";
+    case 0x607C:
+      return "home offset";
+    case 0x6098:
+      return "homing method";
     case 0x60F4:
       return "following error actual value";
     case 0x60FF:
@@ -68,6 +72,10 @@ NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
         add(list.writes[i].index, list.writes[i].sub, list.writes[i].value, list.writes[i].size);
       }
     }
+  }
+  if (config.homing_method != 0) {
+    add(0x6098, 0, static_cast<std::uint8_t>(config.homing_method), 1);
+    add(0x607C, 0, static_cast<std::uint32_t>(config.home_offset), 4);
   }
   add(0x6060, 0, static_cast<std::uint8_t>(config.mode), 1);
 }

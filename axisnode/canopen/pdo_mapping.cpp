@@ -85,4 +85,10 @@ AxisPdos spindle_pdos() noexcept {
   return p;
 }
 
+AxisPdos homing_axis_pdos() noexcept {
+  AxisPdos p = spindle_pdos();
+  p.rpdo2 = pdo(true, 2, {});
+  return p;
+}
+
 }  // namespace mcnc::canopen

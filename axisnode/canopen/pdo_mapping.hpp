@@ -59,5 +59,8 @@ AxisPdos axis_pdos(bool velocity_mode, bool velocity_actual, bool following_erro
 // 0x607A and modes of operation 0x6060 (7 bytes); RPDO2 target velocity 0x60FF; TPDO1
 // statusword 0x6041, position actual 0x6064 and modes of operation display 0x6061 (7 bytes).
 AxisPdos spindle_pdos() noexcept;
+// The PDOs of an axis that homes at start-up (mode 6, then CSP): a spindle's RPDO1 and TPDO1
+// (the modes of operation and its display travel with them), no RPDO2.
+AxisPdos homing_axis_pdos() noexcept;
 
 }  // namespace mcnc::canopen

@@ -5,6 +5,24 @@
 
 namespace mcnc::axisnode {
 
+namespace {
+constexpr std::uint16_t kHomingAttained = 0x1000;  // statusword bit 12 in homing mode
+constexpr std::uint16_t kHomingStart = 0x0010;     // controlword bit 4 in homing mode
+}  // namespace
+
+const char* mode_name(std::int8_t mode) noexcept {
+  switch (mode) {
+    case kModeCsp:
+      return "csp";
+    case kModeCsv:
+      return "csv";
+    case kModeHoming:
+      return "homing";
+    default:
+      return "other";
+  }
+}
+
 const char* to_text(AxisAlarm alarm) noexcept {
   switch (alarm) {
     case AxisAlarm::none:
@@ -33,7 +51,9 @@ const char* to_text(AxisAlarm alarm) noexcept {
 
 AxisNodeController::AxisNodeController(const AxisNodeSetup& setup) noexcept
     : setup_(setup),
-      requested_mode_(setup.spindle ? kModeCsv : kModeCsp),
+      requested_mode_(setup.homing    ? kModeHoming
+                      : setup.spindle ? kModeCsv
+                                      : kModeCsp),
       heartbeat_(0, static_cast<std::uint64_t>(std::max(0, setup.heartbeat_cycles))) {
   out_.mode = requested_mode_;
   out_.mode_display = requested_mode_;  // what the start-up wrote
@@ -79,13 +99,21 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   if (in.have_tpdo) {
     last_tpdo_cycle_ = cycle;
     const double act = in.position_counts / setup_.counts_per_unit;
-    out_.vel = have_position_ ? (act - out_.act) / setup_.cycle_s : 0.0;
+    // Homing attained: the position value jumped to the home position; the motor did not move.
+    const bool home_jump = setup_.homing && !homed_ && out_.mode_display == kModeHoming &&
+                           (in.statusword & kHomingAttained) != 0;
+    out_.vel = have_position_ && !home_jump ? (act - out_.act) / setup_.cycle_s : 0.0;
+    if (home_jump) {
+      homed_ = true;
+      out_.homed = true;
+      requested_mode_ = kModeCsp;
+    }
     out_.act = act;
     have_position_ = true;
     const cia402::State state = cia402::decode_statusword(in.statusword);
     out_.drive_state_changed = state != out_.drive_state;
     out_.drive_state = state;
-    if (setup_.spindle && in.mode_display != out_.mode_display) {
+    if ((setup_.spindle || setup_.homing) && in.mode_display != out_.mode_display) {
       out_.mode_changed = true;
       out_.mode_display = in.mode_display;
       // Into CSP while turning: the position target takes over one cycle ahead of the actual
@@ -123,7 +151,10 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     raise(AxisAlarm::owner_lost);
   }
 
-  const bool operating = out_.drive_state == cia402::State::operation_enabled;
+  const bool drive_operating = out_.drive_state == cia402::State::operation_enabled;
+  // A homing axis is the owner's once it is homed and in CSP.
+  const bool operating =
+      drive_operating && (!setup_.homing || (homed_ && out_.mode_display == kModeCsp));
   if (operating && !following_) {
     out_.cmd = out_.act;  // take over where the drive stands: no jump on enable
     was_enabled_ = true;
@@ -171,8 +202,10 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     }
   }
-  if (velocity_mode) {
-    out_.cmd = out_.act;  // no position loop in CSV: no following error either
+  if (velocity_mode || !following_) {
+    // No position loop in CSV (no following error either); and a drive not yet the owner's
+    // (enabling, homing) is told to stay where it is, whatever mode it switches to next.
+    out_.cmd = out_.act;
   }
   if (following_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
       std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
@@ -189,6 +222,15 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
 
   const cia402::Goal goal = out_.quick_stop ? cia402::Goal::quick_stop : cia402::Goal::enabled;
   out_.controlword = cia402::next_controlword(out_.drive_state, goal, resetting_);
+  // Homing: bit 4 rises once the drive is in operation in homing mode (CiA 402: homing
+  // operation start on its rising edge).
+  if (setup_.homing && !homed_ && drive_operating && out_.mode_display == kModeHoming &&
+      !out_.quick_stop) {
+    if (homing_started_) {
+      out_.controlword |= kHomingStart;
+    }
+    homing_started_ = true;
+  }
   out_.enabled = operating && !out_.quick_stop;
   out_.target_counts = static_cast<std::int32_t>(std::llround(out_.cmd * setup_.counts_per_unit));
   return out_;

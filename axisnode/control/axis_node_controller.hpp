@@ -30,7 +30,16 @@ struct AxisNodeSetup {
   // A spindle: its drive starts in CSV and switches between CSV and CSP in operation as the
   // owner's setpoints ask (modes of operation in its RPDO, the display in its TPDO).
   bool spindle = false;
+  // Reference return at start-up: the drive starts in homing mode (method and offset written at
+  // start-up); once enabled the node starts the homing (controlword bit 4), and when the drive
+  // says homing attained (statusword bit 12) switches it to CSP and takes over there. Until then
+  // the axis is not enabled for its owner. Needs the PDOs with the modes (homing_axis_pdos).
+  bool homing = false;
 };
+
+inline constexpr std::int8_t kModeHoming = 6;
+// "csp", "csv", "homing" (trace and messages); "other" for any other mode.
+const char* mode_name(std::int8_t mode) noexcept;
 
 inline constexpr std::int8_t kModeCsp = 8;
 inline constexpr std::int8_t kModeCsv = 9;
@@ -77,6 +86,7 @@ struct AxisNodeOutput {
   std::int8_t mode = kModeCsp;          // modes of operation to send (a spindle's RPDO)
   std::int8_t mode_display = kModeCsp;  // the mode the drive runs in
   bool mode_changed = false;            // the drive switched modes this cycle
+  bool homed = false;                   // the homing reached its end (homing axes)
   cia402::State drive_state = cia402::State::not_ready_to_switch_on;
   bool enabled = false;                   // operation enabled and following setpoints
   bool quick_stop = false;                // quick stop commanded (latched until restart)
@@ -119,6 +129,8 @@ class AxisNodeController {
   double last_setpoint_vel_ = 0.0;
   std::uint64_t heartbeats_ = 0;
   std::int8_t requested_mode_ = kModeCsp;
+  bool homed_ = false;
+  bool homing_started_ = false;           // controlword bit 4 is up
   canopen::HeartbeatConsumer heartbeat_;  // in cycles
 };
 

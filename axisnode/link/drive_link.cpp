@@ -105,7 +105,7 @@ void DriveLink::receive_loop() {
         break;
       case canopen::FrameKind::tpdo1:
         if (cls.node == node_id_) {
-          if (auto pdo = canopen::decode_tpdo_csp(frame, spindle_)) {
+          if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
             wakeup_.update([&] {
               tpdo_statusword_ = pdo->statusword;
               tpdo_position_ = pdo->position_actual;
@@ -204,7 +204,7 @@ std::optional<std::string> DriveLink::bring_up(const canopen::NodeStartupConfig&
 }
 
 void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
-  if (!spindle_) {
+  if (!with_mode_) {
     bus_->send(canopen::encode_rpdo_csp(
         node_id_, canopen::RxPdoCsp{command.controlword, command.target_counts}));
     return;
@@ -212,7 +212,9 @@ void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
   const canopen::RxPdoSpindle pdo{command.controlword, command.target_counts, command.mode,
                                   command.target_velocity_counts};
   // RPDO2 first: the SYNC producer waits for RPDO1, so both are in before the SYNC.
-  bus_->send(canopen::encode_rpdo2_spindle(node_id_, pdo));
+  if (with_velocity_) {
+    bus_->send(canopen::encode_rpdo2_spindle(node_id_, pdo));
+  }
   bus_->send(canopen::encode_rpdo1_spindle(node_id_, pdo));
 }
 
@@ -291,7 +293,7 @@ TpdoSample DriveLink::tpdo() noexcept {
     sample.pdo.statusword = tpdo_statusword_.load();
     sample.pdo.position_actual = tpdo_position_.load();
     sample.pdo.mode_display = tpdo_mode_display_.load();
-    sample.pdo.has_mode_display = spindle_;
+    sample.pdo.has_mode_display = with_mode_;
     sample.count = tpdo_count_.load();
   });
   return sample;

@@ -29,7 +29,7 @@ struct TpdoSample {
 };
 
 // What the node sends its drive each cycle. `mode` and `target_velocity_counts` go out only
-// for a spindle (its RPDO1 carries 0x6060, its RPDO2 0x60FF).
+// when the PDO layout carries them (set_pdo_layout).
 struct DriveCommand {
   std::uint16_t controlword = 0;
   std::int32_t target_counts = 0;
@@ -50,8 +50,13 @@ class DriveLink {
   // node is started; otherwise why not, naming the object a refused SDO was about.
   std::optional<std::string> bring_up(const canopen::NodeStartupConfig& config,
                                       std::chrono::milliseconds timeout);
-  // A spindle's drive (canopen::spindle_pdos): set before bring_up().
-  void set_spindle(bool spindle) noexcept { spindle_ = spindle; }
+  // The PDO layout, set before bring_up(): `with_mode` RPDO1/TPDO1 carry the modes of operation
+  // and its display (canopen::spindle_pdos, homing_axis_pdos), `with_velocity` RPDO2 the target
+  // velocity (a spindle).
+  void set_pdo_layout(bool with_mode, bool with_velocity) noexcept {
+    with_mode_ = with_mode;
+    with_velocity_ = with_velocity;
+  }
   void send_rpdo(const DriveCommand& command) noexcept;
   void send_sync() noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
@@ -116,7 +121,8 @@ class DriveLink {
   std::atomic<std::uint16_t> tpdo_statusword_{0};
   std::atomic<std::int32_t> tpdo_position_{0};
   std::atomic<std::int8_t> tpdo_mode_display_{0};
-  bool spindle_ = false;
+  bool with_mode_ = false;
+  bool with_velocity_ = false;
   // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
   std::bitset<128> rpdo_seen_;
   std::uint8_t sync_counter_ = 0;

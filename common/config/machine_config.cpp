@@ -212,7 +212,7 @@ AxisConfig parse_axis(const YamlValue& value) {
   const YamlMap map =
       value.map({"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit",
                  "rapid_rate", "max_feed", "acceleration", "jerk", "in_position", "drive",
-                 "soft_limits", "following_error_limit"});
+                 "soft_limits", "following_error_limit", "homing"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -264,6 +264,19 @@ AxisConfig parse_axis(const YamlValue& value) {
   }
   read_optional_positive(map, "in_position", axis.in_position);
   read_optional_positive(map, "following_error_limit", axis.following_error_limit);
+  if (auto homing = map.optional("homing")) {
+    if (axis.type == AxisType::spindle) {
+      homing->fail("a spindle is not homed (its angle is set by orientation)");
+    }
+    const YamlMap h = homing->map({"method", "offset"});
+    // CiA 402 homing methods 1..37 (what a drive supports is its own: a method it refuses is
+    // an SDO abort at start-up, naming 0x6098).
+    axis.homing_method = read_int(h.required("method"), 1, 37);
+    if (auto offset = h.optional("offset")) {
+      axis.home_offset = offset->number();
+    }
+    axis.has_homing = true;
+  }
   if (auto limits = map.optional("soft_limits")) {
     const std::vector<YamlValue> pair = limits->list();
     if (pair.size() != 2) {
@@ -433,11 +446,13 @@ MachineConfig parse_document(const YAML::Node& root) {
     }
     int count = 0;
     int spindle_count = 0;
+    long long bits = can_frame_bits(1);  // SYNC
     for (const auto& [node, name] : on_bus->second) {
-      (config.axes[axis_index.at(name)].type == AxisType::spindle ? spindle_count : count) += 1;
+      const AxisConfig& axis = config.axes[axis_index.at(name)];
+      (axis.type == AxisType::spindle ? spindle_count : count) += 1;
+      bits += axis_bits_per_cycle(axis);
     }
     // Integer comparison, so a bus exactly at the limit is accepted on every platform.
-    const long long bits = bus_bits_per_cycle(count, spindle_count);
     const long long capacity =
         static_cast<long long>(bus.bitrate) * config.cycle_us;  // 1e6 x bits/cycle
     if (bits * 1000000LL * 100 > capacity * kMaxBusLoadPercent) {
@@ -449,8 +464,8 @@ MachineConfig parse_document(const YAML::Node& root) {
       }
       reason << (count + spindle_count == 1 ? " needs " : " need ") << bits << " bits per "
              << config.cycle_us << " us cycle, "
-             << 100.0 * bus_load(count, bus.bitrate, config.cycle_us, spindle_count) << " % of "
-             << bus.bitrate << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
+             << 100.0 * static_cast<double>(bits) / (static_cast<double>(capacity) * 1e-6)
+             << " % of " << bus.bitrate << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
       buses[b].fail(reason.str());
     }
   }
@@ -500,6 +515,13 @@ int bus_bits_per_cycle(int axis_count, int spindle_count) noexcept {
   constexpr int kVelocityBytes = 4;
   return can_frame_bits(kSyncBytes) + axis_count * 2 * can_frame_bits(kPdoBytes) +
          spindle_count * (2 * can_frame_bits(kSpindlePdoBytes) + can_frame_bits(kVelocityBytes));
+}
+
+int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
+  if (axis.type == AxisType::spindle) {
+    return 2 * can_frame_bits(7) + can_frame_bits(4);
+  }
+  return 2 * can_frame_bits(axis.has_homing ? 7 : 6);
 }
 
 double bus_load(int axis_count, int bitrate, int cycle_us, int spindle_count) noexcept {

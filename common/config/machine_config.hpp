@@ -55,6 +55,10 @@ struct AxisConfig {
   double soft_limit_min = 0.0;       // units (physical: radius on a diameter axis)
   double soft_limit_max = 0.0;
   double following_error_limit = 2.0;  // units; more between command and actual: alarm
+  // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
+  bool has_homing = false;
+  int homing_method = 0;
+  double home_offset = 0.0;  // units: the position the home becomes
   DriveSimConfig drive;
 };
 
@@ -110,6 +114,9 @@ MachineConfig load_machine_file(const std::string& path);
 // Bits per cycle on one bus: one SYNC (1 data byte), one RPDO and one TPDO (6 data bytes each)
 // per axis on it, and per spindle an RPDO and a TPDO of 7 bytes and an RPDO of 4.
 [[nodiscard]] int bus_bits_per_cycle(int axis_count, int spindle_count = 0) noexcept;
+// One axis's PDO bits per cycle: 2 x bits(6); a homing axis's PDOs carry the mode (2 x bits(7));
+// a spindle's besides its target velocity (2 x bits(7) + bits(4)).
+[[nodiscard]] int axis_bits_per_cycle(const AxisConfig& axis) noexcept;
 // Share of the bit rate that traffic takes at the given cycle; the loader rejects a bus above
 // kMaxBusLoad so that SDO, EMCY and heartbeat frames still fit.
 [[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us,

@@ -16,6 +16,29 @@ using namespace std::chrono_literals;
 
 namespace {
 
+// Adds `line` (indented as an axis key) after every axis's in_position line of the machine file.
+void add_to_each_axis(const TestMachine& machine, const std::string& line) {
+  std::ifstream in(machine.path());
+  std::stringstream text;
+  text << in.rdbuf();
+  in.close();
+  std::ofstream(machine.path()) << std::regex_replace(
+      text.str(), std::regex("(\\n    in_position: [^\\n]*)"), "$1\n    " + line);
+}
+
+// Runs `program` (source tree path) on CH1 to a clean end; the trace.
+std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,
+                                             const std::vector<std::string>& extra = {}) {
+  const std::string trace_file = machine.file("trace.jsonl");
+  std::vector<std::string> argv{
+      bin("mcnc"), "run",     machine.path(), "--program", "CH1=" + source(program),
+      "--trace",   trace_file};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  const RunResult r = run(argv, -1, 300s);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  return read_trace(trace_file);
+}
+
 TEST(DriveStartup, ARefusedSdoIsAnAlarmNamingTheObject) {
   TestMachine machine("small_lathe.yaml", 31);
   Background drives({bin("mcnc-drivesim"), "--machine", machine.path(), "--bus", "can0",
@@ -151,26 +174,47 @@ TEST(DriveFaults, AnOperatorResetBringsTheDriveBackAndTheProgramRunsAgain) {
   EXPECT_NEAR(z1, 10.0, 1e-6);
 }
 
+TEST(DriveStartup, AxesHomeAtStartThenRunTheProgramFromTheirHome) {
+  // Both axes home by method 37 (here is home) with a home offset of 50 mm: the drives stand
+  // at 0, become 50 without moving, switch to CSP, and the program runs from there.
+  TestMachine machine("small_lathe.yaml", 40);
+  add_to_each_axis(machine, "homing: {method: 37, offset: 50}");
+  const auto trace = run_to_clean_end(machine, "launch/programs/xz_move.nc");
+  for (const std::string axis : {"X1", "Z1"}) {
+    const auto modes = events(trace, "mode", axis);
+    ASSERT_EQ(modes.size(), 1U) << axis;
+    EXPECT_EQ(modes[0]["mode"], "csp");
+    EXPECT_LE(modes[0]["cycle"].get<std::uint64_t>(), 10U);
+  }
+  // The channel starts once both are homed and in CSP, from the home positions.
+  std::uint64_t running = 0;
+  for (const auto& s : events(trace, "state", "CH1")) {
+    if (s["state"] == "running") {
+      running = s["cycle"].get<std::uint64_t>();
+    }
+  }
+  EXPECT_GT(running, events(trace, "mode", "X1")[0]["cycle"].get<std::uint64_t>());
+  for (const auto& p : events(trace, "pos")) {
+    if (p["src"] != "CH1" && p["cycle"].get<std::uint64_t>() == 10) {
+      EXPECT_NEAR(p["act"].get<double>(), 50.0, 0.5) << p.dump();  // just set off from home
+    }
+  }
+  double x1 = 0.0;
+  double z1 = 0.0;
+  for (const auto& p : events(trace, "pos")) {
+    (p["axis"] == "X1" ? x1 : z1) = p["act"].get<double>();
+  }
+  EXPECT_NEAR(x1, 30.0, 0.001);
+  EXPECT_NEAR(z1, 10.0, 0.001);
+}
+
 TEST(DriveCsp, TenThousandCyclesWithinAFollowingErrorBound) {
   // The drives follow for over 10 000 cycles with a 1.2 mm following-error limit: no alarm,
   // and every recorded |cmd - act| below the bound.
   TestMachine machine("small_lathe.yaml", 35);
-  {
-    std::ifstream in(machine.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string bounded =
-        std::regex_replace(text.str(), std::regex("(\\n    in_position: [^\\n]*)"),
-                           "$1\n    following_error_limit: 1.2");
-    std::ofstream(machine.path()) << bounded;
-  }
-  const std::string trace_file = machine.file("trace.jsonl");
-  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
-                           "CH1=" + source("tests/integration/programs/csp_back_and_forth.nc"),
-                           "--trace", trace_file, "--trace-pos-every", "5"},
-                          -1, 300s);
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  const auto trace = read_trace(trace_file);
+  add_to_each_axis(machine, "following_error_limit: 1.2");
+  const auto trace = run_to_clean_end(machine, "tests/integration/programs/csp_back_and_forth.nc",
+                                      {"--trace-pos-every", "5"});
   EXPECT_GE(trace.back()["cycles"].get<std::uint64_t>(), 10000U);
   EXPECT_TRUE(events(trace, "alarm").empty());
   double worst = 0.0;

@@ -38,6 +38,11 @@ TEST(Spindle, TurnsReversesAndStopsAsTheProgramSays) {
   for (const auto& p : events(trace, "pos", "S1")) {
     angle[p["cycle"].get<std::uint64_t>()] = p["act"].get<double>();
   }
+  // The spindle's node ran every cycle of the run, in step with the channel (its samples every
+  // 10 cycles reach the program's end).
+  ASSERT_FALSE(angle.empty());
+  EXPECT_GE(angle.rbegin()->first + 10, block_cycle.at(10));
+  EXPECT_EQ(angle.size(), angle.rbegin()->first / 10 + 1);
   const auto speed = [&](std::uint64_t from, std::uint64_t to) {
     from -= from % 10;
     to -= to % 10;

@@ -122,6 +122,35 @@ TEST(NodeStartup, ResetsChecksMapsSetsTheModeAndStarts) {
   EXPECT_EQ(tpdo2_entries, 1U);
 }
 
+TEST(NodeStartup, AHomingAxisGetsItsMethodAndOffsetThenModeSix) {
+  RecordingDictionary od;
+  NodeStartupConfig config{kNode};
+  config.pdos = homing_axis_pdos();
+  config.mode = 6;
+  config.homing_method = 37;
+  config.home_offset = -5000;
+  NodeStartup s(config);
+  run_startup(s, od, false);
+  ASSERT_EQ(s.status(), NodeStartup::Status::done) << s.error();
+  ASSERT_GE(od.writes.size(), 3U);
+  const auto n = od.writes.size();
+  EXPECT_EQ(od.writes[n - 3].index, 0x6098);
+  EXPECT_EQ(od.writes[n - 3].value, 37U);
+  EXPECT_EQ(od.writes[n - 2].index, 0x607C);
+  EXPECT_EQ(od.writes[n - 2].value, static_cast<std::uint32_t>(-5000));
+  EXPECT_EQ(od.writes[n - 1].index, 0x6060);
+  EXPECT_EQ(od.writes[n - 1].value, 6U);
+  // RPDO1 maps the modes of operation, TPDO1 its display.
+  bool mode_in_rpdo = false;
+  bool display_in_tpdo = false;
+  for (const auto& w : od.writes) {
+    mode_in_rpdo = mode_in_rpdo || (w.index == 0x1600 && w.value == 0x60600008U);
+    display_in_tpdo = display_in_tpdo || (w.index == 0x1A00 && w.value == 0x60610008U);
+  }
+  EXPECT_TRUE(mode_in_rpdo);
+  EXPECT_TRUE(display_in_tpdo);
+}
+
 TEST(NodeStartup, ARefusedWriteNamesTheObjectAndTheReason) {
   RecordingDictionary od;
   od.refuse_index = 0x6060;

@@ -248,6 +248,24 @@ channels: [{name: C, axes: [X], spindles: [S1]}]
             "axes[1].address");
 }
 
+TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][0]["homing"]["method"] = 37;
+    r["axes"][0]["homing"]["offset"] = -12.5;
+  }));
+  const AxisConfig& x = config.axes[0];
+  EXPECT_TRUE(x.has_homing);
+  EXPECT_EQ(x.homing_method, 37);
+  EXPECT_DOUBLE_EQ(x.home_offset, -12.5);
+  EXPECT_FALSE(config.axes[1].has_homing);
+  EXPECT_EQ(axis_bits_per_cycle(x), 2 * can_frame_bits(7));
+  EXPECT_EQ(axis_bits_per_cycle(config.axes[1]), 2 * can_frame_bits(6));
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["homing"]["method"] = 38; })),
+            "axes[0].homing.method");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["homing"]["speed"] = 3; })),
+            "axes[0].homing.speed");
+}
+
 TEST(MachineConfig, MotionAndLimitKeys) {
   const MachineConfig config = parse_machine_yaml(R"(
 machine: {name: m}

@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 namespace mcnc::drivesim {
 namespace {
@@ -223,6 +224,72 @@ TEST(SpindleModes, TheNodeSwitchesCsvToCspAndBackWithoutAJump) {
   }
   EXPECT_EQ(node.output().mode_display, axisnode::kModeCsv);
   EXPECT_NEAR(bus.drive().velocity(), -1200.0, 1e-3);
+  EXPECT_EQ(node.output().alarm, axisnode::AxisAlarm::none);
+}
+
+// An axis that homes at start-up: the node walks the drive to operation in homing mode,
+// raises controlword bit 4, sees homing attained, switches to CSP and takes over at the home
+// position, and only then is enabled for its owner.
+TEST(HomingAxis, HomesAtStartThenFollowsInCsp) {
+  DriveParams p = spindle_params();
+  p.counts_per_unit = 10000.0;
+  p.initial_position = 12.5;
+  p.units_per_rev = 10.0;
+  p.max_velocity = 200.0;
+  SimulatedDrive drive(p, kCycle);
+  drive.power_on();
+  drive.on_nmt(canopen::NmtCommand::start);
+  const auto write = [&](std::uint16_t index, std::uint32_t v, std::uint8_t size) {
+    const std::uint8_t b[4] = {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8),
+                               static_cast<std::uint8_t>(v >> 16),
+                               static_cast<std::uint8_t>(v >> 24)};
+    ASSERT_EQ(drive.objects().write(index, 0, b, size), 0U);
+  };
+  write(0x6098, 37, 1);
+  write(0x607C, static_cast<std::uint32_t>(500000), 4);  // home is 50 mm
+  write(0x6060, 6, 1);
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.homing = true;
+  axisnode::AxisNodeController node(setup);
+  canopen::TxPdoCsp t{};
+  bool have = false;
+  std::vector<std::uint16_t> controlwords;
+  std::uint64_t enabled_at = 0;
+  for (std::uint64_t c = 0; c < 40; ++c) {
+    axisnode::AxisNodeInput in;
+    in.have_setpoint = true;
+    in.setpoint_valid = node.output().enabled;
+    in.setpoint_pos = 50.0;
+    in.have_tpdo = have;
+    in.statusword = t.statusword;
+    in.position_counts = t.position_actual;
+    in.mode_display = drive.objects().mode();
+    const auto& out = node.cycle(c, in);
+    if (controlwords.empty() || controlwords.back() != out.controlword) {
+      controlwords.push_back(out.controlword);
+    }
+    if (out.enabled && enabled_at == 0) {
+      enabled_at = c;
+      EXPECT_DOUBLE_EQ(out.cmd, 50.0);  // taken over at home, no jump
+      EXPECT_TRUE(out.homed);
+    }
+    RpdoValues v;
+    v.controlword = out.controlword;
+    v.has_controlword = true;
+    v.target_position = out.target_counts;
+    v.has_target_position = true;
+    v.mode = out.mode;
+    v.has_mode = true;
+    drive.on_rpdo(v);
+    t = drive.on_sync();
+    have = true;
+  }
+  // Enable sequence, then bit 4 for the homing, then plain enable operation in CSP.
+  EXPECT_EQ(controlwords,
+            (std::vector<std::uint16_t>{0x0000, 0x0006, 0x0007, 0x000F, 0x001F, 0x000F}));
+  EXPECT_GT(enabled_at, 0U);
+  EXPECT_EQ(drive.objects().mode(), 8);
+  EXPECT_NEAR(drive.position(), 50.0, 1e-9);  // homing moved the value, not the motor
   EXPECT_EQ(node.output().alarm, axisnode::AxisAlarm::none);
 }
 

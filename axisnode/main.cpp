@@ -125,6 +125,16 @@ int main(int argc, char** argv) {
           static_cast<std::int32_t>(std::llround(axis->home_offset * axis->counts_per_unit));
     }
     link.set_pdo_layout(spindle || axis->has_homing, spindle);
+    startup.heartbeat_ms = static_cast<std::uint16_t>(axis->heartbeat_ms);
+    startup.quick_stop_deceleration = static_cast<std::uint32_t>(
+        std::llround(axis->quick_stop_deceleration * axis->counts_per_unit));
+    if (axis->tpdo2_velocity) {
+      startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x606C, 0, 32};
+    }
+    if (axis->tpdo2_following_error) {
+      startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x60F4, 0, 32};
+    }
+    link.set_tpdo2(axis->tpdo2_velocity, axis->tpdo2_following_error);
     if (const auto error = link.bring_up(startup, 10s)) {
       spdlog::error("drive on {}: {}", bus->uri, *error);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
@@ -249,11 +259,14 @@ int main(int argc, char** argv) {
       fb.cycle(cycle);
       fb.cmd(out.cmd);
       fb.act(out.act);
-      fb.vel(out.vel);
+      // The drive's own velocity and following error when TPDO2 carries them.
+      fb.vel(axis->tpdo2_velocity ? tpdo.velocity_actual / axis->counts_per_unit : out.vel);
       fb.statusword(in.statusword);
       fb.drive_state(to_wire(out.drive_state));
       fb.enabled(out.enabled);
-      fb.following_error(out.cmd - out.act);
+      fb.following_error(axis->tpdo2_following_error
+                             ? tpdo.following_error_actual / axis->counts_per_unit
+                             : out.cmd - out.act);
       fb.last_emcy(link.last_emcy());
       fb.mode_display(out.mode_display);
       fb.alarm(out.alarm != axisnode::AxisAlarm::none);

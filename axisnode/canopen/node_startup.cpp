@@ -43,6 +43,8 @@ const char* object_name(std::uint16_t index) noexcept {
       return "target position";
     case 0x607C:
       return "home offset";
+    case 0x6085:
+      return "quick stop deceleration";
     case 0x6098:
       return "homing method";
     case 0x60F4:
@@ -72,6 +74,9 @@ NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
         add(list.writes[i].index, list.writes[i].sub, list.writes[i].value, list.writes[i].size);
       }
     }
+  }
+  if (config.quick_stop_deceleration != 0) {
+    add(0x6085, 0, config.quick_stop_deceleration, 4);
   }
   if (config.homing_method != 0) {
     add(0x6098, 0, static_cast<std::uint8_t>(config.homing_method), 1);

@@ -17,10 +17,11 @@ struct NodeStartupConfig {
   std::uint32_t device_type = 0x00020192;  // CiA 402 servo drive; 0: not checked
   std::uint16_t heartbeat_ms = 100;        // the node's producer time (0x1017); 0: off
   AxisPdos pdos = axis_pdos(false, false, false);
-  std::int8_t mode = 8;                      // 0x6060: 8 CSP, 9 CSV, 6 homing
-  std::int8_t homing_method = 0;             // 0x6098 written when not 0 (with 0x607C)
-  std::int32_t home_offset = 0;              // 0x607C, counts
-  std::uint64_t bootup_timeout_us = 500000;  // per attempt; the reset is repeated
+  std::int8_t mode = 8;                       // 0x6060: 8 CSP, 9 CSV, 6 homing
+  std::int8_t homing_method = 0;              // 0x6098 written when not 0 (with 0x607C)
+  std::int32_t home_offset = 0;               // 0x607C, counts
+  std::uint32_t quick_stop_deceleration = 0;  // 0x6085 written when not 0, counts/s^2
+  std::uint64_t bootup_timeout_us = 500000;   // per attempt; the reset is repeated
   int bootup_attempts = 4;
   std::uint64_t sdo_timeout_us = 100000;
 };

@@ -303,6 +303,8 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::int32_t>(out, home_offset_);
     case 0x6098:
       return put<std::int8_t>(out, homing_method_);
+    case 0x6085:
+      return put<std::uint32_t>(out, quick_stop_dec_);
     case 0x60FF:
       return put<std::int32_t>(out, target_velocity_);
     default:
@@ -381,6 +383,15 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
         return e;
       }
       home_offset_ = static_cast<std::int32_t>(value);
+      return 0;
+    case 0x6085:
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      if (value == 0) {
+        return abort::kInvalidValue;  // a quick stop must stop
+      }
+      quick_stop_dec_ = value;
       return 0;
     case 0x6098: {
       if (const std::uint32_t e = expect_size(size, 1)) {

@@ -73,6 +73,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   [[nodiscard]] std::int32_t home_offset() const noexcept { return home_offset_; }
   [[nodiscard]] std::int8_t homing_method() const noexcept { return homing_method_; }
   [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
+  // 0x6085 quick stop deceleration, counts/s^2 (the drive's default until a master writes it).
+  [[nodiscard]] std::uint32_t quick_stop_deceleration() const noexcept { return quick_stop_dec_; }
   [[nodiscard]] const Pdo& rpdo(std::size_t n) const noexcept { return rpdo_[n]; }
   [[nodiscard]] const Pdo& tpdo(std::size_t n) const noexcept { return tpdo_[n]; }
   DriveLiveValues live{};
@@ -89,6 +91,7 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::int32_t home_offset_ = 0;    // counts (0x607C)
   std::int8_t homing_method_ = 37;  // 0x6098: 35/37, the current position is home
   std::uint16_t heartbeat_ms_ = 0;
+  std::uint32_t quick_stop_dec_ = 0;
   std::uint16_t controlword_ = 0;
   std::int32_t target_position_ = 0;
   std::int32_t target_velocity_ = 0;

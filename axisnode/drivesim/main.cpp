@@ -2,6 +2,7 @@
 // parse the command line, load the machine file, open the bus, pump frames through the
 // DriveBusSimulator until SIGTERM/SIGINT.
 #include "axisnode/canopen/bus_filters.hpp"
+#include "axisnode/canopen/sdo_abort.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"
@@ -90,6 +91,20 @@ int main(int argc, char** argv) {
     params.friction = axis.drive.friction;
     params.torque_limit = axis.drive.torque_limit;
     params.velocity_bandwidth_hz = axis.drive.velocity_bandwidth_hz;
+    for (const config::DriveObjectDefault& o : axis.drive.objects) {
+      params.objects[params.object_count++] = drivesim::ObjectDefault{
+          static_cast<std::uint16_t>(o.index), static_cast<std::uint8_t>(o.sub), o.value};
+    }
+    // The defaults must fit the drive's dictionary: a wrong one is a machine-file error.
+    drivesim::SimulatedDrive probe(params, machine.cycle_s());
+    drivesim::ObjectDefault failed;
+    if (const std::uint32_t code = probe.apply_defaults(&failed)) {
+      std::fprintf(stderr,
+                   "mcnc-drivesim: axis %s: drive.objects 0x%04X:%02X = %lld was refused: %s\n",
+                   axis.name.c_str(), failed.index, failed.sub,
+                   static_cast<long long>(failed.value), canopen::sdo_abort_text(code));
+      return 2;
+    }
     drives.push_back(params);
   }
 

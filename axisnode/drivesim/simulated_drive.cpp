@@ -1,5 +1,7 @@
 #include "axisnode/drivesim/simulated_drive.hpp"
 
+#include "axisnode/canopen/sdo_abort.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,6 +19,41 @@ SimulatedDrive::SimulatedDrive(const DriveParams& params, double cycle_s) noexce
       target_(params.initial_position),
       objects_(params.node_id) {
   previous_target_ = params.initial_position;
+  (void)apply_defaults();  // the simulator's shell checks them at start (apply_defaults)
+}
+
+std::uint32_t SimulatedDrive::apply_defaults(ObjectDefault* failed) noexcept {
+  const auto write = [&](const ObjectDefault& d) -> std::uint32_t {
+    canopen::SdoValue current;
+    if (const std::uint32_t e = objects_.read(d.index, d.sub, current)) {
+      return e;
+    }
+    std::array<std::uint8_t, 8> bytes{};
+    const auto raw = static_cast<std::uint64_t>(d.value);
+    for (std::size_t b = 0; b < current.size && b < bytes.size(); ++b) {
+      bytes[b] = static_cast<std::uint8_t>(raw >> (8 * b));
+    }
+    return current.size > 4 ? canopen::sdo_abort::kInvalidValue
+                            : objects_.write(d.index, d.sub, bytes.data(), current.size);
+  };
+  const double counts = params_.quick_stop_decel * params_.counts_per_unit;
+  const ObjectDefault decel{0x6085, 0,
+                            static_cast<std::int64_t>(std::clamp(counts, 1.0, 4294967295.0))};
+  if (const std::uint32_t e = write(decel)) {
+    if (failed != nullptr) {
+      *failed = decel;
+    }
+    return e;
+  }
+  for (std::size_t i = 0; i < params_.object_count && i < params_.objects.size(); ++i) {
+    if (const std::uint32_t e = write(params_.objects[i])) {
+      if (failed != nullptr) {
+        *failed = params_.objects[i];
+      }
+      return e;
+    }
+  }
+  return 0;
 }
 
 std::uint8_t SimulatedDrive::node_id() const noexcept {
@@ -60,6 +97,7 @@ void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
       break;
     case NmtCommand::reset_node:
       objects_ = DriveObjects(params_.node_id);
+      (void)apply_defaults();
       device_ = cia402::DeviceStateMachine{};
       device_.power_on();
       latched_ = {};
@@ -207,7 +245,9 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
         command = std::clamp(velocity_target_, -params_.max_velocity, params_.max_velocity);
         break;
       case Loop::ramp_down: {
-        const double step = params_.quick_stop_decel * h;
+        // 0x6085, as the master configured it (or the drive's default).
+        const double step =
+            static_cast<double>(objects_.quick_stop_deceleration()) / params_.counts_per_unit * h;
         const double before = ramp_;
         ramp_ = std::abs(ramp_) <= step ? 0.0 : ramp_ - std::copysign(step, ramp_);
         command = ramp_;

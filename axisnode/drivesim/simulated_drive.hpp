@@ -6,6 +6,7 @@
 #include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/drive_objects.hpp"
 
+#include <array>
 #include <cstdint>
 
 namespace mcnc::drivesim {
@@ -16,6 +17,14 @@ enum class DriveFault : std::uint8_t {
   overcurrent,      // EMCY 0x2310, CiA 402 fault (fault reaction: quick-stop ramp)
   following_error,  // EMCY 0x8611, CiA 402 fault
   heartbeat_stop,   // the heartbeat producer falls silent; everything else goes on
+};
+
+// A value the drive's object dictionary holds after power-on and reset node, like an EDS
+// file's DefaultValue (numeric objects up to 32 bits).
+struct ObjectDefault {
+  std::uint16_t index = 0;
+  std::uint8_t sub = 0;
+  std::int64_t value = 0;
 };
 
 struct DriveParams {
@@ -31,6 +40,9 @@ struct DriveParams {
   double friction = 0.001;               // B, N m s/rad (viscous)
   double torque_limit = 10.0;            // N m
   double velocity_bandwidth_hz = 200.0;  // the velocity loop (PI) is tuned for this
+  // Object defaults from the machine file (drive.objects), applied after the built-in ones.
+  std::array<ObjectDefault, 16> objects{};
+  std::size_t object_count = 0;
 };
 
 // One drive in cyclic synchronous position mode.
@@ -89,6 +101,10 @@ class SimulatedDrive {
     fault_at_ = at_sync;
   }
   // The EMCY the drive has to send (once), error code 0 when none.
+  // Writes the defaults into the object dictionary (power-on, reset node): 0x6085 from
+  // quick_stop_decel, then `objects`. The SDO abort code of the first that fails, 0 when all
+  // were taken; `failed` names it.
+  std::uint32_t apply_defaults(ObjectDefault* failed = nullptr) noexcept;
   [[nodiscard]] canopen::Emcy take_emcy() noexcept {
     const canopen::Emcy e = emcy_;
     emcy_ = {};

@@ -106,15 +106,44 @@ void DriveLink::receive_loop() {
       case canopen::FrameKind::tpdo1:
         if (cls.node == node_id_) {
           if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
+            const bool complete = !tpdo2_velocity_ && !tpdo2_following_error_;
+            tpdo1_pending_ = !complete;
             wakeup_.update([&] {
               tpdo_statusword_ = pdo->statusword;
               tpdo_position_ = pdo->position_actual;
               tpdo_mode_display_ = pdo->mode_display;
-              ++tpdo_count_;
+              if (complete) {
+                ++tpdo_count_;
+              }
             });
           } else {
             ++malformed_;
           }
+        }
+        break;
+      case canopen::FrameKind::tpdo2:
+        if (cls.node == node_id_ && (tpdo2_velocity_ || tpdo2_following_error_)) {
+          const std::size_t want = (tpdo2_velocity_ ? 4U : 0U) + (tpdo2_following_error_ ? 4U : 0U);
+          if (frame.dlc != want) {
+            ++malformed_;
+            break;
+          }
+          const auto i32 = [&](std::size_t at) {
+            return static_cast<std::int32_t>(static_cast<std::uint32_t>(frame.data[at]) |
+                                             static_cast<std::uint32_t>(frame.data[at + 1]) << 8 |
+                                             static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
+                                             static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
+          };
+          const bool pending = tpdo1_pending_;
+          tpdo1_pending_ = false;
+          wakeup_.update([&] {
+            tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
+            tpdo2_following_error_value_ =
+                tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
+            if (pending) {
+              ++tpdo_count_;  // the answer to this SYNC is complete
+            }
+          });
         }
         break;
       case canopen::FrameKind::heartbeat:
@@ -294,6 +323,8 @@ TpdoSample DriveLink::tpdo() noexcept {
     sample.pdo.position_actual = tpdo_position_.load();
     sample.pdo.mode_display = tpdo_mode_display_.load();
     sample.pdo.has_mode_display = with_mode_;
+    sample.velocity_actual = tpdo2_velocity_value_.load();
+    sample.following_error_actual = tpdo2_following_error_value_.load();
     sample.count = tpdo_count_.load();
   });
   return sample;

@@ -25,7 +25,9 @@ namespace mcnc::axisnode {
 
 struct TpdoSample {
   canopen::TxPdoCsp pdo{};
-  std::uint64_t count = 0;  // TPDOs received so far
+  std::uint64_t count = 0;           // complete answers so far (TPDO1, and TPDO2 when mapped)
+  std::int32_t velocity_actual = 0;  // 0x606C from TPDO2, counts/s (when mapped)
+  std::int32_t following_error_actual = 0;  // 0x60F4 from TPDO2, counts (when mapped)
 };
 
 // What the node sends its drive each cycle. `mode` and `target_velocity_counts` go out only
@@ -66,6 +68,12 @@ class DriveLink {
   // Stops with stop_sync_timer() or the link.
   void start_sync_timer(const canopen::SyncSchedule& schedule);
   void stop_sync_timer();
+  // TPDO2 as the start-up mapped it (0x606C, then 0x60F4): set before bring_up(). An answer
+  // to a SYNC counts as complete once both TPDOs are in.
+  void set_tpdo2(bool velocity_actual, bool following_error) noexcept {
+    tpdo2_velocity_ = velocity_actual;
+    tpdo2_following_error_ = following_error;
+  }
   [[nodiscard]] bool sync_timer_running() const noexcept { return sync_thread_.joinable(); }
   [[nodiscard]] std::uint64_t syncs_skipped() const noexcept { return syncs_skipped_.load(); }
   // How late each timed SYNC went out (ns after its due time), the last kLatenessRecords of
@@ -122,6 +130,11 @@ class DriveLink {
   std::atomic<std::int32_t> tpdo_position_{0};
   std::atomic<std::int8_t> tpdo_mode_display_{0};
   bool with_mode_ = false;
+  bool tpdo2_velocity_ = false;
+  bool tpdo2_following_error_ = false;
+  bool tpdo1_pending_ = false;  // TPDO1 in, its TPDO2 not yet (receive thread only)
+  std::atomic<std::int32_t> tpdo2_velocity_value_{0};
+  std::atomic<std::int32_t> tpdo2_following_error_value_{0};
   bool with_velocity_ = false;
   // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
   std::bitset<128> rpdo_seen_;

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -195,7 +196,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
 DriveSimConfig parse_drive(const YamlValue& value) {
   const YamlMap map =
       value.map({"time_constant_s", "max_velocity", "quick_stop_decel", "units_per_rev", "inertia",
-                 "friction", "torque_limit", "velocity_bandwidth_hz"});
+                 "friction", "torque_limit", "velocity_bandwidth_hz", "objects"});
   DriveSimConfig drive;
   read_optional_positive(map, "time_constant_s", drive.time_constant_s);
   read_optional_positive(map, "max_velocity", drive.max_velocity);
@@ -205,14 +206,39 @@ DriveSimConfig parse_drive(const YamlValue& value) {
   read_optional_positive(map, "friction", drive.friction);
   read_optional_positive(map, "torque_limit", drive.torque_limit);
   read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
+  if (auto objects = map.optional("objects")) {
+    const std::vector<YamlValue> list = objects->list();
+    if (list.size() > 16) {
+      objects->fail("at most 16 objects");
+    }
+    for (const YamlValue& entry : list) {
+      const YamlMap o = entry.map({"index", "sub", "value"});
+      DriveObjectDefault d;
+      const YamlValue index = o.required("index");
+      const std::string text = index.string();
+      char* end = nullptr;
+      const long parsed = text.rfind("0x", 0) == 0 && text.size() == 6
+                              ? std::strtol(text.c_str() + 2, &end, 16)
+                              : -1;
+      if (parsed < 0x1000 || end == nullptr || *end != '\0') {
+        index.fail("index must be 0x1000..0xFFFF in hex (0x6085), got '" + text + "'");
+      }
+      d.index = static_cast<int>(parsed);
+      if (auto sub = o.optional("sub")) {
+        d.sub = read_int(*sub, 0, 255);
+      }
+      d.value = o.required("value").integer(-2147483648LL, 4294967295LL);
+      drive.objects.push_back(d);
+    }
+  }
   return drive;
 }
 
 AxisConfig parse_axis(const YamlValue& value) {
-  const YamlMap map =
-      value.map({"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit",
-                 "rapid_rate", "max_feed", "acceleration", "jerk", "in_position", "drive",
-                 "soft_limits", "following_error_limit", "homing"});
+  const YamlMap map = value.map(
+      {"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit", "rapid_rate",
+       "max_feed", "acceleration", "jerk", "in_position", "drive", "soft_limits",
+       "following_error_limit", "homing", "heartbeat_ms", "quick_stop_deceleration", "tpdo2"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -264,6 +290,22 @@ AxisConfig parse_axis(const YamlValue& value) {
   }
   read_optional_positive(map, "in_position", axis.in_position);
   read_optional_positive(map, "following_error_limit", axis.following_error_limit);
+  read_optional_int(map, "heartbeat_ms", 0, 65535, axis.heartbeat_ms);
+  if (auto decel = map.optional("quick_stop_deceleration")) {
+    axis.quick_stop_deceleration = decel->positive_number();
+  }
+  if (auto tpdo2 = map.optional("tpdo2")) {
+    for (const YamlValue& entry : tpdo2->list()) {
+      const std::string what = entry.string();
+      if (what == "velocity_actual") {
+        axis.tpdo2_velocity = true;
+      } else if (what == "following_error_actual") {
+        axis.tpdo2_following_error = true;
+      } else {
+        entry.fail("tpdo2 maps velocity_actual and following_error_actual, got '" + what + "'");
+      }
+    }
+  }
   if (auto homing = map.optional("homing")) {
     if (axis.type == AxisType::spindle) {
       homing->fail("a spindle is not homed (its angle is set by orientation)");
@@ -518,10 +560,12 @@ int bus_bits_per_cycle(int axis_count, int spindle_count) noexcept {
 }
 
 int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
+  const int tpdo2_bytes = (axis.tpdo2_velocity ? 4 : 0) + (axis.tpdo2_following_error ? 4 : 0);
+  const int tpdo2 = tpdo2_bytes > 0 ? can_frame_bits(tpdo2_bytes) : 0;
   if (axis.type == AxisType::spindle) {
-    return 2 * can_frame_bits(7) + can_frame_bits(4);
+    return 2 * can_frame_bits(7) + can_frame_bits(4) + tpdo2;
   }
-  return 2 * can_frame_bits(axis.has_homing ? 7 : 6);
+  return 2 * can_frame_bits(axis.has_homing ? 7 : 6) + tpdo2;
 }
 
 double bus_load(int axis_count, int bitrate, int cycle_us, int spindle_count) noexcept {

@@ -25,6 +25,13 @@ class ConfigError : public std::runtime_error {
 enum class AxisType { linear, rotary, spindle };
 
 // Parameters of the simulated drive behind an axis (mcnc-drivesim only).
+// One entry of a simulated drive's object dictionary defaults (like an EDS DefaultValue).
+struct DriveObjectDefault {
+  int index = 0;  // 0x1000..0xFFFF
+  int sub = 0;
+  std::int64_t value = 0;  // numeric objects of up to 32 bits
+};
+
 struct DriveSimConfig {
   double time_constant_s = 0.004;    // position loop gain 1 / tau: following error ~ v * tau
   double max_velocity = 500.0;       // units/s, the drive's own limit
@@ -34,6 +41,7 @@ struct DriveSimConfig {
   double friction = 0.001;           // N m s/rad, viscous
   double torque_limit = 10.0;        // N m
   double velocity_bandwidth_hz = 200.0;
+  std::vector<DriveObjectDefault> objects;  // at most 16
 };
 
 struct AxisConfig {
@@ -55,6 +63,13 @@ struct AxisConfig {
   double soft_limit_min = 0.0;       // units (physical: radius on a diameter axis)
   double soft_limit_max = 0.0;
   double following_error_limit = 2.0;  // units; more between command and actual: alarm
+  // CANopen settings the master writes at start-up: the drive's heartbeat producer time
+  // (0x1017, ms; 0: none, nothing watched), its quick stop deceleration (0x6085, units/s^2; 0:
+  // the drive keeps its own), and what TPDO2 carries besides TPDO1 (0x606C, 0x60F4).
+  int heartbeat_ms = 100;
+  double quick_stop_deceleration = 0.0;
+  bool tpdo2_velocity = false;
+  bool tpdo2_following_error = false;
   // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
   bool has_homing = false;
   int homing_method = 0;

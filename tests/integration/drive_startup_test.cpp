@@ -16,14 +16,29 @@ using namespace std::chrono_literals;
 
 namespace {
 
-// Adds `line` (indented as an axis key) after every axis's in_position line of the machine file.
-void add_to_each_axis(const TestMachine& machine, const std::string& line) {
+// Adds `line` (indented as an axis key) after every axis's in_position line of the machine file
+// (only the first axis's with `first_only`).
+void add_to_each_axis(const TestMachine& machine, const std::string& line,
+                      bool first_only = false) {
   std::ifstream in(machine.path());
   std::stringstream text;
   text << in.rdbuf();
   in.close();
   std::ofstream(machine.path()) << std::regex_replace(
-      text.str(), std::regex("(\\n    in_position: [^\\n]*)"), "$1\n    " + line);
+      text.str(), std::regex("(\\n    in_position: [^\\n]*)"), "$1\n    " + line,
+      first_only ? std::regex_constants::format_first_only : std::regex_constants::format_default);
+}
+
+// The last commanded-and-reached positions of X1 and Z1 in the trace (the axis nodes' samples
+// and the channel's block ends) are those of xz_move.nc's last block: X60 (r30) Z10.
+void expect_xz_move_end(const std::vector<nlohmann::json>& trace) {
+  double x1 = 0.0;
+  double z1 = 0.0;
+  for (const auto& p : events(trace, "pos")) {
+    (p["axis"] == "X1" ? x1 : z1) = p["act"].get<double>();
+  }
+  EXPECT_NEAR(x1, 30.0, 0.001);
+  EXPECT_NEAR(z1, 10.0, 0.001);
 }
 
 // Runs `program` (source tree path) on CH1 to a clean end; the trace.
@@ -199,13 +214,38 @@ TEST(DriveStartup, AxesHomeAtStartThenRunTheProgramFromTheirHome) {
       EXPECT_NEAR(p["act"].get<double>(), 50.0, 0.5) << p.dump();  // just set off from home
     }
   }
-  double x1 = 0.0;
-  double z1 = 0.0;
-  for (const auto& p : events(trace, "pos")) {
-    (p["axis"] == "X1" ? x1 : z1) = p["act"].get<double>();
+  expect_xz_move_end(trace);
+}
+
+TEST(DriveStartup, CanopenSettingsFromTheMachineFileTakeEffect) {
+  // X1's TPDO2 with the drive's velocity and following error (on both axes the bus would be
+  // over 70 %), a 50 ms heartbeat and a quick stop deceleration written at start-up: the
+  // lockstep run waits for both TPDOs of every SYNC and ends on its points.
+  TestMachine machine("small_lathe.yaml", 41);
+  add_to_each_axis(machine, "tpdo2: [velocity_actual, following_error_actual]", true);
+  add_to_each_axis(machine, "heartbeat_ms: 50\n    quick_stop_deceleration: 3000");
+  const auto trace = run_to_clean_end(machine, "launch/programs/xz_move.nc");
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  expect_xz_move_end(trace);
+
+  // With the 50 ms heartbeat, a drive falling silent is lost within 75 cycles of its last.
+  TestMachine silent("small_lathe.yaml", 42);
+  add_to_each_axis(silent, "heartbeat_ms: 50");
+  const std::string trace_file = silent.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", silent.path(), "--program",
+                           "CH1=" + source("launch/programs/xz_move.nc"), "--trace", trace_file,
+                           "--drive-fault", "can0:2:heartbeat_stop@1500"},
+                          -1, 180s);
+  EXPECT_EQ(r.exit_code, 1);
+  bool found = false;
+  for (const auto& a : events(read_trace(trace_file), "alarm", "Z1")) {
+    found = found || a["number"] == 2006;
+    if (a["number"] == 2006) {
+      EXPECT_GE(a["cycle"].get<std::uint64_t>(), 1500U);
+      EXPECT_LE(a["cycle"].get<std::uint64_t>(), 1450U + 76U + 20U);
+    }
   }
-  EXPECT_NEAR(x1, 30.0, 0.001);
-  EXPECT_NEAR(z1, 10.0, 0.001);
+  EXPECT_TRUE(found);
 }
 
 TEST(DriveCsp, TenThousandCyclesWithinAFollowingErrorBound) {

@@ -129,11 +129,14 @@ TEST(NodeStartup, AHomingAxisGetsItsMethodAndOffsetThenModeSix) {
   config.mode = 6;
   config.homing_method = 37;
   config.home_offset = -5000;
+  config.quick_stop_deceleration = 20000000;
   NodeStartup s(config);
   run_startup(s, od, false);
   ASSERT_EQ(s.status(), NodeStartup::Status::done) << s.error();
   ASSERT_GE(od.writes.size(), 3U);
   const auto n = od.writes.size();
+  EXPECT_EQ(od.writes[n - 4].index, 0x6085);  // quick stop deceleration, counts/s^2
+  EXPECT_EQ(od.writes[n - 4].value, 20000000U);
   EXPECT_EQ(od.writes[n - 3].index, 0x6098);
   EXPECT_EQ(od.writes[n - 3].value, 37U);
   EXPECT_EQ(od.writes[n - 2].index, 0x607C);

@@ -266,6 +266,47 @@ TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {
             "axes[0].homing.speed");
 }
 
+TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][0]["heartbeat_ms"] = 50;
+    r["axes"][0]["quick_stop_deceleration"] = 2500;
+    r["axes"][0]["tpdo2"].push_back("velocity_actual");
+    r["axes"][0]["tpdo2"].push_back("following_error_actual");
+    YAML::Node o;
+    o["index"] = "0x6085";
+    o["value"] = 30000000;
+    r["axes"][0]["drive"]["objects"].push_back(o);
+  }));
+  const AxisConfig& x = config.axes[0];
+  EXPECT_EQ(x.heartbeat_ms, 50);
+  EXPECT_DOUBLE_EQ(x.quick_stop_deceleration, 2500.0);
+  EXPECT_TRUE(x.tpdo2_velocity);
+  EXPECT_TRUE(x.tpdo2_following_error);
+  ASSERT_EQ(x.drive.objects.size(), 1U);
+  EXPECT_EQ(x.drive.objects[0].index, 0x6085);
+  EXPECT_EQ(x.drive.objects[0].sub, 0);
+  EXPECT_EQ(x.drive.objects[0].value, 30000000);
+  EXPECT_EQ(config.axes[1].heartbeat_ms, 100);  // the default
+  // TPDO2 with both objects: one 8-byte frame more per cycle.
+  EXPECT_EQ(axis_bits_per_cycle(x), 2 * can_frame_bits(6) + can_frame_bits(8));
+
+  EXPECT_EQ(
+      rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["tpdo2"].push_back("torque"); })),
+      "axes[0].tpdo2[0]");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["heartbeat_ms"] = 70000; })),
+            "axes[0].heartbeat_ms");
+  for (const char* bad : {"6085", "0x60", "0xZZZZ", "0x0FFF"}) {
+    EXPECT_EQ(rejection_path(mutated([&](YAML::Node& r) {
+                YAML::Node o;
+                o["index"] = bad;
+                o["value"] = 1;
+                r["axes"][0]["drive"]["objects"].push_back(o);
+              })),
+              "axes[0].drive.objects[0].index")
+        << bad;
+  }
+}
+
 TEST(MachineConfig, MotionAndLimitKeys) {
   const MachineConfig config = parse_machine_yaml(R"(
 machine: {name: m}

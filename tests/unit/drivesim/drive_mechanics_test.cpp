@@ -161,5 +161,49 @@ TEST(DriveMechanics, QuickStopRampsAtItsDecelerationAndStays) {
   EXPECT_NEAR(d.position(), rest, 1e-9);
 }
 
+TEST(DriveMechanics, TheQuickStopRampIsTheDecelerationInTheObjectDictionary) {
+  // The drive's own default (quick_stop_decel) until a master writes 0x6085; 10 000 units/s^2
+  // stops 500 units/s in 50 ms instead of 100.
+  SimulatedDrive d = enabled(params());
+  EXPECT_EQ(d.objects().quick_stop_deceleration(), 5000U * 10000U);
+  const std::uint32_t v = 10000U * 10000U;
+  const std::uint8_t bytes[4] = {static_cast<std::uint8_t>(v), static_cast<std::uint8_t>(v >> 8),
+                                 static_cast<std::uint8_t>(v >> 16),
+                                 static_cast<std::uint8_t>(v >> 24)};
+  ASSERT_EQ(d.objects().write(0x6085, 0, bytes, 4), 0U);
+  for (int n = 0; n < 100; ++n) {
+    cycle(d, 1000.0);
+  }
+  int cycles = 0;
+  while (d.velocity() != 0.0 && cycles < 1000) {
+    cycle(d, 1000.0, 0x0002);
+    ++cycles;
+  }
+  EXPECT_GE(cycles, 50);
+  EXPECT_LE(cycles, 60);
+}
+
+TEST(DriveMechanics, ObjectDefaultsAreAppliedAtPowerOnAndAfterResetNode) {
+  DriveParams p = params();
+  p.objects[0] = ObjectDefault{0x607C, 0, -1234};  // home offset
+  p.objects[1] = ObjectDefault{0x6098, 0, 35};     // homing method
+  p.object_count = 2;
+  SimulatedDrive d(p, kCycle);
+  EXPECT_EQ(d.objects().home_offset(), -1234);
+  EXPECT_EQ(d.objects().homing_method(), 35);
+  d.power_on();
+  d.on_nmt(canopen::NmtCommand::reset_node);
+  EXPECT_EQ(d.objects().home_offset(), -1234);
+  // A value the dictionary refuses, or an object it does not have, is reported.
+  p.objects[1] = ObjectDefault{0x6098, 0, 12};
+  SimulatedDrive bad(p, kCycle);
+  ObjectDefault failed;
+  EXPECT_NE(bad.apply_defaults(&failed), 0U);
+  EXPECT_EQ(failed.index, 0x6098);
+  p.objects[1] = ObjectDefault{0x2000, 0, 1};
+  SimulatedDrive unknown(p, kCycle);
+  EXPECT_EQ(unknown.apply_defaults(&failed), 0x06020000U);  // object does not exist
+}
+
 }  // namespace
 }  // namespace mcnc::drivesim

@@ -15,6 +15,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -173,7 +174,11 @@ int main(int argc, char** argv) {
     setup.soft_max = axis->soft_limit_max;
     setup.following_error_limit = axis->following_error_limit;
     // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles.
-    setup.heartbeat_cycles = static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us);
+    // At least one cycle: a heartbeat faster than the cycle is still watched.
+    setup.heartbeat_cycles =
+        startup.heartbeat_ms == 0
+            ? 0
+            : std::max(1, static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us));
     setup.spindle = spindle;
     setup.homing = axis->has_homing;
     axisnode::AxisNodeController controller(setup);

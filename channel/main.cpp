@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     setup.in_position.push_back(a->in_position);
   }
   setup.axis_count = axes.size();
+  setup.spindle_count = ch->spindles.size();
   setup.cycle_s = machine.cycle_s();
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
@@ -173,7 +174,7 @@ int main(int argc, char** argv) {
       controller.request_start();
     }
 
-    std::vector<channel::AxisFeedbackView> views(axes.size());
+    std::vector<channel::AxisFeedbackView> views(fed.size());  // axes, then spindles
     std::vector<bool> reported_lost(fed.size(), false);
     bool estop_seen = false;
     // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
@@ -223,7 +224,7 @@ int main(int argc, char** argv) {
           if (fb == nullptr && !lockstep) {
             fb = feedback[i].latest();
           }
-          if (fb != nullptr && i < views.size()) {
+          if (fb != nullptr) {
             views[i] =
                 channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
           }

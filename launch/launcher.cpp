@@ -330,7 +330,10 @@ LaunchResult Launcher::run(
         bool all_done = true;
         for (const auto& p : list) {
           if (p.has_program) {
-            all_done = all_done && (p.ended || p.state == CH_ALARM);
+            // After a scripted operator, a channel left idle (reset and not started again) has
+            // nothing more to do either.
+            all_done = all_done && (p.ended || p.state == CH_ALARM ||
+                                    (!options_.operator_script.empty() && p.state == CH_IDLE));
           }
         }
         if (all_done) {

@@ -8,6 +8,8 @@ namespace mcnc::axisnode {
 namespace {
 constexpr std::uint16_t kHomingAttained = 0x1000;  // statusword bit 12 in homing mode
 constexpr std::uint16_t kHomingStart = 0x0010;     // controlword bit 4 in homing mode
+constexpr std::uint16_t kHomingError = 0x2000;     // statusword bit 13 in homing mode
+constexpr std::uint16_t kTargetReached = 0x0400;   // statusword bit 10
 }  // namespace
 
 const char* mode_name(std::int8_t mode) noexcept {
@@ -45,6 +47,8 @@ const char* to_text(AxisAlarm alarm) noexcept {
       return "setpoint beyond the axis's soft limits: quick stop";
     case AxisAlarm::following_error:
       return "following error above its limit: quick stop";
+    case AxisAlarm::homing_failed:
+      return "homing failed (the drive reports a homing error, or it did not end in time)";
   }
   return "unknown alarm";
 }
@@ -82,35 +86,40 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   const std::uint64_t elapsed = cycle > last_cycle_ ? cycle - last_cycle_ : 1;
   last_cycle_ = cycle;
   const auto deadline = static_cast<std::uint64_t>(setup_.deadline_cycles);
-  if (reset_requested_) {
-    reset_requested_ = false;
-    raised_ = 0;
-    out_.alarm = AxisAlarm::none;
-    out_.quick_stop = false;
-    following_ = false;
-    resetting_ = true;
-    reset_cycle_ = cycle;
-    last_tpdo_cycle_ = cycle;
-    last_setpoint_cycle_ = cycle;
-    heartbeat_.restart(cycle);
-  }
 
   // Drive side: what the drive reported for the last SYNC.
   if (in.have_tpdo) {
     last_tpdo_cycle_ = cycle;
-    const double act = in.position_counts / setup_.counts_per_unit;
-    // Homing attained: the position value jumped to the home position; the motor did not move.
-    const bool home_jump = setup_.homing && !homed_ && out_.mode_display == kModeHoming &&
-                           (in.statusword & kHomingAttained) != 0;
+    statusword_ = in.statusword;
+    // The position actual value is 32 bits and wraps (a spindle after a few thousand turns):
+    // the node counts on from the difference.
+    if (have_position_) {
+      counts_ += static_cast<std::int32_t>(static_cast<std::uint32_t>(in.position_counts) -
+                                           static_cast<std::uint32_t>(last_counts_));
+    } else {
+      counts_ = in.position_counts;
+    }
+    last_counts_ = in.position_counts;
+    const double act = static_cast<double>(counts_) / setup_.counts_per_unit;
+    const cia402::State state = cia402::decode_statusword(in.statusword);
+    // Homing attained (after the start this node gave, in operation): the position value
+    // jumped to the home position; the motor did not move.
+    const bool home_jump =
+        setup_.homing && !homed_ && homing_started_ && state == cia402::State::operation_enabled &&
+        out_.mode_display == kModeHoming && (in.statusword & kHomingAttained) != 0 &&
+        (in.statusword & kHomingError) == 0;
     out_.vel = have_position_ && !home_jump ? (act - out_.act) / setup_.cycle_s : 0.0;
     if (home_jump) {
       homed_ = true;
       out_.homed = true;
       requested_mode_ = kModeCsp;
     }
+    if (setup_.homing && !homed_ && out_.mode_display == kModeHoming &&
+        (in.statusword & kHomingError) != 0) {
+      raise(AxisAlarm::homing_failed);
+    }
     out_.act = act;
     have_position_ = true;
-    const cia402::State state = cia402::decode_statusword(in.statusword);
     out_.drive_state_changed = state != out_.drive_state;
     out_.drive_state = state;
     if ((setup_.spindle || setup_.homing) && in.mode_display != out_.mode_display) {
@@ -123,13 +132,32 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= deadline) {
     raise(AxisAlarm::drive_lost);
   }
-  const bool faulted = out_.drive_state == cia402::State::fault ||
-                       out_.drive_state == cia402::State::fault_reaction_active;
+
+  // An operator reset waits until the drive is at rest: a quick stop or a fault reaction
+  // finishes its ramp first (re-enabling a drive that still brakes would brake it at its
+  // torque limit instead).
+  if (reset_requested_ && drive_at_rest()) {
+    reset_requested_ = false;
+    raised_ = 0;
+    out_.alarm = AxisAlarm::none;
+    out_.quick_stop = false;
+    following_ = false;
+    resetting_ = out_.drive_state == cia402::State::fault;
+    reset_cycle_ = cycle;
+    last_tpdo_cycle_ = cycle;
+    last_setpoint_cycle_ = cycle;
+    homing_since_ = cycle;
+    heartbeat_.restart(cycle);
+  }
+  // One fault reset per operator reset: it ends when the drive leaves fault (a fault after
+  // that is a new one, alarmed at once) or when the drive stays in fault too long.
   if (resetting_ &&
-      (out_.drive_state == cia402::State::operation_enabled ||
+      (out_.drive_state != cia402::State::fault ||
        cycle - reset_cycle_ >= static_cast<std::uint64_t>(setup_.fault_reset_cycles))) {
     resetting_ = false;
   }
+  const bool faulted = out_.drive_state == cia402::State::fault ||
+                       out_.drive_state == cia402::State::fault_reaction_active;
   if (faulted && !resetting_) {
     raise(AxisAlarm::drive_fault);
   }
@@ -152,24 +180,38 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   }
 
   const bool drive_operating = out_.drive_state == cia402::State::operation_enabled;
+  if (drive_operating) {
+    was_enabled_ = true;  // from here on the drive's answers and the owner are watched
+  }
+  if (setup_.homing && !homed_ && drive_operating && !homing_started_ && homing_since_ == 0) {
+    homing_since_ = cycle;
+  }
+  if (setup_.homing && !homed_ && homing_since_ != 0 &&
+      cycle - homing_since_ >= static_cast<std::uint64_t>(setup_.homing_timeout_cycles)) {
+    raise(AxisAlarm::homing_failed);
+  }
   // A homing axis is the owner's once it is homed and in CSP.
   const bool operating =
       drive_operating && (!setup_.homing || (homed_ && out_.mode_display == kModeCsp));
   if (operating && !following_) {
     out_.cmd = out_.act;  // take over where the drive stands: no jump on enable
-    was_enabled_ = true;
   }
   following_ = operating;
 
   // A spindle: the mode its owner asks for goes out with the RPDO; the drive's display says
-  // when it runs in it.
+  // when it runs in it. The target velocity always says what the spindle should turn at, so
+  // the frame that switches to CSV carries the right one.
   if (setup_.spindle && in.have_setpoint && in.setpoint_valid) {
     requested_mode_ = in.setpoint_velocity ? kModeCsv : kModeCsp;
   }
   out_.mode = requested_mode_;
   const bool velocity_mode = setup_.spindle && out_.mode_display == kModeCsv;
-  if (velocity_mode && in.have_setpoint && following_ && !out_.quick_stop) {
-    out_.vel_cmd = in.setpoint_valid && in.setpoint_velocity ? in.setpoint_vel : out_.vel_cmd;
+  if (setup_.spindle && following_ && !out_.quick_stop) {
+    if (in.have_setpoint && in.setpoint_valid && in.setpoint_velocity) {
+      out_.vel_cmd = in.setpoint_vel;
+    } else if (!velocity_mode) {
+      out_.vel_cmd = out_.vel;  // in CSP: what it turns at now
+    }
   }
 
   // Owner side: follow, extrapolate a missing setpoint, or stop after the deadline.
@@ -179,7 +221,9 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       last_setpoint_cycle_ = cycle;
       out_.missing_setpoints = 0;
       if (velocity_mode) {
-        // CSV: the position is the drive's; a position setpoint waits for the switch to CSP.
+        // CSV: the position is the drive's. Switching to CSP: the frame that carries the mode
+        // carries the owner's position too, so the drive takes it at the switch.
+        out_.cmd = in.setpoint_valid && !in.setpoint_velocity ? in.setpoint_pos : out_.act;
       } else if (in.setpoint_valid && in.setpoint_velocity) {
         out_.cmd += in.setpoint_vel * setup_.cycle_s;  // leaving CSP: keep turning meanwhile
       } else if (in.setpoint_valid && setup_.has_soft_limits &&
@@ -202,12 +246,12 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     }
   }
-  if (velocity_mode || !following_) {
+  if (!following_ || (velocity_mode && requested_mode_ == kModeCsv)) {
     // No position loop in CSV (no following error either); and a drive not yet the owner's
     // (enabling, homing) is told to stay where it is, whatever mode it switches to next.
     out_.cmd = out_.act;
   }
-  if (following_ && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
+  if (following_ && !velocity_mode && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
       std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
     raise(AxisAlarm::following_error);
   }
@@ -232,8 +276,22 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     homing_started_ = true;
   }
   out_.enabled = operating && !out_.quick_stop;
-  out_.target_counts = static_cast<std::int32_t>(std::llround(out_.cmd * setup_.counts_per_unit));
+  // The target in the drive's 32-bit counts, wrapping as the drive's position does.
+  const auto target = static_cast<std::int64_t>(std::llround(out_.cmd * setup_.counts_per_unit));
+  out_.target_counts = static_cast<std::int32_t>(
+      static_cast<std::uint32_t>(static_cast<std::uint64_t>(target) & 0xFFFFFFFFULL));
   return out_;
+}
+
+bool AxisNodeController::drive_at_rest() const noexcept {
+  switch (out_.drive_state) {
+    case cia402::State::fault_reaction_active:
+      return false;  // it ends in fault at standstill
+    case cia402::State::quick_stop_active:
+      return (statusword_ & kTargetReached) != 0;  // CiA 402: bit 10 in quick stop is "halted"
+    default:
+      return true;
+  }
 }
 
 }  // namespace mcnc::axisnode

@@ -35,6 +35,7 @@ struct AxisNodeSetup {
   // says homing attained (statusword bit 12) switches it to CSP and takes over there. Until then
   // the axis is not enabled for its owner. Needs the PDOs with the modes (homing_axis_pdos).
   bool homing = false;
+  int homing_timeout_cycles = 60000;  // from the drive's enable in homing mode
 };
 
 inline constexpr std::int8_t kModeHoming = 6;
@@ -71,6 +72,7 @@ enum class AxisAlarm : std::uint8_t {
   bus_off = 7,          // the CAN controller went bus off
   soft_limit = 8,       // a setpoint beyond the axis's soft limits
   following_error = 9,  // command and actual position too far apart
+  homing_failed = 10,   // homing error (statusword bit 13) or no end within its time
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;
@@ -103,15 +105,17 @@ class AxisNodeController {
   // cycles without input.
   const AxisNodeOutput& cycle(std::uint64_t cycle, const AxisNodeInput& in) noexcept;
   [[nodiscard]] const AxisNodeOutput& output() const noexcept { return out_; }
-  // Operator reset, applied at the next cycle(): clears the alarms and the quick-stop latch. A
-  // drive in fault gets a fault reset (controlword bit 7 rising), then the enable sequence;
-  // the node takes over the drive's position again when it is back in operation. A cause that
-  // is still there raises its alarm again: a drive still in fault after fault_reset_cycles, a
+  // Operator reset, applied once the drive is at rest (a quick stop or fault reaction finishes
+  // its ramp first): clears the alarms and the quick-stop latch. A drive in fault gets one
+  // fault reset (controlword bit 7 rising), then the enable sequence; the node takes over the
+  // drive's position again when it is back in operation. A cause that is still there raises
+  // its alarm again: a drive still in fault after fault_reset_cycles or faulting again, a
   // heartbeat still silent after the consumer time, bus off and E-stop at once.
   void reset() noexcept { reset_requested_ = true; }
 
  private:
   void raise(AxisAlarm alarm) noexcept;
+  [[nodiscard]] bool drive_at_rest() const noexcept;
 
   AxisNodeSetup setup_;
   AxisNodeOutput out_{};
@@ -130,6 +134,10 @@ class AxisNodeController {
   std::uint64_t heartbeats_ = 0;
   std::int8_t requested_mode_ = kModeCsp;
   bool homed_ = false;
+  std::uint64_t homing_since_ = 0;  // cycle the homing began (0: not yet)
+  std::uint16_t statusword_ = 0;    // the last one received
+  std::int64_t counts_ = 0;         // position actual, unwrapped
+  std::int32_t last_counts_ = 0;
   bool homing_started_ = false;           // controlword bit 4 is up
   canopen::HeartbeatConsumer heartbeat_;  // in cycles
 };

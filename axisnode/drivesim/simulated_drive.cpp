@@ -28,13 +28,18 @@ std::uint32_t SimulatedDrive::apply_defaults(ObjectDefault* failed) noexcept {
     if (const std::uint32_t e = objects_.read(d.index, d.sub, current)) {
       return e;
     }
+    // The value must fit the object (signed or unsigned, as the dictionary does not say).
+    const std::int64_t bits = static_cast<std::int64_t>(current.size) * 8;
+    if (current.size == 0 || current.size > 4 || d.value < -(std::int64_t{1} << (bits - 1)) ||
+        d.value >= (std::int64_t{1} << bits)) {
+      return canopen::sdo_abort::kInvalidValue;
+    }
     std::array<std::uint8_t, 8> bytes{};
     const auto raw = static_cast<std::uint64_t>(d.value);
     for (std::size_t b = 0; b < current.size && b < bytes.size(); ++b) {
       bytes[b] = static_cast<std::uint8_t>(raw >> (8 * b));
     }
-    return current.size > 4 ? canopen::sdo_abort::kInvalidValue
-                            : objects_.write(d.index, d.sub, bytes.data(), current.size);
+    return objects_.write(d.index, d.sub, bytes.data(), current.size);
   };
   const double counts = params_.quick_stop_decel * params_.counts_per_unit;
   const ObjectDefault decel{0x6085, 0,
@@ -156,7 +161,13 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
     if (mode == 9) {
       velocity_target_ = static_cast<double>(latched_.target_velocity) / params_.counts_per_unit;
     } else if (mode != 6) {
-      target_ = static_cast<double>(latched_.target_position) / params_.counts_per_unit;
+      // 32-bit positions wrap: the target is the one nearest the present position.
+      const auto base =
+          static_cast<std::int64_t>(std::llround(position_ * params_.counts_per_unit));
+      const auto diff =
+          static_cast<std::int32_t>(static_cast<std::uint32_t>(latched_.target_position) -
+                                    static_cast<std::uint32_t>(base & 0xFFFFFFFFLL));
+      target_ = static_cast<double>(base + diff) / params_.counts_per_unit;
       if (mode_before == 9) {
         // Into CSP while turning: the fine interpolation starts where the target was a cycle
         // ago at the present speed, not from a standstill.
@@ -186,7 +197,7 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   if (homing_attained_) {
     out.statusword |= 0x1000U;  // bit 12: homing attained
   }
-  out.position_actual = to_counts(position_);
+  out.position_actual = position_counts(position_);
   objects_.live.statusword = out.statusword;
   objects_.live.position = out.position_actual;
   objects_.live.velocity = to_counts(velocity_);
@@ -219,23 +230,28 @@ bool SimulatedDrive::heartbeat(can::CanFrame& out) noexcept {
 }
 
 void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
-  constexpr int kSteps = 8;
   constexpr double kTwoPi = 6.283185307179586;
-  const double h = dt / kSteps;
+  // At least 8 steps per cycle, and enough that the explicit integration of the velocity loop
+  // and of the friction stays stable (each step well under their time constants) at any cycle
+  // and tuning the machine file allows.
+  const double stiffest = std::max(kTwoPi * params_.velocity_bandwidth_hz,
+                                   params_.friction / std::max(params_.inertia, 1e-12));
+  const int steps = static_cast<int>(std::clamp(std::ceil(2.0 * stiffest * dt), 8.0, 4096.0));
+  const double h = dt / steps;
   const double rad_per_unit = kTwoPi / params_.units_per_rev;
   const double j = params_.inertia;
   const double kv = j * kTwoPi * params_.velocity_bandwidth_hz;  // N m per rad/s
   const double ki = kv * kTwoPi * params_.velocity_bandwidth_hz / 4.0;
   const double kp = 1.0 / std::max(params_.time_constant_s, dt);
   const double t_max = params_.torque_limit;
-  for (int i = 0; i < kSteps; ++i) {
+  for (int i = 0; i < steps; ++i) {
     double command = 0.0;       // units/s
     double feed_forward = 0.0;  // N m: the torque a known acceleration takes
     switch (loop) {
       case Loop::position: {
         // Fine interpolation, as CSP drives do: the target moves from the last SYNC's to this
         // one's in even steps over the cycle.
-        const double fraction = static_cast<double>(i + 1) / kSteps;
+        const double fraction = static_cast<double>(i + 1) / steps;
         const double target = previous_target_ + (target_ - previous_target_) * fraction;
         command =
             std::clamp((target - position_) * kp, -params_.max_velocity, params_.max_velocity);
@@ -326,6 +342,17 @@ bool SimulatedDrive::target_reached() const noexcept {
     default:
       return false;
   }
+}
+
+std::int32_t SimulatedDrive::position_counts(double units) const noexcept {
+  // Modulo 2^32, as a drive's position actual value wraps (a spindle after many turns).
+  const double counts = std::round(units * params_.counts_per_unit);
+  if (!std::isfinite(counts)) {
+    return 0;
+  }
+  const double wrapped = std::fmod(counts, 4294967296.0);
+  const auto u = static_cast<std::uint32_t>(static_cast<std::int64_t>(wrapped) & 0xFFFFFFFFLL);
+  return static_cast<std::int32_t>(u);
 }
 
 std::int32_t SimulatedDrive::to_counts(double units) const noexcept {

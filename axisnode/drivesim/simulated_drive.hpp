@@ -52,8 +52,9 @@ struct DriveParams {
 // the boot-up). Reset node also restarts the CiA 402 state machine (switch on disabled) and
 // clears the latched RPDO; the position is kept, as a motor does not move on a reset.
 //
-// Motion per on_sync(), integrated in 8 steps per cycle (a drive's inner loops run faster than
-// the bus): a cascade like a real servo drive's.
+// Motion per on_sync(), integrated in 8 or more steps per cycle (a drive's inner loops run
+// faster than the bus; more steps where the loop's bandwidth or the friction needs them to stay
+// stable): a cascade like a real servo drive's.
 //  - the velocity command: CSP P-position loop, (target - pos) / tau, clamped to
 //    +-max_velocity; CSV the target velocity, clamped; quick stop and fault reaction a ramp
 //    from the velocity at its start to 0 at quick_stop_decel.
@@ -117,7 +118,8 @@ class SimulatedDrive {
   enum class Loop : std::uint8_t { position, velocity, ramp_down };
   void run_loops(Loop loop, double dt) noexcept;
   [[nodiscard]] bool target_reached() const noexcept;
-  [[nodiscard]] std::int32_t to_counts(double units) const noexcept;
+  [[nodiscard]] std::int32_t to_counts(double units) const noexcept;        // saturating
+  [[nodiscard]] std::int32_t position_counts(double units) const noexcept;  // wrapping
 
   DriveParams params_;
   double cycle_s_;

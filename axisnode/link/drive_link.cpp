@@ -48,7 +48,7 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
       if (sync_stop_ || !schedule.to_send(woke, next, index)) {
         continue;
       }
-      send_sync();
+      send_sync(true);
       syncs_skipped_ += index - next;
       sync_late_ns_[sync_late_count_++ % kLatenessRecords] = woke - schedule.due(index);
       next = index + 1;
@@ -106,15 +106,14 @@ void DriveLink::receive_loop() {
       case canopen::FrameKind::tpdo1:
         if (cls.node == node_id_) {
           if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
-            const bool complete = !tpdo2_velocity_ && !tpdo2_following_error_;
-            tpdo1_pending_ = !complete;
+            const bool paired = tpdo2_velocity_ || tpdo2_following_error_;
             wakeup_.update([&] {
               tpdo_statusword_ = pdo->statusword;
               tpdo_position_ = pdo->position_actual;
               tpdo_mode_display_ = pdo->mode_display;
-              if (complete) {
-                ++tpdo_count_;
-              }
+              ++tpdo1_count_;
+              // An answer is complete with both of its TPDOs, in whichever order they came.
+              tpdo_count_ = paired ? std::min(tpdo1_count_, tpdo2_count_) : tpdo1_count_;
             });
           } else {
             ++malformed_;
@@ -134,15 +133,12 @@ void DriveLink::receive_loop() {
                                              static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
                                              static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
           };
-          const bool pending = tpdo1_pending_;
-          tpdo1_pending_ = false;
           wakeup_.update([&] {
             tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
             tpdo2_following_error_value_ =
                 tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
-            if (pending) {
-              ++tpdo_count_;  // the answer to this SYNC is complete
-            }
+            ++tpdo2_count_;
+            tpdo_count_ = std::min(tpdo1_count_, tpdo2_count_);
           });
         }
         break;
@@ -247,14 +243,25 @@ void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
   bus_->send(canopen::encode_rpdo1_spindle(node_id_, pdo));
 }
 
-void DriveLink::send_sync() noexcept {
+void DriveLink::send_sync(bool timed) noexcept {
   sync_counter_ = static_cast<std::uint8_t>(sync_counter_ % 240 + 1);
-  // Our own frames are not received back: count our SYNC here.
-  wakeup_.update([&] {
-    rpdo_seen_.reset();
-    ++syncs_;
-  });
-  bus_->send(canopen::encode_sync(sync_counter_));
+  // Our own frames are not received back: count our SYNC here. In lockstep the RPDOs seen are
+  // forgotten before the SYNC goes out: an answer to it may come back at once. The timer
+  // (realtime, no RPDO bookkeeping) sends first: the lock is shared with non-realtime threads,
+  // and the SYNC's time on the bus is what must not wait.
+  const auto count = [&] {
+    wakeup_.update([&] {
+      rpdo_seen_.reset();
+      ++syncs_;
+    });
+  };
+  if (timed) {
+    bus_->send(canopen::encode_sync(sync_counter_));
+    count();
+  } else {
+    count();
+    bus_->send(canopen::encode_sync(sync_counter_));
+  }
 }
 
 void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {

@@ -56,11 +56,11 @@ class DriveLink {
   // and its display (canopen::spindle_pdos, homing_axis_pdos), `with_velocity` RPDO2 the target
   // velocity (a spindle).
   void set_pdo_layout(bool with_mode, bool with_velocity) noexcept {
-    with_mode_ = with_mode;
-    with_velocity_ = with_velocity;
+    with_mode_.store(with_mode);
+    with_velocity_.store(with_velocity);
   }
   void send_rpdo(const DriveCommand& command) noexcept;
-  void send_sync() noexcept;
+  void send_sync(bool timed = false) noexcept;
   void send_nmt(canopen::NmtCommand command) noexcept;
 
   // Realtime SYNC production: a thread of its own sends SYNC at the schedule's fixed offset
@@ -71,8 +71,8 @@ class DriveLink {
   // TPDO2 as the start-up mapped it (0x606C, then 0x60F4): set before bring_up(). An answer
   // to a SYNC counts as complete once both TPDOs are in.
   void set_tpdo2(bool velocity_actual, bool following_error) noexcept {
-    tpdo2_velocity_ = velocity_actual;
-    tpdo2_following_error_ = following_error;
+    tpdo2_velocity_.store(velocity_actual);
+    tpdo2_following_error_.store(following_error);
   }
   [[nodiscard]] bool sync_timer_running() const noexcept { return sync_thread_.joinable(); }
   [[nodiscard]] std::uint64_t syncs_skipped() const noexcept { return syncs_skipped_.load(); }
@@ -129,13 +129,15 @@ class DriveLink {
   std::atomic<std::uint16_t> tpdo_statusword_{0};
   std::atomic<std::int32_t> tpdo_position_{0};
   std::atomic<std::int8_t> tpdo_mode_display_{0};
-  bool with_mode_ = false;
-  bool tpdo2_velocity_ = false;
-  bool tpdo2_following_error_ = false;
-  bool tpdo1_pending_ = false;  // TPDO1 in, its TPDO2 not yet (receive thread only)
+  // The PDO layout: set before bring_up(), read by the receive thread.
+  std::atomic<bool> with_mode_{false};
+  std::atomic<bool> with_velocity_{false};
+  std::atomic<bool> tpdo2_velocity_{false};
+  std::atomic<bool> tpdo2_following_error_{false};
+  std::uint64_t tpdo1_count_ = 0;  // guarded by the wakeup's lock
+  std::uint64_t tpdo2_count_ = 0;
   std::atomic<std::int32_t> tpdo2_velocity_value_{0};
   std::atomic<std::int32_t> tpdo2_following_error_value_{0};
-  bool with_velocity_ = false;
   // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
   std::bitset<128> rpdo_seen_;
   std::uint8_t sync_counter_ = 0;

@@ -75,7 +75,7 @@ void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) n
 }
 
 bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept {
-  for (std::size_t i = 0; i < setup_.axis_count; ++i) {
+  for (std::size_t i = 0; i < setup_.axis_count + setup_.spindle_count; ++i) {
     if (i >= feedback.size() || !feedback[i].present || !feedback[i].enabled || feedback[i].alarm) {
       return false;
     }
@@ -118,6 +118,7 @@ void ChannelController::forget_program_run() noexcept {
 void ChannelController::finish_reset() noexcept {
   resetting_ = false;
   forget_program_run();
+  halted_ = estopped_;  // an emergency stop stays
   pending_alarm_.reset();
   out_.block = 0;
   out_.line = 0;
@@ -148,14 +149,15 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   if (estop_requested_) {
     // Latched in any state, also before the axes came up: reset, and stay there.
     estop_requested_ = false;
+    estopped_ = true;
     halted_ = true;
+    resetting_ = false;  // no reset ramp after an emergency stop: the drives stop themselves
     start_requested_ = false;
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
   if (reset_requested_) {
     reset_requested_ = false;
-    start_requested_ = false;
     if (out_.state == ChannelState::running && !planner_.idle()) {
       planner_.reset();  // ramp down first
       resetting_ = true;
@@ -182,18 +184,27 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   // An axis alarm or a lost axis stops the channel in any state (after a reset: once the axes
   // are back).
   if (out_.state != ChannelState::alarm && !after_reset_) {
-    for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
+    for (std::size_t i = 0; i < setup_.axis_count + setup_.spindle_count && i < feedback.size();
+         ++i) {
       if (feedback[i].alarm) {
         char text[96];
-        std::snprintf(text, sizeof text, "axis %zu of the channel has an alarm: motion stopped",
-                      i + 1);
+        if (i < setup_.axis_count) {
+          std::snprintf(text, sizeof text, "axis %zu of the channel has an alarm: motion stopped",
+                        i + 1);
+        } else {
+          std::snprintf(text, sizeof text,
+                        "spindle %zu of the channel has an alarm: motion stopped",
+                        i - setup_.axis_count + 1);
+        }
         raise(kAlarmAxisAlarm, text, out_.line, 0, static_cast<int>(i + 1));
         break;
       }
     }
     if (lost_axis_ != 0 && out_.state != ChannelState::alarm) {
-      raise(kAlarmAxisLost, "axis node lost: no feedback", out_.line, 0,
-            static_cast<int>(lost_axis_));
+      raise(kAlarmAxisLost,
+            lost_axis_ > setup_.axis_count ? "spindle node lost: no feedback"
+                                           : "axis node lost: no feedback",
+            out_.line, 0, static_cast<int>(lost_axis_));
     }
   }
   if (out_.state == ChannelState::alarm) {

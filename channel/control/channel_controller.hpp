@@ -87,6 +87,9 @@ struct ChannelSetup {
   std::vector<double> in_position;  // per axis, units
   double cycle_s = 0.001;
   std::size_t pulls_per_cycle = 64;  // commands pulled into the look-ahead per cycle at most
+  // Spindles whose feedback follows the axes' in cycle()'s `feedback`: their alarms stop the
+  // channel too, and a channel comes to idle only with them enabled.
+  std::size_t spindle_count = 0;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -111,16 +114,19 @@ class ChannelController {
   // then the alarms are cleared, the program rewinds and the channel is in reset. It comes back
   // to idle once every axis is enabled again without an alarm (the axis nodes reset their drives
   // on the same command); a cycle start then runs the program from its start.
-  void request_reset() noexcept { reset_requested_ = true; }
+  void request_reset() noexcept {
+    reset_requested_ = true;
+    start_requested_ = false;  // a start asked for after this reset still counts
+  }
   // Emergency stop: motion ends at once, the channel goes to reset and stays there.
   void emergency_stop() noexcept { estop_requested_ = true; }
   // A program alarm found before the run (e.g. when the program was loaded): raised at the next
   // cycle, so it stands in that cycle's events.
   void report_alarm(const interp::ProgramAlarm& alarm) { pending_alarm_ = alarm; }
-  // An owned axis's node is gone: alarm and hold.
+  // An owned axis's node is gone (`axis` counts the spindles after the axes): alarm and hold.
   void axis_lost(std::size_t axis) noexcept;
 
-  // One cycle. `feedback` holds one entry per channel axis.
+  // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
                              std::span<const AxisFeedbackView> feedback) noexcept;
 
@@ -167,6 +173,7 @@ class ChannelController {
   bool reset_requested_ = false;
   bool resetting_ = false;     // ramping down for a reset
   bool after_reset_ = false;   // reset done, waiting for the axes to be enabled without alarms
+  bool estopped_ = false;      // an emergency stop: a reset does not undo it
   std::size_t lost_axis_ = 0;  // axis index + 1
   bool halted_ = false;        // an alarm or emergency stop ended the run
   std::vector<QueuedBlock> queued_;  // a ring: the planner's window and a little more

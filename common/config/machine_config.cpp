@@ -293,6 +293,10 @@ AxisConfig parse_axis(const YamlValue& value) {
   read_optional_int(map, "heartbeat_ms", 0, 65535, axis.heartbeat_ms);
   if (auto decel = map.optional("quick_stop_deceleration")) {
     axis.quick_stop_deceleration = decel->positive_number();
+    // Written to 0x6085 in increments/s^2, an UNSIGNED32.
+    if (axis.quick_stop_deceleration * axis.counts_per_unit > 4294967295.0) {
+      decel->fail("more than 0x6085 can hold at this counts_per_unit (4294967295 increments/s^2)");
+    }
   }
   if (auto tpdo2 = map.optional("tpdo2")) {
     for (const YamlValue& entry : tpdo2->list()) {

@@ -368,3 +368,86 @@ TEST(AxisNodeController, AResetWithTheHeartbeatStillSilentIsAlarmedAgain) {
   }
   EXPECT_EQ(again, 451U);
 }
+
+TEST(AxisNodeController, AResetDuringAQuickStopWaitsUntilTheDriveHasStopped) {
+  // An owner loss at 200 mm/s: quick stop on the drive's 5000 mm/s^2 ramp. The operator resets
+  // at once; the node must not re-enable the drive while it still brakes.
+  Loop loop(/*deadline=*/5, 0.0);
+  loop.enable();
+  double target = 0.0;
+  for (int i = 0; i < 300; ++i) {
+    target += 0.2;  // 200 mm/s
+    loop.step(setpoint(target, 200.0));
+  }
+  AxisNodeInput lost = setpoint(target, 200.0);
+  lost.owner_lost = true;
+  ASSERT_EQ(loop.step(lost).new_alarm, AxisAlarm::owner_lost);
+  loop.node.reset();
+  double v_before = loop.drive.velocity();
+  double hardest = 0.0;
+  double speed_at_enable = -1.0;  // the drive's speed when the node first asks to re-enable
+  for (int i = 0; i < 200; ++i) {
+    AxisNodeInput hold;
+    hold.have_setpoint = true;
+    const double speed = std::abs(loop.drive.velocity());
+    const auto& out = loop.step(hold);
+    if (out.controlword == 0x000F && speed_at_enable < 0.0) {
+      speed_at_enable = speed;
+    }
+    hardest = std::max(hardest, (v_before - loop.drive.velocity()) / kCycle);
+    v_before = loop.drive.velocity();
+  }
+  EXPECT_EQ(speed_at_enable, 0.0);
+  EXPECT_LE(hardest, 5000.0 * 1.1);         // the quick-stop ramp, not the torque limit
+  EXPECT_TRUE(loop.node.output().enabled);  // and afterwards back in operation
+  EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
+}
+
+TEST(AxisNodeController, ADriveThatFaultsAgainAfterTheResetIsAlarmedWithOneFaultReset) {
+  Loop loop;
+  loop.enable();
+  loop.drive.schedule_fault(drivesim::DriveFault::overcurrent, loop.cycle + 1);
+  for (int i = 0; i < 10; ++i) {
+    loop.step(setpoint(12.5));
+  }
+  ASSERT_EQ(loop.node.output().alarm, AxisAlarm::drive_fault);
+  loop.node.reset();
+  int resets = 0;
+  std::uint16_t previous = 0;
+  AxisAlarm again = AxisAlarm::none;
+  for (int i = 0; i < 150; ++i) {
+    if (i == 2) {
+      loop.drive.schedule_fault(drivesim::DriveFault::overcurrent, loop.cycle + 1);
+    }
+    const auto& out = loop.step(setpoint(12.5));
+    resets += (out.controlword & 0x0080) != 0 && (previous & 0x0080) == 0 ? 1 : 0;
+    previous = out.controlword;
+    if (out.new_alarm != AxisAlarm::none) {
+      again = out.new_alarm;
+    }
+  }
+  EXPECT_EQ(resets, 1);  // the operator's one, not one per fault
+  EXPECT_EQ(again, AxisAlarm::drive_fault);
+}
+
+TEST(AxisNodeController, APositionActualValueThatWrapsIsCountedOn) {
+  // 32-bit counts: from just below 2^31 on, the position goes on, and so does the target.
+  axisnode::AxisNodeSetup setup{1000.0, kCycle, 5};
+  AxisNodeController node(setup);
+  AxisNodeInput in;
+  in.have_tpdo = true;
+  in.statusword = cia402::encode_statusword(cia402::State::operation_enabled, false);
+  in.position_counts = 2147483000;
+  node.cycle(1, in);
+  in.position_counts = static_cast<std::int32_t>(2147483000U + 2000U);  // wrapped
+  const auto& out = node.cycle(2, in);
+  EXPECT_NEAR(out.act, 2147485.0, 1e-9);
+  EXPECT_NEAR(out.vel, 2000.0, 1e-6);        // degrees per second, no jump
+  EXPECT_EQ(out.target_counts, 2147483000);  // held where it took over
+  in.have_setpoint = true;
+  in.setpoint_valid = true;
+  in.setpoint_pos = 2147485.5;
+  in.position_counts = static_cast<std::int32_t>(2147483000U + 2500U);
+  EXPECT_EQ(node.cycle(3, in).target_counts, static_cast<std::int32_t>(2147483000U + 2500U));
+  EXPECT_EQ(node.output().alarm, AxisAlarm::none);
+}

@@ -122,11 +122,16 @@ class Rig {
           return c;
         }()),
         planner_(lathe_motion(), AxisVector{}),
-        ctl_(ChannelSetup{2, {kInPos, kInPos}, kDt},
-             scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
-             planner_) {
-    feedback_.resize(2);
-    for (std::size_t i = 0; i < 2; ++i) {
+        ctl_(
+            [&] {
+              ChannelSetup setup{2, {kInPos, kInPos}, kDt};
+              setup.spindle_count = static_cast<std::size_t>(spindles);
+              return setup;
+            }(),
+            scripted != nullptr ? *scripted : static_cast<interp::CommandSource&>(interp_),
+            planner_) {
+    feedback_.resize(2 + static_cast<std::size_t>(spindles));
+    for (std::size_t i = 0; i < feedback_.size(); ++i) {
       feedback_[i].cmd = start[i];
       feedback_[i].act = start[i];
       feedback_[i].enabled = true;
@@ -1113,6 +1118,56 @@ TEST(ChannelController, SpindleOrientationAndOtherSpindlesAreAlarmsBeforeTheRun)
   // Without a spindle in the machine file, M03 is still for the PLC node.
   interp::InterpreterSource none(xz_channel());
   ASSERT_TRUE(none.load("M03 S600\nM30\n", "T.nc").has_value());
+}
+
+TEST(ChannelController, ASpindleAlarmStopsTheChannelAndHoldsItAfterAReset) {
+  Rig rig(nullptr, xz(0.0, 0.0), 1);
+  rig.load("M03 S600\nG01 Z50 F600\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 200; ++i) {
+    rig.step();
+  }
+  ASSERT_EQ(rig.last.state, ChannelState::running);
+  rig.feedback_[2].alarm = true;  // the spindle's node
+  rig.feedback_[2].enabled = false;
+  rig.step();
+  EXPECT_EQ(rig.last.state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisAlarm);
+  EXPECT_NE(std::string(rig.ctl_.last_alarm().text.data()).find("spindle 1"), std::string::npos);
+  EXPECT_EQ(rig.last.spindle_direction, 0);
+  // Reset with the spindle still in fault: the channel stays in reset, a start does nothing.
+  rig.ctl_.request_reset();
+  rig.ctl_.request_start();
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::reset);
+  }
+  // The spindle back: idle, and the start asked for after the reset runs the program.
+  rig.feedback_[2].alarm = false;
+  rig.feedback_[2].enabled = true;
+  ASSERT_TRUE(rig.run_to_end());
+}
+
+TEST(ChannelController, AnEmergencyStopDuringAResetRampStaysAnEmergencyStop) {
+  Rig rig;
+  rig.load("G01 Z200 F6000\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 600; ++i) {
+    rig.step();
+  }
+  rig.ctl_.request_reset();
+  rig.step();  // ramping down
+  rig.ctl_.emergency_stop();
+  for (int i = 0; i < 300; ++i) {
+    const auto& o = rig.step();
+    EXPECT_EQ(o.state, ChannelState::reset);
+    EXPECT_FALSE(o.setpoints[1].valid);
+  }
+  // A later reset does not undo it either.
+  rig.ctl_.request_reset();
+  rig.ctl_.request_start();
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::reset);
+  }
 }
 
 }  // namespace

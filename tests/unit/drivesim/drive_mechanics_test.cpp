@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace mcnc::drivesim {
 namespace {
@@ -24,8 +25,8 @@ DriveParams params() {
   return p;
 }
 
-SimulatedDrive enabled(const DriveParams& p) {
-  SimulatedDrive d(p, kCycle);
+SimulatedDrive enabled(const DriveParams& p, double cycle_s = kCycle) {
+  SimulatedDrive d(p, cycle_s);
   d.power_on();
   d.on_nmt(canopen::NmtCommand::start);
   for (const std::uint16_t cw : {0x06, 0x07, 0x0F, 0x0F}) {
@@ -200,9 +201,30 @@ TEST(DriveMechanics, ObjectDefaultsAreAppliedAtPowerOnAndAfterResetNode) {
   ObjectDefault failed;
   EXPECT_NE(bad.apply_defaults(&failed), 0U);
   EXPECT_EQ(failed.index, 0x6098);
+  p.objects[1] = ObjectDefault{0x6098, 0, 264};  // does not fit the 8-bit object
+  SimulatedDrive too_big(p, kCycle);
+  EXPECT_EQ(too_big.apply_defaults(&failed), 0x06090030U);
   p.objects[1] = ObjectDefault{0x2000, 0, 1};
   SimulatedDrive unknown(p, kCycle);
   EXPECT_EQ(unknown.apply_defaults(&failed), 0x06020000U);  // object does not exist
+}
+
+TEST(DriveMechanics, StaysStableAtLongCyclesAndStiffTunings) {
+  // A 32 ms cycle, a 2 kHz velocity loop, a tiny inertia: the step settles all the same.
+  for (const auto& [cycle_s, bandwidth, inertia] :
+       {std::tuple{0.032, 200.0, 0.0005}, std::tuple{0.001, 2000.0, 0.0005},
+        std::tuple{0.001, 200.0, 1e-7}}) {
+    DriveParams p = params();
+    p.velocity_bandwidth_hz = bandwidth;
+    p.inertia = inertia;
+    SimulatedDrive d = enabled(p, cycle_s);
+    for (int n = 0; n < static_cast<int>(2.0 / cycle_s); ++n) {
+      d.on_rpdo(canopen::RxPdoCsp{0x0F, 100000});  // 10 units
+      d.on_sync();
+    }
+    EXPECT_NEAR(d.position(), 10.0, 1e-3) << cycle_s << " " << bandwidth << " " << inertia;
+    EXPECT_NEAR(d.velocity(), 0.0, 1e-2) << cycle_s << " " << bandwidth << " " << inertia;
+  }
 }
 
 }  // namespace

@@ -26,21 +26,7 @@
 using namespace std::chrono_literals;
 using namespace mcnc;
 
-namespace {
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty() && line.back() == '\r') {
-      line.pop_back();
-    }
-    lines.push_back(line);
-  }
-  return lines;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
@@ -53,6 +39,10 @@ int main(int argc, char** argv) {
   app.add_option("--program", program_path, "part program to run at cycle start")
       ->check(CLI::ExistingFile);
   app.add_option("--trace", trace_path, "write this process's trace events to FILE");
+  std::string program_dir;
+  app.add_option("--progdir", program_dir,
+                 "where programs are found by number (overrides the machine file's program_dir)")
+      ->check(CLI::ExistingDirectory);
   std::string retained_path;
   app.add_option("--retained", retained_path,
                  "keep the retained macro variables #500-#999 in FILE (loaded at start, saved "
@@ -82,6 +72,9 @@ int main(int argc, char** argv) {
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
   interp_config.retained_file = retained_path;
+  if (!program_dir.empty()) {
+    interp_config.program_dir = program_dir;
+  }
   interp::InterpreterSource interpreter(interp_config);
   std::vector<std::string> program_lines;
   std::string program_name;
@@ -90,7 +83,7 @@ int main(int argc, char** argv) {
     std::ifstream file(program_path);
     std::stringstream text;
     text << file.rdbuf();
-    program_lines = split_lines(text.str());
+    program_lines = channel::split_lines(text.str());
     program_name = program_path.substr(program_path.find_last_of('/') + 1);
     load_alarm = interpreter.load(text.str(), program_name);
   }

@@ -116,13 +116,24 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--drive-refuse-sdo", args.drive_sdo_refusals,
                  "fault injection: BUS:NODE:INDEX, the drive refuses SDO access to that object "
                  "(repeatable)");
+  app.add_option("--progdir", args.program_dir,
+                 "where M98, G65 and G144 find programs by number (overrides the machine file's "
+                 "program_dir)");
   app.add_option("--operator", args.operator_script,
                  "scripted operator: ACTION[:CHANNEL]@CYCLE, ACTION reset or cycle_start, for "
                  "one channel or (without CHANNEL) the whole machine (repeatable)");
 }
 
 int execute_run(const RunArguments& args) {
-  const config::MachineConfig machine = process::load_machine_or_exit(args.machine_path);
+  config::MachineConfig machine = process::load_machine_or_exit(args.machine_path);
+  if (!args.program_dir.empty()) {
+    std::error_code ec;
+    if (!std::filesystem::is_directory(args.program_dir, ec)) {
+      std::fprintf(stderr, "error: --progdir %s: no such directory\n", args.program_dir.c_str());
+      return 2;
+    }
+    machine.program_dir = std::filesystem::absolute(args.program_dir).lexically_normal().string();
+  }
   LaunchOptions options;
   options.machine_path = std::filesystem::absolute(args.machine_path).string();
   for (const auto& spec : args.programs) {
@@ -160,6 +171,9 @@ int execute_run(const RunArguments& args) {
   options.bin_dir = executable_dir();
   options.log_level = args.log_level;
   options.run_timeout_s = args.timeout_s;
+  if (!args.program_dir.empty()) {
+    options.program_dir = machine.program_dir;
+  }
   // Fault injection goes to the simulator of the named bus, which checks the rest.
   for (const auto& [specs, flag] : {std::pair{&args.drive_faults, "--fault"},
                                     std::pair{&args.drive_sdo_refusals, "--refuse-sdo"}}) {

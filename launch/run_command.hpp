@@ -25,6 +25,7 @@ struct RunArguments {
   std::vector<std::string> drive_faults;        // BUS:NODE:KIND@SYNC (fault injection)
   std::vector<std::string> drive_sdo_refusals;  // BUS:NODE:INDEX (fault injection)
   std::vector<std::string> operator_script;     // ACTION[:CHANNEL]@CYCLE (scripted operator)
+  std::string program_dir;                      // --progdir: overrides machine.program_dir
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

@@ -290,6 +290,7 @@ void ChannelController::fill() noexcept {
                       c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell,
                       spindle || ((c->op == interp::Op::rapid || c->op == interp::Op::linear) &&
                                   c->to == start)};
+      q.file = c->file;
       ++queued_count_;
     }
   } catch (...) {
@@ -315,6 +316,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
       ChannelEvent started;
       started.kind = ChannelEventKind::block_started;
       started.line = q.line;
+      started.file = q.file;
       started.block = q.n;
       push_event(started);
       queued_started_ = 1;
@@ -381,6 +383,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     ChannelEvent started;
     started.kind = ChannelEventKind::block_started;
     started.line = end_.line;
+    started.file = end_.file;
     started.block = end_.n;
     push_event(started);
   }

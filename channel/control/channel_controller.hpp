@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace mcnc::channel {
@@ -50,6 +51,7 @@ struct ChannelEvent {
   ChannelEventKind kind = ChannelEventKind::state_changed;
   ChannelState state = ChannelState::reset;
   int line = 0;
+  const std::string* file = nullptr;  // the block's file (nullptr: the main program's)
   std::size_t block = 0;
   int end_code = 0;
   int alarm_number = 0;
@@ -157,7 +159,8 @@ class ChannelController {
     int line = 0;
     AxisVector to{};
     bool exact_stop = false;
-    bool still = false;  // a move to where the axes already are
+    bool still = false;                 // a move to where the axes already are
+    const std::string* file = nullptr;  // owned by the interpreter
   };
 
   ChannelSetup setup_;

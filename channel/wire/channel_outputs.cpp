@@ -2,6 +2,10 @@
 
 #include <spdlog/spdlog.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
 namespace mcnc::channel {
 
 namespace {
@@ -79,6 +83,30 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   }
 }
 
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line.back() == '\r') {
+      line.pop_back();
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+const std::vector<std::string>& ChannelOutputs::lines_of(const std::string& path) {
+  auto it = other_lines_.find(path);
+  if (it == other_lines_.end()) {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::vector<std::string> lines = split_lines(text.str());
+    it = other_lines_.emplace(path, std::move(lines)).first;
+  }
+  return it->second;
+}
+
 void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& controller,
                             const ChannelEvent& event, std::span<const AxisFeedbackView> views) {
   const char* ch = channel_.name.c_str();
@@ -87,11 +115,16 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       tracer_.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch, to_string(event.state));
       break;
     case ChannelEventKind::block_started: {
+      // A block of another file (a subprogram from the program directory): its own name and
+      // line text. Its lines are read once, at its first block.
+      const bool other = event.file != nullptr && *event.file != program_name_;
+      const std::vector<std::string>& lines = other ? lines_of(*event.file) : program_lines_;
+      const std::string name =
+          other ? std::filesystem::path(*event.file).filename().string() : program_name_;
       const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
-      trace::json_escape(idx < program_lines_.size() ? program_lines_[idx].c_str() : "", escaped_,
-                         sizeof escaped_);
+      trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
-                   program_name_.c_str(), event.line, escaped_);
+                   name.c_str(), event.line, escaped_);
       break;
     }
     case ChannelEventKind::block_ended:

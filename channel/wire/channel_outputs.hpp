@@ -8,11 +8,15 @@
 #include "common/trace/trace_writer.hpp"
 
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
 
 namespace mcnc::channel {
+
+// A program text's lines as written (a trailing CR dropped), for the trace's block text.
+std::vector<std::string> split_lines(const std::string& text);
 
 class ChannelOutputs {
  public:
@@ -33,6 +37,8 @@ class ChannelOutputs {
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
               std::span<const AxisFeedbackView> views);
+  // The lines of another program file, read at its first use.
+  const std::vector<std::string>& lines_of(const std::string& path);
 
   process::ProcessNode& node_;
   trace::TraceWriter& tracer_;
@@ -42,6 +48,7 @@ class ChannelOutputs {
   double spindle_rpm_ = 0.0;  // signed, as last traced
   std::string program_name_;
   std::vector<std::string> program_lines_;
+  std::map<std::string, std::vector<std::string>> other_lines_;
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;
   char escaped_[512] = {};

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -125,12 +126,18 @@ void check_uri(const YamlValue& value, const std::string& uri) {
 }
 
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
-  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain"});
+  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
   read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
   // 232 is the highest domain whose RTPS ports still fit in 16 bits.
   read_optional_int(map, "domain", 0, 232, out.domain);
+  if (auto dir = map.optional("program_dir")) {
+    out.program_dir = dir->string();
+    if (out.program_dir.empty()) {
+      dir->fail("program_dir must name a directory");
+    }
+  }
 }
 
 BusConfig parse_bus(const YamlValue& value) {
@@ -612,7 +619,19 @@ MachineConfig load_machine_file(const std::string& path) {
     throw ConfigError(path, "cannot read the machine file");
   }
   try {
-    return parse_machine_yaml(text.str());
+    MachineConfig machine = parse_machine_yaml(text.str());
+    if (!machine.program_dir.empty()) {
+      std::filesystem::path dir(machine.program_dir);
+      if (dir.is_relative()) {
+        dir = std::filesystem::path(path).parent_path() / dir;
+      }
+      std::error_code ec;
+      if (!std::filesystem::is_directory(dir, ec)) {
+        throw ConfigError("machine.program_dir", "no directory " + dir.string());
+      }
+      machine.program_dir = dir.lexically_normal().string();
+    }
+    return machine;
   } catch (const ConfigError& error) {
     // Only whole-file errors (syntax, empty) have no key path; name the file instead.
     if (!error.key_path().empty()) {

@@ -108,6 +108,9 @@ struct MachineConfig {
   int cycle_us = 1000;
   int deadline_cycles = 5;
   int domain = 0;  // DDS domain; MCNC_DOMAIN overrides (applied by the caller)
+  // Where M98, G65, G144 find programs by number (O<number>.nc, or any .nc file that holds
+  // O<number>); relative to the machine file's directory. Empty: none.
+  std::string program_dir;
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;

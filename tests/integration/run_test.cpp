@@ -223,6 +223,36 @@ TEST(Run, ABadScriptedOperatorCommandExits2AndStartsNothing) {
   }
 }
 
+TEST(Run, SubprogramsComeFromTheProgramDirectory) {
+  // M98 P22001: O2001 twice, found by number in the directory --progdir names (the machine
+  // file names none). Without it the program is rejected before anything starts.
+  TestMachine machine("small_lathe.yaml", 43);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const std::string program = source("tests/integration/programs/calls_from_store.nc");
+  const RunResult missing =
+      run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program}, -1, 60s);
+  EXPECT_EQ(missing.exit_code, 2) << missing.out << missing.err;
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty());
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program, "--progdir",
+           source("tests/integration/programs/store"), "--trace", trace_file},
+          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  // The subprogram's blocks ran twice, from its own file.
+  int steps = 0;
+  for (const auto& b : events(trace, "block", "CH1")) {
+    steps += b["prog"] == "O2001.nc" && b["text"] == "G01 U10. F600" ? 1 : 0;
+  }
+  EXPECT_EQ(steps, 2);
+  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+  const RunResult bad = run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program,
+                             "--progdir", machine.file("no_such_dir")},
+                            -1, 60s);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--progdir"), std::string::npos) << bad.err;
+}
+
 TEST(Run, ProgramForUnknownChannelExits2) {
   TestMachine machine("small_lathe.yaml", 17);
   const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",

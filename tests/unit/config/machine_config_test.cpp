@@ -3,6 +3,7 @@
 #include "common/config/machine_config.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
@@ -305,6 +306,24 @@ TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
               "axes[0].drive.objects[0].index")
         << bad;
   }
+}
+
+TEST(MachineConfig, TheProgramDirectoryIsFoundBesideTheMachineFile) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("mcnc-progdir-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "progs");
+  const std::string text = mutated([](YAML::Node& r) { r["machine"]["program_dir"] = "progs"; });
+  std::ofstream(dir / "m.yaml") << text;
+  const MachineConfig config = load_machine_file((dir / "m.yaml").string());
+  EXPECT_EQ(config.program_dir, (dir / "progs").lexically_normal().string());
+  std::filesystem::remove(dir / "progs");
+  try {
+    (void)load_machine_file((dir / "m.yaml").string());
+    ADD_FAILURE() << "a missing program directory must be rejected";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(e.key_path(), "machine.program_dir");
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(MachineConfig, MotionAndLimitKeys) {

@@ -1,6 +1,7 @@
-// mcnc-axisnode: one axis. DDS on one side (setpoints from its owner channel, feedback out),
-// CAN on the other (CiA 402 drive in cyclic synchronous position). Wiring only: the behaviour
-// is in AxisNodeController and DriveLink.
+// mcnc-axisnode: one axis or spindle. DDS on one side (setpoints from its owner channel,
+// operator commands, feedback out), CAN on the other (a CiA 402 drive in cyclic synchronous
+// position, velocity for a spindle, homing at start-up). Wiring only: the behaviour is in
+// AxisNodeController and DriveLink.
 #include "axisnode/canopen/emcy_codes.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/link/drive_link.hpp"

@@ -105,9 +105,9 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     // Homing attained (after the start this node gave, in operation): the position value
     // jumped to the home position; the motor did not move.
     const bool home_jump =
-        setup_.homing && !homed_ && homing_started_ && state == cia402::State::operation_enabled &&
-        out_.mode_display == kModeHoming && (in.statusword & kHomingAttained) != 0 &&
-        (in.statusword & kHomingError) == 0;
+        setup_.homing && !homed_ && start_sent_cycle_ != 0 && cycle > start_sent_cycle_ &&
+        state == cia402::State::operation_enabled && out_.mode_display == kModeHoming &&
+        (in.statusword & kHomingAttained) != 0 && (in.statusword & kHomingError) == 0;
     out_.vel = have_position_ && !home_jump ? (act - out_.act) / setup_.cycle_s : 0.0;
     if (home_jump) {
       homed_ = true;
@@ -272,6 +272,9 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       !out_.quick_stop) {
     if (homing_started_) {
       out_.controlword |= kHomingStart;
+      if (start_sent_cycle_ == 0) {
+        start_sent_cycle_ = cycle;  // "attained" counts from the answer to this one on
+      }
     }
     homing_started_ = true;
   }

@@ -138,7 +138,8 @@ class AxisNodeController {
   std::uint16_t statusword_ = 0;    // the last one received
   std::int64_t counts_ = 0;         // position actual, unwrapped
   std::int32_t last_counts_ = 0;
-  bool homing_started_ = false;           // controlword bit 4 is up
+  bool homing_started_ = false;           // in operation in homing mode: bit 4 goes up next
+  std::uint64_t start_sent_cycle_ = 0;    // the cycle bit 4 first went out (0: not yet)
   canopen::HeartbeatConsumer heartbeat_;  // in cycles
 };
 

@@ -451,3 +451,44 @@ TEST(AxisNodeController, APositionActualValueThatWrapsIsCountedOn) {
   EXPECT_EQ(node.cycle(3, in).target_counts, static_cast<std::int32_t>(2147483000U + 2500U));
   EXPECT_EQ(node.output().alarm, AxisAlarm::none);
 }
+
+TEST(AxisNodeController, HomingCountsOnlyAfterItsOwnStartAndAHomingErrorIsAnAlarm) {
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.homing = true;
+  AxisNodeController node(setup);
+  const std::uint16_t operating = cia402::encode_statusword(cia402::State::operation_enabled, true);
+  AxisNodeInput in;
+  in.have_tpdo = true;
+  in.mode_display = axisnode::kModeHoming;
+  // A drive that still says "homing attained" from before: not homed by this node.
+  in.statusword = static_cast<std::uint16_t>(operating | 0x1000U);
+  in.position_counts = 123;
+  const auto& first = node.cycle(1, in);
+  EXPECT_FALSE(first.homed);
+  EXPECT_EQ(first.controlword & 0x0010U, 0U);  // bit 4 not yet up: the edge comes next
+  EXPECT_EQ(node.cycle(2, in).controlword & 0x0010U, 0x0010U);
+  EXPECT_FALSE(node.output().homed);
+  // Now the drive reports a homing error (bit 13): alarm 2010, never enabled.
+  in.statusword = static_cast<std::uint16_t>(operating | 0x2000U);
+  EXPECT_EQ(node.cycle(3, in).new_alarm, AxisAlarm::homing_failed);
+  EXPECT_FALSE(node.output().enabled);
+  EXPECT_FALSE(node.output().homed);
+}
+
+TEST(AxisNodeController, AHomingThatDoesNotEndInTimeIsAnAlarm) {
+  axisnode::AxisNodeSetup setup{10000.0, kCycle, 5};
+  setup.homing = true;
+  setup.homing_timeout_cycles = 50;
+  AxisNodeController node(setup);
+  AxisNodeInput in;
+  in.have_tpdo = true;
+  in.mode_display = axisnode::kModeHoming;
+  in.statusword = cia402::encode_statusword(cia402::State::operation_enabled, false);
+  std::uint64_t alarm_at = 0;
+  for (std::uint64_t c = 1; c < 200 && alarm_at == 0; ++c) {
+    if (node.cycle(c, in).new_alarm == AxisAlarm::homing_failed) {
+      alarm_at = c;
+    }
+  }
+  EXPECT_EQ(alarm_at, 51U);
+}

@@ -146,6 +146,9 @@ int main(int argc, char** argv) {
           });
         });
     channel::ChannelOutputs outputs(node, tracer, *ch, axes, spindles, program_name, program_lines);
+    if (!interp_config.program_dir.empty()) {
+      outputs.preload_program_dir(interp_config.program_dir.string());
+    }
 
     // Discovery: every axis node's feedback writer and setpoint reader matched.
     const int total_axes = static_cast<int>(machine.axes.size());

@@ -95,6 +95,15 @@ std::vector<std::string> split_lines(const std::string& text) {
   return lines;
 }
 
+void ChannelOutputs::preload_program_dir(const std::string& dir) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), last; !ec && it != last; it.increment(ec)) {
+    if (it->is_regular_file(ec)) {
+      (void)lines_of(it->path().string());  // the path as the program store names it
+    }
+  }
+}
+
 const std::vector<std::string>& ChannelOutputs::lines_of(const std::string& path) {
   auto it = other_lines_.find(path);
   if (it == other_lines_.end()) {

@@ -33,11 +33,14 @@ class ChannelOutputs {
                bool program_loaded);
   // Axis nodes matched on the setpoint topic, for discovery.
   [[nodiscard]] int setpoint_readers() const noexcept { return setpoints_.matched_readers(); }
+  // Reads the line text of every file of `dir` (the program store), at set-up: the blocks of a
+  // subprogram from there are traced with their text without reading the disk in the cycle.
+  void preload_program_dir(const std::string& dir);
 
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
               std::span<const AxisFeedbackView> views);
-  // The lines of another program file, read at its first use.
+  // The lines of another program file (preloaded; read at its first use if not).
   const std::vector<std::string>& lines_of(const std::string& path);
 
   process::ProcessNode& node_;

@@ -41,19 +41,6 @@ void expect_xz_move_end(const std::vector<nlohmann::json>& trace) {
   EXPECT_NEAR(z1, 10.0, 0.001);
 }
 
-// Runs `program` (source tree path) on CH1 to a clean end; the trace.
-std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,
-                                             const std::vector<std::string>& extra = {}) {
-  const std::string trace_file = machine.file("trace.jsonl");
-  std::vector<std::string> argv{
-      bin("mcnc"), "run",     machine.path(), "--program", "CH1=" + source(program),
-      "--trace",   trace_file};
-  argv.insert(argv.end(), extra.begin(), extra.end());
-  const RunResult r = run(argv, -1, 300s);
-  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-  return read_trace(trace_file);
-}
-
 TEST(DriveStartup, ARefusedSdoIsAnAlarmNamingTheObject) {
   TestMachine machine("small_lathe.yaml", 31);
   Background drives({bin("mcnc-drivesim"), "--machine", machine.path(), "--bus", "can0",

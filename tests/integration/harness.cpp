@@ -2,6 +2,8 @@
 
 #include "common/process/shm_cleanup.hpp"
 
+#include <gtest/gtest.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -222,6 +224,18 @@ std::vector<pid_t> pids_with_arg(const std::string& needle) {
     }
   }
   return pids;
+}
+
+std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,
+                                             const std::vector<std::string>& extra) {
+  const std::string trace_file = machine.file("trace.jsonl");
+  std::vector<std::string> argv{
+      bin("mcnc"), "run",     machine.path(), "--program", "CH1=" + source(program),
+      "--trace",   trace_file};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  const RunResult r = run(argv, -1, std::chrono::seconds(300));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  return read_trace(trace_file);
 }
 
 }  // namespace mcnc::test

@@ -65,6 +65,11 @@ std::vector<nlohmann::json> read_trace(const std::string& path);
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,
                                    const std::string& src = {});
 
+// Runs `program` (source tree path) on CH1 of `machine` with `mcnc run` and a trace, expects a
+// clean end (exit 0); the trace.
+std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,
+                                             const std::vector<std::string>& extra = {});
+
 // Polls `pred` until true or timeout.
 template <class Pred>
 bool eventually(Pred pred, std::chrono::milliseconds timeout) {

@@ -14,13 +14,8 @@ namespace {
 
 TEST(Spindle, TurnsReversesAndStopsAsTheProgramSays) {
   TestMachine machine("spindle_lathe.yaml", 39);
-  const std::string trace_file = machine.file("trace.jsonl");
-  const RunResult r =
-      run({bin("mcnc"), "run", machine.path(), "--program",
-           "CH1=" + source("launch/programs/spindle_turn.nc"), "--trace", trace_file},
-          -1, 180s);
-  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  const auto trace = read_trace(trace_file);
+  const auto trace = run_to_clean_end(machine, "launch/programs/spindle_turn.nc");
+  ASSERT_FALSE(trace.empty());
   // The commanded speeds, signed, in program order, each when its block runs.
   std::vector<double> rpm;
   for (const auto& s : events(trace, "spindle", "CH1")) {

@@ -6,6 +6,7 @@
 #include "channel/setup/interpreter_setup.hpp"
 #include "channel/setup/motion_setup.hpp"
 #include "channel/wire/channel_outputs.hpp"
+#include "channel/wire/channel_peers.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
@@ -69,6 +70,7 @@ int main(int argc, char** argv) {
   setup.axis_count = axes.size();
   setup.spindle_count = ch->spindles.size();
   setup.cycle_s = machine.cycle_s();
+  setup.channel_id = static_cast<std::uint32_t>(ch->id);
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
   interp_config.retained_file = retained_path;
@@ -97,8 +99,9 @@ int main(int argc, char** argv) {
     process::Wakeup& wake = node.wakeup();
 
     // Feedback of the nodes the channel commands (its axes, then its spindles), by cycle, and
-    // the lockstep gate over them: a node runs cycle N on the channel's setpoint N-1, so the
-    // channel must not run ahead of any of them.
+    // the lockstep gate over them and the other channels: a node runs cycle N on the channel's
+    // setpoint N-1, so the channel must not run ahead of any of them; the channels decide their
+    // wait marks from each other's status and arrivals stamped N-1.
     std::vector<const config::AxisConfig*> spindles;
     for (const std::string& name : ch->spindles) {
       spindles.push_back(machine.find_axis(name));
@@ -106,7 +109,8 @@ int main(int argc, char** argv) {
     std::vector<const config::AxisConfig*> fed = axes;
     fed.insert(fed.end(), spindles.begin(), spindles.end());
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
-    cycle::LockstepGate gate(fed.size());
+    cycle::LockstepGate gate(fed.size() + machine.channels.size() - 1);
+    channel::ChannelPeers peers(node, machine, *ch, gate, fed.size());
     std::vector<dds::WriterId> axis_writer(fed.size());
     std::vector<bool> axis_writer_known(fed.size(), false);
     std::vector<bool> axis_lost(fed.size(), false);
@@ -158,7 +162,8 @@ int main(int argc, char** argv) {
     if (!loop.start(
             [&] {
               return feedback_reader.matched_writers() >= total_axes &&
-                     outputs.setpoint_readers() >= total_axes;
+                     outputs.setpoint_readers() >= total_axes && peers.discovered() &&
+                     outputs.event_readers() >= static_cast<int>(peers.inputs());
             },
             shell.clock)) {
       return 0;
@@ -231,12 +236,16 @@ int main(int argc, char** argv) {
         }
       });
 
+      peers.apply(cycle, lockstep, controller);
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,
                       static_cast<std::uint32_t>(interpreter.block_count()),
                       !program_path.empty() && !load_alarm);
     }
     tracer.flush();
+    if (peers.dropped() > 0) {
+      spdlog::warn("{} coordination events dropped (receive queue full)", peers.dropped());
+    }
     if (tracer.dropped() > 0) {
       spdlog::warn("{} trace events dropped (trace writer could not keep up)", tracer.dropped());
     }

@@ -25,6 +25,7 @@ MCNC_TOPIC(Alarm, event)
 MCNC_TOPIC(RunControl, state)
 MCNC_TOPIC(ProcessState, state)
 MCNC_TOPIC(OperatorCommand, event)
+MCNC_TOPIC(CoordinationEvent, event)
 
 #undef MCNC_TOPIC
 

@@ -243,18 +243,21 @@ LaunchResult Launcher::run(
       failure = dead->name() + " " + dead->exit_description() + " during start-up";
       break;
     }
-    bool all_ready = true;
+    std::string not_ready;  // the processes still starting, for the operator
     wake.update([&] {
       for (const auto& name : dds_processes) {
         auto it = seen.phases.find(name);
-        all_ready = all_ready && it != seen.phases.end() && it->second == PHASE_READY;
+        if (it == seen.phases.end() || it->second != PHASE_READY) {
+          not_ready += (not_ready.empty() ? "" : ", ") + name;
+        }
       }
     });
-    if (all_ready) {
+    if (not_ready.empty()) {
       break;
     }
     if (std::chrono::steady_clock::now() > start_deadline || process::g_stop_signal != 0) {
-      failure = process::g_stop_signal != 0 ? "interrupted during start-up" : "start-up timed out";
+      failure = process::g_stop_signal != 0 ? "interrupted during start-up"
+                                            : "start-up timed out (not ready: " + not_ready + ")";
       break;
     }
     std::this_thread::sleep_for(5ms);

@@ -26,13 +26,23 @@ const char* to_string(ChannelState state) noexcept {
 
 ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& source,
                                      motion::MotionPlanner& planner)
-    : setup_(std::move(setup)), source_(source), planner_(planner) {
+    : setup_(std::move(setup)), source_(source), planner_(planner), barrier_(setup_.channel_id) {
   queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
 }
 
 void ChannelController::axis_lost(std::size_t axis) noexcept {
   if (lost_axis_ == 0) {
     lost_axis_ = axis + 1;
+  }
+}
+
+void ChannelController::on_arrival(const coordination::SyncArrival& arrival) noexcept {
+  (void)barrier_.on_arrival(arrival);  // a full table makes the next evaluation an alarm
+}
+
+void ChannelController::partner_lost(std::uint32_t channel) noexcept {
+  if (channel >= 1 && channel <= coordination::kMaxChannels) {
+    lost_partners_.set(channel);
   }
 }
 
@@ -111,6 +121,9 @@ void ChannelController::forget_program_run() noexcept {
   end_pulled_ = false;
   end_started_ = false;
   source_alarm_.reset();
+  sync_block_.reset();
+  sync_arrived_ = false;
+  barrier_.cancel();
   out_.program_end = false;
   out_.end_code = -1;
 }
@@ -130,7 +143,8 @@ void ChannelController::finish_reset() noexcept {
 const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
                                               std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
-  if (out_.state != ChannelState::hold) {
+  out_.arrival_due = false;
+  if (out_.state != ChannelState::hold && out_.state != ChannelState::waiting) {
     out_.spindle_rpm = 0.0;  // running sets it again; a feed hold keeps the spindle turning
     out_.spindle_direction = 0;
   }
@@ -237,10 +251,10 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     set_state(ChannelState::running);
   }
 
-  if (out_.state == ChannelState::running) {
+  if (out_.state == ChannelState::running || out_.state == ChannelState::waiting) {
     run_blocks(cycle, feedback);
   }
-  if (out_.state != ChannelState::running) {
+  if (out_.state != ChannelState::running && out_.state != ChannelState::waiting) {
     hold_outputs(out_.state != ChannelState::reset);
   }
   return out_;
@@ -254,7 +268,7 @@ void ChannelController::fill() noexcept {
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
     for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
-                            planner_.accepts() && queued_count_ < queued_.size();
+                            !sync_block_ && planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -273,6 +287,22 @@ void ChannelController::fill() noexcept {
       if (c->op == interp::Op::end) {
         end_ = *c;
         end_pulled_ = true;
+        return;
+      }
+      if (c->op == interp::Op::sync) {
+        // Read-ahead stops here: the interpreter evaluates nothing after the mark until the
+        // channel pulls past it (spec dafeng §3.0).
+        SyncBlock b;
+        b.n = c->n;
+        b.line = c->line;
+        b.file = c->file;
+        b.has_p = c->has_p;
+        b.p = c->p;
+        b.all_channels = c->all_channels;
+        for (std::uint32_t ch = 1; ch <= coordination::kMaxChannels; ++ch) {
+          b.participants.set(ch, c->has_channel(static_cast<int>(ch)));
+        }
+        sync_block_ = b;
         return;
       }
       const AxisVector start = planner_.queue_end();  // where the block starts
@@ -368,6 +398,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     return;
   }
   // Everything pulled so far has run.
+  if (sync_block_) {
+    run_sync();
+    return;
+  }
   if (source_alarm_) {
     raise_program_alarm(*source_alarm_);
     source_alarm_.reset();
@@ -405,6 +439,84 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   end.end_code = end_.code;
   push_event(end);
   set_state(ChannelState::idle);
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::run_sync() noexcept {
+  const SyncBlock& b = *sync_block_;
+  ChannelEvent event;
+  event.line = b.line;
+  event.file = b.file;
+  event.block = b.n;
+  event.pos = commanded_;
+  if (!sync_arrived_) {
+    out_.block = b.n;
+    out_.line = b.line;
+    event.kind = ChannelEventKind::block_started;
+    push_event(event);
+    if (b.has_p) {
+      out_.arrival = barrier_.arrive(b.p, b.participants, b.all_channels);
+      out_.arrival_due = true;
+      sync_arrived_ = true;
+      event.kind = ChannelEventKind::sync_arrive;
+      push_event(event);
+      set_state(ChannelState::waiting);
+    }
+  }
+  if (b.has_p) {
+    int number = 0;
+    const char* what = nullptr;
+    std::uint32_t other = 0;
+    switch (barrier_.evaluate(active_, halted_partners_)) {
+      case coordination::SyncState::none:
+      case coordination::SyncState::waiting: {
+        const coordination::ChannelSet gone = barrier_.missing() & lost_partners_;
+        if (gone.none()) {
+          return;
+        }
+        other = 1;
+        while (!gone.test(other)) {
+          ++other;
+        }
+        number = kAlarmSyncPartnerLost;
+        what = "is gone while this channel waits for it";
+        break;
+      }
+      case coordination::SyncState::mismatch:
+        number = kAlarmSyncMismatch;
+        what = "waits at the same mark with other participants (sync mismatch)";
+        other = barrier_.conflict_channel();
+        break;
+      case coordination::SyncState::deadlock:
+        number = kAlarmSyncDeadlock;
+        what = "waits at another mark that can never be released (sync deadlock)";
+        other = barrier_.conflict_channel();
+        break;
+      case coordination::SyncState::full:
+        number = kAlarmSyncTableFull;
+        what = "has more different marks than the table holds (32)";
+        other = setup_.channel_id;
+        break;
+      case coordination::SyncState::released:
+        event.kind = ChannelEventKind::sync_release;
+        push_event(event);
+        set_state(ChannelState::running);
+        break;
+    }
+    if (what != nullptr) {
+      char text[160];
+      std::snprintf(text, sizeof text, "G04.1 P%d: channel %u %s", b.p, other, what);
+      raise(number, text, b.line, 0, 0);
+      return;
+    }
+  }
+  event.kind = ChannelEventKind::block_ended;
+  push_event(event);
+  sync_block_.reset();
+  sync_arrived_ = false;
 }
 
 }  // namespace mcnc::channel

@@ -2,8 +2,11 @@
 // The channel's cyclic core: the channel state machine (reset / idle / running / alarm) that
 // pulls canonical commands from its CommandSource as far as its look-ahead planner takes them,
 // steps the planner once per cycle, holds every exact stop until the axes are in position, and
-// yields one setpoint per axis per cycle plus the events of that cycle. Pure and deterministic:
-// inputs and cycle number in, outputs out.
+// yields one setpoint per axis per cycle plus the events of that cycle. At a G04.1 wait mark it
+// stops reading ahead, arrives once the blocks before the mark have ended, and waits (state
+// waiting) until its SyncBarrier releases it. Pure and deterministic: inputs and cycle number
+// in, outputs out.
+#include "channel/coordination/sync_barrier.hpp"
 #include "channel/interp/command_source.hpp"
 #include "channel/motion/motion_planner.hpp"
 
@@ -45,6 +48,8 @@ enum class ChannelEventKind : std::uint8_t {
   block_ended,    // the path passed the block's end (an exact stop: and every axis is in position)
   alarm,          // alarm_number / alarm text via last_alarm()
   program_end,    // end_code
+  sync_arrive,    // G04.1 P: the channel arrived at the mark (ChannelOutput::arrival)
+  sync_release,   // every participant arrived: the channel goes on
 };
 
 struct ChannelEvent {
@@ -79,6 +84,9 @@ struct ChannelOutput {
   // -1 M04, 0 stopped). Stopped whenever no program runs (reset, idle, alarm, end).
   double spindle_rpm = 0.0;
   int spindle_direction = 0;
+  // A G04.1 arrival to send to every other channel this cycle (sync_arrive event).
+  bool arrival_due = false;
+  coordination::SyncArrival arrival{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -92,6 +100,7 @@ struct ChannelSetup {
   // Spindles whose feedback follows the axes' in cycle()'s `feedback`: their alarms stop the
   // channel too, and a channel comes to idle only with them enabled.
   std::size_t spindle_count = 0;
+  std::uint32_t channel_id = 1;  // the channel's number (CHn), as G04.1 Q names it
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -99,6 +108,10 @@ inline constexpr int kAlarmPlannerRejected = 1200;
 inline constexpr int kAlarmAxisAlarm = 1201;
 inline constexpr int kAlarmAxisLost = 1202;
 inline constexpr int kAlarmEmergencyStop = 1203;
+inline constexpr int kAlarmSyncMismatch = 1210;     // G04.1: partners name other participants
+inline constexpr int kAlarmSyncDeadlock = 1211;     // G04.1: waits in a circle
+inline constexpr int kAlarmSyncTableFull = 1212;    // G04.1: more marks than the table holds
+inline constexpr int kAlarmSyncPartnerLost = 1213;  // G04.1: a partner's process is gone
 
 class ChannelController {
  public:
@@ -128,6 +141,18 @@ class ChannelController {
   // An owned axis's node is gone (`axis` counts the spindles after the axes): alarm and hold.
   void axis_lost(std::size_t axis) noexcept;
 
+  // Coordination inputs, given before cycle(): another channel's G04.1 arrival (applied in
+  // the order sent), the channels in automatic operation as their status stamped N-1 says
+  // (running, feed hold, waiting) and those stopped by an alarm, and a channel whose process is
+  // gone.
+  void on_arrival(const coordination::SyncArrival& arrival) noexcept;
+  void set_partner_states(const coordination::ChannelSet& active,
+                          const coordination::ChannelSet& halted) noexcept {
+    active_ = active;
+    halted_partners_ = halted;
+  }
+  void partner_lost(std::uint32_t channel) noexcept;
+
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
                              std::span<const AxisFeedbackView> feedback) noexcept;
@@ -136,6 +161,8 @@ class ChannelController {
   [[nodiscard]] const ChannelAlarm& last_alarm() const noexcept { return alarm_; }
   [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
+  // The G04.1 marks as this channel sees them: the mark it waits at and whom it misses.
+  [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return barrier_; }
 
  private:
   void set_state(ChannelState state) noexcept;
@@ -152,6 +179,8 @@ class ChannelController {
   void hold_outputs(bool valid) noexcept;
   void finish_reset() noexcept;
   void forget_program_run() noexcept;  // the queue, the end and the alarms of a program run
+  // At a G04.1 block with everything before it ended: arrive, wait, go on.
+  void run_sync() noexcept;
 
   // A block handed to the planner, until its end event.
   struct QueuedBlock {
@@ -189,6 +218,23 @@ class ChannelController {
   std::optional<interp::ProgramAlarm> source_alarm_;  // raised when the blocks before it ran
   std::optional<interp::ProgramAlarm> pending_alarm_;
   bool first_cycle_ = true;
+
+  // G04.1: the block pulled and not passed yet (read-ahead stops there), and the marks.
+  struct SyncBlock {
+    std::uint64_t n = 0;
+    int line = 0;
+    const std::string* file = nullptr;
+    bool has_p = false;
+    std::int32_t p = 0;
+    bool all_channels = false;
+    coordination::ChannelSet participants;
+  };
+  std::optional<SyncBlock> sync_block_;
+  bool sync_arrived_ = false;
+  coordination::SyncBarrier barrier_;
+  coordination::ChannelSet active_;
+  coordination::ChannelSet halted_partners_;
+  coordination::ChannelSet lost_partners_;
 };
 
 }  // namespace mcnc::channel

@@ -90,7 +90,7 @@ bool SyncBarrier::released(const Mark& m, std::uint32_t owner,
   return true;
 }
 
-SyncState SyncBarrier::evaluate(const ChannelSet& active) noexcept {
+SyncState SyncBarrier::evaluate(const ChannelSet& active, const ChannelSet& halted) noexcept {
   if (overflow_) {
     return SyncState::full;
   }
@@ -113,7 +113,8 @@ SyncState SyncBarrier::evaluate(const ChannelSet& active) noexcept {
   ChannelSet stuck;
   for (std::uint32_t q = 1; q <= kMaxChannels; ++q) {
     const Channel& c = channels_[q];
-    if (q != self_ && c.arrived && active.test(q) && !released(c.latest, q, active)) {
+    if (q != self_ && c.arrived && (active.test(q) || halted.test(q)) &&
+        !released(c.latest, q, active)) {
       stuck.set(q);
     }
   }

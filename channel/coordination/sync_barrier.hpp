@@ -54,8 +54,11 @@ class SyncBarrier {
   // sender's table is full (alarm).
   bool on_arrival(const SyncArrival& arrival) noexcept;
   // This channel's wait, given the channels in automatic operation now (running a program,
-  // waiting at a mark or for a sub-call). Released and alarm states end the wait.
-  SyncState evaluate(const ChannelSet& active) noexcept;
+  // waiting at a mark or for a sub-call) and the channels an alarm stopped (they stand where
+  // they are: at an unreleased mark they still take part in a mismatch or a deadlock, so each
+  // channel involved gets the alarm, not only the first to see it). Released and alarm states
+  // end the wait.
+  SyncState evaluate(const ChannelSet& active, const ChannelSet& halted = {}) noexcept;
   // The wait ends without release (reset).
   void cancel() noexcept { waiting_ = false; }
 

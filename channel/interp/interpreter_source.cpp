@@ -23,7 +23,6 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::wait_input:
     case Op::stop:
       return "spindle, tool, M-code and input commands need the PLC node";
-    case Op::sync:
     case Op::axis_release:
     case Op::axis_acquire:
     case Op::axis_restore:
@@ -41,6 +40,12 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     default:
       return nullptr;
   }
+}
+
+// A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
+// anything else is not in this version.
+int alarm_for(const Command& c) {
+  return c.op == Op::sync ? alarm::kSyncForm : alarm::kNotInThisVersion;
 }
 
 }  // namespace
@@ -70,9 +75,8 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
     }
     const Command& c = std::get<Command>(*r);
     std::string why;
-    if (!for_channel(c, why, config_.spindles)) {
-      load_alarm_ = ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_,
-                                 c.line, 0};
+    if (!for_channel(c, why, config_)) {
+      load_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
     } else if (c.op == Op::end) {
       break;
     }
@@ -94,8 +98,19 @@ void InterpreterSource::rewind(const AxisVector& current) {
   load_alarm_ = interpreter_->start(text_, name_);
 }
 
-bool InterpreterSource::for_channel(const Command& c, std::string& why, int spindles) {
-  if (c.op == Op::spindle && spindles > 0) {
+bool InterpreterSource::for_channel(const Command& c, std::string& why,
+                                    const InterpreterConfig& config) {
+  if (c.op == Op::sync) {
+    for (int ch = config.channel_count + 1; c.has_p && config.channel_count > 0 && ch <= 255;
+         ++ch) {
+      if (c.has_channel(ch)) {
+        why = "G04.1 Q names channel " + std::to_string(ch) + ", which this machine does not have";
+        return false;
+      }
+    }
+    return true;
+  }
+  if (c.op == Op::spindle && config.spindles > 0) {
     if (c.channel != 0 || c.spindle > 1) {
       why = "only the channel's first spindle can be commanded in this version";
       return false;
@@ -140,11 +155,10 @@ std::optional<PullResult> InterpreterSource::next() {
   }
   const Command& c = std::get<Command>(*r);
   std::string why;
-  if (for_channel(c, why, config_.spindles)) {
+  if (for_channel(c, why, config_)) {
     return PullResult{c};
   }
-  load_alarm_ =
-      ProgramAlarm{alarm::kNotInThisVersion, why, c.file != nullptr ? *c.file : name_, c.line, 0};
+  load_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
   return PullResult{*load_alarm_};
 }
 

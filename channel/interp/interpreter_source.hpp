@@ -3,8 +3,9 @@
 // planner executes (rapid, linear and arc per minute, dwell in seconds, program end); any other
 // canonical command is a program alarm naming what the channel cannot execute yet, raised
 // before the program starts (feed per revolution, threads and dwells in revolutions need the
-// spindle's feedback, tool and M codes the PLC node, the multi-channel words the coordination
-// runtime). Its own first spindle's speed and direction it runs.
+// spindle's feedback, tool and M codes the PLC node, the multi-channel words other than G04.1
+// the coordination runtime). Its own first spindle's speed and direction it runs; G04.1 wait
+// marks it hands to the channel.
 #include "channel/interp/command_source.hpp"
 #include "channel/interp/interpreter.hpp"
 
@@ -33,7 +34,8 @@ class InterpreterSource final : public CommandSource {
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
   // spindle turns its first (M03/M04/M05 with S, G96/G97); orientation (M19) and other
   // spindles are not in this version.
-  static bool for_channel(const Command& c, std::string& why, int spindles);
+  // G04.1 marks run (their participants must be channels of the machine).
+  static bool for_channel(const Command& c, std::string& why, const InterpreterConfig& config);
 
  private:
   InterpreterConfig config_;

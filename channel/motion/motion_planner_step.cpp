@@ -698,6 +698,10 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
   if (item_count_ == 0) {
     write_rest(out_.sample.pos);
     out_.state = MotionState::idle;
+    // Everything taken has run: a spindle command after the last move (M03 before a G04.1
+    // wait) takes effect now, not with the next move.
+    out_.spindle_rpm = spindle_rpm_at(spindle_, out_.sample.pos);
+    out_.spindle_direction = spindle_.direction;
     return out_;
   }
   const Item& head = item(item_head_);

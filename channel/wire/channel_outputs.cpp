@@ -1,6 +1,10 @@
 #include "channel/wire/channel_outputs.hpp"
 
+#include "channel/wire/channel_mask.hpp"
+
 #include <spdlog/spdlog.h>
+
+#include <cstdio>
 
 #include <filesystem>
 #include <fstream>
@@ -31,7 +35,8 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       program_name_(std::move(program_name)),
       program_lines_(std::move(program_lines)),
       setpoints_(node.participant()),
-      status_(node.participant()) {}
+      status_(node.participant()),
+      events_(node.participant()) {}
 
 void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& controller,
                              const ChannelOutput& out, std::span<const AxisFeedbackView> views,
@@ -63,9 +68,29 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     tracer_.emit(cycle, "spindle", "\"ch\":\"%s\",\"spindle\":\"%s\",\"rpm\":%.3f",
                  channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
+  if (out.arrival_due) {
+    CoordinationEvent e;
+    e.channel(static_cast<std::uint32_t>(channel_.id));
+    e.seq(++event_seq_);
+    e.cycle(cycle);
+    e.kind(COORD_SYNC_ARRIVE);
+    e.p(out.arrival.p);
+    e.generation(out.arrival.generation);
+    e.all_channels(out.arrival.all_active);
+    e.channels(to_mask(out.arrival.participants));
+    events_.write(e);
+  }
   ::mcnc::ChannelStatus status;
   status.channel(static_cast<std::uint32_t>(channel_.id));
   status.cycle(cycle);
+  status.event_seq(event_seq_);
+  const coordination::SyncArrival& mark = controller.sync().current();
+  status.sync_p(mark.p);
+  status.sync_generation(mark.generation);
+  status.sync_all(mark.all_active);
+  status.sync_channels(to_mask(mark.participants));
+  status.sync_waiting_for(out.state == ChannelState::waiting ? to_mask(controller.sync().missing())
+                                                             : 0);
   status.state(to_wire(out.state));
   status.block(static_cast<std::uint32_t>(out.block));
   status.block_total(block_total);
@@ -158,6 +183,28 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       }
       node_.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle,
                         channel_.id, axis != nullptr ? axis->id : 0, alarm.line);
+      break;
+    }
+    case ChannelEventKind::sync_arrive: {
+      const coordination::SyncArrival& a = controller.sync().current();
+      char list[4 * coordination::kMaxChannels + 1] = {};
+      std::size_t used = 0;
+      for (std::uint32_t c = 1; c <= coordination::kMaxChannels; ++c) {
+        if (a.participants.test(c) && used + 4 < sizeof list) {
+          used += static_cast<std::size_t>(
+              std::snprintf(list + used, sizeof list - used, used == 0 ? "%u" : ",%u", c));
+        }
+      }
+      tracer_.emit(cycle, "sync_arrive",
+                   "\"ch\":\"%s\",\"p\":%d,\"channels\":[%s],\"all\":%s,\"gen\":%llu", ch, a.p,
+                   list, a.all_active ? "true" : "false",
+                   static_cast<unsigned long long>(a.generation));
+      break;
+    }
+    case ChannelEventKind::sync_release: {
+      const coordination::SyncArrival& a = controller.sync().current();
+      tracer_.emit(cycle, "sync_release", "\"ch\":\"%s\",\"p\":%d,\"gen\":%llu", ch, a.p,
+                   static_cast<unsigned long long>(a.generation));
       break;
     }
     case ChannelEventKind::program_end:

@@ -1,6 +1,7 @@
 #pragma once
-// The channel's outputs on the wire: each cycle's setpoints and status over DDS, and its events
-// in the trace (state, block, block-end positions, alarm, end) with alarms also published.
+// The channel's outputs on the wire: each cycle's setpoints and status over DDS, its G04.1
+// arrivals to the other channels (sent before the status that announces them), and its events
+// in the trace (state, block, block-end positions, alarm, end, sync) with alarms also published.
 // An adapter between ChannelController and DDS / the trace; the shell only wires it.
 #include "channel/control/channel_controller.hpp"
 #include "common/config/machine_config.hpp"
@@ -31,6 +32,8 @@ class ChannelOutputs {
   void publish(std::uint64_t cycle, const ChannelController& controller, const ChannelOutput& out,
                std::span<const AxisFeedbackView> views, std::uint32_t block_total,
                bool program_loaded);
+  // Other channels matched on the coordination event topic, for discovery.
+  [[nodiscard]] int event_readers() const noexcept { return events_.matched_readers(); }
   // Axis nodes matched on the setpoint topic, for discovery.
   [[nodiscard]] int setpoint_readers() const noexcept { return setpoints_.matched_readers(); }
   // Reads the line text of every file of `dir` (the program store), at set-up: the blocks of a
@@ -54,6 +57,8 @@ class ChannelOutputs {
   std::map<std::string, std::vector<std::string>> other_lines_;
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;
+  dds::Writer<::mcnc::CoordinationEvent> events_;
+  std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent
   char escaped_[512] = {};
 };
 

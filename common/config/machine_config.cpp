@@ -404,6 +404,10 @@ MachineConfig parse_document(const YAML::Node& root) {
   if (channels.empty()) {
     channels_value.fail("a machine needs at least one channel");
   }
+  if (channels.size() > kMaxChannels) {
+    channels_value.fail("a machine has at most " + std::to_string(kMaxChannels) +
+                        " channels (G04.1 and the channel status name channels 1-64)");
+  }
   std::vector<std::vector<YamlValue>> channel_refs(channels.size());
   std::vector<std::vector<YamlValue>> spindle_refs(channels.size());
   std::map<std::string, std::size_t> channel_index;

@@ -140,5 +140,7 @@ MachineConfig load_machine_file(const std::string& path);
 [[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us,
                               int spindle_count = 0) noexcept;
 inline constexpr double kMaxBusLoad = 0.70;
+// Channels of one machine: G04.1 participant sets travel as 64-bit masks.
+inline constexpr std::size_t kMaxChannels = 64;
 
 }  // namespace mcnc::config

@@ -1172,3 +1172,188 @@ TEST(ChannelController, AnEmergencyStopDuringAResetRampStaysAnEmergencyStop) {
 
 }  // namespace
 }  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+// Counts the pulls of the interpreter behind it: what the channel has had evaluated so far.
+class CountingSource final : public interp::CommandSource {
+ public:
+  explicit CountingSource(interp::CommandSource& inner) : inner_(inner) {}
+  void rewind(const AxisVector& current) override { inner_.rewind(current); }
+  std::optional<interp::PullResult> next() override {
+    auto r = inner_.next();
+    if (r) {
+      if (const auto* c = std::get_if<Command>(&*r)) {
+        last_line = c->line;
+      }
+    }
+    return r;
+  }
+  [[nodiscard]] std::size_t block_count() const noexcept override { return inner_.block_count(); }
+  int last_line = 0;  // the line of the last command handed out
+
+ private:
+  interp::CommandSource& inner_;
+};
+
+coordination::SyncArrival partner_arrival(std::uint32_t channel, int p,
+                                          std::initializer_list<int> participants) {
+  coordination::SyncArrival a;
+  a.channel = channel;
+  a.p = p;
+  a.generation = 1;
+  for (const int c : participants) {
+    a.participants.set(static_cast<std::size_t>(c));
+  }
+  return a;
+}
+
+coordination::ChannelSet channels(std::initializer_list<int> list) {
+  coordination::ChannelSet s;
+  for (const int c : list) {
+    s.set(static_cast<std::size_t>(c));
+  }
+  return s;
+}
+
+struct SyncRig {
+  explicit SyncRig(const std::string& program, int spindles = 0)
+      : interp([&] {
+          interp::InterpreterConfig c = xz_channel();
+          c.spindles = spindles;
+          return c;
+        }()),
+        counting(interp),
+        rig(&counting, xz(0.0, 0.0), spindles) {
+    const auto alarm = interp.load(program, "S.nc");
+    EXPECT_FALSE(alarm.has_value()) << alarm->text;
+    rig.ctl_.set_partner_states(channels({2}), {});
+    rig.ctl_.request_start();
+  }
+  bool run_to_arrival() {
+    return rig.run_until([](const ChannelOutput& o) { return o.arrival_due; });
+  }
+  interp::InterpreterSource interp;
+  CountingSource counting;
+  Rig rig;
+};
+
+TEST(ChannelSync, ArrivesWhenTheBlocksBeforeEndedAndReadsNothingAfterTheMarkUntilReleased) {
+  SyncRig s("G01 X10 Z5 F300\nG04.1 P1 Q12\n#100=7\nG01 Z[#100]\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  const ChannelOutput& at = s.rig.last;
+  EXPECT_EQ(at.state, ChannelState::waiting);
+  EXPECT_EQ(at.arrival.p, 1);
+  EXPECT_EQ(at.arrival.generation, 1U);
+  EXPECT_EQ(at.arrival.participants, channels({1, 2}));
+  EXPECT_EQ(at.arrival.channel, 1U);
+  // The move before the mark ended in position before the arrival.
+  ASSERT_TRUE(s.rig.first_cycle_of(ChannelEventKind::block_ended, 1).has_value());
+  EXPECT_NEAR(s.rig.feedback_[1].act, 5.0, kInPos);
+  // Read-ahead stopped at the mark: nothing after it was evaluated.
+  EXPECT_EQ(s.counting.last_line, 2);
+  const std::uint64_t arrived = s.rig.cycle_ - 1;
+  for (int i = 0; i < 50; ++i) {
+    const ChannelOutput& o = s.rig.step();
+    EXPECT_EQ(o.state, ChannelState::waiting);
+    EXPECT_FALSE(o.arrival_due);  // arrives once
+    EXPECT_TRUE(o.setpoints[1].valid);
+    EXPECT_DOUBLE_EQ(o.setpoints[1].pos, 5.0);
+  }
+  EXPECT_EQ(s.counting.last_line, 2);
+  EXPECT_EQ(s.rig.ctl_.sync().missing(), channels({2}));
+  s.rig.ctl_.on_arrival(partner_arrival(2, 1, {1, 2}));
+  s.rig.step();
+  const auto released = s.rig.first_cycle_of(ChannelEventKind::sync_release, 2);
+  ASSERT_TRUE(released.has_value());
+  EXPECT_GT(*released, arrived + 50);
+  EXPECT_EQ(s.rig.last.state, ChannelState::running);
+  ASSERT_TRUE(s.rig.run_to_end());
+  EXPECT_NEAR(s.rig.feedback_[1].act, 7.0, kInPos);  // #100 evaluated after the release
+  EXPECT_GT(*s.rig.first_cycle_of(ChannelEventKind::block_started, 4), *released);
+}
+
+TEST(ChannelSync, APartnerThatArrivedFirstReleasesAtOnce) {
+  SyncRig s("G01 Z2 F300\nG04.1 P3 Q12\nG01 Z4\nM30\n");
+  s.rig.ctl_.on_arrival(partner_arrival(2, 3, {1, 2}));
+  ASSERT_TRUE(s.run_to_arrival());
+  EXPECT_EQ(s.rig.last.state, ChannelState::running);  // arrived and released in one cycle
+  EXPECT_EQ(s.rig.events_of(ChannelEventKind::sync_release).size(), 1U);
+  ASSERT_TRUE(s.rig.run_to_end());
+}
+
+TEST(ChannelSync, WithoutPTheMarkOnlyStopsReadAhead) {
+  SyncRig s("G01 Z3 F300\nG04.1\n#100=9\nG01 Z[#100]\nM30\n");
+  // While the move before runs, nothing after the mark is evaluated.
+  ASSERT_TRUE(s.rig.run_until([&](const ChannelOutput& o) { return o.setpoints[1].pos > 1.0; }));
+  EXPECT_EQ(s.counting.last_line, 2);
+  ASSERT_TRUE(s.rig.run_to_end());
+  EXPECT_TRUE(s.rig.events_of(ChannelEventKind::sync_arrive).empty());
+  for (const ChannelOutput& o : s.rig.outputs) {
+    EXPECT_NE(o.state, ChannelState::waiting);
+  }
+  EXPECT_GT(*s.rig.first_cycle_of(ChannelEventKind::block_started, 2),
+            *s.rig.first_cycle_of(ChannelEventKind::block_ended, 1) - 1);
+  EXPECT_NEAR(s.rig.feedback_[1].act, 9.0, kInPos);
+}
+
+TEST(ChannelSync, WaitsInACircleAndMismatchesAreAlarms) {
+  {
+    SyncRig s("G04.1 P1 Q12\nM30\n");
+    ASSERT_TRUE(s.run_to_arrival());
+    s.rig.ctl_.on_arrival(partner_arrival(2, 2, {1, 2}));  // CH2 waits at P2 for CH1
+    s.rig.step();
+    EXPECT_EQ(s.rig.last.state, ChannelState::alarm);
+    EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncDeadlock);
+    EXPECT_EQ(s.rig.ctl_.last_alarm().line, 1);
+  }
+  {
+    SyncRig s("G04.1 P1 Q12\nM30\n");
+    s.rig.ctl_.on_arrival(partner_arrival(2, 1, {1, 2, 3}));
+    ASSERT_TRUE(s.rig.run_until(
+        [](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 100));
+    EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncMismatch);
+  }
+}
+
+TEST(ChannelSync, APartnerGoneWhileWaitedForIsAnAlarm) {
+  SyncRig s("G04.1 P1 Q12\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  s.rig.ctl_.partner_lost(3);  // not a participant: nothing happens
+  s.rig.step();
+  EXPECT_EQ(s.rig.last.state, ChannelState::waiting);
+  s.rig.ctl_.partner_lost(2);
+  s.rig.step();
+  EXPECT_EQ(s.rig.last.state, ChannelState::alarm);
+  EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncPartnerLost);
+}
+
+TEST(ChannelSync, ResetWhileWaitingEndsTheWaitAndTheNextRunArrivesInTheNextRound) {
+  SyncRig s("G04.1 P1 Q12\nG01 Z1 F300\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  s.rig.ctl_.request_reset();
+  ASSERT_TRUE(
+      s.rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }, 100));
+  EXPECT_FALSE(s.rig.ctl_.sync().waiting());
+  s.rig.ctl_.request_start();
+  ASSERT_TRUE(s.run_to_arrival());
+  EXPECT_EQ(s.rig.last.arrival.generation, 2U);
+  s.rig.ctl_.on_arrival(partner_arrival(2, 1, {1, 2}));  // CH2's round 1 does not release it
+  s.rig.step();
+  EXPECT_EQ(s.rig.last.state, ChannelState::waiting);
+}
+
+TEST(ChannelSync, TheSpindleKeepsTurningWhileTheChannelWaits) {
+  SyncRig s("M03 S800\nG04.1 P1 Q12\nM05\nM30\n", 1);
+  ASSERT_TRUE(s.run_to_arrival());
+  for (int i = 0; i < 20; ++i) {
+    const ChannelOutput& o = s.rig.step();
+    EXPECT_EQ(o.state, ChannelState::waiting);
+    EXPECT_EQ(o.spindle_direction, 1);
+    EXPECT_EQ(o.spindle_rpm, 800.0);
+  }
+}
+
+}  // namespace
+}  // namespace mcnc::channel

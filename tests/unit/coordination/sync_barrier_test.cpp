@@ -112,6 +112,32 @@ TEST(SyncBarrier, MutualWaitsAtDifferentMarksAreADeadlockInBothChannels) {
   EXPECT_EQ(m.state(2), SyncState::deadlock);
 }
 
+// The first channel to see a conflict raises its alarm and leaves automatic operation; the
+// other, deciding a cycle later, must still find it.
+TEST(SyncBarrier, AConflictIsFoundAlsoAfterThePartnerStoppedWithItsAlarm) {
+  Machine m(3);
+  m.arrive(2, 2, set_of({1, 2, 3}));
+  m.arrive(1, 2, set_of({1, 2}));
+  EXPECT_EQ(m.state(1), SyncState::mismatch);
+  m.active().reset(1);  // CH1 in alarm
+  EXPECT_EQ(m.ch(2).evaluate(m.active(), set_of({1})), SyncState::mismatch);
+  EXPECT_EQ(m.ch(2).conflict_channel(), 1U);
+
+  Machine d(2);
+  d.arrive(2, 2, set_of({1, 2}));
+  d.arrive(1, 1, set_of({1, 2}));
+  EXPECT_EQ(d.state(1), SyncState::deadlock);
+  d.active().reset(1);
+  EXPECT_EQ(d.ch(2).evaluate(d.active(), set_of({1})), SyncState::deadlock);
+  // A partner reset out of its program (neither active nor halted) is no longer waiting: the
+  // channel waits for it to come again.
+  Machine r(2);
+  r.arrive(2, 2, set_of({1, 2}));
+  r.arrive(1, 1, set_of({1, 2}));
+  r.active().reset(1);
+  EXPECT_EQ(r.ch(2).evaluate(r.active(), ChannelSet{}), SyncState::waiting);
+}
+
 TEST(SyncBarrier, AWaitingCycleThroughThreeChannelsIsADeadlock) {
   Machine m(3);
   m.arrive(1, 1, set_of({1, 2}));  // CH1 waits for CH2 at P1

@@ -1,0 +1,28 @@
+#pragma once
+// Channel sets on the wire: a 64-bit mask, bit c-1 for channel c (ChannelStatus,
+// CoordinationEvent).
+#include "channel/coordination/sync_barrier.hpp"
+
+#include <cstdint>
+
+namespace mcnc::channel {
+
+inline std::uint64_t to_mask(const coordination::ChannelSet& set) noexcept {
+  std::uint64_t mask = 0;
+  for (std::uint32_t c = 1; c <= coordination::kMaxChannels; ++c) {
+    if (set.test(c)) {
+      mask |= std::uint64_t{1} << (c - 1);
+    }
+  }
+  return mask;
+}
+
+inline coordination::ChannelSet from_mask(std::uint64_t mask) noexcept {
+  coordination::ChannelSet set;
+  for (std::uint32_t c = 1; c <= coordination::kMaxChannels; ++c) {
+    set.set(c, ((mask >> (c - 1)) & 1U) != 0);
+  }
+  return set;
+}
+
+}  // namespace mcnc::channel

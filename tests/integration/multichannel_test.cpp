@@ -1,0 +1,227 @@
+// Several channels machining together (issue 7): the spec's multi-channel examples run as real
+// processes in lockstep, their "Expected" lists asserted from the trace.
+#include "harness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+using namespace mcnc::test;
+
+namespace {
+
+using Trace = std::vector<nlohmann::json>;
+
+// Runs `programs` (channel -> file) on `machine` with `mcnc run`; the exit code and the trace.
+struct MultiRun {
+  int exit_code = -1;
+  std::string output;
+  Trace trace;
+};
+
+MultiRun run_channels(const TestMachine& machine,
+                      const std::map<std::string, std::string>& programs,
+                      const std::vector<std::string>& extra = {}) {
+  const std::string trace_file = machine.file("trace.jsonl");
+  std::vector<std::string> argv{bin("mcnc"), "run", machine.path(), "--trace", trace_file};
+  for (const auto& [channel, file] : programs) {
+    argv.insert(argv.end(), {"--program", channel + "=" + file});
+  }
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  const RunResult r = run(argv, -1, std::chrono::seconds(300));
+  return MultiRun{r.exit_code, r.out + r.err, read_trace(trace_file)};
+}
+
+// A program of the source tree with every `from` replaced by `to`, written beside the machine.
+std::string variant(const TestMachine& machine, const std::string& program, const std::string& from,
+                    const std::string& to) {
+  std::ifstream in(source(program));
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string out = machine.file(program.substr(program.find_last_of('/') + 1));
+  std::ofstream(out) << std::regex_replace(text.str(), std::regex(from), to);
+  return out;
+}
+
+// The cycle of the first event `ev` of channel `ch` whose fields match `match`.
+std::uint64_t cycle_of(const Trace& trace, const std::string& ev, const std::string& ch,
+                       const nlohmann::json& match = nlohmann::json::object()) {
+  for (const auto& e : events(trace, ev, ch)) {
+    bool ok = true;
+    for (const auto& [key, value] : match.items()) {
+      ok = ok && e.contains(key) && e[key] == value;
+    }
+    if (ok) {
+      return e["cycle"].get<std::uint64_t>();
+    }
+  }
+  ADD_FAILURE() << "no " << ev << " of " << ch << " matching " << match.dump();
+  return 0;
+}
+
+std::uint64_t block_at(const Trace& trace, const std::string& ch, int line) {
+  return cycle_of(trace, "block", ch, {{"line", line}});
+}
+std::uint64_t arrival(const Trace& trace, const std::string& ch, int p) {
+  return cycle_of(trace, "sync_arrive", ch, {{"p", p}});
+}
+std::uint64_t release(const Trace& trace, const std::string& ch, int p) {
+  return cycle_of(trace, "sync_release", ch, {{"p", p}});
+}
+
+const std::string kG041 = "tests/integration/programs/g041/";
+
+// CT-G041-01 (spec dafeng §3.1): the "Expected" list, for the plain form and its variants.
+void expect_three_channel_order(const MultiRun& r) {
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  EXPECT_TRUE(events(t, "alarm").empty());
+  // 1. Nothing after P1 until all three have reached P1.
+  const std::uint64_t all_at_p1 =
+      std::max({arrival(t, "CH1", 1), arrival(t, "CH2", 1), arrival(t, "CH3", 1)});
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {
+    EXPECT_GE(release(t, ch, 1), all_at_p1) << ch;
+    EXPECT_GT(block_at(t, ch, 5), all_at_p1) << ch;  // the block after P1
+  }
+  // 2. CH3 does not take part in P2; it waits at P3 for CH2 only.
+  EXPECT_TRUE(events(t, "sync_arrive", "CH3").size() == 3U);  // P1, P3, P4
+  EXPECT_EQ(events(t, "sync_arrive", "CH3").at(1)["channels"], nlohmann::json({2, 3}));
+  EXPECT_LT(arrival(t, "CH3", 3), arrival(t, "CH1", 2));  // its own pace, not P2's
+  // 3. Each M05 after P2 only once the other channel has reached P2.
+  EXPECT_GT(block_at(t, "CH1", 8), arrival(t, "CH2", 2));
+  EXPECT_GT(block_at(t, "CH2", 7), arrival(t, "CH1", 2));
+  // The spindles turn while their channels wait (M03 before P1), and M05 stops CH1's only after
+  // P2.
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {
+    EXPECT_LE(cycle_of(t, "spindle", ch, {{"rpm", 1000.0}}), arrival(t, ch, 1)) << ch;
+  }
+  EXPECT_GT(cycle_of(t, "spindle", "CH1", {{"rpm", 0.0}}), arrival(t, "CH2", 2));
+  // 4. CH3's G0 X0 Z0 after CH2 reached P3 (hence after CH1 reached P2).
+  EXPECT_GT(block_at(t, "CH3", 10), arrival(t, "CH2", 3));
+  EXPECT_GT(block_at(t, "CH3", 10), arrival(t, "CH1", 2));
+  // 5. CH1 is not in P3: it reaches P4 and waits there while CH2 and CH3 go on.
+  EXPECT_TRUE(events(t, "sync_arrive", "CH1").size() == 3U);  // P1, P2, P4
+  EXPECT_LT(arrival(t, "CH1", 4), arrival(t, "CH2", 4));
+  // 6. P4 joins all three: no M30 before every channel reached P4.
+  const std::uint64_t all_at_p4 =
+      std::max({arrival(t, "CH1", 4), arrival(t, "CH2", 4), arrival(t, "CH3", 4)});
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {
+    EXPECT_GT(cycle_of(t, "end", ch), all_at_p4) << ch;
+    EXPECT_EQ(events(t, "end", ch).at(0)["code"], 30) << ch;
+    // Every mark in the first round.
+    for (const auto& e : events(t, "sync_release", ch)) {
+      EXPECT_EQ(e["gen"], 1) << ch;
+    }
+  }
+  // While waiting a channel is in the waiting state.
+  std::vector<std::string> ch1_states;
+  for (const auto& s : events(t, "state", "CH1")) {
+    ch1_states.push_back(s["state"]);
+  }
+  EXPECT_EQ(std::count(ch1_states.begin(), ch1_states.end(), "waiting"), 3) << r.output;
+}
+
+}  // namespace
+
+TEST(MultiChannel, ThreeChannelWaitMarksAsTheSpecExample) {
+  TestMachine machine("three_channel.yaml", 50);
+  const MultiRun r = run_channels(machine, {{"CH1", source(kG041 + "O1001.nc")},
+                                            {"CH2", source(kG041 + "O1002.nc")},
+                                            {"CH3", source(kG041 + "O1003.nc")}});
+  expect_three_channel_order(r);
+  EXPECT_EQ(events(r.trace, "sync_arrive", "CH1").at(0)["channels"], nlohmann::json({1, 2, 3}));
+  EXPECT_EQ(events(r.trace, "sync_arrive", "CH1").at(2)["all"], true);
+}
+
+TEST(MultiChannel, QMinusOneJoinsEveryChannelInAutomaticOperation) {
+  TestMachine machine("three_channel.yaml", 51);
+  const MultiRun r =
+      run_channels(machine, {{"CH1", variant(machine, kG041 + "O1001.nc", "Q123", "Q-1")},
+                             {"CH2", variant(machine, kG041 + "O1002.nc", "Q123", "Q-1")},
+                             {"CH3", variant(machine, kG041 + "O1003.nc", "Q123", "Q-1")}});
+  expect_three_channel_order(r);
+  EXPECT_EQ(events(r.trace, "sync_arrive", "CH1").at(0)["all"], true);
+}
+
+namespace {
+
+std::string write_program(const TestMachine& machine, const std::string& name,
+                          const std::string& text) {
+  const std::string path = machine.file(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// Both channels raise `number` at their mark, and neither runs a block after it.
+void expect_alarm_at_marks(const MultiRun& r, int number) {
+  EXPECT_NE(r.exit_code, 0);
+  for (const std::string ch : {"CH1", "CH2"}) {
+    const auto alarms = events(r.trace, "alarm", ch);
+    ASSERT_EQ(alarms.size(), 1U) << ch << r.output;
+    EXPECT_EQ(alarms.at(0)["number"], number) << ch;
+    EXPECT_EQ(alarms.at(0)["line"], 3) << ch;
+    EXPECT_TRUE(events(r.trace, "sync_release", ch).empty()) << ch;
+    EXPECT_EQ(events(r.trace, "block", ch).back()["line"], 3) << ch;
+  }
+}
+
+}  // namespace
+
+// CH1 waits at G04.1 P1 Q12 after a feed move; CH2 comes to `ch2_mark` sooner.
+MultiRun run_against(int domain, const std::string& ch2_mark) {
+  TestMachine machine("three_channel.yaml", domain);
+  return run_channels(
+      machine,
+      {{"CH1", write_program(machine, "ch1.nc", "G00 X20 Z5\nG01 Z-5 F900\nG04.1 P1 Q12\nM30\n")},
+       {"CH2", write_program(machine, "ch2.nc", "G00 X20 Z5\nG00 Z2\n" + ch2_mark + "\nM30\n")}});
+}
+
+// Spec dafeng §3.1 "decide" 2: the same P with participant sets that disagree.
+TEST(MultiChannel, ParticipantSetsThatDisagreeAreAMismatchAlarmInBothChannels) {
+  expect_alarm_at_marks(run_against(52, "G04.1 P1 Q123"), 1210);
+}
+
+// Spec dafeng §3.1 "decide" 1: different marks whose sets name each other.
+TEST(MultiChannel, WaitsInACircleAreADeadlockAlarmInBothChannels) {
+  expect_alarm_at_marks(run_against(53, "G04.1 P2 Q12"), 1211);
+}
+
+// CT-G041-01 variants for two-digit channels (spec dafeng §3.1): Q10 joins channels 1 and 10,
+// Q1 Q1=2 channels 1 and 12; a G04.1 with neither P nor Q waits for nobody.
+TEST(MultiChannel, TwoDigitChannelsOnATwelveChannelMachine) {
+  TestMachine machine("twelve_channel.yaml", 54);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc",
+                                      "G01 X20 F600\nG04.1 P1 Q10\nG01 X30\nG04.1 P2 Q1 Q1=2\n"
+                                      "G04.1\nG00 X0\nM30\n")},
+                {"CH10", write_program(machine, "ch10.nc", "G04.1 P1 Q10\nG00 X10\nM30\n")},
+                {"CH12", write_program(machine, "ch12.nc",
+                                       "G01 X5 F300\nG04.1 P2 Q1 Q1=2\nG00 X12\nM30\n")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  EXPECT_TRUE(events(t, "alarm").empty());
+  EXPECT_EQ(events(t, "sync_arrive", "CH10").at(0)["channels"], nlohmann::json({1, 10}));
+  EXPECT_EQ(events(t, "sync_arrive", "CH12").at(0)["channels"], nlohmann::json({1, 12}));
+  // CH10 and CH12 are there first and wait for CH1.
+  EXPECT_LT(arrival(t, "CH10", 1), arrival(t, "CH1", 1));
+  EXPECT_GE(release(t, "CH10", 1), arrival(t, "CH1", 1));
+  EXPECT_GT(block_at(t, "CH10", 2), arrival(t, "CH1", 1));
+  EXPECT_LT(arrival(t, "CH12", 2), arrival(t, "CH1", 2));
+  EXPECT_GT(block_at(t, "CH12", 3), arrival(t, "CH1", 2));
+  // The bare G04.1 of CH1 arrives nowhere and waits for nobody.
+  EXPECT_EQ(events(t, "sync_arrive", "CH1").size(), 2U);
+  EXPECT_LE(block_at(t, "CH1", 6), block_at(t, "CH1", 5) + 1);
+  // The other channels never ran.
+  for (int c : {2, 3, 4, 5, 6, 7, 8, 9, 11}) {
+    const std::string ch = "CH" + std::to_string(c);
+    for (const auto& s : events(t, "state", ch)) {
+      EXPECT_NE(s["state"], "running") << ch;
+    }
+  }
+  for (const std::string ch : {"CH1", "CH10", "CH12"}) {
+    EXPECT_EQ(events(t, "end", ch).at(0)["code"], 30) << ch;
+  }
+}

@@ -1,0 +1,15 @@
+O1001 (CT-G041-01, channel 1: spec dafeng 3.1)
+CH1
+M03 S1000
+G04.1 P1 Q123 (sync 1)
+G00 X40 Z10
+G01 Z-20 F600
+G04.1 P2 Q12 (sync 2)
+M05
+G01 X50 F600
+G01 Z-30
+G00 X60
+G00 Z10
+G00 X40
+G04.1 P4 (sync 4: every channel)
+M30

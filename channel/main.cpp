@@ -149,7 +149,12 @@ int main(int argc, char** argv) {
             }
           });
         });
-    channel::ChannelOutputs outputs(node, tracer, *ch, axes, spindles, program_name, program_lines);
+    std::vector<std::string> channel_names;
+    for (const config::ChannelConfig& c : machine.channels) {
+      channel_names.push_back(c.name);
+    }
+    channel::ChannelOutputs outputs(node, tracer, *ch, channel_names, axes, spindles, program_name,
+                                    program_lines);
     if (!interp_config.program_dir.empty()) {
       outputs.preload_program_dir(interp_config.program_dir.string());
     }

@@ -334,12 +334,23 @@ LaunchResult Launcher::run(
       }
       if (any_program && !script_pending) {
         bool all_done = true;
+        std::uint64_t last_program_end = 0;
         for (const auto& p : list) {
           if (p.has_program) {
             // After a scripted operator, a channel left idle (reset and not started again) has
             // nothing more to do either.
             all_done = all_done && (p.ended || p.state == CH_ALARM ||
                                     (!options_.operator_script.empty() && p.state == CH_IDLE));
+            last_program_end = std::max(last_program_end, p.end_cycle);
+          }
+        }
+        // A channel running a program another channel called (G144) holds the run too; a call
+        // sent just before its caller's end starts in the next cycle, so every channel must
+        // report a cycle past the last end first.
+        for (const auto& p : list) {
+          if (!p.has_program) {
+            all_done = all_done && p.cycle >= last_program_end + 2 && p.state != CH_RUNNING &&
+                       p.state != CH_WAITING && p.state != CH_HOLD;
           }
         }
         if (all_done) {
@@ -443,6 +454,8 @@ LaunchResult Launcher::run(
   for (const auto& p : result.channels) {
     if (p.has_program) {
       all_ended = all_ended && p.ended;
+    }
+    if (p.has_program || p.ended) {  // a called program's end counts too
       last_end = std::max(last_end, p.end_cycle);
     }
   }

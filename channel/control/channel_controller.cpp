@@ -24,6 +24,20 @@ const char* to_string(ChannelState state) noexcept {
   return "reset";
 }
 
+const char* to_string(CallOutcome outcome) noexcept {
+  switch (outcome) {
+    case CallOutcome::released:
+      return "released";
+    case CallOutcome::refused:
+      return "refused";
+    case CallOutcome::failed:
+      return "failed";
+    case CallOutcome::aborted:
+      return "aborted";
+  }
+  return "released";
+}
+
 ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& source,
                                      motion::MotionPlanner& planner)
     : setup_(std::move(setup)), source_(source), planner_(planner), barrier_(setup_.channel_id) {
@@ -38,6 +52,44 @@ void ChannelController::axis_lost(std::size_t axis) noexcept {
 
 void ChannelController::on_arrival(const coordination::SyncArrival& arrival) noexcept {
   (void)barrier_.on_arrival(arrival);  // a full table makes the next evaluation an alarm
+}
+
+void ChannelController::set_partner(std::uint32_t channel, const PartnerStatus& status) noexcept {
+  if (channel < 1 || channel > coordination::kMaxChannels) {
+    return;
+  }
+  partners_[channel] = status;
+  const bool automatic =
+      status.known && (status.state == ChannelState::running ||
+                       status.state == ChannelState::hold || status.state == ChannelState::waiting);
+  active_.set(channel, automatic);
+  halted_partners_.set(channel, status.known && status.state == ChannelState::alarm);
+  // A call of ours the target now runs: from here its status says whose call it runs.
+  if (outstanding_[channel] != 0 && status.call_id == outstanding_[channel]) {
+    outstanding_[channel] = 0;
+  }
+}
+
+void ChannelController::on_call(const SubCall& call) noexcept {
+  if (incoming_count_ < kMaxIncoming) {
+    incoming_[incoming_count_++] = call;
+  } else {
+    push_release(CallRelease{call.call_id, call.caller, setup_.channel_id, CallOutcome::refused});
+  }
+}
+
+void ChannelController::on_call_release(const CallRelease& release) noexcept {
+  for (std::uint64_t& o : outstanding_) {
+    if (o == release.call_id) {
+      o = 0;
+    }
+  }
+  if (call_block_ && call_block_->phase == CallPhase::sent &&
+      call_block_->call.call_id == release.call_id) {
+    call_ended_ = release;
+  } else if (release.outcome == CallOutcome::refused) {
+    refused_ = release;  // a call without wait: an alarm all the same
+  }
 }
 
 void ChannelController::partner_lost(std::uint32_t channel) noexcept {
@@ -78,6 +130,7 @@ void ChannelController::raise(int number, const char* text, int line, int column
   push_event(event);
   set_state(ChannelState::alarm);
   halted_ = true;
+  release_caller(CallOutcome::failed);  // a caller waiting for this channel's G145 stops too
 }
 
 void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept {
@@ -124,12 +177,17 @@ void ChannelController::forget_program_run() noexcept {
   sync_block_.reset();
   sync_arrived_ = false;
   barrier_.cancel();
+  call_block_.reset();
+  call_ended_.reset();
+  release_block_.reset();
   out_.program_end = false;
   out_.end_code = -1;
 }
 
 void ChannelController::finish_reset() noexcept {
   resetting_ = false;
+  release_caller(CallOutcome::aborted);  // a caller waiting for this channel goes on with an alarm
+  serving_.reset();
   forget_program_run();
   halted_ = estopped_;  // an emergency stop stays
   pending_alarm_.reset();
@@ -144,6 +202,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
                                               std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
   out_.arrival_due = false;
+  out_.call_due = false;
+  out_.release_count = 0;
   if (out_.state != ChannelState::hold && out_.state != ChannelState::waiting) {
     out_.spindle_rpm = 0.0;  // running sets it again; a feed hold keeps the spindle turning
     out_.spindle_direction = 0;
@@ -159,6 +219,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     raise_program_alarm(*pending_alarm_);
     pending_alarm_.reset();
   }
+  take_calls(cycle);
 
   if (estop_requested_) {
     // Latched in any state, also before the axes came up: reset, and stay there.
@@ -167,6 +228,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     halted_ = true;
     resetting_ = false;  // no reset ramp after an emergency stop: the drives stop themselves
     start_requested_ = false;
+    release_caller(CallOutcome::aborted);
+    serving_.reset();
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
@@ -242,6 +305,14 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     }
   }
 
+  if (refused_ && (out_.state == ChannelState::running || out_.state == ChannelState::waiting)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "G144: channel %u refused the call (it was busy)",
+                  refused_->target);
+    refused_.reset();
+    raise(kAlarmCallRefused, text, out_.line, 0, 0);
+  }
+  refused_.reset();
   if (out_.state == ChannelState::idle && start_requested_) {
     start_requested_ = false;
     source_.rewind(commanded_);
@@ -267,8 +338,9 @@ void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
-    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
-                            !sync_block_ && planner_.accepts() && queued_count_ < queued_.size();
+    for (std::size_t k = 0;
+         k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
+         !call_block_ && !release_block_ && planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -303,6 +375,29 @@ void ChannelController::fill() noexcept {
           b.participants.set(ch, c->has_channel(static_cast<int>(ch)));
         }
         sync_block_ = b;
+        return;
+      }
+      if (c->op == interp::Op::subcall) {
+        CallBlock b;
+        b.n = c->n;
+        b.line = c->line;
+        b.file = c->file;
+        b.call.caller = setup_.channel_id;
+        b.call.target = static_cast<std::uint32_t>(c->channel);
+        b.call.program = c->program;
+        b.call.wait = c->wait;
+        b.call.repeat = c->repeat;
+        for (const auto& [var, value] : c->args) {
+          if (var >= 1 && var <= interp::kSubcallArgs) {
+            b.call.args[static_cast<std::size_t>(var - 1)] = value;
+            b.call.args_given |= 1U << (var - 1);
+          }
+        }
+        call_block_ = b;
+        return;
+      }
+      if (c->op == interp::Op::subcall_release) {
+        release_block_ = ReleaseBlock{c->n, c->line, c->file};
         return;
       }
       const AxisVector start = planner_.queue_end();  // where the block starts
@@ -402,6 +497,27 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     run_sync();
     return;
   }
+  if (call_block_) {
+    run_call();
+    return;
+  }
+  if (release_block_) {
+    // G145: the caller goes on; this program goes on too (spec dafeng §3.4).
+    ChannelEvent event;
+    event.line = release_block_->line;
+    event.file = release_block_->file;
+    event.block = release_block_->n;
+    event.pos = commanded_;
+    event.kind = ChannelEventKind::block_started;
+    out_.block = event.block;
+    out_.line = event.line;
+    push_event(event);
+    release_caller(CallOutcome::released);  // no caller, or released before: nothing
+    event.kind = ChannelEventKind::block_ended;
+    push_event(event);
+    release_block_.reset();
+    return;
+  }
   if (source_alarm_) {
     raise_program_alarm(*source_alarm_);
     source_alarm_.reset();
@@ -439,6 +555,15 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   end.end_code = end_.code;
   push_event(end);
   set_state(ChannelState::idle);
+  if (serving_) {
+    release_caller(CallOutcome::released);  // the end releases a caller without G145 too
+    if (serving_->repeats_left > 0) {
+      --serving_->repeats_left;
+      start_served_call(cycle);
+    } else {
+      serving_.reset();
+    }
+  }
 }
 
 }  // namespace mcnc::channel
@@ -517,6 +642,143 @@ void ChannelController::run_sync() noexcept {
   push_event(event);
   sync_block_.reset();
   sync_arrived_ = false;
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::push_release(const CallRelease& release) noexcept {
+  if (out_.release_count < ChannelOutput::kMaxReleases) {
+    out_.releases[out_.release_count++] = release;
+  }
+  ChannelEvent event;
+  event.kind = ChannelEventKind::subcall_release;
+  event.call_id = release.call_id;
+  event.call_outcome = release.outcome;
+  event.line = out_.line;
+  push_event(event);
+}
+
+void ChannelController::release_caller(CallOutcome outcome) noexcept {
+  if (!serving_ || serving_->released) {
+    return;
+  }
+  serving_->released = true;
+  push_release(
+      CallRelease{serving_->call.call_id, serving_->call.caller, setup_.channel_id, outcome});
+}
+
+void ChannelController::take_calls(std::uint64_t cycle) noexcept {
+  for (std::size_t i = 0; i < incoming_count_; ++i) {
+    const SubCall& call = incoming_[i];
+    const bool free = !serving_ && out_.state == ChannelState::idle && position_known_ &&
+                      !halted_ && !reset_requested_ && !estop_requested_ && !start_requested_;
+    if (!free) {
+      push_release(CallRelease{call.call_id, call.caller, setup_.channel_id, CallOutcome::refused});
+      continue;
+    }
+    serving_ = ServedCall{call, std::max(call.repeat, 1) - 1, false};
+    start_served_call(cycle);
+  }
+  incoming_count_ = 0;
+}
+
+void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
+  const SubCall& call = serving_->call;
+  std::optional<interp::ProgramAlarm> alarm;
+  // Loading the called program reads and parses it: the one allocation a call makes.
+  try {
+    std::vector<std::pair<int, double>> args;
+    for (int n = 1; n <= interp::kSubcallArgs; ++n) {
+      if ((call.args_given >> (n - 1)) & 1U) {
+        args.emplace_back(n, call.args[static_cast<std::size_t>(n - 1)]);
+      }
+    }
+    alarm = source_.call(call.program, args, commanded_);
+  } catch (...) {
+    alarm =
+        interp::ProgramAlarm{kAlarmPlannerRejected, "the interpreter ran out of memory", "", 0, 0};
+  }
+  planner_.restart(commanded_);
+  forget_program_run();
+  out_.run_start_cycle = cycle;
+  set_state(ChannelState::running);
+  if (alarm) {
+    raise_program_alarm(*alarm);
+  }
+}
+
+void ChannelController::run_call() noexcept {
+  CallBlock& b = *call_block_;
+  ChannelEvent event;
+  event.line = b.line;
+  event.file = b.file;
+  event.block = b.n;
+  event.pos = commanded_;
+  if (!b.started) {
+    b.started = true;
+    out_.block = b.n;
+    out_.line = b.line;
+    event.kind = ChannelEventKind::block_started;
+    push_event(event);
+  }
+  char text[128];
+  if (b.phase == CallPhase::reached) {
+    const std::uint32_t target = b.call.target;
+    const PartnerStatus none{};
+    const PartnerStatus& t =
+        target >= 1 && target <= coordination::kMaxChannels ? partners_[target] : none;
+    const bool outstanding = target <= coordination::kMaxChannels && outstanding_[target] != 0;
+    const bool free = t.known && t.state == ChannelState::idle && t.call_id == 0 && !outstanding;
+    if (!free) {
+      // Still finishing a call of ours (after its G145, on the way to M99), or not up yet:
+      // wait until it is idle (spec dafeng §3.4 decide 1). Anything else is busy.
+      if (outstanding || (t.known && t.call_id != 0 && t.call_caller == setup_.channel_id) ||
+          !t.known || t.state == ChannelState::reset) {
+        set_state(ChannelState::waiting);
+        return;
+      }
+      std::snprintf(
+          text, sizeof text, "G144 N%u: channel %u is busy (%s)", target, target,
+          t.call_id != 0 ? "running a program another channel called" : to_string(t.state));
+      raise(kAlarmCallBusy, text, b.line, 0, 0);
+      return;
+    }
+    b.call.call_id = (std::uint64_t{setup_.channel_id} << 40) | ++calls_made_;
+    outstanding_[target] = b.call.call_id;
+    out_.call = b.call;
+    out_.call_due = true;
+    event.kind = ChannelEventKind::subcall;
+    push_event(event);
+    if (b.call.wait) {
+      b.phase = CallPhase::sent;
+      set_state(ChannelState::waiting);
+      return;
+    }
+  } else {
+    if (!call_ended_) {
+      return;  // H1: until the called channel's G145 or end
+    }
+    const CallOutcome outcome = call_ended_->outcome;
+    call_ended_.reset();
+    if (outcome != CallOutcome::released) {
+      std::snprintf(text, sizeof text,
+                    outcome == CallOutcome::refused
+                        ? "G144: channel %u refused the call (it was busy)"
+                        : (outcome == CallOutcome::failed
+                               ? "G144: the program called in channel %u stopped with an alarm"
+                               : "G144: channel %u was reset before it released this channel"),
+                    b.call.target);
+      raise(outcome == CallOutcome::refused ? kAlarmCallRefused : kAlarmCallFailed, text, b.line, 0,
+            0);
+      return;
+    }
+  }
+  event.kind = ChannelEventKind::block_ended;
+  push_event(event);
+  set_state(ChannelState::running);
+  call_block_.reset();
 }
 
 }  // namespace mcnc::channel

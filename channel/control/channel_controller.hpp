@@ -42,6 +42,26 @@ struct AxisSetpointOut {
   bool valid = false;  // false: the axis node holds its position
 };
 
+// G144 (spec dafeng §3.4): a program started in another channel, and how the call ended.
+enum class CallOutcome : std::uint8_t { released, refused, failed, aborted };
+struct SubCall {
+  std::uint64_t call_id = 0;  // caller << 40 | the caller's count of calls
+  std::uint32_t caller = 0;
+  std::uint32_t target = 0;
+  int program = 0;
+  bool wait = true;                                 // H1
+  int repeat = 1;                                   // L
+  std::array<double, interp::kSubcallArgs> args{};  // #1-#26
+  std::uint32_t args_given = 0;                     // bit n-1: #n given
+};
+const char* to_string(CallOutcome outcome) noexcept;
+struct CallRelease {
+  std::uint64_t call_id = 0;
+  std::uint32_t caller = 0;
+  std::uint32_t target = 0;  // the called channel, which sends the release
+  CallOutcome outcome = CallOutcome::released;
+};
+
 enum class ChannelEventKind : std::uint8_t {
   state_changed,
   block_started,  // command.line / command.block
@@ -50,6 +70,8 @@ enum class ChannelEventKind : std::uint8_t {
   program_end,    // end_code
   sync_arrive,    // G04.1 P: the channel arrived at the mark (ChannelOutput::arrival)
   sync_release,   // every participant arrived: the channel goes on
+  subcall,        // G144: this channel sent ChannelOutput::call
+  subcall_release,  // this channel released the caller of the call it runs (call_id)
 };
 
 struct ChannelEvent {
@@ -60,7 +82,17 @@ struct ChannelEvent {
   std::size_t block = 0;
   int end_code = 0;
   int alarm_number = 0;
-  AxisVector pos{};  // block_ended: the commanded end point of the block
+  AxisVector pos{};           // block_ended: the commanded end point of the block
+  std::uint64_t call_id = 0;  // subcall_release
+  CallOutcome call_outcome = CallOutcome::released;
+};
+
+// What a channel knows of another channel (its status stamped N-1).
+struct PartnerStatus {
+  bool known = false;
+  ChannelState state = ChannelState::reset;
+  std::uint64_t call_id = 0;  // the G144 call it runs, 0: none
+  std::uint32_t call_caller = 0;
 };
 
 struct ChannelAlarm {
@@ -87,6 +119,12 @@ struct ChannelOutput {
   // A G04.1 arrival to send to every other channel this cycle (sync_arrive event).
   bool arrival_due = false;
   coordination::SyncArrival arrival{};
+  // A G144 call to send this cycle (subcall event), and the releases of calls to send.
+  bool call_due = false;
+  SubCall call{};
+  static constexpr std::size_t kMaxReleases = 8;
+  std::array<CallRelease, kMaxReleases> releases{};
+  std::size_t release_count = 0;
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -112,6 +150,9 @@ inline constexpr int kAlarmSyncMismatch = 1210;     // G04.1: partners name othe
 inline constexpr int kAlarmSyncDeadlock = 1211;     // G04.1: waits in a circle
 inline constexpr int kAlarmSyncTableFull = 1212;    // G04.1: more marks than the table holds
 inline constexpr int kAlarmSyncPartnerLost = 1213;  // G04.1: a partner's process is gone
+inline constexpr int kAlarmCallBusy = 1220;         // G144: the target runs something else
+inline constexpr int kAlarmCallFailed = 1221;       // G144: the called program stopped
+inline constexpr int kAlarmCallRefused = 1222;      // G144: the target refused the call
 
 class ChannelController {
  public:
@@ -146,12 +187,12 @@ class ChannelController {
   // (running, feed hold, waiting) and those stopped by an alarm, and a channel whose process is
   // gone.
   void on_arrival(const coordination::SyncArrival& arrival) noexcept;
-  void set_partner_states(const coordination::ChannelSet& active,
-                          const coordination::ChannelSet& halted) noexcept {
-    active_ = active;
-    halted_partners_ = halted;
-  }
+  void set_partner(std::uint32_t channel, const PartnerStatus& status) noexcept;
   void partner_lost(std::uint32_t channel) noexcept;
+  // G144 calls addressed to this channel (run when it is idle, else refused), and the end of a
+  // call this channel made.
+  void on_call(const SubCall& call) noexcept;
+  void on_call_release(const CallRelease& release) noexcept;
 
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
@@ -163,6 +204,13 @@ class ChannelController {
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
   // The G04.1 marks as this channel sees them: the mark it waits at and whom it misses.
   [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return barrier_; }
+  // The G144 call this channel runs for another channel: its id (0: none) and caller.
+  [[nodiscard]] std::uint64_t serving_call() const noexcept {
+    return serving_ ? serving_->call.call_id : 0;
+  }
+  [[nodiscard]] std::uint32_t serving_caller() const noexcept {
+    return serving_ ? serving_->call.caller : 0;
+  }
 
  private:
   void set_state(ChannelState state) noexcept;
@@ -181,6 +229,14 @@ class ChannelController {
   void forget_program_run() noexcept;  // the queue, the end and the alarms of a program run
   // At a G04.1 block with everything before it ended: arrive, wait, go on.
   void run_sync() noexcept;
+  // At a G144 block with everything before it ended: check the target, call, wait if H1.
+  void run_call() noexcept;
+  // Starts (or repeats) the program of the call this channel serves.
+  void start_served_call(std::uint64_t cycle) noexcept;
+  void take_calls(std::uint64_t cycle) noexcept;
+  // Ends the served call's hold on its caller (once).
+  void release_caller(CallOutcome outcome) noexcept;
+  void push_release(const CallRelease& release) noexcept;
 
   // A block handed to the planner, until its end event.
   struct QueuedBlock {
@@ -230,6 +286,41 @@ class ChannelController {
     coordination::ChannelSet participants;
   };
   std::optional<SyncBlock> sync_block_;
+  // G144 in this channel's program: the call once pulled, and where it stands.
+  enum class CallPhase : std::uint8_t { reached, sent };
+  struct CallBlock {
+    std::uint64_t n = 0;
+    int line = 0;
+    const std::string* file = nullptr;
+    SubCall call;
+    CallPhase phase = CallPhase::reached;
+    bool started = false;
+  };
+  std::optional<CallBlock> call_block_;
+  std::uint64_t calls_made_ = 0;
+  std::optional<CallRelease> call_ended_;  // the release of the call this channel waits for
+  // G145 pulled and not passed yet.
+  struct ReleaseBlock {
+    std::uint64_t n = 0;
+    int line = 0;
+    const std::string* file = nullptr;
+  };
+  std::optional<ReleaseBlock> release_block_;
+  // The call this channel serves: its request, the repetitions left, whether it released.
+  struct ServedCall {
+    SubCall call;
+    int repeats_left = 0;
+    bool released = false;
+  };
+  std::optional<ServedCall> serving_;
+  static constexpr std::size_t kMaxIncoming = 8;
+  std::array<SubCall, kMaxIncoming> incoming_{};
+  std::size_t incoming_count_ = 0;
+  std::array<PartnerStatus, coordination::kMaxChannels + 1> partners_{};
+  // A call sent and not yet seen running in the target's status nor ended: the target is not
+  // free for another call from here until then.
+  std::array<std::uint64_t, coordination::kMaxChannels + 1> outstanding_{};
+  std::optional<CallRelease> refused_;  // a call without wait (H0) that the target refused
   bool sync_arrived_ = false;
   coordination::SyncBarrier barrier_;
   coordination::ChannelSet active_;

@@ -3,7 +3,9 @@
 #include "channel/interp/command.hpp"
 
 #include <optional>
+#include <utility>
 #include <variant>
+#include <vector>
 
 namespace mcnc::interp {
 
@@ -18,6 +20,19 @@ class CommandSource {
   virtual void rewind(const AxisVector& current) = 0;
   virtual std::optional<PullResult> next() = 0;
   [[nodiscard]] virtual std::size_t block_count() const noexcept = 0;
+  // Positions the source at the start of program O<number> called by another channel (G144)
+  // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
+  // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to
+  // the channel's own program.
+  virtual std::optional<ProgramAlarm> call(int number,
+                                           const std::vector<std::pair<int, double>>& args,
+                                           const AxisVector& current) {
+    (void)number;
+    (void)args;
+    (void)current;
+    return ProgramAlarm{1100, "this channel cannot run programs called by another channel", "", 0,
+                        0};
+  }
 };
 
 }  // namespace mcnc::interp

@@ -17,6 +17,11 @@ std::optional<ProgramAlarm> Interpreter::start_number(int number) {
   return run_->start_number(number);
 }
 
+std::optional<ProgramAlarm> Interpreter::start_called(
+    int number, const std::vector<std::pair<int, double>>& args) {
+  return run_->start_called(number, args);
+}
+
 std::optional<InterpResult> Interpreter::next() {
   return run_->next();
 }

@@ -14,7 +14,9 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
+#include <vector>
 
 namespace mcnc::interp {
 
@@ -45,6 +47,10 @@ class Interpreter {
   std::optional<ProgramAlarm> start(std::string text, const std::string& file_name);
   // Starts program O<number> of the program directory.
   std::optional<ProgramAlarm> start_number(int number);
+  // Starts O<number> of the program directory for a G144 call of another channel: locals
+  // #1-#26 from `args` (#number, value), and M99 in it ends the program (M99 code 99).
+  std::optional<ProgramAlarm> start_called(int number,
+                                           const std::vector<std::pair<int, double>>& args);
 
   // The next command; or an alarm (the program stops there, later pulls return nullopt); or
   // nullopt once the program has ended.

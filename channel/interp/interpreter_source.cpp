@@ -30,8 +30,6 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::axis_decouple:
     case Op::spindle_sync:
     case Op::spindle_unsync:
-    case Op::subcall:
-    case Op::subcall_release:
       return "multi-channel commands need the channel coordination runtime";
     case Op::message:
       return "#3006 messages need the HMI";
@@ -45,7 +43,10 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c) {
-  return c.op == Op::sync ? alarm::kSyncForm : alarm::kNotInThisVersion;
+  if (c.op == Op::sync) {
+    return alarm::kSyncForm;
+  }
+  return c.op == Op::subcall ? alarm::kBadWordValue : alarm::kNotInThisVersion;
 }
 
 }  // namespace
@@ -87,6 +88,8 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
 
 void InterpreterSource::rewind(const AxisVector& current) {
   interpreter_.reset();
+  run_alarm_.reset();
+  calling_ = false;
   if (!loaded_ || load_alarm_) {
     return;
   }
@@ -95,7 +98,23 @@ void InterpreterSource::rewind(const AxisVector& current) {
     c.axes[i].start = current[i];
   }
   interpreter_ = std::make_unique<Interpreter>(c);
-  load_alarm_ = interpreter_->start(text_, name_);
+  run_alarm_ = interpreter_->start(text_, name_);
+}
+
+std::optional<ProgramAlarm> InterpreterSource::call(int number,
+                                                    const std::vector<std::pair<int, double>>& args,
+                                                    const AxisVector& current) {
+  InterpreterConfig c = config_;
+  for (std::size_t i = 0; i < c.axes.size() && i < kMaxChannelAxes; ++i) {
+    c.axes[i].start = current[i];
+  }
+  interpreter_ = std::make_unique<Interpreter>(c);
+  calling_ = true;
+  run_alarm_ = interpreter_->start_called(number, args);
+  if (run_alarm_) {
+    interpreter_.reset();
+  }
+  return run_alarm_;
 }
 
 bool InterpreterSource::for_channel(const Command& c, std::string& why,
@@ -108,6 +127,17 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
         return false;
       }
     }
+    return true;
+  }
+  if (c.op == Op::subcall) {
+    if (config.channel_count > 0 && c.channel > config.channel_count) {
+      why = "G144 N names channel " + std::to_string(c.channel) +
+            ", which this machine does not have";
+      return false;
+    }
+    return true;
+  }
+  if (c.op == Op::subcall_release) {
     return true;
   }
   if (c.op == Op::spindle && config.spindles > 0) {
@@ -139,8 +169,11 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
 }
 
 std::optional<PullResult> InterpreterSource::next() {
-  if (load_alarm_) {
-    return PullResult{*load_alarm_};  // the program stays stopped at its alarm
+  if (run_alarm_) {
+    return PullResult{*run_alarm_};  // the program stays stopped at its alarm
+  }
+  if (load_alarm_ && !calling_) {
+    return PullResult{*load_alarm_};  // the channel's own program cannot run
   }
   if (!interpreter_) {
     return std::nullopt;
@@ -150,7 +183,7 @@ std::optional<PullResult> InterpreterSource::next() {
     return std::nullopt;
   }
   if (const auto* alarm = std::get_if<ProgramAlarm>(&*r)) {
-    load_alarm_ = *alarm;
+    run_alarm_ = *alarm;
     return PullResult{*alarm};
   }
   const Command& c = std::get<Command>(*r);
@@ -158,8 +191,8 @@ std::optional<PullResult> InterpreterSource::next() {
   if (for_channel(c, why, config_)) {
     return PullResult{c};
   }
-  load_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
-  return PullResult{*load_alarm_};
+  run_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
+  return PullResult{*run_alarm_};
 }
 
 }  // namespace mcnc::interp

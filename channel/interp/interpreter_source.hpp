@@ -29,6 +29,8 @@ class InterpreterSource final : public CommandSource {
   static constexpr int kDryRunCommands = 1000000;
   void rewind(const AxisVector& current) override;
   std::optional<PullResult> next() override;
+  std::optional<ProgramAlarm> call(int number, const std::vector<std::pair<int, double>>& args,
+                                   const AxisVector& current) override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
 
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
@@ -42,7 +44,9 @@ class InterpreterSource final : public CommandSource {
   std::string text_;
   std::string name_;
   std::unique_ptr<Interpreter> interpreter_;
-  std::optional<ProgramAlarm> load_alarm_;
+  std::optional<ProgramAlarm> load_alarm_;  // the channel's own program, found at load()
+  std::optional<ProgramAlarm> run_alarm_;   // the run under way stopped there
+  bool calling_ = false;                    // the run is a program another channel called
   std::size_t block_count_ = 0;
   bool loaded_ = false;
 };

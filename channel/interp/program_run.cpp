@@ -142,6 +142,18 @@ std::optional<ProgramAlarm> ProgramRun::start_number(int number) {
   return std::nullopt;
 }
 
+std::optional<ProgramAlarm> ProgramRun::start_called(
+    int number, const std::vector<std::pair<int, double>>& args) {
+  if (auto alarm = start_number(number)) {
+    return alarm;
+  }
+  called_ = true;
+  for (const auto& [var, value] : args) {
+    vars_.write(var, macro::MacroValue::of(value));
+  }
+  return std::nullopt;
+}
+
 const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
   for (const auto& p : file_programs_) {
     if (p->number && *p->number == number) {
@@ -580,6 +592,10 @@ bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::Mac
 bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column) {
   if (contour_mode_ != ContourMode::none) {
     return contour_forbids("M99", column);
+  }
+  if (frames_.size() == 1 && called_) {
+    end_program(99);  // a program called by G144 ends at its M99 (spec dafeng §3.4 decide 4)
+    return true;
   }
   if (frames_.size() == 1) {
     // M99 in the main program: back to its start (spec dafeng L6348-6350), or to N P.

@@ -36,6 +36,10 @@ class ProgramRun final : public macro::VariableProvider {
 
   std::optional<ProgramAlarm> start_text(std::string text, const std::string& file_name);
   std::optional<ProgramAlarm> start_number(int number);
+  // Starts O<number> as a program called from another channel (G144): its locals #1-#26 are
+  // the call's arguments, and M99 at its top level ends it instead of looping.
+  std::optional<ProgramAlarm> start_called(int number,
+                                           const std::vector<std::pair<int, double>>& args);
   std::optional<InterpResult> next();
 
   macro::VariableStore& variables() { return vars_; }
@@ -255,6 +259,7 @@ class ProgramRun final : public macro::VariableProvider {
   BlockLookahead lookahead_;
   std::uint64_t sequence_ = 0;
   bool started_ = false;
+  bool called_ = false;  // started by G144: M99 in the main program ends it
   bool ended_ = false;
   std::optional<ProgramAlarm> alarm_;
   bool alarm_reported_ = false;

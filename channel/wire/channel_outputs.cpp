@@ -24,6 +24,7 @@ namespace {
 
 ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
                                const config::ChannelConfig& channel,
+                               std::vector<std::string> channel_names,
                                std::vector<const config::AxisConfig*> axes,
                                std::vector<const config::AxisConfig*> spindles,
                                std::string program_name, std::vector<std::string> program_lines)
@@ -36,7 +37,12 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       program_lines_(std::move(program_lines)),
       setpoints_(node.participant()),
       status_(node.participant()),
-      events_(node.participant()) {}
+      events_(node.participant()),
+      channel_names_(std::move(channel_names)) {}
+
+const char* ChannelOutputs::channel_name(std::uint32_t id) const {
+  return id >= 1 && id <= channel_names_.size() ? channel_names_[id - 1].c_str() : "?";
+}
 
 void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& controller,
                              const ChannelOutput& out, std::span<const AxisFeedbackView> views,
@@ -69,19 +75,39 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
                  channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
   if (out.arrival_due) {
-    CoordinationEvent e;
-    e.channel(static_cast<std::uint32_t>(channel_.id));
-    e.seq(++event_seq_);
-    e.cycle(cycle);
-    e.kind(COORD_SYNC_ARRIVE);
+    CoordinationEvent e = event(cycle, COORD_SYNC_ARRIVE);
     e.p(out.arrival.p);
     e.generation(out.arrival.generation);
     e.all_channels(out.arrival.all_active);
     e.channels(to_mask(out.arrival.participants));
     events_.write(e);
   }
+  if (out.call_due) {
+    CoordinationEvent e = event(cycle, COORD_SUBCALL);
+    e.call_id(out.call.call_id);
+    e.caller(out.call.caller);
+    e.target(out.call.target);
+    e.program(out.call.program);
+    e.wait(out.call.wait);
+    e.repeat(out.call.repeat);
+    for (std::size_t i = 0; i < out.call.args.size(); ++i) {
+      e.args()[i] = out.call.args[i];
+    }
+    e.args_given(out.call.args_given);
+    events_.write(e);
+  }
+  for (std::size_t r = 0; r < out.release_count; ++r) {
+    CoordinationEvent e = event(cycle, COORD_SUBCALL_RELEASE);
+    e.call_id(out.releases[r].call_id);
+    e.caller(out.releases[r].caller);
+    e.target(out.releases[r].target);
+    e.outcome(static_cast<::mcnc::CallOutcome>(static_cast<int>(out.releases[r].outcome)));
+    events_.write(e);
+  }
   ::mcnc::ChannelStatus status;
   status.channel(static_cast<std::uint32_t>(channel_.id));
+  status.call_id(controller.serving_call());
+  status.call_caller(controller.serving_caller());
   status.cycle(cycle);
   status.event_seq(event_seq_);
   const coordination::SyncArrival& mark = controller.sync().current();
@@ -103,9 +129,19 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.end_cycle(out.end_cycle);
   status_.write(status);
 
+  out_call_ = out.call;
   for (std::size_t e = 0; e < out.event_count; ++e) {
     record(cycle, controller, out.events[e], views);
   }
+}
+
+CoordinationEvent ChannelOutputs::event(std::uint64_t cycle, CoordinationKind kind) {
+  CoordinationEvent e;
+  e.channel(static_cast<std::uint32_t>(channel_.id));
+  e.seq(++event_seq_);
+  e.cycle(cycle);
+  e.kind(kind);
+  return e;
 }
 
 std::vector<std::string> split_lines(const std::string& text) {
@@ -207,6 +243,20 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
                    static_cast<unsigned long long>(a.generation));
       break;
     }
+    case ChannelEventKind::subcall: {
+      const SubCall& call = out_call_;
+      tracer_.emit(cycle, "subcall",
+                   "\"caller\":\"%s\",\"target\":\"%s\",\"program\":%d,\"call_id\":%llu,"
+                   "\"wait\":%s",
+                   ch, channel_name(call.target), call.program,
+                   static_cast<unsigned long long>(call.call_id), call.wait ? "true" : "false");
+      break;
+    }
+    case ChannelEventKind::subcall_release:
+      tracer_.emit(cycle, "subcall_release", "\"ch\":\"%s\",\"call_id\":%llu,\"outcome\":\"%s\"",
+                   ch, static_cast<unsigned long long>(event.call_id),
+                   to_string(event.call_outcome));
+      break;
     case ChannelEventKind::program_end:
       tracer_.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch, event.end_code);
       spdlog::debug("program end M{:02d} at cycle {}", event.end_code, cycle);

@@ -22,7 +22,8 @@ std::vector<std::string> split_lines(const std::string& text);
 class ChannelOutputs {
  public:
   ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& tracer,
-                 const config::ChannelConfig& channel, std::vector<const config::AxisConfig*> axes,
+                 const config::ChannelConfig& channel, std::vector<std::string> channel_names,
+                 std::vector<const config::AxisConfig*> axes,
                  std::vector<const config::AxisConfig*> spindles, std::string program_name,
                  std::vector<std::string> program_lines);
 
@@ -43,6 +44,9 @@ class ChannelOutputs {
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
               std::span<const AxisFeedbackView> views);
+  // The next CoordinationEvent of this channel (numbered, stamped).
+  CoordinationEvent event(std::uint64_t cycle, CoordinationKind kind);
+  [[nodiscard]] const char* channel_name(std::uint32_t id) const;
   // The lines of another program file (preloaded; read at its first use if not).
   const std::vector<std::string>& lines_of(const std::string& path);
 
@@ -58,7 +62,9 @@ class ChannelOutputs {
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;
   dds::Writer<::mcnc::CoordinationEvent> events_;
-  std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent
+  std::uint64_t event_seq_ = 0;             // the last CoordinationEvent sent
+  SubCall out_call_{};                      // this cycle's G144 call, for its trace event
+  std::vector<std::string> channel_names_;  // by channel id - 1
   char escaped_[512] = {};
 };
 

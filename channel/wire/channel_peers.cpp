@@ -4,14 +4,6 @@
 
 namespace mcnc::channel {
 
-namespace {
-
-bool in_automatic_operation(::mcnc::ChannelState state) {
-  return state == CH_RUNNING || state == CH_HOLD || state == CH_WAITING;
-}
-
-}  // namespace
-
 std::vector<ChannelPeers::Peer> ChannelPeers::peers_of(const config::MachineConfig& machine,
                                                        const config::ChannelConfig& self) {
   std::vector<Peer> peers(machine.channels.size() - 1);
@@ -40,7 +32,7 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
               return;
             }
             node_.wakeup().update([&] {
-              peer->state.put(status.cycle(), status.state());
+              peer->status.put(status.cycle(), status);
               peer->status_writer = writer;
               peer->status_writer_known = true;
               gate_.on_sample(first_input_ + static_cast<std::size_t>(peer - peers_.data()),
@@ -96,41 +88,72 @@ void ChannelPeers::on_event(const ::mcnc::CoordinationEvent& event) {
 }
 
 void ChannelPeers::apply(std::uint64_t cycle, bool lockstep, ChannelController& controller) {
-  coordination::ChannelSet active;
-  coordination::ChannelSet halted;
   node_.wakeup().with_lock([&] {
     for (Peer& peer : peers_) {
       while (peer.count > 0 && peer.queue[peer.head].cycle() < cycle) {
-        const ::mcnc::CoordinationEvent& e = peer.queue[peer.head];
-        if (e.kind() == COORD_SYNC_ARRIVE) {
-          coordination::SyncArrival a;
-          a.channel = e.channel();
-          a.p = e.p();
-          a.generation = e.generation();
-          a.all_active = e.all_channels();
-          a.participants = from_mask(e.channels());
-          controller.on_arrival(a);
-        }
+        deliver(peer.queue[peer.head], controller);
         peer.head = (peer.head + 1) % kQueue;
         --peer.count;
       }
-      const ::mcnc::ChannelState* state = cycle > 0 ? peer.state.at(cycle - 1) : nullptr;
-      if (state == nullptr && !lockstep) {
-        state = peer.state.latest();
+      const ::mcnc::ChannelStatus* status = cycle > 0 ? peer.status.at(cycle - 1) : nullptr;
+      if (status == nullptr && !lockstep) {
+        status = peer.status.latest();
       }
-      if (state != nullptr && !peer.lost && in_automatic_operation(*state)) {
-        active.set(peer.id);
+      PartnerStatus p;
+      if (status != nullptr && !peer.lost) {
+        p.known = true;
+        p.state = static_cast<ChannelState>(static_cast<int>(status->state()));
+        p.call_id = status->call_id();
+        p.call_caller = status->call_caller();
       }
-      if (state != nullptr && !peer.lost && *state == CH_ALARM) {
-        halted.set(peer.id);
-      }
+      controller.set_partner(peer.id, p);
       if (peer.lost && !peer.lost_told) {
         peer.lost_told = true;
         controller.partner_lost(peer.id);
       }
     }
   });
-  controller.set_partner_states(active, halted);
+}
+
+void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
+                           ChannelController& controller) const {
+  switch (e.kind()) {
+    case COORD_SYNC_ARRIVE: {
+      coordination::SyncArrival a;
+      a.channel = e.channel();
+      a.p = e.p();
+      a.generation = e.generation();
+      a.all_active = e.all_channels();
+      a.participants = from_mask(e.channels());
+      controller.on_arrival(a);
+      break;
+    }
+    case COORD_SUBCALL: {
+      if (e.target() != self_) {
+        break;
+      }
+      SubCall call;
+      call.call_id = e.call_id();
+      call.caller = e.caller();
+      call.target = e.target();
+      call.program = e.program();
+      call.wait = e.wait();
+      call.repeat = e.repeat();
+      for (std::size_t i = 0; i < call.args.size(); ++i) {
+        call.args[i] = e.args()[i];
+      }
+      call.args_given = e.args_given();
+      controller.on_call(call);
+      break;
+    }
+    case COORD_SUBCALL_RELEASE:
+      if (e.caller() == self_) {
+        controller.on_call_release(
+            CallRelease{e.call_id(), e.caller(), e.channel(),
+                        static_cast<CallOutcome>(static_cast<int>(e.outcome()))});
+      }
+      break;
+  }
 }
 
 }  // namespace mcnc::channel

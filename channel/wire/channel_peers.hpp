@@ -1,7 +1,8 @@
 #pragma once
 // What a channel hears from the other channels of its machine: their cyclic ChannelStatus (in
 // automatic operation or not; in lockstep every channel runs cycle N only once every other
-// channel's status stamped N-1 is in) and their CoordinationEvents (G04.1 arrivals). An adapter:
+// channel's status stamped N-1 is in) and their CoordinationEvents (G04.1 arrivals, G144 calls
+// and their releases). An adapter:
 // DDS callbacks fill it under the node's wake-up lock; apply() hands the controller, in the
 // cycle, exactly what was sent before that cycle, so every channel decides its barriers from
 // the same facts at the same cycle.
@@ -43,7 +44,7 @@ class ChannelPeers {
   static constexpr std::size_t kQueue = 256;  // the event topic's history depth
   struct Peer {
     std::uint32_t id = 0;
-    cycle::CycleBuffer<::mcnc::ChannelState, 8> state;
+    cycle::CycleBuffer<::mcnc::ChannelStatus, 8> status;
     std::array<::mcnc::CoordinationEvent, kQueue> queue{};
     std::size_t head = 0;
     std::size_t count = 0;
@@ -56,6 +57,9 @@ class ChannelPeers {
                                     const config::ChannelConfig& self);
   [[nodiscard]] Peer* find(std::uint32_t channel) noexcept;
   void on_event(const ::mcnc::CoordinationEvent& event);
+  // One event to the controller: arrivals from all, calls to this channel, releases of its
+  // calls.
+  void deliver(const ::mcnc::CoordinationEvent& event, ChannelController& controller) const;
 
   process::ProcessNode& node_;
   cycle::LockstepGate& gate_;

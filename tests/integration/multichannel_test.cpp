@@ -225,3 +225,159 @@ TEST(MultiChannel, TwoDigitChannelsOnATwelveChannelMachine) {
     EXPECT_EQ(events(t, "end", ch).at(0)["code"], 30) << ch;
   }
 }
+
+namespace {
+
+// The spec's G144 examples: CH1 runs O1000 of `dir`, the program store is `dir`.
+MultiRun run_store(int domain, const std::string& dir,
+                   const std::map<std::string, std::string>& programs) {
+  TestMachine machine("three_channel.yaml", domain);
+  std::map<std::string, std::string> paths;
+  for (const auto& [ch, file] : programs) {
+    paths[ch] = source(dir + file);
+  }
+  return run_channels(machine, paths, {"--progdir", source(dir)});
+}
+
+std::vector<int> lines_of(const Trace& t, const std::string& ch) {
+  std::vector<int> lines;
+  for (const auto& b : events(t, "block", ch)) {
+    lines.push_back(b["line"]);
+  }
+  return lines;
+}
+
+}  // namespace
+
+// CT-G144-01 (spec dafeng §3.4 example 1): H1, released by G145.
+TEST(MultiChannel, SubcallWithWaitReleasedByG145) {
+  const MultiRun r = run_store(55, "tests/integration/programs/g144_wait/", {{"CH1", "O1000.nc"}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  const auto calls = events(t, "subcall", "CH1");
+  ASSERT_EQ(calls.size(), 1U);
+  EXPECT_EQ(calls[0]["target"], "CH2");
+  EXPECT_EQ(calls[0]["program"], 2000);
+  EXPECT_EQ(calls[0]["wait"], true);
+  const auto releases = events(t, "subcall_release", "CH2");
+  ASSERT_EQ(releases.size(), 1U);
+  EXPECT_EQ(releases[0]["call_id"], calls[0]["call_id"]);
+  EXPECT_EQ(releases[0]["outcome"], "released");
+  // CH2 runs O2000 from the store: every block before G145 precedes CH1's G01 Z-10.
+  EXPECT_EQ(lines_of(t, "CH2"), (std::vector<int>{3, 4, 5, 6, 7}));
+  EXPECT_EQ(events(t, "block", "CH2").at(0)["prog"], "O2000.nc");
+  const std::uint64_t g145 = block_at(t, "CH2", 5);
+  EXPECT_GT(block_at(t, "CH2", 3), cycle_of(t, "subcall", "CH1"));
+  EXPECT_GT(block_at(t, "CH1", 6), g145);
+  EXPECT_EQ(releases[0]["cycle"], g145);
+  // After G145 both run in parallel; O2000's M99 ends it (no loop) and CH2 goes idle.
+  EXPECT_LT(block_at(t, "CH2", 6), cycle_of(t, "end", "CH1"));
+  EXPECT_EQ(events(t, "end", "CH2").at(0)["code"], 99);
+  EXPECT_EQ(events(t, "state", "CH2").back()["state"], "idle");
+  EXPECT_EQ(r.trace.back()["channels"]["CH2"]["end"], 99);
+}
+
+// CT-G144-02 (example 2): H0 starts CH2 then CH3 without waiting; all meet at P1.
+TEST(MultiChannel, SubcallsWithoutWaitRunInParallelAndMeetAtAMark) {
+  const MultiRun r =
+      run_store(56, "tests/integration/programs/g144_nowait/", {{"CH1", "O1000.nc"}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  const auto calls = events(t, "subcall", "CH1");
+  ASSERT_EQ(calls.size(), 2U);
+  EXPECT_EQ(calls[0]["target"], "CH2");
+  EXPECT_EQ(calls[1]["target"], "CH3");
+  EXPECT_EQ(calls[0]["wait"], false);
+  // CH1 does not block: its move starts right after the two calls.
+  EXPECT_LE(block_at(t, "CH1", 5), cycle_of(t, "subcall", "CH1", {{"target", "CH3"}}) + 1);
+  EXPECT_LE(block_at(t, "CH2", 3), block_at(t, "CH3", 3));
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {
+    EXPECT_GE(release(t, ch, 1),
+              std::max({arrival(t, "CH1", 1), arrival(t, "CH2", 1), arrival(t, "CH3", 1)}))
+        << ch;
+  }
+  EXPECT_EQ(events(t, "end", "CH1").at(0)["code"], 30);
+  EXPECT_EQ(events(t, "end", "CH2").at(0)["code"], 99);
+  EXPECT_EQ(events(t, "end", "CH3").at(0)["code"], 99);
+  // The called programs released nobody waiting (H0): their ends still say so.
+  EXPECT_EQ(events(t, "subcall_release", "CH2").size(), 1U);
+}
+
+// CT-G144-03 (example 3): three operations selected by Q, strictly in order, each call
+// waiting until CH2 is idle again; a call without Q ends at M30 without G145.
+TEST(MultiChannel, RepeatedSubcallsWaitForTheTargetAndPassTheirArguments) {
+  const MultiRun r = run_store(57, "tests/integration/programs/g144_ops/", {{"CH1", "O1000.nc"}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  const auto calls = events(t, "subcall", "CH1");
+  ASSERT_EQ(calls.size(), 4U);
+  // The operations in the order of Q: N10 (line 7), N20 (line 11), N30 (line 15).
+  std::vector<int> ops;
+  for (const int l : lines_of(t, "CH2")) {
+    if (l == 7 || l == 11 || l == 15 || l == 6) {
+      ops.push_back(l);
+    }
+  }
+  EXPECT_EQ(ops, (std::vector<int>{7, 11, 15, 6}));  // the fourth call reaches M30 (line 6)
+  const auto ends = events(t, "end", "CH2");
+  ASSERT_EQ(ends.size(), 4U);
+  EXPECT_EQ(ends[3]["code"], 30);
+  for (std::size_t k = 0; k + 1 < calls.size(); ++k) {
+    // Each call only once CH2 ended the last one, and CH1 went on at its G145.
+    EXPECT_GT(calls[k + 1]["cycle"].get<std::uint64_t>(), ends[k]["cycle"].get<std::uint64_t>())
+        << k;
+  }
+  const auto releases = events(t, "subcall_release", "CH2");
+  ASSERT_EQ(releases.size(), 4U);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(releases[k]["call_id"], calls[k]["call_id"]);
+    EXPECT_EQ(releases[k]["outcome"], "released");
+  }
+  // CH1's move after each call overlaps CH2's G00 X0 after that G145.
+  EXPECT_LT(block_at(t, "CH1", 6), ends[0]["cycle"].get<std::uint64_t>());
+  EXPECT_EQ(events(t, "end", "CH1").at(0)["code"], 30);
+}
+
+// CT-CH-01 (spec dafeng §3.5): a program for CH1 started in CH2, directly or by G144.
+TEST(MultiChannel, AProgramForAnotherChannelIsAnAlarmBeforeItMoves) {
+  TestMachine machine("three_channel.yaml", 58);
+  const std::string dir = source("tests/integration/programs/g144_wait/");
+  const MultiRun direct = run_channels(machine, {{"CH2", dir + "O1000.nc"}});
+  // `mcnc run` checks every program before it brings the machine up.
+  EXPECT_NE(direct.exit_code, 0);
+  EXPECT_NE(direct.output.find("O1000.nc:2:1: alarm 1119: this program may only run in channel 1"),
+            std::string::npos)
+      << direct.output;
+  EXPECT_TRUE(direct.trace.empty());
+
+  const std::string caller = write_program(machine, "call.nc", "G144 N3 P2000 H1\nM30\n");
+  const MultiRun called = run_channels(machine, {{"CH1", caller}}, {"--progdir", dir});
+  EXPECT_NE(called.exit_code, 0);
+  const auto in_ch3 = events(called.trace, "alarm", "CH3");
+  ASSERT_EQ(in_ch3.size(), 1U) << called.output;
+  EXPECT_EQ(in_ch3[0]["number"], 1119);
+  EXPECT_TRUE(events(called.trace, "pos", "CH3").empty());  // nothing moved
+  const auto in_ch1 = events(called.trace, "alarm", "CH1");
+  ASSERT_EQ(in_ch1.size(), 1U);
+  EXPECT_EQ(in_ch1[0]["number"], 1221);
+  EXPECT_EQ(events(called.trace, "subcall_release", "CH3").at(0)["outcome"], "failed");
+}
+
+// CT-CHN-01 (spec dafeng §3.6): one subprogram, CHN picks each channel's own move.
+TEST(MultiChannel, OneSubprogramMovesEachChannelByItsNumber) {
+  const MultiRun r = run_store(59, "tests/integration/programs/chn/",
+                               {{"CH1", "O1000.nc"}, {"CH2", "O2000.nc"}, {"CH3", "O3000.nc"}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::map<std::string, double> last;
+  for (const auto& e : events(r.trace, "pos")) {
+    if (e["src"].get<std::string>().rfind("CH", 0) == 0) {
+      last[e["axis"]] = e["cmd"];
+    }
+  }
+  EXPECT_DOUBLE_EQ(last.at("X1"), 0.0);  // G53 X0
+  EXPECT_DOUBLE_EQ(last.at("Z1"), 20.0);
+  EXPECT_DOUBLE_EQ(last.at("X2"), 10.0);  // X20 diameter, untouched
+  EXPECT_DOUBLE_EQ(last.at("Z2"), 0.0);   // G53 Z0
+  EXPECT_DOUBLE_EQ(last.at("X3"), 5.0);   // G53 X10 (diameter)
+  EXPECT_DOUBLE_EQ(last.at("Z3"), 10.0);
+}

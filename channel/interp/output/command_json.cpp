@@ -318,7 +318,7 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       break;
     case Op::end:
       key(out, "code");
-      out += c.code == 2 ? "\"M02\"" : "\"M30\"";
+      out += c.code == 2 ? "\"M02\"" : (c.code == 99 ? "\"M99\"" : "\"M30\"");
       break;
     case Op::sync:
       if (c.has_p) {

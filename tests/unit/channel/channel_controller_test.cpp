@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <deque>
 #include <functional>
+#include <map>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <random>
@@ -1228,7 +1230,7 @@ struct SyncRig {
         rig(&counting, xz(0.0, 0.0), spindles) {
     const auto alarm = interp.load(program, "S.nc");
     EXPECT_FALSE(alarm.has_value()) << alarm->text;
-    rig.ctl_.set_partner_states(channels({2}), {});
+    rig.ctl_.set_partner(2, PartnerStatus{true, ChannelState::running});
     rig.ctl_.request_start();
   }
   bool run_to_arrival() {
@@ -1353,6 +1355,262 @@ TEST(ChannelSync, TheSpindleKeepsTurningWhileTheChannelWaits) {
     EXPECT_EQ(o.spindle_direction, 1);
     EXPECT_EQ(o.spindle_rpm, 800.0);
   }
+}
+
+}  // namespace
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+// A command source whose called programs are scripts too.
+class CallableSource final : public interp::CommandSource {
+ public:
+  CallableSource(std::vector<interp::PullResult> own,
+                 std::map<int, std::vector<interp::PullResult>> store)
+      : own_(std::move(own)), store_(std::move(store)) {}
+  void rewind(const AxisVector&) override {
+    script_ = &own_;
+    cursor_ = 0;
+  }
+  std::optional<interp::PullResult> next() override {
+    if (script_ == nullptr || cursor_ >= script_->size()) {
+      return std::nullopt;
+    }
+    return (*script_)[cursor_++];
+  }
+  [[nodiscard]] std::size_t block_count() const noexcept override { return own_.size(); }
+  std::optional<interp::ProgramAlarm> call(int number,
+                                           const std::vector<std::pair<int, double>>& args,
+                                           const AxisVector&) override {
+    calls.emplace_back(number, args);
+    auto it = store_.find(number);
+    if (it == store_.end()) {
+      return interp::ProgramAlarm{1150, "program not found", "", 0, 0};
+    }
+    script_ = &it->second;
+    cursor_ = 0;
+    return std::nullopt;
+  }
+  std::vector<std::pair<int, std::vector<std::pair<int, double>>>> calls;
+
+ private:
+  std::vector<interp::PullResult> own_;
+  std::map<int, std::vector<interp::PullResult>> store_;
+  const std::vector<interp::PullResult>* script_ = nullptr;
+  std::size_t cursor_ = 0;
+};
+
+Command g144(int line, std::size_t n, int target, int program, bool wait, int repeat = 1) {
+  Command c;
+  c.op = Op::subcall;
+  c.line = line;
+  c.n = n;
+  c.channel = target;
+  c.program = program;
+  c.wait = wait;
+  c.repeat = repeat;
+  c.args = {{17, 10.0}};
+  return c;
+}
+
+Command g145(int line, std::size_t n) {
+  Command c;
+  c.op = Op::subcall_release;
+  c.line = line;
+  c.n = n;
+  return c;
+}
+
+// Two channels wired as the runtime wires them: what one sends at cycle N the other gets
+// before its cycle N+1, with the other's status stamped N.
+struct TwoChannels {
+  TwoChannels(std::vector<interp::PullResult> ch1, std::vector<interp::PullResult> ch2,
+              std::map<int, std::vector<interp::PullResult>> store)
+      : src1(std::move(ch1), {}), src2(std::move(ch2), std::move(store)) {
+    ch[0] = std::make_unique<Node>(1, src1);
+    ch[1] = std::make_unique<Node>(2, src2);
+  }
+  struct Node {
+    Node(std::uint32_t id, interp::CommandSource& source)
+        : planner(lathe_motion(), AxisVector{}),
+          ctl(
+              [&] {
+                ChannelSetup s{2, {kInPos, kInPos}, kDt};
+                s.channel_id = id;
+                return s;
+              }(),
+              source, planner) {
+      for (auto& f : feedback) {
+        f.enabled = true;
+        f.present = true;
+      }
+    }
+    motion::MotionPlanner planner;
+    ChannelController ctl;
+    std::array<AxisFeedbackView, 2> feedback{};
+    ChannelOutput last{};
+    std::vector<LoggedEvent> events;
+  };
+  void step() {
+    for (int i = 0; i < 2; ++i) {
+      Node& other = *ch[1 - i];
+      PartnerStatus p{true, other.last.state, other.ctl.serving_call(), other.ctl.serving_caller()};
+      ch[i]->ctl.set_partner(static_cast<std::uint32_t>(2 - i), p);
+    }
+    std::array<ChannelOutput, 2> outs;
+    for (int i = 0; i < 2; ++i) {
+      Node& n = *ch[i];
+      outs[i] = n.ctl.cycle(cycle, n.feedback);
+      for (std::size_t e = 0; e < outs[i].event_count; ++e) {
+        n.events.push_back({cycle, outs[i].events[e]});
+      }
+      for (std::size_t a = 0; a < 2; ++a) {
+        if (outs[i].setpoints[a].valid) {
+          n.feedback[a].cmd = n.feedback[a].act = outs[i].setpoints[a].pos;
+        }
+      }
+    }
+    for (int i = 0; i < 2; ++i) {
+      Node& other = *ch[1 - i];
+      if (outs[i].call_due) {
+        other.ctl.on_call(outs[i].call);
+      }
+      for (std::size_t r = 0; r < outs[i].release_count; ++r) {
+        other.ctl.on_call_release(outs[i].releases[r]);
+      }
+      ch[i]->last = outs[i];
+    }
+    ++cycle;
+  }
+  std::optional<std::uint64_t> first(int c, ChannelEventKind kind, int line = -1) const {
+    for (const auto& e : ch[c - 1]->events) {
+      if (e.event.kind == kind && (line < 0 || e.event.line == line)) {
+        return e.cycle;
+      }
+    }
+    return std::nullopt;
+  }
+  ChannelController& ctl(int c) { return ch[c - 1]->ctl; }
+  ChannelOutput& last(int c) { return ch[c - 1]->last; }
+
+  CallableSource src1;
+  CallableSource src2;
+  std::array<std::unique_ptr<Node>, 2> ch;
+  std::uint64_t cycle = 1;
+};
+
+std::vector<interp::PullResult> called_program(bool with_g145) {
+  std::vector<interp::PullResult> p{command(Op::linear, xz(4.0, 0.0), 3, 1, 600.0)};
+  if (with_g145) {
+    p.emplace_back(g145(4, 2));
+  }
+  p.emplace_back(command(Op::linear, xz(0.0, 0.0), 5, 3, 600.0));
+  p.emplace_back(program_end(6, 4, 99));
+  return p;
+}
+
+TEST(ChannelCall, TheCallerWaitsForG145AndTheCalledProgramGoesOn) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), command(Op::linear, xz(0.0, 3.0), 4, 2, 600.0),
+                 program_end(5, 3)},
+                {}, {{2000, called_program(true)}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 3000 && !(m.last(1).program_end && m.ctl(2).serving_call() == 0 && i > 10);
+       ++i) {
+    m.step();
+  }
+  ASSERT_TRUE(m.last(1).program_end);
+  ASSERT_EQ(m.src2.calls.size(), 1U);
+  EXPECT_EQ(m.src2.calls[0].first, 2000);
+  EXPECT_EQ(m.src2.calls[0].second, (std::vector<std::pair<int, double>>{{17, 10.0}}));
+  const auto g145_at = m.first(2, ChannelEventKind::block_started, 4);
+  ASSERT_TRUE(g145_at.has_value());
+  EXPECT_GT(*m.first(1, ChannelEventKind::block_started, 4), *g145_at);
+  // CH2 went on after its G145 while CH1 moved.
+  EXPECT_LT(*m.first(2, ChannelEventKind::block_started, 5),
+            *m.first(1, ChannelEventKind::program_end));
+  EXPECT_EQ(m.ctl(2).serving_call(), 0U);  // the call ended with O2000
+}
+
+TEST(ChannelCall, ABusyTargetIsAnAlarmAndACallNotWaitedForGoesOnAtOnce) {
+  // CH2 runs its own program: busy.
+  TwoChannels busy({g144(3, 1, 2, 2000, true), program_end(4, 2)},
+                   {command(Op::linear, xz(0.0, 50.0), 3, 1, 300.0), program_end(4, 2)},
+                   {{2000, called_program(true)}});
+  busy.ctl(2).request_start();
+  for (int i = 0; i < 5; ++i) {
+    busy.step();
+  }
+  busy.ctl(1).request_start();
+  for (int i = 0; i < 20; ++i) {
+    busy.step();
+  }
+  EXPECT_EQ(busy.last(1).state, ChannelState::alarm);
+  EXPECT_EQ(busy.ctl(1).last_alarm().number, kAlarmCallBusy);
+  EXPECT_TRUE(busy.src2.calls.empty());
+
+  // H0: the caller's next block starts while the called program runs.
+  TwoChannels h0({g144(3, 1, 2, 2000, false), command(Op::linear, xz(0.0, 3.0), 4, 2, 600.0),
+                  program_end(5, 3)},
+                 {}, {{2000, called_program(false)}});
+  h0.ctl(1).request_start();
+  for (int i = 0; i < 3000 && !(h0.last(1).program_end && h0.last(2).program_end); ++i) {
+    h0.step();
+  }
+  ASSERT_TRUE(h0.first(1, ChannelEventKind::block_started, 4).has_value());
+  EXPECT_LT(*h0.first(1, ChannelEventKind::block_started, 4),
+            *h0.first(2, ChannelEventKind::block_started, 5));
+}
+
+TEST(ChannelCall, AResetOfTheCalledChannelReleasesTheCallerWithAnAlarm) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), program_end(4, 2)}, {}, {{2000, called_program(true)}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 20; ++i) {
+    m.step();
+  }
+  ASSERT_EQ(m.last(2).state, ChannelState::running);
+  ASSERT_EQ(m.last(1).state, ChannelState::waiting);
+  m.ctl(2).request_reset();
+  for (int i = 0; i < 200 && m.last(1).state != ChannelState::alarm; ++i) {
+    m.step();
+  }
+  EXPECT_EQ(m.last(1).state, ChannelState::alarm);
+  EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallFailed);
+  EXPECT_EQ(m.ctl(2).serving_call(), 0U);
+}
+
+TEST(ChannelCall, ACallerResetWhileWaitingLeavesTheCalledProgramRunning) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), program_end(4, 2)}, {}, {{2000, called_program(true)}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 20; ++i) {
+    m.step();
+  }
+  m.ctl(1).request_reset();
+  for (int i = 0; i < 3000 && !m.last(2).program_end; ++i) {
+    m.step();
+  }
+  EXPECT_TRUE(m.last(2).program_end);
+  EXPECT_NE(m.last(1).state, ChannelState::alarm);
+  EXPECT_NE(m.last(1).state, ChannelState::waiting);
+}
+
+TEST(ChannelCall, RepeatsRunTheProgramAgainAndOnlyTheFirstG145Releases) {
+  TwoChannels m({g144(3, 1, 2, 2000, true, 3), program_end(4, 2)}, {},
+                {{2000, called_program(true)}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 20000 && !(m.last(1).program_end && m.ctl(2).serving_call() == 0); ++i) {
+    m.step();
+  }
+  int releases = 0;
+  int program_ends = 0;
+  for (const auto& e : m.ch[1]->events) {
+    releases += e.event.kind == ChannelEventKind::subcall_release ? 1 : 0;
+    program_ends += e.event.kind == ChannelEventKind::program_end ? 1 : 0;
+  }
+  EXPECT_EQ(m.src2.calls.size(), 3U);
+  EXPECT_EQ(program_ends, 3);
+  EXPECT_EQ(releases, 1);
+  EXPECT_TRUE(m.last(1).program_end);
 }
 
 }  // namespace

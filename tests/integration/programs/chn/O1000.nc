@@ -1,0 +1,4 @@
+O1000 (CT-CHN-01, channel 1)
+G00 X20 Z20
+M98 P9020
+M30

@@ -1,0 +1,4 @@
+O3000 (CT-CHN-01, channel 3)
+G00 X20 Z20
+M98 P9020
+M30

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -46,8 +47,8 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   std::string retained_path;
   app.add_option("--retained", retained_path,
-                 "keep the retained macro variables #500-#999 in FILE (loaded at start, saved "
-                 "at program end)");
+                 "keep the machine's retained macro variables #500-#999 in FILE (loaded at start; "
+                 "channel 1 saves them when the run ends; overrides the machine file's)");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
@@ -73,7 +74,23 @@ int main(int argc, char** argv) {
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
-  interp_config.retained_file = retained_path;
+  // #500-#999 and #20000-#20999 are the machine's: this channel's copy, kept equal to the
+  // others' by sending every write (ARCHITECTURE.md §5). The retained ones come from the
+  // machine's file; channel 1 writes it back when the run ends.
+  interp::macro::VariableStore shared_variables(interp_config.macro);
+  channel::SharedWriteLog shared_writes;
+  if (retained_path.empty()) {
+    retained_path = machine.retained_file;
+  }
+  if (!retained_path.empty() && std::filesystem::exists(retained_path)) {
+    const interp::macro::MacroAlarm a = shared_variables.load_retained_file(retained_path);
+    if (a.number != 0) {
+      std::fprintf(stderr, "error: %s: %s\n", retained_path.c_str(), std::string(a.text()).c_str());
+      return 2;
+    }
+  }
+  interp_config.shared_variables = &shared_variables;
+  interp_config.shared_sink = &shared_writes;
   if (!program_dir.empty()) {
     interp_config.program_dir = program_dir;
   }
@@ -110,7 +127,7 @@ int main(int argc, char** argv) {
     fed.insert(fed.end(), spindles.begin(), spindles.end());
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
     cycle::LockstepGate gate(fed.size() + machine.channels.size() - 1);
-    channel::ChannelPeers peers(node, machine, *ch, gate, fed.size());
+    channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
     std::vector<dds::WriterId> axis_writer(fed.size());
     std::vector<bool> axis_writer_known(fed.size(), false);
     std::vector<bool> axis_lost(fed.size(), false);
@@ -154,7 +171,7 @@ int main(int argc, char** argv) {
       channel_names.push_back(c.name);
     }
     channel::ChannelOutputs outputs(node, tracer, *ch, channel_names, axes, spindles, program_name,
-                                    program_lines);
+                                    program_lines, shared_writes);
     if (!interp_config.program_dir.empty()) {
       outputs.preload_program_dir(interp_config.program_dir.string());
     }
@@ -248,6 +265,16 @@ int main(int argc, char** argv) {
                       !program_path.empty() && !load_alarm);
     }
     tracer.flush();
+    if (ch->id == 1 && !retained_path.empty()) {
+      peers.apply_remaining_writes();
+      const interp::macro::MacroAlarm a = shared_variables.save_retained_file(retained_path);
+      if (a.number != 0) {
+        spdlog::error("saving the retained variables: {}", a.text());
+      }
+    }
+    if (shared_writes.lost() > 0) {
+      spdlog::warn("{} shared variable writes not sent (write log full)", shared_writes.lost());
+    }
     if (peers.dropped() > 0) {
       spdlog::warn("{} coordination events dropped (receive queue full)", peers.dropped());
     }

@@ -173,6 +173,9 @@ LaunchResult Launcher::run(
     if (auto it = options_.programs.find(ch.name); it != options_.programs.end()) {
       args.insert(args.end(), {"--program", it->second});
     }
+    if (!options_.retained_file.empty()) {
+      args.insert(args.end(), {"--retained", options_.retained_file});
+    }
     if (!options_.program_dir.empty()) {
       args.insert(args.end(), {"--progdir", options_.program_dir});
     }

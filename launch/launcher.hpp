@@ -35,7 +35,8 @@ struct LaunchOptions {
   double run_timeout_s = 0.0;     // 0: no limit
   // Extra arguments of each bus's mcnc-drivesim (fault injection), by bus name.
   std::map<std::string, std::vector<std::string>> drivesim_args;
-  std::string program_dir;  // overrides the machine file's program_dir for every channel
+  std::string program_dir;    // overrides the machine file's program_dir for every channel
+  std::string retained_file;  // overrides the machine file's retained_file
   // Sent with the run start, each taking effect at its cycle. The run goes on past alarms
   // until the last of them has taken effect; then alarms raised before the last reset no
   // longer stop it (they still make the result a failure).

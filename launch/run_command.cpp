@@ -119,6 +119,9 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--progdir", args.program_dir,
                  "where M98, G65 and G144 find programs by number (overrides the machine file's "
                  "program_dir)");
+  app.add_option("--retained", args.retained_file,
+                 "keep the shared retained macro variables #500-#999 in FILE between runs "
+                 "(overrides the machine file's retained_file)");
   app.add_option("--operator", args.operator_script,
                  "scripted operator: ACTION[:CHANNEL]@CYCLE, ACTION reset or cycle_start, for "
                  "one channel or (without CHANNEL) the whole machine (repeatable)");
@@ -173,6 +176,9 @@ int execute_run(const RunArguments& args) {
   options.run_timeout_s = args.timeout_s;
   if (!args.program_dir.empty()) {
     options.program_dir = machine.program_dir;
+  }
+  if (!args.retained_file.empty()) {
+    options.retained_file = std::filesystem::absolute(args.retained_file).string();
   }
   // Fault injection goes to the simulator of the named bus, which checks the rest.
   for (const auto& [specs, flag] : {std::pair{&args.drive_faults, "--fault"},

@@ -26,6 +26,7 @@ struct RunArguments {
   std::vector<std::string> drive_sdo_refusals;  // BUS:NODE:INDEX (fault injection)
   std::vector<std::string> operator_script;     // ACTION[:CHANNEL]@CYCLE (scripted operator)
   std::string program_dir;                      // --progdir: overrides machine.program_dir
+  std::string retained_file;                    // --retained: overrides machine.retained_file
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

@@ -109,6 +109,10 @@ struct InterpreterConfig {
   MacroCallTables calls;
   macro::MacroDialect macro;  // locals, commons, vacant ordering; `channel` is set from above
   std::string retained_file;  // #500-#999 are loaded from and saved to it ("" = not kept)
+  // The machine-wide #500-#999 and #20000-#20999 this channel shares with the others, and
+  // where its writes to them go (VariableStore::share); not owned, null: the interpreter's own.
+  macro::VariableStore* shared_variables = nullptr;
+  macro::SharedWriteSink* shared_sink = nullptr;
   std::filesystem::path program_dir;  // searched by O number after the programs of the file
 
   // Initial tables (what G10 writes).

@@ -61,7 +61,9 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
   name_ = program_name;
   loaded_ = true;
   InterpreterConfig dry = config_;
-  dry.retained_file.clear();  // a dry run must not write the retained variables
+  dry.retained_file.clear();       // a dry run must not write the retained variables
+  dry.shared_variables = nullptr;  // nor tell the other channels of its writes
+  dry.shared_sink = nullptr;
   Interpreter probe(dry);
   load_alarm_ = probe.start(text_, name_);
   block_count_ = load_alarm_ ? 0 : probe.main_block_count();

@@ -46,6 +46,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
       local_(config.work_offsets.size()) {
   vars_.add_provider(macro::MathConstantsProvider::kFirst, macro::MathConstantsProvider::kLast,
                      constants_);
+  vars_.share(config_.shared_variables, config_.shared_sink);
   vars_.add_writable_provider(2001, 2999, *this);
   vars_.add_writable_provider(3000, 3100, *this);
   vars_.add_writable_provider(3901, 3902, *this);

@@ -27,7 +27,8 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
                                std::vector<std::string> channel_names,
                                std::vector<const config::AxisConfig*> axes,
                                std::vector<const config::AxisConfig*> spindles,
-                               std::string program_name, std::vector<std::string> program_lines)
+                               std::string program_name, std::vector<std::string> program_lines,
+                               SharedWriteLog& writes)
     : node_(node),
       tracer_(tracer),
       channel_(channel),
@@ -38,6 +39,7 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       setpoints_(node.participant()),
       status_(node.participant()),
       events_(node.participant()),
+      writes_(writes),
       channel_names_(std::move(channel_names)) {}
 
 const char* ChannelOutputs::channel_name(std::uint32_t id) const {
@@ -74,6 +76,14 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     tracer_.emit(cycle, "spindle", "\"ch\":\"%s\",\"spindle\":\"%s\",\"rpm\":%.3f",
                  channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
+  // Shared variable writes first: a partner that sees this cycle's arrival has them.
+  writes_.drain([&](const SharedWrite& w) {
+    CoordinationEvent e = event(cycle, COORD_VAR_WRITE);
+    e.var(w.number);
+    e.value(w.value.number());
+    e.value_null(w.value.is_null());
+    events_.write(e);
+  });
   if (out.arrival_due) {
     CoordinationEvent e = event(cycle, COORD_SYNC_ARRIVE);
     e.p(out.arrival.p);

@@ -4,6 +4,7 @@
 // in the trace (state, block, block-end positions, alarm, end, sync) with alarms also published.
 // An adapter between ChannelController and DDS / the trace; the shell only wires it.
 #include "channel/control/channel_controller.hpp"
+#include "channel/control/shared_write_log.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
 #include "common/trace/trace_writer.hpp"
@@ -25,7 +26,7 @@ class ChannelOutputs {
                  const config::ChannelConfig& channel, std::vector<std::string> channel_names,
                  std::vector<const config::AxisConfig*> axes,
                  std::vector<const config::AxisConfig*> spindles, std::string program_name,
-                 std::vector<std::string> program_lines);
+                 std::vector<std::string> program_lines, SharedWriteLog& writes);
 
   // Publishes this cycle's setpoints (axes in position, spindles in velocity: the first turns
   // as the program commands, the others stand) and status and records its events. `views` is the
@@ -62,8 +63,9 @@ class ChannelOutputs {
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;
   dds::Writer<::mcnc::CoordinationEvent> events_;
-  std::uint64_t event_seq_ = 0;             // the last CoordinationEvent sent
-  SubCall out_call_{};                      // this cycle's G144 call, for its trace event
+  std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent
+  SubCall out_call_{};           // this cycle's G144 call, for its trace event
+  SharedWriteLog& writes_;
   std::vector<std::string> channel_names_;  // by channel id - 1
   char escaped_[512] = {};
 };

@@ -18,11 +18,12 @@ std::vector<ChannelPeers::Peer> ChannelPeers::peers_of(const config::MachineConf
 
 ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConfig& machine,
                            const config::ChannelConfig& self, cycle::LockstepGate& gate,
-                           std::size_t first_input)
+                           std::size_t first_input, interp::macro::VariableStore& shared_variables)
     : node_(node),
       gate_(gate),
       first_input_(first_input),
       self_(static_cast<std::uint32_t>(self.id)),
+      shared_(shared_variables),
       peers_(peers_of(machine, self)),
       status_reader_(
           node.participant(),
@@ -115,6 +116,26 @@ void ChannelPeers::apply(std::uint64_t cycle, bool lockstep, ChannelController& 
   });
 }
 
+void ChannelPeers::apply_remaining_writes() {
+  node_.wakeup().with_lock([&] {
+    for (Peer& peer : peers_) {
+      for (; peer.count > 0; --peer.count, peer.head = (peer.head + 1) % kQueue) {
+        const ::mcnc::CoordinationEvent& e = peer.queue[peer.head];
+        if (e.kind() == COORD_VAR_WRITE) {
+          apply_write(e);
+        }
+      }
+    }
+  });
+}
+
+void ChannelPeers::apply_write(const ::mcnc::CoordinationEvent& e) const {
+  if (interp::macro::VariableStore::is_shared(e.var())) {
+    (void)shared_.write(e.var(), e.value_null() ? interp::macro::MacroValue::null()
+                                                : interp::macro::MacroValue::of(e.value()));
+  }
+}
+
 void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
                            ChannelController& controller) const {
   switch (e.kind()) {
@@ -146,6 +167,9 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
       controller.on_call(call);
       break;
     }
+    case COORD_VAR_WRITE:
+      apply_write(e);
+      break;
     case COORD_SUBCALL_RELEASE:
       if (e.caller() == self_) {
         controller.on_call_release(

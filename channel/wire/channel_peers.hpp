@@ -2,11 +2,12 @@
 // What a channel hears from the other channels of its machine: their cyclic ChannelStatus (in
 // automatic operation or not; in lockstep every channel runs cycle N only once every other
 // channel's status stamped N-1 is in) and their CoordinationEvents (G04.1 arrivals, G144 calls
-// and their releases). An adapter:
+// and their releases, writes to the shared macro variables). An adapter:
 // DDS callbacks fill it under the node's wake-up lock; apply() hands the controller, in the
 // cycle, exactly what was sent before that cycle, so every channel decides its barriers from
 // the same facts at the same cycle.
 #include "channel/control/channel_controller.hpp"
+#include "channel/interp/macro/variable_store.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
@@ -24,7 +25,7 @@ class ChannelPeers {
   // The peers take the gate's inputs first_input .. first_input + channels - 2.
   ChannelPeers(process::ProcessNode& node, const config::MachineConfig& machine,
                const config::ChannelConfig& self, cycle::LockstepGate& gate,
-               std::size_t first_input);
+               std::size_t first_input, interp::macro::VariableStore& shared_variables);
   ChannelPeers(const ChannelPeers&) = delete;
   ChannelPeers& operator=(const ChannelPeers&) = delete;
 
@@ -37,6 +38,9 @@ class ChannelPeers {
   // order sent, the channels in automatic operation or in alarm at cycle-1 (realtime: as last
   // heard), and peers whose process is gone. No allocation.
   void apply(std::uint64_t cycle, bool lockstep, ChannelController& controller);
+  // When the run ends: the shared variable writes received and not yet applied, so that the
+  // copy saved to the retained file has every channel's last writes.
+  void apply_remaining_writes();
   // Events that did not fit the receive queue (a peer far ahead): counted, never silent.
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_; }
 
@@ -60,11 +64,13 @@ class ChannelPeers {
   // One event to the controller: arrivals from all, calls to this channel, releases of its
   // calls.
   void deliver(const ::mcnc::CoordinationEvent& event, ChannelController& controller) const;
+  void apply_write(const ::mcnc::CoordinationEvent& event) const;
 
   process::ProcessNode& node_;
   cycle::LockstepGate& gate_;
   std::size_t first_input_;
   std::uint32_t self_;
+  interp::macro::VariableStore& shared_;  // the machine-wide variables: others' writes go here
   std::vector<Peer> peers_;
   std::uint64_t dropped_ = 0;
   dds::Reader<::mcnc::ChannelStatus> status_reader_;

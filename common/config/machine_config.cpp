@@ -126,7 +126,8 @@ void check_uri(const YamlValue& value, const std::string& uri) {
 }
 
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
-  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir"});
+  const YamlMap map =
+      value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir", "retained_file"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
   read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
@@ -136,6 +137,12 @@ void parse_machine_section(const YamlValue& value, MachineConfig& out) {
     out.program_dir = dir->string();
     if (out.program_dir.empty()) {
       dir->fail("program_dir must name a directory");
+    }
+  }
+  if (auto file = map.optional("retained_file")) {
+    out.retained_file = file->string();
+    if (out.retained_file.empty()) {
+      file->fail("retained_file must name a file");
     }
   }
 }
@@ -634,6 +641,12 @@ MachineConfig load_machine_file(const std::string& path) {
         throw ConfigError("machine.program_dir", "no directory " + dir.string());
       }
       machine.program_dir = dir.lexically_normal().string();
+    }
+    if (!machine.retained_file.empty() &&
+        std::filesystem::path(machine.retained_file).is_relative()) {
+      machine.retained_file = (std::filesystem::path(path).parent_path() / machine.retained_file)
+                                  .lexically_normal()
+                                  .string();
     }
     return machine;
   } catch (const ConfigError& error) {

@@ -111,6 +111,9 @@ struct MachineConfig {
   // Where M98, G65, G144 find programs by number (O<number>.nc, or any .nc file that holds
   // O<number>); relative to the machine file's directory. Empty: none.
   std::string program_dir;
+  // Where the machine keeps #500-#999 between runs (relative to the machine file; created at
+  // the first run's end). Empty: they start null.
+  std::string retained_file;
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;

@@ -4,12 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 using namespace mcnc::test;
+using namespace std::chrono_literals;
 
 namespace {
 
@@ -73,6 +77,15 @@ std::uint64_t release(const Trace& trace, const std::string& ch, int p) {
 }
 
 const std::string kG041 = "tests/integration/programs/g041/";
+
+// Each axis's commanded point at the last block end of channel `ch`.
+std::map<std::string, double> end_points(const Trace& trace, const std::string& ch) {
+  std::map<std::string, double> last;
+  for (const auto& e : events(trace, "pos", ch)) {
+    last[e["axis"]] = e["cmd"];
+  }
+  return last;
+}
 
 // CT-G041-01 (spec dafeng §3.1): the "Expected" list, for the plain form and its variants.
 void expect_three_channel_order(const MultiRun& r) {
@@ -369,10 +382,8 @@ TEST(MultiChannel, OneSubprogramMovesEachChannelByItsNumber) {
                                {{"CH1", "O1000.nc"}, {"CH2", "O2000.nc"}, {"CH3", "O3000.nc"}});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::map<std::string, double> last;
-  for (const auto& e : events(r.trace, "pos")) {
-    if (e["src"].get<std::string>().rfind("CH", 0) == 0) {
-      last[e["axis"]] = e["cmd"];
-    }
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {
+    last.merge(end_points(r.trace, ch));
   }
   EXPECT_DOUBLE_EQ(last.at("X1"), 0.0);  // G53 X0
   EXPECT_DOUBLE_EQ(last.at("Z1"), 20.0);
@@ -380,4 +391,83 @@ TEST(MultiChannel, OneSubprogramMovesEachChannelByItsNumber) {
   EXPECT_DOUBLE_EQ(last.at("Z2"), 0.0);   // G53 Z0
   EXPECT_DOUBLE_EQ(last.at("X3"), 5.0);   // G53 X10 (diameter)
   EXPECT_DOUBLE_EQ(last.at("Z3"), 10.0);
+}
+
+// Shared macro variables (ARCHITECTURE.md §5): a value written before a wait mark is seen by
+// the partner after it; #500-#999 are kept in the machine's retained file between runs.
+TEST(MultiChannel, SharedVariablesWrittenBeforeAMarkAreSeenAfterItAndRetained) {
+  TestMachine machine("three_channel.yaml", 60);
+  const std::string retained = machine.file("retained.txt");
+  const MultiRun first = run_channels(
+      machine,
+      {{"CH1",
+        write_program(machine, "ch1.nc", "G01 Z-5 F600\n#500=7.5\n#20000=12\nG04.1 P1 Q12\nM30\n")},
+       {"CH2", write_program(machine, "ch2.nc",
+                             "G04.1 P1 Q12\nG01 Z[#500] X[#20000] F600\n#501=#500+1\nM30\n")}},
+      {"--retained", retained});
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::map<std::string, double> end = end_points(first.trace, "CH2");
+  EXPECT_DOUBLE_EQ(end.at("Z2"), 7.5);
+  EXPECT_DOUBLE_EQ(end.at("X2"), 6.0);  // X12 in diameter
+  std::ifstream in(retained);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), "#500=7.5\n#501=8.5\n");  // #20000 is not retained
+
+  const MultiRun second = run_channels(
+      machine, {{"CH3", write_program(machine, "ch3.nc", "G01 Z[#501] X[#20000+2] F900\nM30\n")}},
+      {"--retained", retained});
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  const std::map<std::string, double> next = end_points(second.trace, "CH3");
+  EXPECT_DOUBLE_EQ(next.at("Z3"), 8.5);
+  EXPECT_DOUBLE_EQ(next.at("X3"), 1.0);  // #20000 starts null again: X2 in diameter
+}
+
+// Faults (issue 7): a channel killed while its partner waits for it at a mark. The partner
+// does not wait for ever, nothing moves without its owner, and the machine stops safely.
+TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
+  TestMachine machine("three_channel.yaml", 61);
+  const std::string trace = machine.file("trace.jsonl");
+  Background run(
+      {bin("mcnc"), "run", machine.path(), "--trace", trace, "--program",
+       "CH1=" + write_program(machine, "ch1.nc", "G04.1 P1 Q12\nG00 X10\nM30\n"), "--program",
+       "CH2=" + write_program(machine, "ch2.nc", "G01 Z-200 F300\nG04.1 P1 Q12\nM30\n")},
+      -1, machine.file("run"));
+  // CH1 waits at P1 while CH2 feeds Z2: kill CH2 then.
+  std::vector<pid_t> ch2;
+  ASSERT_TRUE(eventually(
+      [&] {
+        ch2 = pids_with_arg("--channel CH2");
+        return !ch2.empty();
+      },
+      60s));
+  ASSERT_TRUE(eventually(
+      [&] {
+        std::ifstream parts(trace + ".parts/CH2.jsonl");
+        std::string all((std::istreambuf_iterator<char>(parts)), std::istreambuf_iterator<char>());
+        return all.find("\"line\":1") != std::string::npos;
+      },
+      60s));
+  std::this_thread::sleep_for(500ms);  // Z2 under way
+  ::kill(ch2[0], SIGKILL);
+  EXPECT_NE(run.wait(120s), 0);
+  const Trace t = read_trace(trace);
+  // CH1 never went past its mark; it ended in an alarm or the emergency stop, not waiting.
+  EXPECT_TRUE(events(t, "sync_release", "CH1").empty());
+  const auto ch1_states = events(t, "state", "CH1");
+  ASSERT_FALSE(ch1_states.empty());
+  EXPECT_NE(ch1_states.back()["state"], "waiting");
+  EXPECT_EQ(lines_of(t, "CH1"), (std::vector<int>{1}));
+  // The launcher saw the child die and stopped the machine; CH2's axes stopped on their own.
+  bool launch_saw_it = false;
+  for (const auto& a : events(t, "alarm", "launch")) {
+    launch_saw_it = launch_saw_it || a["text"].get<std::string>().find("CH2") != std::string::npos;
+  }
+  EXPECT_TRUE(launch_saw_it);
+  for (const std::string axis : {"X2", "Z2"}) {
+    const auto drive = events(t, "drive", axis);
+    ASSERT_FALSE(drive.empty()) << axis;
+    EXPECT_EQ(drive.back()["state"], "quick_stop_active") << axis;
+  }
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
 }

@@ -48,8 +48,9 @@ VariableStore::VariableStore(MacroDialect dialect)
 
 std::int64_t VariableStore::own_number(std::int64_t number) const {
   // #aa bbbbbb with aa = this channel is the plain #bbbbbb (dafeng L6431-6433).
+  // Another channel's #500-#999 or #20000-#20999 are the same machine-wide variables.
   if (number >= kChannelStride && number <= kLastChannelNumber &&
-      number / kChannelStride == dialect_.channel) {
+      (number / kChannelStride == dialect_.channel || is_shared(number % kChannelStride))) {
     return number % kChannelStride;
   }
   return number;
@@ -89,6 +90,9 @@ VariableRead VariableStore::read(std::int64_t number) const {
   if (n == 0) {
     return {};
   }
+  if (shared_ != nullptr && is_shared(n)) {
+    return shared_->read(n);
+  }
   if (const MacroValue* v = n > 0 ? slot(n) : nullptr) {
     return VariableRead{*v, {}};
   }
@@ -103,6 +107,13 @@ MacroAlarm VariableStore::write(std::int64_t number, MacroValue value) {
   const std::int64_t n = own_number(number);
   if (n == 0) {
     return make_alarm(alarm::kReadOnlyVariable, 0, "#0 is read-only (it is always null)");
+  }
+  if (shared_ != nullptr && is_shared(n)) {
+    const MacroAlarm a = shared_->write(n, value);
+    if (a.number == 0 && sink_ != nullptr) {
+      sink_->on_shared_write(n, value);
+    }
+    return a;
   }
   if (MacroValue* v = n > 0 ? slot(n) : nullptr) {
     *v = value;

@@ -60,6 +60,15 @@ class MathConstantsProvider final : public VariableProvider {
   VariableRead read(std::int64_t number) const override;
 };
 
+// Told of every write a channel makes to the variables it shares with the other channels, so
+// that they can be sent to them (ARCHITECTURE.md §5). Called from the interpreter: no
+// allocation, no exceptions.
+class SharedWriteSink {
+ public:
+  virtual ~SharedWriteSink() = default;
+  virtual void on_shared_write(std::int64_t number, MacroValue value) noexcept = 0;
+};
+
 class VariableStore {
  public:
   static constexpr std::int64_t kCommonFirst = 100;
@@ -86,6 +95,19 @@ class VariableStore {
   void reset();
   // Power cycle: everything null except #500-#999.
   void power_on();
+
+  // From now on #500-#999 and #20000-#20999 are those of `shared` (not owned; the machine-wide
+  // copy this channel keeps, which outlives this store), and every write to them is also told
+  // to `sink` (may be null). reset() and power_on() leave them alone: they belong to the
+  // machine.
+  void share(VariableStore* shared, SharedWriteSink* sink) noexcept {
+    shared_ = shared;
+    sink_ = sink;
+  }
+  [[nodiscard]] static bool is_shared(std::int64_t number) noexcept {
+    return (number >= kRetainedFirst && number <= kRetainedLast) ||
+           (number >= kExtendedFirst && number <= kExtendedLast);
+  }
 
   // Registers `provider` (not owned; it must outlive the store) for [first, last]. The range may
   // not overlap #0-#999, #20000-#20999 or another provider.
@@ -123,6 +145,8 @@ class VariableStore {
   std::vector<MacroValue> retained_;
   std::vector<MacroValue> extended_;
   std::vector<ProviderRange> providers_;
+  VariableStore* shared_ = nullptr;
+  SharedWriteSink* sink_ = nullptr;
 };
 
 }  // namespace mcnc::interp::macro

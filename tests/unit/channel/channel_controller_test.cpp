@@ -1,4 +1,5 @@
 #include "channel/control/channel_controller.hpp"
+#include "channel/control/shared_write_log.hpp"
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/motion/motion_planner.hpp"
@@ -1611,6 +1612,28 @@ TEST(ChannelCall, RepeatsRunTheProgramAgainAndOnlyTheFirstG145Releases) {
   EXPECT_EQ(program_ends, 3);
   EXPECT_EQ(releases, 1);
   EXPECT_TRUE(m.last(1).program_end);
+}
+
+}  // namespace
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+TEST(SharedWriteLog, DrainsInTheOrderWrittenAndCountsWhatDoesNotFit) {
+  SharedWriteLog log;
+  for (int i = 0; i < 3; ++i) {
+    log.on_shared_write(500 + i, interp::macro::MacroValue::of(i));
+  }
+  std::vector<std::int64_t> seen;
+  log.drain([&](const SharedWrite& w) { seen.push_back(w.number); });
+  EXPECT_EQ(seen, (std::vector<std::int64_t>{500, 501, 502}));
+  EXPECT_EQ(log.size(), 0U);
+  for (std::size_t i = 0; i < SharedWriteLog::kCapacity + 5; ++i) {
+    log.on_shared_write(600, interp::macro::MacroValue::of(1.0));
+  }
+  EXPECT_EQ(log.size(), SharedWriteLog::kCapacity);
+  EXPECT_EQ(log.lost(), 5U);
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mcnc::interp::macro {
 namespace {
@@ -175,7 +177,9 @@ TEST(VariableStore, ChannelQualifiedNumbers) {
   EXPECT_EQ(read_ok(s, 500), v(42));
   EXPECT_EQ(read_ok(s, 2000001), read_ok(s, 1));
   EXPECT_EQ(s.write(2000000, v(1)).number, alarm::kReadOnlyVariable);  // #0 of channel 2
-  EXPECT_EQ(s.read(1000500).alarm.number, alarm::kUndefinedVariable);  // channel 1: no provider
+  EXPECT_EQ(s.read(1000100).alarm.number, alarm::kUndefinedVariable);  // channel 1: no provider
+  // #500-#999 and #20000-#20999 are the machine's: channel 1's #500 is this #500.
+  EXPECT_EQ(read_ok(s, 1000500), v(42));
 }
 
 class FixedProvider final : public VariableProvider {
@@ -208,7 +212,7 @@ TEST(VariableStore, ProvidersServeReadOnlyRanges) {
   // Another channel's variables arrive through a provider for its number range.
   const FixedProvider channel3;
   ASSERT_FALSE(s.add_provider(3000000, 3999999, channel3));
-  EXPECT_EQ(read_ok(s, 3000500), v(6001000));
+  EXPECT_EQ(read_ok(s, 3000100), v(6000200));
 }
 
 TEST(VariableStore, ProviderRangesMayNotOverlap) {
@@ -283,6 +287,53 @@ TEST(VariableStore, RetainedFileRoundTrip) {
   EXPECT_EQ(s.save_retained_file((dir / "no" / "such" / "dir.txt").string()).number,
             alarm::kRetainedFileIo);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mcnc::interp::macro
+
+namespace mcnc::interp::macro {
+namespace {
+
+struct RecordingSink final : SharedWriteSink {
+  void on_shared_write(std::int64_t number, MacroValue value) noexcept override {
+    writes.emplace_back(number, value);
+  }
+  std::vector<std::pair<std::int64_t, MacroValue>> writes;
+};
+
+TEST(VariableStore, SharedVariablesAreTheMachinesAndEveryWriteIsTold) {
+  VariableStore machine;  // the machine-wide copy
+  RecordingSink sink;
+  MacroDialect ch2_dialect;
+  ch2_dialect.channel = 2;
+  VariableStore ch1;
+  VariableStore ch2(ch2_dialect);
+  ch1.share(&machine, &sink);
+  ch2.share(&machine, nullptr);
+  ASSERT_EQ(ch1.write(500, v(7.0)).number, 0);
+  ASSERT_EQ(ch1.write(20000, v(3.0)).number, 0);
+  ASSERT_EQ(ch1.write(100, v(1.0)).number, 0);  // a common: the channel's own
+  EXPECT_EQ(read_ok(ch2, 500), v(7.0));
+  EXPECT_EQ(read_ok(ch2, 20000), v(3.0));
+  EXPECT_TRUE(read_ok(ch2, 100).is_null());
+  EXPECT_EQ(read_ok(machine, 500), v(7.0));
+  // Only the shared ones are told, in order.
+  ASSERT_EQ(sink.writes.size(), 2U);
+  EXPECT_EQ(sink.writes[0].first, 500);
+  EXPECT_EQ(sink.writes[1].first, 20000);
+  // #aa bbbbbb: channel 1's #501 seen from channel 2 is the same #501.
+  ASSERT_EQ(ch1.write(1000501, v(4.5)).number, 0);
+  EXPECT_EQ(read_ok(ch2, 501), v(4.5));
+  EXPECT_EQ(read_ok(ch2, 2000501), v(4.5));
+  // A reset or power cycle of one channel leaves the machine's variables alone.
+  ch2.reset();
+  ch2.power_on();
+  EXPECT_EQ(read_ok(ch1, 20000), v(3.0));
+  EXPECT_EQ(read_ok(ch1, 500), v(7.0));
+  // Null travels too.
+  ASSERT_EQ(ch2.write(500, MacroValue::null()).number, 0);
+  EXPECT_TRUE(read_ok(ch1, 500).is_null());
 }
 
 }  // namespace

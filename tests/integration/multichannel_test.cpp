@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <thread>
@@ -470,4 +471,108 @@ TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
     EXPECT_EQ(drive.back()["state"], "quick_stop_active") << axis;
   }
   EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
+}
+
+namespace {
+
+// Random programs (issue 7 stress): CH1 and CH2 meet at marks in one global order with moves
+// of random length between them, and CH1 calls programs in CH3 (H1 or H0) between its marks.
+// Deadlock-free by construction: every channel meets the marks in the same order, and only CH1
+// calls CH3. `mismatch_at` >= 0: CH2 names CH3 too at that mark.
+struct StressPrograms {
+  std::string ch1;
+  std::string ch2;
+  std::map<int, std::string> called;  // O number -> text
+  int marks = 0;
+  int calls = 0;
+};
+
+StressPrograms stress_programs(std::uint32_t seed, int mismatch_at) {
+  std::mt19937 rng(seed);
+  StressPrograms s;
+  auto moves = [&](std::string& prog) {
+    for (int k = static_cast<int>(rng() % 3); k > 0; --k) {
+      prog += "G01 X" + std::to_string(rng() % 40) + " Z" +
+              std::to_string(-static_cast<int>(rng() % 20)) + " F" +
+              std::to_string(900 + rng() % 2000) + "\n";
+    }
+  };
+  s.marks = 4 + static_cast<int>(rng() % 4);
+  for (int m = 0; m < s.marks; ++m) {
+    moves(s.ch1);
+    moves(s.ch2);
+    if (rng() % 2 == 0) {
+      const int number = 3001 + s.calls++;
+      std::string called = "O" + std::to_string(number) + "\n";
+      moves(called);
+      called += "G145\n";
+      moves(called);
+      called += "M99\n";
+      s.called[number] = called;
+      s.ch1 += "G144 N3 P" + std::to_string(number) + (rng() % 2 == 0 ? " H1" : " H0") + "\n";
+    }
+    const int p = 1 + m % 3;  // marks reused: later rounds of the same barrier
+    s.ch1 += "G04.1 P" + std::to_string(p) + " Q12\n";
+    s.ch2 += "G04.1 P" + std::to_string(p) + (m == mismatch_at ? " Q123\n" : " Q12\n");
+  }
+  s.ch1 += "M30\n";
+  s.ch2 += "M30\n";
+  return s;
+}
+
+MultiRun run_stress(int domain, const StressPrograms& s) {
+  TestMachine machine("three_channel.yaml", domain);
+  for (const auto& [number, text] : s.called) {
+    write_program(machine, "O" + std::to_string(number) + ".nc", text);
+  }
+  return run_channels(machine,
+                      {{"CH1", write_program(machine, "ch1.nc", s.ch1)},
+                       {"CH2", write_program(machine, "ch2.nc", s.ch2)}},
+                      {"--progdir", machine.dir()});
+}
+
+}  // namespace
+
+TEST(MultiChannel, RandomProgramsFreeOfDeadlockByConstructionFinish) {
+  for (std::uint32_t seed : {7U, 1201U, 90210U}) {
+    const StressPrograms s = stress_programs(seed, -1);
+    const MultiRun r = run_stress(62, s);
+    ASSERT_EQ(r.exit_code, 0) << "seed " << seed << "\n" << s.ch1 << "\n" << r.output;
+    const Trace& t = r.trace;
+    const auto a1 = events(t, "sync_arrive", "CH1");
+    const auto a2 = events(t, "sync_arrive", "CH2");
+    const auto r1 = events(t, "sync_release", "CH1");
+    const auto r2 = events(t, "sync_release", "CH2");
+    ASSERT_EQ(a1.size(), static_cast<std::size_t>(s.marks)) << "seed " << seed;
+    ASSERT_EQ(a2.size(), a1.size());
+    ASSERT_EQ(r1.size(), a1.size());
+    ASSERT_EQ(r2.size(), a1.size());
+    for (std::size_t m = 0; m < a1.size(); ++m) {
+      // The same mark and round in both, released only once both arrived.
+      EXPECT_EQ(a1[m]["p"], a2[m]["p"]);
+      EXPECT_EQ(a1[m]["gen"], a2[m]["gen"]);
+      const std::uint64_t both =
+          std::max(a1[m]["cycle"].get<std::uint64_t>(), a2[m]["cycle"].get<std::uint64_t>());
+      EXPECT_GE(r1[m]["cycle"].get<std::uint64_t>(), both) << "seed " << seed << " mark " << m;
+      EXPECT_GE(r2[m]["cycle"].get<std::uint64_t>(), both) << "seed " << seed << " mark " << m;
+    }
+    // Every call ran and released its caller.
+    EXPECT_EQ(events(t, "subcall", "CH1").size(), static_cast<std::size_t>(s.calls));
+    EXPECT_EQ(events(t, "subcall_release", "CH3").size(), static_cast<std::size_t>(s.calls));
+    EXPECT_EQ(events(t, "end", "CH3").size(), static_cast<std::size_t>(s.calls));
+    EXPECT_TRUE(events(t, "alarm").empty()) << "seed " << seed;
+  }
+}
+
+TEST(MultiChannel, RandomProgramsWithAnInjectedMismatchEndInTheMismatchAlarm) {
+  for (std::uint32_t seed : {11U, 4242U}) {
+    const StressPrograms s = stress_programs(seed, static_cast<int>(seed % 3));
+    const MultiRun r = run_stress(63, s);
+    EXPECT_NE(r.exit_code, 0);
+    for (const std::string ch : {"CH1", "CH2"}) {
+      const auto alarms = events(r.trace, "alarm", ch);
+      ASSERT_FALSE(alarms.empty()) << "seed " << seed << " " << ch << "\n" << r.output;
+      EXPECT_EQ(alarms.front()["number"], 1210) << "seed " << seed << " " << ch;
+    }
+  }
 }

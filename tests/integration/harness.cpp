@@ -112,6 +112,13 @@ TestMachine::TestMachine(const std::string& machine_file, int domain, int deadli
     text = std::regex_replace(text, std::regex(R"(deadline_cycles: *[0-9]+)"),
                               "deadline_cycles: " + std::to_string(deadline_cycles));
   }
+  // A program directory relative to the machine file stays the one beside the original.
+  std::smatch dir;
+  if (std::regex_search(text, dir, std::regex(R"(program_dir: *([^/\n][^\n]*))"))) {
+    const fs::path original = fs::path(source("launch/machines")) / dir[1].str();
+    text = dir.prefix().str() + "program_dir: " + original.lexically_normal().string() +
+           dir.suffix().str();
+  }
   std::smatch found;
   if (std::regex_search(text, found, std::regex(R"(deadline_cycles: *([0-9]+))"))) {
     deadline_cycles_ = std::stoi(found[1]);

@@ -16,7 +16,8 @@ std::string source(const std::string& relative);  // path in the source tree
 
 // A copy of a machine file from launch/machines/ with its domain and bus URIs made private to
 // this test (domain `domain`, group 239.255.<domain>.1, port 24000 + domain: below the
-// ephemeral port range, where DDS sockets may hold any port), in a temp folder.
+// ephemeral port range, where DDS sockets may hold any port), in a temp folder; a relative
+// program_dir still names the directory beside the original file.
 class TestMachine {
  public:
   // deadline_cycles > 0 replaces the file's (realtime tests run with looser timing: this VM

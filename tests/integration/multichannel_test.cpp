@@ -576,3 +576,20 @@ TEST(MultiChannel, RandomProgramsWithAnInjectedMismatchEndInTheMismatchAlarm) {
     }
   }
 }
+
+// The twin-turret machine: the loader (CH3, called by G144) brings the blank, the upper turret
+// turns the left end, the lower turret waits for it.
+TEST(MultiChannel, TwinTurretLoaderAndTurretsInTheirOrder) {
+  TestMachine machine("twin_turret.yaml", 64);
+  const MultiRun r = run_channels(machine, {{"CH1", source("launch/programs/twin_turret_ch1.nc")},
+                                            {"CH2", source("launch/programs/twin_turret_ch2.nc")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  EXPECT_EQ(events(t, "block", "CH3").at(0)["prog"], "O3100.nc");
+  const std::uint64_t loaded = block_at(t, "CH3", 5);  // G145: the blank is in
+  EXPECT_GT(block_at(t, "CH1", 4), loaded);            // M03 of the main spindle after it
+  EXPECT_GT(block_at(t, "CH2", 4), arrival(t, "CH1", 1));
+  EXPECT_EQ(events(t, "end", "CH3").at(0)["code"], 99);
+  EXPECT_EQ(r.trace.back()["channels"]["CH1"]["end"], 30);
+  EXPECT_EQ(r.trace.back()["channels"]["CH2"]["end"], 30);
+}

@@ -107,6 +107,7 @@ int main(int argc, char** argv) {
     load_alarm = interpreter.load(text.str(), program_name);
   }
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
+  setup.shared_writes = &shared_writes;
   channel::ChannelController controller(setup, interpreter, planner);
 
   try {

@@ -344,17 +344,17 @@ LaunchResult Launcher::run(
             // nothing more to do either.
             all_done = all_done && (p.ended || p.state == CH_ALARM ||
                                     (!options_.operator_script.empty() && p.state == CH_IDLE));
+          }
+          if (p.ended) {
             last_program_end = std::max(last_program_end, p.end_cycle);
           }
         }
         // A channel running a program another channel called (G144) holds the run too; a call
-        // sent just before its caller's end starts in the next cycle, so every channel must
-        // report a cycle past the last end first.
+        // sent just before a program's end (also a called program's) starts in the next cycle,
+        // so every channel must report a cycle past the last end first.
         for (const auto& p : list) {
-          if (!p.has_program) {
-            all_done = all_done && p.cycle >= last_program_end + 2 && p.state != CH_RUNNING &&
-                       p.state != CH_WAITING && p.state != CH_HOLD;
-          }
+          all_done = all_done && p.cycle >= last_program_end + 2 && p.state != CH_RUNNING &&
+                     p.state != CH_WAITING && p.state != CH_HOLD;
         }
         if (all_done) {
           break;

@@ -72,10 +72,12 @@ void AxisOwnership::set_owner(std::uint32_t owner, bool forced) noexcept {
     released_by_ = 0;  // back in the configured assignment
   }
   owner_ = owner;
+  granted_now_ = true;
 }
 
 OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
   answer_count_ = 0;
+  granted_now_ = false;
   change_ = OwnershipChange{};
   change_.previous = owner_;
 
@@ -98,7 +100,7 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
         }
         // A forced take only from the owner the cycle started with: an axis granted in this
         // decision is not taken away before its new owner has heard of it.
-        if (owner_ == 0 || (r.force && at_rest && owner_ == change_.previous)) {
+        if (owner_ == 0 || (r.force && at_rest && !granted_now_)) {
           set_owner(r.channel, owner_ != 0);
           answer(r.channel, r.kind, OwnershipAnswer::granted);
           return true;
@@ -113,7 +115,7 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
           answer(r.channel, r.kind, OwnershipAnswer::refused);  // not this channel's to restore
           return true;
         }
-        if (owner_ == 0 || (at_rest && owner_ == change_.previous)) {
+        if (owner_ == 0 || (at_rest && !granted_now_)) {
           set_owner(home_, false);
           answer(r.channel, r.kind, OwnershipAnswer::granted);
           return true;
@@ -143,6 +145,7 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
     if (!settle(r)) {
       wait(r);
     }
+    settle_waiting();  // a release goes to the first in line before any newer request
   }
   incoming_count_ = 0;
   settle_waiting();

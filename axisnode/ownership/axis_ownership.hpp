@@ -15,8 +15,9 @@
 //  - restore: a channel that owns the axis, or released it to its present owner, gives it back
 //    to the configured (home) owner once it is at rest (spec "decide" 1). Waiting acquires of
 //    that channel are dropped.
-//  - at most one take per cycle from the owner the cycle started with: an axis granted in a
-//    decision is not taken away (forced or restored) before its new owner has heard of it.
+//  - an axis granted in a decision is not taken away (forced or restored) in the same
+//    decision, before its new owner has heard of it; a release goes to the first in line
+//    before any request of the same cycle.
 //  - a reset or an E-stop changes nothing (spec L5635-5637); a restart of the node starts with
 //    the configured owner.
 //  - a channel that is gone (its process ended) loses its waiting requests; an axis it owns
@@ -100,6 +101,7 @@ class AxisOwnership {
   std::array<Answer, 2 * kMaxWaiting> answers_{};
   std::size_t answer_count_ = 0;
   OwnershipChange change_{};
+  bool granted_now_ = false;  // the axis got an owner in this decision: nobody takes it now
 };
 
 }  // namespace mcnc::ownership

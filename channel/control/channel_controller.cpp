@@ -220,6 +220,16 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     pending_alarm_.reset();
   }
   take_calls(cycle);
+  const std::uint64_t writes_lost = setup_.shared_writes ? setup_.shared_writes->lost() : 0;
+  if ((coordination_lost_ || writes_lost > writes_lost_seen_) &&
+      out_.state != ChannelState::alarm) {
+    raise(kAlarmCoordinationLost,
+          coordination_lost_ ? "events from another channel were lost (receive queue full)"
+                             : "shared variable writes were lost (more than the log holds)",
+          out_.line, 0, 0);
+  }
+  coordination_lost_ = false;
+  writes_lost_seen_ = writes_lost;
 
   if (estop_requested_) {
     // Latched in any state, also before the axes came up: reset, and stay there.
@@ -582,6 +592,9 @@ void ChannelController::run_sync() noexcept {
     out_.line = b.line;
     event.kind = ChannelEventKind::block_started;
     push_event(event);
+    if (b.has_p && writes_pending()) {
+      return;  // the shared writes before the mark go out first
+    }
     if (b.has_p) {
       out_.arrival = barrier_.arrive(b.p, b.participants, b.all_channels);
       out_.arrival_due = true;
@@ -730,12 +743,18 @@ void ChannelController::run_call() noexcept {
     const PartnerStatus& t =
         target >= 1 && target <= coordination::kMaxChannels ? partners_[target] : none;
     const bool outstanding = target <= coordination::kMaxChannels && outstanding_[target] != 0;
+    if (target <= coordination::kMaxChannels && lost_partners_.test(target)) {
+      std::snprintf(text, sizeof text, "G144 N%u: channel %u is gone", target, target);
+      raise(kAlarmCallFailed, text, b.line, 0, 0);
+      return;
+    }
     const bool free = t.known && t.state == ChannelState::idle && t.call_id == 0 && !outstanding;
     if (!free) {
       // Still finishing a call of ours (after its G145, on the way to M99), or not up yet:
       // wait until it is idle (spec dafeng §3.4 decide 1). Anything else is busy.
-      if (outstanding || (t.known && t.call_id != 0 && t.call_caller == setup_.channel_id) ||
-          !t.known || t.state == ChannelState::reset) {
+      const bool finishing_ours = t.known && t.call_id != 0 && t.call_caller == setup_.channel_id &&
+                                  t.state != ChannelState::alarm;
+      if (outstanding || finishing_ours || !t.known || t.state == ChannelState::reset) {
         set_state(ChannelState::waiting);
         return;
       }
@@ -744,6 +763,9 @@ void ChannelController::run_call() noexcept {
           t.call_id != 0 ? "running a program another channel called" : to_string(t.state));
       raise(kAlarmCallBusy, text, b.line, 0, 0);
       return;
+    }
+    if (writes_pending()) {
+      return;  // the called program sees what this channel wrote before the call
     }
     b.call.call_id = (std::uint64_t{setup_.channel_id} << 40) | ++calls_made_;
     outstanding_[target] = b.call.call_id;
@@ -757,6 +779,11 @@ void ChannelController::run_call() noexcept {
       return;
     }
   } else {
+    if (!call_ended_ && b.call.target <= coordination::kMaxChannels &&
+        lost_partners_.test(b.call.target)) {
+      call_ended_ = CallRelease{b.call.call_id, setup_.channel_id, b.call.target,
+                                CallOutcome::aborted};  // its process is gone
+    }
     if (!call_ended_) {
       return;  // H1: until the called channel's G145 or end
     }

@@ -6,6 +6,7 @@
 // stops reading ahead, arrives once the blocks before the mark have ended, and waits (state
 // waiting) until its SyncBarrier releases it. Pure and deterministic: inputs and cycle number
 // in, outputs out.
+#include "channel/control/shared_write_log.hpp"
 #include "channel/coordination/sync_barrier.hpp"
 #include "channel/interp/command_source.hpp"
 #include "channel/motion/motion_planner.hpp"
@@ -139,6 +140,9 @@ struct ChannelSetup {
   // channel too, and a channel comes to idle only with them enabled.
   std::size_t spindle_count = 0;
   std::uint32_t channel_id = 1;  // the channel's number (CHn), as G04.1 Q names it
+  // The writes to shared variables not yet sent (null: none kept): the channel arrives at a
+  // G04.1 and calls with G144 only once they are out.
+  const SharedWriteLog* shared_writes = nullptr;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -146,13 +150,14 @@ inline constexpr int kAlarmPlannerRejected = 1200;
 inline constexpr int kAlarmAxisAlarm = 1201;
 inline constexpr int kAlarmAxisLost = 1202;
 inline constexpr int kAlarmEmergencyStop = 1203;
-inline constexpr int kAlarmSyncMismatch = 1210;     // G04.1: partners name other participants
-inline constexpr int kAlarmSyncDeadlock = 1211;     // G04.1: waits in a circle
-inline constexpr int kAlarmSyncTableFull = 1212;    // G04.1: more marks than the table holds
-inline constexpr int kAlarmSyncPartnerLost = 1213;  // G04.1: a partner's process is gone
-inline constexpr int kAlarmCallBusy = 1220;         // G144: the target runs something else
-inline constexpr int kAlarmCallFailed = 1221;       // G144: the called program stopped
-inline constexpr int kAlarmCallRefused = 1222;      // G144: the target refused the call
+inline constexpr int kAlarmSyncMismatch = 1210;      // G04.1: partners name other participants
+inline constexpr int kAlarmSyncDeadlock = 1211;      // G04.1: waits in a circle
+inline constexpr int kAlarmSyncTableFull = 1212;     // G04.1: more marks than the table holds
+inline constexpr int kAlarmSyncPartnerLost = 1213;   // G04.1: a partner's process is gone
+inline constexpr int kAlarmCoordinationLost = 1214;  // shared writes or partner events lost
+inline constexpr int kAlarmCallBusy = 1220;          // G144: the target runs something else
+inline constexpr int kAlarmCallFailed = 1221;        // G144: the called program stopped
+inline constexpr int kAlarmCallRefused = 1222;       // G144: the target refused the call
 
 class ChannelController {
  public:
@@ -160,9 +165,10 @@ class ChannelController {
                     motion::MotionPlanner& planner);
 
   // Cycle start: the program runs as soon as every axis is enabled (from idle or reset). A
-  // start while the program runs is ignored, as on a control panel.
+  // start while the program runs (or waits, or holds) is ignored, as on a control panel.
   void request_start() noexcept {
-    if (out_.state != ChannelState::running) {
+    if (out_.state != ChannelState::running && out_.state != ChannelState::waiting &&
+        out_.state != ChannelState::hold) {
       start_requested_ = true;
     }
   }
@@ -189,6 +195,9 @@ class ChannelController {
   void on_arrival(const coordination::SyncArrival& arrival) noexcept;
   void set_partner(std::uint32_t channel, const PartnerStatus& status) noexcept;
   void partner_lost(std::uint32_t channel) noexcept;
+  // Events from another channel did not fit this channel's receive queue: what the channels
+  // share can no longer be trusted (an alarm).
+  void coordination_lost() noexcept { coordination_lost_ = true; }
   // G144 calls addressed to this channel (run when it is idle, else refused), and the end of a
   // call this channel made.
   void on_call(const SubCall& call) noexcept;
@@ -313,7 +322,7 @@ class ChannelController {
     bool released = false;
   };
   std::optional<ServedCall> serving_;
-  static constexpr std::size_t kMaxIncoming = 8;
+  static constexpr std::size_t kMaxIncoming = coordination::kMaxChannels;  // one per caller
   std::array<SubCall, kMaxIncoming> incoming_{};
   std::size_t incoming_count_ = 0;
   std::array<PartnerStatus, coordination::kMaxChannels + 1> partners_{};
@@ -321,6 +330,11 @@ class ChannelController {
   // free for another call from here until then.
   std::array<std::uint64_t, coordination::kMaxChannels + 1> outstanding_{};
   std::optional<CallRelease> refused_;  // a call without wait (H0) that the target refused
+  bool coordination_lost_ = false;
+  std::uint64_t writes_lost_seen_ = 0;
+  [[nodiscard]] bool writes_pending() const noexcept {
+    return setup_.shared_writes != nullptr && setup_.shared_writes->size() > 0;
+  }
   bool sync_arrived_ = false;
   coordination::SyncBarrier barrier_;
   coordination::ChannelSet active_;

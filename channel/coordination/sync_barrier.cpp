@@ -90,7 +90,12 @@ bool SyncBarrier::released(const Mark& m, std::uint32_t owner,
   return true;
 }
 
-SyncState SyncBarrier::evaluate(const ChannelSet& active, const ChannelSet& halted) noexcept {
+SyncState SyncBarrier::evaluate(const ChannelSet& others_active,
+                                const ChannelSet& halted) noexcept {
+  // This channel waits at a mark: it is in automatic operation itself, and so a participant
+  // of every other channel's "all" mark.
+  ChannelSet active = others_active;
+  active.set(self_);
   if (overflow_) {
     return SyncState::full;
   }

@@ -77,13 +77,15 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
                  channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
   // Shared variable writes first: a partner that sees this cycle's arrival has them.
-  writes_.drain([&](const SharedWrite& w) {
-    CoordinationEvent e = event(cycle, COORD_VAR_WRITE);
-    e.var(w.number);
-    e.value(w.value.number());
-    e.value_null(w.value.is_null());
-    events_.write(e);
-  });
+  writes_.drain(
+      [&](const SharedWrite& w) {
+        CoordinationEvent e = event(cycle, COORD_VAR_WRITE);
+        e.var(w.number);
+        e.value(w.value.number());
+        e.value_null(w.value.is_null());
+        events_.write(e);
+      },
+      SharedWriteLog::kSentPerCycle);
   if (out.arrival_due) {
     CoordinationEvent e = event(cycle, COORD_SYNC_ARRIVE);
     e.p(out.arrival.p);
@@ -125,8 +127,9 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.sync_generation(mark.generation);
   status.sync_all(mark.all_active);
   status.sync_channels(to_mask(mark.participants));
-  status.sync_waiting_for(out.state == ChannelState::waiting ? to_mask(controller.sync().missing())
-                                                             : 0);
+  status.sync_waiting_for(out.state == ChannelState::waiting && controller.sync().waiting()
+                              ? to_mask(controller.sync().missing())
+                              : 0);
   status.state(to_wire(out.state));
   status.block(static_cast<std::uint32_t>(out.block));
   status.block_total(block_total);

@@ -79,11 +79,11 @@ void ChannelPeers::on_event(const ::mcnc::CoordinationEvent& event) {
   }
   node_.wakeup().update([&] {
     if (peer->count == kQueue) {
-      ++dropped_;
-      return;
+      ++dropped_;  // counted as received, so lockstep goes on to the alarm
+    } else {
+      peer->queue[(peer->head + peer->count) % kQueue] = event;
+      ++peer->count;
     }
-    peer->queue[(peer->head + peer->count) % kQueue] = event;
-    ++peer->count;
     gate_.on_event(first_input_ + static_cast<std::size_t>(peer - peers_.data()), event.seq());
   });
 }
@@ -112,6 +112,10 @@ void ChannelPeers::apply(std::uint64_t cycle, bool lockstep, ChannelController& 
         peer.lost_told = true;
         controller.partner_lost(peer.id);
       }
+    }
+    if (dropped_ > dropped_told_) {
+      dropped_told_ = dropped_;
+      controller.coordination_lost();
     }
   });
 }

@@ -45,7 +45,7 @@ class ChannelPeers {
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_; }
 
  private:
-  static constexpr std::size_t kQueue = 256;  // the event topic's history depth
+  static constexpr std::size_t kQueue = 1024;  // cycles of a peer's events, also in bursts
   struct Peer {
     std::uint32_t id = 0;
     cycle::CycleBuffer<::mcnc::ChannelStatus, 8> status;
@@ -73,6 +73,7 @@ class ChannelPeers {
   interp::macro::VariableStore& shared_;  // the machine-wide variables: others' writes go here
   std::vector<Peer> peers_;
   std::uint64_t dropped_ = 0;
+  std::uint64_t dropped_told_ = 0;
   dds::Reader<::mcnc::ChannelStatus> status_reader_;
   dds::Reader<::mcnc::CoordinationEvent> event_reader_;
 };

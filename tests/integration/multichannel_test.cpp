@@ -438,7 +438,7 @@ TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
   std::vector<pid_t> ch2;
   ASSERT_TRUE(eventually(
       [&] {
-        ch2 = pids_with_arg("--channel CH2");
+        ch2 = pids_with_arg(machine.path() + " --channel CH2");  // this test's CH2 only
         return !ch2.empty();
       },
       60s));

@@ -1638,3 +1638,55 @@ TEST(SharedWriteLog, DrainsInTheOrderWrittenAndCountsWhatDoesNotFit) {
 
 }  // namespace
 }  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+TEST(ChannelSync, ACycleStartWhileWaitingIsIgnored) {
+  SyncRig s("G04.1 P1 Q12\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  s.rig.ctl_.request_start();  // the operator presses cycle start while the channel waits
+  s.rig.ctl_.on_arrival(partner_arrival(2, 1, {1, 2}));
+  ASSERT_TRUE(s.rig.run_to_end(100));
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_EQ(s.rig.step().state, ChannelState::idle);  // the program does not run again
+  }
+}
+
+TEST(ChannelSync, TheChannelArrivesOnlyOnceItsSharedWritesAreOut) {
+  SharedWriteLog log;
+  interp::InterpreterSource source(xz_channel());
+  ChannelSetup setup{2, {kInPos, kInPos}, kDt};
+  setup.shared_writes = &log;
+  motion::MotionPlanner planner(lathe_motion(), AxisVector{});
+  ChannelController ctl(setup, source, planner);
+  ASSERT_FALSE(source.load("G04.1 P1 Q12\nM30\n", "W.nc").has_value());
+  std::vector<AxisFeedbackView> fb(2);
+  for (auto& f : fb) {
+    f.enabled = f.present = true;
+  }
+  ctl.set_partner(2, PartnerStatus{true, ChannelState::running});
+  ctl.request_start();
+  log.on_shared_write(500, interp::macro::MacroValue::of(1.0));  // not sent yet
+  std::uint64_t cycle = 1;
+  for (; cycle < 20; ++cycle) {
+    EXPECT_FALSE(ctl.cycle(cycle, fb).arrival_due);
+  }
+  log.drain([](const SharedWrite&) {});
+  EXPECT_TRUE(ctl.cycle(cycle, fb).arrival_due);
+}
+
+TEST(ChannelCall, ACallToAChannelWhoseProcessIsGoneIsAnAlarm) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), program_end(4, 2)}, {}, {{2000, called_program(true)}});
+  m.ctl(1).partner_lost(2);
+  m.ctl(1).request_start();
+  for (int i = 0; i < 20; ++i) {
+    m.step();
+  }
+  EXPECT_EQ(m.last(1).state, ChannelState::alarm);
+  EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallFailed);
+  EXPECT_TRUE(m.src2.calls.empty());
+}
+
+}  // namespace
+}  // namespace mcnc::channel

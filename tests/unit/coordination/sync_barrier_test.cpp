@@ -20,6 +20,18 @@ ChannelSet set_of(std::initializer_list<int> channels) {
   return s;
 }
 
+// Channel `c`'s arrival at P in round `generation`, as another channel receives it.
+SyncArrival arrival_of(std::uint32_t c, std::int32_t p, std::uint64_t generation,
+                       const ChannelSet& participants, bool all = false) {
+  SyncArrival a;
+  a.channel = c;
+  a.p = p;
+  a.generation = generation;
+  a.all_active = all;
+  a.participants = participants;
+  return a;
+}
+
 // N channels, each with its own barrier; every arrival goes to all of them.
 class Machine {
  public:
@@ -78,11 +90,7 @@ TEST(SyncBarrier, AFastChannelBackAtTheSameMarkWaitsForTheNextRound) {
 
 TEST(SyncBarrier, AnArrivalOfAnOldRoundDeliveredLateChangesNothing) {
   Machine m(2);
-  SyncArrival old;
-  old.channel = 2;
-  old.p = 1;
-  old.generation = 1;
-  old.participants = set_of({1, 2});
+  const SyncArrival old = arrival_of(2, 1, 1, set_of({1, 2}));
   m.arrive(2, 1, set_of({1, 2}));
   m.arrive(1, 1, set_of({1, 2}));
   ASSERT_EQ(m.state(1), SyncState::released);
@@ -136,6 +144,21 @@ TEST(SyncBarrier, AConflictIsFoundAlsoAfterThePartnerStoppedWithItsAlarm) {
   r.arrive(1, 1, set_of({1, 2}));
   r.active().reset(1);
   EXPECT_EQ(r.ch(2).evaluate(r.active(), ChannelSet{}), SyncState::waiting);
+}
+
+// The controller hands over the other channels only: a partner's "all" mark must still count
+// this channel in.
+TEST(SyncBarrier, APartnersAllMarkCountsThisChannelWhenOnlyTheOthersAreGiven) {
+  SyncBarrier ch1(1);
+  SyncArrival all = arrival_of(2, 1, 1, ChannelSet{}, true);
+  ch1.on_arrival(all);
+  ch1.arrive(1, set_of({1, 2}), false);
+  EXPECT_EQ(ch1.evaluate(set_of({2})), SyncState::mismatch);
+  SyncBarrier ch3(1);
+  all.p = 2;
+  ch3.on_arrival(all);
+  ch3.arrive(1, set_of({1, 2}), false);
+  EXPECT_EQ(ch3.evaluate(set_of({2})), SyncState::deadlock);
 }
 
 TEST(SyncBarrier, AWaitingCycleThroughThreeChannelsIsADeadlock) {

@@ -59,6 +59,24 @@ TEST(AxisOwnership, AnEarlierRequestWinsOverALowerChannelNumber) {
   EXPECT_EQ(a.decide(true).owner, 3U);
 }
 
+TEST(AxisOwnership, AReleaseGoesToTheFirstInLineAndAFreshGrantIsNotTakenAtOnce) {
+  AxisOwnership a(1);
+  a.request(req(Kind::acquire, 4, false, 10));
+  a.decide(true);
+  ASSERT_TRUE(a.waiting(4));
+  a.request(req(Kind::release, 1, false, 20));
+  a.request(req(Kind::acquire, 3, false, 20));
+  EXPECT_EQ(a.decide(true).owner, 4U);  // waiting since cycle 10: before CH3
+  EXPECT_TRUE(a.waiting(3));
+  // CH4 releases and takes again in one cycle; CH5's forced acquire cannot undo that grant.
+  a.request(req(Kind::release, 4, false, 30));
+  a.request(req(Kind::acquire, 4, false, 30));
+  a.request(req(Kind::acquire, 5, true, 30));
+  const OwnershipChange c = a.decide(true);
+  EXPECT_NE(c.owner, 5U);
+  EXPECT_FALSE(c.forced);
+}
+
 TEST(AxisOwnership, AForcedAcquireTakesTheAxisOnlyAtRest) {
   AxisOwnership a(1);
   a.request(req(Kind::acquire, 2, true));

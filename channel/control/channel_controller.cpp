@@ -375,9 +375,7 @@ void ChannelController::fill() noexcept {
         // Read-ahead stops here: the interpreter evaluates nothing after the mark until the
         // channel pulls past it (spec dafeng §3.0).
         SyncBlock b;
-        b.n = c->n;
-        b.line = c->line;
-        b.file = c->file;
+        b.block = held(*c);
         b.has_p = c->has_p;
         b.p = c->p;
         b.all_channels = c->all_channels;
@@ -389,9 +387,7 @@ void ChannelController::fill() noexcept {
       }
       if (c->op == interp::Op::subcall) {
         CallBlock b;
-        b.n = c->n;
-        b.line = c->line;
-        b.file = c->file;
+        b.block = held(*c);
         b.call.caller = setup_.channel_id;
         b.call.target = static_cast<std::uint32_t>(c->channel);
         b.call.program = c->program;
@@ -407,7 +403,7 @@ void ChannelController::fill() noexcept {
         return;
       }
       if (c->op == interp::Op::subcall_release) {
-        release_block_ = ReleaseBlock{c->n, c->line, c->file};
+        release_block_ = held(*c);
         return;
       }
       const AxisVector start = planner_.queue_end();  // where the block starts
@@ -513,18 +509,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (release_block_) {
     // G145: the caller goes on; this program goes on too (spec dafeng §3.4).
-    ChannelEvent event;
-    event.line = release_block_->line;
-    event.file = release_block_->file;
-    event.block = release_block_->n;
-    event.pos = commanded_;
-    event.kind = ChannelEventKind::block_started;
-    out_.block = event.block;
-    out_.line = event.line;
-    push_event(event);
+    start_held(*release_block_);
     release_caller(CallOutcome::released);  // no caller, or released before: nothing
-    event.kind = ChannelEventKind::block_ended;
-    push_event(event);
+    push_event(block_event(*release_block_, ChannelEventKind::block_ended));
     release_block_.reset();
     return;
   }
@@ -580,18 +567,31 @@ void ChannelController::run_blocks(std::uint64_t cycle,
 
 namespace mcnc::channel {
 
-void ChannelController::run_sync() noexcept {
-  const SyncBlock& b = *sync_block_;
+ChannelEvent ChannelController::block_event(const HeldBlock& b,
+                                            ChannelEventKind kind) const noexcept {
   ChannelEvent event;
+  event.kind = kind;
   event.line = b.line;
   event.file = b.file;
   event.block = b.n;
   event.pos = commanded_;
+  return event;
+}
+
+void ChannelController::start_held(HeldBlock& b) noexcept {
+  if (b.started) {
+    return;
+  }
+  b.started = true;
+  out_.block = b.n;
+  out_.line = b.line;
+  push_event(block_event(b, ChannelEventKind::block_started));
+}
+
+void ChannelController::run_sync() noexcept {
+  SyncBlock& b = *sync_block_;
   if (!sync_arrived_) {
-    out_.block = b.n;
-    out_.line = b.line;
-    event.kind = ChannelEventKind::block_started;
-    push_event(event);
+    start_held(b.block);
     if (b.has_p && writes_pending()) {
       return;  // the shared writes before the mark go out first
     }
@@ -599,8 +599,7 @@ void ChannelController::run_sync() noexcept {
       out_.arrival = barrier_.arrive(b.p, b.participants, b.all_channels);
       out_.arrival_due = true;
       sync_arrived_ = true;
-      event.kind = ChannelEventKind::sync_arrive;
-      push_event(event);
+      push_event(block_event(b.block, ChannelEventKind::sync_arrive));
       set_state(ChannelState::waiting);
     }
   }
@@ -635,24 +634,22 @@ void ChannelController::run_sync() noexcept {
         break;
       case coordination::SyncState::full:
         number = kAlarmSyncTableFull;
-        what = "has more different marks than the table holds (32)";
-        other = setup_.channel_id;
+        what = "has more different marks than the table holds (128)";
+        other = barrier_.conflict_channel();
         break;
       case coordination::SyncState::released:
-        event.kind = ChannelEventKind::sync_release;
-        push_event(event);
+        push_event(block_event(b.block, ChannelEventKind::sync_release));
         set_state(ChannelState::running);
         break;
     }
     if (what != nullptr) {
       char text[160];
       std::snprintf(text, sizeof text, "G04.1 P%d: channel %u %s", b.p, other, what);
-      raise(number, text, b.line, 0, 0);
+      raise(number, text, b.block.line, 0, 0);
       return;
     }
   }
-  event.kind = ChannelEventKind::block_ended;
-  push_event(event);
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
   sync_block_.reset();
   sync_arrived_ = false;
 }
@@ -724,18 +721,7 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
 
 void ChannelController::run_call() noexcept {
   CallBlock& b = *call_block_;
-  ChannelEvent event;
-  event.line = b.line;
-  event.file = b.file;
-  event.block = b.n;
-  event.pos = commanded_;
-  if (!b.started) {
-    b.started = true;
-    out_.block = b.n;
-    out_.line = b.line;
-    event.kind = ChannelEventKind::block_started;
-    push_event(event);
-  }
+  start_held(b.block);
   char text[128];
   if (b.phase == CallPhase::reached) {
     const std::uint32_t target = b.call.target;
@@ -745,7 +731,7 @@ void ChannelController::run_call() noexcept {
     const bool outstanding = target <= coordination::kMaxChannels && outstanding_[target] != 0;
     if (target <= coordination::kMaxChannels && lost_partners_.test(target)) {
       std::snprintf(text, sizeof text, "G144 N%u: channel %u is gone", target, target);
-      raise(kAlarmCallFailed, text, b.line, 0, 0);
+      raise(kAlarmCallFailed, text, b.block.line, 0, 0);
       return;
     }
     const bool free = t.known && t.state == ChannelState::idle && t.call_id == 0 && !outstanding;
@@ -761,7 +747,7 @@ void ChannelController::run_call() noexcept {
       std::snprintf(
           text, sizeof text, "G144 N%u: channel %u is busy (%s)", target, target,
           t.call_id != 0 ? "running a program another channel called" : to_string(t.state));
-      raise(kAlarmCallBusy, text, b.line, 0, 0);
+      raise(kAlarmCallBusy, text, b.block.line, 0, 0);
       return;
     }
     if (writes_pending()) {
@@ -771,8 +757,7 @@ void ChannelController::run_call() noexcept {
     outstanding_[target] = b.call.call_id;
     out_.call = b.call;
     out_.call_due = true;
-    event.kind = ChannelEventKind::subcall;
-    push_event(event);
+    push_event(block_event(b.block, ChannelEventKind::subcall));
     if (b.call.wait) {
       b.phase = CallPhase::sent;
       set_state(ChannelState::waiting);
@@ -797,13 +782,12 @@ void ChannelController::run_call() noexcept {
                                ? "G144: the program called in channel %u stopped with an alarm"
                                : "G144: channel %u was reset before it released this channel"),
                     b.call.target);
-      raise(outcome == CallOutcome::refused ? kAlarmCallRefused : kAlarmCallFailed, text, b.line, 0,
-            0);
+      raise(outcome == CallOutcome::refused ? kAlarmCallRefused : kAlarmCallFailed, text,
+            b.block.line, 0, 0);
       return;
     }
   }
-  event.kind = ChannelEventKind::block_ended;
-  push_event(event);
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
   set_state(ChannelState::running);
   call_block_.reset();
 }

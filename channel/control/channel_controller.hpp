@@ -285,10 +285,22 @@ class ChannelController {
   bool first_cycle_ = true;
 
   // G04.1: the block pulled and not passed yet (read-ahead stops there), and the marks.
-  struct SyncBlock {
+  // A block that stops read-ahead (G04.1, G144, G145): where it stands in the program.
+  struct HeldBlock {
     std::uint64_t n = 0;
     int line = 0;
     const std::string* file = nullptr;
+    bool started = false;  // its block_started event is out
+  };
+  static HeldBlock held(const interp::Command& c) noexcept {
+    return HeldBlock{c.n, c.line, c.file, false};
+  }
+  // The block's event of `kind`, with the channel's position.
+  [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;
+  // The block is the channel's current one: its start event, once.
+  void start_held(HeldBlock& b) noexcept;
+  struct SyncBlock {
+    HeldBlock block;
     bool has_p = false;
     std::int32_t p = 0;
     bool all_channels = false;
@@ -298,23 +310,14 @@ class ChannelController {
   // G144 in this channel's program: the call once pulled, and where it stands.
   enum class CallPhase : std::uint8_t { reached, sent };
   struct CallBlock {
-    std::uint64_t n = 0;
-    int line = 0;
-    const std::string* file = nullptr;
+    HeldBlock block;
     SubCall call;
     CallPhase phase = CallPhase::reached;
-    bool started = false;
   };
   std::optional<CallBlock> call_block_;
   std::uint64_t calls_made_ = 0;
-  std::optional<CallRelease> call_ended_;  // the release of the call this channel waits for
-  // G145 pulled and not passed yet.
-  struct ReleaseBlock {
-    std::uint64_t n = 0;
-    int line = 0;
-    const std::string* file = nullptr;
-  };
-  std::optional<ReleaseBlock> release_block_;
+  std::optional<CallRelease> call_ended_;   // the release of the call this channel waits for
+  std::optional<HeldBlock> release_block_;  // G145 pulled and not passed yet
   // The call this channel serves: its request, the repetitions left, whether it released.
   struct ServedCall {
     SubCall call;

@@ -41,6 +41,7 @@ bool SyncBarrier::on_arrival(const SyncArrival& a) noexcept {
   if (mark == nullptr) {
     if (c.count == c.marks.size()) {
       overflow_ = true;
+      overflow_channel_ = a.channel;
       return false;
     }
     mark = &c.marks[c.count++];
@@ -97,6 +98,7 @@ SyncState SyncBarrier::evaluate(const ChannelSet& others_active,
   ChannelSet active = others_active;
   active.set(self_);
   if (overflow_) {
+    conflict_ = overflow_channel_;
     return SyncState::full;
   }
   if (!waiting_) {

@@ -43,7 +43,8 @@ enum class SyncState : std::uint8_t {
 
 class SyncBarrier {
  public:
-  static constexpr std::size_t kMarksPerChannel = 32;  // distinct P values remembered
+  // Distinct marks (P with its participants) remembered per channel over a run of the process.
+  static constexpr std::size_t kMarksPerChannel = 128;
 
   explicit SyncBarrier(std::uint32_t self) noexcept : self_(self) {}
 
@@ -101,6 +102,7 @@ class SyncBarrier {
   Mark own_{};
   bool waiting_ = false;
   bool overflow_ = false;
+  std::uint32_t overflow_channel_ = 0;  // whose marks did not fit
   ChannelSet missing_;
   std::uint32_t conflict_ = 0;
 };

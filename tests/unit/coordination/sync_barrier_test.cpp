@@ -375,3 +375,19 @@ TEST(SyncBarrier, RandomDeadlockFreeProgramsFinishAndInjectedMismatchesAreFound)
 
 }  // namespace
 }  // namespace mcnc::coordination
+
+namespace mcnc::coordination {
+namespace {
+
+TEST(SyncBarrier, AFullMarkTableNamesTheChannelWhoseMarksDidNotFit) {
+  SyncBarrier ch1(1);
+  for (std::size_t p = 1; p <= SyncBarrier::kMarksPerChannel + 1; ++p) {
+    ch1.on_arrival(arrival_of(3, static_cast<std::int32_t>(p), 1, set_of({1, 3})));
+  }
+  ch1.arrive(1, set_of({1, 2}), false);
+  EXPECT_EQ(ch1.evaluate(set_of({2, 3})), SyncState::full);
+  EXPECT_EQ(ch1.conflict_channel(), 3U);
+}
+
+}  // namespace
+}  // namespace mcnc::coordination

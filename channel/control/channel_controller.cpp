@@ -606,8 +606,9 @@ void ChannelController::run_sync() noexcept {
   if (b.has_p) {
     int number = 0;
     const char* what = nullptr;
-    std::uint32_t other = 0;
-    switch (barrier_.evaluate(active_, halted_partners_)) {
+    const coordination::SyncState state = barrier_.evaluate(active_, halted_partners_);
+    std::uint32_t other = barrier_.conflict_channel();  // the channel a conflict names
+    switch (state) {
       case coordination::SyncState::none:
       case coordination::SyncState::waiting: {
         const coordination::ChannelSet gone = barrier_.missing() & lost_partners_;
@@ -625,17 +626,14 @@ void ChannelController::run_sync() noexcept {
       case coordination::SyncState::mismatch:
         number = kAlarmSyncMismatch;
         what = "waits at the same mark with other participants (sync mismatch)";
-        other = barrier_.conflict_channel();
         break;
       case coordination::SyncState::deadlock:
         number = kAlarmSyncDeadlock;
         what = "waits at another mark that can never be released (sync deadlock)";
-        other = barrier_.conflict_channel();
         break;
       case coordination::SyncState::full:
         number = kAlarmSyncTableFull;
         what = "has more different marks than the table holds (128)";
-        other = barrier_.conflict_channel();
         break;
       case coordination::SyncState::released:
         push_event(block_event(b.block, ChannelEventKind::sync_release));

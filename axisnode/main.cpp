@@ -5,8 +5,10 @@
 #include "axisnode/canopen/emcy_codes.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/link/drive_link.hpp"
+#include "axisnode/ownership/axis_ownership.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
+#include "common/cycle/lockstep_gate.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -29,6 +31,20 @@ namespace {
 
 const char* drive_state_name(cia402::State state) {
   return cia402::to_string(state);
+}
+
+ownership::OwnershipRequestKind to_core(AxisRequestKind kind) {
+  switch (kind) {
+    case AXIS_RELEASE:
+      return ownership::OwnershipRequestKind::release;
+    case AXIS_ACQUIRE:
+      return ownership::OwnershipRequestKind::acquire;
+    case AXIS_RESTORE:
+      return ownership::OwnershipRequestKind::restore;
+    case AXIS_WITHDRAW:
+      return ownership::OwnershipRequestKind::withdraw;
+  }
+  return ownership::OwnershipRequestKind::withdraw;
 }
 
 DriveState to_wire(cia402::State state) {
@@ -80,35 +96,102 @@ int main(int argc, char** argv) {
     trace::TraceWriter tracer(trace_path, axis->name);
     node.announce(PHASE_STARTING);
 
-    // Setpoints of this axis from its owner, by cycle; the owner's writer, to notice it leaving.
-    cycle::CycleBuffer<AxisSetpoint, 8> setpoints;
-    dds::WriterId owner_writer{};
-    bool owner_writer_known = false;
-    bool owner_lost = false;
+    // The channels that may own this axis: its home channel, then those that may acquire it
+    // (G141). Each sends a setpoint every cycle, valid only while it commands the axis; the node
+    // follows its owner's alone (ARCHITECTURE.md §5) and runs cycle N in lockstep once every
+    // candidate's setpoint N-1 and the events it announces are in, so that a G140/G141/G142
+    // takes effect at the same cycle in every run.
     const auto axis_id = static_cast<std::uint32_t>(axis->id);
-    const auto owner_id = static_cast<std::uint32_t>(owner->id);
+    const auto home_id = static_cast<std::uint32_t>(owner->id);
+    std::vector<std::uint32_t> candidates{home_id};
+    for (const config::ChannelConfig& c : machine.channels) {
+      if (std::find(c.exchange_axes.begin(), c.exchange_axes.end(), axis->name) !=
+          c.exchange_axes.end()) {
+        candidates.push_back(static_cast<std::uint32_t>(c.id));
+      }
+    }
+    const bool exchangeable = axis->exchange != 0;  // its home channel may release it alone
+    auto candidate_of = [&](std::uint32_t channel) -> int {
+      for (std::size_t k = 0; k < candidates.size(); ++k) {
+        if (candidates[k] == channel) {
+          return static_cast<int>(k);
+        }
+      }
+      return -1;
+    };
+    struct Candidate {
+      cycle::CycleBuffer<AxisSetpoint, 8> setpoints;
+      dds::WriterId writer{};
+      bool writer_known = false;
+      bool lost = false;  // its writer left
+    };
+    std::vector<Candidate> from(candidates.size());
+    cycle::LockstepGate gate(candidates.size());
+    ownership::AxisOwnership ownership(home_id);
+    // G140/G141/G142 requests as they arrive, applied from the cycle after they were sent.
+    struct PendingRequest {
+      ownership::OwnershipRequest request;
+    };
+    constexpr std::size_t kPending = 256;
+    std::array<PendingRequest, kPending> pending{};
+    std::size_t pending_head = 0;
+    std::size_t pending_count = 0;
+    std::uint64_t pending_dropped = 0;
+    std::uint32_t owner_now = home_id;  // the owner as the last decision left it
+    bool owner_lost = false;            // the current owner's writer left
     process::Wakeup& wake = node.wakeup();
     dds::Reader<AxisSetpoint> setpoint_reader(
         node.participant(),
         [&](const AxisSetpoint& sp, const dds::WriterId& writer) {
-          if (sp.axis() != axis_id || sp.channel() != owner_id) {
-            return;  // single writer per axis: only the owner's setpoints count
+          const int k = sp.axis() == axis_id ? candidate_of(sp.channel()) : -1;
+          if (k < 0) {
+            return;
           }
           wake.update([&] {
-            setpoints.put(sp.cycle(), sp);
-            owner_writer = writer;
-            owner_writer_known = true;
+            Candidate& c = from[static_cast<std::size_t>(k)];
+            c.setpoints.put(sp.cycle(), sp);
+            c.writer = writer;
+            c.writer_known = true;
+            gate.on_sample(static_cast<std::size_t>(k), sp.cycle(),
+                           exchangeable ? sp.event_seq() : 0);
           });
         },
         [&](const dds::WriterId& writer, bool matched) {
           if (!matched) {
             wake.update([&] {
-              if (owner_writer_known && writer == owner_writer) {
-                owner_lost = true;
+              for (std::size_t k = 0; k < from.size(); ++k) {
+                if (from[k].writer_known && writer == from[k].writer) {
+                  from[k].lost = true;
+                  gate.set_expected(k, false);
+                  owner_lost = owner_lost || candidates[k] == owner_now;
+                }
               }
             });
           }
         });
+    std::optional<dds::Reader<CoordinationEvent>> request_reader;
+    if (exchangeable) {
+      request_reader.emplace(
+          node.participant(), [&](const CoordinationEvent& e, const dds::WriterId&) {
+            const int k = candidate_of(e.channel());
+            if (k < 0) {
+              return;
+            }
+            wake.update([&] {
+              gate.on_event(static_cast<std::size_t>(k), e.seq());
+              if (e.kind() != COORD_AXIS_REQUEST || (e.axis() != axis_id && e.axis() != 0)) {
+                return;
+              }
+              if (pending_count == kPending) {
+                ++pending_dropped;
+                return;
+              }
+              pending[(pending_head + pending_count++) % kPending] =
+                  PendingRequest{ownership::OwnershipRequest{to_core(e.axis_request()), e.channel(),
+                                                             e.force(), e.cycle()}};
+            });
+          });
+    }
     dds::Writer<AxisFeedback> feedback_writer(node.participant());
 
     axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
@@ -152,7 +235,9 @@ int main(int argc, char** argv) {
     if (!loop.start(
             [&] {
               return setpoint_reader.matched_writers() >= channels &&
-                     feedback_writer.matched_readers() >= channels;
+                     feedback_writer.matched_readers() >= channels &&
+                     (!request_reader ||
+                      request_reader->matched_writers() >= static_cast<int>(candidates.size()));
             },
             shell.clock)) {
       return 0;
@@ -187,6 +272,10 @@ int main(int argc, char** argv) {
     std::uint64_t last_tpdo_count = 0;
     tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(),
                 owner->name.c_str());
+    auto channel_name = [&](std::uint32_t id) -> const char* {
+      return id >= 1 && id <= machine.channels.size() ? machine.channels[id - 1].name.c_str() : "";
+    };
+    std::uint32_t following = 0;  // the channel whose valid setpoints the node applied last
 
     // A lockstep bus wait ends with the run, an E-stop or the owner gone. Built once: a
     // std::function made from this lambda inside the loop could allocate every cycle.
@@ -197,40 +286,98 @@ int main(int argc, char** argv) {
       return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
     };
 
-    // 1. Wait until the cycle may run: the owner's setpoint stamped N-1 is in.
+    // 1. Wait until the cycle may run: every candidate owner's setpoint stamped N-1 is in,
+    //    with the events it announces.
     for (std::uint64_t cycle = 0; loop.next(
-             cycle, [&](std::uint64_t c) { return c == 0 || setpoints.at(c - 1) != nullptr; },
+             cycle, [&](std::uint64_t c) { return c == 0 || gate.may_run(c); },
              [&] { return owner_lost; });
          ++cycle) {
       const bool degraded = loop.degraded();
       const bool estop = loop.emergency_stop();
 
-      // 2. Inputs stamped N-1.
+      // 2. Inputs stamped N-1: first who owns the axis (the requests sent before this cycle),
+      //    then that owner's setpoint.
       axisnode::AxisNodeInput in;
       bool lost_now = false;
+      ownership::OwnershipChange change;
       {
         AxisSetpoint sp;
         bool have = false;
         wake.update([&] {
-          if (cycle > 0) {
-            if (const AxisSetpoint* s = setpoints.at(cycle - 1)) {
-              sp = *s;
-              have = true;
-            } else if (!lockstep) {
-              if (const AxisSetpoint* latest = setpoints.latest();
-                  latest != nullptr && latest->cycle() >= cycle - 1) {
-                sp = *latest;
-                have = true;
+          auto setpoint_of = [&](std::uint32_t channel) -> const AxisSetpoint* {
+            const int k = candidate_of(channel);
+            if (k < 0 || cycle == 0) {
+              return nullptr;
+            }
+            const Candidate& c = from[static_cast<std::size_t>(k)];
+            if (const AxisSetpoint* s = c.setpoints.at(cycle - 1)) {
+              return s;
+            }
+            const AxisSetpoint* latest = c.setpoints.latest();
+            return !lockstep && latest != nullptr && latest->cycle() >= cycle - 1 ? latest
+                                                                                  : nullptr;
+          };
+          if (exchangeable) {
+            while (pending_count > 0 && pending[pending_head].request.sent_cycle < cycle) {
+              if (!ownership.request(pending[pending_head].request)) {
+                ++pending_dropped;
+              }
+              pending_head = (pending_head + 1) % kPending;
+              --pending_count;
+            }
+            for (std::size_t k = 0; k < from.size(); ++k) {
+              if (from[k].lost) {
+                ownership.channel_gone(candidates[k]);
               }
             }
+            // At rest: the owner commands no motion and the axis stands in position (a forced
+            // G141 or a G142 waits for the owner's move to end).
+            const AxisSetpoint* current = setpoint_of(ownership.owner());
+            const axisnode::AxisNodeOutput& last = controller.output();
+            const bool at_rest = (current == nullptr || !current->valid() ||
+                                  (current->vel() == 0.0 && current->acc() == 0.0)) &&
+                                 std::abs(last.cmd - last.act) <= axis->in_position;
+            change = ownership.decide(at_rest);
+            owner_now = ownership.owner();
+            const int k = candidate_of(owner_now);
+            owner_lost = k >= 0 && from[static_cast<std::size_t>(k)].lost;
+          }
+          if (owner_now == 0) {
+            have = true;  // released: nobody commands the axis, it holds where it is
+          } else if (const AxisSetpoint* s = setpoint_of(owner_now)) {
+            sp = *s;
+            have = true;
           }
           lost_now = owner_lost;
         });
         in.have_setpoint = have;
         in.setpoint_pos = sp.pos();
         in.setpoint_vel = sp.vel();
-        in.setpoint_valid = sp.valid();
+        // A new owner's setpoint from before it knew is not followed (it holds, too).
+        in.setpoint_valid = sp.valid() && !change.changed && owner_now != 0;
         in.setpoint_velocity = sp.mode() == SP_VELOCITY;
+      }
+      if (change.changed) {
+        if (change.owner == 0) {
+          tracer.emit(cycle, "owner", "\"axis\":\"%s\",\"owner\":null,\"previous\":\"%s\"",
+                      axis->name.c_str(), channel_name(change.previous));
+        } else {
+          tracer.emit(cycle, "owner",
+                      "\"axis\":\"%s\",\"owner\":\"%s\",\"previous\":%s%s%s,\"forced\":%s",
+                      axis->name.c_str(), channel_name(change.owner),
+                      change.previous == 0 ? "null" : "\"", channel_name(change.previous),
+                      change.previous == 0 ? "" : "\"", change.forced ? "true" : "false");
+        }
+      }
+      const std::uint32_t follows = in.have_setpoint && in.setpoint_valid ? owner_now : 0;
+      if (follows != following) {
+        following = follows;
+        if (follows == 0) {
+          tracer.emit(cycle, "follow", "\"axis\":\"%s\",\"ch\":null", axis->name.c_str());
+        } else {
+          tracer.emit(cycle, "follow", "\"axis\":\"%s\",\"ch\":\"%s\"", axis->name.c_str(),
+                      channel_name(follows));
+        }
       }
       const axisnode::TpdoSample tpdo = link.tpdo();
       in.have_tpdo = tpdo.count > last_tpdo_count;
@@ -250,7 +397,8 @@ int main(int argc, char** argv) {
       in.bus_off = link.bus_off();
 
       while (const auto request = node.take_operator_request(cycle)) {
-        if (request->action == process::OperatorActionKind::reset && request->concerns(owner_id)) {
+        if (request->action == process::OperatorActionKind::reset &&
+            (request->concerns(home_id) || (owner_now != 0 && request->concerns(owner_now)))) {
           controller.reset();
           tracer.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"",
                       axis->name.c_str());
@@ -261,7 +409,8 @@ int main(int argc, char** argv) {
       // 3. Feedback stamped N.
       AxisFeedback fb;
       fb.axis(axis_id);
-      fb.owner(owner_id);
+      fb.owner(owner_now);
+      fb.released_by(ownership.released_by());
       fb.cycle(cycle);
       fb.cmd(out.cmd);
       fb.act(out.act);
@@ -319,6 +468,9 @@ int main(int argc, char** argv) {
     tracer.flush();
     spdlog::info("stopped: {} EMCY, {} malformed frames, {} trace events dropped",
                  link.emcy_count(), link.malformed_count(), tracer.dropped());
+    if (pending_dropped > 0) {
+      spdlog::warn("{} axis requests dropped (more waiting than the node keeps)", pending_dropped);
+    }
     node.announce(PHASE_STOPPED);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

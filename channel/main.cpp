@@ -60,13 +60,16 @@ int main(int argc, char** argv) {
   }
   process::start_process(ch->name, shell);
 
-  // The channel's axes, in program order.
+  // The channel's axes, in program order: its own, then those it may acquire (G141).
   std::vector<const config::AxisConfig*> axes;
   channel::ChannelSetup setup;
-  for (const std::string& name : ch->axes) {
+  for (const std::string& name : ch->program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);
     axes.push_back(a);
     setup.in_position.push_back(a->in_position);
+    setup.slots.push_back(
+        channel::AxisSlot{a->address, axes.size() > ch->axes.size(),
+                          static_cast<std::uint32_t>(machine.find_channel(a->channel)->id)});
   }
   setup.axis_count = axes.size();
   setup.spindle_count = ch->spindles.size();
@@ -250,7 +253,8 @@ int main(int argc, char** argv) {
           }
           if (fb != nullptr) {
             views[i] =
-                channel::AxisFeedbackView{fb->cmd(), fb->act(), fb->enabled(), fb->alarm(), true};
+                channel::AxisFeedbackView{fb->cmd(), fb->act(),   fb->enabled(),    fb->alarm(),
+                                          true,      fb->owner(), fb->released_by()};
           }
           if (axis_lost[i] && !reported_lost[i]) {
             reported_lost[i] = true;

@@ -121,6 +121,8 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
           return true;
         }
         return false;
+      case OwnershipRequestKind::withdraw:
+        return true;  // its waiting requests went before it was settled
     }
     return true;
   };
@@ -139,8 +141,8 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
   settle_waiting();
   for (std::size_t i = 0; i < incoming_count_; ++i) {
     const OwnershipRequest& r = incoming_[i];
-    if (r.kind == OwnershipRequestKind::restore) {
-      drop_waiting(r.channel);  // G142 ends this channel's own waits for the axis
+    if (r.kind == OwnershipRequestKind::restore || r.kind == OwnershipRequestKind::withdraw) {
+      drop_waiting(r.channel);  // G142 or a reset ends this channel's own waits for the axis
     }
     if (!settle(r)) {
       wait(r);

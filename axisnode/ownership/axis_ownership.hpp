@@ -28,7 +28,8 @@
 
 namespace mcnc::ownership {
 
-enum class OwnershipRequestKind : std::uint8_t { release, acquire, restore };
+// withdraw: the channel no longer waits (a reset ended its G141); drops its waiting requests.
+enum class OwnershipRequestKind : std::uint8_t { release, acquire, restore, withdraw };
 
 struct OwnershipRequest {
   OwnershipRequestKind kind = OwnershipRequestKind::acquire;

@@ -38,10 +38,27 @@ const char* to_string(CallOutcome outcome) noexcept {
   return "released";
 }
 
+const char* to_string(AxisRequestKind kind) noexcept {
+  switch (kind) {
+    case AxisRequestKind::release:
+      return "release";
+    case AxisRequestKind::acquire:
+      return "acquire";
+    case AxisRequestKind::restore:
+      return "restore";
+    case AxisRequestKind::withdraw:
+      return "withdraw";
+  }
+  return "release";
+}
+
 ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& source,
                                      motion::MotionPlanner& planner)
     : setup_(std::move(setup)), source_(source), planner_(planner), barrier_(setup_.channel_id) {
   queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
+  for (std::size_t i = 0; i < setup_.slots.size() && i < slot_use_.size(); ++i) {
+    slot_use_[i] = setup_.slots[i].exchange_slot ? SlotUse::virtual_axis : SlotUse::commanded;
+  }
 }
 
 void ChannelController::axis_lost(std::size_t axis) noexcept {
@@ -167,6 +184,8 @@ void ChannelController::hold_outputs(bool valid) noexcept {
 }
 
 void ChannelController::forget_program_run() noexcept {
+  withdraw_waits();
+  exchange_block_.reset();
   halted_ = false;
   queued_head_ = 0;
   queued_count_ = 0;
@@ -204,6 +223,23 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.arrival_due = false;
   out_.call_due = false;
   out_.release_count = 0;
+  out_.axis_request_count = 0;
+  received_ = feedback;
+  update_slots();
+  build_views(feedback);
+  run_cycle(cycle,
+            std::span<const AxisFeedbackView>(views_.data(), std::min(feedback.size(), kMaxViews)));
+  // Only an axis the channel commands follows its setpoints; the others hold where they are.
+  for (std::size_t i = 0; i < setup_.axis_count && exchanges(); ++i) {
+    if (slot_use_[i] != SlotUse::commanded) {
+      out_.setpoints[i].valid = false;
+    }
+  }
+  return out_;
+}
+
+const ChannelOutput& ChannelController::run_cycle(
+    std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept {
   if (out_.state != ChannelState::hold && out_.state != ChannelState::waiting) {
     out_.spindle_rpm = 0.0;  // running sets it again; a feed hold keeps the spindle turning
     out_.spindle_direction = 0;
@@ -240,6 +276,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     start_requested_ = false;
     release_caller(CallOutcome::aborted);
     serving_.reset();
+    withdraw_waits();
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }
@@ -325,6 +362,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   refused_.reset();
   if (out_.state == ChannelState::idle && start_requested_) {
     start_requested_ = false;
+    settle_slots();
     source_.rewind(commanded_);
     planner_.restart(commanded_);
     forget_program_run();
@@ -348,9 +386,9 @@ void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
-    for (std::size_t k = 0;
-         k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
-         !call_block_ && !release_block_ && planner_.accepts() && queued_count_ < queued_.size();
+    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
+                            !sync_block_ && !call_block_ && !release_block_ && !exchange_block_ &&
+                            planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -404,6 +442,39 @@ void ChannelController::fill() noexcept {
       }
       if (c->op == interp::Op::subcall_release) {
         release_block_ = held(*c);
+        return;
+      }
+      if (c->op == interp::Op::axis_release || c->op == interp::Op::axis_acquire ||
+          c->op == interp::Op::axis_restore) {
+        ExchangeBlock b;
+        b.block = held(*c);
+        b.op = c->op;
+        b.force = c->force;
+        if (c->op != interp::Op::axis_restore) {
+          std::size_t slot = setup_.slots.size();
+          for (std::size_t i = 0; i < setup_.slots.size(); ++i) {
+            slot = setup_.slots[i].address == c->axis ? i : slot;
+          }
+          if (slot == setup_.slots.size()) {
+            source_alarm_ = interp::ProgramAlarm{
+                kAlarmNotOwner,
+                std::string("axis ") + c->axis + " of this channel is not exchanged", "", c->line,
+                0};
+            return;
+          }
+          b.slot = slot;
+        }
+        exchange_block_ = b;
+        return;
+      }
+      if (const auto away = moves_away_slot(*c)) {
+        const std::uint32_t owner = *away < received_.size() ? received_[*away].owner : 0;
+        char text[160];
+        std::snprintf(text, sizeof text,
+                      "%c is %s%.0u: acquire it (G141) or restore (G142) before moving it",
+                      setup_.slots[*away].address,
+                      owner == 0 ? "released and no channel has it" : "with channel ", owner);
+        source_alarm_ = interp::ProgramAlarm{kAlarmAxisAway, text, "", c->line, 0};
         return;
       }
       const AxisVector start = planner_.queue_end();  // where the block starts
@@ -505,6 +576,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (call_block_) {
     run_call();
+    return;
+  }
+  if (exchange_block_) {
+    run_exchange(cycle);
     return;
   }
   if (release_block_) {
@@ -703,6 +778,7 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
         args.emplace_back(n, call.args[static_cast<std::size_t>(n - 1)]);
       }
     }
+    settle_slots();
     alarm = source_.call(call.program, args, commanded_);
   } catch (...) {
     alarm =
@@ -788,6 +864,182 @@ void ChannelController::run_call() noexcept {
   push_event(block_event(b.block, ChannelEventKind::block_ended));
   set_state(ChannelState::running);
   call_block_.reset();
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::update_slots() noexcept {
+  if (!exchanges()) {
+    return;
+  }
+  for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+    const AxisFeedbackView& f = received_[s];
+    if (!f.present || slot_use_[s] != SlotUse::commanded || f.owner == setup_.channel_id) {
+      continue;
+    }
+    // Another channel has the axis now (G141 P1 takes it at rest): the channel stops commanding
+    // it, and a block still queued that moves it cannot run.
+    slot_use_[s] = SlotUse::away;
+    int moving_line = 0;  // the first queued block that moves it
+    for (std::size_t k = 0; k < queued_count_ && moving_line == 0; ++k) {
+      const QueuedBlock& q = queued_[(queued_head_ + k) % queued_.size()];
+      moving_line = std::fabs(q.to[s] - commanded_[s]) > 1e-9 ? q.line : 0;
+    }
+    if (moving_line != 0 &&
+        (out_.state == ChannelState::running || out_.state == ChannelState::hold)) {
+      char text[128];
+      std::snprintf(text, sizeof text, "%c was taken by channel %u: this program still moves it",
+                    setup_.slots[s].address, f.owner);
+      raise(kAlarmAxisAway, text, moving_line, 0, static_cast<int>(s + 1));
+    }
+  }
+}
+
+void ChannelController::build_views(std::span<const AxisFeedbackView> received) noexcept {
+  for (std::size_t i = 0; i < received.size() && i < kMaxViews; ++i) {
+    views_[i] = received[i];
+    if (exchanges() && i < setup_.axis_count && slot_use_[i] != SlotUse::commanded) {
+      // Not this channel's axis now: it stands where the channel last put it, in position and
+      // without alarms (those are its owner's).
+      views_[i].cmd = commanded_[i];
+      views_[i].act = commanded_[i];
+      views_[i].enabled = true;
+      views_[i].alarm = false;
+    }
+  }
+}
+
+void ChannelController::settle_slots() noexcept {
+  if (!exchanges()) {
+    return;
+  }
+  for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+    const AxisFeedbackView& f = received_[s];
+    if (f.present && f.owner == setup_.channel_id) {
+      if (slot_use_[s] != SlotUse::commanded) {
+        commanded_[s] = f.cmd;  // the machine position travels with the axis
+        slot_use_[s] = SlotUse::commanded;
+      }
+    } else {
+      slot_use_[s] = setup_.slots[s].exchange_slot ? SlotUse::virtual_axis : SlotUse::away;
+    }
+  }
+}
+
+void ChannelController::sync_positions() noexcept {
+  source_.adopt_position(commanded_);
+  planner_.restart(commanded_);
+  hold_outputs(true);  // this cycle's setpoints came from the planner before it knew
+}
+
+std::optional<std::size_t> ChannelController::moves_away_slot(
+    const interp::Command& c) const noexcept {
+  if (!exchanges() || (c.op != interp::Op::rapid && c.op != interp::Op::linear &&
+                       c.op != interp::Op::arc && c.op != interp::Op::thread)) {
+    return std::nullopt;
+  }
+  const AxisVector& from = planner_.queue_end();
+  for (std::size_t s = 0; s < setup_.axis_count; ++s) {
+    if (slot_use_[s] == SlotUse::away && std::fabs(c.to[s] - from[s]) > 1e-9) {
+      return s;
+    }
+  }
+  return std::nullopt;
+}
+
+void ChannelController::push_axis_request(AxisRequestKind kind, std::size_t slot,
+                                          bool force) noexcept {
+  if (out_.axis_request_count < ChannelOutput::kMaxAxisRequests) {
+    out_.axis_requests[out_.axis_request_count++] = AxisRequestOut{kind, slot, force};
+  }
+}
+
+void ChannelController::withdraw_waits() noexcept {
+  if (!exchange_block_ || !exchange_block_->sent ||
+      exchange_block_->op == interp::Op::axis_release) {
+    return;
+  }
+  exchange_block_->sent = false;
+  push_axis_request(AxisRequestKind::withdraw,
+                    exchange_block_->op == interp::Op::axis_acquire ? exchange_block_->slot
+                                                                    : AxisRequestOut::kAllSlots,
+                    false);
+}
+
+void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
+  ExchangeBlock& b = *exchange_block_;
+  start_held(b.block);
+  const std::uint32_t self = setup_.channel_id;
+  const AxisFeedbackView none{};
+  const AxisFeedbackView& f =
+      b.op != interp::Op::axis_restore && b.slot < received_.size() ? received_[b.slot] : none;
+  const char letter = b.op != interp::Op::axis_restore ? setup_.slots[b.slot].address : ' ';
+  if (!b.sent) {
+    bool done = !exchanges();  // no exchange in this channel: G142 has nothing to restore
+    if (b.op == interp::Op::axis_release && !done &&
+        (slot_use_[b.slot] != SlotUse::commanded || f.owner != self)) {
+      char text[128];
+      std::snprintf(text, sizeof text, "G140 %c: the axis is not this channel's (%s%.0u has it)",
+                    letter, f.owner == 0 ? "nobody" : "channel ", f.owner);
+      raise(kAlarmNotOwner, text, b.block.line, 0, static_cast<int>(b.slot + 1));
+      return;
+    }
+    if (b.op == interp::Op::axis_acquire && slot_use_[b.slot] == SlotUse::commanded &&
+        f.owner == self) {
+      done = true;  // already this channel's
+    }
+    if (!done) {
+      const AxisRequestKind kind = b.op == interp::Op::axis_release   ? AxisRequestKind::release
+                                   : b.op == interp::Op::axis_acquire ? AxisRequestKind::acquire
+                                                                      : AxisRequestKind::restore;
+      push_axis_request(kind, b.op == interp::Op::axis_restore ? AxisRequestOut::kAllSlots : b.slot,
+                        b.force);
+      b.sent = true;
+      b.sent_cycle = cycle;
+      set_state(ChannelState::waiting);
+      return;
+    }
+  } else {
+    // The node decides in the cycle after the request and its feedback says so one later.
+    if (cycle < b.sent_cycle + 2) {
+      return;
+    }
+    switch (b.op) {
+      case interp::Op::axis_release:
+        if (f.owner == self) {
+          return;
+        }
+        slot_use_[b.slot] =
+            setup_.slots[b.slot].exchange_slot ? SlotUse::virtual_axis : SlotUse::away;
+        break;
+      case interp::Op::axis_acquire:
+        if (f.owner != self) {
+          return;  // waits until the owner releases (or, P1, the axis is at rest)
+        }
+        settle_slots();
+        sync_positions();
+        break;
+      default:
+        // G142 ends once no axis of this channel is away on its account (spec dafeng §3.3
+        // decide 1): none borrowed from another channel, none it released still elsewhere.
+        for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+          const AxisFeedbackView& r = received_[s];
+          const std::uint32_t home = setup_.slots[s].home;
+          if ((r.owner == self && home != self) || (r.released_by == self && r.owner != home)) {
+            return;
+          }
+        }
+        settle_slots();
+        sync_positions();
+        break;
+    }
+  }
+  b.sent = false;
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  set_state(ChannelState::running);
+  exchange_block_.reset();
 }
 
 }  // namespace mcnc::channel

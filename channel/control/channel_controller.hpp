@@ -34,6 +34,29 @@ struct AxisFeedbackView {
   bool enabled = false;  // drive in operation and following this channel
   bool alarm = false;    // the axis node holds an alarm
   bool present = false;  // feedback received at all
+  // G140/G141: the channel that owns the axis now (0: nobody) and the one that released it
+  // (or had it taken) to that owner, 0 in the configured assignment.
+  std::uint32_t owner = 0;
+  std::uint32_t released_by = 0;
+};
+
+// One axis the channel programs. The channel's own axes belong to it at start; an exchange
+// slot (another channel's exchangeable axis: the spec's virtual axis, dafeng §3.3) moves
+// nothing physical until the channel acquires the axis (G141).
+struct AxisSlot {
+  char address = 'X';
+  bool exchange_slot = false;
+  std::uint32_t home = 0;  // the channel that owns the axis in the configured assignment
+};
+
+// G140/G141/G142 as the channel asks its axis nodes.
+enum class AxisRequestKind : std::uint8_t { release, acquire, restore, withdraw };
+const char* to_string(AxisRequestKind kind) noexcept;
+struct AxisRequestOut {
+  AxisRequestKind kind = AxisRequestKind::acquire;
+  std::size_t slot = 0;  // restore: kAllSlots
+  bool force = false;    // G141 P1
+  static constexpr std::size_t kAllSlots = ~std::size_t{0};
 };
 
 struct AxisSetpointOut {
@@ -126,6 +149,10 @@ struct ChannelOutput {
   static constexpr std::size_t kMaxReleases = 8;
   std::array<CallRelease, kMaxReleases> releases{};
   std::size_t release_count = 0;
+  // G140/G141/G142 requests to send to the axis nodes this cycle.
+  static constexpr std::size_t kMaxAxisRequests = 4;
+  std::array<AxisRequestOut, kMaxAxisRequests> axis_requests{};
+  std::size_t axis_request_count = 0;
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -143,6 +170,9 @@ struct ChannelSetup {
   // The writes to shared variables not yet sent (null: none kept): the channel arrives at a
   // G04.1 and calls with G144 only once they are out.
   const SharedWriteLog* shared_writes = nullptr;
+  // Per axis: what the channel may do with it (G140/G141/G142). Empty: every axis is the
+  // channel's own for good (no exchange; feedback owner not looked at).
+  std::vector<AxisSlot> slots{};
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -158,6 +188,8 @@ inline constexpr int kAlarmCoordinationLost = 1214;  // shared writes or partner
 inline constexpr int kAlarmCallBusy = 1220;          // G144: the target runs something else
 inline constexpr int kAlarmCallFailed = 1221;        // G144: the called program stopped
 inline constexpr int kAlarmCallRefused = 1222;       // G144: the target refused the call
+inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not this channel's
+inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
 
 class ChannelController {
  public:
@@ -206,6 +238,11 @@ class ChannelController {
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
                              std::span<const AxisFeedbackView> feedback) noexcept;
+  // G140/G141/G142: whether the channel commands axis `slot` now (owns it and took over its
+  // position); a slot it does not command is a virtual axis or with another channel.
+  [[nodiscard]] bool commands_axis(std::size_t slot) const noexcept {
+    return slot < slot_use_.size() && slot_use_[slot] == SlotUse::commanded;
+  }
 
   [[nodiscard]] ChannelState state() const noexcept { return out_.state; }
   [[nodiscard]] const ChannelAlarm& last_alarm() const noexcept { return alarm_; }
@@ -222,6 +259,8 @@ class ChannelController {
   }
 
  private:
+  const ChannelOutput& run_cycle(std::uint64_t cycle,
+                                 std::span<const AxisFeedbackView> feedback) noexcept;
   void set_state(ChannelState state) noexcept;
   void push_event(const ChannelEvent& event) noexcept;
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
@@ -340,6 +379,38 @@ class ChannelController {
   }
   bool sync_arrived_ = false;
   coordination::SyncBarrier barrier_;
+
+  // G140/G141/G142 (spec dafeng §3.3). The owner comes from the axis nodes' feedback; a slot
+  // is commanded (owned, its position taken over), a virtual axis (an exchange slot the channel
+  // does not own: moves nothing physical) or away (given to or taken by another channel, or
+  // back but not taken over yet: a block moving it is an alarm).
+  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away };
+  [[nodiscard]] bool exchanges() const noexcept { return !setup_.slots.empty(); }
+  void update_slots() noexcept;  // a commanded axis whose owner is now another channel
+  void build_views(std::span<const AxisFeedbackView> received) noexcept;
+  // At a program start and at G142's end: owned slots are taken over from where their axes
+  // stand; the others are virtual (exchange slots) or away (the channel's own axes).
+  void settle_slots() noexcept;
+  void sync_positions() noexcept;  // the interpreter and the planner stand at commanded_
+  void run_exchange(std::uint64_t cycle) noexcept;
+  void push_axis_request(AxisRequestKind kind, std::size_t slot, bool force) noexcept;
+  void withdraw_waits() noexcept;  // a reset ends a G141/G142 wait at the axis nodes too
+  // The first slot away from this channel that `c` moves, or nullopt.
+  [[nodiscard]] std::optional<std::size_t> moves_away_slot(const interp::Command& c) const noexcept;
+  struct ExchangeBlock {
+    HeldBlock block;
+    interp::Op op = interp::Op::axis_restore;
+    std::size_t slot = 0;
+    bool force = false;
+    bool sent = false;
+    std::uint64_t sent_cycle = 0;
+  };
+  std::optional<ExchangeBlock> exchange_block_;
+  std::array<SlotUse, kMaxChannelAxes> slot_use_{};
+  static constexpr std::size_t kMaxViews = kMaxChannelAxes + 8;  // axes, then spindles
+  std::array<AxisFeedbackView, kMaxViews> views_{};
+  std::span<const AxisFeedbackView> received_;  // this cycle's feedback as it came
+
   coordination::ChannelSet active_;
   coordination::ChannelSet halted_partners_;
   coordination::ChannelSet lost_partners_;

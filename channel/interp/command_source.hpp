@@ -20,6 +20,10 @@ class CommandSource {
   virtual void rewind(const AxisVector& current) = 0;
   virtual std::optional<PullResult> next() = 0;
   [[nodiscard]] virtual std::size_t block_count() const noexcept = 0;
+  // The channel's axes stand at `at` now: an exchanged axis (G141, G142) came with its machine
+  // position. Called at a command that stops read-ahead, so nothing after it was evaluated.
+  // A source that does not track positions ignores it.
+  virtual void adopt_position(const AxisVector& at) { (void)at; }
   // Positions the source at the start of program O<number> called by another channel (G144)
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to

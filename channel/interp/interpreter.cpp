@@ -34,6 +34,10 @@ const AxisVector& Interpreter::machine_position() const {
   return run_->machine();
 }
 
+void Interpreter::set_machine_position(const AxisVector& at) {
+  run_->set_machine(at);
+}
+
 double Interpreter::program_position(int axis) const {
   return run_->program_position(axis);
 }

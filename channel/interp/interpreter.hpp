@@ -59,6 +59,9 @@ class Interpreter {
   macro::VariableStore& variables();
   // Physical machine position of each channel axis after the last pulled command.
   const AxisVector& machine_position() const;
+  // The axes stand at `at` now (an exchanged axis came with its machine position): the next
+  // command starts from there. Only between commands that stop read-ahead.
+  void set_machine_position(const AxisVector& at);
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
   // The number of non-empty lines of the main program (0 before start).

@@ -46,7 +46,8 @@ int alarm_for(const Command& c) {
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
   }
-  return c.op == Op::subcall ? alarm::kBadWordValue : alarm::kNotInThisVersion;
+  const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release || c.op == Op::axis_acquire;
+  return bad_word ? alarm::kBadWordValue : alarm::kNotInThisVersion;
 }
 
 }  // namespace
@@ -139,7 +140,19 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     }
     return true;
   }
-  if (c.op == Op::subcall_release) {
+  if (c.op == Op::subcall_release || c.op == Op::axis_restore) {
+    return true;
+  }
+  if (c.op == Op::axis_release || c.op == Op::axis_acquire) {
+    // The exchange number names a physical axis: the slot's axis must have one (param 5660).
+    for (const AxisConfig& a : config.axes) {
+      if (a.name == c.axis && a.exchange == 0) {
+        why = std::string(c.op == Op::axis_release ? "G140 " : "G141 ") + c.axis +
+              std::to_string(c.exchange) + ": axis " + c.axis +
+              " of this channel has no exchange number (exchange: in the machine file)";
+        return false;
+      }
+    }
     return true;
   }
   if (c.op == Op::spindle && config.spindles > 0) {
@@ -167,6 +180,12 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     default:
       why = "this command cannot run in the channel yet";
       return false;
+  }
+}
+
+void InterpreterSource::adopt_position(const AxisVector& at) {
+  if (interpreter_) {
+    interpreter_->set_machine_position(at);
   }
 }
 

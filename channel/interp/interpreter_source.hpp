@@ -32,6 +32,7 @@ class InterpreterSource final : public CommandSource {
   std::optional<ProgramAlarm> call(int number, const std::vector<std::pair<int, double>>& args,
                                    const AxisVector& current) override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
+  void adopt_position(const AxisVector& at) override;
 
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
   // spindle turns its first (M03/M04/M05 with S, G96/G97); orientation (M19) and other

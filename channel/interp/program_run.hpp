@@ -44,6 +44,7 @@ class ProgramRun final : public macro::VariableProvider {
 
   macro::VariableStore& variables() { return vars_; }
   const AxisVector& machine() const { return machine_; }
+  void set_machine(const AxisVector& at) { machine_ = at; }
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;

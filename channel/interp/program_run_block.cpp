@@ -1485,7 +1485,7 @@ bool ProgramRun::run_axis_exchange(GFunction f, int column) {
                   w.column);
     }
     const int own = config_.axes[static_cast<std::size_t>(axis)].exchange;
-    if (own != 0 && own != exchange && f == GFunction::axis_release) {
+    if (own != 0 && own != exchange) {
       return fail(alarm::kBadWordValue,
                   std::string(1, letter) + std::to_string(exchange) + ": the exchange number of " +
                       letter + " in this channel is " + std::to_string(own),

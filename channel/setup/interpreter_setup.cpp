@@ -10,12 +10,13 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.channel_count = static_cast<int>(machine.channels.size());
   c.program_dir = machine.program_dir;
   c.axes.clear();
-  for (const std::string& name : channel.axes) {
+  for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);
     interp::AxisConfig axis;
     axis.name = a->address;
     axis.diameter = a->diameter;
     axis.rotary = a->address == 'A' || a->address == 'B' || a->address == 'C';
+    axis.exchange = a->exchange;
     c.axes.push_back(axis);
   }
   return c;

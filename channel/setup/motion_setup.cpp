@@ -7,9 +7,10 @@ namespace mcnc::channel {
 motion::MotionConfig motion_config_for(const config::MachineConfig& machine,
                                        const config::ChannelConfig& channel) {
   motion::MotionConfig c;
-  c.axis_count = std::min(channel.axes.size(), interp::kMaxChannelAxes);
+  const std::vector<std::string> axes = channel.program_axes();
+  c.axis_count = std::min(axes.size(), interp::kMaxChannelAxes);
   for (std::size_t i = 0; i < c.axis_count; ++i) {
-    const config::AxisConfig* a = machine.find_axis(channel.axes[i]);
+    const config::AxisConfig* a = machine.find_axis(axes[i]);
     // The machine file gives rates per minute (as programs do), dynamics per second.
     c.axes[i] = motion::AxisDynamics{a->max_feed / 60.0, a->acceleration, a->jerk};
     c.rapid_rate[i] = a->rapid_rate / 60.0;

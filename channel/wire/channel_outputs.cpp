@@ -49,33 +49,6 @@ const char* ChannelOutputs::channel_name(std::uint32_t id) const {
 void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& controller,
                              const ChannelOutput& out, std::span<const AxisFeedbackView> views,
                              std::uint32_t block_total, bool program_loaded) {
-  for (std::size_t i = 0; i < axes_.size(); ++i) {
-    AxisSetpoint sp;
-    sp.axis(static_cast<std::uint32_t>(axes_[i]->id));
-    sp.channel(static_cast<std::uint32_t>(channel_.id));
-    sp.cycle(cycle);
-    sp.pos(out.setpoints[i].pos);
-    sp.vel(out.setpoints[i].vel);
-    sp.acc(out.setpoints[i].acc);
-    sp.valid(out.setpoints[i].valid);
-    setpoints_.write(sp);
-  }
-  const double rpm = out.spindle_rpm * out.spindle_direction;
-  for (std::size_t i = 0; i < spindles_.size(); ++i) {
-    AxisSetpoint sp;
-    sp.axis(static_cast<std::uint32_t>(spindles_[i]->id));
-    sp.channel(static_cast<std::uint32_t>(channel_.id));
-    sp.cycle(cycle);
-    sp.vel(i == 0 ? rpm * 6.0 : 0.0);  // rpm to degrees per second
-    sp.valid(true);
-    sp.mode(SP_VELOCITY);
-    setpoints_.write(sp);
-  }
-  if (!spindles_.empty() && rpm != spindle_rpm_) {
-    spindle_rpm_ = rpm;
-    tracer_.emit(cycle, "spindle", "\"ch\":\"%s\",\"spindle\":\"%s\",\"rpm\":%.3f",
-                 channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
-  }
   // Shared variable writes first: a partner that sees this cycle's arrival has them.
   writes_.drain(
       [&](const SharedWrite& w) {
@@ -115,6 +88,50 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     e.target(out.releases[r].target);
     e.outcome(static_cast<::mcnc::CallOutcome>(static_cast<int>(out.releases[r].outcome)));
     events_.write(e);
+  }
+  for (std::size_t r = 0; r < out.axis_request_count; ++r) {
+    const AxisRequestOut& q = out.axis_requests[r];
+    CoordinationEvent e = event(cycle, COORD_AXIS_REQUEST);
+    e.axis_request(static_cast<::mcnc::AxisRequestKind>(static_cast<int>(q.kind)));
+    e.axis(q.slot < axes_.size() ? static_cast<std::uint32_t>(axes_[q.slot]->id) : 0);
+    e.force(q.force);
+    events_.write(e);
+    const bool one = q.slot < axes_.size();  // else every axis (G142)
+    tracer_.emit(cycle, "axis_request",
+                 "\"ch\":\"%s\",\"axis\":%s%s%s,\"request\":\"%s\",\"force\":%s",
+                 channel_.name.c_str(), one ? "\"" : "", one ? axes_[q.slot]->name.c_str() : "null",
+                 one ? "\"" : "", to_string(q.kind), q.force ? "true" : "false");
+  }
+  // The setpoints after the events they announce: an axis node applies a G141 from the cycle
+  // after it was sent, once it holds every event the setpoint announces.
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    AxisSetpoint sp;
+    sp.axis(static_cast<std::uint32_t>(axes_[i]->id));
+    sp.channel(static_cast<std::uint32_t>(channel_.id));
+    sp.cycle(cycle);
+    sp.event_seq(event_seq_);
+    sp.pos(out.setpoints[i].pos);
+    sp.vel(out.setpoints[i].vel);
+    sp.acc(out.setpoints[i].acc);
+    sp.valid(out.setpoints[i].valid);
+    setpoints_.write(sp);
+  }
+  const double rpm = out.spindle_rpm * out.spindle_direction;
+  for (std::size_t i = 0; i < spindles_.size(); ++i) {
+    AxisSetpoint sp;
+    sp.axis(static_cast<std::uint32_t>(spindles_[i]->id));
+    sp.channel(static_cast<std::uint32_t>(channel_.id));
+    sp.cycle(cycle);
+    sp.event_seq(event_seq_);
+    sp.vel(i == 0 ? rpm * 6.0 : 0.0);  // rpm to degrees per second
+    sp.valid(true);
+    sp.mode(SP_VELOCITY);
+    setpoints_.write(sp);
+  }
+  if (!spindles_.empty() && rpm != spindle_rpm_) {
+    spindle_rpm_ = rpm;
+    tracer_.emit(cycle, "spindle", "\"ch\":\"%s\",\"spindle\":\"%s\",\"rpm\":%.3f",
+                 channel_.name.c_str(), spindles_[0]->name.c_str(), rpm);
   }
   ::mcnc::ChannelStatus status;
   status.channel(static_cast<std::uint32_t>(channel_.id));

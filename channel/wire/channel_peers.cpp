@@ -181,6 +181,8 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
                         static_cast<CallOutcome>(static_cast<int>(e.outcome()))});
       }
       break;
+    case COORD_AXIS_REQUEST:
+      break;  // for the axis nodes: a channel learns the owner from the axis's feedback
   }
 }
 

@@ -184,7 +184,7 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map = value.map({"name", "axes", "spindles", "motion"});
+  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   const YamlValue axes = map.required("axes");
@@ -199,6 +199,11 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     spindle_refs = spindles->list();
     for (const YamlValue& ref : spindle_refs) {
       channel.spindles.push_back(read_name(ref));
+    }
+  }
+  if (auto exchange = map.optional("exchange_axes")) {
+    for (const YamlValue& ref : exchange->list()) {
+      channel.exchange_axes.push_back(read_name(ref));
     }
   }
   if (auto motion = map.optional("motion")) {
@@ -249,10 +254,26 @@ DriveSimConfig parse_drive(const YamlValue& value) {
 }
 
 AxisConfig parse_axis(const YamlValue& value) {
-  const YamlMap map = value.map(
-      {"name", "address", "type", "diameter", "bus", "node_id", "counts_per_unit", "rapid_rate",
-       "max_feed", "acceleration", "jerk", "in_position", "drive", "soft_limits",
-       "following_error_limit", "homing", "heartbeat_ms", "quick_stop_deceleration", "tpdo2"});
+  const YamlMap map = value.map({"name",
+                                 "address",
+                                 "type",
+                                 "diameter",
+                                 "bus",
+                                 "node_id",
+                                 "counts_per_unit",
+                                 "rapid_rate",
+                                 "max_feed",
+                                 "acceleration",
+                                 "jerk",
+                                 "in_position",
+                                 "drive",
+                                 "soft_limits",
+                                 "following_error_limit",
+                                 "homing",
+                                 "heartbeat_ms",
+                                 "quick_stop_deceleration",
+                                 "tpdo2",
+                                 "exchange"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -305,6 +326,12 @@ AxisConfig parse_axis(const YamlValue& value) {
   read_optional_positive(map, "in_position", axis.in_position);
   read_optional_positive(map, "following_error_limit", axis.following_error_limit);
   read_optional_int(map, "heartbeat_ms", 0, 65535, axis.heartbeat_ms);
+  if (auto exchange = map.optional("exchange")) {
+    if (axis.type == AxisType::spindle) {
+      exchange->fail("a spindle is not exchanged by G140/G141");
+    }
+    read_optional_int(map, "exchange", 1, 9999, axis.exchange);
+  }
   if (auto decel = map.optional("quick_stop_deceleration")) {
     axis.quick_stop_deceleration = decel->positive_number();
     // Written to 0x6085 in increments/s^2, an UNSIGNED32.
@@ -474,6 +501,52 @@ MachineConfig parse_document(const YAML::Node& root) {
     }
   }
 
+  // Exchange numbers name one axis machine-wide; a channel's exchange axes are exchangeable
+  // axes of other channels whose address is free in it.
+  std::map<int, std::string> exchange_numbers;
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    const AxisConfig& axis = config.axes[i];
+    if (axis.exchange == 0) {
+      continue;
+    }
+    const auto [other, inserted] = exchange_numbers.emplace(axis.exchange, axis.name);
+    if (!inserted) {
+      axes[i]
+          .child("exchange")
+          .fail("exchange number " + std::to_string(axis.exchange) + " is already axis " +
+                other->second + "'s");
+    }
+  }
+  for (std::size_t c = 0; c < config.channels.size(); ++c) {
+    const ChannelConfig& channel = config.channels[c];
+    if (channel.exchange_axes.empty()) {
+      continue;
+    }
+    const std::vector<YamlValue> refs = channels[c].child("exchange_axes").list();
+    std::map<char, std::string> addresses;
+    for (const std::string& name : channel.axes) {
+      addresses.emplace(config.axes[axis_index.at(name)].address, name);
+    }
+    for (std::size_t j = 0; j < refs.size(); ++j) {
+      const auto found = axis_index.find(channel.exchange_axes[j]);
+      if (found == axis_index.end()) {
+        refs[j].fail("unknown axis " + channel.exchange_axes[j]);
+      }
+      const AxisConfig& axis = config.axes[found->second];
+      if (axis.exchange == 0) {
+        refs[j].fail("axis " + axis.name + " has no exchange number (exchange:)");
+      }
+      if (axis.channel == channel.name) {
+        refs[j].fail("axis " + axis.name + " is already in channel " + channel.name);
+      }
+      const auto [other, inserted] = addresses.emplace(axis.address, axis.name);
+      if (!inserted) {
+        refs[j].fail("axis " + axis.name + " has address " + std::string(1, axis.address) +
+                     ", already used by axis " + other->second + " in channel " + channel.name);
+      }
+    }
+  }
+
   // Node ids per bus, and the axes each bus carries.
   std::map<std::string, std::map<int, std::string>> nodes;  // bus -> node id -> axis
   for (std::size_t i = 0; i < config.axes.size(); ++i) {
@@ -545,6 +618,12 @@ const AxisConfig* MachineConfig::find_axis(const std::string& name) const noexce
     }
   }
   return nullptr;
+}
+
+std::vector<std::string> ChannelConfig::program_axes() const {
+  std::vector<std::string> all = axes;
+  all.insert(all.end(), exchange_axes.begin(), exchange_axes.end());
+  return all;
 }
 
 const ChannelConfig* MachineConfig::find_channel(const std::string& name) const noexcept {

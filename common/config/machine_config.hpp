@@ -49,8 +49,10 @@ struct AxisConfig {
   int id = 0;          // 1-based position in `axes`
   char address = 'X';  // program address in its channel: X, Z, Y, C, A, B
   AxisType type = AxisType::linear;
-  bool diameter = false;             // programmed in diameter (X on a lathe); physical is radius
-  std::string channel;               // home channel (owner at start)
+  bool diameter = false;  // programmed in diameter (X on a lathe); physical is radius
+  std::string channel;    // home channel (owner at start)
+  // Param 5660: the number G140/G141 name the axis by (`A14`), 0: not exchangeable.
+  int exchange = 0;
   std::string bus;                   // bus name
   int node_id = 0;                   // CANopen node id 1..127
   double counts_per_unit = 10000.0;  // drive increments per mm or degree
@@ -100,7 +102,14 @@ struct ChannelConfig {
   int id = 0;                         // 1-based position in `channels`
   std::vector<std::string> axes;      // axis names, in program order
   std::vector<std::string> spindles;  // spindle axis names: S1, S2, ... of the channel
+  // Exchangeable axes of other channels this channel may take with G141 (the spec's virtual
+  // axes): each is a slot after `axes`, programmed by the axis's address, that moves nothing
+  // until the channel owns the axis.
+  std::vector<std::string> exchange_axes;
   ChannelMotionConfig motion;
+
+  // Every axis the channel programs, in slot order: its own axes, then its exchange axes.
+  [[nodiscard]] std::vector<std::string> program_axes() const;
 };
 
 struct MachineConfig {

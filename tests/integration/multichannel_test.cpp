@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -253,6 +256,27 @@ MultiRun run_store(int domain, const std::string& dir,
   return run_channels(machine, paths, {"--progdir", source(dir)});
 }
 
+// Kills this test's channel `ch` half a second after it started the block on `line`.
+void kill_channel_during(const TestMachine& machine, const std::string& trace,
+                         const std::string& ch, int line) {
+  std::vector<pid_t> pids;
+  ASSERT_TRUE(eventually(
+      [&] {
+        pids = pids_with_arg(machine.path() + " --channel " + ch);  // this test's only
+        return !pids.empty();
+      },
+      60s));
+  ASSERT_TRUE(eventually(
+      [&] {
+        std::ifstream parts(trace + ".parts/" + ch + ".jsonl");
+        std::string all((std::istreambuf_iterator<char>(parts)), std::istreambuf_iterator<char>());
+        return all.find("\"line\":" + std::to_string(line)) != std::string::npos;
+      },
+      60s));
+  std::this_thread::sleep_for(500ms);
+  ::kill(pids[0], SIGKILL);
+}
+
 std::vector<int> lines_of(const Trace& t, const std::string& ch) {
   std::vector<int> lines;
   for (const auto& b : events(t, "block", ch)) {
@@ -435,22 +459,7 @@ TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
        "CH2=" + write_program(machine, "ch2.nc", "G01 Z-200 F300\nG04.1 P1 Q12\nM30\n")},
       -1, machine.file("run"));
   // CH1 waits at P1 while CH2 feeds Z2: kill CH2 then.
-  std::vector<pid_t> ch2;
-  ASSERT_TRUE(eventually(
-      [&] {
-        ch2 = pids_with_arg(machine.path() + " --channel CH2");  // this test's CH2 only
-        return !ch2.empty();
-      },
-      60s));
-  ASSERT_TRUE(eventually(
-      [&] {
-        std::ifstream parts(trace + ".parts/CH2.jsonl");
-        std::string all((std::istreambuf_iterator<char>(parts)), std::istreambuf_iterator<char>());
-        return all.find("\"line\":1") != std::string::npos;
-      },
-      60s));
-  std::this_thread::sleep_for(500ms);  // Z2 under way
-  ::kill(ch2[0], SIGKILL);
+  ASSERT_NO_FATAL_FAILURE(kill_channel_during(machine, trace, "CH2", 1));  // Z2 under way
   EXPECT_NE(run.wait(120s), 0);
   const Trace t = read_trace(trace);
   // CH1 never went past its mark; it ended in an alarm or the emergency stop, not waiting.
@@ -592,4 +601,286 @@ TEST(MultiChannel, TwinTurretLoaderAndTurretsInTheirOrder) {
   EXPECT_EQ(events(t, "end", "CH3").at(0)["code"], 99);
   EXPECT_EQ(r.trace.back()["channels"]["CH1"]["end"], 30);
   EXPECT_EQ(r.trace.back()["channels"]["CH2"]["end"], 30);
+}
+
+namespace {
+
+// G140/G141/G142 (spec dafeng §3.3): the owner of `axis` over the run, from its axis node's
+// `owner` events: cycle -> channel name ("" while released).
+std::map<std::uint64_t, std::string> owners(const Trace& t, const std::string& axis) {
+  std::map<std::uint64_t, std::string> out;
+  for (const auto& e : events(t, "owner", axis)) {
+    out[e["cycle"].get<std::uint64_t>()] =
+        e["owner"].is_null() ? "" : e["owner"].get<std::string>();
+  }
+  return out;
+}
+
+std::string owner_at(const std::map<std::uint64_t, std::string>& owners, std::uint64_t cycle) {
+  auto it = owners.upper_bound(cycle);
+  return it == owners.begin() ? "?" : std::prev(it)->second;
+}
+
+// Every setpoint the axis node followed came from the owner of that cycle.
+void expect_follows_only_its_owner(const Trace& t, const std::string& axis) {
+  const auto own = owners(t, axis);
+  for (const auto& f : events(t, "follow", axis)) {
+    if (!f["ch"].is_null()) {
+      EXPECT_EQ(f["ch"], owner_at(own, f["cycle"])) << f.dump();
+    }
+  }
+}
+
+// The axis node's commanded positions of `axis` in [from, to).
+std::vector<double> node_positions(const Trace& t, const std::string& axis, std::uint64_t from,
+                                   std::uint64_t to) {
+  std::vector<double> out;
+  for (const auto& p : events(t, "pos", axis)) {
+    if (p["cycle"] >= from && p["cycle"] < to) {
+      out.push_back(p["cmd"]);
+    }
+  }
+  return out;
+}
+
+// The channel's commanded point of `axis` at the end of the block on `line` (its pos events
+// follow the block's start events: the last block end before the next block).
+double end_point(const Trace& t, const std::string& ch, int line, const std::string& axis) {
+  const std::uint64_t next = block_at(t, ch, line + 1);
+  double at = std::nan("");
+  for (const auto& p : events(t, "pos", ch)) {
+    if (p["axis"] == axis && p["cycle"] <= next) {
+      at = p["cmd"];
+    }
+  }
+  return at;
+}
+
+const std::string kG140 = "tests/integration/programs/g140/";
+
+}  // namespace
+
+// CT-G140-01 (spec dafeng §3.3, L5653-5699) on the twin-turret lathe: channel 1 lends its
+// rotary A (exchange number 14) to channel 2 between two wait marks and both restore it.
+TEST(MultiChannel, AxisExchangeAsTheSpecExample) {
+  TestMachine machine("twin_turret.yaml", 65);
+  const MultiRun r =
+      run_channels(machine, {{"CH1", source(kG140 + "ch1.nc")}, {"CH2", source(kG140 + "ch2.nc")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  // A belongs to channel 1, is released, goes to channel 2, and after G142 to channel 1 again.
+  std::vector<std::string> sequence;
+  for (const auto& [cycle, owner] : owners(t, "A1")) {
+    sequence.push_back(owner);
+  }
+  EXPECT_EQ(sequence, (std::vector<std::string>{"CH1", "", "CH2", "CH1"}));
+  expect_follows_only_its_owner(t, "A1");
+  const auto own = owners(t, "A1");
+  const std::uint64_t released = std::next(own.begin())->first;
+  const std::uint64_t to_ch2 = std::next(own.begin(), 2)->first;
+  const std::uint64_t back = std::next(own.begin(), 3)->first;
+  EXPECT_GE(released, block_at(t, "CH1", 8));  // G140 A14
+  EXPECT_GT(to_ch2, block_at(t, "CH2", 6));    // G141 A14, after the release
+  EXPECT_LE(to_ch2, block_at(t, "CH2", 7));
+  // A turns under channel 1 up to its release (360), stands while released, turns under
+  // channel 2 (120) and comes back to channel 1; channel 2's virtual A-90 moved nothing.
+  const auto under_ch1 = node_positions(t, "A1", 0, released);
+  EXPECT_NEAR(*std::max_element(under_ch1.begin(), under_ch1.end()), 360.0, 1e-6);
+  for (double a : node_positions(t, "A1", released, to_ch2 + 2)) {
+    EXPECT_NEAR(a, 20.0, 1e-6);
+  }
+  const auto under_ch2 = node_positions(t, "A1", to_ch2, back);
+  EXPECT_NEAR(*std::max_element(under_ch2.begin(), under_ch2.end()), 120.0, 1e-6);
+  const auto all = node_positions(t, "A1", 0, ~std::uint64_t{0});
+  EXPECT_GE(*std::min_element(all.begin(), all.end()), -1e-6);
+  // The machine coordinate travels with the axis: 20 + 10 in channel 2, 30 + 15 in channel 1.
+  EXPECT_NEAR(end_point(t, "CH2", 7, "A1"), 30.0, 1e-6);
+  EXPECT_NEAR(end_points(t, "CH1").at("A1"), 45.0, 1e-6);
+  EXPECT_EQ(t.back()["channels"]["CH1"]["end"], 30);
+  EXPECT_EQ(t.back()["channels"]["CH2"]["end"], 30);
+  EXPECT_EQ(t.back()["channels"]["CH1"]["alarms"], 0);
+  EXPECT_EQ(t.back()["channels"]["CH2"]["alarms"], 0);
+}
+
+// CT-G140-01, negative: G141 before the owner's G140 waits for it; G141 P1 takes the axis at
+// once, but only once the owner's motion block has ended, and the owner commanding the axis
+// again is an alarm there.
+TEST(MultiChannel, AnAcquireBeforeTheReleaseWaitsForIt) {
+  TestMachine machine("twin_turret.yaml", 66);
+  const MultiRun r = run_channels(
+      machine,
+      {{"CH1", write_program(machine, "ch1.nc", "G01 A90 F3600\nG04 X1.\nG140 A14\nM30\n")},
+       {"CH2", write_program(machine, "ch2.nc", "G141 A14\nG00 A[#5003+10]\nG142\nM30\n")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  const std::uint64_t asked = cycle_of(t, "axis_request", "CH2", {{"request", "acquire"}});
+  const std::uint64_t released = cycle_of(t, "axis_request", "CH1", {{"request", "release"}});
+  EXPECT_LT(asked, released);
+  const auto own = owners(t, "A1");
+  std::vector<std::string> sequence;
+  for (const auto& [cycle, owner] : own) {
+    sequence.push_back(owner);
+  }
+  // Released and taken in the same decision, then restored by channel 2's G142.
+  EXPECT_EQ(sequence, (std::vector<std::string>{"CH1", "CH2", "CH1"}));
+  EXPECT_EQ(std::next(own.begin())->first, released + 1);
+  EXPECT_GT(block_at(t, "CH2", 2), released);
+  expect_follows_only_its_owner(t, "A1");
+  EXPECT_NEAR(end_point(t, "CH2", 2, "A1"), 100.0, 1e-6);
+}
+
+TEST(MultiChannel, AForcedAcquireWaitsForTheOwnersMoveAndTheOwnerMayNotMoveItAgain) {
+  TestMachine machine("twin_turret.yaml", 67);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc", "G01 A90 F3600\nG04 X1.\nG00 A0\nM30\n")},
+                {"CH2", write_program(machine, "ch2.nc", "G141 A14 P1\nG00 A[#5003+10]\nM30\n")}});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  const auto own = owners(t, "A1");
+  ASSERT_EQ(own.size(), 2U) << r.output;
+  const auto forced = events(t, "owner", "A1").at(1);
+  EXPECT_EQ(forced["owner"], "CH2");
+  EXPECT_EQ(forced["forced"], true);
+  // Taken at rest: after channel 1's move to 90 ended (its next block, the dwell, started).
+  EXPECT_GE(forced["cycle"].get<std::uint64_t>(), block_at(t, "CH1", 2));
+  expect_follows_only_its_owner(t, "A1");
+  EXPECT_NEAR(end_points(t, "CH2").at("A1"), 100.0, 1e-6);
+  // Channel 1's G00 A0 is an alarm, and A never went back towards 0.
+  const auto alarms = events(t, "alarm", "CH1");
+  ASSERT_EQ(alarms.size(), 1U);
+  EXPECT_EQ(alarms[0]["number"], 1231);
+  EXPECT_EQ(alarms[0]["line"], 3);
+  const auto after = node_positions(t, "A1", forced["cycle"], ~std::uint64_t{0});
+  EXPECT_GE(*std::min_element(after.begin(), after.end()), 90.0 - 1e-6);
+  EXPECT_EQ(t.back()["channels"]["CH2"]["end"], 30);
+}
+
+// An exchange survives a reset of the machine (spec L5635-5637): after the reset and a new
+// cycle start, channel 2 still owns A and goes on from where A stands.
+TEST(MultiChannel, AResetDoesNotUndoAnExchange) {
+  TestMachine machine("twin_turret.yaml", 68);
+  const MultiRun r = run_channels(
+      machine,
+      {{"CH2", write_program(machine, "ch2.nc", "G141 A14 P1\nG00 A[#5003+10]\nG04 X4.\nM30\n")}},
+      {"--operator", "reset@1500", "--operator", "cycle_start:CH2@1600"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  std::vector<std::string> sequence;
+  for (const auto& [cycle, owner] : owners(t, "A1")) {
+    sequence.push_back(owner);
+  }
+  EXPECT_EQ(sequence, (std::vector<std::string>{"CH1", "CH2"}));
+  EXPECT_EQ(events(t, "block", "CH2").at(0)["line"], 1);
+  EXPECT_NEAR(end_points(t, "CH2").at("A1"), 20.0, 1e-6);  // 10 in each run
+  expect_follows_only_its_owner(t, "A1");
+}
+
+// A program called into the channel that released A (G144) does not know of the release: the
+// channel itself refuses to move an axis it does not own, before anything moves.
+TEST(MultiChannel, MovingAnAxisGivenAwayIsAnAlarmBeforeItMoves) {
+  TestMachine machine("twin_turret.yaml", 69);
+  const std::string dir = machine.file("store");
+  std::filesystem::create_directory(dir);
+  std::ofstream(dir + "/O3200.nc") << "O3200\nG00 X0\nG00 A5\nM99\n";
+  const MultiRun r = run_channels(
+      machine,
+      {{"CH1", write_program(machine, "ch1.nc", "G140 A14\nG04.1 P1 Q12\nM30\n")},
+       {"CH2", write_program(machine, "ch2.nc", "G04.1 P1 Q12\nG144 N1 P3200 H1\nM30\n")}},
+      {"--progdir", dir});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  const auto alarms = events(t, "alarm", "CH1");
+  ASSERT_EQ(alarms.size(), 1U) << r.output;
+  EXPECT_EQ(alarms[0]["number"], 1231);
+  EXPECT_EQ(alarms[0]["line"], 3);
+  EXPECT_EQ(events(t, "alarm", "CH2").at(0)["number"], 1221);  // the call failed
+  for (double a : node_positions(t, "A1", 0, ~std::uint64_t{0})) {
+    EXPECT_NEAR(a, 0.0, 1e-9);
+  }
+}
+
+// Fault: the channel that owns an exchanged axis dies while it moves it. The axis node stops
+// the axis (its owner is gone), nobody else's setpoints move it, the machine stops safely.
+TEST(MultiChannel, AChannelKilledWhileItOwnsAnExchangedAxisStopsIt) {
+  TestMachine machine("twin_turret.yaml", 70);
+  const std::string trace = machine.file("trace.jsonl");
+  Background run(
+      {bin("mcnc"), "run", machine.path(), "--trace", trace, "--program",
+       "CH1=" + write_program(machine, "ch1.nc", "G04.1 P1 Q12\nG00 A0\nM30\n"), "--program",
+       "CH2=" +
+           write_program(machine, "ch2.nc", "G141 A14 P1\nG01 A3600 F3600\nG04.1 P1 Q12\nM30\n")},
+      -1, machine.file("run"));
+  ASSERT_NO_FATAL_FAILURE(kill_channel_during(machine, trace, "CH2", 2));  // A turning
+  EXPECT_NE(run.wait(120s), 0);
+  const Trace t = read_trace(trace);
+  const auto own = owners(t, "A1");
+  EXPECT_EQ(own.rbegin()->second, "CH2");  // nobody took it over
+  expect_follows_only_its_owner(t, "A1");
+  const auto drive = events(t, "drive", "A1");
+  ASSERT_FALSE(drive.empty());
+  EXPECT_EQ(drive.back()["state"], "quick_stop_active");
+  EXPECT_TRUE(events(t, "sync_release", "CH1").empty());
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
+}
+
+// Issue 7 stress: three channels race for A 1 000 times (each takes it, turns it half a degree
+// from where it stands and gives it back). Never two owners: every setpoint the node followed
+// was its owner's, the channels' own views of holding A never overlap, and the half degrees
+// add up, so every hand-over carried A's machine position.
+TEST(MultiChannel, AThousandRacesForOneAxisNeverHaveTwoOwners) {
+  TestMachine machine("twin_turret.yaml", 71);
+  {
+    std::ifstream in(machine.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::ofstream(machine.path()) << std::regex_replace(
+        text.str(), std::regex(R"((  - name: CH3\n    axes: \[X3, Z3\]\n))"),
+        "$1    exchange_axes: [A1]\n");
+  }
+  const std::map<std::string, int> rounds{{"CH1", 334}, {"CH2", 333}, {"CH3", 333}};
+  std::map<std::string, std::string> programs;
+  for (const auto& [ch, n] : rounds) {
+    programs[ch] = write_program(machine, ch + ".nc",
+                                 "#1=0\n"
+                                 "WHILE [#1 LT " +
+                                     std::to_string(n) +
+                                     "] DO1\n"
+                                     "G141 A14\n"
+                                     "G01 A[#5003+0.5] F7200\n"
+                                     "G140 A14\n"
+                                     "#1=#1+1\n"
+                                     "END1\n"
+                                     "M30\n");
+  }
+  const MultiRun r = run_channels(machine, programs);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  expect_follows_only_its_owner(t, "A1");
+  // Each channel holds A from the start of its move (line 4) to its release (line 5).
+  std::vector<std::tuple<std::uint64_t, std::uint64_t, std::string>> held;
+  for (const auto& [ch, n] : rounds) {
+    std::uint64_t since = 0;
+    int count = 0;
+    for (const auto& b : events(t, "block", ch)) {
+      if (b["line"] == 4) {
+        since = b["cycle"];
+        ++count;
+      } else if (b["line"] == 5) {
+        held.emplace_back(since, b["cycle"], ch);
+      }
+    }
+    EXPECT_EQ(count, n) << ch;
+  }
+  std::sort(held.begin(), held.end());
+  for (std::size_t i = 1; i < held.size(); ++i) {
+    EXPECT_LT(std::get<1>(held[i - 1]), std::get<0>(held[i]))
+        << std::get<2>(held[i - 1]) << " and " << std::get<2>(held[i]);
+  }
+  int grants = 0;
+  for (const auto& e : events(t, "owner", "A1")) {
+    grants += e["owner"].is_null() ? 0 : 1;
+  }
+  EXPECT_GE(grants, 2 * 333);  // hand-overs between different channels (a channel may win twice)
+  const auto end = node_positions(t, "A1", 0, ~std::uint64_t{0});
+  EXPECT_NEAR(end.back(), 500.0, 1e-6);
 }

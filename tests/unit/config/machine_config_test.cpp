@@ -864,5 +864,44 @@ TEST(BusLoad, ExactlySeventyPercentIsAccepted) {
   EXPECT_EQ(rejection_path(text_with_axes(2, 1000, 749999)), "buses[0]");
 }
 
+// G140/G141 (spec dafeng §3.3): an exchange number (param 5660) names one axis machine-wide; a
+// channel lists the axes of other channels it may acquire, each under a free address.
+TEST(MachineConfig, ExchangeNumbersAndExchangeAxes) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: A1, address: A, type: rotary, bus: b, node_id: 2, exchange: 14}
+  - {name: X2, address: X, bus: b, node_id: 3}
+)";
+  const MachineConfig config = parse_machine_yaml(
+      base +
+      "channels: [{name: C1, axes: [X1, A1]}, {name: C2, axes: [X2], exchange_axes: [A1]}]\n");
+  EXPECT_EQ(config.find_axis("A1")->exchange, 14);
+  EXPECT_EQ(config.find_axis("A1")->channel, "C1");  // its home stays channel 1
+  EXPECT_EQ(config.channels[1].program_axes(), (std::vector<std::string>{"X2", "A1"}));
+  EXPECT_EQ(config.channels[0].program_axes(), (std::vector<std::string>{"X1", "A1"}));
+
+  const std::string two = "channels: [{name: C1, axes: [X1, A1]}, {name: C2, axes: [X2], ";
+  EXPECT_EQ(rejection_path(base + two + "exchange_axes: [X1]}]\n"), "channels[1].exchange_axes[0]")
+      << "X1 has no exchange number";
+  EXPECT_EQ(rejection_path(base + two + "exchange_axes: [Q]}]\n"), "channels[1].exchange_axes[0]");
+  EXPECT_EQ(rejection_path(base + "channels: [{name: C1, axes: [X1, A1], exchange_axes: [A1]}, "
+                                  "{name: C2, axes: [X2]}]\n"),
+            "channels[0].exchange_axes[0]")
+      << "a channel's own axis";
+  std::string same_number = base;
+  same_number.replace(same_number.find("node_id: 3}"), 11, "node_id: 3, exchange: 14}");
+  EXPECT_EQ(rejection_path(same_number + "channels: [{name: C1, axes: [X1, A1]}, "
+                                         "{name: C2, axes: [X2]}]\n"),
+            "axes[2].exchange");
+  EXPECT_EQ(
+      rejection_path(base + "  - {name: S1, type: spindle, bus: b, node_id: 4, exchange: 5}\n" +
+                     "channels: [{name: C1, axes: [X1, A1], spindles: [S1]}, "
+                     "{name: C2, axes: [X2]}]\n"),
+      "axes[3].exchange");
+}
+
 }  // namespace
 }  // namespace mcnc::config

@@ -136,6 +136,22 @@ TEST(AxisOwnership, AChannelWithNoSayCannotRestoreAndAGoneChannelStopsWaiting) {
   EXPECT_EQ(a.decide(true).owner, 0U);  // nobody left to take it
 }
 
+TEST(AxisOwnership, AWithdrawEndsOnlyThatChannelsWait) {
+  AxisOwnership a(1);
+  a.request(req(Kind::acquire, 2));
+  a.request(req(Kind::acquire, 3));
+  EXPECT_FALSE(a.decide(true).changed);
+  EXPECT_TRUE(a.waiting(2));
+  a.request(req(Kind::withdraw, 2));  // channel 2 was reset while it waited
+  a.decide(true);
+  EXPECT_FALSE(a.waiting(2));
+  EXPECT_TRUE(a.waiting(3));
+  a.request(req(Kind::release, 1));
+  EXPECT_EQ(a.decide(true).owner, 3U);  // the release goes to the one still waiting
+  a.request(req(Kind::withdraw, 3));    // withdrawing after the grant changes nothing
+  EXPECT_EQ(a.decide(true).owner, 3U);
+}
+
 // 1 000 races (issue 7): channels acquire, hold for a while and release, some with force; what
 // every channel believes (from its answers and the changes) never has two owners, and every
 // acquire is answered in the end.

@@ -318,23 +318,34 @@ int main(int argc, char** argv) {
                                                                                   : nullptr;
           };
           if (exchangeable) {
-            while (pending_count > 0 && pending[pending_head].request.sent_cycle < cycle) {
-              if (!ownership.request(pending[pending_head].request)) {
-                ++pending_dropped;
+            // Every request sent before this cycle, whatever order they arrived in (the core
+            // puts them in decision order).
+            std::size_t kept = 0;
+            for (std::size_t i = 0; i < pending_count; ++i) {
+              const PendingRequest& p = pending[(pending_head + i) % kPending];
+              if (p.request.sent_cycle < cycle) {
+                if (!ownership.request(p.request)) {
+                  ++pending_dropped;
+                }
+              } else {
+                pending[(pending_head + kept++) % kPending] = p;
               }
-              pending_head = (pending_head + 1) % kPending;
-              --pending_count;
             }
+            pending_count = kept;
             for (std::size_t k = 0; k < from.size(); ++k) {
               if (from[k].lost) {
                 ownership.channel_gone(candidates[k]);
               }
             }
             // At rest: the owner commands no motion and the axis stands in position (a forced
-            // G141 or a G142 waits for the owner's move to end).
+            // G141 or a G142 waits for the owner's move to end). An owner that is gone is not
+            // at rest: its axis is stopped by the node's safety and nobody takes it over.
+            const int owner_k = candidate_of(ownership.owner());
+            const bool owner_gone = owner_k >= 0 && from[static_cast<std::size_t>(owner_k)].lost;
             const AxisSetpoint* current = setpoint_of(ownership.owner());
             const axisnode::AxisNodeOutput& last = controller.output();
-            const bool at_rest = (current == nullptr || !current->valid() ||
+            const bool at_rest = !owner_gone &&
+                                 (current == nullptr || !current->valid() ||
                                   (current->vel() == 0.0 && current->acc() == 0.0)) &&
                                  std::abs(last.cmd - last.act) <= axis->in_position;
             change = ownership.decide(at_rest);
@@ -397,8 +408,10 @@ int main(int argc, char** argv) {
       in.bus_off = link.bus_off();
 
       while (const auto request = node.take_operator_request(cycle)) {
+        // The channel that commands the axis resets it (a lent axis: its borrower, whose own
+        // reset also stops its setpoints); released, its home channel.
         if (request->action == process::OperatorActionKind::reset &&
-            (request->concerns(home_id) || (owner_now != 0 && request->concerns(owner_now)))) {
+            request->concerns(owner_now != 0 ? owner_now : home_id)) {
           controller.reset();
           tracer.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"",
                       axis->name.c_str());

@@ -7,6 +7,7 @@
 #include "channel/setup/motion_setup.hpp"
 #include "channel/wire/channel_outputs.hpp"
 #include "channel/wire/channel_peers.hpp"
+#include "channel/wire/plc_link.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
@@ -75,6 +76,7 @@ int main(int argc, char** argv) {
   setup.spindle_count = ch->spindles.size();
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
+  setup.plc = machine.plc.present;
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
   // #500-#999 and #20000-#20999 are the machine's: this channel's copy, kept equal to the
@@ -130,8 +132,13 @@ int main(int argc, char** argv) {
     std::vector<const config::AxisConfig*> fed = axes;
     fed.insert(fed.end(), spindles.begin(), spindles.end());
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
-    cycle::LockstepGate gate(fed.size() + machine.channels.size() - 1);
+    const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
+    cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
     channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
+    std::optional<channel::PlcLink> plc;
+    if (machine.plc.present) {
+      plc.emplace(node, gate, plc_input, static_cast<std::uint32_t>(ch->id));
+    }
     std::vector<dds::WriterId> axis_writer(fed.size());
     std::vector<bool> axis_writer_known(fed.size(), false);
     std::vector<bool> axis_lost(fed.size(), false);
@@ -189,6 +196,7 @@ int main(int argc, char** argv) {
             [&] {
               return feedback_reader.matched_writers() >= total_axes &&
                      outputs.setpoint_readers() >= total_axes && peers.discovered() &&
+                     (!plc || plc->discovered()) &&
                      outputs.event_readers() >= static_cast<int>(peers.inputs());
             },
             shell.clock)) {
@@ -264,6 +272,9 @@ int main(int argc, char** argv) {
       });
 
       peers.apply(cycle, lockstep, controller);
+      if (plc) {
+        plc->apply(cycle, controller);
+      }
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,
                       static_cast<std::uint32_t>(interpreter.block_count()),

@@ -26,6 +26,8 @@ MCNC_TOPIC(RunControl, state)
 MCNC_TOPIC(ProcessState, state)
 MCNC_TOPIC(OperatorCommand, event)
 MCNC_TOPIC(CoordinationEvent, event)
+MCNC_TOPIC(PlcStatus, cyclic)
+MCNC_TOPIC(AuxAck, event)
 
 #undef MCNC_TOPIC
 

@@ -186,7 +186,16 @@ LaunchResult Launcher::run(
     children.emplace_back(ch.name, common_args(args));
     dds_processes.push_back(ch.name);
   }
-  // Merge order inside a cycle: channels, axes, launch.
+  if (machine_.plc.present) {
+    std::vector<std::string> args{bin + "/mcnc-plcnode", "--machine", options_.machine_path};
+    if (!parts_dir.empty()) {
+      args.insert(args.end(), {"--trace", parts_dir + "/PLC.jsonl"});
+      axis_parts.push_back(parts_dir + "/PLC.jsonl");
+    }
+    children.emplace_back("PLC", common_args(args));
+    dds_processes.push_back("PLC");
+  }
+  // Merge order inside a cycle: channels, axes, the PLC, launch.
   std::vector<std::string> merge_order = channel_parts;
   merge_order.insert(merge_order.end(), axis_parts.begin(), axis_parts.end());
   merge_order.insert(merge_order.end(), part_paths.begin(), part_paths.end());

@@ -1,22 +1,11 @@
 #include "axisnode/ownership/axis_ownership.hpp"
 
+#include "common/cycle/decision_order.hpp"
+
 namespace mcnc::ownership {
 
 bool AxisOwnership::request(const OwnershipRequest& request) noexcept {
-  if (incoming_count_ == incoming_.size()) {
-    return false;
-  }
-  // Kept in decision order: the cycle sent, then the channel number (insertion, stable).
-  std::size_t at = incoming_count_;
-  while (at > 0 && (incoming_[at - 1].sent_cycle > request.sent_cycle ||
-                    (incoming_[at - 1].sent_cycle == request.sent_cycle &&
-                     incoming_[at - 1].channel > request.channel))) {
-    incoming_[at] = incoming_[at - 1];
-    --at;
-  }
-  incoming_[at] = request;
-  ++incoming_count_;
-  return true;
+  return cycle::insert_in_decision_order(incoming_, incoming_count_, request);
 }
 
 bool AxisOwnership::waiting(std::uint32_t channel) const noexcept {
@@ -111,7 +100,9 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
           answer(r.channel, r.kind, OwnershipAnswer::granted);
           return true;
         }
-        if (owner_ != r.channel && released_by_ != r.channel) {
+        // The home channel takes its axis back from anyone (the spec's "force restore");
+        // another channel restores what it owns or released.
+        if (r.channel != home_ && owner_ != r.channel && released_by_ != r.channel) {
           answer(r.channel, r.kind, OwnershipAnswer::refused);  // not this channel's to restore
           return true;
         }
@@ -127,6 +118,13 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
     return true;
   };
 
+  // A withdraw (the channel was reset or stopped) goes before anything is granted: the waiting
+  // line must not serve a channel that no longer waits.
+  for (std::size_t i = 0; i < incoming_count_; ++i) {
+    if (incoming_[i].kind == OwnershipRequestKind::withdraw) {
+      drop_waiting(incoming_[i].channel);
+    }
+  }
   // The older requests first, then this cycle's, each in order; then the waiting ones again,
   // so that a release of this cycle goes to the first in line at once.
   auto settle_waiting = [&] {

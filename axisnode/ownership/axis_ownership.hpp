@@ -13,8 +13,9 @@
 //    asker waits, in order, until the owner releases. A forced acquire takes the axis from its
 //    owner as soon as the axis is at rest (spec "decide" 4: not in the middle of a move).
 //  - restore: a channel that owns the axis, or released it to its present owner, gives it back
-//    to the configured (home) owner once it is at rest (spec "decide" 1). Waiting acquires of
-//    that channel are dropped.
+//    to the configured (home) owner once it is at rest (spec "decide" 1); the home channel
+//    itself takes its axis back from anyone. Waiting acquires of that channel are dropped.
+//  - withdraw: the channel no longer waits; it goes before anything of its cycle is granted.
 //  - an axis granted in a decision is not taken away (forced or restored) in the same
 //    decision, before its new owner has heard of it; a release goes to the first in line
 //    before any request of the same cycle.

@@ -109,6 +109,16 @@ void ChannelController::on_call_release(const CallRelease& release) noexcept {
   }
 }
 
+void ChannelController::on_aux_answer(const AuxAnswer& answer) noexcept {
+  if (aux_block_ && aux_block_->sent && aux_block_->request.id == answer.id) {
+    aux_answer_ = answer;
+  }  // else the answer to a request a reset abandoned
+}
+
+void ChannelController::plc_lost() noexcept {
+  plc_lost_ = true;
+}
+
 void ChannelController::partner_lost(std::uint32_t channel) noexcept {
   if (channel >= 1 && channel <= coordination::kMaxChannels) {
     lost_partners_.set(channel);
@@ -148,6 +158,7 @@ void ChannelController::raise(int number, const char* text, int line, int column
   set_state(ChannelState::alarm);
   halted_ = true;
   release_caller(CallOutcome::failed);  // a caller waiting for this channel's G145 stops too
+  withdraw_waits();                     // a stopped channel does not take an axis
 }
 
 void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept {
@@ -186,6 +197,8 @@ void ChannelController::hold_outputs(bool valid) noexcept {
 void ChannelController::forget_program_run() noexcept {
   withdraw_waits();
   exchange_block_.reset();
+  aux_block_.reset();
+  aux_answer_.reset();
   halted_ = false;
   queued_head_ = 0;
   queued_count_ = 0;
@@ -224,6 +237,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.call_due = false;
   out_.release_count = 0;
   out_.axis_request_count = 0;
+  out_.aux_due = false;
   received_ = feedback;
   update_slots();
   build_views(feedback);
@@ -388,7 +402,7 @@ void ChannelController::fill() noexcept {
   try {
     for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
                             !sync_block_ && !call_block_ && !release_block_ && !exchange_block_ &&
-                            planner_.accepts() && queued_count_ < queued_.size();
+                            !aux_block_ && planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -467,37 +481,67 @@ void ChannelController::fill() noexcept {
         exchange_block_ = b;
         return;
       }
+      const bool spindle_start =
+          c->op == interp::Op::spindle && (c->spindle_direction == interp::SpindleDirection::cw ||
+                                           c->spindle_direction == interp::SpindleDirection::ccw);
+      if (setup_.plc && (c->op == interp::Op::aux || c->op == interp::Op::tool || spindle_start)) {
+        // Sent when every block before it ended; the next block waits for the answer.
+        AuxBlock b;
+        b.block = held(*c);
+        b.request.kind = c->op == interp::Op::tool ? AuxKind::t_code : AuxKind::m_code;
+        b.request.code = c->op == interp::Op::tool ? c->tool * 100 + c->offset
+                         : spindle_start
+                             ? (c->spindle_direction == interp::SpindleDirection::cw ? 3 : 4)
+                             : c->code;
+        b.spindle = spindle_start;
+        b.command = *c;
+        aux_block_ = b;
+        return;
+      }
       if (const auto away = moves_away_slot(*c)) {
         const std::uint32_t owner = *away < received_.size() ? received_[*away].owner : 0;
         char text[160];
-        std::snprintf(text, sizeof text,
-                      "%c is %s%.0u: acquire it (G141) or restore (G142) before moving it",
-                      setup_.slots[*away].address,
-                      owner == 0 ? "released and no channel has it" : "with channel ", owner);
+        if (owner == setup_.channel_id) {
+          std::snprintf(text, sizeof text,
+                        "%c came back to this channel during the program: G141 or G142 takes "
+                        "it over before it moves",
+                        setup_.slots[*away].address);
+        } else {
+          std::snprintf(text, sizeof text,
+                        "%c is %s%.0u: acquire it (G141) or restore (G142) before moving it",
+                        setup_.slots[*away].address,
+                        owner == 0 ? "released and no channel has it" : "with channel ", owner);
+        }
         source_alarm_ = interp::ProgramAlarm{kAlarmAxisAway, text, "", c->line, 0};
         return;
       }
-      const AxisVector start = planner_.queue_end();  // where the block starts
-      if (planner_.push(*c) != motion::PushResult::accepted) {
-        source_alarm_ = interp::ProgramAlarm{kAlarmPlannerRejected,
-                                             "block cannot be planned (feed or target invalid)", "",
-                                             c->line, 0};
+      if (!queue_command(*c)) {
         return;
       }
-      QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
-      // A spindle command takes effect where the planner reaches it; as a block it does not
-      // move and passes at once.
-      const bool spindle = c->op == interp::Op::spindle;
-      q = QueuedBlock{c->n, c->line, c->op == interp::Op::dwell || spindle ? start : c->to,
-                      c->exact_stop || c->op == interp::Op::rapid || c->op == interp::Op::dwell,
-                      spindle || ((c->op == interp::Op::rapid || c->op == interp::Op::linear) &&
-                                  c->to == start)};
-      q.file = c->file;
-      ++queued_count_;
     }
   } catch (...) {
     raise(kAlarmPlannerRejected, "the interpreter ran out of memory", out_.line, 0, 0);
   }
+}
+
+bool ChannelController::queue_command(const interp::Command& c) noexcept {
+  const AxisVector start = planner_.queue_end();  // where the block starts
+  if (planner_.push(c) != motion::PushResult::accepted) {
+    source_alarm_ = interp::ProgramAlarm{
+        kAlarmPlannerRejected, "block cannot be planned (feed or target invalid)", "", c.line, 0};
+    return false;
+  }
+  QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
+  // A spindle command takes effect where the planner reaches it; as a block it does not move
+  // and passes at once.
+  const bool spindle = c.op == interp::Op::spindle;
+  q = QueuedBlock{
+      c.n, c.line, c.op == interp::Op::dwell || spindle ? start : c.to,
+      c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell,
+      spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start)};
+  q.file = c.file;
+  ++queued_count_;
+  return true;
 }
 
 // Block events in program order, each block's end before the next one's start: a block
@@ -580,6 +624,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (exchange_block_) {
     run_exchange(cycle);
+    return;
+  }
+  if (aux_block_) {
+    run_aux();
     return;
   }
   if (release_block_) {
@@ -876,6 +924,17 @@ void ChannelController::update_slots() noexcept {
   }
   for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
     const AxisFeedbackView& f = received_[s];
+    // A borrowed axis granted after the channel stopped waiting for it (its withdraw crossed
+    // the grant): given back at once, so that nobody waits for a channel that does not use it.
+    const bool asked = exchange_block_ && exchange_block_->sent &&
+                       exchange_block_->op == interp::Op::axis_acquire &&
+                       exchange_block_->slot == s;
+    if (f.present && setup_.slots[s].exchange_slot && slot_use_[s] == SlotUse::virtual_axis &&
+        f.owner == setup_.channel_id && !asked && !unasked_released_[s]) {
+      unasked_released_[s] = true;
+      push_axis_request(AxisRequestKind::release, s, false);
+    }
+    unasked_released_[s] = unasked_released_[s] && f.owner == setup_.channel_id;
     if (!f.present || slot_use_[s] != SlotUse::commanded || f.owner == setup_.channel_id) {
       continue;
     }
@@ -1022,12 +1081,16 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
         sync_positions();
         break;
       default:
-        // G142 ends once no axis of this channel is away on its account (spec dafeng §3.3
-        // decide 1): none borrowed from another channel, none it released still elsewhere.
+        // G142 ends once no axis is away on this channel's account (spec dafeng §3.3
+        // decide 1): its own axes are back, none borrowed is still its, none it released is
+        // still elsewhere.
         for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
           const AxisFeedbackView& r = received_[s];
           const std::uint32_t home = setup_.slots[s].home;
-          if ((r.owner == self && home != self) || (r.released_by == self && r.owner != home)) {
+          const bool away = home == self
+                                ? r.owner != self
+                                : r.owner == self || (r.released_by == self && r.owner != home);
+          if (away) {
             return;
           }
         }
@@ -1040,6 +1103,54 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
   push_event(block_event(b.block, ChannelEventKind::block_ended));
   set_state(ChannelState::running);
   exchange_block_.reset();
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::run_aux() noexcept {
+  AuxBlock& b = *aux_block_;
+  if (!b.spindle) {
+    start_held(b.block);  // a spindle start has its block events from the queue once allowed
+  }
+  if (!b.sent) {
+    b.request.id = (std::uint64_t{setup_.channel_id} << 40) | ++aux_requests_;
+    out_.aux = b.request;
+    out_.aux_due = true;
+    b.sent = true;
+    return;
+  }
+  if (!aux_answer_ && plc_lost_) {
+    AuxAnswer gone;
+    gone.id = b.request.id;
+    gone.outcome = AuxOutcome::refused;
+    std::snprintf(gone.reason.data(), gone.reason.size(), "the PLC node is gone");
+    aux_answer_ = gone;
+  }
+  if (!aux_answer_) {
+    return;  // FIN wait
+  }
+  const AuxAnswer answer = *aux_answer_;
+  aux_answer_.reset();
+  if (answer.outcome != AuxOutcome::done) {
+    char text[160];
+    const bool t = b.request.kind == AuxKind::t_code;
+    std::snprintf(text, sizeof text, "%c%0*d %s by the PLC: %s", t ? 'T' : 'M', t ? 4 : 2,
+                  b.request.code, answer.outcome == AuxOutcome::refused ? "refused" : "not done",
+                  answer.reason.data());
+    raise(answer.outcome == AuxOutcome::refused ? kAlarmAuxRefused : kAlarmAuxTimeout, text,
+          b.block.line, 0, 0);
+    return;
+  }
+  if (b.spindle) {
+    const interp::Command command = b.command;
+    aux_block_.reset();
+    (void)queue_command(command);  // a refusal is a source alarm, raised in its turn
+    return;
+  }
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  aux_block_.reset();
 }
 
 }  // namespace mcnc::channel

@@ -49,6 +49,21 @@ struct AxisSlot {
   std::uint32_t home = 0;  // the channel that owns the axis in the configured assignment
 };
 
+// M and T codes for the PLC node (and M03/M04, which it must allow): one request at a time,
+// the block ends with the answer (FIN).
+enum class AuxKind : std::uint8_t { m_code, t_code };
+struct AuxRequestOut {
+  std::uint64_t id = 0;  // channel << 40 | the channel's count of requests
+  AuxKind kind = AuxKind::m_code;
+  int code = 0;
+};
+enum class AuxOutcome : std::uint8_t { done, refused, timed_out };
+struct AuxAnswer {
+  std::uint64_t id = 0;
+  AuxOutcome outcome = AuxOutcome::done;
+  std::array<char, 96> reason{};
+};
+
 // G140/G141/G142 as the channel asks its axis nodes.
 enum class AxisRequestKind : std::uint8_t { release, acquire, restore, withdraw };
 const char* to_string(AxisRequestKind kind) noexcept;
@@ -153,6 +168,9 @@ struct ChannelOutput {
   static constexpr std::size_t kMaxAxisRequests = 4;
   std::array<AxisRequestOut, kMaxAxisRequests> axis_requests{};
   std::size_t axis_request_count = 0;
+  // An M or T code for the PLC node, sent this cycle.
+  bool aux_due = false;
+  AuxRequestOut aux{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -173,6 +191,9 @@ struct ChannelSetup {
   // Per axis: what the channel may do with it (G140/G141/G142). Empty: every axis is the
   // channel's own for good (no exchange; feedback owner not looked at).
   std::vector<AxisSlot> slots{};
+  // A PLC node runs M and T codes: each is a block that ends with its answer; a spindle
+  // start (M03/M04) waits for the PLC's consent.
+  bool plc = false;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -190,6 +211,8 @@ inline constexpr int kAlarmCallFailed = 1221;        // G144: the called program
 inline constexpr int kAlarmCallRefused = 1222;       // G144: the target refused the call
 inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not this channel's
 inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
+inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or T code
+inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
 
 class ChannelController {
  public:
@@ -234,6 +257,11 @@ class ChannelController {
   // call this channel made.
   void on_call(const SubCall& call) noexcept;
   void on_call_release(const CallRelease& release) noexcept;
+  // The PLC's answer to an aux request of this channel (applied from the cycle after it was
+  // sent, as every event).
+  void on_aux_answer(const AuxAnswer& answer) noexcept;
+  // The PLC node is gone: a request waiting for it, and every later one, is refused.
+  void plc_lost() noexcept;
 
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
@@ -406,7 +434,25 @@ class ChannelController {
     std::uint64_t sent_cycle = 0;
   };
   std::optional<ExchangeBlock> exchange_block_;
+
+  // An M or T code for the PLC (or a spindle start it must allow): the block until its answer.
+  struct AuxBlock {
+    HeldBlock block;
+    AuxRequestOut request;
+    bool sent = false;
+    bool spindle = false;  // a spindle start: `command` goes to the planner once allowed
+    interp::Command command;
+  };
+  std::optional<AuxBlock> aux_block_;
+  std::optional<AuxAnswer> aux_answer_;
+  std::uint64_t aux_requests_ = 0;
+  bool plc_lost_ = false;
+  void run_aux() noexcept;
+  // Hands a command to the planner and the block queue; false (and a source alarm) when the
+  // planner refuses it.
+  bool queue_command(const interp::Command& c) noexcept;
   std::array<SlotUse, kMaxChannelAxes> slot_use_{};
+  std::array<bool, kMaxChannelAxes> unasked_released_{};  // a grant it did not wait for, given back
   static constexpr std::size_t kMaxViews = kMaxChannelAxes + 8;  // axes, then spindles
   std::array<AxisFeedbackView, kMaxViews> views_{};
   std::span<const AxisFeedbackView> received_;  // this cycle's feedback as it came

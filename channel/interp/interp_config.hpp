@@ -83,6 +83,7 @@ struct InterpreterConfig {
   int channel = 1;
   int spindles = 0;       // spindles the channel drives (S1 first); their commands run, not alarm
   int channel_count = 0;  // channels of the machine (G04.1 Q must name them); 0: not checked
+  bool plc = false;       // a PLC node runs M codes and T codes (else they are not executable)
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
   DecimalPoint decimal_point = DecimalPoint::calculator;
   double least_increment = 0.001;                   // mm (param 0013)

@@ -143,6 +143,9 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
   if (c.op == Op::subcall_release || c.op == Op::axis_restore) {
     return true;
   }
+  if (config.plc && (c.op == Op::aux || c.op == Op::tool)) {
+    return true;  // the PLC node answers them (an unknown M code is its alarm)
+  }
   if (c.op == Op::axis_release || c.op == Op::axis_acquire) {
     // The exchange number names a physical axis: the slot's axis must have one (param 5660).
     for (const AxisConfig& a : config.axes) {

@@ -8,6 +8,7 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.channel = channel.id;
   c.spindles = static_cast<int>(channel.spindles.size());
   c.channel_count = static_cast<int>(machine.channels.size());
+  c.plc = machine.plc.present;
   c.program_dir = machine.program_dir;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {

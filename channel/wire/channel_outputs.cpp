@@ -102,6 +102,15 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
                  channel_.name.c_str(), one ? "\"" : "", one ? axes_[q.slot]->name.c_str() : "null",
                  one ? "\"" : "", to_string(q.kind), q.force ? "true" : "false");
   }
+  if (out.aux_due) {
+    CoordinationEvent e = event(cycle, COORD_AUX_REQUEST);
+    e.aux_id(out.aux.id);
+    e.aux_kind(out.aux.kind == AuxKind::t_code ? AUX_T : AUX_M);
+    e.aux_code(out.aux.code);
+    const bool start = out.aux.kind == AuxKind::m_code && (out.aux.code == 3 || out.aux.code == 4);
+    e.aux_spindle(start && !spindles_.empty() ? static_cast<std::uint32_t>(spindles_[0]->id) : 0);
+    events_.write(e);
+  }
   // The setpoints after the events they announce: an axis node applies a G141 from the cycle
   // after it was sent, once it holds every event the setpoint announces.
   for (std::size_t i = 0; i < axes_.size(); ++i) {

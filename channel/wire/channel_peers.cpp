@@ -182,7 +182,8 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
       }
       break;
     case COORD_AXIS_REQUEST:
-      break;  // for the axis nodes: a channel learns the owner from the axis's feedback
+    case COORD_AUX_REQUEST:
+      break;  // for the axis nodes and the PLC: their answers come on their own topics
   }
 }
 

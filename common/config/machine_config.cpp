@@ -393,12 +393,154 @@ void check_unique(std::map<std::string, std::size_t>& seen, const std::string& n
   }
 }
 
+// `name`, `name=1` (on) or `name=0` (off), of a signal of the given kind.
+PlcCondition read_condition(const YamlValue& value, const PlcConfig& plc, bool output) {
+  std::string text = value.string();
+  bool on = true;
+  if (const auto eq = text.find('='); eq != std::string::npos) {
+    const std::string state = text.substr(eq + 1);
+    if (state != "0" && state != "1") {
+      value.fail("write a signal as NAME, NAME=1 or NAME=0, got '" + text + "'");
+    }
+    on = state == "1";
+    text.resize(eq);
+  }
+  const PlcSignal* s = plc.find_signal(text);
+  if (s == nullptr) {
+    value.fail("unknown signal " + text + " (plc.signals)");
+  }
+  if (s->output != output) {
+    value.fail("signal " + text + " is an " + (s->output ? "output" : "input") + "; " +
+               (output ? "only outputs are set" : "only inputs are waited for or required"));
+  }
+  return PlcCondition{s->index, on};
+}
+
+std::vector<PlcCondition> read_conditions(const YamlMap& map, std::string_view key,
+                                          const PlcConfig& plc, bool output) {
+  std::vector<PlcCondition> out;
+  if (auto list = map.optional(key)) {
+    for (const YamlValue& v : list->list()) {
+      out.push_back(read_condition(v, plc, output));
+    }
+  }
+  return out;
+}
+
+int spindle_id(const YamlValue& value, const MachineConfig& config) {
+  const std::string name = read_name(value);
+  const AxisConfig* a = config.find_axis(name);
+  if (a == nullptr || a->type != AxisType::spindle) {
+    value.fail(name + " is not a spindle of this machine");
+  }
+  return a->id;
+}
+
+void parse_plc(const YamlValue& value, MachineConfig& config) {
+  const YamlMap map = value.map({"signals", "m_codes", "spindle_start", "tool_change_ms"});
+  PlcConfig& plc = config.plc;
+  plc.present = true;
+  if (auto signals = map.optional("signals")) {
+    const std::vector<YamlValue> list = signals->list();
+    if (list.size() > kMaxPlcSignals) {
+      signals->fail("at most " + std::to_string(kMaxPlcSignals) + " signals");
+    }
+    for (const YamlValue& v : list) {
+      const YamlMap s = v.map({"name", "type", "follows", "invert", "delay_ms", "initial"});
+      PlcSignal signal;
+      signal.name = read_name(s.required("name"));
+      const YamlValue type = s.required("type");
+      const std::string t = type.string();
+      if (t != "input" && t != "output") {
+        type.fail("type must be input or output, got '" + t + "'");
+      }
+      signal.output = t == "output";
+      if (plc.find_signal(signal.name) != nullptr) {
+        v.fail("signal " + signal.name + " is defined twice");
+      }
+      if (auto f = s.optional("follows")) {
+        if (signal.output) {
+          f->fail("an output does not follow anything: the PLC sets it");
+        }
+        signal.follows = read_name(*f);
+        const PlcSignal* target = plc.find_signal(signal.follows);
+        if (target == nullptr || !target->output) {
+          f->fail(signal.follows + " is not an output defined before this signal");
+        }
+        signal.follows_index = target->index;
+      }
+      if (auto invert = s.optional("invert")) {
+        signal.invert = invert->boolean();
+      }
+      read_optional_int(s, "delay_ms", 0, 600000, signal.delay_ms);
+      if (auto initial = s.optional("initial")) {
+        signal.initial = initial->boolean();
+      }
+      signal.index = static_cast<int>(plc.signals.size());
+      plc.signals.push_back(signal);
+    }
+  }
+  if (auto codes = map.optional("m_codes")) {
+    for (const YamlValue& v : codes->list()) {
+      const YamlMap m =
+          v.map({"code", "channels", "set", "wait", "requires", "spindle_stopped", "timeout_ms"});
+      PlcMCode code;
+      code.code = read_int(m.required("code"), 0, 9999);
+      // The channel runs these itself (program flow, the spindle words, subprograms).
+      for (int own : {0, 1, 2, 3, 4, 5, 30, 98, 99}) {
+        if (code.code == own) {
+          m.required("code").fail("M" + std::to_string(own) +
+                                  " is run by the channel, not by the PLC");
+        }
+      }
+      if (auto channels = m.optional("channels")) {
+        for (const YamlValue& c : channels->list()) {
+          const ChannelConfig* ch = config.find_channel(read_name(c));
+          if (ch == nullptr) {
+            c.fail("unknown channel " + c.string());
+          }
+          code.channels.push_back(ch->id);
+        }
+      }
+      for (const PlcMCode& other : plc.m_codes) {
+        bool overlap = other.code == code.code && (other.channels.empty() || code.channels.empty());
+        for (int a : other.channels) {
+          for (int b : code.channels) {
+            overlap = overlap || (other.code == code.code && a == b);
+          }
+        }
+        if (overlap) {
+          v.fail("M" + std::to_string(code.code) + " is defined twice for a channel");
+        }
+      }
+      code.set = read_conditions(m, "set", plc, true);
+      code.wait = read_conditions(m, "wait", plc, false);
+      code.requires_ = read_conditions(m, "requires", plc, false);
+      if (auto s = m.optional("spindle_stopped")) {
+        code.spindle_stopped = spindle_id(*s, config);
+      }
+      read_optional_int(m, "timeout_ms", 1, 600000, code.timeout_ms);
+      plc.m_codes.push_back(code);
+    }
+  }
+  if (auto starts = map.optional("spindle_start")) {
+    for (const YamlValue& v : starts->list()) {
+      const YamlMap s = v.map({"spindle", "requires"});
+      PlcSpindleStart start;
+      start.spindle = spindle_id(s.required("spindle"), config);
+      start.requires_ = read_conditions(s, "requires", plc, false);
+      plc.spindle_start.push_back(start);
+    }
+  }
+  read_optional_int(map, "tool_change_ms", 0, 600000, plc.tool_change_ms);
+}
+
 MachineConfig parse_document(const YAML::Node& root) {
   const YamlValue top(root, "");
   if (!root.IsMap()) {
     top.fail("a machine file is a map with the keys machine, buses, channels and axes");
   }
-  const YamlMap doc = top.map({"machine", "buses", "channels", "axes"});
+  const YamlMap doc = top.map({"machine", "buses", "channels", "axes", "plc"});
   MachineConfig config;
   parse_machine_section(doc.required("machine"), config);
 
@@ -605,6 +747,9 @@ MachineConfig parse_document(const YAML::Node& root) {
              << " % of " << bus.bitrate << " bit/s; the limit is " << kMaxBusLoadPercent << " %";
       buses[b].fail(reason.str());
     }
+  }
+  if (auto plc = doc.optional("plc")) {
+    parse_plc(*plc, config);
   }
   return config;
 }

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include "common/config/plc_config.hpp"
+
 #include <string>
 #include <vector>
 
@@ -126,6 +128,7 @@ struct MachineConfig {
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;
+  PlcConfig plc;  // plc.present: the machine has a PLC node
 
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;

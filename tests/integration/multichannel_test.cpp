@@ -596,8 +596,13 @@ TEST(MultiChannel, TwinTurretLoaderAndTurretsInTheirOrder) {
   const Trace& t = r.trace;
   EXPECT_EQ(events(t, "block", "CH3").at(0)["prog"], "O3100.nc");
   const std::uint64_t loaded = block_at(t, "CH3", 5);  // G145: the blank is in
-  EXPECT_GT(block_at(t, "CH1", 4), loaded);            // M03 of the main spindle after it
-  EXPECT_GT(block_at(t, "CH2", 4), arrival(t, "CH1", 1));
+  // The PLC opened the main chuck before the call and clamped it after the blank was in.
+  EXPECT_LT(cycle_of(t, "aux_done", "PLC", {{"ch", "CH1"}, {"code", "M11"}}),
+            cycle_of(t, "subcall", "CH1"));
+  const std::uint64_t clamped = cycle_of(t, "aux_done", "PLC", {{"ch", "CH1"}, {"code", "M10"}});
+  EXPECT_GT(clamped, loaded);
+  EXPECT_GT(block_at(t, "CH1", 7), clamped);  // M03 of the main spindle after it
+  EXPECT_GT(block_at(t, "CH2", 5), arrival(t, "CH1", 1));
   EXPECT_EQ(events(t, "end", "CH3").at(0)["code"], 99);
   EXPECT_EQ(r.trace.back()["channels"]["CH1"]["end"], 30);
   EXPECT_EQ(r.trace.back()["channels"]["CH2"]["end"], 30);
@@ -679,9 +684,9 @@ TEST(MultiChannel, AxisExchangeAsTheSpecExample) {
   const std::uint64_t released = std::next(own.begin())->first;
   const std::uint64_t to_ch2 = std::next(own.begin(), 2)->first;
   const std::uint64_t back = std::next(own.begin(), 3)->first;
-  EXPECT_GE(released, block_at(t, "CH1", 8));  // G140 A14
-  EXPECT_GT(to_ch2, block_at(t, "CH2", 6));    // G141 A14, after the release
-  EXPECT_LE(to_ch2, block_at(t, "CH2", 7));
+  EXPECT_GE(released, block_at(t, "CH1", 9));  // G140 A14
+  EXPECT_GT(to_ch2, block_at(t, "CH2", 7));    // G141 A14, after the release
+  EXPECT_LE(to_ch2, block_at(t, "CH2", 8));
   // A turns under channel 1 up to its release (360), stands while released, turns under
   // channel 2 (120) and comes back to channel 1; channel 2's virtual A-90 moved nothing.
   const auto under_ch1 = node_positions(t, "A1", 0, released);
@@ -694,7 +699,7 @@ TEST(MultiChannel, AxisExchangeAsTheSpecExample) {
   const auto all = node_positions(t, "A1", 0, ~std::uint64_t{0});
   EXPECT_GE(*std::min_element(all.begin(), all.end()), -1e-6);
   // The machine coordinate travels with the axis: 20 + 10 in channel 2, 30 + 15 in channel 1.
-  EXPECT_NEAR(end_point(t, "CH2", 7, "A1"), 30.0, 1e-6);
+  EXPECT_NEAR(end_point(t, "CH2", 8, "A1"), 30.0, 1e-6);
   EXPECT_NEAR(end_points(t, "CH1").at("A1"), 45.0, 1e-6);
   EXPECT_EQ(t.back()["channels"]["CH1"]["end"], 30);
   EXPECT_EQ(t.back()["channels"]["CH2"]["end"], 30);
@@ -828,14 +833,32 @@ TEST(MultiChannel, AChannelKilledWhileItOwnsAnExchangedAxisStopsIt) {
 // was its owner's, the channels' own views of holding A never overlap, and the half degrees
 // add up, so every hand-over carried A's machine position.
 TEST(MultiChannel, AThousandRacesForOneAxisNeverHaveTwoOwners) {
+  // A small machine for speed (eight processes): three one-axis channels, and A1 of channel 1
+  // that the two others may take; on this test's private bus.
   TestMachine machine("twin_turret.yaml", 71);
   {
     std::ifstream in(machine.path());
     std::stringstream text;
     text << in.rdbuf();
-    std::ofstream(machine.path()) << std::regex_replace(
-        text.str(), std::regex(R"((  - name: CH3\n    axes: \[X3, Z3\]\n))"),
-        "$1    exchange_axes: [A1]\n");
+    const std::string original = text.str();
+    std::smatch bus;
+    ASSERT_TRUE(std::regex_search(original, bus, std::regex(R"(udp:[0-9.]+:[0-9]+)")));
+    std::ofstream(machine.path())
+        << "machine: {name: race, cycle_us: 2000, domain: 71}\n"
+           "buses: [{name: can0, uri: \""
+        << bus.str()
+        << "\", sync_producer: X1}]\n"
+           "channels:\n"
+           "  - {name: CH1, axes: [X1, A1]}\n"
+           "  - {name: CH2, axes: [X2], exchange_axes: [A1]}\n"
+           "  - {name: CH3, axes: [X3], exchange_axes: [A1]}\n"
+           "axes:\n"
+           "  - {name: X1, address: X, bus: can0, node_id: 1}\n"
+           "  - {name: A1, address: A, type: rotary, exchange: 14, bus: can0, node_id: 2,\n"
+           "     counts_per_unit: 1000, rapid_rate: 7200, max_feed: 7200, acceleration: 3600,\n"
+           "     in_position: 0.001, following_error_limit: 5, drive: {units_per_rev: 360}}\n"
+           "  - {name: X2, address: X, bus: can0, node_id: 3}\n"
+           "  - {name: X3, address: X, bus: can0, node_id: 4}\n";
   }
   const std::map<std::string, int> rounds{{"CH1", 334}, {"CH2", 333}, {"CH3", 333}};
   std::map<std::string, std::string> programs;
@@ -846,7 +869,7 @@ TEST(MultiChannel, AThousandRacesForOneAxisNeverHaveTwoOwners) {
                                      std::to_string(n) +
                                      "] DO1\n"
                                      "G141 A14\n"
-                                     "G01 A[#5003+0.5] F7200\n"
+                                     "G01 A[#5002+0.5] F7200\n"
                                      "G140 A14\n"
                                      "#1=#1+1\n"
                                      "END1\n"
@@ -883,4 +906,73 @@ TEST(MultiChannel, AThousandRacesForOneAxisNeverHaveTwoOwners) {
   EXPECT_GE(grants, 2 * 333);  // hand-overs between different channels (a channel may win twice)
   const auto end = node_positions(t, "A1", 0, ~std::uint64_t{0});
   EXPECT_NEAR(end.back(), 500.0, 1e-6);
+}
+
+namespace {
+
+// The twin-turret lathe with an M50 that waits for a door sensor nobody closes.
+TestMachine plc_machine(int domain) {
+  TestMachine machine("twin_turret.yaml", domain);
+  std::ifstream in(machine.path());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml =
+      std::regex_replace(text.str(), std::regex(R"(\nplc:\n  signals:\n)"),
+                         "\nplc:\n  signals:\n    - {name: door_closed, type: input}\n");
+  yaml = std::regex_replace(
+      yaml, std::regex(R"(\n  m_codes:\n)"),
+      "\n  m_codes:\n    - {code: 50, channels: [CH1], wait: [door_closed], timeout_ms: 200}\n");
+  std::ofstream(machine.path()) << yaml;
+  return machine;
+}
+
+// The run stopped with exactly one alarm in `ch`: its number, line and a part of its text.
+void expect_single_alarm(const MultiRun& r, const std::string& ch, int number, int line,
+                         const std::string& text_part) {
+  const auto alarms = events(r.trace, "alarm", ch);
+  ASSERT_EQ(alarms.size(), 1U) << r.output;
+  EXPECT_EQ(alarms[0]["number"], number);
+  EXPECT_EQ(alarms[0]["line"], line);
+  EXPECT_NE(alarms[0]["text"].get<std::string>().find(text_part), std::string::npos)
+      << alarms[0].dump();
+}
+
+}  // namespace
+
+// mcnc-plcnode (issue 7): M codes wait for their FIN, interlocks refuse before anything
+// changes, a FIN that never comes is an alarm; each refusal stops the channel at its block.
+TEST(MultiChannel, ThePlcRefusesAChuckOpenWhileTheSpindleTurns) {
+  TestMachine machine = plc_machine(72);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc", "M03 S500\nG04 X0.5\nM11\nM30\n")}});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  expect_single_alarm(r, "CH1", 1240, 3, "turns");
+  EXPECT_EQ(events(t, "aux_done", "PLC").back()["outcome"], "refused");
+}
+
+TEST(MultiChannel, ThePlcKeepsTheSpindleStillWithTheChuckOpen) {
+  TestMachine machine = plc_machine(73);
+  const MultiRun r =
+      run_channels(machine, {{"CH1", write_program(machine, "ch1.nc", "M11\nM03 S500\nM30\n")}});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  expect_single_alarm(r, "CH1", 1240, 2, "chuck1_closed=1");
+  for (const auto& s : events(t, "spindle", "CH1")) {
+    EXPECT_EQ(s["rpm"], 0.0);  // never commanded to turn
+  }
+}
+
+TEST(MultiChannel, AnMCodeWithoutFinInTimeIsAnAlarm) {
+  TestMachine machine = plc_machine(74);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc", "M08\nM50\nG00 X10\nM30\n")}});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  expect_single_alarm(r, "CH1", 1241, 2, "door_closed=1");
+  // Taken in the cycle after it was sent, then 200 ms (100 cycles of 2 ms) without FIN.
+  const std::uint64_t started = cycle_of(t, "aux", "PLC", {{"code", "M50"}});
+  const std::uint64_t ended = cycle_of(t, "aux_done", "PLC", {{"code", "M50"}});
+  EXPECT_EQ(ended - started, 100U);
+  EXPECT_EQ(lines_of(t, "CH1"), (std::vector<int>{1, 2}));  // X never moved
 }

@@ -152,6 +152,34 @@ TEST(AxisOwnership, AWithdrawEndsOnlyThatChannelsWait) {
   EXPECT_EQ(a.decide(true).owner, 3U);
 }
 
+TEST(AxisOwnership, TheHomeChannelTakesItsAxisBackFromAnyone) {
+  AxisOwnership a(1);
+  a.request(req(Kind::release, 1));
+  a.decide(true);
+  a.request(req(Kind::acquire, 2));
+  a.decide(true);
+  a.request(req(Kind::release, 2));  // the borrower lets it go to nobody
+  a.decide(true);
+  EXPECT_EQ(a.released_by(), 2U);
+  a.request(req(Kind::restore, 1));
+  EXPECT_EQ(a.decide(true).owner, 1U);
+  a.request(req(Kind::acquire, 3, true));  // taken by force ...
+  a.decide(true);
+  a.request(req(Kind::restore, 1));  // ... and back, once the axis stands
+  EXPECT_FALSE(a.decide(false).changed);
+  EXPECT_EQ(a.decide(true).owner, 1U);
+}
+
+TEST(AxisOwnership, AWithdrawGoesBeforeTheWaitingLineIsServed) {
+  AxisOwnership a(1);
+  a.request(req(Kind::acquire, 2, true));
+  a.decide(false);  // a forced acquire waits while the axis moves
+  EXPECT_TRUE(a.waiting(2));
+  a.request(req(Kind::withdraw, 2));  // channel 2 was reset; the axis stands now
+  EXPECT_FALSE(a.decide(true).changed);
+  EXPECT_EQ(a.owner(), 1U);
+}
+
 // 1 000 races (issue 7): channels acquire, hold for a while and release, some with force; what
 // every channel believes (from its answers and the changes) never has two owners, and every
 // acquire is answered in the end.

@@ -1,5 +1,6 @@
 O1000 (CT-G140-01 on the twin-turret lathe, channel 1: spec dafeng 3.3, L5653-5699)
 CH1
+T0001
 G142 (restore: nothing exchanged yet)
 G00 X0 Z100 A0
 G00 Z5

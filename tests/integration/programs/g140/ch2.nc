@@ -1,5 +1,6 @@
 O1001 (CT-G140-01 on the twin-turret lathe, channel 2)
 CH2
+T0001
 G142
 G00 X0 Z100 A-90 (A is still virtual: nothing physical moves)
 G04.1 P1 Q12

@@ -1,0 +1,211 @@
+#include "plcnode/logic/machine_plc.hpp"
+
+#include "common/cycle/decision_order.hpp"
+
+#include <cstdio>
+
+namespace mcnc::plc {
+
+const char* to_string(AuxOutcome outcome) noexcept {
+  switch (outcome) {
+    case AuxOutcome::done:
+      return "done";
+    case AuxOutcome::refused:
+      return "refused";
+    case AuxOutcome::timed_out:
+      return "timed_out";
+  }
+  return "done";
+}
+
+namespace {
+
+std::uint64_t cycles_of(int ms, int cycle_us) noexcept {
+  const auto us = static_cast<std::uint64_t>(ms) * 1000U;
+  const auto per = static_cast<std::uint64_t>(cycle_us);
+  return (us + per - 1) / per;  // at least the time asked for
+}
+
+}  // namespace
+
+MachinePlc::MachinePlc(const config::PlcConfig& config, int cycle_us) noexcept
+    : config_(config), cycle_us_(cycle_us) {
+  for (const config::PlcSignal& s : config_.signals) {
+    if (s.initial) {
+      state_ |= std::uint64_t{1} << s.index;
+    }
+  }
+  // A following input starts where its output puts it: the machine was switched on at rest.
+  for (const config::PlcSignal& s : config_.signals) {
+    if (s.follows_index >= 0) {
+      const bool on = signal(s.follows_index) != s.invert;
+      state_ =
+          on ? state_ | (std::uint64_t{1} << s.index) : state_ & ~(std::uint64_t{1} << s.index);
+    }
+  }
+}
+
+bool MachinePlc::request(const AuxRequest& request) noexcept {
+  return cycle::insert_in_decision_order(queue_, queue_count_, request);
+}
+
+bool MachinePlc::holds(std::span<const config::PlcCondition> conditions) const noexcept {
+  for (const config::PlcCondition& c : conditions) {
+    if (signal(c.signal) != c.on) {
+      return false;
+    }
+  }
+  return true;
+}
+
+const char* MachinePlc::unmet(std::span<const config::PlcCondition> conditions,
+                              std::array<char, 64>& text) const noexcept {
+  for (const config::PlcCondition& c : conditions) {
+    if (signal(c.signal) != c.on) {
+      std::snprintf(text.data(), text.size(), "%s=%d",
+                    config_.signals[static_cast<std::size_t>(c.signal)].name.c_str(), c.on ? 1 : 0);
+      return text.data();
+    }
+  }
+  return nullptr;
+}
+
+void MachinePlc::answer(const AuxRequest& r, AuxOutcome outcome, const char* reason) noexcept {
+  if (out_.answer_count == out_.answers.size()) {
+    return;  // more than a cycle holds: cannot happen with one request per channel
+  }
+  AuxAnswer& a = out_.answers[out_.answer_count++];
+  a.request = r;
+  a.outcome = outcome;
+  std::snprintf(a.reason.data(), a.reason.size(), "%s", reason != nullptr ? reason : "");
+}
+
+void MachinePlc::update_inputs(std::uint64_t cycle) noexcept {
+  for (const config::PlcSignal& s : config_.signals) {
+    if (s.output || s.follows_index < 0) {
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(s.follows_index);
+    if (cycle >= changed_at_[k] + cycles_of(s.delay_ms, cycle_us_)) {
+      const bool on = signal(s.follows_index) != s.invert;
+      state_ =
+          on ? state_ | (std::uint64_t{1} << s.index) : state_ & ~(std::uint64_t{1} << s.index);
+    }
+  }
+}
+
+void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
+                       std::span<const SpindleView> spindles) noexcept {
+  char reason[96];
+  std::array<char, 64> cond{};
+  if (r.kind == AuxKind::t_code) {
+    if (active_count_ < active_.size()) {
+      active_[active_count_++] = Active{r, nullptr, cycle};
+    } else {
+      answer(r, AuxOutcome::refused, "the PLC runs too many requests");
+    }
+    return;
+  }
+  if (r.code == 3 || r.code == 4) {
+    // Spindle start (M03/M04): only the machine file's spindle start interlocks; the channel
+    // turns the spindle itself once they hold.
+    for (const config::PlcSpindleStart& s : config_.spindle_start) {
+      if (const char* missing = s.spindle == r.spindle ? unmet(s.requires_, cond) : nullptr) {
+        std::snprintf(reason, sizeof reason, "M%02d interlock: the spindle needs %s", r.code,
+                      missing);
+        answer(r, AuxOutcome::refused, reason);
+        return;
+      }
+    }
+    answer(r, AuxOutcome::done, nullptr);
+    return;
+  }
+  const config::PlcMCode* entry = config_.find_m_code(r.code, static_cast<int>(r.channel));
+  if (entry == nullptr) {
+    std::snprintf(reason, sizeof reason, "M%d is not in the PLC's M-code table for this channel",
+                  r.code);
+    answer(r, AuxOutcome::refused, reason);
+    return;
+  }
+  if (const char* missing = unmet(entry->requires_, cond)) {
+    std::snprintf(reason, sizeof reason, "M%d interlock: needs %s", r.code, missing);
+    answer(r, AuxOutcome::refused, reason);
+    return;
+  }
+  for (const SpindleView& s : spindles) {
+    if (entry->spindle_stopped != 0 && s.axis == entry->spindle_stopped && s.turning) {
+      std::snprintf(reason, sizeof reason, "M%d interlock: the spindle turns", r.code);
+      answer(r, AuxOutcome::refused, reason);
+      return;
+    }
+  }
+  for (const config::PlcCondition& c : entry->set) {
+    const std::uint64_t bit = std::uint64_t{1} << c.signal;
+    if (signal(c.signal) != c.on) {
+      state_ = c.on ? state_ | bit : state_ & ~bit;
+      changed_at_[static_cast<std::size_t>(c.signal)] = cycle;
+    }
+  }
+  if (active_count_ < active_.size()) {
+    active_[active_count_++] = Active{r, entry, cycle};
+  } else {
+    answer(r, AuxOutcome::refused, "the PLC runs too many requests");
+  }
+}
+
+const PlcOutput& MachinePlc::cycle(std::uint64_t cycle,
+                                   std::span<const SpindleView> spindles) noexcept {
+  out_.started_count = 0;
+  out_.answer_count = 0;
+  update_inputs(cycle);
+  // Requests sent before this cycle start now, in order.
+  std::size_t taken = 0;
+  while (taken < queue_count_ && queue_[taken].sent_cycle < cycle) {
+    const AuxRequest& r = queue_[taken++];
+    if (out_.started_count < out_.started.size()) {
+      out_.started[out_.started_count++] = r;
+    }
+    start(r, cycle, spindles);
+  }
+  for (std::size_t i = taken; i < queue_count_; ++i) {
+    queue_[i - taken] = queue_[i];
+  }
+  queue_count_ -= taken;
+  // Running requests end on FIN or time out.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < active_count_; ++i) {
+    const Active& a = active_[i];
+    bool ended = false;
+    if (a.entry == nullptr) {
+      ended = cycle >= a.started + cycles_of(config_.tool_change_ms, cycle_us_);
+      if (ended) {
+        answer(a.request, AuxOutcome::done, nullptr);
+      }
+    } else if (holds(a.entry->wait)) {
+      answer(a.request, AuxOutcome::done, nullptr);
+      ended = true;
+    } else if (cycle >= a.started + cycles_of(a.entry->timeout_ms, cycle_us_)) {
+      std::array<char, 64> cond{};
+      char reason[96];
+      std::snprintf(reason, sizeof reason, "M%d: no FIN within %d ms (waits for %s)",
+                    a.request.code, a.entry->timeout_ms, unmet(a.entry->wait, cond));
+      answer(a.request, AuxOutcome::timed_out, reason);
+      ended = true;
+    }
+    if (!ended) {
+      active_[kept++] = a;
+    }
+  }
+  active_count_ = kept;
+  out_.outputs = 0;
+  out_.inputs = 0;
+  for (const config::PlcSignal& s : config_.signals) {
+    if (signal(s.index)) {
+      (s.output ? out_.outputs : out_.inputs) |= std::uint64_t{1} << s.index;
+    }
+  }
+  out_.busy = active_count_ + queue_count_;
+  return out_;
+}
+
+}  // namespace mcnc::plc

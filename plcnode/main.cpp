@@ -119,17 +119,36 @@ int main(int argc, char** argv) {
           });
         });
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> spindle_feedback(spindles.size());
-    dds::Reader<AxisFeedback> feedback_reader(node.participant(),
-                                              [&](const AxisFeedback& fb, const dds::WriterId&) {
-                                                for (std::size_t k = 0; k < spindles.size(); ++k) {
-                                                  if (static_cast<int>(fb.axis()) == spindles[k]) {
-                                                    wake.update([&] {
-                                                      spindle_feedback[k].put(fb.cycle(), fb);
-                                                      gate.on_sample(channels + k, fb.cycle(), 0);
-                                                    });
-                                                  }
-                                                }
-                                              });
+    std::vector<dds::WriterId> spindle_writer(spindles.size());
+    std::vector<bool> spindle_writer_known(spindles.size(), false);
+    std::vector<bool> spindle_lost(spindles.size(), false);
+    dds::Reader<AxisFeedback> feedback_reader(
+        node.participant(),
+        [&](const AxisFeedback& fb, const dds::WriterId& writer) {
+          for (std::size_t k = 0; k < spindles.size(); ++k) {
+            if (static_cast<int>(fb.axis()) == spindles[k]) {
+              wake.update([&] {
+                spindle_feedback[k].put(fb.cycle(), fb);
+                spindle_writer[k] = writer;
+                spindle_writer_known[k] = true;
+                gate.on_sample(channels + k, fb.cycle(), 0);
+              });
+            }
+          }
+        },
+        [&](const dds::WriterId& writer, bool matched) {
+          if (matched) {
+            return;
+          }
+          wake.update([&] {
+            for (std::size_t k = 0; k < spindles.size(); ++k) {
+              if (spindle_writer_known[k] && spindle_writer[k] == writer) {
+                spindle_lost[k] = true;  // not known to stand: its interlocks hold
+                gate.set_expected(channels + k, false);
+              }
+            }
+          });
+        });
     dds::Writer<PlcStatus> status_writer_out(node.participant());
     dds::Writer<AuxAck> ack_writer(node.participant());
 
@@ -158,18 +177,18 @@ int main(int argc, char** argv) {
          ++cycle) {
       wake.update([&] {
         for (std::size_t i = 0; i < queued; ++i) {
-          if (!plc.request(queue[i])) {
-            ++dropped;
-          }
+          plc.request(queue[i]);
         }
         queued = 0;
         for (std::size_t k = 0; k < spindles.size(); ++k) {
           const AxisFeedback* fb = cycle > 0 ? spindle_feedback[k].at(cycle - 1) : nullptr;
-          if (fb == nullptr && !lockstep) {
+          if (fb == nullptr && (!lockstep || spindle_lost[k])) {
             fb = spindle_feedback[k].latest();
           }
-          // Turning: more than a tenth of a revolution per second either way.
-          views[k] = plc::SpindleView{spindles[k], fb != nullptr && std::abs(fb->vel()) > 36.0};
+          // Turning: more than a tenth of a revolution per second either way; without
+          // feedback (or with its node gone) not known to stand.
+          views[k] = plc::SpindleView{
+              spindles[k], fb == nullptr || spindle_lost[k] || std::abs(fb->vel()) > 36.0};
         }
       });
       const plc::PlcOutput& out = plc.cycle(cycle, views);

@@ -199,6 +199,7 @@ void ChannelController::forget_program_run() noexcept {
   exchange_block_.reset();
   aux_block_.reset();
   aux_answer_.reset();
+  spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
   queued_count_ = 0;
@@ -481,9 +482,17 @@ void ChannelController::fill() noexcept {
         exchange_block_ = b;
         return;
       }
+      // A spindle start or reversal asks the PLC; a speed change of a turning spindle does not.
       const bool spindle_start =
-          c->op == interp::Op::spindle && (c->spindle_direction == interp::SpindleDirection::cw ||
-                                           c->spindle_direction == interp::SpindleDirection::ccw);
+          c->op == interp::Op::spindle &&
+          ((c->spindle_direction == interp::SpindleDirection::cw && spindle_queued_ != 1) ||
+           (c->spindle_direction == interp::SpindleDirection::ccw && spindle_queued_ != -1));
+      if (c->op == interp::Op::spindle && c->channel == 0 && c->spindle <= 1) {
+        spindle_queued_ = c->spindle_direction == interp::SpindleDirection::cw     ? 1
+                          : c->spindle_direction == interp::SpindleDirection::ccw  ? -1
+                          : c->spindle_direction == interp::SpindleDirection::keep ? spindle_queued_
+                                                                                   : 0;
+      }
       if (setup_.plc && (c->op == interp::Op::aux || c->op == interp::Op::tool || spindle_start)) {
         // Sent when every block before it ended; the next block waits for the answer.
         AuxBlock b;

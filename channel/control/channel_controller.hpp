@@ -447,6 +447,7 @@ class ChannelController {
   std::optional<AuxAnswer> aux_answer_;
   std::uint64_t aux_requests_ = 0;
   bool plc_lost_ = false;
+  int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
   void run_aux() noexcept;
   // Hands a command to the planner and the block queue; false (and a source alarm) when the
   // planner refuses it.

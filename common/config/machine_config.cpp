@@ -487,11 +487,15 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
       PlcMCode code;
       code.code = read_int(m.required("code"), 0, 9999);
       // The channel runs these itself (program flow, the spindle words, subprograms).
-      for (int own : {0, 1, 2, 3, 4, 5, 30, 98, 99}) {
-        if (code.code == own) {
-          m.required("code").fail("M" + std::to_string(own) +
-                                  " is run by the channel, not by the PLC");
-        }
+      // The channel runs these itself (program flow, subprograms, the spindle words, also
+      // with a spindle prefix: M103, M205, M319): they never reach the PLC.
+      const int unit = code.code % 100;
+      const bool spindle_word = unit == 3 || unit == 4 || unit == 5 || unit == 19;
+      const bool flow = code.code == 0 || code.code == 1 || code.code == 2 || code.code == 30 ||
+                        code.code == 91 || code.code == 92 || code.code == 98 || code.code == 99;
+      if (flow || (spindle_word && code.code < 1000)) {
+        m.required("code").fail("M" + std::to_string(code.code) +
+                                " is run by the channel, not by the PLC");
       }
       if (auto channels = m.optional("channels")) {
         for (const YamlValue& c : channels->list()) {
@@ -540,7 +544,7 @@ MachineConfig parse_document(const YAML::Node& root) {
   if (!root.IsMap()) {
     top.fail("a machine file is a map with the keys machine, buses, channels and axes");
   }
-  const YamlMap doc = top.map({"machine", "buses", "channels", "axes", "plc"});
+  const YamlMap doc = top.map({"machine", "buses", "channels", "axes", "plc", "spindle_sync"});
   MachineConfig config;
   parse_machine_section(doc.required("machine"), config);
 
@@ -750,6 +754,30 @@ MachineConfig parse_document(const YAML::Node& root) {
   }
   if (auto plc = doc.optional("plc")) {
     parse_plc(*plc, config);
+  }
+  if (auto groups = doc.optional("spindle_sync")) {
+    for (const YamlValue& v : groups->list()) {
+      const YamlMap g = v.map({"group", "master", "slave"});
+      SpindleSyncGroup group;
+      group.group = read_int(g.required("group"), 1, 3);
+      group.master = spindle_id(g.required("master"), config);
+      group.slave = spindle_id(g.required("slave"), config);
+      if (group.master == group.slave) {
+        g.required("slave").fail("a spindle cannot follow itself");
+      }
+      for (const SpindleSyncGroup& other : config.spindle_sync) {
+        if (other.group == group.group) {
+          g.required("group").fail("group " + std::to_string(group.group) + " is defined twice");
+        }
+        if (other.slave == group.slave) {
+          g.required("slave").fail("the spindle is already the slave of group " +
+                                   std::to_string(other.group));
+        }
+      }
+      const AxisConfig& master = config.axes[static_cast<std::size_t>(group.master - 1)];
+      group.channel = config.find_channel(master.channel)->id;
+      config.spindle_sync.push_back(group);
+    }
   }
   return config;
 }

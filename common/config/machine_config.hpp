@@ -114,6 +114,15 @@ struct ChannelConfig {
   [[nodiscard]] std::vector<std::string> program_axes() const;
 };
 
+// Param 1420: a G114.1 synchronisation group K, its master and slave spindles (axis ids). The
+// channel that commands it is the master's (its G114.1 K and G113).
+struct SpindleSyncGroup {
+  int group = 1;  // K, 1..3
+  int master = 0;
+  int slave = 0;
+  int channel = 0;  // the master's channel id
+};
+
 struct MachineConfig {
   std::string name;
   int cycle_us = 1000;
@@ -129,6 +138,7 @@ struct MachineConfig {
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;
   PlcConfig plc;  // plc.present: the machine has a PLC node
+  std::vector<SpindleSyncGroup> spindle_sync;
 
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;

@@ -45,8 +45,26 @@ MachinePlc::MachinePlc(const config::PlcConfig& config, int cycle_us) noexcept
   }
 }
 
-bool MachinePlc::request(const AuxRequest& request) noexcept {
-  return cycle::insert_in_decision_order(queue_, queue_count_, request);
+void MachinePlc::request(const AuxRequest& request) noexcept {
+  if (!cycle::insert_in_decision_order(queue_, queue_count_, request) &&
+      overflow_count_ < overflow_.size()) {
+    overflow_[overflow_count_++] = request;
+  }
+}
+
+bool MachinePlc::turning(int spindle, std::uint64_t cycle,
+                         std::span<const SpindleView> spindles) const noexcept {
+  for (const Start& s : starts_) {
+    if (s.spindle == spindle && cycle < s.cycle + kStartBridgeCycles) {
+      return true;
+    }
+  }
+  for (const SpindleView& v : spindles) {
+    if (v.axis == spindle) {
+      return v.turning;
+    }
+  }
+  return true;  // never heard of: not known to stand
 }
 
 bool MachinePlc::holds(std::span<const config::PlcCondition> conditions) const noexcept {
@@ -96,6 +114,14 @@ void MachinePlc::update_inputs(std::uint64_t cycle) noexcept {
 
 void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
                        std::span<const SpindleView> spindles) noexcept {
+  // A channel waits for one request at a time: one still running is one a reset abandoned.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < active_count_; ++i) {
+    if (active_[i].request.channel != r.channel) {
+      active_[kept++] = active_[i];
+    }
+  }
+  active_count_ = kept;
   char reason[96];
   std::array<char, 64> cond{};
   if (r.kind == AuxKind::t_code) {
@@ -117,6 +143,12 @@ void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
         return;
       }
     }
+    for (Start& s : starts_) {
+      if (s.spindle == r.spindle || s.spindle == 0) {
+        s = Start{r.spindle, cycle};
+        break;
+      }
+    }
     answer(r, AuxOutcome::done, nullptr);
     return;
   }
@@ -132,12 +164,10 @@ void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
     answer(r, AuxOutcome::refused, reason);
     return;
   }
-  for (const SpindleView& s : spindles) {
-    if (entry->spindle_stopped != 0 && s.axis == entry->spindle_stopped && s.turning) {
-      std::snprintf(reason, sizeof reason, "M%d interlock: the spindle turns", r.code);
-      answer(r, AuxOutcome::refused, reason);
-      return;
-    }
+  if (entry->spindle_stopped != 0 && turning(entry->spindle_stopped, cycle, spindles)) {
+    std::snprintf(reason, sizeof reason, "M%d interlock: the spindle turns", r.code);
+    answer(r, AuxOutcome::refused, reason);
+    return;
   }
   for (const config::PlcCondition& c : entry->set) {
     const std::uint64_t bit = std::uint64_t{1} << c.signal;
@@ -157,6 +187,10 @@ const PlcOutput& MachinePlc::cycle(std::uint64_t cycle,
                                    std::span<const SpindleView> spindles) noexcept {
   out_.started_count = 0;
   out_.answer_count = 0;
+  for (std::size_t i = 0; i < overflow_count_; ++i) {
+    answer(overflow_[i], AuxOutcome::refused, "the PLC's request queue is full");
+  }
+  overflow_count_ = 0;
   update_inputs(cycle);
   // Requests sent before this cycle start now, in order.
   std::size_t taken = 0;

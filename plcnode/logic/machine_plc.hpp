@@ -36,8 +36,8 @@ struct AuxAnswer {
 
 // A spindle as the PLC sees it (its feedback stamped N-1).
 struct SpindleView {
-  int axis = 0;  // axis id
-  bool turning = false;
+  int axis = 0;         // axis id
+  bool turning = true;  // unknown (no feedback): counts as turning
 };
 
 struct PlcOutput {
@@ -58,9 +58,12 @@ class MachinePlc {
 
   MachinePlc(const config::PlcConfig& config, int cycle_us) noexcept;
 
-  // A request to take at the first cycle after `sent_cycle`. False when the queue is full (the
-  // caller answers it refused).
-  bool request(const AuxRequest& request) noexcept;
+  // A request to take at the first cycle after `sent_cycle`. A full queue refuses it in that
+  // cycle's answers.
+  void request(const AuxRequest& request) noexcept;
+  // A spindle allowed to start counts as turning for this many cycles even before its feedback
+  // says so (the start reaches the drive and comes back as feedback a few cycles later).
+  static constexpr std::uint64_t kStartBridgeCycles = 16;
   // One cycle: the simulated inputs follow the outputs, queued requests start (or are refused),
   // running ones end on their FIN condition or time out.
   const PlcOutput& cycle(std::uint64_t cycle, std::span<const SpindleView> spindles) noexcept;
@@ -91,6 +94,15 @@ class MachinePlc {
   std::size_t queue_count_ = 0;
   std::array<Active, kMaxActive> active_{};
   std::size_t active_count_ = 0;
+  std::array<AuxRequest, kMaxQueued> overflow_{};  // refused for want of room, answered next
+  std::size_t overflow_count_ = 0;
+  struct Start {
+    int spindle = 0;
+    std::uint64_t cycle = 0;
+  };
+  std::array<Start, 16> starts_{};  // the last start allowed per spindle
+  [[nodiscard]] bool turning(int spindle, std::uint64_t cycle,
+                             std::span<const SpindleView> spindles) const noexcept;
   PlcOutput out_{};
 };
 

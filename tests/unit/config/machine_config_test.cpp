@@ -905,3 +905,40 @@ axes:
 
 }  // namespace
 }  // namespace mcnc::config
+
+namespace mcnc::config {
+namespace {
+
+// Param 1420 (spec dafeng §2.6.13): G114.1 groups name a master and a slave spindle.
+TEST(MachineConfig, SpindleSyncGroups) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+  - {name: b2, uri: "socketcan:can1", sync_producer: X2}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: S1, type: spindle, bus: b, node_id: 2}
+  - {name: X2, address: X, bus: b2, node_id: 1}
+  - {name: S2, type: spindle, bus: b2, node_id: 2}
+channels: [{name: C1, axes: [X1], spindles: [S1]}, {name: C2, axes: [X2], spindles: [S2]}]
+)";
+  const MachineConfig config =
+      parse_machine_yaml(base + "spindle_sync: [{group: 1, master: S1, slave: S2}]\n");
+  ASSERT_EQ(config.spindle_sync.size(), 1U);
+  EXPECT_EQ(config.spindle_sync[0].master, 2);
+  EXPECT_EQ(config.spindle_sync[0].slave, 4);
+  EXPECT_EQ(config.spindle_sync[0].channel, 1);  // commanded by the master's channel
+  EXPECT_EQ(rejection_path(base + "spindle_sync: [{group: 1, master: S1, slave: X2}]\n"),
+            "spindle_sync[0].slave");
+  EXPECT_EQ(rejection_path(base + "spindle_sync: [{group: 4, master: S1, slave: S2}]\n"),
+            "spindle_sync[0].group");
+  EXPECT_EQ(rejection_path(base + "spindle_sync: [{group: 1, master: S1, slave: S1}]\n"),
+            "spindle_sync[0].slave");
+  EXPECT_EQ(rejection_path(base + "spindle_sync: [{group: 1, master: S1, slave: S2}, "
+                                  "{group: 2, master: S1, slave: S2}]\n"),
+            "spindle_sync[1].slave");
+}
+
+}  // namespace
+}  // namespace mcnc::config

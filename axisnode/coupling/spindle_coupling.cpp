@@ -1,0 +1,57 @@
+#include "axisnode/coupling/spindle_coupling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcnc::coupling {
+
+double wrap_degrees(double angle) noexcept {
+  double a = std::fmod(angle, 360.0);
+  if (a <= -180.0) {
+    a += 360.0;
+  } else if (a > 180.0) {
+    a -= 360.0;
+  }
+  return a;
+}
+
+void SpindleCoupling::couple(const SpindleCouplingCommand& command, double slave_pos,
+                             double slave_vel) noexcept {
+  command_ = command;
+  active_ = true;
+  locked_ = false;
+  pos_ = slave_pos;
+  vel_ = slave_vel;
+}
+
+SlaveTarget SpindleCoupling::step(double master_pos, double master_vel) noexcept {
+  if (!active_) {
+    return SlaveTarget{pos_, vel_, false};
+  }
+  const double ratio = static_cast<double>(command_.q) / static_cast<double>(command_.p);
+  const double want_vel = master_vel * ratio;
+  // Where the slave should be at this cycle, modulo a revolution: the nearest such position.
+  const double target = master_pos * ratio + command_.r;
+  if (locked_) {
+    pos_ += wrap_degrees(target - pos_);  // follows exactly
+    vel_ = want_vel;
+    return SlaveTarget{pos_, vel_, true};
+  }
+  // Catch up: a critically damped pull on phase (where the slave would be at its present
+  // speed) and speed, within the acceleration limit.
+  const double dt = setup_.cycle_s;
+  const double omega = std::min(20.0, 0.25 / dt);  // rad/s: settles in a few tenths of a second
+  const double phase_error = wrap_degrees(target - (pos_ + vel_ * dt));
+  const double speed_error = want_vel - vel_;
+  const double acc = std::clamp(omega * omega * phase_error + 2.0 * omega * speed_error,
+                                -setup_.max_acceleration, setup_.max_acceleration);
+  vel_ += acc * dt;
+  pos_ += vel_ * dt;
+  const double after = wrap_degrees(target - pos_);
+  if (std::fabs(after) <= setup_.lock_phase && std::fabs(want_vel - vel_) <= setup_.lock_speed) {
+    locked_ = true;
+  }
+  return SlaveTarget{pos_, vel_, locked_};
+}
+
+}  // namespace mcnc::coupling

@@ -4,6 +4,7 @@
 // AxisNodeController and DriveLink.
 #include "axisnode/canopen/emcy_codes.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
+#include "axisnode/coupling/spindle_coupling.hpp"
 #include "axisnode/link/drive_link.hpp"
 #include "axisnode/ownership/axis_ownership.hpp"
 #include "common/clock/cycle_clock.hpp"
@@ -126,7 +127,29 @@ int main(int argc, char** argv) {
       bool lost = false;  // its writer left
     };
     std::vector<Candidate> from(candidates.size());
-    cycle::LockstepGate gate(candidates.size());
+    // G114.1: a slave spindle follows its master (param 1420) once the master's channel says so;
+    // in lockstep it runs cycle N with that channel's status N-1 (and its events) and the
+    // master's feedback N-1 too. The coupling is this node's state: reset does not end it.
+    const config::SpindleSyncGroup* sync_group = nullptr;
+    for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+      sync_group = g.slave == axis->id ? &g : sync_group;
+    }
+    const std::size_t sync_input = candidates.size();  // the master's channel's status
+    const std::size_t master_input = candidates.size() + 1;
+    cycle::LockstepGate gate(candidates.size() + (sync_group != nullptr ? 2 : 0));
+    struct PendingSync {
+      bool on = false;
+      coupling::SpindleCouplingCommand command;
+      std::uint64_t sent_cycle = 0;
+    };
+    std::array<PendingSync, 16> pending_sync{};
+    std::size_t pending_sync_count = 0;
+    cycle::CycleBuffer<AxisFeedback, 8> master_feedback;
+    dds::WriterId master_writer{};
+    dds::WriterId sync_channel_writer{};
+    bool master_writer_known = false;
+    bool sync_channel_writer_known = false;
+    bool master_lost = false;
     ownership::AxisOwnership ownership(home_id);
     // G140/G141/G142 requests as they arrive, applied from the cycle after they were sent.
     struct PendingRequest {
@@ -170,27 +193,87 @@ int main(int argc, char** argv) {
           }
         });
     std::optional<dds::Reader<CoordinationEvent>> request_reader;
-    if (exchangeable) {
-      request_reader.emplace(
-          node.participant(), [&](const CoordinationEvent& e, const dds::WriterId&) {
-            const int k = candidate_of(e.channel());
-            if (k < 0) {
-              return;
+    std::optional<dds::Reader<ChannelStatus>> sync_status_reader;
+    std::optional<dds::Reader<AxisFeedback>> master_reader;
+    if (sync_group != nullptr) {
+      const auto sync_channel = static_cast<std::uint32_t>(sync_group->channel);
+      sync_status_reader.emplace(
+          node.participant(),
+          [&, sync_channel](const ChannelStatus& s, const dds::WriterId& writer) {
+            if (s.channel() == sync_channel) {
+              wake.update([&] {
+                gate.on_sample(sync_input, s.cycle(), s.event_seq());
+                sync_channel_writer = writer;
+                sync_channel_writer_known = true;
+              });
             }
+          },
+          [&](const dds::WriterId& writer, bool matched) {
             wake.update([&] {
-              gate.on_event(static_cast<std::size_t>(k), e.seq());
-              if (e.kind() != COORD_AXIS_REQUEST || (e.axis() != axis_id && e.axis() != 0)) {
-                return;
+              if (!matched && sync_channel_writer_known && writer == sync_channel_writer) {
+                gate.set_expected(sync_input, false);  // the coupling stays as it is
               }
-              if (pending_count == kPending) {
-                ++pending_dropped;
-                return;
-              }
-              pending[(pending_head + pending_count++) % kPending] =
-                  PendingRequest{ownership::OwnershipRequest{to_core(e.axis_request()), e.channel(),
-                                                             e.force(), e.cycle()}};
             });
           });
+      master_reader.emplace(
+          node.participant(),
+          [&](const AxisFeedback& fb, const dds::WriterId& writer) {
+            if (static_cast<int>(fb.axis()) == sync_group->master) {
+              wake.update([&] {
+                master_feedback.put(fb.cycle(), fb);
+                gate.on_sample(master_input, fb.cycle(), 0);
+                master_writer = writer;
+                master_writer_known = true;
+              });
+            }
+          },
+          [&](const dds::WriterId& writer, bool matched) {
+            wake.update([&] {
+              if (!matched && master_writer_known && writer == master_writer) {
+                master_lost = true;
+                gate.set_expected(master_input, false);
+              }
+            });
+          });
+    }
+    if (exchangeable || sync_group != nullptr) {
+      request_reader.emplace(node.participant(), [&](const CoordinationEvent& e,
+                                                     const dds::WriterId&) {
+        const int k = candidate_of(e.channel());
+        const bool from_sync_channel =
+            sync_group != nullptr && static_cast<int>(e.channel()) == sync_group->channel;
+        if (k < 0 && !from_sync_channel) {
+          return;
+        }
+        wake.update([&] {
+          if (k >= 0 && exchangeable) {
+            gate.on_event(static_cast<std::size_t>(k), e.seq());
+          }
+          if (from_sync_channel) {
+            gate.on_event(sync_input, e.seq());
+            if (e.kind() == COORD_SPINDLE_SYNC &&
+                (e.sync_group() == sync_group->group || (!e.sync_on() && e.sync_group() == 0)) &&
+                pending_sync_count < pending_sync.size()) {
+              pending_sync[pending_sync_count++] = PendingSync{
+                  e.sync_on(),
+                  coupling::SpindleCouplingCommand{static_cast<int>(e.sync_p()),
+                                                   static_cast<int>(e.sync_q()), e.sync_r()},
+                  e.cycle()};
+            }
+          }
+          if (k < 0 || !exchangeable || e.kind() != COORD_AXIS_REQUEST ||
+              (e.axis() != axis_id && e.axis() != 0)) {
+            return;
+          }
+          if (pending_count == kPending) {
+            ++pending_dropped;
+            return;
+          }
+          pending[(pending_head + pending_count++) % kPending] =
+              PendingRequest{ownership::OwnershipRequest{to_core(e.axis_request()), e.channel(),
+                                                         e.force(), e.cycle()}};
+        });
+      });
     }
     dds::Writer<AxisFeedback> feedback_writer(node.participant());
 
@@ -235,6 +318,8 @@ int main(int argc, char** argv) {
     if (!loop.start(
             [&] {
               return setpoint_reader.matched_writers() >= channels &&
+                     (!sync_status_reader || sync_status_reader->matched_writers() >= channels) &&
+                     (!master_reader || master_reader->matched_writers() >= 1) &&
                      feedback_writer.matched_readers() >= channels &&
                      (!request_reader ||
                       request_reader->matched_writers() >= static_cast<int>(candidates.size()));
@@ -268,6 +353,12 @@ int main(int argc, char** argv) {
     setup.spindle = spindle;
     setup.homing = axis->has_homing;
     axisnode::AxisNodeController controller(setup);
+    coupling::SpindleCoupling spindle_coupling(
+        coupling::SpindleCouplingSetup{machine.cycle_s(), axis->acceleration, 0.05, 1.0});
+    const char* master_name =
+        sync_group != nullptr
+            ? machine.axes[static_cast<std::size_t>(sync_group->master - 1)].name.c_str()
+            : "";
     bool owner_loss_checked = false;
     std::uint64_t last_tpdo_count = 0;
     tracer.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis->name.c_str(),
@@ -368,6 +459,60 @@ int main(int argc, char** argv) {
         in.setpoint_valid = sp.valid() && !change.changed && owner_now != 0;
         in.setpoint_velocity = sp.mode() == SP_VELOCITY;
       }
+      // G114.1: while coupled, the slave follows its master whatever its owner sends.
+      if (sync_group != nullptr) {
+        std::array<PendingSync, 16> now{};
+        std::size_t now_count = 0;
+        AxisFeedback master;
+        bool have_master = false;
+        wake.update([&] {
+          std::size_t kept = 0;
+          for (std::size_t i = 0; i < pending_sync_count; ++i) {
+            if (pending_sync[i].sent_cycle < cycle) {
+              now[now_count++] = pending_sync[i];
+            } else {
+              pending_sync[kept++] = pending_sync[i];
+            }
+          }
+          pending_sync_count = kept;
+          const AxisFeedback* m = cycle > 0 ? master_feedback.at(cycle - 1) : nullptr;
+          if (m == nullptr && !lockstep) {
+            m = master_feedback.latest();
+          }
+          if (m != nullptr && !master_lost) {
+            master = *m;
+            have_master = true;
+          }
+        });
+        for (std::size_t i = 0; i < now_count; ++i) {
+          if (now[i].on) {
+            spindle_coupling.couple(now[i].command, controller.output().act,
+                                    controller.output().vel);
+            tracer.emit(cycle, "couple",
+                        "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,"
+                        "\"q\":%d,\"r\":%.3f",
+                        master_name, axis->name.c_str(), now[i].command.p, now[i].command.q,
+                        now[i].command.r);
+          } else if (spindle_coupling.active()) {
+            spindle_coupling.decouple();
+            tracer.emit(cycle, "decouple",
+                        "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\"", master_name,
+                        axis->name.c_str());
+          }
+        }
+        if (spindle_coupling.active()) {
+          in.have_setpoint = true;
+          in.setpoint_valid = have_master;  // without its master it holds where it is
+          in.setpoint_velocity = false;
+          if (have_master) {
+            // The master's position of this cycle, from its feedback of the last one.
+            const coupling::SlaveTarget t = spindle_coupling.step(
+                master.act() + master.vel() * machine.cycle_s(), master.vel());
+            in.setpoint_pos = t.pos;
+            in.setpoint_vel = t.vel;
+          }
+        }
+      }
       if (change.changed) {
         if (change.owner == 0) {
           tracer.emit(cycle, "owner", "\"axis\":\"%s\",\"owner\":null,\"previous\":\"%s\"",
@@ -424,6 +569,8 @@ int main(int argc, char** argv) {
       fb.axis(axis_id);
       fb.owner(owner_now);
       fb.released_by(ownership.released_by());
+      fb.coupled_to(spindle_coupling.active() ? static_cast<std::uint32_t>(sync_group->master) : 0);
+      fb.coupling_locked(spindle_coupling.locked());
       fb.cycle(cycle);
       fb.cmd(out.cmd);
       fb.act(out.act);

@@ -77,6 +77,21 @@ int main(int argc, char** argv) {
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
   setup.plc = machine.plc.present;
+  // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
+  // feedback follows the channel's spindles'; G114.1 ends when they are in phase.
+  std::vector<const config::AxisConfig*> sync_slaves;
+  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+    setup.spindle_may_follow =
+        setup.spindle_may_follow ||
+        (!ch->spindles.empty() && machine.find_axis(ch->spindles.front())->id == g.slave);
+  }
+  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+    if (g.channel == ch->id) {
+      setup.spindle_groups.push_back(channel::SpindleGroupSetup{
+          g.group, axes.size() + ch->spindles.size() + sync_slaves.size()});
+      sync_slaves.push_back(&machine.axes[static_cast<std::size_t>(g.slave - 1)]);
+    }
+  }
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
   // #500-#999 and #20000-#20999 are the machine's: this channel's copy, kept equal to the
@@ -131,6 +146,7 @@ int main(int argc, char** argv) {
     }
     std::vector<const config::AxisConfig*> fed = axes;
     fed.insert(fed.end(), spindles.begin(), spindles.end());
+    fed.insert(fed.end(), sync_slaves.begin(), sync_slaves.end());
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
@@ -260,9 +276,9 @@ int main(int argc, char** argv) {
             fb = feedback[i].latest();
           }
           if (fb != nullptr) {
-            views[i] =
-                channel::AxisFeedbackView{fb->cmd(), fb->act(),   fb->enabled(),    fb->alarm(),
-                                          true,      fb->owner(), fb->released_by()};
+            views[i] = channel::AxisFeedbackView{
+                fb->cmd(),   fb->act(),         fb->enabled(),    fb->alarm(),          true,
+                fb->owner(), fb->released_by(), fb->coupled_to(), fb->coupling_locked()};
           }
           if (axis_lost[i] && !reported_lost[i]) {
             reported_lost[i] = true;

@@ -57,11 +57,22 @@ int main(int argc, char** argv) {
     // Lockstep inputs: every channel's status N-1 with the events it announces (the requests),
     // and the feedback N-1 of the spindles an interlock looks at.
     const std::size_t channels = machine.channels.size();
+    // The spindles an interlock looks at, and the G114.1 partners of those (a pair in phase
+    // may open a chuck while it turns).
     std::vector<int> spindles;  // axis ids
+    auto watch = [&](int id) {
+      if (id != 0 && std::find(spindles.begin(), spindles.end(), id) == spindles.end()) {
+        spindles.push_back(id);
+      }
+    };
     for (const config::PlcMCode& m : machine.plc.m_codes) {
-      if (m.spindle_stopped != 0 &&
-          std::find(spindles.begin(), spindles.end(), m.spindle_stopped) == spindles.end()) {
-        spindles.push_back(m.spindle_stopped);
+      watch(m.spindle_stopped);
+    }
+    for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+      if (std::find(spindles.begin(), spindles.end(), g.master) != spindles.end() ||
+          std::find(spindles.begin(), spindles.end(), g.slave) != spindles.end()) {
+        watch(g.master);
+        watch(g.slave);
       }
     }
     cycle::LockstepGate gate(channels + spindles.size());
@@ -187,8 +198,10 @@ int main(int argc, char** argv) {
           }
           // Turning: more than a tenth of a revolution per second either way; without
           // feedback (or with its node gone) not known to stand.
-          views[k] = plc::SpindleView{
-              spindles[k], fb == nullptr || spindle_lost[k] || std::abs(fb->vel()) > 36.0};
+          const bool known = fb != nullptr && !spindle_lost[k];
+          views[k] = plc::SpindleView{spindles[k], !known || std::abs(fb->vel()) > 36.0,
+                                      known ? static_cast<int>(fb->coupled_to()) : 0,
+                                      known && fb->coupling_locked()};
         }
       });
       const plc::PlcOutput& out = plc.cycle(cycle, views);

@@ -199,6 +199,7 @@ void ChannelController::forget_program_run() noexcept {
   exchange_block_.reset();
   aux_block_.reset();
   aux_answer_.reset();
+  spindle_sync_block_.reset();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
@@ -239,6 +240,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.release_count = 0;
   out_.axis_request_count = 0;
   out_.aux_due = false;
+  out_.spindle_sync_due = false;
   received_ = feedback;
   update_slots();
   build_views(feedback);
@@ -401,9 +403,10 @@ void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
-    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
-                            !sync_block_ && !call_block_ && !release_block_ && !exchange_block_ &&
-                            !aux_block_ && planner_.accepts() && queued_count_ < queued_.size();
+    for (std::size_t k = 0;
+         k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
+         !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ &&
+         !spindle_sync_block_ && planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -493,7 +496,17 @@ void ChannelController::fill() noexcept {
                           : c->spindle_direction == interp::SpindleDirection::keep ? spindle_queued_
                                                                                    : 0;
       }
-      if (setup_.plc && (c->op == interp::Op::aux || c->op == interp::Op::tool || spindle_start)) {
+      if (c->op == interp::Op::spindle_sync || c->op == interp::Op::spindle_unsync) {
+        SpindleSyncBlock b;
+        b.block = held(*c);
+        b.request = SpindleSyncOut{c->op == interp::Op::spindle_sync,
+                                   c->op == interp::Op::spindle_sync ? c->sync_k : 0, c->sync_p,
+                                   c->sync_q, c->sync_r};
+        spindle_sync_block_ = b;
+        return;
+      }
+      if ((setup_.plc && (c->op == interp::Op::aux || c->op == interp::Op::tool)) ||
+          (spindle_start && (setup_.plc || setup_.spindle_may_follow))) {
         // Sent when every block before it ended; the next block waits for the answer.
         AuxBlock b;
         b.block = held(*c);
@@ -637,6 +650,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (aux_block_) {
     run_aux();
+    return;
+  }
+  if (spindle_sync_block_) {
+    run_spindle_sync(cycle);
     return;
   }
   if (release_block_) {
@@ -1123,6 +1140,21 @@ void ChannelController::run_aux() noexcept {
   if (!b.spindle) {
     start_held(b.block);  // a spindle start has its block events from the queue once allowed
   }
+  const std::size_t first_spindle = setup_.axis_count;
+  if (b.spindle && !b.sent && first_spindle < received_.size() &&
+      received_[first_spindle].coupled_to != 0) {
+    raise(kAlarmSlaveSpindle,
+          "the spindle follows another spindle (G114.1): its master's channel cancels that "
+          "with G113 first",
+          b.block.line, 0, 0);
+    return;
+  }
+  if (b.spindle && !setup_.plc) {
+    const interp::Command command = b.command;  // no PLC to ask: it turns now
+    aux_block_.reset();
+    (void)queue_command(command);
+    return;
+  }
   if (!b.sent) {
     b.request.id = (std::uint64_t{setup_.channel_id} << 40) | ++aux_requests_;
     out_.aux = b.request;
@@ -1160,6 +1192,53 @@ void ChannelController::run_aux() noexcept {
   }
   push_event(block_event(b.block, ChannelEventKind::block_ended));
   aux_block_.reset();
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::run_spindle_sync(std::uint64_t cycle) noexcept {
+  SpindleSyncBlock& b = *spindle_sync_block_;
+  start_held(b.block);
+  bool known = !b.request.on;  // G113 cancels whatever this channel's groups have
+  for (const SpindleGroupSetup& g : setup_.spindle_groups) {
+    known = known || g.group == b.request.group;
+  }
+  if (!known) {
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "G114.1 K%d: no synchronisation group %d has this channel's spindle as master",
+                  b.request.group, b.request.group);
+    raise(kAlarmSyncGroup, text, b.block.line, 0, 0);
+    return;
+  }
+  if (!b.sent) {
+    out_.spindle_sync = b.request;
+    out_.spindle_sync_due = true;
+    b.sent = true;
+    b.sent_cycle = cycle;
+    return;
+  }
+  // The slave's node takes it in the cycle after; its feedback says so one later.
+  if (cycle < b.sent_cycle + 2) {
+    return;
+  }
+  for (const SpindleGroupSetup& g : setup_.spindle_groups) {
+    if (b.request.on && g.group != b.request.group) {
+      continue;
+    }
+    const AxisFeedbackView none{};
+    const AxisFeedbackView& slave =
+        g.slave_view < received_.size() ? received_[g.slave_view] : none;
+    const bool done =
+        b.request.on ? slave.coupled_to != 0 && slave.coupling_locked : slave.coupled_to == 0;
+    if (!done) {
+      return;  // G114.1 ends once the slave is at speed and in phase
+    }
+  }
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  spindle_sync_block_.reset();
 }
 
 }  // namespace mcnc::channel

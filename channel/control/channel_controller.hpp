@@ -38,6 +38,23 @@ struct AxisFeedbackView {
   // (or had it taken) to that owner, 0 in the configured assignment.
   std::uint32_t owner = 0;
   std::uint32_t released_by = 0;
+  // G114.1: a slave spindle's master (axis id, 0: none) and whether it is in phase.
+  std::uint32_t coupled_to = 0;
+  bool coupling_locked = false;
+};
+
+// G114.1 group K (param 1420) whose master is this channel's spindle: the slave's feedback is
+// `feedback[slave_view]` (after the channel's axes and spindles).
+struct SpindleGroupSetup {
+  int group = 1;
+  std::size_t slave_view = 0;
+};
+struct SpindleSyncOut {
+  bool on = true;  // G114.1; false: G113
+  int group = 0;   // K; 0 with G113: every group of the channel
+  int p = 1;
+  int q = 1;
+  double r = 0.0;
 };
 
 // One axis the channel programs. The channel's own axes belong to it at start; an exchange
@@ -171,6 +188,9 @@ struct ChannelOutput {
   // An M or T code for the PLC node, sent this cycle.
   bool aux_due = false;
   AuxRequestOut aux{};
+  // G114.1 / G113 to the slave spindles' axis nodes, sent this cycle.
+  bool spindle_sync_due = false;
+  SpindleSyncOut spindle_sync{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -194,6 +214,11 @@ struct ChannelSetup {
   // A PLC node runs M and T codes: each is a block that ends with its answer; a spindle
   // start (M03/M04) waits for the PLC's consent.
   bool plc = false;
+  // G114.1 groups this channel commands (its spindle is their master).
+  std::vector<SpindleGroupSetup> spindle_groups{};
+  // The channel's first spindle is the slave of a G114.1 group: a start waits until the blocks
+  // before it ended and is an alarm while the spindle follows its master.
+  bool spindle_may_follow = false;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -213,6 +238,8 @@ inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not th
 inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
 inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or T code
 inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
+inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G114.1 slave
+inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
 
 class ChannelController {
  public:
@@ -449,6 +476,15 @@ class ChannelController {
   bool plc_lost_ = false;
   int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
   void run_aux() noexcept;
+  // G114.1 / G113: the block until the slaves are in phase (or free).
+  struct SpindleSyncBlock {
+    HeldBlock block;
+    SpindleSyncOut request;
+    bool sent = false;
+    std::uint64_t sent_cycle = 0;
+  };
+  std::optional<SpindleSyncBlock> spindle_sync_block_;
+  void run_spindle_sync(std::uint64_t cycle) noexcept;
   // Hands a command to the planner and the block queue; false (and a source alarm) when the
   // planner refuses it.
   bool queue_command(const interp::Command& c) noexcept;

@@ -140,7 +140,8 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     }
     return true;
   }
-  if (c.op == Op::subcall_release || c.op == Op::axis_restore) {
+  if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
+      c.op == Op::spindle_unsync) {
     return true;
   }
   if (config.plc && (c.op == Op::aux || c.op == Op::tool)) {

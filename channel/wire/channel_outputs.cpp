@@ -111,6 +111,15 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     e.aux_spindle(start && !spindles_.empty() ? static_cast<std::uint32_t>(spindles_[0]->id) : 0);
     events_.write(e);
   }
+  if (out.spindle_sync_due) {
+    CoordinationEvent e = event(cycle, COORD_SPINDLE_SYNC);
+    e.sync_on(out.spindle_sync.on);
+    e.sync_group(out.spindle_sync.group);
+    e.sync_p(out.spindle_sync.p);
+    e.sync_q(out.spindle_sync.q);
+    e.sync_r(out.spindle_sync.r);
+    events_.write(e);
+  }
   // The setpoints after the events they announce: an axis node applies a G141 from the cycle
   // after it was sent, once it holds every event the setpoint announces.
   for (std::size_t i = 0; i < axes_.size(); ++i) {

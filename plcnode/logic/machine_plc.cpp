@@ -52,6 +52,15 @@ void MachinePlc::request(const AuxRequest& request) noexcept {
   }
 }
 
+bool MachinePlc::synchronised(int spindle, std::span<const SpindleView> spindles) noexcept {
+  for (const SpindleView& v : spindles) {
+    if (v.locked && v.coupled_to != 0 && (v.axis == spindle || v.coupled_to == spindle)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool MachinePlc::turning(int spindle, std::uint64_t cycle,
                          std::span<const SpindleView> spindles) const noexcept {
   for (const Start& s : starts_) {
@@ -164,7 +173,10 @@ void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
     answer(r, AuxOutcome::refused, reason);
     return;
   }
-  if (entry->spindle_stopped != 0 && turning(entry->spindle_stopped, cycle, spindles)) {
+  // No chuck open while its spindle turns, unless the spindles are synchronised for a
+  // transfer (spec dafeng §3.7).
+  if (entry->spindle_stopped != 0 && turning(entry->spindle_stopped, cycle, spindles) &&
+      !synchronised(entry->spindle_stopped, spindles)) {
     std::snprintf(reason, sizeof reason, "M%d interlock: the spindle turns", r.code);
     answer(r, AuxOutcome::refused, reason);
     return;

@@ -38,6 +38,8 @@ struct AuxAnswer {
 struct SpindleView {
   int axis = 0;         // axis id
   bool turning = true;  // unknown (no feedback): counts as turning
+  int coupled_to = 0;   // G114.1: the master this slave follows (axis id), 0: none
+  bool locked = false;  // ... in phase
 };
 
 struct PlcOutput {
@@ -103,6 +105,9 @@ class MachinePlc {
   std::array<Start, 16> starts_{};  // the last start allowed per spindle
   [[nodiscard]] bool turning(int spindle, std::uint64_t cycle,
                              std::span<const SpindleView> spindles) const noexcept;
+  // Master or slave of a G114.1 pair in phase: a part held by both chucks turns with both.
+  [[nodiscard]] static bool synchronised(int spindle,
+                                         std::span<const SpindleView> spindles) noexcept;
   PlcOutput out_{};
 };
 

@@ -976,3 +976,97 @@ TEST(MultiChannel, AnMCodeWithoutFinInTimeIsAnAlarm) {
   EXPECT_EQ(ended - started, 100U);
   EXPECT_EQ(lines_of(t, "CH1"), (std::vector<int>{1, 2}));  // X never moved
 }
+
+namespace {
+
+const std::string kG1141 = "tests/integration/programs/g1141/";
+
+double wrap_degrees(double a) {
+  a = std::fmod(a, 360.0);
+  return a > 180.0 ? a - 360.0 : (a <= -180.0 ? a + 360.0 : a);
+}
+
+// The axis nodes' `pos` samples of two spindles at the same cycles in [from, to).
+std::vector<std::pair<nlohmann::json, nlohmann::json>> paired_positions(const Trace& t,
+                                                                        const std::string& a,
+                                                                        const std::string& b,
+                                                                        std::uint64_t from,
+                                                                        std::uint64_t to) {
+  std::map<std::uint64_t, nlohmann::json> first;
+  for (const auto& p : events(t, "pos", a)) {
+    first[p["cycle"]] = p;
+  }
+  std::vector<std::pair<nlohmann::json, nlohmann::json>> out;
+  for (const auto& p : events(t, "pos", b)) {
+    const std::uint64_t c = p["cycle"];
+    if (c >= from && c < to && first.contains(c)) {
+      out.emplace_back(first[c], p);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// CT-G1141-01 (spec dafeng §3.7, L3476-3520): the twin-spindle part transfer. The strict
+// reading of the flattened listing: channel 2 clamps before P2.
+TEST(MultiChannel, TwinSpindlePartTransferAsTheSpecExample) {
+  TestMachine machine("twin_turret.yaml", 75);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", source(kG1141 + "ch1.nc")}, {"CH2", source(kG1141 + "ch2.nc")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  const std::uint64_t coupled = cycle_of(t, "couple", "S2");
+  const std::uint64_t in_phase = block_at(t, "CH1", 9);  // G114.1 ended: at speed, in phase
+  const std::uint64_t decoupled = cycle_of(t, "decouple", "S2");
+  // 1. Channel 2 does nothing after its P1 until channel 1 has synchronised and reached P1.
+  EXPECT_GT(block_at(t, "CH2", 5), arrival(t, "CH1", 1));
+  EXPECT_GT(arrival(t, "CH1", 1), in_phase);
+  EXPECT_GT(in_phase, coupled);
+  // 2. From then on spindle 2 follows spindle 1 in phase (Q/P = 1, R = 0): commanded exactly,
+  // its drive within its following error, through the approach and the chuck changes.
+  const auto pairs = paired_positions(t, "S1", "S2", in_phase, decoupled);
+  ASSERT_GT(pairs.size(), 100U);
+  for (const auto& [s1, s2] : pairs) {
+    EXPECT_NEAR(wrap_degrees(s2["cmd"].get<double>() - s1["act"].get<double>()), 0.0, 1e-3)
+        << s2.dump();
+    EXPECT_LT(std::fabs(wrap_degrees(s2["act"].get<double>() - s1["act"].get<double>())), 30.0);
+  }
+  // 3. Channel 1's M11 only after channel 2's approach and clamp (P2).
+  const std::uint64_t ch2_clamped =
+      cycle_of(t, "aux_done", "PLC", {{"ch", "CH2"}, {"code", "M10"}});
+  const std::uint64_t ch1_opens = cycle_of(t, "aux", "PLC", {{"ch", "CH1"}, {"code", "M11"}});
+  EXPECT_GT(ch1_opens, arrival(t, "CH2", 2));
+  EXPECT_GT(ch1_opens, ch2_clamped);  // the part is never released by both chucks
+  EXPECT_EQ(cycle_of(t, "aux_done", "PLC", {{"ch", "CH1"}, {"code", "M11"}}) > 0, true);
+  // 4. G113 only after both chucks switched (P3).
+  EXPECT_GT(decoupled, release(t, "CH1", 3));
+  // 5. Channel 2's own M03 only after P4, hence after G113.
+  EXPECT_GT(cycle_of(t, "aux", "PLC", {{"ch", "CH2"}, {"code", "M03"}}), decoupled);
+  EXPECT_EQ(t.back()["channels"]["CH1"]["end"], 30);
+  EXPECT_EQ(t.back()["channels"]["CH2"]["end"], 30);
+}
+
+// A reset does not end G114.1 (spec L3463), and the slave's own channel may not turn it.
+TEST(MultiChannel, ASpindleSyncSurvivesAResetAndItsSlaveIsNotTheChannelsToTurn) {
+  TestMachine machine("twin_turret.yaml", 76);
+  const MultiRun r = run_channels(
+      machine,
+      {{"CH1", write_program(machine, "ch1.nc", "M03 S300\nG114.1 R90\nG04 X4.\nM30\n")},
+       {"CH2", write_program(machine, "ch2.nc", "G04 X5.\nM03 S100\nM30\n")}},
+      {"--operator", "reset:CH1@3000", "--operator", "cycle_start:CH1@3100"});
+  EXPECT_NE(r.exit_code, 0);  // channel 2's M03 is an alarm
+  const Trace& t = r.trace;
+  EXPECT_TRUE(events(t, "decouple", "S2").empty());
+  const auto couples = events(t, "couple", "S2");
+  ASSERT_EQ(couples.size(), 2U);  // the first run's, and the second run's again
+  EXPECT_GT(couples[1]["cycle"].get<std::uint64_t>(), 3100U);
+  EXPECT_EQ(couples[0]["r"], 90.0);
+  expect_single_alarm(r, "CH2", 1250, 2, "G113");
+  // Still coupled after the reset: in phase (R90) whenever channel 1's G114.1 ended.
+  const auto pairs = paired_positions(t, "S1", "S2", block_at(t, "CH1", 3), 3000);
+  ASSERT_GT(pairs.size(), 10U);
+  for (const auto& [s1, s2] : pairs) {
+    EXPECT_NEAR(wrap_degrees(s2["cmd"].get<double>() - s1["act"].get<double>() - 90.0), 0.0, 1e-3);
+  }
+}

@@ -122,6 +122,20 @@ TEST(MachinePlc, InterlocksRefuseAndChangeNothing) {
   EXPECT_EQ(a.outcome, AuxOutcome::refused);
 }
 
+TEST(MachinePlc, AChuckOpensWhileItsSpindleTurnsInPhaseWithAnother) {
+  PlcRig rig;
+  // S1 (axis 2) turns; a slave (axis 9) follows it, not yet in phase: refused.
+  rig.spindles_ = {{2, true, 0, false}, {9, true, 2, false}};
+  rig.ask(1, 11);
+  AuxAnswer a;
+  rig.until_answer(a);
+  EXPECT_EQ(a.outcome, AuxOutcome::refused);
+  rig.spindles_[1].locked = true;  // in phase: the part turns with both spindles
+  rig.ask(1, 11);
+  rig.until_answer(a);
+  EXPECT_EQ(a.outcome, AuxOutcome::done);
+}
+
 TEST(MachinePlc, ASpindleStartsOnlyWithTheChuckClosed) {
   PlcRig rig;
   rig.ask(1, 3, AuxKind::m_code, 2);

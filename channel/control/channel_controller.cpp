@@ -1087,8 +1087,7 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
       return;
     }
   } else {
-    // The node decides in the cycle after the request and its feedback says so one later.
-    if (cycle < b.sent_cycle + 2) {
+    if (!answer_visible(b.sent_cycle, cycle)) {
       return;
     }
     switch (b.op) {
@@ -1220,8 +1219,7 @@ void ChannelController::run_spindle_sync(std::uint64_t cycle) noexcept {
     b.sent_cycle = cycle;
     return;
   }
-  // The slave's node takes it in the cycle after; its feedback says so one later.
-  if (cycle < b.sent_cycle + 2) {
+  if (!answer_visible(b.sent_cycle, cycle)) {
     return;
   }
   for (const SpindleGroupSetup& g : setup_.spindle_groups) {

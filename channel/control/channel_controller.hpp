@@ -461,6 +461,11 @@ class ChannelController {
     std::uint64_t sent_cycle = 0;
   };
   std::optional<ExchangeBlock> exchange_block_;
+  // A request an axis node answers in its feedback: sent at N, taken at N+1 (ARCHITECTURE.md
+  // §4), seen in the feedback at N+2. Before that the feedback cannot show the answer.
+  [[nodiscard]] static bool answer_visible(std::uint64_t sent_cycle, std::uint64_t cycle) noexcept {
+    return cycle >= sent_cycle + 2;
+  }
 
   // An M or T code for the PLC (or a spindle start it must allow): the block until its answer.
   struct AuxBlock {

@@ -1124,7 +1124,6 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
         break;
     }
   }
-  b.sent = false;
   push_event(block_event(b.block, ChannelEventKind::block_ended));
   set_state(ChannelState::running);
   exchange_block_.reset();

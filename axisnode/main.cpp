@@ -4,12 +4,15 @@
 // AxisNodeController and DriveLink.
 #include "axisnode/canopen/emcy_codes.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
+#include "axisnode/coupling/axis_coupling.hpp"
+#include "axisnode/coupling/master_history.hpp"
 #include "axisnode/coupling/spindle_coupling.hpp"
 #include "axisnode/link/drive_link.hpp"
 #include "axisnode/ownership/axis_ownership.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
+#include "common/cycle/pending_events.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -112,6 +115,9 @@ int main(int argc, char** argv) {
       }
     }
     const bool exchangeable = axis->exchange != 0;  // its home channel may release it alone
+    // G51.4 comes as an event from the channel that commands the axis (never exchanged).
+    const bool may_follow = axis->sync_slave;
+    const bool watches_events = exchangeable || may_follow;
     auto candidate_of = [&](std::uint32_t channel) -> int {
       for (std::size_t k = 0; k < candidates.size(); ++k) {
         if (candidates[k] == channel) {
@@ -137,19 +143,46 @@ int main(int argc, char** argv) {
     const std::size_t sync_input = candidates.size();  // the master's channel's status
     const std::size_t master_input = candidates.size() + 1;
     cycle::LockstepGate gate(candidates.size() + (sync_group != nullptr ? 2 : 0));
-    struct PendingSync {
+    struct SpindleSyncRequest {
       bool on = false;
       coupling::SpindleCouplingCommand command;
-      std::uint64_t sent_cycle = 0;
     };
-    std::array<PendingSync, 16> pending_sync{};
-    std::size_t pending_sync_count = 0;
+    cycle::PendingEvents<SpindleSyncRequest, 16> pending_sync;
     cycle::CycleBuffer<AxisFeedback, 8> master_feedback;
     dds::WriterId master_writer{};
     dds::WriterId sync_channel_writer{};
     bool master_writer_known = false;
     bool sync_channel_writer_known = false;
     bool master_lost = false;
+    // G51.4: a slave copies its master's increments once its channel says so (or from power-on,
+    // param 5600.3). In lockstep it runs cycle N with its master's commanded position N-1,
+    // from the master's feedback; the master is any axis of its kind that is no slave itself.
+    std::vector<std::uint32_t> leaders;
+    for (const config::AxisConfig& a : machine.axes) {
+      if (may_follow && a.id != axis->id && a.type == axis->type && !a.sync_slave) {
+        leaders.push_back(static_cast<std::uint32_t>(a.id));
+      }
+    }
+    // Long enough for a master that runs ahead of its slave's channel (a minute at 1 ms).
+    coupling::MasterHistory master_history(leaders, may_follow ? std::size_t{1} << 16 : 1);
+    std::vector<std::pair<dds::WriterId, std::uint32_t>> leader_writers;
+    leader_writers.reserve(leaders.size());
+    struct AxisSyncRequest {
+      bool on = false;
+      std::uint32_t master = 0;
+    };
+    cycle::PendingEvents<AxisSyncRequest, 16> pending_axis_sync;
+    coupling::AxisCoupling axis_coupling(machine.cycle_s());
+    if (axis->sync_at_power_on) {
+      axis_coupling.couple(static_cast<std::uint32_t>(axis->sync_master));
+    }
+    // The master the slave follows at cycle `c`: the coupling as the events sent before `c`
+    // leave it.
+    auto axis_master_at = [&](std::uint64_t c) {
+      std::uint32_t m = axis_coupling.master();
+      pending_axis_sync.peek_due(c, [&](const AxisSyncRequest& r) { m = r.on ? r.master : 0; });
+      return m;
+    };
     ownership::AxisOwnership ownership(home_id);
     // G140/G141/G142 requests as they arrive, applied from the cycle after they were sent.
     struct PendingRequest {
@@ -176,7 +209,7 @@ int main(int argc, char** argv) {
             c.writer = writer;
             c.writer_known = true;
             gate.on_sample(static_cast<std::size_t>(k), sp.cycle(),
-                           exchangeable ? sp.event_seq() : 0);
+                           watches_events ? sp.event_seq() : 0);
           });
         },
         [&](const dds::WriterId& writer, bool matched) {
@@ -195,6 +228,34 @@ int main(int argc, char** argv) {
     std::optional<dds::Reader<CoordinationEvent>> request_reader;
     std::optional<dds::Reader<ChannelStatus>> sync_status_reader;
     std::optional<dds::Reader<AxisFeedback>> master_reader;
+    std::optional<dds::Reader<AxisFeedback>> leader_reader;
+    if (may_follow) {
+      leader_reader.emplace(
+          node.participant(),
+          [&](const AxisFeedback& fb, const dds::WriterId& writer) {
+            if (master_history.may_lead(fb.axis())) {
+              wake.update([&] {
+                master_history.put(fb.axis(), fb.cycle(), fb.cmd());
+                bool known = false;
+                for (const auto& [w, id] : leader_writers) {
+                  known = known || id == fb.axis();
+                }
+                if (!known && leader_writers.size() < leaders.size()) {
+                  leader_writers.emplace_back(writer, fb.axis());
+                }
+              });
+            }
+          },
+          [&](const dds::WriterId& writer, bool matched) {
+            wake.update([&] {
+              for (const auto& [w, id] : leader_writers) {
+                if (!matched && writer == w) {
+                  master_history.gone(id);
+                }
+              }
+            });
+          });
+    }
     if (sync_group != nullptr) {
       const auto sync_channel = static_cast<std::uint32_t>(sync_group->channel);
       sync_status_reader.emplace(
@@ -236,7 +297,7 @@ int main(int argc, char** argv) {
             });
           });
     }
-    if (exchangeable || sync_group != nullptr) {
+    if (watches_events || sync_group != nullptr) {
       request_reader.emplace(node.participant(), [&](const CoordinationEvent& e,
                                                      const dds::WriterId&) {
         const int k = candidate_of(e.channel());
@@ -246,19 +307,24 @@ int main(int argc, char** argv) {
           return;
         }
         wake.update([&] {
-          if (k >= 0 && exchangeable) {
+          if (k >= 0 && watches_events) {
             gate.on_event(static_cast<std::size_t>(k), e.seq());
+          }
+          if (may_follow && e.kind() == COORD_AXIS_SYNC && e.axis() == axis_id &&
+              e.channel() == home_id) {
+            (void)pending_axis_sync.push(
+                AxisSyncRequest{e.sync_on(), e.sync_on() ? e.sync_master() : 0}, e.cycle());
           }
           if (from_sync_channel) {
             gate.on_event(sync_input, e.seq());
             if (e.kind() == COORD_SPINDLE_SYNC &&
-                (e.sync_group() == sync_group->group || (!e.sync_on() && e.sync_group() == 0)) &&
-                pending_sync_count < pending_sync.size()) {
-              pending_sync[pending_sync_count++] = PendingSync{
-                  e.sync_on(),
-                  coupling::SpindleCouplingCommand{static_cast<int>(e.sync_p()),
-                                                   static_cast<int>(e.sync_q()), e.sync_r()},
-                  e.cycle()};
+                (e.sync_group() == sync_group->group || (!e.sync_on() && e.sync_group() == 0))) {
+              (void)pending_sync.push(
+                  SpindleSyncRequest{
+                      e.sync_on(),
+                      coupling::SpindleCouplingCommand{static_cast<int>(e.sync_p()),
+                                                       static_cast<int>(e.sync_q()), e.sync_r()}},
+                  e.cycle());
             }
           }
           if (k < 0 || !exchangeable || e.kind() != COORD_AXIS_REQUEST ||
@@ -320,6 +386,8 @@ int main(int argc, char** argv) {
               return setpoint_reader.matched_writers() >= channels &&
                      (!sync_status_reader || sync_status_reader->matched_writers() >= channels) &&
                      (!master_reader || master_reader->matched_writers() >= 1) &&
+                     (!leader_reader ||
+                      leader_reader->matched_writers() >= static_cast<int>(leaders.size())) &&
                      feedback_writer.matched_readers() >= channels &&
                      (!request_reader ||
                       request_reader->matched_writers() >= static_cast<int>(candidates.size()));
@@ -367,6 +435,13 @@ int main(int argc, char** argv) {
       return id >= 1 && id <= machine.channels.size() ? machine.channels[id - 1].name.c_str() : "";
     };
     std::uint32_t following = 0;  // the channel whose valid setpoints the node applied last
+    auto trace_axis_coupling = [&](std::uint64_t cycle, const char* what, std::uint32_t master) {
+      tracer.emit(cycle, what, "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",
+                  machine.axes[master - 1].name.c_str(), axis->name.c_str());
+    };
+    if (axis_coupling.active()) {
+      trace_axis_coupling(0, "couple", axis_coupling.master());  // a gantry from power-on
+    }
 
     // A lockstep bus wait ends with the run, an E-stop or the owner gone. Built once: a
     // std::function made from this lambda inside the loop could allocate every cycle.
@@ -380,7 +455,15 @@ int main(int argc, char** argv) {
     // 1. Wait until the cycle may run: every candidate owner's setpoint stamped N-1 is in,
     //    with the events it announces.
     for (std::uint64_t cycle = 0; loop.next(
-             cycle, [&](std::uint64_t c) { return c == 0 || gate.may_run(c); },
+             cycle,
+             [&](std::uint64_t c) {
+               if (c == 0 || !gate.may_run(c)) {
+                 return c == 0;
+               }
+               const std::uint32_t m = may_follow ? axis_master_at(c) : 0;
+               return m == 0 || master_history.at(m, c - 1).lookup !=
+                                    coupling::MasterHistory::Lookup::not_yet;
+             },
              [&] { return owner_lost; });
          ++cycle) {
       const bool degraded = loop.degraded();
@@ -461,20 +544,23 @@ int main(int argc, char** argv) {
       }
       // G114.1: while coupled, the slave follows its master whatever its owner sends.
       if (sync_group != nullptr) {
-        std::array<PendingSync, 16> now{};
-        std::size_t now_count = 0;
         AxisFeedback master;
         bool have_master = false;
         wake.update([&] {
-          std::size_t kept = 0;
-          for (std::size_t i = 0; i < pending_sync_count; ++i) {
-            if (pending_sync[i].sent_cycle < cycle) {
-              now[now_count++] = pending_sync[i];
-            } else {
-              pending_sync[kept++] = pending_sync[i];
+          pending_sync.take_due(cycle, [&](const SpindleSyncRequest& r) {
+            if (r.on) {
+              spindle_coupling.couple(r.command, controller.output().act, controller.output().vel);
+              tracer.emit(cycle, "couple",
+                          "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,"
+                          "\"q\":%d,\"r\":%.3f",
+                          master_name, axis->name.c_str(), r.command.p, r.command.q, r.command.r);
+            } else if (spindle_coupling.active()) {
+              spindle_coupling.decouple();
+              tracer.emit(cycle, "decouple",
+                          "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\"", master_name,
+                          axis->name.c_str());
             }
-          }
-          pending_sync_count = kept;
+          });
           const AxisFeedback* m = cycle > 0 ? master_feedback.at(cycle - 1) : nullptr;
           if (m == nullptr && !lockstep) {
             m = master_feedback.latest();
@@ -484,22 +570,6 @@ int main(int argc, char** argv) {
             have_master = true;
           }
         });
-        for (std::size_t i = 0; i < now_count; ++i) {
-          if (now[i].on) {
-            spindle_coupling.couple(now[i].command, controller.output().act,
-                                    controller.output().vel);
-            tracer.emit(cycle, "couple",
-                        "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,"
-                        "\"q\":%d,\"r\":%.3f",
-                        master_name, axis->name.c_str(), now[i].command.p, now[i].command.q,
-                        now[i].command.r);
-          } else if (spindle_coupling.active()) {
-            spindle_coupling.decouple();
-            tracer.emit(cycle, "decouple",
-                        "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\"", master_name,
-                        axis->name.c_str());
-          }
-        }
         if (spindle_coupling.active()) {
           in.have_setpoint = true;
           in.setpoint_valid = have_master;  // without its master it holds where it is
@@ -510,6 +580,50 @@ int main(int argc, char** argv) {
                 master.act() + master.vel() * machine.cycle_s(), master.vel());
             in.setpoint_pos = t.pos;
             in.setpoint_vel = t.vel;
+          }
+        }
+      }
+      // G51.4: while coupled, the slave copies its master's increments.
+      if (may_follow) {
+        wake.update([&] {
+          pending_axis_sync.take_due(cycle, [&](const AxisSyncRequest& r) {
+            const std::uint32_t before = axis_coupling.master();
+            const std::uint32_t after = r.on && master_history.may_lead(r.master) ? r.master : 0;
+            if (after == before) {
+              return;
+            }
+            if (before != 0) {
+              axis_coupling.decouple();
+              trace_axis_coupling(cycle, "decouple", before);
+            }
+            if (after != 0) {
+              axis_coupling.couple(after);
+              trace_axis_coupling(cycle, "couple", after);
+            }
+          });
+        });
+        if (axis_coupling.active()) {
+          coupling::MasterHistory::Sample m;
+          wake.update([&] {
+            m = cycle > 0 ? master_history.at(axis_coupling.master(), cycle - 1)
+                          : coupling::MasterHistory::Sample{};
+            if (m.lookup != coupling::MasterHistory::Lookup::found && !lockstep) {
+              if (const auto latest = master_history.latest(axis_coupling.master())) {
+                m = coupling::MasterHistory::Sample{coupling::MasterHistory::Lookup::found,
+                                                    *latest};
+              }
+            }
+          });
+          in.have_setpoint = true;
+          in.setpoint_velocity = false;
+          in.setpoint_valid = false;  // without its master (or a drive in operation) it holds
+          if (m.lookup == coupling::MasterHistory::Lookup::found && controller.output().enabled) {
+            const coupling::AxisTarget t = axis_coupling.step(m.cmd, controller.output().cmd);
+            in.setpoint_pos = t.pos;
+            in.setpoint_vel = t.vel;
+            in.setpoint_valid = true;
+          } else {
+            axis_coupling.rebase();
           }
         }
       }
@@ -569,8 +683,9 @@ int main(int argc, char** argv) {
       fb.axis(axis_id);
       fb.owner(owner_now);
       fb.released_by(ownership.released_by());
-      fb.coupled_to(spindle_coupling.active() ? static_cast<std::uint32_t>(sync_group->master) : 0);
-      fb.coupling_locked(spindle_coupling.locked());
+      fb.coupled_to(spindle_coupling.active() ? static_cast<std::uint32_t>(sync_group->master)
+                                              : axis_coupling.master());
+      fb.coupling_locked(spindle_coupling.locked() || axis_coupling.active());
       fb.cycle(cycle);
       fb.cmd(out.cmd);
       fb.act(out.act);

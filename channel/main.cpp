@@ -68,15 +68,26 @@ int main(int argc, char** argv) {
     const config::AxisConfig* a = machine.find_axis(name);
     axes.push_back(a);
     setup.in_position.push_back(a->in_position);
-    setup.slots.push_back(
-        channel::AxisSlot{a->address, axes.size() > ch->axes.size(),
-                          static_cast<std::uint32_t>(machine.find_channel(a->channel)->id)});
+    const bool exchange_slot = axes.size() > ch->axes.size();
+    setup.slots.push_back(channel::AxisSlot{
+        a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),
+        static_cast<std::uint32_t>(a->id), a->sync_slave,
+        static_cast<std::uint32_t>(a->sync_master), a->sync_at_power_on && !exchange_slot});
+  }
+  for (const config::AxisConfig& a : machine.axes) {
+    setup.machine_axes.push_back(channel::MachineAxis{
+        a.type == config::AxisType::spindle  ? channel::MachineAxisKind::spindle
+        : a.type == config::AxisType::rotary ? channel::MachineAxisKind::rotary
+                                             : channel::MachineAxisKind::linear,
+        a.sync_slave});
   }
   setup.axis_count = axes.size();
   setup.spindle_count = ch->spindles.size();
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
   setup.plc = machine.plc.present;
+  setup.call_wait_cycles = static_cast<std::uint64_t>(machine.call_wait_timeout_ms) * 1000 /
+                           static_cast<std::uint64_t>(machine.cycle_us);
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
   // feedback follows the channel's spindles'; G114.1 ends when they are in phase.
   std::vector<const config::AxisConfig*> sync_slaves;

@@ -57,7 +57,10 @@ ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& 
     : setup_(std::move(setup)), source_(source), planner_(planner), barrier_(setup_.channel_id) {
   queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
   for (std::size_t i = 0; i < setup_.slots.size() && i < slot_use_.size(); ++i) {
-    slot_use_[i] = setup_.slots[i].exchange_slot ? SlotUse::virtual_axis : SlotUse::commanded;
+    const AxisSlot& slot = setup_.slots[i];
+    slot_use_[i] = slot.exchange_slot      ? SlotUse::virtual_axis
+                   : slot.follows_at_start ? SlotUse::follows
+                                           : SlotUse::commanded;
   }
 }
 
@@ -199,7 +202,7 @@ void ChannelController::forget_program_run() noexcept {
   exchange_block_.reset();
   aux_block_.reset();
   aux_answer_.reset();
-  spindle_sync_block_.reset();
+  coupling_block_.reset();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
@@ -241,6 +244,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.axis_request_count = 0;
   out_.aux_due = false;
   out_.spindle_sync_due = false;
+  out_.axis_sync_due = false;
   received_ = feedback;
   update_slots();
   build_views(feedback);
@@ -405,8 +409,8 @@ void ChannelController::fill() noexcept {
   try {
     for (std::size_t k = 0;
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
-         !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ &&
-         !spindle_sync_block_ && planner_.accepts() && queued_count_ < queued_.size();
+         !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ && !coupling_block_ &&
+         planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -497,12 +501,22 @@ void ChannelController::fill() noexcept {
                                                                                    : 0;
       }
       if (c->op == interp::Op::spindle_sync || c->op == interp::Op::spindle_unsync) {
-        SpindleSyncBlock b;
+        CouplingBlock b;
         b.block = held(*c);
-        b.request = SpindleSyncOut{c->op == interp::Op::spindle_sync,
+        b.spindle = SpindleSyncOut{c->op == interp::Op::spindle_sync,
                                    c->op == interp::Op::spindle_sync ? c->sync_k : 0, c->sync_p,
                                    c->sync_q, c->sync_r};
-        spindle_sync_block_ = b;
+        coupling_block_ = b;
+        return;
+      }
+      if (c->op == interp::Op::axis_couple || c->op == interp::Op::axis_decouple) {
+        CouplingBlock b;
+        b.block = held(*c);
+        b.axis = true;
+        b.axis_sync.on = c->op == interp::Op::axis_couple;
+        b.axis_sync.master = static_cast<std::uint32_t>(c->master);
+        b.slave = static_cast<std::uint32_t>(c->slave);
+        coupling_block_ = b;
         return;
       }
       if ((setup_.plc && (c->op == interp::Op::aux || c->op == interp::Op::tool)) ||
@@ -520,9 +534,17 @@ void ChannelController::fill() noexcept {
         aux_block_ = b;
         return;
       }
-      if (const auto away = moves_away_slot(*c)) {
+      if (const auto away = moves_foreign_slot(*c)) {
         const std::uint32_t owner = *away < received_.size() ? received_[*away].owner : 0;
         char text[160];
+        if (slot_use_[*away] == SlotUse::follows) {
+          const std::uint32_t master = *away < received_.size() ? received_[*away].coupled_to : 0;
+          std::snprintf(text, sizeof text,
+                        "%c follows axis %u (G51.4): G50.4 Q%u before the program moves it",
+                        setup_.slots[*away].address, master, setup_.slots[*away].id);
+          source_alarm_ = interp::ProgramAlarm{kAlarmAxisFollows, text, "", c->line, 0};
+          return;
+        }
         if (owner == setup_.channel_id) {
           std::snprintf(text, sizeof text,
                         "%c came back to this channel during the program: G141 or G142 takes "
@@ -641,7 +663,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     return;
   }
   if (call_block_) {
-    run_call();
+    run_call(cycle);
     return;
   }
   if (exchange_block_) {
@@ -652,8 +674,8 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     run_aux();
     return;
   }
-  if (spindle_sync_block_) {
-    run_spindle_sync(cycle);
+  if (coupling_block_) {
+    run_coupling(cycle);
     return;
   }
   if (release_block_) {
@@ -867,12 +889,33 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
   }
 }
 
-void ChannelController::run_call() noexcept {
+bool ChannelController::calls_back(std::uint32_t target) const noexcept {
+  std::uint32_t caller = serving_ ? serving_->call.caller : 0;
+  // The chain of callers, from this channel's up: each partner's status names its own.
+  for (std::size_t step = 0; step < coordination::kMaxChannels && caller != 0; ++step) {
+    if (caller == target) {
+      return true;
+    }
+    const PartnerStatus& p =
+        caller <= coordination::kMaxChannels ? partners_[caller] : partners_[0];
+    caller = p.known && p.call_id != 0 ? p.call_caller : 0;
+  }
+  return false;
+}
+
+void ChannelController::run_call(std::uint64_t cycle) noexcept {
   CallBlock& b = *call_block_;
   start_held(b.block);
   char text[128];
   if (b.phase == CallPhase::reached) {
     const std::uint32_t target = b.call.target;
+    if (target == setup_.channel_id || calls_back(target)) {
+      std::snprintf(
+          text, sizeof text, "G144 N%u: channel %u %s: a call cycle", target, target,
+          target == setup_.channel_id ? "is this channel" : "runs the call this channel serves");
+      raise(kAlarmCallCycle, text, b.block.line, 0, 0);
+      return;
+    }
     const PartnerStatus none{};
     const PartnerStatus& t =
         target >= 1 && target <= coordination::kMaxChannels ? partners_[target] : none;
@@ -889,6 +932,16 @@ void ChannelController::run_call() noexcept {
       const bool finishing_ours = t.known && t.call_id != 0 && t.call_caller == setup_.channel_id &&
                                   t.state != ChannelState::alarm;
       if (outstanding || finishing_ours || !t.known || t.state == ChannelState::reset) {
+        if (!b.waiting_for_target) {
+          b.waiting_for_target = true;
+          b.waiting_since = cycle;
+        }
+        if (setup_.call_wait_cycles != 0 && cycle - b.waiting_since >= setup_.call_wait_cycles) {
+          std::snprintf(text, sizeof text, "G144 N%u: channel %u did not become free in time",
+                        target, target);
+          raise(kAlarmCallTimeout, text, b.block.line, 0, 0);
+          return;
+        }
         set_state(ChannelState::waiting);
         return;
       }
@@ -986,12 +1039,15 @@ void ChannelController::build_views(std::span<const AxisFeedbackView> received) 
   for (std::size_t i = 0; i < received.size() && i < kMaxViews; ++i) {
     views_[i] = received[i];
     if (exchanges() && i < setup_.axis_count && slot_use_[i] != SlotUse::commanded) {
-      // Not this channel's axis now: it stands where the channel last put it, in position and
-      // without alarms (those are its owner's).
+      // Not commanded by this channel now: for the program it stands where the channel last
+      // put it, in position. Its alarms are its owner's; a following axis is still this
+      // channel's, with its alarms.
       views_[i].cmd = commanded_[i];
       views_[i].act = commanded_[i];
-      views_[i].enabled = true;
-      views_[i].alarm = false;
+      if (slot_use_[i] != SlotUse::follows) {
+        views_[i].enabled = true;
+        views_[i].alarm = false;
+      }
     }
   }
 }
@@ -1003,7 +1059,9 @@ void ChannelController::settle_slots() noexcept {
   for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
     const AxisFeedbackView& f = received_[s];
     if (f.present && f.owner == setup_.channel_id) {
-      if (slot_use_[s] != SlotUse::commanded) {
+      if (setup_.slots[s].may_follow && f.coupled_to != 0) {
+        slot_use_[s] = SlotUse::follows;  // G51.4 outlives a reset and a restart of the channel
+      } else if (slot_use_[s] != SlotUse::commanded) {
         commanded_[s] = f.cmd;  // the machine position travels with the axis
         slot_use_[s] = SlotUse::commanded;
       }
@@ -1019,7 +1077,7 @@ void ChannelController::sync_positions() noexcept {
   hold_outputs(true);  // this cycle's setpoints came from the planner before it knew
 }
 
-std::optional<std::size_t> ChannelController::moves_away_slot(
+std::optional<std::size_t> ChannelController::moves_foreign_slot(
     const interp::Command& c) const noexcept {
   if (!exchanges() || (c.op != interp::Op::rapid && c.op != interp::Op::linear &&
                        c.op != interp::Op::arc && c.op != interp::Op::thread)) {
@@ -1027,7 +1085,8 @@ std::optional<std::size_t> ChannelController::moves_away_slot(
   }
   const AxisVector& from = planner_.queue_end();
   for (std::size_t s = 0; s < setup_.axis_count; ++s) {
-    if (slot_use_[s] == SlotUse::away && std::fabs(c.to[s] - from[s]) > 1e-9) {
+    if ((slot_use_[s] == SlotUse::away || slot_use_[s] == SlotUse::follows) &&
+        std::fabs(c.to[s] - from[s]) > 1e-9) {
       return s;
     }
   }
@@ -1196,46 +1255,154 @@ void ChannelController::run_aux() noexcept {
 
 namespace mcnc::channel {
 
-void ChannelController::run_spindle_sync(std::uint64_t cycle) noexcept {
-  SpindleSyncBlock& b = *spindle_sync_block_;
+void ChannelController::run_coupling(std::uint64_t cycle) noexcept {
+  CouplingBlock& b = *coupling_block_;
   start_held(b.block);
-  bool known = !b.request.on;  // G113 cancels whatever this channel's groups have
+  if (!b.sent) {
+    const CouplingStart start = b.axis ? start_axis_sync(b) : start_spindle_sync(b);
+    if (start == CouplingStart::refused) {
+      return;  // the alarm is raised
+    }
+    if (start == CouplingStart::send) {
+      if (b.axis) {
+        out_.axis_sync = b.axis_sync;
+        out_.axis_sync_due = true;
+      } else {
+        out_.spindle_sync = b.spindle;
+        out_.spindle_sync_due = true;
+      }
+      b.sent = true;
+      b.sent_cycle = cycle;
+      return;
+    }
+  } else if (!answer_visible(b.sent_cycle, cycle) ||
+             !(b.axis ? axis_sync_done(b) : spindle_sync_done(b))) {
+    return;
+  }
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  coupling_block_.reset();
+}
+
+ChannelController::CouplingStart ChannelController::start_spindle_sync(
+    const CouplingBlock& b) noexcept {
+  bool known = !b.spindle.on;  // G113 cancels whatever this channel's groups have
   for (const SpindleGroupSetup& g : setup_.spindle_groups) {
-    known = known || g.group == b.request.group;
+    known = known || g.group == b.spindle.group;
   }
   if (!known) {
     char text[128];
     std::snprintf(text, sizeof text,
                   "G114.1 K%d: no synchronisation group %d has this channel's spindle as master",
-                  b.request.group, b.request.group);
+                  b.spindle.group, b.spindle.group);
     raise(kAlarmSyncGroup, text, b.block.line, 0, 0);
-    return;
+    return CouplingStart::refused;
   }
-  if (!b.sent) {
-    out_.spindle_sync = b.request;
-    out_.spindle_sync_due = true;
-    b.sent = true;
-    b.sent_cycle = cycle;
-    return;
-  }
-  if (!answer_visible(b.sent_cycle, cycle)) {
-    return;
-  }
+  return CouplingStart::send;
+}
+
+bool ChannelController::spindle_sync_done(const CouplingBlock& b) const noexcept {
   for (const SpindleGroupSetup& g : setup_.spindle_groups) {
-    if (b.request.on && g.group != b.request.group) {
+    if (b.spindle.on && g.group != b.spindle.group) {
       continue;
     }
     const AxisFeedbackView none{};
     const AxisFeedbackView& slave =
         g.slave_view < received_.size() ? received_[g.slave_view] : none;
     const bool done =
-        b.request.on ? slave.coupled_to != 0 && slave.coupling_locked : slave.coupled_to == 0;
+        b.spindle.on ? slave.coupled_to != 0 && slave.coupling_locked : slave.coupled_to == 0;
     if (!done) {
-      return;  // G114.1 ends once the slave is at speed and in phase
+      return false;  // G114.1 ends once the slave is at speed and in phase
     }
   }
-  push_event(block_event(b.block, ChannelEventKind::block_ended));
-  spindle_sync_block_.reset();
+  return true;
+}
+
+ChannelController::CouplingStart ChannelController::start_axis_sync(CouplingBlock& b) noexcept {
+  const char* g = b.axis_sync.on ? "G51.4" : "G50.4";
+  char text[192];
+  auto refuse = [&] {
+    raise(kAlarmAxisSync, text, b.block.line, 0, 0);
+    return CouplingStart::refused;
+  };
+  std::size_t s = setup_.slots.size();
+  for (std::size_t i = 0; i < setup_.slots.size() && i < setup_.axis_count; ++i) {
+    s = setup_.slots[i].id == b.slave && !setup_.slots[i].exchange_slot ? i : s;
+  }
+  if (s == setup_.slots.size() ||
+      (slot_use_[s] != SlotUse::commanded && slot_use_[s] != SlotUse::follows)) {
+    std::snprintf(text, sizeof text,
+                  "%s Q%u: axis %u is not this channel's (the channel that commands it programs "
+                  "it)",
+                  g, b.slave, b.slave);
+    return refuse();
+  }
+  const AxisSlot& slot = setup_.slots[s];
+  if (!slot.may_follow) {
+    std::snprintf(text, sizeof text,
+                  "%s Q%u: %c cannot follow another axis (parameter 5600.1: axis_sync)", g, b.slave,
+                  slot.address);
+    return refuse();
+  }
+  b.axis_sync.slot = s;
+  const std::uint32_t coupled_to = s < received_.size() ? received_[s].coupled_to : 0;
+  if (!b.axis_sync.on) {
+    return slot_use_[s] == SlotUse::follows || coupled_to != 0 ? CouplingStart::send
+                                                               : CouplingStart::nothing_to_do;
+  }
+  const std::uint32_t master = b.axis_sync.master != 0 ? b.axis_sync.master : slot.default_master;
+  if (master == 0) {
+    std::snprintf(text, sizeof text,
+                  "G51.4 Q%u: no P, and %c has no default master (parameter 5610: axis_sync "
+                  "master)",
+                  b.slave, slot.address);
+    return refuse();
+  }
+  const MachineAxis* m =
+      master <= setup_.machine_axes.size() ? &setup_.machine_axes[master - 1] : nullptr;
+  const MachineAxisKind kind = slot.id >= 1 && slot.id <= setup_.machine_axes.size()
+                                   ? setup_.machine_axes[slot.id - 1].kind
+                                   : MachineAxisKind::linear;
+  if (m == nullptr || m->kind != kind || m->may_follow) {
+    std::snprintf(text, sizeof text, "G51.4 P%u: %s", master,
+                  m == nullptr      ? "the machine has no such axis"
+                  : m->kind != kind ? "the master is not of the same kind as the slave"
+                                    : "the axis may follow another itself (5600.1), it "
+                                      "cannot lead");
+    return refuse();
+  }
+  if (slot_use_[s] == SlotUse::follows || coupled_to != 0) {
+    if (coupled_to == master) {
+      return CouplingStart::nothing_to_do;
+    }
+    std::snprintf(text, sizeof text, "G51.4 Q%u: %c already follows axis %u: G50.4 Q%u first",
+                  b.slave, slot.address, coupled_to, b.slave);
+    return refuse();
+  }
+  b.axis_sync.master = master;
+  return CouplingStart::send;
+}
+
+bool ChannelController::axis_sync_done(const CouplingBlock& b) noexcept {
+  const std::size_t s = b.axis_sync.slot;
+  if (s >= received_.size()) {
+    return false;
+  }
+  const AxisFeedbackView& f = received_[s];
+  if (b.axis_sync.on) {
+    if (f.coupled_to != b.axis_sync.master) {
+      return false;
+    }
+    slot_use_[s] = SlotUse::follows;  // from now on the program does not move it
+    return true;
+  }
+  if (f.coupled_to != 0) {
+    return false;
+  }
+  // The axis stands where its master took it: the program goes on from there.
+  commanded_[s] = f.cmd;
+  slot_use_[s] = SlotUse::commanded;
+  sync_positions();
+  return true;
 }
 
 }  // namespace mcnc::channel

@@ -38,7 +38,8 @@ struct AxisFeedbackView {
   // (or had it taken) to that owner, 0 in the configured assignment.
   std::uint32_t owner = 0;
   std::uint32_t released_by = 0;
-  // G114.1: a slave spindle's master (axis id, 0: none) and whether it is in phase.
+  // G114.1: a slave spindle's master (axis id, 0: none) and whether it is in phase; G51.4: a
+  // slave axis's master.
   std::uint32_t coupled_to = 0;
   bool coupling_locked = false;
 };
@@ -64,6 +65,26 @@ struct AxisSlot {
   char address = 'X';
   bool exchange_slot = false;
   std::uint32_t home = 0;  // the channel that owns the axis in the configured assignment
+  std::uint32_t id = 0;    // the axis's system number (G51.4 P and Q name axes by it)
+  // G51.4 (params 5600, 5610): it may follow another axis, its master when G51.4 has no P (0:
+  // none), and whether it follows that master from power-on (a gantry's second drive).
+  bool may_follow = false;
+  std::uint32_t default_master = 0;
+  bool follows_at_start = false;
+};
+
+// G51.4: an axis of the machine as a possible master (spec dafeng §3.2: of the same kind as
+// the slave, and here never a slave itself, so that no slave follows a slave).
+enum class MachineAxisKind : std::uint8_t { linear, rotary, spindle };
+struct MachineAxis {
+  MachineAxisKind kind = MachineAxisKind::linear;
+  bool may_follow = false;
+};
+// G51.4 (on) or G50.4 to the node of the axis in `slot`.
+struct AxisSyncOut {
+  bool on = true;
+  std::size_t slot = 0;
+  std::uint32_t master = 0;  // axis id
 };
 
 // M and T codes for the PLC node (and M03/M04, which it must allow): one request at a time,
@@ -191,6 +212,9 @@ struct ChannelOutput {
   // G114.1 / G113 to the slave spindles' axis nodes, sent this cycle.
   bool spindle_sync_due = false;
   SpindleSyncOut spindle_sync{};
+  // G51.4 / G50.4 to a slave axis's node, sent this cycle.
+  bool axis_sync_due = false;
+  AxisSyncOut axis_sync{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;
@@ -216,9 +240,13 @@ struct ChannelSetup {
   bool plc = false;
   // G114.1 groups this channel commands (its spindle is their master).
   std::vector<SpindleGroupSetup> spindle_groups{};
+  // G144: how many cycles a call waits for its target to become free (0: as long as it takes).
+  std::uint64_t call_wait_cycles = 0;
   // The channel's first spindle is the slave of a G114.1 group: a start waits until the blocks
   // before it ended and is an alarm while the spindle follows its master.
   bool spindle_may_follow = false;
+  // Every axis of the machine, by system number - 1: what G51.4 P may name.
+  std::vector<MachineAxis> machine_axes{};
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -234,12 +262,16 @@ inline constexpr int kAlarmCoordinationLost = 1214;  // shared writes or partner
 inline constexpr int kAlarmCallBusy = 1220;          // G144: the target runs something else
 inline constexpr int kAlarmCallFailed = 1221;        // G144: the called program stopped
 inline constexpr int kAlarmCallRefused = 1222;       // G144: the target refused the call
+inline constexpr int kAlarmCallCycle = 1223;         // G144: the target is this call's caller
+inline constexpr int kAlarmCallTimeout = 1224;       // G144: the target did not become free
 inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not this channel's
 inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
 inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or T code
 inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
 inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G114.1 slave
 inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
+inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
+inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 
 class ChannelController {
  public:
@@ -333,7 +365,10 @@ class ChannelController {
   // At a G04.1 block with everything before it ended: arrive, wait, go on.
   void run_sync() noexcept;
   // At a G144 block with everything before it ended: check the target, call, wait if H1.
-  void run_call() noexcept;
+  void run_call(std::uint64_t cycle) noexcept;
+  // The target is among the channels whose calls this channel runs (directly or through
+  // others): calling it would wait for itself.
+  [[nodiscard]] bool calls_back(std::uint32_t target) const noexcept;
   // Starts (or repeats) the program of the call this channel serves.
   void start_served_call(std::uint64_t cycle) noexcept;
   void take_calls(std::uint64_t cycle) noexcept;
@@ -407,6 +442,8 @@ class ChannelController {
     HeldBlock block;
     SubCall call;
     CallPhase phase = CallPhase::reached;
+    bool waiting_for_target = false;  // the target still finishes an earlier call
+    std::uint64_t waiting_since = 0;
   };
   std::optional<CallBlock> call_block_;
   std::uint64_t calls_made_ = 0;
@@ -438,8 +475,10 @@ class ChannelController {
   // G140/G141/G142 (spec dafeng §3.3). The owner comes from the axis nodes' feedback; a slot
   // is commanded (owned, its position taken over), a virtual axis (an exchange slot the channel
   // does not own: moves nothing physical) or away (given to or taken by another channel, or
-  // back but not taken over yet: a block moving it is an alarm).
-  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away };
+  // back but not taken over yet: a block moving it is an alarm). G51.4: an axis that follows
+  // its master moves with it and not with this channel's program (a block moving it is an
+  // alarm too).
+  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away, follows };
   [[nodiscard]] bool exchanges() const noexcept { return !setup_.slots.empty(); }
   void update_slots() noexcept;  // a commanded axis whose owner is now another channel
   void build_views(std::span<const AxisFeedbackView> received) noexcept;
@@ -450,8 +489,10 @@ class ChannelController {
   void run_exchange(std::uint64_t cycle) noexcept;
   void push_axis_request(AxisRequestKind kind, std::size_t slot, bool force) noexcept;
   void withdraw_waits() noexcept;  // a reset ends a G141/G142 wait at the axis nodes too
-  // The first slot away from this channel that `c` moves, or nullopt.
-  [[nodiscard]] std::optional<std::size_t> moves_away_slot(const interp::Command& c) const noexcept;
+  // The first slot that `c` moves and the channel does not command (away, or following its
+  // master), or nullopt.
+  [[nodiscard]] std::optional<std::size_t> moves_foreign_slot(
+      const interp::Command& c) const noexcept;
   struct ExchangeBlock {
     HeldBlock block;
     interp::Op op = interp::Op::axis_restore;
@@ -481,15 +522,25 @@ class ChannelController {
   bool plc_lost_ = false;
   int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
   void run_aux() noexcept;
-  // G114.1 / G113: the block until the slaves are in phase (or free).
-  struct SpindleSyncBlock {
+  // A coupling held by a slave's axis node: G114.1 / G113 (the block ends when the slave
+  // spindles are in phase, or free) or G51.4 / G50.4 (when the slave axis follows its master,
+  // or this channel again).
+  struct CouplingBlock {
     HeldBlock block;
-    SpindleSyncOut request;
+    bool axis = false;  // G51.4 / G50.4
+    SpindleSyncOut spindle{};
+    AxisSyncOut axis_sync{};
+    std::uint32_t slave = 0;  // G51.4 / G50.4 Q: the slave's system number
     bool sent = false;
     std::uint64_t sent_cycle = 0;
   };
-  std::optional<SpindleSyncBlock> spindle_sync_block_;
-  void run_spindle_sync(std::uint64_t cycle) noexcept;
+  std::optional<CouplingBlock> coupling_block_;
+  void run_coupling(std::uint64_t cycle) noexcept;
+  enum class CouplingStart : std::uint8_t { send, nothing_to_do, refused };
+  CouplingStart start_spindle_sync(const CouplingBlock& b) noexcept;
+  CouplingStart start_axis_sync(CouplingBlock& b) noexcept;
+  [[nodiscard]] bool spindle_sync_done(const CouplingBlock& b) const noexcept;
+  bool axis_sync_done(const CouplingBlock& b) noexcept;
   // Hands a command to the planner and the block queue; false (and a source alarm) when the
   // planner refuses it.
   bool queue_command(const interp::Command& c) noexcept;

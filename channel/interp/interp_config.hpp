@@ -30,7 +30,9 @@ struct AxisConfig {
   bool rotary = false;    // degrees (param 0001.2)
   double start = 0.0;     // machine position when the program starts (physical)
   std::array<double, kReferencePoints> reference{};  // machine positions (physical)
-  int exchange = 0;  // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
+  int exchange = 0;         // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
+  int id = 0;               // system axis number (G51.4 P and Q)
+  bool may_follow = false;  // param 5600.1: G51.4 may make it a slave
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.

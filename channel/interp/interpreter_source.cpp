@@ -46,7 +46,9 @@ int alarm_for(const Command& c) {
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
   }
-  const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release || c.op == Op::axis_acquire;
+  const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release ||
+                        c.op == Op::axis_acquire || c.op == Op::axis_couple ||
+                        c.op == Op::axis_decouple;
   return bad_word ? alarm::kBadWordValue : alarm::kNotInThisVersion;
 }
 
@@ -143,6 +145,24 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
   if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
       c.op == Op::spindle_unsync) {
     return true;
+  }
+  if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {
+    // Q names the slave by its system number: one of this channel's axes that may follow
+    // (param 5600.1). The master is checked when the block runs (it may be any channel's).
+    const char* g = c.op == Op::axis_couple ? "G51.4" : "G50.4";
+    for (const AxisConfig& a : config.axes) {
+      if (a.id == c.slave) {
+        if (a.may_follow) {
+          return true;
+        }
+        why = std::string(g) + " Q" + std::to_string(c.slave) + ": axis " + a.name +
+              " cannot follow another axis (axis_sync in the machine file, parameter 5600.1)";
+        return false;
+      }
+    }
+    why = std::string(g) + " Q" + std::to_string(c.slave) + ": axis " + std::to_string(c.slave) +
+          " is not one of this channel's axes";
+    return false;
   }
   if (config.plc && (c.op == Op::aux || c.op == Op::tool)) {
     return true;  // the PLC node answers them (an unknown M code is its alarm)

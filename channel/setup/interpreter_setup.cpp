@@ -18,6 +18,8 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     axis.diameter = a->diameter;
     axis.rotary = a->address == 'A' || a->address == 'B' || a->address == 'C';
     axis.exchange = a->exchange;
+    axis.id = a->id;
+    axis.may_follow = a->sync_slave;
     c.axes.push_back(axis);
   }
   return c;

@@ -120,6 +120,13 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     e.sync_r(out.spindle_sync.r);
     events_.write(e);
   }
+  if (out.axis_sync_due && out.axis_sync.slot < axes_.size()) {
+    CoordinationEvent e = event(cycle, COORD_AXIS_SYNC);
+    e.axis(static_cast<std::uint32_t>(axes_[out.axis_sync.slot]->id));
+    e.sync_on(out.axis_sync.on);
+    e.sync_master(out.axis_sync.master);
+    events_.write(e);
+  }
   // The setpoints after the events they announce: an axis node applies a G141 from the cycle
   // after it was sent, once it holds every event the setpoint announces.
   for (std::size_t i = 0; i < axes_.size(); ++i) {

@@ -184,6 +184,7 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
     case COORD_AXIS_REQUEST:
     case COORD_AUX_REQUEST:
     case COORD_SPINDLE_SYNC:
+    case COORD_AXIS_SYNC:
       break;  // for the axis nodes and the PLC: their answers come on their own topics
   }
 }

@@ -126,11 +126,12 @@ void check_uri(const YamlValue& value, const std::string& uri) {
 }
 
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
-  const YamlMap map =
-      value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir", "retained_file"});
+  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir",
+                                 "retained_file", "call_wait_timeout_ms"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
   read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
+  read_optional_int(map, "call_wait_timeout_ms", 0, 3600000, out.call_wait_timeout_ms);
   // 232 is the highest domain whose RTPS ports still fit in 16 bits.
   read_optional_int(map, "domain", 0, 232, out.domain);
   if (auto dir = map.optional("program_dir")) {
@@ -273,7 +274,8 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "heartbeat_ms",
                                  "quick_stop_deceleration",
                                  "tpdo2",
-                                 "exchange"});
+                                 "exchange",
+                                 "axis_sync"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -331,6 +333,20 @@ AxisConfig parse_axis(const YamlValue& value) {
       exchange->fail("a spindle is not exchanged by G140/G141");
     }
     read_optional_int(map, "exchange", 1, 9999, axis.exchange);
+  }
+  if (auto sync = map.optional("axis_sync")) {
+    if (axis.type == AxisType::spindle) {
+      sync->fail("a spindle follows another by G114.1 (spindle_sync), not by G51.4");
+    }
+    if (axis.exchange != 0) {
+      // Its coupling is its node's, whichever channel would own it: kept simple, one owner.
+      sync->fail("an axis that may follow another (G51.4) is not exchanged by G140/G141");
+    }
+    axis.sync_slave = true;
+    const YamlMap s = sync->map({"master", "at_power_on"});
+    if (auto at_power_on = s.optional("at_power_on")) {
+      axis.sync_at_power_on = at_power_on->boolean();
+    }
   }
   if (auto decel = map.optional("quick_stop_deceleration")) {
     axis.quick_stop_deceleration = decel->positive_number();
@@ -645,6 +661,40 @@ MachineConfig parse_document(const YAML::Node& root) {
     if (config.axes[i].channel.empty()) {
       axes[i].fail("axis " + config.axes[i].name + " is in no channel");
     }
+  }
+
+  // G51.4 masters (param 5610): an axis of the same kind that is no slave itself, so that a
+  // slave never follows a slave.
+  for (std::size_t i = 0; i < config.axes.size(); ++i) {
+    AxisConfig& axis = config.axes[i];
+    if (!axis.sync_slave) {
+      continue;
+    }
+    const YamlValue sync = axes[i].child("axis_sync");
+    const YamlMap s = sync.map({"master", "at_power_on"});
+    const auto master = s.optional("master");
+    if (!master) {
+      if (axis.sync_at_power_on) {
+        sync.fail("at_power_on needs a master");
+      }
+      continue;
+    }
+    const std::string name = read_name(*master);
+    const auto found = axis_index.find(name);
+    if (found == axis_index.end()) {
+      master->fail("unknown axis " + name);
+    }
+    const AxisConfig& m = config.axes[found->second];
+    if (m.name == axis.name) {
+      master->fail("an axis cannot follow itself");
+    }
+    if (m.type != axis.type) {
+      master->fail("axis " + m.name + " is not of the same kind as " + axis.name);
+    }
+    if (m.sync_slave) {
+      master->fail("axis " + m.name + " may follow another axis itself (axis_sync)");
+    }
+    axis.sync_master = m.id;
   }
 
   // Exchange numbers name one axis machine-wide; a channel's exchange axes are exchangeable

@@ -55,6 +55,12 @@ struct AxisConfig {
   std::string channel;    // home channel (owner at start)
   // Param 5660: the number G140/G141 name the axis by (`A14`), 0: not exchangeable.
   int exchange = 0;
+  // G51.4 (params 5600, 5610): the axis may follow another axis's increments; its default
+  // master (axis id, 0: none: G51.4 names it with P); and whether it follows that master from
+  // power-on (5600.3 = 0: a gantry's second drive).
+  bool sync_slave = false;
+  int sync_master = 0;
+  bool sync_at_power_on = false;
   std::string bus;                   // bus name
   int node_id = 0;                   // CANopen node id 1..127
   double counts_per_unit = 10000.0;  // drive increments per mm or degree
@@ -127,6 +133,9 @@ struct MachineConfig {
   std::string name;
   int cycle_us = 1000;
   int deadline_cycles = 5;
+  // G144 (spec dafeng §3.4 decide 1): how long a caller waits for a target still finishing its
+  // earlier call (or still starting) to become free; 0: as long as it takes.
+  int call_wait_timeout_ms = 10000;
   int domain = 0;  // DDS domain; MCNC_DOMAIN overrides (applied by the caller)
   // Where M98, G65, G144 find programs by number (O<number>.nc, or any .nc file that holds
   // O<number>); relative to the machine file's directory. Empty: none.

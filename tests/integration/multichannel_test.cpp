@@ -1059,7 +1059,7 @@ TEST(MultiChannel, ASpindleSyncSurvivesAResetAndItsSlaveIsNotTheChannelsToTurn) 
   const Trace& t = r.trace;
   EXPECT_TRUE(events(t, "decouple", "S2").empty());
   const auto couples = events(t, "couple", "S2");
-  ASSERT_EQ(couples.size(), 2U);  // the first run's, and the second run's again
+  ASSERT_EQ(couples.size(), 2U) << r.output;  // the first run's, and the second run's again
   EXPECT_GT(couples[1]["cycle"].get<std::uint64_t>(), 3100U);
   EXPECT_EQ(couples[0]["r"], 90.0);
   expect_single_alarm(r, "CH2", 1250, 2, "G113");
@@ -1069,4 +1069,136 @@ TEST(MultiChannel, ASpindleSyncSurvivesAResetAndItsSlaveIsNotTheChannelsToTurn) 
   for (const auto& [s1, s2] : pairs) {
     EXPECT_NEAR(wrap_degrees(s2["cmd"].get<double>() - s1["act"].get<double>() - 90.0), 0.0, 1e-3);
   }
+}
+
+namespace {
+
+const std::string kG514 = "tests/integration/programs/g514/";
+
+// The last commanded position of `axis` at or before `cycle` (the node's pos samples).
+double node_position_at(const Trace& t, const std::string& axis, std::uint64_t cycle) {
+  double at = std::nan("");
+  for (const auto& p : events(t, "pos", axis)) {
+    if (p["cycle"] <= cycle) {
+      at = p["cmd"];
+    }
+  }
+  return at;
+}
+
+// While `slave` is coupled in [from, to): it moved by what `master` moved since `from`, at every
+// sample. The master's position is extrapolated from its last two, so the two differ by at most
+// a cycle squared times the acceleration (1500 mm/s^2 x (2 ms)^2 = 0.006 mm on gantry_cell).
+void expect_moves_with(const Trace& t, const std::string& master, const std::string& slave,
+                       std::uint64_t from, std::uint64_t to) {
+  const auto all = paired_positions(t, master, slave, 0, to);
+  // From where both stood when the coupling began (the sample at or before it).
+  std::size_t first = 0;
+  while (first + 1 < all.size() && all[first + 1].first["cycle"] <= from) {
+    ++first;
+  }
+  ASSERT_GT(all.size(), first + 10) << slave << " with " << master;
+  const double m0 = all[first].first["cmd"];
+  const double s0 = all[first].second["cmd"];
+  double master_moved = 0.0;
+  for (std::size_t i = first; i < all.size(); ++i) {
+    const auto& [m, s] = all[i];
+    const double dm = m["cmd"].get<double>() - m0;
+    EXPECT_NEAR(s["cmd"].get<double>() - s0, dm, 0.0065) << s.dump();
+    master_moved = std::max(master_moved, std::fabs(dm));
+  }
+  EXPECT_GT(master_moved, 1.0);  // the window saw the master move
+}
+
+}  // namespace
+
+// CT-G514-01 (spec dafeng §3.2, example 2): Y and Z copy X's increments while synchronised, and
+// are released one by one. At F1000 instead of the listing's F100: the feed changes nothing the
+// example expects, and the run is ten times shorter.
+TEST(MultiChannel, AxisSyncAsTheSpecExample) {
+  TestMachine machine("gantry_cell.yaml", 77);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", variant(machine, kG514 + "ct_g514_01.nc", "F100\\b", "F1000")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  EXPECT_TRUE(events(t, "alarm").empty()) << r.output;
+  const std::uint64_t y_on = cycle_of(t, "couple", "Y", {{"kind", "axis"}, {"master", "X"}});
+  const std::uint64_t z_on = cycle_of(t, "couple", "Z", {{"kind", "axis"}, {"master", "X"}});
+  const std::uint64_t z_off = cycle_of(t, "decouple", "Z", {{"kind", "axis"}, {"master", "X"}});
+  const std::uint64_t y_off = cycle_of(t, "decouple", "Y", {{"kind", "axis"}, {"master", "X"}});
+  // Each G51.4 and G50.4 ends once its axis node answered: the program waits for it.
+  EXPECT_LT(y_on, block_at(t, "CH1", 5));
+  EXPECT_LT(z_on, block_at(t, "CH1", 6));
+  EXPECT_LT(z_off, block_at(t, "CH1", 8));
+  EXPECT_LT(y_off, block_at(t, "CH1", 10));
+  // G01 U10: X, Y and Z all move by X's increment.
+  expect_moves_with(t, "X", "Z", z_on, z_off);
+  // G01 U10 again: X and Y; Y moved with X through both moves.
+  expect_moves_with(t, "X", "Y", y_on, y_off);
+  for (double z : node_positions(t, "Z", z_off + 2, ~std::uint64_t{0})) {
+    EXPECT_NEAR(z, 10.0, 1e-9);  // released: Z stays
+  }
+  // Where each ended: exactly the increments of the blocks it followed.
+  const std::uint64_t end = t.back()["cycle"];
+  EXPECT_NEAR(node_position_at(t, "X", end), 30.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "Y", end), 20.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "Z", end), 10.0, 1e-9);
+  // The gantry's second drive followed X from power-on throughout.
+  EXPECT_EQ(cycle_of(t, "couple", "X1", {{"kind", "axis"}, {"master", "X"}}), 0U);
+  EXPECT_NEAR(node_position_at(t, "X1", end), 30.0, 1e-9);
+  expect_moves_with(t, "X", "X1", 0, end);
+}
+
+// Example 1: a gantry from power-on (parameter 5600.3), realigned with G50.4 Q4 and G51.4 Q4
+// (master from parameter 5610). Programming the slave while it follows is an alarm before
+// anything moves, and a reset does not end the synchronisation.
+TEST(MultiChannel, AGantrySlaveFollowsFromPowerOnAndCannotBeProgrammedWhileItFollows) {
+  TestMachine machine("gantry_cell.yaml", 78);
+  const MultiRun r =
+      run_channels(machine, {{"CH1", source(kG514 + "gantry.nc")}},
+                   {"--operator", "reset:CH1@2000", "--operator", "cycle_start:CH1@2100"});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  const auto alarms = events(t, "alarm", "CH1");
+  ASSERT_EQ(alarms.size(), 2U) << r.output;  // B5 in each run
+  for (const auto& a : alarms) {
+    EXPECT_EQ(a["number"], 1261);
+    EXPECT_EQ(a["line"], 7);
+    EXPECT_NE(a["text"].get<std::string>().find("G50.4 Q4"), std::string::npos) << a.dump();
+  }
+  const std::uint64_t first_alarm = alarms[0]["cycle"];
+  ASSERT_LT(first_alarm, 2000U) << "the first run must end before the reset";
+  const auto couples = events(t, "couple", "X1");
+  const auto decouples = events(t, "decouple", "X1");
+  ASSERT_EQ(couples.size(), 3U);  // power-on, then G51.4 Q4 in each run
+  ASSERT_EQ(decouples.size(), 2U);
+  // First run: X1 moved with X to 50, stood while X went to 60, then followed to 80: 70.
+  expect_moves_with(t, "X", "X1", 0, decouples[0]["cycle"]);
+  EXPECT_NEAR(node_position_at(t, "X1", couples[1]["cycle"]), 50.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "X", couples[1]["cycle"]), 60.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "X1", first_alarm), 70.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "X", first_alarm), 80.0, 1e-9);
+  // The reset kept the coupling: the second run's G00 X50 took X1 back by 30, to 40.
+  expect_moves_with(t, "X", "X1", 2100, decouples[1]["cycle"]);
+  EXPECT_NEAR(node_position_at(t, "X1", decouples[1]["cycle"]), 40.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "X1", t.back()["cycle"]), 60.0, 1e-9);
+}
+
+// Master and slave in different channels: CH2's Z2 travels with CH1's X between two wait
+// marks, and after G50.4 its program goes on from where X took it.
+TEST(MultiChannel, AnAxisOfAnotherChannelFollowsItsMaster) {
+  TestMachine machine("gantry_cell.yaml", 79);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc", "G04.1 P1\nG00 X-40\nG04.1 P2\nM30\n")},
+                {"CH2", write_program(machine, "ch2.nc",
+                                      "G51.4 Q5\nG04.1 P1\nG04.1 P2\nG50.4 Q5\nG00 Z7\nM30\n")}});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  EXPECT_TRUE(events(t, "alarm").empty());
+  const std::uint64_t on = cycle_of(t, "couple", "Z2", {{"kind", "axis"}, {"master", "X"}});
+  const std::uint64_t off = cycle_of(t, "decouple", "Z2", {{"kind", "axis"}, {"master", "X"}});
+  EXPECT_LT(on, arrival(t, "CH2", 1));
+  expect_moves_with(t, "X", "Z2", on, off);
+  EXPECT_NEAR(node_position_at(t, "Z2", off), -40.0, 1e-9);
+  EXPECT_NEAR(node_position_at(t, "Z2", t.back()["cycle"]), 7.0, 1e-9);
 }

@@ -1,9 +1,7 @@
 // G140/G141/G142 as a channel runs them (spec dafeng §3.3): requests out, the owner from the
 // axis feedback, the machine position taken over, and what a channel may not do with an axis
 // it does not own. Channel 2 programs X (its own) and A (channel 1's axis, exchange number 14).
-#include "channel/control/channel_controller.hpp"
-#include "channel/interp/interpreter_source.hpp"
-#include "channel/motion/motion_planner.hpp"
+#include "channel_rig.hpp"
 
 #include <gtest/gtest.h>
 
@@ -42,19 +40,15 @@ motion::MotionConfig xa_motion() {
 // or at once with P1), and its feedback shows the owner one cycle later. Axes follow the
 // channel's valid setpoints (the real node follows only its owner's: here the rig counts a
 // valid setpoint for an axis the channel knew it did not own).
-class ExchangeRig {
+class ExchangeRig : public ChannelRig {
  public:
   ExchangeRig()
-      : source_(xa_channel()),
-        planner_(xa_motion(), interp::AxisVector{}),
-        ctl_(
-            [] {
-              ChannelSetup s{2, {0.001, 0.001}, kDt};
-              s.channel_id = kSelf;
-              s.slots = {AxisSlot{'X', false, kSelf}, AxisSlot{'A', true, 1}};
-              return s;
-            }(),
-            source_, planner_) {
+      : ChannelRig(xa_channel(), xa_motion(), [] {
+          ChannelSetup s{2, {0.001, 0.001}, kDt};
+          s.channel_id = kSelf;
+          s.slots = {AxisSlot{'X', false, kSelf}, AxisSlot{'A', true, 1}};
+          return s;
+        }()) {
     feedback_.resize(2);
     for (auto& f : feedback_) {
       f.enabled = true;
@@ -67,12 +61,7 @@ class ExchangeRig {
     owner_ = {kSelf, 1};
   }
 
-  void load(const std::string& text) {
-    const auto alarm = source_.load(text, "T.nc");
-    ASSERT_FALSE(alarm.has_value()) << alarm->number << " " << alarm->text;
-  }
-
-  const ChannelOutput& step() {
+  const ChannelOutput& step() override {
     // The nodes: last cycle's requests decided now, shown in this cycle's feedback.
     for (const AxisRequestOut& r : pending_) {
       for (std::size_t a = 0; a < 2; ++a) {
@@ -111,7 +100,7 @@ class ExchangeRig {
       }
     }
     const std::array<std::uint32_t, 2> seen{feedback_[0].owner, feedback_[1].owner};
-    const ChannelOutput& out = ctl_.cycle(cycle_++, feedback_);
+    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
     pending_.assign(out.axis_requests.begin(), out.axis_requests.begin() + out.axis_request_count);
     requests.insert(requests.end(), pending_.begin(), pending_.end());
     for (std::size_t a = 0; a < 2; ++a) {
@@ -125,21 +114,7 @@ class ExchangeRig {
         feedback_[a].act = out.setpoints[a].pos;
       }
     }
-    for (std::size_t e = 0; e < out.event_count; ++e) {
-      if (out.events[e].kind == ChannelEventKind::alarm) {
-        alarms.push_back(out.events[e].alarm_number);
-      }
-    }
     return out;
-  }
-
-  bool run_until(const std::function<bool(const ChannelOutput&)>& done, int limit = 20000) {
-    for (int i = 0; i < limit; ++i) {
-      if (done(step())) {
-        return true;
-      }
-    }
-    return false;
   }
 
   void take_away_from_channel_1() { owner_[1] = 0; }  // channel 1's G140
@@ -148,18 +123,13 @@ class ExchangeRig {
     released_by_[0] = kSelf;
   }
 
-  ChannelController& ctl() { return ctl_; }
   const std::vector<AxisFeedbackView>& feedback() const { return feedback_; }
 
   std::vector<AxisRequestOut> requests;
-  std::vector<int> alarms;
   int foreign_setpoints = 0;
   int withdrawn = 0;
 
  private:
-  interp::InterpreterSource source_;
-  motion::MotionPlanner planner_;
-  ChannelController ctl_;
   std::vector<AxisFeedbackView> feedback_;
   std::vector<AxisRequestOut> pending_;
   std::array<std::uint32_t, 2> owner_{};

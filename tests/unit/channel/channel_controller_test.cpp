@@ -1427,18 +1427,20 @@ Command g145(int line, std::size_t n) {
 // before its cycle N+1, with the other's status stamped N.
 struct TwoChannels {
   TwoChannels(std::vector<interp::PullResult> ch1, std::vector<interp::PullResult> ch2,
-              std::map<int, std::vector<interp::PullResult>> store)
+              std::map<int, std::vector<interp::PullResult>> store,
+              std::uint64_t call_wait_cycles = 0)
       : src1(std::move(ch1), {}), src2(std::move(ch2), std::move(store)) {
-    ch[0] = std::make_unique<Node>(1, src1);
-    ch[1] = std::make_unique<Node>(2, src2);
+    ch[0] = std::make_unique<Node>(1, src1, call_wait_cycles);
+    ch[1] = std::make_unique<Node>(2, src2, call_wait_cycles);
   }
   struct Node {
-    Node(std::uint32_t id, interp::CommandSource& source)
+    Node(std::uint32_t id, interp::CommandSource& source, std::uint64_t call_wait_cycles)
         : planner(lathe_motion(), AxisVector{}),
           ctl(
               [&] {
                 ChannelSetup s{2, {kInPos, kInPos}, kDt};
                 s.channel_id = id;
+                s.call_wait_cycles = call_wait_cycles;
                 return s;
               }(),
               source, planner) {
@@ -1682,6 +1684,53 @@ TEST(ChannelSync, TheChannelArrivesOnlyOnceItsSharedWritesAreOut) {
   log.drain([](const SharedWrite&) {});
   EXPECT_TRUE(count(ctl.cycle(cycle, fb)));
   EXPECT_EQ(starts, 1);
+}
+
+// Spec dafeng §3.4 decide 7: a called program may call again, but not back into its caller.
+TEST(ChannelCall, ACalledProgramCallingItsCallerIsACallCycleAlarm) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), program_end(4, 2)}, {},
+                {{2000, {g144(7, 1, 1, 1000, true), program_end(8, 2, 99)}}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 200 && m.last(1).state != ChannelState::alarm; ++i) {
+    m.step();
+  }
+  EXPECT_EQ(m.ctl(2).last_alarm().number, kAlarmCallCycle);
+  EXPECT_EQ(m.ctl(2).last_alarm().line, 7);
+  EXPECT_NE(std::string(m.ctl(2).last_alarm().text.data()).find("call cycle"), std::string::npos);
+  EXPECT_TRUE(m.src1.calls.empty());  // nothing was sent to channel 1
+  // The caller learns that its call failed instead of waiting for ever.
+  EXPECT_EQ(m.last(1).state, ChannelState::alarm);
+  EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallFailed);
+}
+
+// Decide 1: a target still running this channel's earlier call is waited for, up to the
+// machine's call_wait_timeout_ms.
+TEST(ChannelCall, WaitingForATargetStillBusyWithTheEarlierCallEndsAfterTheTimeout) {
+  const std::vector<interp::PullResult> twice{g144(3, 1, 2, 2000, false), g144(4, 2, 2, 2000, true),
+                                              program_end(5, 3)};
+  const std::map<int, std::vector<interp::PullResult>> slow{
+      {2000, {command(Op::linear, xz(0.0, 50.0), 3, 1, 300.0), program_end(4, 2, 99)}}};
+  TwoChannels m(twice, {}, slow, 300);
+  m.ctl(1).request_start();
+  std::uint64_t waiting_from = 0;
+  for (int i = 0; i < 2000 && m.last(1).state != ChannelState::alarm; ++i) {
+    m.step();
+    if (waiting_from == 0 && m.last(1).state == ChannelState::waiting) {
+      waiting_from = m.cycle;
+    }
+  }
+  EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallTimeout);
+  EXPECT_EQ(m.ctl(1).last_alarm().line, 4);
+  EXPECT_NEAR(static_cast<double>(m.cycle - waiting_from), 300.0, 3.0);
+  EXPECT_EQ(m.src2.calls.size(), 1U);
+  // Without the limit the same program waits and makes both calls.
+  TwoChannels patient(twice, {}, slow);
+  patient.ctl(1).request_start();
+  for (int i = 0; i < 40000 && !patient.last(1).program_end; ++i) {
+    patient.step();
+  }
+  EXPECT_TRUE(patient.last(1).program_end);
+  EXPECT_EQ(patient.src2.calls.size(), 2U);
 }
 
 TEST(ChannelCall, ACallToAChannelWhoseProcessIsGoneIsAnAlarm) {

@@ -903,6 +903,48 @@ axes:
       "axes[3].exchange");
 }
 
+// G51.4 (spec dafeng §3.2): `axis_sync` makes an axis a possible slave (param 5600.1) with an
+// optional default master (5610) it may follow from power-on (5600.3 = 0). The master is an
+// axis of the same kind that is no slave itself.
+TEST(MachineConfig, AxisSyncSlavesAndTheirMasters) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+channels: [{name: C1, axes: [X, Y, A]}, {name: C2, axes: [X2]}]
+axes:
+  - {name: X, address: X, bus: b, node_id: 1}
+  - {name: A, address: A, type: rotary, bus: b, node_id: 2}
+)";
+  const MachineConfig config =
+      parse_machine_yaml(base + "  - {name: Y, address: Y, bus: b, node_id: 3, axis_sync: {}}\n" +
+                         "  - {name: X2, address: X, bus: b, node_id: 4, axis_sync: {master: X, "
+                         "at_power_on: true}}\n");
+  EXPECT_FALSE(config.find_axis("X")->sync_slave);
+  EXPECT_TRUE(config.find_axis("Y")->sync_slave);
+  EXPECT_EQ(config.find_axis("Y")->sync_master, 0);
+  EXPECT_FALSE(config.find_axis("Y")->sync_at_power_on);
+  EXPECT_EQ(config.find_axis("X2")->sync_master, 1);
+  EXPECT_TRUE(config.find_axis("X2")->sync_at_power_on);
+
+  const std::string y = "  - {name: Y, address: Y, bus: b, node_id: 3, axis_sync: {}}\n";
+  auto x2 = [](const std::string& sync) {
+    return "  - {name: X2, address: X, bus: b, node_id: 4, axis_sync: " + sync + "}\n";
+  };
+  EXPECT_EQ(rejection_path(base + y + x2("{master: Q}")), "axes[3].axis_sync.master");
+  EXPECT_EQ(rejection_path(base + y + x2("{master: X2}")), "axes[3].axis_sync.master");
+  EXPECT_EQ(rejection_path(base + y + x2("{master: A}")), "axes[3].axis_sync.master")
+      << "a rotary master for a linear slave";
+  EXPECT_EQ(rejection_path(base + y + x2("{master: Y}")), "axes[3].axis_sync.master")
+      << "a slave does not lead";
+  EXPECT_EQ(rejection_path(base + y + x2("{at_power_on: true}")), "axes[3].axis_sync")
+      << "from power-on, but following whom?";
+  EXPECT_EQ(rejection_path(base + y + x2("{master: X, speed: 3}")), "axes[3].axis_sync.speed");
+  EXPECT_EQ(rejection_path(base + y +
+                           "  - {name: X2, address: X, bus: b, node_id: 4, exchange: 3, "
+                           "axis_sync: {}}\n"),
+            "axes[3].axis_sync");
+}
+
 }  // namespace
 }  // namespace mcnc::config
 

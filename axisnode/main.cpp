@@ -235,7 +235,7 @@ int main(int argc, char** argv) {
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (master_history.may_lead(fb.axis())) {
               wake.update([&] {
-                master_history.put(fb.axis(), fb.cycle(), fb.cmd());
+                master_history.put(fb.axis(), fb.cycle(), fb.cmd(), fb.enabled());
                 bool known = false;
                 for (const auto& [w, id] : leader_writers) {
                   known = known || id == fb.axis();
@@ -449,7 +449,7 @@ int main(int argc, char** argv) {
       const RunCommand cmd = node.run_control().command;
       bool lost = false;
       wake.with_lock([&] { lost = owner_lost; });
-      return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
+      return process::ends_run(cmd) || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
     };
 
     // 1. Wait until the cycle may run: every candidate owner's setpoint stamped N-1 is in,
@@ -604,20 +604,15 @@ int main(int argc, char** argv) {
         });
         if (axis_coupling.active()) {
           coupling::MasterHistory::Sample m;
-          wake.update([&] {
-            m = cycle > 0 ? master_history.at(axis_coupling.master(), cycle - 1)
-                          : coupling::MasterHistory::Sample{};
-            if (m.lookup != coupling::MasterHistory::Lookup::found && !lockstep) {
-              if (const auto latest = master_history.latest(axis_coupling.master())) {
-                m = coupling::MasterHistory::Sample{coupling::MasterHistory::Lookup::found,
-                                                    *latest};
-              }
-            }
-          });
+          wake.update(
+              [&] { m = master_history.estimate(axis_coupling.master(), cycle, lockstep); });
           in.have_setpoint = true;
           in.setpoint_velocity = false;
           in.setpoint_valid = false;  // without its master (or a drive in operation) it holds
-          if (m.lookup == coupling::MasterHistory::Lookup::found && controller.output().enabled) {
+          // Its master's increments while both are in operation; otherwise it holds, and
+          // starts again from where both stand.
+          if (m.lookup == coupling::MasterHistory::Lookup::found && m.operating &&
+              controller.output().enabled) {
             const coupling::AxisTarget t = axis_coupling.step(m.cmd, controller.output().cmd);
             in.setpoint_pos = t.pos;
             in.setpoint_vel = t.vel;
@@ -747,9 +742,10 @@ int main(int argc, char** argv) {
       spdlog::warn("{} axis requests dropped (more waiting than the node keeps)", pending_dropped);
     }
     node.announce(PHASE_STOPPED);
+    node.await_exit(std::chrono::seconds(5));
+    process::end_process(0);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  return 0;
 }

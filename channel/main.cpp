@@ -86,8 +86,10 @@ int main(int argc, char** argv) {
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
   setup.plc = machine.plc.present;
-  setup.call_wait_cycles = static_cast<std::uint64_t>(machine.call_wait_timeout_ms) * 1000 /
-                           static_cast<std::uint64_t>(machine.cycle_us);
+  // Rounded up: a limit shorter than a cycle is one cycle, not none.
+  const auto cycle_us = static_cast<std::uint64_t>(machine.cycle_us);
+  setup.call_wait_cycles =
+      (static_cast<std::uint64_t>(machine.call_wait_timeout_ms) * 1000 + cycle_us - 1) / cycle_us;
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
   // feedback follows the channel's spindles'; G114.1 ends when they are in phase.
   std::vector<const config::AxisConfig*> sync_slaves;
@@ -325,9 +327,10 @@ int main(int argc, char** argv) {
       spdlog::warn("{} trace events dropped (trace writer could not keep up)", tracer.dropped());
     }
     node.announce(PHASE_STOPPED);
+    node.await_exit(std::chrono::seconds(5));
+    process::end_process(0);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  return 0;
 }

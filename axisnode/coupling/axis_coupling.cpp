@@ -7,17 +7,15 @@ void AxisCoupling::couple(std::uint32_t master) noexcept {
   based_ = false;
 }
 
-AxisTarget AxisCoupling::step(double master_cmd, double slave_cmd) noexcept {
+AxisTarget AxisCoupling::step(double master_now, double slave_cmd) noexcept {
   if (!based_) {
     based_ = true;
-    base_master_ = master_cmd;
+    base_master_ = master_now;
     base_slave_ = slave_cmd;
-    last_master_ = master_cmd;
+    last_master_ = master_now;
   }
-  const double increment = master_cmd - last_master_;
-  last_master_ = master_cmd;
-  // The master's position now: where it was, plus what it moved in the last cycle.
-  const double master_now = master_cmd + increment;
+  const double increment = master_now - last_master_;
+  last_master_ = master_now;
   return AxisTarget{base_slave_ + (master_now - base_master_), increment / cycle_s_};
 }
 

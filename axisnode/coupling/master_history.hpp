@@ -1,11 +1,13 @@
 #pragma once
 // G51.4: the commanded positions of the axes a slave may follow, by cycle, as their feedback
-// brings them. In lockstep a master can run ahead of its slave (it waits for nobody's slave),
-// so each keeps a long history; a cycle that history no longer holds is reported as lost rather
-// than waited for. Allocates at construction only; the rest is noexcept.
+// brings them, and where a master stands at a cycle. The node learns a master's position one
+// cycle late (or, in realtime, whenever its feedback arrives), so the position at this cycle is
+// extrapolated from its newest sample at the speed between that sample and the one before: the
+// slave moves with its master, not behind it, and once the master stands the two agree exactly.
+// A master can run ahead of its slave, so each keeps a long history; a cycle that history no
+// longer holds is reported unavailable rather than waited for. Allocates at construction only.
 #include <cstddef>
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
@@ -17,8 +19,9 @@ class MasterHistory {
   MasterHistory(std::span<const std::uint32_t> masters, std::size_t depth);
 
   [[nodiscard]] bool may_lead(std::uint32_t axis) const noexcept { return index(axis) >= 0; }
-  // The master's commanded position stamped `cycle` (ignored for an axis that may not lead).
-  void put(std::uint32_t axis, std::uint64_t cycle, double cmd) noexcept;
+  // The master's commanded position stamped `cycle`, and whether its drive was in operation
+  // (ignored for an axis that may not lead).
+  void put(std::uint32_t axis, std::uint64_t cycle, double cmd, bool operating) noexcept;
   // The master's node is gone: nothing of it is waited for any more.
   void gone(std::uint32_t axis) noexcept;
 
@@ -26,12 +29,18 @@ class MasterHistory {
   struct Sample {
     Lookup lookup = Lookup::not_yet;
     double cmd = 0.0;
+    bool operating = false;
   };
-  // The position stamped `cycle`: found; not_yet (it may still come); unavailable (the node is
+  // The sample stamped `cycle`: found; not_yet (it may still come); unavailable (the node is
   // gone, the history has moved past it, or the axis may not lead).
   [[nodiscard]] Sample at(std::uint32_t axis, std::uint64_t cycle) const noexcept;
-  // The newest position received (realtime: the node takes the latest there is).
-  [[nodiscard]] std::optional<double> latest(std::uint32_t axis) const noexcept;
+
+  // Where the master stands at `cycle`. Lockstep (`exact`): from its sample of cycle - 1, which
+  // must be there (else its lookup), and the one of cycle - 2. Realtime: from its newest sample
+  // and the one before it, however many cycles apart (late samples, skipped cycles). Without an
+  // earlier sample in operation the master counts as standing. `operating`: the newest
+  // sample's (a master out of operation is not followed: its position may jump, e.g. homing).
+  [[nodiscard]] Sample estimate(std::uint32_t axis, std::uint64_t cycle, bool exact) const noexcept;
 
  private:
   [[nodiscard]] int index(std::uint32_t axis) const noexcept;
@@ -39,10 +48,12 @@ class MasterHistory {
     std::uint32_t axis = 0;
     std::vector<std::uint64_t> cycles;  // ring: cycle + 1 stored (0: empty)
     std::vector<double> cmd;
+    std::vector<bool> operating;
     bool gone = false;
     bool any = false;
     std::uint64_t newest = 0;
   };
+  [[nodiscard]] Sample sample(const Master& m, std::uint64_t cycle) const noexcept;
   std::vector<Master> masters_;
   std::size_t depth_;
 };

@@ -890,15 +890,21 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
 }
 
 bool ChannelController::calls_back(std::uint32_t target) const noexcept {
-  std::uint32_t caller = serving_ ? serving_->call.caller : 0;
-  // The chain of callers, from this channel's up: each partner's status names its own.
+  // The chain of callers that wait for their call, from this channel's up: each partner's
+  // status names its own caller, and a caller that waits is in state waiting. A caller that
+  // did not wait (H0) or was released (G145) may be called: it is no circle.
+  std::uint32_t caller =
+      serving_ && serving_->call.wait && !serving_->released ? serving_->call.caller : 0;
   for (std::size_t step = 0; step < coordination::kMaxChannels && caller != 0; ++step) {
     if (caller == target) {
       return true;
     }
     const PartnerStatus& p =
         caller <= coordination::kMaxChannels ? partners_[caller] : partners_[0];
-    caller = p.known && p.call_id != 0 ? p.call_caller : 0;
+    const std::uint32_t next = p.known && p.call_id != 0 ? p.call_caller : 0;
+    const bool next_waits = next != 0 && next <= coordination::kMaxChannels &&
+                            partners_[next].known && partners_[next].state == ChannelState::waiting;
+    caller = next_waits ? next : 0;
   }
   return false;
 }
@@ -910,9 +916,10 @@ void ChannelController::run_call(std::uint64_t cycle) noexcept {
   if (b.phase == CallPhase::reached) {
     const std::uint32_t target = b.call.target;
     if (target == setup_.channel_id || calls_back(target)) {
-      std::snprintf(
-          text, sizeof text, "G144 N%u: channel %u %s: a call cycle", target, target,
-          target == setup_.channel_id ? "is this channel" : "runs the call this channel serves");
+      std::snprintf(text, sizeof text, "G144 N%u: channel %u %s: a call cycle", target, target,
+                    target == setup_.channel_id
+                        ? "is this channel"
+                        : "waits for the call this channel runs (directly or through others)");
       raise(kAlarmCallCycle, text, b.block.line, 0, 0);
       return;
     }
@@ -1014,24 +1021,37 @@ void ChannelController::update_slots() noexcept {
       push_axis_request(AxisRequestKind::release, s, false);
     }
     unasked_released_[s] = unasked_released_[s] && f.owner == setup_.channel_id;
+    if (f.present && slot_use_[s] == SlotUse::commanded && setup_.slots[s].may_follow &&
+        f.coupled_to != 0) {
+      // Its node follows a master (a G51.4 whose block a reset forgot): not the program's.
+      slot_use_[s] = SlotUse::follows;
+      raise_if_queued_moves(s, "follows another axis (G51.4): this program still moves it");
+      continue;
+    }
     if (!f.present || slot_use_[s] != SlotUse::commanded || f.owner == setup_.channel_id) {
       continue;
     }
     // Another channel has the axis now (G141 P1 takes it at rest): the channel stops commanding
     // it, and a block still queued that moves it cannot run.
     slot_use_[s] = SlotUse::away;
-    int moving_line = 0;  // the first queued block that moves it
-    for (std::size_t k = 0; k < queued_count_ && moving_line == 0; ++k) {
-      const QueuedBlock& q = queued_[(queued_head_ + k) % queued_.size()];
-      moving_line = std::fabs(q.to[s] - commanded_[s]) > 1e-9 ? q.line : 0;
-    }
-    if (moving_line != 0 &&
-        (out_.state == ChannelState::running || out_.state == ChannelState::hold)) {
-      char text[128];
-      std::snprintf(text, sizeof text, "%c was taken by channel %u: this program still moves it",
-                    setup_.slots[s].address, f.owner);
-      raise(kAlarmAxisAway, text, moving_line, 0, static_cast<int>(s + 1));
-    }
+    char why[64];
+    std::snprintf(why, sizeof why, "was taken by channel %u: this program still moves it", f.owner);
+    raise_if_queued_moves(s, why);
+  }
+}
+
+void ChannelController::raise_if_queued_moves(std::size_t s, const char* why) noexcept {
+  int moving_line = 0;  // the first queued block that moves it
+  for (std::size_t k = 0; k < queued_count_ && moving_line == 0; ++k) {
+    const QueuedBlock& q = queued_[(queued_head_ + k) % queued_.size()];
+    moving_line = std::fabs(q.to[s] - commanded_[s]) > 1e-9 ? q.line : 0;
+  }
+  if (moving_line != 0 &&
+      (out_.state == ChannelState::running || out_.state == ChannelState::hold)) {
+    char text[128];
+    std::snprintf(text, sizeof text, "%c %s", setup_.slots[s].address, why);
+    raise(slot_use_[s] == SlotUse::follows ? kAlarmAxisFollows : kAlarmAxisAway, text, moving_line,
+          0, static_cast<int>(s + 1));
   }
 }
 
@@ -1372,6 +1392,7 @@ ChannelController::CouplingStart ChannelController::start_axis_sync(CouplingBloc
   }
   if (slot_use_[s] == SlotUse::follows || coupled_to != 0) {
     if (coupled_to == master) {
+      slot_use_[s] = SlotUse::follows;
       return CouplingStart::nothing_to_do;
     }
     std::snprintf(text, sizeof text, "G51.4 Q%u: %c already follows axis %u: G50.4 Q%u first",

@@ -481,6 +481,9 @@ class ChannelController {
   enum class SlotUse : std::uint8_t { commanded, virtual_axis, away, follows };
   [[nodiscard]] bool exchanges() const noexcept { return !setup_.slots.empty(); }
   void update_slots() noexcept;  // a commanded axis whose owner is now another channel
+  // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
+  // `s`, which the channel no longer commands: "<address> <why>".
+  void raise_if_queued_moves(std::size_t s, const char* why) noexcept;
   void build_views(std::span<const AxisFeedbackView> received) noexcept;
   // At a program start and at G142's end: owned slots are taken over from where their axes
   // stand; the others are virtual (exchange slots) or away (the channel's own axes).

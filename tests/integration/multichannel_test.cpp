@@ -277,6 +277,21 @@ void kill_channel_during(const TestMachine& machine, const std::string& trace,
   ::kill(pids[0], SIGKILL);
 }
 
+// After a child was killed: the launcher's alarm names it, and `axes` ended in quick stop.
+void expect_stopped_after_kill(const Trace& t, const std::string& killed,
+                               const std::vector<std::string>& axes) {
+  bool launch_saw_it = false;
+  for (const auto& a : events(t, "alarm", "launch")) {
+    launch_saw_it = launch_saw_it || a["text"].get<std::string>().find(killed) != std::string::npos;
+  }
+  EXPECT_TRUE(launch_saw_it) << killed;
+  for (const std::string& axis : axes) {
+    const auto drive = events(t, "drive", axis);
+    ASSERT_FALSE(drive.empty()) << axis;
+    EXPECT_EQ(drive.back()["state"], "quick_stop_active") << axis;
+  }
+}
+
 std::vector<int> lines_of(const Trace& t, const std::string& ch) {
   std::vector<int> lines;
   for (const auto& b : events(t, "block", ch)) {
@@ -469,16 +484,7 @@ TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
   EXPECT_NE(ch1_states.back()["state"], "waiting");
   EXPECT_EQ(lines_of(t, "CH1"), (std::vector<int>{1}));
   // The launcher saw the child die and stopped the machine; CH2's axes stopped on their own.
-  bool launch_saw_it = false;
-  for (const auto& a : events(t, "alarm", "launch")) {
-    launch_saw_it = launch_saw_it || a["text"].get<std::string>().find("CH2") != std::string::npos;
-  }
-  EXPECT_TRUE(launch_saw_it);
-  for (const std::string axis : {"X2", "Z2"}) {
-    const auto drive = events(t, "drive", axis);
-    ASSERT_FALSE(drive.empty()) << axis;
-    EXPECT_EQ(drive.back()["state"], "quick_stop_active") << axis;
-  }
+  expect_stopped_after_kill(t, "CH2", {"X2", "Z2"});
   EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
 }
 
@@ -1069,6 +1075,42 @@ TEST(MultiChannel, ASpindleSyncSurvivesAResetAndItsSlaveIsNotTheChannelsToTurn) 
   for (const auto& [s1, s2] : pairs) {
     EXPECT_NEAR(wrap_degrees(s2["cmd"].get<double>() - s1["act"].get<double>() - 90.0), 0.0, 1e-3);
   }
+}
+
+// Fault: the master's channel dies while the sub-spindle follows the main spindle (G114.1).
+// The main spindle's node stops it (its owner is gone), the slave follows it down and is
+// stopped with the machine, the partner waiting at a mark for the dead channel raises an alarm
+// instead of waiting for ever, and the machine stops.
+TEST(MultiChannel, AChannelKilledWhileItsSpindleLeadsASpindleSyncStopsBothSpindles) {
+  TestMachine machine("twin_turret.yaml", 80);
+  const std::string trace = machine.file("trace.jsonl");
+  Background run(
+      {bin("mcnc"), "run", machine.path(), "--trace", trace, "--program",
+       "CH1=" + write_program(machine, "ch1.nc", "M03 S300\nG114.1\nG04 X30.\nG04.1 P1 Q12\nM30\n"),
+       "--program", "CH2=" + write_program(machine, "ch2.nc", "G04.1 P1 Q12\nM30\n")},
+      -1, machine.file("run"));
+  ASSERT_NO_FATAL_FAILURE(kill_channel_during(machine, trace, "CH1", 3));  // both turn, locked
+  EXPECT_NE(run.wait(120s), 0);
+  const Trace t = read_trace(trace);
+  ASSERT_EQ(events(t, "couple", "S2").size(), 1U);
+  const std::uint64_t locked = block_at(t, "CH1", 3);
+  // CH2 never passed its mark and did not stay waiting for the dead channel.
+  EXPECT_TRUE(events(t, "sync_release", "CH2").empty());
+  const auto ch2_states = events(t, "state", "CH2");
+  ASSERT_FALSE(ch2_states.empty());
+  EXPECT_NE(ch2_states.back()["state"], "waiting");
+  // Both spindles end in quick stop: neither turns on without its channel.
+  expect_stopped_after_kill(t, "CH1", {"S1", "S2"});
+  // Until its master stopped the slave followed it in phase (within half a degree: S1 is still
+  // reaching S300, and the slave follows where S1 will be at its speed of the last cycle).
+  const std::uint64_t stopped = cycle_of(t, "drive", "S1", {{"state", "quick_stop_active"}});
+  ASSERT_GT(stopped, locked + 20);
+  const auto pairs = paired_positions(t, "S1", "S2", locked, stopped - 10);
+  ASSERT_GT(pairs.size(), 5U);
+  for (const auto& [s1, s2] : pairs) {
+    EXPECT_NEAR(wrap_degrees(s2["cmd"].get<double>() - s1["act"].get<double>()), 0.0, 0.5);
+  }
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
 }
 
 namespace {

@@ -110,6 +110,9 @@ class SyncRig : public ChannelRig {
   }
 
   [[nodiscard]] const std::vector<AxisFeedbackView>& feedback() const { return feedback_; }
+  // The node of `slot` follows `master` without this channel's block (its G51.4 forgotten by a
+  // reset before the answer came).
+  void node_couples(std::size_t slot, std::uint32_t master) { feedback_[slot].coupled_to = master; }
 
   std::vector<AxisSyncOut> sent;
   // Valid setpoints for an axis the channel saw following (the real node ignores them).
@@ -178,6 +181,19 @@ void expect_refused(const std::string& block, const std::string& why) {
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmAxisSync})) << block;
   EXPECT_NE(rig.alarm_text.find(why), std::string::npos) << block << ": " << rig.alarm_text;
   EXPECT_TRUE(rig.sent.empty()) << block;
+}
+
+TEST(AxisSync, AnAxisFoundFollowingIsNoLongerTheProgramsToMove) {
+  SyncRig rig;
+  rig.load("G01 X10 F600\nG01 Y3\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.feedback()[0].cmd > 1.0; }));
+  rig.node_couples(1, 1);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmAxisFollows}));
+  EXPECT_EQ(rig.alarm_lines, (std::vector<int>{2}));
+  EXPECT_FALSE(rig.ctl().commands_axis(1));
+  EXPECT_EQ(rig.valid_while_coupled, 0);
 }
 
 TEST(AxisSync, WhatCannotLeadOrFollowIsRefused) {

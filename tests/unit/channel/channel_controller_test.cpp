@@ -1703,6 +1703,53 @@ TEST(ChannelCall, ACalledProgramCallingItsCallerIsACallCycleAlarm) {
   EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallFailed);
 }
 
+// The circle through a third channel: channel 3 called channel 2, which called channel 1 (this
+// one); channel 1's called program calling channel 3 would close it.
+TEST(ChannelCall, ACallCycleThroughAnotherChannelIsFoundFromThePartnersStatus) {
+  CallableSource source({}, {{1000, {g144(7, 1, 3, 3000, true), program_end(8, 2, 99)}}});
+  motion::MotionPlanner planner(lathe_motion(), AxisVector{});
+  ChannelSetup setup{2, {kInPos, kInPos}, kDt};
+  setup.channel_id = 1;
+  ChannelController ctl(setup, source, planner);
+  std::array<AxisFeedbackView, 2> fb{};
+  for (auto& f : fb) {
+    f.enabled = f.present = true;
+  }
+  const std::uint64_t from_3 = (std::uint64_t{3} << 40) | 1;
+  const std::uint64_t from_2 = (std::uint64_t{2} << 40) | 1;
+  ctl.set_partner(2, PartnerStatus{true, ChannelState::waiting, from_3, 3});
+  ctl.set_partner(3, PartnerStatus{true, ChannelState::waiting, 0, 0});
+  std::uint64_t cycle = 1;
+  for (; cycle < 5; ++cycle) {
+    ctl.cycle(cycle, fb);  // up to idle
+  }
+  SubCall call;
+  call.call_id = from_2;
+  call.caller = 2;
+  call.target = 1;
+  call.program = 1000;
+  ctl.on_call(call);
+  for (; cycle < 100 && ctl.state() != ChannelState::alarm; ++cycle) {
+    ctl.cycle(cycle, fb);
+  }
+  EXPECT_EQ(ctl.last_alarm().number, kAlarmCallCycle);
+  EXPECT_EQ(ctl.last_alarm().line, 7);
+  // Without channel 2's call from channel 3 there is no circle: channel 3 is only waiting.
+  CallableSource plain({}, {{1000, {g144(7, 1, 3, 3000, true), program_end(8, 2, 99)}}});
+  motion::MotionPlanner planner2(lathe_motion(), AxisVector{});
+  ChannelController ok(setup, plain, planner2);
+  ok.set_partner(2, PartnerStatus{true, ChannelState::waiting, 0, 0});
+  ok.set_partner(3, PartnerStatus{true, ChannelState::running, 0, 0});
+  for (cycle = 1; cycle < 5; ++cycle) {
+    ok.cycle(cycle, fb);
+  }
+  ok.on_call(call);
+  for (; cycle < 100 && ok.state() != ChannelState::alarm; ++cycle) {
+    ok.cycle(cycle, fb);
+  }
+  EXPECT_EQ(ok.last_alarm().number, kAlarmCallBusy);  // channel 3 runs its own program
+}
+
 // Decide 1: a target still running this channel's earlier call is waited for, up to the
 // machine's call_wait_timeout_ms.
 TEST(ChannelCall, WaitingForATargetStillBusyWithTheEarlierCallEndsAfterTheTimeout) {

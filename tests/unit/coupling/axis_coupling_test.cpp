@@ -1,10 +1,12 @@
-// G51.4 (spec dafeng §3.2): the slave copies its master's increments, moves with the master in
-// the same cycle although it learns the master's position a cycle late, and after every move has
-// moved by exactly what the master moved.
+// G51.4 (spec dafeng §3.2): the slave copies its master's increments from where both stood
+// when it was coupled, moves with the master in the same cycle although it learns the master's
+// position a cycle late, and after every move has moved by exactly what the master moved.
 #include "axisnode/coupling/axis_coupling.hpp"
+#include "axisnode/coupling/master_history.hpp"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -14,6 +16,7 @@ namespace mcnc::coupling {
 namespace {
 
 constexpr double kDt = 0.001;
+constexpr std::uint32_t kX = 1;
 
 // A smooth move of `length` in `cycles` (acceleration continuous, as the planner's S-curve).
 std::vector<double> smooth_move(double from, double length, int cycles) {
@@ -26,86 +29,127 @@ std::vector<double> smooth_move(double from, double length, int cycles) {
   return p;
 }
 
-TEST(AxisCoupling, CopiesIncrementsNotPositions) {
-  AxisCoupling c(kDt);
-  EXPECT_FALSE(c.active());
-  c.couple(1);
-  EXPECT_TRUE(c.active());
-  EXPECT_EQ(c.master(), 1U);
-  // Master at 100, slave at -7: the slave stays at -7 plus what the master moves.
+// The slave node's loop in lockstep: the master's sample of the last cycle in, the slave's
+// position of this cycle out.
+struct Follower {
+  Follower() : history(masters, 1 << 12), coupling(kDt) {}
+  std::array<std::uint32_t, 1> masters{kX};
+  MasterHistory history;
+  AxisCoupling coupling;
+  double slave = 0.0;
+  std::uint64_t cycle = 0;
+  bool slave_operating = true;
+  // The master's commanded position at `cycle` (published for the next cycle), then the
+  // slave's cycle.
+  double run(double master_now, bool master_operating = true) {
+    history.put(kX, cycle, master_now, master_operating);
+    ++cycle;
+    if (!coupling.active()) {
+      return slave;
+    }
+    const MasterHistory::Sample m = history.estimate(kX, cycle, true);
+    if (m.lookup == MasterHistory::Lookup::found && m.operating && slave_operating) {
+      slave = coupling.step(m.cmd, slave).pos;
+    } else {
+      coupling.rebase();
+    }
+    return slave;
+  }
+};
+
+TEST(AxisCoupling, CopiesIncrementsNotPositionsInTheSameCycle) {
+  Follower f;
+  f.coupling.couple(kX);
+  EXPECT_TRUE(f.coupling.active());
+  EXPECT_EQ(f.coupling.master(), kX);
+  f.slave = -7.0;  // master at 100, slave at -7: the slave stays at -7 plus what X moves
   const std::vector<double> master = smooth_move(100.0, 10.0, 2000);
-  double slave = -7.0;
+  f.run(100.0);
+  f.run(100.0);
   double worst = 0.0;
-  for (std::size_t n = 1; n < master.size(); ++n) {
-    slave = c.step(master[n - 1], slave).pos;  // the master's position of the last cycle in
-    worst = std::max(worst, std::fabs((slave + 7.0) - (master[n] - 100.0)));
+  for (std::size_t n = 0; n + 1 < master.size(); ++n) {
+    const double slave = f.run(master[n]);  // the slave's position at the master's next cycle
+    worst = std::max(worst, std::fabs((slave + 7.0) - (master[n + 1] - 100.0)));
   }
-  for (int n = 0; n < 5; ++n) {
-    slave = c.step(master.back(), slave).pos;  // the master stands
+  for (int n = 0; n < 3; ++n) {
+    f.run(master.back());
   }
-  EXPECT_NEAR(slave, 3.0, 1e-12);
-  // With the same cycle's master: off by at most the acceleration times a cycle squared
-  // (peak 2 pi x 10 mm / 2 s^2 here, about 16 mm/s^2).
+  EXPECT_NEAR(f.slave, 3.0, 1e-12);
+  // Off the master by at most its acceleration times a cycle squared (peak 2 pi x 10 mm / 2 s^2
+  // here, about 16 mm/s^2).
   EXPECT_LT(worst, 2e-5);
 }
 
-TEST(AxisCoupling, ConstantSpeedIsExactFromTheSecondCycle) {
-  AxisCoupling c(kDt);
-  c.couple(3);
-  double slave = 0.0;
-  const double speed = 50.0;  // mm/s
-  AxisTarget t;
-  for (int n = 0; n < 100; ++n) {
-    t = c.step(speed * kDt * n, slave);  // the master's position at cycle n, known at n + 1
-    slave = t.pos;
-    if (n >= 1) {
-      EXPECT_NEAR(slave, speed * kDt * (n + 1), 1e-9) << n;
-    }
+TEST(AxisCoupling, CouplingToAMovingMasterTakesItsSpeedWithoutACatchUpStep) {
+  Follower f;
+  constexpr double kStep = 0.05;  // the master moves 50 mm/s
+  for (int n = 0; n < 10; ++n) {
+    f.run(kStep * n);
   }
-  EXPECT_NEAR(t.vel, speed, 1e-6);
+  f.coupling.couple(kX);
+  std::vector<double> slave;
+  for (int n = 10; n < 20; ++n) {
+    slave.push_back(f.run(kStep * n));
+  }
+  EXPECT_DOUBLE_EQ(slave[0], 0.0);  // where it stood
+  for (std::size_t n = 1; n < slave.size(); ++n) {
+    EXPECT_NEAR(slave[n] - slave[n - 1], kStep, 1e-12) << n;  // never two steps at once
+  }
 }
 
-TEST(AxisCoupling, ResumesWithoutAJumpAfterItDidNotFollow) {
-  AxisCoupling c(kDt);
-  c.couple(1);
-  double slave = 5.0;
-  slave = c.step(0.0, slave).pos;
-  slave = c.step(1.0, slave).pos;  // moves with the master: 5 + 1 + 1 (extrapolated)
-  EXPECT_NEAR(slave, 7.0, 1e-12);
-  // The slave's drive stops (an E-stop) while the master goes on to 20: where the slave
-  // stands is where it resumes from, with no catch-up jump.
-  c.rebase();
-  const double stopped = 6.5;
-  slave = c.step(20.0, stopped).pos;
-  EXPECT_NEAR(slave, stopped, 1e-12);
-  slave = c.step(21.0, slave).pos;
-  EXPECT_NEAR(slave, stopped + 2.0, 1e-12);
-  c.decouple();
-  EXPECT_FALSE(c.active());
-  EXPECT_EQ(c.master(), 0U);
+TEST(AxisCoupling, AMasterOutOfOperationIsNotFollowedAndTheSlaveResumesWithoutAJump) {
+  Follower f;
+  f.coupling.couple(kX);
+  f.slave = 5.0;
+  f.run(0.0);
+  f.run(0.0);
+  EXPECT_NEAR(f.run(1.0), 7.0, 1e-12);  // with the master, which is at 2 by now
+  EXPECT_NEAR(f.run(2.0), 8.0, 1e-12);
+  EXPECT_NEAR(f.run(2.0), 7.0, 1e-12);  // the master stands at 2: the slave at 5 + 2
+  // The master homes: its position jumps to 250 while it is out of operation.
+  EXPECT_NEAR(f.run(250.0, false), 7.0, 1e-12);
+  EXPECT_NEAR(f.run(250.0, false), 7.0, 1e-12);
+  EXPECT_NEAR(f.run(250.0), 7.0, 1e-12);  // in operation again: where both stand
+  EXPECT_NEAR(f.run(251.0), 9.0, 1e-12);
+  EXPECT_NEAR(f.run(251.0), 8.0, 1e-12);  // the homing's 248 never reached the slave
+  // The slave's drive stops (an E-stop) while the master goes on: it resumes from where it
+  // stands.
+  f.slave_operating = false;
+  f.run(255.0);
+  f.run(260.0);
+  f.slave = 6.5;
+  f.slave_operating = true;
+  EXPECT_NEAR(f.run(261.0), 6.5, 1e-12);
+  EXPECT_NEAR(f.run(262.0), 7.5, 1e-12);
+  EXPECT_NEAR(f.run(263.0), 8.5, 1e-12);
+  f.coupling.decouple();
+  EXPECT_FALSE(f.coupling.active());
+  EXPECT_EQ(f.coupling.master(), 0U);
 }
 
-// Seeded random moves, rests and speeds: at every rest the slave has moved by what the master
-// moved since the coupling, to the last bit the arithmetic leaves.
+// Seeded random moves and rests: at every rest the slave has moved by what the master moved
+// since the coupling, to the last bit the arithmetic leaves.
 TEST(AxisCoupling, RandomMovesAddUpExactly) {
   std::mt19937 rng(514);
   std::uniform_real_distribution<double> length(-50.0, 50.0);
   std::uniform_int_distribution<int> duration(1, 800);
-  AxisCoupling c(kDt);
-  c.couple(2);
+  Follower f;
+  f.coupling.couple(kX);
   double master = 12.5;
-  double slave = -3.25;
+  f.slave = -3.25;
+  f.run(master);
+  f.run(master);
   const double master0 = master;
-  const double slave0 = slave;
+  const double slave0 = f.slave;
   for (int move = 0; move < 200; ++move) {
     const std::vector<double> m = smooth_move(master, length(rng), duration(rng));
     for (double p : m) {
-      slave = c.step(p, slave).pos;
+      f.run(p);
     }
     master = m.back();
-    slave = c.step(master, slave).pos;
-    slave = c.step(master, slave).pos;
-    ASSERT_NEAR(slave - slave0, master - master0, 1e-9) << "after move " << move;
+    f.run(master);
+    f.run(master);
+    ASSERT_NEAR(f.slave - slave0, master - master0, 1e-9) << "after move " << move;
   }
 }
 

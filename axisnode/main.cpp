@@ -449,7 +449,7 @@ int main(int argc, char** argv) {
       const RunCommand cmd = node.run_control().command;
       bool lost = false;
       wake.with_lock([&] { lost = owner_lost; });
-      return process::ends_run(cmd) || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
+      return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
     };
 
     // 1. Wait until the cycle may run: every candidate owner's setpoint stamped N-1 is in,
@@ -742,10 +742,9 @@ int main(int argc, char** argv) {
       spdlog::warn("{} axis requests dropped (more waiting than the node keeps)", pending_dropped);
     }
     node.announce(PHASE_STOPPED);
-    node.await_exit(std::chrono::seconds(5));
-    process::end_process(0);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
+  return 0;
 }

@@ -145,10 +145,6 @@ int main(int argc, char** argv) {
   rc.generation(2);
   rc.command(RUN_STOP);
   control.write(rc);
-  std::this_thread::sleep_for(100ms);
-  rc.generation(3);
-  rc.command(RUN_EXIT);  // every process has stopped its cycle: they may leave
-  control.write(rc);
   stop = true;
   listener.join();
   for (auto& c : children) {

@@ -263,8 +263,7 @@ int execute_run(const RunArguments& args) {
   if (!args.report_dir.empty()) {
     write_report(args.report_dir, machine, result);
   }
-  // Every child has ended and the trace is written: no DDS teardown (see end_process).
-  process::end_process(result.exit_code);
+  return result.exit_code;
 }
 
 }  // namespace mcnc::launch

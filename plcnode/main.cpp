@@ -243,10 +243,9 @@ int main(int argc, char** argv) {
       spdlog::warn("{} aux requests dropped (queue full)", dropped);
     }
     node.announce(PHASE_STOPPED);
-    node.await_exit(std::chrono::seconds(5));
-    process::end_process(0);
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
   }
+  return 0;
 }

@@ -35,13 +35,13 @@ class CycleLoop {
       wake.wait_for(
           [&] {
             const RunCommand cmd = node_.run_control().command;
-            return ready(cycle) || feed_gone() || ends_run(cmd) || cmd == RUN_ESTOP ||
+            return ready(cycle) || feed_gone() || cmd == RUN_STOP || cmd == RUN_ESTOP ||
                    g_stop_signal != 0;
           },
           std::chrono::hours(24));
     }
     const RunControlView rc = node_.run_control();
-    if (ends_run(rc.command) || g_stop_signal != 0) {
+    if (rc.command == RUN_STOP || g_stop_signal != 0) {
       return false;
     }
     estop_ = rc.command == RUN_ESTOP;

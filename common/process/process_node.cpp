@@ -98,17 +98,9 @@ std::optional<OperatorRequest> ProcessNode::take_operator_request(std::uint64_t 
 bool ProcessNode::stop_arrives_within(std::chrono::milliseconds grace) {
   return wakeup_.wait_for(
       [this] {
-        return ends_run(static_cast<RunCommand>(rc_command_.load())) || g_stop_signal != 0;
+        return static_cast<RunCommand>(rc_command_.load()) == RUN_STOP || g_stop_signal != 0;
       },
       grace);
-}
-
-void ProcessNode::await_exit(std::chrono::milliseconds limit) {
-  (void)wakeup_.wait_for(
-      [this] {
-        return static_cast<RunCommand>(rc_command_.load()) == RUN_EXIT || g_stop_signal != 0;
-      },
-      limit);
 }
 
 bool ProcessNode::raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle,

@@ -82,11 +82,6 @@ struct RunControlView {
   bool pace = false;
 };
 
-// STOP, or the EXIT that follows it: the run is over.
-[[nodiscard]] constexpr bool ends_run(RunCommand command) noexcept {
-  return command == RUN_STOP || command == RUN_EXIT;
-}
-
 class ProcessNode {
  public:
   ProcessNode(int domain, std::string name);
@@ -103,9 +98,6 @@ class ProcessNode {
   // together but may arrive in either order. True when STOP (or a stop signal) arrives within
   // `grace`; the caller then ends instead of raising an alarm.
   bool stop_arrives_within(std::chrono::milliseconds grace);
-  // After announcing PHASE_STOPPED: waits until the launcher says every process has stopped
-  // (RUN_EXIT), a stop signal comes, or `limit` passes; then the process may leave.
-  void await_exit(std::chrono::milliseconds limit);
   // Raises an alarm from this process: copies it into a fixed-size queue and returns; a thread
   // of this node publishes it (sequence numbered) and logs it. Safe in the per-cycle path: no
   // allocation, no blocking, no logging there. One thread raises alarms. Text longer than the

@@ -63,14 +63,4 @@ void install_stop_signals() {
   }
 }
 
-void end_process(int code) noexcept {
-  try {
-    spdlog::default_logger()->flush();
-  } catch (...) {
-    // Ending anyway: the log is the only thing lost.
-  }
-  std::fflush(nullptr);
-  std::_Exit(code);
-}
-
 }  // namespace mcnc::process

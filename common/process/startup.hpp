@@ -34,12 +34,4 @@ config::MachineConfig load_machine_or_exit(const std::string& path);
 extern volatile std::sig_atomic_t g_stop_signal;
 void install_stop_signals();
 
-// Ends a process whose work is done and said (its stop announced, its files written): flushes
-// the logs and every open stream and exits with `code`, without tearing down its DDS
-// participant. Fast DDS 2.9.1 can abort in that teardown while the other processes of the
-// machine leave at the same time (a remote participant's lease timer racing its removal: the
-// assertion in PDP::check_remote_participant_liveliness). The peers see the process leave by
-// its lease, as after a crash.
-[[noreturn]] void end_process(int code) noexcept;
-
 }  // namespace mcnc::process

@@ -969,6 +969,29 @@ TEST(MultiChannel, ThePlcKeepsTheSpindleStillWithTheChuckOpen) {
   }
 }
 
+// The spec's gear (M40-M44) and tailstock (M78/M79) codes on the twin-turret lathe: each waits
+// for its sensor, and neither a gear change nor a tailstock retract happens under a turning
+// spindle.
+TEST(MultiChannel, GearsAndTailstockWaitForTheirSensorsAndNotUnderATurningSpindle) {
+  TestMachine machine("twin_turret.yaml", 81);
+  const MultiRun r = run_channels(
+      machine, {{"CH1", write_program(machine, "ch1.nc",
+                                      "M78\nM42\nM03 S300\nG04 X0.3\nM79\nM30\n")}});
+  EXPECT_NE(r.exit_code, 0);
+  const Trace& t = r.trace;
+  // FIN once the sensor follows its output: 400 ms for the tailstock, 200 ms for the gear
+  // (2 ms cycles).
+  for (const auto& [code, ms] : {std::pair{"M78", 400}, std::pair{"M42", 200}}) {
+    const std::uint64_t asked = cycle_of(t, "aux", "PLC", {{"ch", "CH1"}, {"code", code}});
+    const std::uint64_t done = cycle_of(t, "aux_done", "PLC", {{"ch", "CH1"}, {"code", code}});
+    EXPECT_NEAR(static_cast<double>(done - asked), ms / 2.0, 3.0) << code;
+  }
+  EXPECT_GT(cycle_of(t, "aux", "PLC", {{"ch", "CH1"}, {"code", "M03"}}),
+            cycle_of(t, "aux_done", "PLC", {{"ch", "CH1"}, {"code", "M42"}}));
+  expect_single_alarm(r, "CH1", 1240, 5, "turns");
+  EXPECT_EQ(events(t, "aux_done", "PLC").back()["outcome"], "refused");
+}
+
 TEST(MultiChannel, AnMCodeWithoutFinInTimeIsAnAlarm) {
   TestMachine machine = plc_machine(74);
   const MultiRun r = run_channels(

@@ -99,8 +99,6 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
       30s));
   std::this_thread::sleep_for(300ms);  // at rest: a few pos events with the same act
   send(RUN_STOP, 2);
-  std::this_thread::sleep_for(200ms);
-  send(RUN_EXIT, 3);  // as the launcher does once every process has stopped
   EXPECT_EQ(x.wait(20s), 0);
   EXPECT_EQ(z.wait(20s), 0);
   sim.kill(SIGTERM);

@@ -106,6 +106,24 @@ std::string text_with_axes(int axis_count, int cycle_us, int bitrate) {
   return YAML::Dump(root);
 }
 
+// Every machine file the project ships loads: a key it adds is checked like a user's.
+TEST(MachineConfig, EveryShippedMachineFileLoads) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kSourceDir + "/launch/machines")) {
+    if (entry.path().extension() != ".yaml") {
+      continue;
+    }
+    ++files;
+    EXPECT_NO_THROW((void)load_machine_file(entry.path().string())) << entry.path();
+  }
+  EXPECT_GE(files, 6);
+  const MachineConfig twin = load_machine_file(kSourceDir + "/launch/machines/twin_turret.yaml");
+  EXPECT_EQ(twin.channels.size(), 3U);
+  const MachineConfig gantry = load_machine_file(kSourceDir + "/launch/machines/gantry_cell.yaml");
+  EXPECT_TRUE(gantry.find_axis("X1")->sync_at_power_on);
+  EXPECT_EQ(gantry.find_axis("X1")->sync_master, gantry.find_axis("X")->id);
+}
+
 TEST(MachineConfig, SmallLatheFileIsFullyParsed) {
   const MachineConfig config = load_machine_file(kSourceDir + "/launch/machines/small_lathe.yaml");
   EXPECT_EQ(config.name, "small_lathe");

@@ -86,10 +86,7 @@ int main(int argc, char** argv) {
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch->id);
   setup.plc = machine.plc.present;
-  // Rounded up: a limit shorter than a cycle is one cycle, not none.
-  const auto cycle_us = static_cast<std::uint64_t>(machine.cycle_us);
-  setup.call_wait_cycles =
-      (static_cast<std::uint64_t>(machine.call_wait_timeout_ms) * 1000 + cycle_us - 1) / cycle_us;
+  setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
   // feedback follows the channel's spindles'; G114.1 ends when they are in phase.
   std::vector<const config::AxisConfig*> sync_slaves;

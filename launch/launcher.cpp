@@ -445,6 +445,7 @@ LaunchResult Launcher::run(
     if (child.exit_code() == -SIGABRT && stopped) {
       spdlog::warn("{} {} after it had stopped (DDS teardown)", child.name(),
                    child.exit_description());
+      killed_child = true;  // its shared-memory files stay behind, as after a kill
       continue;
     }
     if (child.exit_code() != 0 && failure.empty()) {

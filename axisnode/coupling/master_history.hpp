@@ -37,7 +37,7 @@ class MasterHistory {
 
   // Where the master stands at `cycle`. Lockstep (`exact`): from its sample of cycle - 1, which
   // must be there (else its lookup), and the one of cycle - 2. Realtime: from its newest sample
-  // and the one before it, however many cycles apart (late samples, skipped cycles). Without an
+  // and the one before it, up to 8 cycles apart (late samples, skipped cycles). Without such an
   // earlier sample in operation the master counts as standing. `operating`: the newest
   // sample's (a master out of operation is not followed: its position may jump, e.g. homing).
   [[nodiscard]] Sample estimate(std::uint32_t axis, std::uint64_t cycle, bool exact) const noexcept;

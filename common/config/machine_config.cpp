@@ -834,6 +834,16 @@ MachineConfig parse_document(const YAML::Node& root) {
 
 }  // namespace
 
+std::uint64_t cycles_of(int ms, int cycle_us) noexcept {
+  const auto us = static_cast<std::uint64_t>(ms) * 1000U;
+  const auto per = static_cast<std::uint64_t>(cycle_us);
+  return (us + per - 1) / per;
+}
+
+std::uint64_t MachineConfig::cycles_of(int ms) const noexcept {
+  return config::cycles_of(ms, cycle_us);
+}
+
 const AxisConfig* MachineConfig::find_axis(const std::string& name) const noexcept {
   for (const AxisConfig& axis : axes) {
     if (axis.name == name) {

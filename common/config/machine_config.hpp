@@ -153,6 +153,8 @@ struct MachineConfig {
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;
   [[nodiscard]] const BusConfig* find_bus(const std::string& name) const noexcept;
   [[nodiscard]] double cycle_s() const noexcept { return cycle_us * 1e-6; }
+  // Cycles that take at least `ms` milliseconds (a time from the machine file as a count).
+  [[nodiscard]] std::uint64_t cycles_of(int ms) const noexcept;
 };
 
 // Parse and validate. Throws ConfigError (key path + reason) on any problem: unknown key,
@@ -176,5 +178,9 @@ MachineConfig load_machine_file(const std::string& path);
 inline constexpr double kMaxBusLoad = 0.70;
 // Channels of one machine: G04.1 participant sets travel as 64-bit masks.
 inline constexpr std::size_t kMaxChannels = 64;
+
+// Cycles of `cycle_us` that take at least `ms` milliseconds (rounded up: a time shorter than a
+// cycle is one cycle, never none).
+[[nodiscard]] std::uint64_t cycles_of(int ms, int cycle_us) noexcept;
 
 }  // namespace mcnc::config

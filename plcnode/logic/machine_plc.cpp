@@ -1,5 +1,6 @@
 #include "plcnode/logic/machine_plc.hpp"
 
+#include "common/config/machine_config.hpp"
 #include "common/cycle/decision_order.hpp"
 
 #include <cstdio>
@@ -18,15 +19,7 @@ const char* to_string(AuxOutcome outcome) noexcept {
   return "done";
 }
 
-namespace {
-
-std::uint64_t cycles_of(int ms, int cycle_us) noexcept {
-  const auto us = static_cast<std::uint64_t>(ms) * 1000U;
-  const auto per = static_cast<std::uint64_t>(cycle_us);
-  return (us + per - 1) / per;  // at least the time asked for
-}
-
-}  // namespace
+using config::cycles_of;
 
 MachinePlc::MachinePlc(const config::PlcConfig& config, int cycle_us) noexcept
     : config_(config), cycle_us_(cycle_us) {

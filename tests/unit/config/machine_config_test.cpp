@@ -106,6 +106,17 @@ std::string text_with_axes(int axis_count, int cycle_us, int bitrate) {
   return YAML::Dump(root);
 }
 
+// A time from the machine file as cycles: rounded up, so that a time is never cut short.
+TEST(MachineConfig, MillisecondsBecomeWholeCyclesRoundedUp) {
+  EXPECT_EQ(cycles_of(0, 2000), 0U);
+  EXPECT_EQ(cycles_of(1, 2000), 1U);
+  EXPECT_EQ(cycles_of(4, 2000), 2U);
+  EXPECT_EQ(cycles_of(5, 2000), 3U);
+  MachineConfig m;
+  m.cycle_us = 1000;
+  EXPECT_EQ(m.cycles_of(10000), 10000U);
+}
+
 // Every machine file the project ships loads: a key it adds is checked like a user's.
 TEST(MachineConfig, EveryShippedMachineFileLoads) {
   int files = 0;

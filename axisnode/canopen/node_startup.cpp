@@ -4,6 +4,7 @@
 #include "axisnode/cia402/canopen_frames.hpp"
 
 #include <cstdio>
+#include <cstring>
 
 namespace mcnc::canopen {
 
@@ -91,6 +92,8 @@ void NodeStartup::begin(std::uint64_t now_us, can::CanFrame& out) noexcept {
   attempts_ = 1;
   attempt_started_us_ = now_us;
   next_write_ = 0;
+  sdo_tries_ = 0;
+  retry_pending_ = false;
   error_[0] = '\0';
   out = encode_nmt(NmtCommand::reset_communication, config_.node);
 }
@@ -102,6 +105,22 @@ void NodeStartup::fail_sdo(const char* doing) noexcept {
                 "node %u: %s 0x%04X:%02X (%s) %s: %s (SDO abort 0x%08X)", config_.node, doing,
                 sdo_.index(), sdo_.sub(), object_name(sdo_.index()),
                 sdo_.aborted_by_server() ? "was refused" : "failed", sdo_abort_text(code), code);
+  if (sdo_tries_ > 1) {
+    const std::size_t used = std::strlen(error_.data());
+    std::snprintf(error_.data() + used, error_.size() - used, " %d times", sdo_tries_);
+  }
+}
+
+// The request of the current step: the device type, or the write before next_write_.
+bool NodeStartup::send_request(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  if (phase_ == Phase::device_type) {
+    return sdo_.upload(0x1000, 0, now_us, out);
+  }
+  const SdoWrite& w = writes_[next_write_ - 1];
+  const std::uint8_t bytes[4] = {
+      static_cast<std::uint8_t>(w.value), static_cast<std::uint8_t>(w.value >> 8),
+      static_cast<std::uint8_t>(w.value >> 16), static_cast<std::uint8_t>(w.value >> 24)};
+  return sdo_.download(w.index, w.sub, bytes, w.size, now_us, out);
 }
 
 // The next SDO request after the one that just completed, or NMT start after the last.
@@ -112,11 +131,9 @@ bool NodeStartup::next_request(std::uint64_t now_us, can::CanFrame& out) noexcep
     out = encode_nmt(NmtCommand::start, config_.node);
     return true;
   }
-  const SdoWrite& w = writes_[next_write_++];
-  const std::uint8_t bytes[4] = {
-      static_cast<std::uint8_t>(w.value), static_cast<std::uint8_t>(w.value >> 8),
-      static_cast<std::uint8_t>(w.value >> 16), static_cast<std::uint8_t>(w.value >> 24)};
-  return sdo_.download(w.index, w.sub, bytes, w.size, now_us, out);
+  ++next_write_;
+  sdo_tries_ = 1;
+  return send_request(now_us, out);
 }
 
 bool NodeStartup::on_frame(const can::CanFrame& in, std::uint64_t now_us,
@@ -130,10 +147,14 @@ bool NodeStartup::on_frame(const can::CanFrame& in, std::uint64_t now_us,
     }
     if (config_.device_type != 0) {
       phase_ = Phase::device_type;
-      return sdo_.upload(0x1000, 0, now_us, out);
+      sdo_tries_ = 1;
+      return send_request(now_us, out);
     }
     phase_ = Phase::writes;
     return next_request(now_us, out);
+  }
+  if (retry_pending_) {
+    return false;  // a late answer to the request given up on; it is sent again
   }
   const bool send = sdo_.on_frame(in, now_us, out);
   if (sdo_.state() == SdoClient::State::aborted) {
@@ -183,8 +204,18 @@ bool NodeStartup::on_time(std::uint64_t now_us, can::CanFrame& out) noexcept {
     out = encode_nmt(NmtCommand::reset_communication, config_.node);
     return true;
   }
+  if (retry_pending_) {
+    retry_pending_ = false;
+    ++sdo_tries_;
+    return send_request(now_us, out);
+  }
   const bool send = sdo_.on_time(now_us, out);
   if (sdo_.state() == SdoClient::State::aborted) {
+    if (!sdo_.aborted_by_server() && sdo_.abort_code() == sdo_abort::kTimeout &&
+        sdo_tries_ < config_.sdo_attempts) {
+      retry_pending_ = true;
+      return send;
+    }
     fail_sdo(phase_ == Phase::device_type ? "reading" : "writing");
   }
   return send;

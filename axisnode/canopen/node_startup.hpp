@@ -24,6 +24,10 @@ struct NodeStartupConfig {
   std::uint64_t bootup_timeout_us = 500000;   // per attempt; the reset is repeated
   int bootup_attempts = 4;
   std::uint64_t sdo_timeout_us = 100000;
+  // A request the node did not answer in time is aborted and sent again, up to this many
+  // times in all: one lost frame on a loaded bus does not fail the start-up. Every write of
+  // the start-up sets a value, so sending it twice does no harm.
+  int sdo_attempts = 3;
 };
 
 class NodeStartup {
@@ -48,6 +52,7 @@ class NodeStartup {
  private:
   enum class Phase : std::uint8_t { bootup, device_type, writes, started };
   bool next_request(std::uint64_t now_us, can::CanFrame& out) noexcept;
+  bool send_request(std::uint64_t now_us, can::CanFrame& out) noexcept;
   void fail_sdo(const char* doing) noexcept;
 
   NodeStartupConfig config_;
@@ -59,6 +64,8 @@ class NodeStartup {
   std::array<SdoWrite, 48> writes_{};
   std::size_t write_count_ = 0;
   std::size_t next_write_ = 0;
+  int sdo_tries_ = 0;           // of the request under way
+  bool retry_pending_ = false;  // the abort of a timed-out request went out; resend next
   std::array<char, 200> error_{};
 };
 

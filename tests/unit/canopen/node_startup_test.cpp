@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -57,9 +58,11 @@ can::CanFrame bootup() {
 }
 
 // Runs the start-up against the dictionary behind an SDO server; a silent node answers
-// nothing after its boot-up. Returns the frames the master sent.
+// nothing after its boot-up, and the bus loses the SDO requests numbered in `lost` (from 0;
+// the master's aborts are not counted).
+// Returns the frames the master sent.
 std::vector<can::CanFrame> run_startup(NodeStartup& s, RecordingDictionary& od, bool silent,
-                                       bool boots = true) {
+                                       bool boots = true, const std::vector<int>& lost = {}) {
   SdoServer server(kNode, od);
   std::vector<can::CanFrame> sent;
   can::CanFrame out;
@@ -70,20 +73,28 @@ std::vector<can::CanFrame> run_startup(NodeStartup& s, RecordingDictionary& od, 
   if (boots) {
     to_master.push_back(bootup());
   }
+  int requests = 0;
+  const auto to_node = [&](const can::CanFrame& frame) {
+    sent.push_back(frame);
+    if (frame.id != kSdoRequestBase + kNode || frame.data[0] == 0x80) {
+      return;  // not a request, or the master's abort
+    }
+    const bool dropped = std::find(lost.begin(), lost.end(), requests++) != lost.end();
+    can::CanFrame resp;
+    if (!silent && !dropped && server.on_frame(frame, resp)) {
+      to_master.push_back(resp);
+    }
+  };
   for (int step = 0; step < 100000 && s.status() == NodeStartup::Status::running; ++step) {
     now += 1000;
     if (!to_master.empty()) {
       const can::CanFrame in = to_master.front();
       to_master.erase(to_master.begin());
       if (s.on_frame(in, now, out)) {
-        sent.push_back(out);
-        can::CanFrame resp;
-        if (!silent && server.on_frame(out, resp)) {
-          to_master.push_back(resp);
-        }
+        to_node(out);
       }
     } else if (s.on_time(now, out)) {
-      sent.push_back(out);
+      to_node(out);
     }
   }
   return sent;
@@ -184,8 +195,43 @@ TEST(NodeStartup, SilenceAfterTheBootupTimesOutWithTheObject) {
   ASSERT_EQ(s.status(), NodeStartup::Status::failed);
   EXPECT_EQ(std::string(s.error()),
             "node 3: reading 0x1000:00 (device type) failed: SDO protocol timed out (SDO abort "
-            "0x05040000)");
-  EXPECT_EQ(sent.back().data[0], 0x80);  // the master aborted the transfer on the bus
+            "0x05040000) 3 times");
+  // Reset, then three times the request and its abort on the bus.
+  ASSERT_EQ(sent.size(), 7U);
+  for (std::size_t i = 1; i < sent.size(); i += 2) {
+    EXPECT_EQ(sent[i].data[0], 0x40);      // initiate upload
+    EXPECT_EQ(sent[i + 1].data[0], 0x80);  // abort
+  }
+}
+
+TEST(NodeStartup, ALostRequestIsSentAgainAndTheStartupFinishes) {
+  RecordingDictionary od;
+  NodeStartup s(NodeStartupConfig{kNode});
+  // The device-type read once, the first write twice, a later write once.
+  const auto sent = run_startup(s, od, false, true, {0, 2, 3, 9});
+  ASSERT_EQ(s.status(), NodeStartup::Status::done) << s.error();
+  RecordingDictionary reference;
+  NodeStartup clean(NodeStartupConfig{kNode});
+  run_startup(clean, reference, false);
+  ASSERT_EQ(od.writes.size(), reference.writes.size());  // each write landed once, in order
+  for (std::size_t i = 0; i < od.writes.size(); ++i) {
+    EXPECT_EQ(od.writes[i].index, reference.writes[i].index);
+    EXPECT_EQ(od.writes[i].sub, reference.writes[i].sub);
+    EXPECT_EQ(od.writes[i].value, reference.writes[i].value);
+  }
+}
+
+TEST(NodeStartup, AWriteLostEveryTimeFailsNamingItAndTheTries) {
+  RecordingDictionary od;
+  NodeStartupConfig c{kNode};
+  c.sdo_attempts = 2;
+  NodeStartup s(c);
+  // Request 0 reads the device type, 1 writes the heartbeat time, 2 is its retry.
+  run_startup(s, od, false, true, {1, 2});
+  ASSERT_EQ(s.status(), NodeStartup::Status::failed);
+  EXPECT_EQ(std::string(s.error()),
+            "node 3: writing 0x1017:00 (producer heartbeat time) failed: SDO protocol timed out "
+            "(SDO abort 0x05040000) 2 times");
 }
 
 TEST(NodeStartup, NoBootupRetriesTheResetThenFails) {

@@ -433,18 +433,23 @@ LaunchResult Launcher::run(
       wait_all(3s);
     }
   }
+  const bool run_failed = !failure.empty();
   for (auto& child : children) {
-    // An abort after the process said it stopped is Fast DDS 2.9.1 tearing down its participant
-    // while the others leave too (an assertion in PDP::check_remote_participant_liveliness):
-    // its work was done and reported; the run's result stands (docs/operations.md).
+    // An abort once the run was over is Fast DDS 2.9.1 tearing down a participant while the
+    // others leave (an assertion in PDP::check_remote_participant_liveliness), before or after
+    // the process said it stopped: its work was done and reported; the run's result stands
+    // (docs/operations.md). An abort during the run failed it above.
     bool stopped = false;
     wake.update([&] {
       const auto it = seen.phases.find(child.name());
       stopped = it != seen.phases.end() && it->second == PHASE_STOPPED;
     });
-    if (child.exit_code() == -SIGABRT && stopped) {
-      spdlog::warn("{} {} after it had stopped (DDS teardown)", child.name(),
-                   child.exit_description());
+    if (child.exit_code() == -SIGABRT && (stopped || !run_failed)) {
+      spdlog::warn("{} {} after the run ended (DDS teardown){}", child.name(),
+                   child.exit_description(),
+                   stopped ? ""
+                           : ", before it had stopped: what it does at its end (a channel "
+                             "saving the retained variables) may not be done");
       killed_child = true;  // its shared-memory files stay behind, as after a kill
       continue;
     }

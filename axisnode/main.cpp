@@ -82,6 +82,11 @@ int main(int argc, char** argv) {
                  shell.machine_path.c_str());
     return 2;
   }
+  if (!axis->spindle.empty()) {
+    std::fprintf(stderr, "error: %s is spindle %s's C axis: the spindle's node drives it\n",
+                 axis_name.c_str(), axis->spindle.c_str());
+    return 2;
+  }
   const config::BusConfig* bus = machine.find_bus(axis->bus);
   const config::ChannelConfig* owner = machine.find_channel(axis->channel);
   process::start_process(axis->name, shell);

@@ -61,14 +61,18 @@ int main(int argc, char** argv) {
   }
   process::start_process(ch->name, shell);
 
-  // The channel's axes, in program order: its own, then those it may acquire (G141).
+  // The channel's axes, in program order: its own, those it may acquire (G141), then its
+  // spindle's C axis (on the spindle's node).
   std::vector<const config::AxisConfig*> axes;
   channel::ChannelSetup setup;
   for (const std::string& name : ch->program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);
+    if (!a->spindle.empty()) {
+      setup.spindle_c_slot = axes.size();
+    }
     axes.push_back(a);
     setup.in_position.push_back(a->in_position);
-    const bool exchange_slot = axes.size() > ch->axes.size();
+    const bool exchange_slot = axes.size() > ch->axes.size() && a->spindle.empty();
     setup.slots.push_back(channel::AxisSlot{
         a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),
         static_cast<std::uint32_t>(a->id), a->sync_slave,
@@ -168,26 +172,20 @@ int main(int argc, char** argv) {
     std::vector<dds::WriterId> axis_writer(fed.size());
     std::vector<bool> axis_writer_known(fed.size(), false);
     std::vector<bool> axis_lost(fed.size(), false);
-    auto slot_of = [&](std::uint32_t axis_id) -> int {
-      for (std::size_t i = 0; i < fed.size(); ++i) {
-        if (static_cast<std::uint32_t>(fed[i]->id) == axis_id) {
-          return static_cast<int>(i);
-        }
-      }
-      return -1;
-    };
+    // A spindle's feedback is also its C axis's.
     dds::Reader<AxisFeedback> feedback_reader(
         node.participant(),
         [&](const AxisFeedback& fb, const dds::WriterId& writer) {
-          const int slot = slot_of(fb.axis());
-          if (slot < 0) {
-            return;
-          }
           wake.update([&] {
-            feedback[static_cast<std::size_t>(slot)].put(fb.cycle(), fb);
-            gate.on_sample(static_cast<std::size_t>(slot), fb.cycle(), fb.event_seq());
-            axis_writer[static_cast<std::size_t>(slot)] = writer;
-            axis_writer_known[static_cast<std::size_t>(slot)] = true;
+            for (std::size_t slot = 0; slot < fed.size(); ++slot) {
+              if (static_cast<std::uint32_t>(fed[slot]->id) != fb.axis()) {
+                continue;
+              }
+              feedback[slot].put(fb.cycle(), fb);
+              gate.on_sample(slot, fb.cycle(), fb.event_seq());
+              axis_writer[slot] = writer;
+              axis_writer_known[slot] = true;
+            }
           });
         },
         [&](const dds::WriterId& writer, bool matched) {

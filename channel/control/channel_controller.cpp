@@ -1,4 +1,5 @@
 #include "channel/control/channel_controller.hpp"
+#include "channel/interp/program_alarms.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -61,6 +62,9 @@ ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& 
     slot_use_[i] = slot.exchange_slot      ? SlotUse::virtual_axis
                    : slot.follows_at_start ? SlotUse::follows
                                            : SlotUse::commanded;
+  }
+  if (setup_.spindle_c_slot && *setup_.spindle_c_slot < slot_use_.size()) {
+    slot_use_[*setup_.spindle_c_slot] = SlotUse::speed_control;  // the spindle starts turnable
   }
 }
 
@@ -133,6 +137,9 @@ void ChannelController::set_state(ChannelState state) noexcept {
     return;
   }
   out_.state = state;
+  if (state == ChannelState::idle || state == ChannelState::reset || state == ChannelState::alarm) {
+    leave_position_control();
+  }
   ChannelEvent event;
   event.kind = ChannelEventKind::state_changed;
   event.state = state;
@@ -203,6 +210,7 @@ void ChannelController::forget_program_run() noexcept {
   aux_block_.reset();
   aux_answer_.reset();
   coupling_block_.reset();
+  control_block_.reset();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
@@ -245,6 +253,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.aux_due = false;
   out_.spindle_sync_due = false;
   out_.axis_sync_due = false;
+  const bool was_position = position_control_;
   received_ = feedback;
   update_slots();
   build_views(feedback);
@@ -255,6 +264,16 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     if (slot_use_[i] != SlotUse::commanded) {
       out_.setpoints[i].valid = false;
     }
+  }
+  out_.spindle_position = false;
+  if (const auto c = setup_.spindle_c_slot; c && slot_use_[*c] == SlotUse::commanded) {
+    out_.spindle_position = true;
+    out_.setpoints[*c].pos += c_base_;
+  } else if (c && was_position) {
+    // Position control ended in this cycle (M17, the end, a reset): C's last position still
+    // goes out, so the spindle stands where the program put it, not a sample short.
+    out_.spindle_position = true;
+    out_.setpoints[*c] = AxisSetpointOut{commanded_[*c] + c_base_, 0.0, 0.0, true};
   }
   return out_;
 }
@@ -410,7 +429,7 @@ void ChannelController::fill() noexcept {
     for (std::size_t k = 0;
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
          !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ && !coupling_block_ &&
-         planner_.accepts() && queued_count_ < queued_.size();
+         !control_block_ && planner_.accepts() && queued_count_ < queued_.size();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -509,6 +528,13 @@ void ChannelController::fill() noexcept {
         coupling_block_ = b;
         return;
       }
+      if (c->op == interp::Op::spindle_mode) {
+        ControlBlock b;
+        b.block = held(*c);
+        b.position = c->position_control;
+        control_block_ = b;
+        return;
+      }
       if (c->op == interp::Op::axis_couple || c->op == interp::Op::axis_decouple) {
         CouplingBlock b;
         b.block = held(*c);
@@ -537,6 +563,14 @@ void ChannelController::fill() noexcept {
       if (const auto away = moves_foreign_slot(*c)) {
         const std::uint32_t owner = *away < received_.size() ? received_[*away].owner : 0;
         char text[160];
+        if (slot_use_[*away] == SlotUse::speed_control) {
+          std::snprintf(text, sizeof text,
+                        "%c is the spindle under speed control: position control first",
+                        setup_.slots[*away].address);
+          source_alarm_ =
+              interp::ProgramAlarm{interp::alarm::kSpindleControl, text, "", c->line, 0};
+          return;
+        }
         if (slot_use_[*away] == SlotUse::follows) {
           const std::uint32_t master = *away < received_.size() ? received_[*away].coupled_to : 0;
           std::snprintf(text, sizeof text,
@@ -676,6 +710,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (coupling_block_) {
     run_coupling(cycle);
+    return;
+  }
+  if (control_block_) {
+    run_control();
     return;
   }
   if (release_block_) {
@@ -1009,6 +1047,9 @@ void ChannelController::update_slots() noexcept {
     return;
   }
   for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+    if (s == setup_.spindle_c_slot) {
+      continue;  // the spindle is the channel's for good; run_control() decides
+    }
     const AxisFeedbackView& f = received_[s];
     // A borrowed axis granted after the channel stopped waiting for it (its withdraw crossed
     // the grant): given back at once, so that nobody waits for a channel that does not use it.
@@ -1058,6 +1099,10 @@ void ChannelController::raise_if_queued_moves(std::size_t s, const char* why) no
 void ChannelController::build_views(std::span<const AxisFeedbackView> received) noexcept {
   for (std::size_t i = 0; i < received.size() && i < kMaxViews; ++i) {
     views_[i] = received[i];
+    if (i == setup_.spindle_c_slot && slot_use_[i] == SlotUse::commanded) {
+      views_[i].cmd -= c_base_;  // the spindle's degrees as C
+      views_[i].act -= c_base_;
+    }
     if (exchanges() && i < setup_.axis_count && slot_use_[i] != SlotUse::commanded) {
       // Not commanded by this channel now: for the program it stands where the channel last
       // put it, in position. Its alarms are its owner's; a following axis is still this
@@ -1077,6 +1122,10 @@ void ChannelController::settle_slots() noexcept {
     return;
   }
   for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+    if (s == setup_.spindle_c_slot) {
+      slot_use_[s] = position_control_ ? SlotUse::commanded : SlotUse::speed_control;
+      continue;
+    }
     const AxisFeedbackView& f = received_[s];
     if (f.present && f.owner == setup_.channel_id) {
       if (setup_.slots[s].may_follow && f.coupled_to != 0) {
@@ -1105,7 +1154,8 @@ std::optional<std::size_t> ChannelController::moves_foreign_slot(
   }
   const AxisVector& from = planner_.queue_end();
   for (std::size_t s = 0; s < setup_.axis_count; ++s) {
-    if ((slot_use_[s] == SlotUse::away || slot_use_[s] == SlotUse::follows) &&
+    if ((slot_use_[s] == SlotUse::away || slot_use_[s] == SlotUse::follows ||
+         slot_use_[s] == SlotUse::speed_control) &&
         std::fabs(c.to[s] - from[s]) > 1e-9) {
       return s;
     }
@@ -1424,6 +1474,62 @@ bool ChannelController::axis_sync_done(const CouplingBlock& b) noexcept {
   slot_use_[s] = SlotUse::commanded;
   sync_positions();
   return true;
+}
+
+}  // namespace mcnc::channel
+
+namespace mcnc::channel {
+
+void ChannelController::run_control() noexcept {
+  ControlBlock& b = *control_block_;
+  start_held(b.block);
+  const auto c = setup_.spindle_c_slot;
+  if (!c || *c >= received_.size()) {
+    raise(interp::alarm::kSpindleControl, "the spindle has no C axis for position control",
+          b.block.line, 0, 0);
+    return;
+  }
+  if (b.position && !position_control_) {
+    const AxisFeedbackView& f = received_[*c];  // the spindle's own feedback
+    if (f.coupled_to != 0) {
+      raise(kAlarmSlaveSpindle,
+            "the spindle follows another spindle (G114.1): its master's channel cancels that "
+            "with G113 before position control",
+            b.block.line, 0, 0);
+      return;
+    }
+    // Taken over at rest: a spindle still coasting down from M05 would be stopped by the
+    // position loop at once. Five cycles in a row below C's in-position width per cycle.
+    constexpr int kStillCycles = 5;
+    const double width = *c < setup_.in_position.size() ? setup_.in_position[*c] : 0.01;
+    b.still_cycles = b.seen && std::fabs(f.act - b.last_act) <= width ? b.still_cycles + 1 : 0;
+    b.seen = true;
+    b.last_act = f.act;
+    if (b.still_cycles < kStillCycles) {
+      constexpr double kRestTimeout = 10.0;  // s: a spindle coasting down from any speed is in
+      if (static_cast<double>(++b.waited) * setup_.cycle_s > kRestTimeout) {
+        raise(kAlarmSpindleNotAtRest,
+              "position control: the spindle did not come to rest within 10 s", b.block.line, 0, 0);
+      }
+      return;
+    }
+    c_base_ = 360.0 * std::floor(f.act / 360.0);
+    commanded_[*c] = f.act - c_base_;
+    position_control_ = true;
+    slot_use_[*c] = SlotUse::commanded;
+    sync_positions();
+  } else if (!b.position) {
+    leave_position_control();
+  }
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  control_block_.reset();
+}
+
+void ChannelController::leave_position_control() noexcept {
+  position_control_ = false;
+  if (setup_.spindle_c_slot && *setup_.spindle_c_slot < slot_use_.size()) {
+    slot_use_[*setup_.spindle_c_slot] = SlotUse::speed_control;
+  }
 }
 
 }  // namespace mcnc::channel

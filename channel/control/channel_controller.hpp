@@ -193,6 +193,9 @@ struct ChannelOutput {
   // -1 M04, 0 stopped). Stopped whenever no program runs (reset, idle, alarm, end).
   double spindle_rpm = 0.0;
   int spindle_direction = 0;
+  // The spindle is under position control (M18): its setpoint is setpoints[spindle_c_slot],
+  // in the spindle's degrees.
+  bool spindle_position = false;
   // A G04.1 arrival to send to every other channel this cycle (sync_arrive event).
   bool arrival_due = false;
   coordination::SyncArrival arrival{};
@@ -247,6 +250,10 @@ struct ChannelSetup {
   bool spindle_may_follow = false;
   // Every axis of the machine, by system number - 1: what G51.4 P may name.
   std::vector<MachineAxis> machine_axes{};
+  // The slot of the first spindle's C axis (C1 mode), if it has one: its feedback is the
+  // spindle's, and it is commanded only while M18 (GSK M14) holds the spindle under position
+  // control.
+  std::optional<std::size_t> spindle_c_slot{};
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -272,6 +279,7 @@ inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G11
 inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
 inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
+inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest
 
 class ChannelController {
  public:
@@ -335,6 +343,8 @@ class ChannelController {
   [[nodiscard]] const ChannelAlarm& last_alarm() const noexcept { return alarm_; }
   [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
+  // The spindle's position at C = 0 (whole turns) of the last position control (0: none yet).
+  [[nodiscard]] double spindle_c_base() const noexcept { return c_base_; }
   // The G04.1 marks as this channel sees them: the mark it waits at and whom it misses.
   [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return barrier_; }
   // The G144 call this channel runs for another channel: its id (0: none) and caller.
@@ -478,7 +488,8 @@ class ChannelController {
   // back but not taken over yet: a block moving it is an alarm). G51.4: an axis that follows
   // its master moves with it and not with this channel's program (a block moving it is an
   // alarm too).
-  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away, follows };
+  // speed_control: the C axis of the first spindle while the spindle is under speed control.
+  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away, follows, speed_control };
   [[nodiscard]] bool exchanges() const noexcept { return !setup_.slots.empty(); }
   void update_slots() noexcept;  // a commanded axis whose owner is now another channel
   // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
@@ -544,6 +555,22 @@ class ChannelController {
   CouplingStart start_axis_sync(CouplingBlock& b) noexcept;
   [[nodiscard]] bool spindle_sync_done(const CouplingBlock& b) const noexcept;
   bool axis_sync_done(const CouplingBlock& b) noexcept;
+  // M18 / M17 (GSK M14 / M15): the first spindle to position control once it stands (its C
+  // axis taken over from where it stands), or back to speed control.
+  struct ControlBlock {
+    HeldBlock block;
+    bool position = false;
+    int still_cycles = 0;      // cycles in a row the spindle moved less than C's in-position width
+    std::uint64_t waited = 0;  // cycles M18 waited for the spindle to rest
+    bool seen = false;
+    double last_act = 0.0;
+  };
+  std::optional<ControlBlock> control_block_;
+  void run_control() noexcept;
+  void leave_position_control() noexcept;  // no program runs: speed control, at rest
+  bool position_control_ = false;
+  // C = the spindle's position - c_base_ (whole turns): C starts within 0-360 degrees.
+  double c_base_ = 0.0;
   // Hands a command to the planner and the block queue; false (and a source alarm) when the
   // planner refuses it.
   bool queue_command(const interp::Command& c) noexcept;

@@ -39,6 +39,7 @@ enum class Op : std::uint8_t {
   subcall_release,
   message,
   thread,
+  spindle_mode,  // M18 / M17 (GSK M14 / M15): `spindle` to position or speed control
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -98,7 +99,8 @@ struct Command {
   double max_rpm = 0.0;    // 0: no G50 S clamp programmed
   bool has_angle = false;  // M05 PA: stop at `angle` degrees
   double angle = 0.0;
-  int divisions = 0;  // M05 PN: stop at the nearest multiple of 360/PN
+  int divisions = 0;              // M05 PN: stop at the nearest multiple of 360/PN
+  bool position_control = false;  // spindle_mode: true M18 (C1 mode), false M17
 
   // tool
   int tool = 0;

@@ -33,6 +33,9 @@ struct AxisConfig {
   int exchange = 0;         // param 5660: the number of G140/G141 `αn` (0: not exchangeable)
   int id = 0;               // system axis number (G51.4 P and Q)
   bool may_follow = false;  // param 5600.1: G51.4 may make it a slave
+  // A spindle under position control (C1 mode: Dafeng M18, GSK M14): that spindle's number in
+  // the channel (1-9); it moves only while the spindle is under position control. 0: an axis.
+  int spindle = 0;
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.

@@ -46,6 +46,9 @@ int alarm_for(const Command& c) {
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
   }
+  if (c.op == Op::spindle_mode) {
+    return alarm::kSpindleControl;
+  }
   const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release ||
                         c.op == Op::axis_acquire || c.op == Op::axis_couple ||
                         c.op == Op::axis_decouple;
@@ -178,6 +181,18 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
       }
     }
     return true;
+  }
+  if (c.op == Op::spindle_mode) {
+    // Position control drives the spindle as the channel's C axis (c_axis in the machine file).
+    for (const AxisConfig& a : config.axes) {
+      if (a.spindle == c.spindle) {
+        return true;
+      }
+    }
+    why = "spindle " + std::to_string(c.spindle) +
+          " has no axis for position control on this machine (c_axis of the spindle in the "
+          "machine file)";
+    return false;
   }
   if (c.op == Op::spindle && config.spindles > 0) {
     if (c.channel != 0 || c.spindle > 1) {

@@ -44,6 +44,9 @@ inline constexpr int kMustBeAlone = 1128;           // a code that needs its own
 inline constexpr int kUserAlarmRange = 1129;        // #3000 = n with n outside 0-99
 inline constexpr int kLoopControl = 1130;           // BREAK outside WHILE, END without WHILE ...
 inline constexpr int kNoPlaneAxis = 1131;           // arc in a plane whose axes are missing
+// C1 mode (M18/M17, GSK M14/M15): C moved under speed control, M03/M04/M19 under position
+// control, position control asked while the spindle turns.
+inline constexpr int kSpindleControl = 1132;
 // Canned cycles, threading, corners and tool-nose compensation (issue 4).
 inline constexpr int kContourNotMonotonic = 1140;    // G71/G72 contour against its type's rule
 inline constexpr int kContourStart = 1141;           // first contour block not G00/G01 (or arc)

@@ -100,6 +100,11 @@ class ProgramRun final : public macro::VariableProvider {
                           bool reserve_p);
   bool apply_modal(GFunction f, int code10, int column);
   bool run_spindle_words(bool has_m_spindle);
+  // C1 mode codes: 1 for position control (Dafeng M18 + 100(n-1), GSK M14), 0 for speed
+  // control (M17 + 100(n-1), GSK M15), -1 for any other M code; `spindle` is set to the one
+  // addressed. position_code() names the code of the dialect, for messages.
+  [[nodiscard]] int control_code(std::int64_t m, int& spindle) const;
+  [[nodiscard]] std::string position_code(int spindle, bool position) const;
   bool run_tool_word();
   bool run_m_codes(bool after_motion);
   bool run_one_shot(GFunction f, int code10, int column);
@@ -342,6 +347,7 @@ class ProgramRun final : public macro::VariableProvider {
   // Spindles of this channel (1-9), the reference spindle (SP) and G96 data.
   std::array<double, 10> rpm_{};
   std::array<SpindleDirection, 10> spindle_direction_{};
+  std::array<bool, 10> position_control_{};  // M18 (GSK M14) until M17 (M15)
   double surface_ = 0.0;
   double clamp_rpm_ = 0.0;
   int reference_spindle_ = 1;

@@ -908,8 +908,9 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       return fail(alarm::kBadWordValue, "M needs a whole number", w.column);
     }
     const int base = static_cast<int>(m % 100);
-    const int spindle = static_cast<int>(m / 100) + 1;
-    if (m >= 1000 || (base != 3 && base != 4 && base != 5 && base != 19)) {
+    int spindle = static_cast<int>(m / 100) + 1;
+    const int control = control_code(m, spindle);
+    if (control < 0 && (m >= 1000 || (base != 3 && base != 4 && base != 5 && base != 19))) {
       continue;
     }
     w.used = true;
@@ -926,10 +927,61 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
                       " but the S word addresses spindle " + std::to_string(addressed),
                   w.column);
     }
+    if (control >= 0) {
+      if (channel != 0) {
+        return fail(
+            alarm::kNotInThisVersion,
+            "M" + std::to_string(m) + " for another channel's spindle is not in this version",
+            w.column);
+      }
+      if (commanded_spindles & (1U << spindle)) {
+        return fail(alarm::kGroupConflict,
+                    "two M codes for spindle " + std::to_string(spindle) + " in one block",
+                    w.column);
+      }
+      commanded_spindles |= 1U << spindle;
+      const auto s_index = static_cast<std::size_t>(spindle);
+      const SpindleDirection turning = spindle_direction_[s_index];
+      if (control == 1 && (turning == SpindleDirection::cw || turning == SpindleDirection::ccw)) {
+        return fail(alarm::kSpindleControl,
+                    "M" + std::to_string(m) + ": spindle " + std::to_string(spindle) +
+                        " turns; stop it (M05) before position control",
+                    w.column);
+      }
+      // The channel takes C over from where the spindle stands once the block runs: an axis
+      // word beside it would be computed from where C was before.
+      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+        const AxisWords aw = axis_words(static_cast<int>(i));
+        if (aw.error) {
+          return false;
+        }
+        if (aw.word != nullptr) {
+          return fail(alarm::kMustBeAlone,
+                      "M" + std::to_string(m) + " stands in a block without axis words (" +
+                          std::string(1, config_.axes[i].name) + " here)",
+                      aw.word->column);
+        }
+      }
+      position_control_[s_index] = control == 1;
+      Command& c = emit(Op::spindle_mode);
+      c.spindle = spindle;
+      c.position_control = control == 1;
+      c.barrier = true;  // the blocks after it start from where the spindle stands
+      commanded = true;
+      continue;
+    }
     const SpindleDirection dir = base == 3   ? SpindleDirection::cw
                                  : base == 4 ? SpindleDirection::ccw
                                  : base == 5 ? SpindleDirection::stop
                                              : SpindleDirection::orient;
+    if (dir != SpindleDirection::stop && channel == 0 && spindle <= 9 &&
+        position_control_[static_cast<std::size_t>(spindle)]) {
+      return fail(alarm::kSpindleControl,
+                  "M" + std::to_string(m) + ": spindle " + std::to_string(spindle) +
+                      " is under position control; " + position_code(spindle, false) +
+                      " returns it to speed control first",
+                  w.column);
+    }
     if (channel != 0) {
       Command& c = emit(Op::spindle);
       c.channel = channel;
@@ -989,6 +1041,33 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     }
   }
   return true;
+}
+
+int ProgramRun::control_code(std::int64_t m, int& spindle) const {
+  int addressed = 1;
+  int control = -1;
+  if (config_.dialect == Dialect::gsk) {
+    control = m == 14 ? 1 : m == 15 ? 0 : -1;
+  } else if (m < 1000 && (m % 100 == 17 || m % 100 == 18)) {
+    addressed = static_cast<int>(m / 100) + 1;
+    control = m % 100 == 18 ? 1 : 0;
+  }
+  // Without a C axis (c_axis in the machine file) the code stays the PLC's, as on a machine
+  // whose spindle has no position control.
+  const bool has_c = std::any_of(config_.axes.begin(), config_.axes.end(),
+                                 [&](const AxisConfig& a) { return a.spindle == addressed; });
+  if (control < 0 || !has_c) {
+    return -1;
+  }
+  spindle = addressed;
+  return control;
+}
+
+std::string ProgramRun::position_code(int spindle, bool position) const {
+  if (config_.dialect == Dialect::gsk) {
+    return position ? "M14" : "M15";
+  }
+  return "M" + std::to_string((spindle - 1) * 100 + (position ? 18 : 17));
 }
 
 bool ProgramRun::run_tool_word() {

@@ -128,6 +128,14 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
   given.fill(false);
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const auto i = static_cast<std::size_t>(axis);
+    const int spindle = config_.axes[i].spindle;
+    if (spindle > 0 && spindle < 10 && !position_control_[static_cast<std::size_t>(spindle)]) {
+      return fail(alarm::kSpindleControl,
+                  std::string(1, config_.axes[i].name) + " is spindle " + std::to_string(spindle) +
+                      " under speed control: " + position_code(spindle, true) +
+                      " switches it to position control first",
+                  w.column);
+    }
     if (released_[i]) {
       return fail(alarm::kReleasedAxis,
                   std::string(1, config_.axes[i].name) +

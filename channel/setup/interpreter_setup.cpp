@@ -2,6 +2,9 @@
 
 namespace mcnc::channel {
 
+static_assert(config::kMaxProgramAxes == interp::kMaxChannelAxes,
+              "the machine file allows as many program axes as a channel has slots");
+
 interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& machine,
                                                  const config::ChannelConfig& channel) {
   interp::InterpreterConfig c;
@@ -20,6 +23,9 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     axis.exchange = a->exchange;
     axis.id = a->id;
     axis.may_follow = a->sync_slave;
+    for (std::size_t s = 0; s < channel.spindles.size() && !a->spindle.empty(); ++s) {
+      axis.spindle = channel.spindles[s] == a->spindle ? static_cast<int>(s) + 1 : axis.spindle;
+    }
     c.axes.push_back(axis);
   }
   return c;

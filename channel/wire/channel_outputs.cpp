@@ -40,7 +40,11 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       status_(node.participant()),
       events_(node.participant()),
       writes_(writes),
-      channel_names_(std::move(channel_names)) {}
+      channel_names_(std::move(channel_names)) {
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
+  }
+}
 
 const char* ChannelOutputs::channel_name(std::uint32_t id) const {
   return id >= 1 && id <= channel_names_.size() ? channel_names_[id - 1].c_str() : "?";
@@ -130,6 +134,9 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   // The setpoints after the events they announce: an axis node applies a G141 from the cycle
   // after it was sent, once it holds every event the setpoint announces.
   for (std::size_t i = 0; i < axes_.size(); ++i) {
+    if (!axes_[i]->spindle.empty()) {
+      continue;  // a spindle's C axis: the spindle's setpoint below carries it
+    }
     AxisSetpoint sp;
     sp.axis(static_cast<std::uint32_t>(axes_[i]->id));
     sp.channel(static_cast<std::uint32_t>(channel_.id));
@@ -148,10 +155,25 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.channel(static_cast<std::uint32_t>(channel_.id));
     sp.cycle(cycle);
     sp.event_seq(event_seq_);
-    sp.vel(i == 0 ? rpm * 6.0 : 0.0);  // rpm to degrees per second
-    sp.valid(true);
-    sp.mode(SP_VELOCITY);
+    if (i == 0 && out.spindle_position && c_slot_ < axes_.size()) {
+      const AxisSetpointOut& c = out.setpoints[c_slot_];  // M18: C, in the spindle's degrees
+      sp.pos(c.pos);
+      sp.vel(c.vel);
+      sp.acc(c.acc);
+      sp.valid(c.valid);
+      sp.mode(SP_POSITION);
+    } else {
+      sp.vel(i == 0 ? rpm * 6.0 : 0.0);  // rpm to degrees per second
+      sp.valid(true);
+      sp.mode(SP_VELOCITY);
+    }
     setpoints_.write(sp);
+  }
+  if (!spindles_.empty() && out.spindle_position != spindle_position_) {
+    spindle_position_ = out.spindle_position;
+    tracer_.emit(cycle, "spindle_mode", "\"ch\":\"%s\",\"spindle\":\"%s\",\"mode\":\"%s\"",
+                 channel_.name.c_str(), spindles_[0]->name.c_str(),
+                 spindle_position_ ? "position" : "speed");
   }
   if (!spindles_.empty() && rpm != spindle_rpm_) {
     spindle_rpm_ = rpm;
@@ -254,15 +276,22 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
     }
     case ChannelEventKind::block_ended:
       for (std::size_t i = 0; i < axes_.size(); ++i) {
+        const double base = i == c_slot_ ? controller.spindle_c_base() : 0.0;
         tracer_.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f",
-                     axes_[i]->name.c_str(), event.pos[i], i < views.size() ? views[i].act : 0.0);
+                     axes_[i]->name.c_str(), event.pos[i],
+                     i < views.size() ? views[i].act - base : 0.0);
       }
       break;
     case ChannelEventKind::alarm: {
       const ChannelAlarm& alarm = controller.last_alarm();
       trace::json_escape(alarm.text.data(), escaped_, sizeof escaped_);
-      const config::AxisConfig* axis =
-          alarm.axis > 0 ? axes_[static_cast<std::size_t>(alarm.axis - 1)] : nullptr;
+      // `axis` counts the channel's axes, then its spindles.
+      const auto index = static_cast<std::size_t>(alarm.axis > 0 ? alarm.axis - 1 : 0);
+      const config::AxisConfig* axis = alarm.axis <= 0        ? nullptr
+                                       : index < axes_.size() ? axes_[index]
+                                       : index - axes_.size() < spindles_.size()
+                                           ? spindles_[index - axes_.size()]
+                                           : nullptr;
       // The alarm's source is the event's own "src".
       if (axis != nullptr) {
         tracer_.emit(cycle, "alarm",

@@ -56,7 +56,9 @@ class ChannelOutputs {
   const config::ChannelConfig& channel_;
   std::vector<const config::AxisConfig*> axes_;
   std::vector<const config::AxisConfig*> spindles_;
-  double spindle_rpm_ = 0.0;  // signed, as last traced
+  double spindle_rpm_ = 0.0;       // signed, as last traced
+  bool spindle_position_ = false;  // the first spindle under position control, as last traced
+  std::size_t c_slot_ = ~std::size_t{0};  // the slot of that spindle's C axis (none: past the end)
   std::string program_name_;
   std::vector<std::string> program_lines_;
   std::map<std::string, std::vector<std::string>> other_lines_;

@@ -1,5 +1,6 @@
 #include "common/config/machine_config.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -275,7 +276,8 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "quick_stop_deceleration",
                                  "tpdo2",
                                  "exchange",
-                                 "axis_sync"});
+                                 "axis_sync",
+                                 "c_axis"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
 
@@ -395,7 +397,52 @@ AxisConfig parse_axis(const YamlValue& value) {
   if (auto drive = map.optional("drive")) {
     axis.drive = parse_drive(*drive);
   }
+  if (auto c = map.optional("c_axis")) {
+    if (axis.type != AxisType::spindle) {
+      c->fail("only a spindle has a C axis (its position control, C1 mode)");
+    }
+    axis.c_axis = read_name(
+        c->map({"name", "address", "rapid_rate", "max_feed", "acceleration", "jerk", "in_position"})
+            .required("name"));
+  }
   return axis;
+}
+
+// A spindle's C axis: a rotary axis of the spindle's channel on the spindle's node, in degrees
+// (the spindle's unit), programmed while the spindle is under position control.
+AxisConfig parse_c_axis(const YamlValue& value, const AxisConfig& spindle) {
+  const YamlMap map = value.map(
+      {"name", "address", "rapid_rate", "max_feed", "acceleration", "jerk", "in_position"});
+  AxisConfig c;
+  c.name = read_name(map.required("name"));
+  c.type = AxisType::rotary;
+  c.address = 'C';
+  if (auto address = map.optional("address")) {
+    const std::string letter = address->string();
+    if (letter.size() != 1 || std::string_view("ABC").find(letter[0]) == std::string_view::npos) {
+      address->fail("a spindle's C axis is rotary: address A, B or C, got '" + letter + "'");
+    }
+    c.address = letter[0];
+  }
+  c.id = spindle.id;
+  c.bus = spindle.bus;
+  c.node_id = spindle.node_id;
+  c.counts_per_unit = spindle.counts_per_unit;
+  c.following_error_limit = spindle.following_error_limit;
+  c.spindle = spindle.name;
+  c.rapid_rate = 36000.0;  // deg/min: 100 rpm
+  c.max_feed = 36000.0;
+  c.acceleration = 3600.0;  // deg/s^2
+  c.in_position = 0.01;     // deg
+  read_optional_positive(map, "rapid_rate", c.rapid_rate);
+  read_optional_positive(map, "max_feed", c.max_feed);
+  read_optional_positive(map, "acceleration", c.acceleration);
+  read_optional_positive(map, "jerk", c.jerk);
+  if (c.jerk == 0.0) {
+    c.jerk = 50.0 * c.acceleration;
+  }
+  read_optional_positive(map, "in_position", c.in_position);
+  return c;
 }
 
 // Rejects a name already seen in the same list; `seen` maps name -> index.
@@ -594,6 +641,20 @@ MachineConfig parse_document(const YAML::Node& root) {
     config.axes[i].id = static_cast<int>(i) + 1;
     check_unique(axis_index, config.axes[i].name, axes[i], i, "axes", "axis");
   }
+  std::vector<YamlValue> c_axis_values;  // where each of config.c_axes was written
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (config.axes[i].c_axis.empty()) {
+      continue;
+    }
+    c_axis_values.push_back(axes[i].child("c_axis"));
+    config.c_axes.push_back(parse_c_axis(c_axis_values.back(), config.axes[i]));
+    if (axis_index.contains(config.c_axes.back().name) ||
+        (config.c_axes.size() > 1 &&
+         std::any_of(config.c_axes.begin(), config.c_axes.end() - 1,
+                     [&](const AxisConfig& a) { return a.name == config.c_axes.back().name; }))) {
+      c_axis_values.back().child("name").fail("duplicate axis name " + config.c_axes.back().name);
+    }
+  }
 
   const YamlValue channels_value = doc.required("channels");
   const std::vector<YamlValue> channels = channels_value.list();
@@ -743,6 +804,34 @@ MachineConfig parse_document(const YAML::Node& root) {
     }
   }
 
+  // A spindle's C axis is programmed in the spindle's channel, under an address free there; only
+  // the channel's first spindle is programmed (M03-M05, M18/M17) in this version.
+  for (std::size_t k = 0; k < config.c_axes.size(); ++k) {
+    AxisConfig& c = config.c_axes[k];
+    const AxisConfig& spindle = config.axes[axis_index.at(c.spindle)];
+    ChannelConfig& channel =
+        *std::find_if(config.channels.begin(), config.channels.end(),
+                      [&](const ChannelConfig& ch) { return ch.name == spindle.channel; });
+    if (channel.spindles.front() != spindle.name) {
+      c_axis_values[k].fail("only a channel's first spindle has a C axis in this version (" +
+                            spindle.name + " is not " + channel.name + "'s first)");
+    }
+    for (const std::string& name : channel.program_axes()) {
+      if (config.find_axis(name)->address == c.address) {
+        c_axis_values[k].fail("axis " + c.name + " has address " + std::string(1, c.address) +
+                              ", already used by axis " + name + " in channel " + channel.name);
+      }
+    }
+    c.channel = channel.name;
+    channel.c_axes.push_back(c.name);
+  }
+  for (std::size_t i = 0; i < config.channels.size(); ++i) {
+    if (config.channels[i].program_axes().size() > kMaxProgramAxes) {
+      channels[i].fail("a channel programs at most " + std::to_string(kMaxProgramAxes) +
+                       " axes (its axes, exchange_axes and its spindle's c_axis)");
+    }
+  }
+
   // Node ids per bus, and the axes each bus carries.
   std::map<std::string, std::map<int, std::string>> nodes;  // bus -> node id -> axis
   for (std::size_t i = 0; i < config.axes.size(); ++i) {
@@ -845,9 +934,11 @@ std::uint64_t MachineConfig::cycles_of(int ms) const noexcept {
 }
 
 const AxisConfig* MachineConfig::find_axis(const std::string& name) const noexcept {
-  for (const AxisConfig& axis : axes) {
-    if (axis.name == name) {
-      return &axis;
+  for (const std::vector<AxisConfig>* list : {&axes, &c_axes}) {
+    for (const AxisConfig& axis : *list) {
+      if (axis.name == name) {
+        return &axis;
+      }
     }
   }
   return nullptr;
@@ -856,6 +947,7 @@ const AxisConfig* MachineConfig::find_axis(const std::string& name) const noexce
 std::vector<std::string> ChannelConfig::program_axes() const {
   std::vector<std::string> all = axes;
   all.insert(all.end(), exchange_axes.begin(), exchange_axes.end());
+  all.insert(all.end(), c_axes.begin(), c_axes.end());
   return all;
 }
 

@@ -85,6 +85,11 @@ struct AxisConfig {
   int homing_method = 0;
   double home_offset = 0.0;  // units: the position the home becomes
   DriveSimConfig drive;
+  // C1 mode (Dafeng M18, GSK M14). On a spindle: the name of its C axis (empty: none). On that
+  // C axis (in MachineConfig::c_axes): the spindle it drives under position control; it has no
+  // node of its own and shares the spindle's id, bus and node.
+  std::string c_axis;
+  std::string spindle;
 };
 
 struct BusConfig {
@@ -105,6 +110,9 @@ struct ChannelMotionConfig {
   bool rapid_interpolated = true;  // rapid: interpolated (straight line) or axis (each its own)
 };
 
+// A channel programs at most this many axes: its own, its exchange axes and its spindle's C.
+inline constexpr std::size_t kMaxProgramAxes = 8;
+
 struct ChannelConfig {
   std::string name;                   // "CH1"
   int id = 0;                         // 1-based position in `channels`
@@ -114,9 +122,13 @@ struct ChannelConfig {
   // axes): each is a slot after `axes`, programmed by the axis's address, that moves nothing
   // until the channel owns the axis.
   std::vector<std::string> exchange_axes;
+  // The C axis of the channel's first spindle (c_axis), programmed while that spindle is under
+  // position control: a slot after the exchange axes.
+  std::vector<std::string> c_axes;
   ChannelMotionConfig motion;
 
-  // Every axis the channel programs, in slot order: its own axes, then its exchange axes.
+  // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
+  // C axis of its spindle.
   [[nodiscard]] std::vector<std::string> program_axes() const;
 };
 
@@ -146,6 +158,8 @@ struct MachineConfig {
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;
+  // The spindles' C axes (c_axis): not in `axes`, since no node of their own runs for them.
+  std::vector<AxisConfig> c_axes;
   PlcConfig plc;  // plc.present: the machine has a PLC node
   std::vector<SpindleSyncGroup> spindle_sync;
 

@@ -1269,3 +1269,58 @@ TEST(MultiChannel, AnAxisOfAnotherChannelFollowsItsMaster) {
   EXPECT_NEAR(node_position_at(t, "Z2", off), -40.0, 1e-9);
   EXPECT_NEAR(node_position_at(t, "Z2", t.back()["cycle"]), 7.0, 1e-9);
 }
+
+// C1 mode on the twin-turret lathe: M18 takes S1 over as CH1's C once it stands, C positions it
+// in its own turn's degrees through the spindle's node in CSP, M17 gives it back to speed control.
+TEST(MultiChannel, TheMainSpindleIsPositionedAsCBetweenM18AndM17) {
+  TestMachine machine("twin_turret.yaml", 82);
+  const MultiRun r = run_channels(
+      machine,
+      {{"CH1", write_program(machine, "ch1.nc",
+                             "M03 S300\nG04 X0.3\nM05\nM18\nG00 C90\nG01 C270 F7200\nM17\n"
+                             "M03 S200\nG04 X0.6\nM05\nM30\n")}},
+      {"--trace-pos-every", "10"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Trace& t = r.trace;
+  std::vector<std::string> modes;
+  for (const auto& e : events(t, "spindle_mode", "CH1")) {
+    modes.push_back(e["mode"]);
+  }
+  ASSERT_EQ(modes, (std::vector<std::string>{"position", "speed"}));
+  std::vector<std::string> drive_modes;
+  for (const auto& e : events(t, "mode", "S1")) {
+    drive_modes.push_back(e["mode"]);
+  }
+  EXPECT_EQ(drive_modes, (std::vector<std::string>{"csp", "csv"}));
+  // The spindle's node samples every 10 cycles: the last one before a block starts.
+  std::map<std::uint64_t, double> angle;
+  for (const auto& p : events(t, "pos", "S1")) {
+    angle[p["cycle"].get<std::uint64_t>()] = p["act"].get<double>();
+  }
+  const auto before = [&](int line) {
+    const auto it = angle.upper_bound(block_at(t, "CH1", line));
+    return it == angle.begin() ? 0.0 : std::prev(it)->second;
+  };
+  // Position control from where it stood after M05: C = its angle within the turn.
+  EXPECT_GE(cycle_of(t, "spindle_mode", "CH1", {{"mode", "position"}}), block_at(t, "CH1", 4));
+  EXPECT_NEAR(wrap_degrees(before(6) - 90.0), 0.0, 0.011);
+  EXPECT_NEAR(before(8) - before(6), 180.0, 0.022);
+  // The channel's view at the ends of the C blocks.
+  std::vector<std::pair<double, double>> c_ends;
+  for (const auto& p : events(t, "pos", "CH1")) {
+    if (p["axis"] == "C1") {
+      c_ends.emplace_back(p["cmd"].get<double>(), p["act"].get<double>());
+    }
+  }
+  for (const double target : {90.0, 270.0}) {
+    const auto it = std::find_if(c_ends.begin(), c_ends.end(),
+                                 [&](const auto& e) { return std::fabs(e.first - target) < 1e-6; });
+    ASSERT_NE(it, c_ends.end()) << target;
+    EXPECT_NEAR(it->second, target, 0.011);
+  }
+  // Back under speed control it turns again: 200 rpm, 1200 degrees per second.
+  const std::uint64_t dwell = block_at(t, "CH1", 9);
+  const std::uint64_t from = dwell + 150 - (dwell + 150) % 10;  // 300 cycles of 2 ms
+  EXPECT_NEAR((angle.at(from + 100) - angle.at(from)) / (100 * 0.002), 1200.0, 1.2);
+  EXPECT_EQ(lines_of(t, "CH1"), (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+}

@@ -160,6 +160,8 @@ const char* op_name(Op op) {
       return "message";
     case Op::thread:
       return "thread";
+    case Op::spindle_mode:
+      return "spindle_mode";
   }
   return "?";
 }
@@ -242,6 +244,12 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
     case Op::dwell:
       key(out, std::string_view(c.in_revs ? "revs" : "seconds"));
       number(out, c.seconds);
+      break;
+    case Op::spindle_mode:
+      key(out, "spindle");
+      integer(out, c.spindle);
+      key(out, "mode");
+      out += c.position_control ? "\"position\"" : "\"speed\"";
       break;
     case Op::spindle:
       if (c.channel != 0) {

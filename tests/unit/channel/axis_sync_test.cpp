@@ -32,17 +32,6 @@ interp::InterpreterConfig xyb_channel() {
   return c;
 }
 
-motion::MotionConfig xyb_motion() {
-  motion::MotionConfig c;
-  c.axis_count = kAxes;
-  for (std::size_t i = 0; i < kAxes; ++i) {
-    c.axes[i] = motion::AxisDynamics{100.0, 1000.0, 50000.0};
-  }
-  c.rapid_rate = {100.0, 100.0, 100.0};
-  c.cycle_s = kDt;
-  return c;
-}
-
 ChannelSetup xyb_setup() {
   ChannelSetup s{kAxes, {0.001, 0.001, 0.001}, kDt};
   s.channel_id = 1;
@@ -61,7 +50,7 @@ ChannelSetup xyb_setup() {
 // valid setpoints.
 class SyncRig : public ChannelRig {
  public:
-  SyncRig() : ChannelRig(xyb_channel(), xyb_motion(), xyb_setup()) {
+  SyncRig() : ChannelRig(xyb_channel(), alike_axes(kAxes, kDt), xyb_setup()) {
     feedback_.resize(kAxes);
     for (auto& f : feedback_) {
       f.enabled = true;
@@ -101,12 +90,6 @@ class SyncRig : public ChannelRig {
       f.act = f.cmd;
     }
     return out;
-  }
-
-  bool run_to_end() {
-    ctl().request_start();
-    return run_until(
-        [](const ChannelOutput& o) { return o.program_end || o.state == ChannelState::alarm; });
   }
 
   [[nodiscard]] const std::vector<AxisFeedbackView>& feedback() const { return feedback_; }

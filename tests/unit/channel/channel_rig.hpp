@@ -8,12 +8,25 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace mcnc::channel {
+
+// A planner for `axes` axes that move alike: 100 units/s, 1000 units/s^2, 50000 units/s^3.
+inline motion::MotionConfig alike_axes(std::size_t axes, double cycle_s) {
+  motion::MotionConfig c;
+  c.axis_count = axes;
+  for (std::size_t i = 0; i < axes; ++i) {
+    c.axes[i] = motion::AxisDynamics{100.0, 1000.0, 50000.0};
+    c.rapid_rate[i] = 100.0;
+  }
+  c.cycle_s = cycle_s;
+  return c;
+}
 
 class ChannelRig {
  public:
@@ -30,6 +43,14 @@ class ChannelRig {
     const auto alarm = source_.load(text, "T.nc");
     ASSERT_FALSE(alarm.has_value()) << alarm->number << " " << alarm->text;
   }
+  // A program whose load finds an alarm: reported to the channel as the real one does.
+  std::optional<interp::ProgramAlarm> load_with_alarm(const std::string& text) {
+    auto alarm = source_.load(text, "T.nc");
+    if (alarm) {
+      ctl_.report_alarm(*alarm);
+    }
+    return alarm;
+  }
 
   // One cycle of the channel and of the rig's axis nodes.
   virtual const ChannelOutput& step() = 0;
@@ -41,6 +62,13 @@ class ChannelRig {
       }
     }
     return false;
+  }
+
+  // Cycle start, then cycles until the program ends or stops in an alarm.
+  bool run_to_end() {
+    ctl_.request_start();
+    return run_until(
+        [](const ChannelOutput& o) { return o.program_end || o.state == ChannelState::alarm; });
   }
 
   ChannelController& ctl() { return ctl_; }

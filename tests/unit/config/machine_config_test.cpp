@@ -1013,3 +1013,63 @@ channels: [{name: C1, axes: [X1], spindles: [S1]}, {name: C2, axes: [X2], spindl
 
 }  // namespace
 }  // namespace mcnc::config
+
+namespace mcnc::config {
+namespace {
+
+// C1 mode: a spindle's C axis is a program axis of the spindle's channel, after its exchange
+// axes, on the spindle's node; it is not an axis with a node of its own.
+TEST(MachineConfig, ASpindlesCAxis) {
+  const std::string head = R"(
+machine: {name: m, cycle_us: 2000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: X2, address: X, bus: b, node_id: 3}
+)";
+  const std::string s1 = "  - {name: S1, type: spindle, bus: b, node_id: 4, counts_per_unit: 100, ";
+  const std::string s2 = "  - {name: S2, type: spindle, bus: b, node_id: 5}\n";
+  const std::string channels =
+      "channels: [{name: CH1, axes: [X1], spindles: [S1, S2]}, {name: CH2, axes: [X2]}]\n";
+  const MachineConfig config =
+      parse_machine_yaml(head + s1 + "c_axis: {name: C1, acceleration: 720}}\n" + s2 + channels);
+  ASSERT_EQ(config.axes.size(), 4U);  // no node of its own
+  ASSERT_EQ(config.c_axes.size(), 1U);
+  const AxisConfig* c = config.find_axis("C1");
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->spindle, "S1");
+  EXPECT_EQ(config.find_axis("S1")->c_axis, "C1");
+  EXPECT_EQ(c->address, 'C');
+  EXPECT_EQ(c->type, AxisType::rotary);
+  EXPECT_EQ(c->id, config.find_axis("S1")->id);  // the spindle's node and feedback
+  EXPECT_EQ(c->node_id, 4);
+  EXPECT_EQ(c->counts_per_unit, 100.0);
+  EXPECT_EQ(c->acceleration, 720.0);
+  EXPECT_EQ(c->jerk, 50.0 * 720.0);
+  EXPECT_EQ(c->channel, "CH1");
+  EXPECT_EQ(config.channels[0].program_axes(), (std::vector<std::string>{"X1", "C1"}));
+
+  EXPECT_EQ(rejection_path(head + s1 + "c_axis: {name: C1}}\n" + s2 +
+                           "channels: [{name: CH1, axes: [X1], spindles: [S2, S1]}, "
+                           "{name: CH2, axes: [X2]}]\n"),
+            "axes[2].c_axis")
+      << "only the channel's first spindle";
+  EXPECT_EQ(rejection_path(head + s1 + "c_axis: {name: C1, address: X}}\n" + s2 + channels),
+            "axes[2].c_axis.address");
+  EXPECT_EQ(rejection_path(head + s1 + "c_axis: {name: X2}}\n" + s2 + channels),
+            "axes[2].c_axis.name")
+      << "a name another axis has";
+  std::string taken = head;
+  taken.replace(taken.find("name: X1, address: X"), 20, "name: X1, address: C");
+  EXPECT_EQ(rejection_path(taken + s1 + "c_axis: {name: C1}}\n" + s2 + channels), "axes[2].c_axis")
+      << "C is X1's address in CH1";
+  EXPECT_EQ(rejection_path(head + s1 + "c_axis: {name: C1, speed: 3}}\n" + s2 + channels),
+            "axes[2].c_axis.speed");
+  std::string on_axis = head;
+  on_axis.replace(on_axis.find("node_id: 3}"), 11, "node_id: 3, c_axis: {name: C9}}");
+  EXPECT_EQ(rejection_path(on_axis + s1 + "c_axis: {name: C1}}\n" + s2 + channels),
+            "axes[1].c_axis");
+}
+
+}  // namespace
+}  // namespace mcnc::config

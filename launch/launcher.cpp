@@ -1,5 +1,6 @@
 #include "launch/launcher.hpp"
 
+#include "channel/control/channel_controller.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
@@ -25,21 +26,8 @@ using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
 const char* to_string(::mcnc::ChannelState state) noexcept {
-  switch (state) {
-    case CH_RESET:
-      return "reset";
-    case CH_IDLE:
-      return "idle";
-    case CH_RUNNING:
-      return "running";
-    case CH_HOLD:
-      return "hold";
-    case CH_WAITING:
-      return "waiting";
-    case CH_ALARM:
-      return "alarm";
-  }
-  return "reset";
+  // The wire's states are the channel's, in the same order.
+  return channel::to_string(static_cast<channel::ChannelState>(static_cast<int>(state)));
 }
 
 namespace {

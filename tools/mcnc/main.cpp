@@ -1,6 +1,7 @@
 // mcnc: the user's command line.
 #include "common/log/logging.hpp"
 #include "launch/run_command.hpp"
+#include "launch/status_command.hpp"
 #include "tools/mcnc/interp_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -16,6 +17,10 @@ int main(int argc, char** argv) {
   CLI::App* interp = app.add_subcommand(
       "interp", "interpret a program and print its canonical commands as JSON lines");
   mcnc::tools::add_interp_options(*interp, interp_args);
+  mcnc::launch::StatusArguments status_args;
+  CLI::App* status = app.add_subcommand(
+      "status", "print one line per channel and axis of a running machine (its DDS domain)");
+  mcnc::launch::add_status_options(*status, status_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -28,6 +33,9 @@ int main(int argc, char** argv) {
   mcnc::log::setup("mcnc", run_args.log_level);
   if (run->parsed()) {
     return mcnc::launch::execute_run(run_args);
+  }
+  if (status->parsed()) {
+    return mcnc::launch::execute_status(status_args);
   }
   return 2;
 }

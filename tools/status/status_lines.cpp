@@ -1,0 +1,118 @@
+#include "tools/status/status_lines.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace mcnc::status {
+namespace {
+
+std::string channel_name(const config::MachineConfig& machine, std::uint32_t id) {
+  return id >= 1 && id <= machine.channels.size() ? machine.channels[id - 1].name
+                                                  : "channel " + std::to_string(id);
+}
+
+std::string axis_name(const config::MachineConfig& machine, std::uint32_t id) {
+  return id >= 1 && id <= machine.axes.size() ? machine.axes[id - 1].name
+                                              : "axis " + std::to_string(id);
+}
+
+std::string padded(const std::string& text, std::size_t width) {
+  return text + std::string(width > text.size() ? width - text.size() : 0, ' ');
+}
+
+std::string channel_line(const config::MachineConfig& machine, const ChannelView& c) {
+  char head[96];
+  std::snprintf(head, sizeof head, "%-8s block %u/%u  line %d", channel::to_string(c.state),
+                c.block, c.block_total, c.line);
+  std::string out = head;
+  if (c.state == ChannelState::waiting && c.sync_p != 0) {
+    out += "  waits at G04.1 P" + std::to_string(c.sync_p);
+    std::string whom;
+    for (std::uint32_t ch = 1; ch <= 64; ++ch) {
+      if ((c.sync_waiting_for >> (ch - 1) & 1U) != 0) {
+        whom += (whom.empty() ? "" : ", ") + channel_name(machine, ch);
+      }
+    }
+    out += whom.empty() ? "" : " for " + whom;
+  }
+  if (c.call_caller != 0) {
+    out += "  runs a call of " + channel_name(machine, c.call_caller);
+  }
+  if (c.program_end) {
+    out += "  ended";
+  }
+  if (c.alarms > 0) {
+    out += "  " + std::to_string(c.alarms) + (c.alarms == 1 ? " alarm" : " alarms");
+  }
+  return out;
+}
+
+std::string axis_line(const config::MachineConfig& machine, const config::AxisConfig& a,
+                      const AxisView& v) {
+  std::string owner = v.owner == 0 ? "released" : channel_name(machine, v.owner);
+  if (v.released_by != 0) {
+    owner += " (from " + channel_name(machine, v.released_by) + ")";
+  }
+  char body[160];
+  if (a.type == config::AxisType::spindle) {
+    std::snprintf(body, sizeof body, "%.1f rpm  %s", v.vel / 6.0,
+                  v.mode_display == 8 ? "position (CSP)" : "speed (CSV)");
+  } else {
+    std::snprintf(body, sizeof body, "cmd %.4f  act %.4f  error %.4f", v.cmd, v.act,
+                  v.following_error);
+  }
+  std::string out = padded(owner, 8) + "  " + body;
+  if (v.coupled_to != 0) {
+    out += "  follows " + axis_name(machine, v.coupled_to) +
+           (a.type == config::AxisType::spindle
+                ? (v.coupling_locked ? " (in phase)" : " (catching up)")
+                : "");
+  }
+  out += v.alarm ? "  ALARM" : v.enabled ? "" : "  disabled";
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> status_lines(const config::MachineConfig& machine,
+                                      const StatusSnapshot& snapshot) {
+  std::size_t width = 0;
+  for (const config::ChannelConfig& c : machine.channels) {
+    width = std::max(width, c.name.size());
+  }
+  for (const config::AxisConfig& a : machine.axes) {
+    width = std::max(width, a.name.size());
+  }
+  std::vector<std::string> lines;
+  for (const config::ChannelConfig& c : machine.channels) {
+    const auto it = snapshot.channels.find(static_cast<std::uint32_t>(c.id));
+    lines.push_back(padded(c.name, width) + "  " +
+                    (it == snapshot.channels.end() ? std::string("no status")
+                                                   : channel_line(machine, it->second)));
+  }
+  for (const config::AxisConfig& a : machine.axes) {
+    const auto it = snapshot.axes.find(static_cast<std::uint32_t>(a.id));
+    lines.push_back(padded(a.name, width) + "  " +
+                    (it == snapshot.axes.end() ? std::string("no feedback")
+                                               : axis_line(machine, a, it->second)));
+  }
+  return lines;
+}
+
+std::vector<std::string> missing(const config::MachineConfig& machine,
+                                 const StatusSnapshot& snapshot) {
+  std::vector<std::string> out;
+  for (const config::ChannelConfig& c : machine.channels) {
+    if (!snapshot.channels.contains(static_cast<std::uint32_t>(c.id))) {
+      out.push_back(c.name);
+    }
+  }
+  for (const config::AxisConfig& a : machine.axes) {
+    if (!snapshot.axes.contains(static_cast<std::uint32_t>(a.id))) {
+      out.push_back(a.name);
+    }
+  }
+  return out;
+}
+
+}  // namespace mcnc::status

@@ -1,0 +1,59 @@
+#pragma once
+// `mcnc status`: what a live machine's status topics say, as one line per channel and per axis
+// (docs/operations.md). Pure: the command fills a StatusSnapshot from DDS and prints these lines.
+#include "channel/control/channel_controller.hpp"
+#include "common/config/machine_config.hpp"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace mcnc::status {
+
+using channel::ChannelState;  // ChannelStatus carries it in the same order
+
+// The last ChannelStatus of one channel.
+struct ChannelView {
+  ChannelState state = ChannelState::reset;
+  std::uint32_t block = 0;
+  std::uint32_t block_total = 0;
+  std::int32_t line = 0;
+  std::uint32_t alarms = 0;
+  bool program_end = false;
+  std::int32_t sync_p = 0;             // G04.1 mark it waits at (state waiting)
+  std::uint64_t sync_waiting_for = 0;  // bit c-1: channel c has not arrived yet
+  std::uint32_t call_caller = 0;       // G144: the channel whose call it runs, 0: none
+};
+
+// The last AxisFeedback of one axis or spindle.
+struct AxisView {
+  double cmd = 0.0;
+  double act = 0.0;
+  double vel = 0.0;  // units/s (a spindle: degrees/s)
+  double following_error = 0.0;
+  bool enabled = false;
+  bool alarm = false;
+  std::uint32_t owner = 0;        // channel id, 0: nobody
+  std::uint32_t released_by = 0;  // G140: the channel that gave it to its owner
+  std::uint32_t coupled_to = 0;   // G114.1 / G51.4: the master's axis id
+  bool coupling_locked = false;
+  std::int16_t mode_display = 0;  // a spindle: 8 CSP, 9 CSV
+};
+
+// By channel id and by axis id (the machine file's 1-based positions).
+struct StatusSnapshot {
+  std::map<std::uint32_t, ChannelView> channels;
+  std::map<std::uint32_t, AxisView> axes;
+};
+
+// One line per channel, then one per axis and spindle, in the machine file's order; a channel
+// or axis not heard from says so.
+std::vector<std::string> status_lines(const config::MachineConfig& machine,
+                                      const StatusSnapshot& snapshot);
+
+// The channels and axes of the machine that the snapshot lacks, by name.
+std::vector<std::string> missing(const config::MachineConfig& machine,
+                                 const StatusSnapshot& snapshot);
+
+}  // namespace mcnc::status

@@ -5,6 +5,7 @@
 #include "common/process/startup.hpp"
 #include "launch/launcher.hpp"
 #include "launch/self_path.hpp"
+#include "tools/report/run_report.hpp"
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -38,9 +39,27 @@ bool program_is_good(const config::MachineConfig& machine, const config::Channel
   return true;
 }
 
+// The report: summary.txt (as `mcnc run` printed it), and from the trace the HTML page with the
+// timeline and the toolpaths, each picture also as its own SVG file (docs/report.md).
 void write_report(const std::string& dir, const config::MachineConfig& machine,
-                  const LaunchResult& result) {
+                  const LaunchResult& result, const std::string& trace_path) {
   std::filesystem::create_directories(dir);
+  report::Trace trace;
+  std::ifstream in(trace_path);
+  for (std::string line; std::getline(in, line);) {
+    nlohmann::json e = nlohmann::json::parse(line, nullptr, false);
+    if (!e.is_discarded()) {
+      trace.push_back(std::move(e));
+    }
+  }
+  std::ofstream(dir + "/report.html") << report::report_html(machine, trace);
+  std::ofstream(dir + "/timeline.svg") << report::timeline_svg(machine, trace);
+  for (const config::ChannelConfig& c : machine.channels) {
+    const std::string svg = report::toolpath_svg(machine, trace, c.name);
+    if (!svg.empty()) {
+      std::ofstream(dir + "/toolpath-" + c.name + ".svg") << svg;
+    }
+  }
   std::ofstream out(dir + "/summary.txt");
   out << "machine " << machine.name << ": " << (result.exit_code == 0 ? "ok" : "failed") << ", "
       << result.cycles << " cycles of " << machine.cycle_us << " us\n";
@@ -209,6 +228,18 @@ int execute_run(const RunArguments& args) {
     options.operator_script.push_back(*command);
   }
 
+  if (!args.report_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(args.report_dir, ec);
+    if (!std::filesystem::is_directory(args.report_dir)) {
+      std::fprintf(stderr, "error: --report %s: cannot make the directory (%s)\n",
+                   args.report_dir.c_str(), ec.message().c_str());
+      return 2;
+    }
+    if (options.trace_path.empty()) {
+      options.trace_path = args.report_dir + "/trace.jsonl";  // the report is made from it
+    }
+  }
   if (!options.trace_path.empty()) {
     const auto dir = std::filesystem::absolute(options.trace_path).parent_path();
     if (!std::filesystem::is_directory(dir)) {
@@ -261,7 +292,7 @@ int execute_run(const RunArguments& args) {
   std::printf("%s after %llu cycles\n", result.exit_code == 0 ? "ok" : "FAILED",
               static_cast<unsigned long long>(result.cycles));
   if (!args.report_dir.empty()) {
-    write_report(args.report_dir, machine, result);
+    write_report(args.report_dir, machine, result, options.trace_path);
   }
   return result.exit_code;
 }

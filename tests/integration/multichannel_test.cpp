@@ -54,6 +54,30 @@ std::string variant(const TestMachine& machine, const std::string& program, cons
   return out;
 }
 
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+// The run report timeline's lane of channel `ch`: its <g data-channel> group.
+std::string svg_group(const std::string& svg, const std::string& ch) {
+  const auto from = svg.find("<g data-channel=\"" + ch + "\">");
+  if (from == std::string::npos) {
+    return "";
+  }
+  return svg.substr(from, svg.find("\n</g>", from) - from);
+}
+
 // The cycle of the first event `ev` of channel `ch` whose fields match `match`.
 std::uint64_t cycle_of(const Trace& trace, const std::string& ev, const std::string& ch,
                        const nlohmann::json& match = nlohmann::json::object()) {
@@ -596,9 +620,30 @@ TEST(MultiChannel, RandomProgramsWithAnInjectedMismatchEndInTheMismatchAlarm) {
 // turns the left end, the lower turret waits for it.
 TEST(MultiChannel, TwinTurretLoaderAndTurretsInTheirOrder) {
   TestMachine machine("twin_turret.yaml", 64);
-  const MultiRun r = run_channels(machine, {{"CH1", source("launch/programs/twin_turret_ch1.nc")},
-                                            {"CH2", source("launch/programs/twin_turret_ch2.nc")}});
+  const MultiRun r = run_channels(machine,
+                                  {{"CH1", source("launch/programs/twin_turret_ch1.nc")},
+                                   {"CH2", source("launch/programs/twin_turret_ch2.nc")}},
+                                  {"--report", machine.file("report")});
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The report (docs/report.md): a lane per channel with both marks where both channels met,
+  // and a toolpath per channel with its marks on it.
+  const std::string timeline = read_file(machine.file("report/timeline.svg"));
+  for (const std::string ch : {"CH1", "CH2"}) {
+    const std::string lane = svg_group(timeline, ch);
+    EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"1\""), 1U) << ch;
+    EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"2\""), 1U) << ch;
+    EXPECT_GT(occurrences(lane, "class=\"block\""), 5U) << ch;
+    const std::string path = read_file(machine.file("report/toolpath-" + ch + ".svg"));
+    EXPECT_EQ(occurrences(path, "<path class=\"toolpath\""), 1U) << ch;
+    EXPECT_EQ(occurrences(path, "class=\"sync\""), 2U) << ch;
+  }
+  EXPECT_GE(occurrences(svg_group(timeline, "CH2"), "class=\"wait\""), 2U);  // P1 and P2
+  EXPECT_EQ(
+      occurrences(read_file(machine.file("report/toolpath-CH3.svg")), "<path class=\"toolpath\""),
+      1U);  // the loader's
+  const std::string page = read_file(machine.file("report/report.html"));
+  EXPECT_EQ(occurrences(page, "<svg"), 4U);  // the timeline and three toolpaths
+  EXPECT_NE(page.find("<td>CH1</td><td>M30</td>"), std::string::npos);
   const Trace& t = r.trace;
   EXPECT_EQ(events(t, "block", "CH3").at(0)["prog"], "O3100.nc");
   const std::uint64_t loaded = block_at(t, "CH3", 5);  // G145: the blank is in
@@ -676,9 +721,15 @@ const std::string kG140 = "tests/integration/programs/g140/";
 TEST(MultiChannel, AxisExchangeAsTheSpecExample) {
   TestMachine machine("twin_turret.yaml", 65);
   const MultiRun r =
-      run_channels(machine, {{"CH1", source(kG140 + "ch1.nc")}, {"CH2", source(kG140 + "ch2.nc")}});
+      run_channels(machine, {{"CH1", source(kG140 + "ch1.nc")}, {"CH2", source(kG140 + "ch2.nc")}},
+                   {"--report", machine.file("report")});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Trace& t = r.trace;
+  // The report's timeline shows the release on CH1's lane, the take-over on CH2's and the
+  // restore on CH1's.
+  const std::string timeline = read_file(machine.file("report/timeline.svg"));
+  EXPECT_EQ(occurrences(svg_group(timeline, "CH1"), "class=\"owner\" data-axis=\"A1\""), 2U);
+  EXPECT_EQ(occurrences(svg_group(timeline, "CH2"), "class=\"owner\" data-axis=\"A1\""), 1U);
   // A belongs to channel 1, is released, goes to channel 2, and after G142 to channel 1 again.
   std::vector<std::string> sequence;
   for (const auto& [cycle, owner] : owners(t, "A1")) {

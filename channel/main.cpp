@@ -251,13 +251,37 @@ int main(int argc, char** argv) {
         if (!request->concerns(static_cast<std::uint32_t>(ch->id))) {
           continue;
         }
-        if (request->action == process::OperatorActionKind::reset) {
-          controller.request_reset();
-        } else if (request->action == process::OperatorActionKind::cycle_start) {
-          controller.request_start();
+        using Kind = process::OperatorActionKind;
+        switch (request->action) {
+          case Kind::reset:
+            controller.request_reset();
+            break;
+          case Kind::cycle_start:
+            controller.request_start();
+            break;
+          case Kind::feed_hold:
+            controller.request_feed_hold();
+            break;
+          case Kind::feed_override:
+            controller.set_feed_override(request->value);
+            break;
+          case Kind::rapid_override:
+            controller.set_rapid_override(request->value);
+            break;
+          case Kind::spindle_override:
+            controller.set_spindle_override(request->value);
+            break;
+          case Kind::none:
+            break;
         }
-        tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\"", ch->name.c_str(),
-                    process::to_string(request->action));
+        if (request->action == Kind::reset || request->action == Kind::cycle_start ||
+            request->action == Kind::feed_hold) {
+          tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\"", ch->name.c_str(),
+                      process::to_string(request->action));
+        } else {
+          tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\",\"value\":%.3f",
+                      ch->name.c_str(), process::to_string(request->action), request->value);
+        }
       }
 
       // An axis node leaving may be the end of the run, not a failure. In realtime, feedback

@@ -278,6 +278,7 @@ LaunchResult Launcher::run(
       cmd.cycle(c.cycle);
       cmd.channel(c.channel);
       cmd.action(c.action);
+      cmd.value(c.value);
       cmd.origin("launch");
       operator_writer.write(cmd);
     }

@@ -20,6 +20,7 @@ struct ScriptedOperatorCommand {
   std::uint64_t cycle = 0;
   std::uint32_t channel = 0;  // 0: the whole machine
   OperatorAction action = OP_NONE;
+  double value = 0.0;  // an override, in percent
 };
 
 struct LaunchOptions {

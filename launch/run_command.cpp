@@ -11,12 +11,14 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 namespace mcnc::launch {
 
@@ -105,14 +107,39 @@ std::optional<ScriptedOperatorCommand> parse_operator_command(const config::Mach
     command.channel = static_cast<std::uint32_t>(ch->id);
     action.resize(colon);
   }
-  if (action == "reset") {
-    command.action = OP_RESET;
-  } else if (action == "cycle_start") {
-    command.action = OP_CYCLE_START;
-  } else {
-    return std::nullopt;
+  // ACTION=VALUE for the overrides (percent).
+  std::optional<double> amount;
+  if (const auto eq = action.find('='); eq != std::string::npos) {
+    const std::string text = action.substr(eq + 1);
+    char* value_end = nullptr;
+    errno = 0;
+    amount = std::strtod(text.c_str(), &value_end);
+    if (text.empty() || *value_end != '\0' || errno != 0 || !std::isfinite(*amount) ||
+        *amount < 0.0) {
+      return std::nullopt;
+    }
+    action.resize(eq);
   }
-  return command;
+  static constexpr std::pair<const char*, OperatorAction> kPlain[] = {
+      {"reset", OP_RESET}, {"cycle_start", OP_CYCLE_START}, {"feed_hold", OP_FEED_HOLD}};
+  static constexpr std::pair<const char*, OperatorAction> kValued[] = {
+      {"feed_override", OP_FEED_OVERRIDE},
+      {"rapid_override", OP_RAPID_OVERRIDE},
+      {"spindle_override", OP_SPINDLE_OVERRIDE}};
+  for (const auto& [name, kind] : kPlain) {
+    if (action == name && !amount) {
+      command.action = kind;
+      return command;
+    }
+  }
+  for (const auto& [name, kind] : kValued) {
+    if (action == name && amount) {
+      command.action = kind;
+      command.value = *amount;
+      return command;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -142,8 +169,9 @@ void add_run_options(CLI::App& app, RunArguments& args) {
                  "keep the shared retained macro variables #500-#999 in FILE between runs "
                  "(overrides the machine file's retained_file)");
   app.add_option("--operator", args.operator_script,
-                 "scripted operator: ACTION[:CHANNEL]@CYCLE, ACTION reset or cycle_start, for "
-                 "one channel or (without CHANNEL) the whole machine (repeatable)");
+                 "scripted operator: ACTION[=VALUE][:CHANNEL]@CYCLE, ACTION reset, cycle_start, "
+                 "feed_hold, feed_override=P, rapid_override=P or spindle_override=P (percent), "
+                 "for one channel or (without CHANNEL) the whole machine (repeatable)");
 }
 
 int execute_run(const RunArguments& args) {
@@ -220,8 +248,9 @@ int execute_run(const RunArguments& args) {
     const auto command = parse_operator_command(machine, spec);
     if (!command) {
       std::fprintf(stderr,
-                   "error: --operator %s: expected ACTION[:CHANNEL]@CYCLE with ACTION reset or "
-                   "cycle_start, a channel of %s and a cycle > 0\n",
+                   "error: --operator %s: expected ACTION[:CHANNEL]@CYCLE with ACTION reset, "
+                   "cycle_start, feed_hold, feed_override=PERCENT, rapid_override=PERCENT or "
+                   "spindle_override=PERCENT, a channel of %s and a cycle > 0\n",
                    spec.c_str(), args.machine_path.c_str());
       return 2;
     }

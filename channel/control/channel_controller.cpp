@@ -1,6 +1,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/program_alarms.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -130,6 +131,21 @@ void ChannelController::partner_lost(std::uint32_t channel) noexcept {
   if (channel >= 1 && channel <= coordination::kMaxChannels) {
     lost_partners_.set(channel);
   }
+}
+
+void ChannelController::set_feed_override(double percent) noexcept {
+  feed_override_ =
+      std::isfinite(percent) ? std::clamp(percent, 0.0, 200.0) / 100.0 : feed_override_;
+}
+
+void ChannelController::set_rapid_override(double percent) noexcept {
+  rapid_override_ =
+      std::isfinite(percent) ? std::clamp(percent, 0.0, 100.0) / 100.0 : rapid_override_;
+}
+
+void ChannelController::set_spindle_override(double percent) noexcept {
+  spindle_override_ =
+      std::isfinite(percent) ? std::clamp(percent, 50.0, 120.0) / 100.0 : spindle_override_;
 }
 
 void ChannelController::set_state(ChannelState state) noexcept {
@@ -296,6 +312,15 @@ const ChannelOutput& ChannelController::run_cycle(
     pending_alarm_.reset();
   }
   take_calls(cycle);
+  // The operator's feed hold and cycle start (in hold), in the cycle they come: a channel that
+  // does not run keeps no hold for later.
+  if (hold_requested_ && out_.state == ChannelState::running) {
+    set_state(ChannelState::hold);
+  } else if (resume_requested_ && out_.state == ChannelState::hold) {
+    set_state(ChannelState::running);
+  }
+  hold_requested_ = false;
+  resume_requested_ = false;
   const std::uint64_t writes_lost = setup_.shared_writes ? setup_.shared_writes->lost() : 0;
   if ((coordination_lost_ || writes_lost > writes_lost_seen_) &&
       out_.state != ChannelState::alarm) {
@@ -322,7 +347,10 @@ const ChannelOutput& ChannelController::run_cycle(
   }
   if (reset_requested_) {
     reset_requested_ = false;
-    if (out_.state == ChannelState::running && !planner_.idle()) {
+    hold_requested_ = false;
+    resume_requested_ = false;
+    if ((out_.state == ChannelState::running || out_.state == ChannelState::hold) &&
+        !planner_.idle()) {
       planner_.reset();  // ramp down first
       resetting_ = true;
     } else {
@@ -392,7 +420,8 @@ const ChannelOutput& ChannelController::run_cycle(
     }
   }
 
-  if (refused_ && (out_.state == ChannelState::running || out_.state == ChannelState::waiting)) {
+  if (refused_ && (out_.state == ChannelState::running || out_.state == ChannelState::waiting ||
+                   out_.state == ChannelState::hold)) {
     char text[96];
     std::snprintf(text, sizeof text, "G144: channel %u refused the call (it was busy)",
                   refused_->target);
@@ -410,10 +439,13 @@ const ChannelOutput& ChannelController::run_cycle(
     set_state(ChannelState::running);
   }
 
-  if (out_.state == ChannelState::running || out_.state == ChannelState::waiting) {
+  const bool in_program = out_.state == ChannelState::running ||
+                          out_.state == ChannelState::waiting || out_.state == ChannelState::hold;
+  if (in_program) {
     run_blocks(cycle, feedback);
   }
-  if (out_.state != ChannelState::running && out_.state != ChannelState::waiting) {
+  if (out_.state != ChannelState::running && out_.state != ChannelState::waiting &&
+      out_.state != ChannelState::hold) {
     hold_outputs(out_.state != ChannelState::reset);
   }
   return out_;
@@ -671,6 +703,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   fill();
   motion::CycleInput input;
   input.in_position = in_pos;
+  input.feed_hold = out_.state == ChannelState::hold;
+  input.feed_override = feed_override_;
+  input.rapid_override = rapid_override_;
+  input.spindle_override = spindle_override_;
   const motion::MotionOutput& m = planner_.step(input);
   out_.spindle_rpm = m.spindle_rpm;
   out_.spindle_direction = m.spindle_direction;
@@ -688,8 +724,8 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.line = m.line;
   }
   block_events(m, feedback);
-  if (!planner_.idle() || queued_count_ > 0) {
-    return;
+  if (out_.state == ChannelState::hold || !planner_.idle() || queued_count_ > 0) {
+    return;  // in feed hold nothing new starts
   }
   // Everything pulled so far has run.
   if (sync_block_) {

@@ -286,14 +286,26 @@ class ChannelController {
   ChannelController(ChannelSetup setup, interp::CommandSource& source,
                     motion::MotionPlanner& planner);
 
-  // Cycle start: the program runs as soon as every axis is enabled (from idle or reset). A
-  // start while the program runs (or waits, or holds) is ignored, as on a control panel.
+  // Cycle start: the program runs as soon as every axis is enabled (from idle or reset); in
+  // feed hold it goes on. A start while the program runs or waits is ignored, as on a control
+  // panel.
   void request_start() noexcept {
-    if (out_.state != ChannelState::running && out_.state != ChannelState::waiting &&
-        out_.state != ChannelState::hold) {
+    if (out_.state == ChannelState::hold) {
+      resume_requested_ = true;
+    } else if (out_.state != ChannelState::running && out_.state != ChannelState::waiting) {
       start_requested_ = true;
     }
   }
+  // Feed hold: a running channel's path decelerates to a stop and stays (state hold) until a
+  // cycle start; the spindle keeps turning. Ignored when the channel does not run (a channel
+  // waiting at a mark or for an answer moves nothing).
+  void request_feed_hold() noexcept { hold_requested_ = true; }
+  // The operator panel's overrides, in percent, clamped: feed 0-200, rapid 0-100 (as the planner
+  // applies them), spindle 50-120 (before the G50 S limit of G96). A value that is not a number
+  // is ignored.
+  void set_feed_override(double percent) noexcept;
+  void set_rapid_override(double percent) noexcept;
+  void set_spindle_override(double percent) noexcept;
   // Reset (the RESET key): a moving channel ramps down with the planner's reset deceleration;
   // then the alarms are cleared, the program rewinds and the channel is in reset. It comes back
   // to idle once every axis is enabled again without an alarm (the axis nodes reset their drives
@@ -405,6 +417,11 @@ class ChannelController {
   AxisVector commanded_{};
   bool position_known_ = false;
   bool start_requested_ = false;
+  bool resume_requested_ = false;
+  bool hold_requested_ = false;
+  double feed_override_ = 1.0;
+  double rapid_override_ = 1.0;
+  double spindle_override_ = 1.0;
   bool estop_requested_ = false;
   bool reset_requested_ = false;
   bool resetting_ = false;     // ramping down for a reset

@@ -51,8 +51,9 @@ struct MotionConfig {
 struct CycleInput {
   double spindle_angle = 0.0;
   double spindle_rpm = 0.0;
-  double feed_override = 1.0;   // 0..2
-  double rapid_override = 1.0;  // 0..1
+  double feed_override = 1.0;     // 0..2
+  double rapid_override = 1.0;    // 0..1
+  double spindle_override = 1.0;  // the commanded speed's factor, before the G96 limits
   bool feed_hold = false;
   // Every axis is inside its in-position width: after an exact stop the next block waits for it
   // (the channel checks the drives' feedback).

@@ -61,12 +61,12 @@ void MotionPlanner::set_single_block(bool on) noexcept {
 double MotionPlanner::spindle_rpm_at(const SpindleCommand& s,
                                      const AxisVector& pos) const noexcept {
   if (!s.css) {
-    return s.rpm;
+    return s.rpm * in_.spindle_override;
   }
   if (config_.css_axis < 0 || static_cast<std::size_t>(config_.css_axis) >= config_.axis_count) {
     return 0.0;
   }
-  return constant_surface_rpm(s.surface,
+  return constant_surface_rpm(s.surface * in_.spindle_override,
                               pos[static_cast<std::size_t>(config_.css_axis)] - config_.css_centre,
                               s.max_rpm, config_.spindle_max_rpm);
 }

@@ -10,6 +10,14 @@ const char* to_string(OperatorActionKind action) noexcept {
       return "reset";
     case OperatorActionKind::cycle_start:
       return "cycle_start";
+    case OperatorActionKind::feed_hold:
+      return "feed_hold";
+    case OperatorActionKind::feed_override:
+      return "feed_override";
+    case OperatorActionKind::rapid_override:
+      return "rapid_override";
+    case OperatorActionKind::spindle_override:
+      return "spindle_override";
   }
   return "none";
 }

@@ -10,7 +10,15 @@
 
 namespace mcnc::process {
 
-enum class OperatorActionKind : std::uint8_t { none, reset, cycle_start };
+enum class OperatorActionKind : std::uint8_t {
+  none,
+  reset,
+  cycle_start,
+  feed_hold,
+  feed_override,    // value: percent
+  rapid_override,   // value: percent
+  spindle_override  // value: percent
+};
 
 const char* to_string(OperatorActionKind action) noexcept;
 
@@ -20,6 +28,7 @@ struct OperatorRequest {
   std::uint64_t cycle = 0;       // takes effect at this cycle; 0: at the next one
   std::uint32_t channel = 0;     // 0: the whole machine
   OperatorActionKind action = OperatorActionKind::none;
+  double value = 0.0;
   // For the channel with this id (an axis node: of its owner channel).
   [[nodiscard]] bool concerns(std::uint32_t channel_id) const noexcept {
     return channel == 0 || channel == channel_id;

@@ -48,12 +48,25 @@ ProcessNode::ProcessNode(int domain, std::string name)
         r.generation = c.generation();
         r.cycle = c.cycle();
         r.channel = c.channel();
+        r.value = c.value();
         switch (c.action()) {
           case OP_RESET:
             r.action = OperatorActionKind::reset;
             break;
           case OP_CYCLE_START:
             r.action = OperatorActionKind::cycle_start;
+            break;
+          case OP_FEED_HOLD:
+            r.action = OperatorActionKind::feed_hold;
+            break;
+          case OP_FEED_OVERRIDE:
+            r.action = OperatorActionKind::feed_override;
+            break;
+          case OP_RAPID_OVERRIDE:
+            r.action = OperatorActionKind::rapid_override;
+            break;
+          case OP_SPINDLE_OVERRIDE:
+            r.action = OperatorActionKind::spindle_override;
             break;
           default:
             operator_dropped_.fetch_add(1);  // an action this build does not know

@@ -261,3 +261,48 @@ TEST(Run, ProgramForUnknownChannelExits2) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no channel CH9"), std::string::npos) << r.err;
 }
+
+namespace {
+
+// The operator panel through `--operator` (the commands the HMI sends): at half the feed, a feed
+// hold stops Z on its path until the cycle start; the move then ends on its point.
+TEST(Run, FeedHoldStopsTheAxesUntilTheCycleStartAndTheFeedOverrideSlowsTheFeed) {
+  TestMachine machine("small_lathe.yaml", 85);
+  const std::string program = machine.file("feed.nc");
+  std::ofstream(program) << "G01 Z-60 F3000\nM30\n";  // 50 mm/s, at 50 %: 25 mm/s, 2.4 s
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program, "--trace", trace_file,
+           "--operator", "feed_override=50:CH1@1", "--operator", "feed_hold:CH1@1000", "--operator",
+           "cycle_start:CH1@2000"},
+          -1, 180s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  std::vector<std::pair<std::uint64_t, std::string>> states;
+  for (const auto& s : events(trace, "state", "CH1")) {
+    states.emplace_back(s["cycle"].get<std::uint64_t>(), s["state"].get<std::string>());
+  }
+  ASSERT_GE(states.size(), 5U);
+  EXPECT_EQ(states[3], (std::pair<std::uint64_t, std::string>{1000, "hold"}));
+  EXPECT_EQ(states[4], (std::pair<std::uint64_t, std::string>{2000, "running"}));
+  // Z stands from shortly after the hold to the start.
+  std::map<std::uint64_t, double> z;
+  for (const auto& p : events(trace, "pos", "Z1")) {
+    z[p["cycle"].get<std::uint64_t>()] = p["cmd"].get<double>();
+  }
+  const double held = z.at(1200);
+  EXPECT_LT(held, -10.0);
+  EXPECT_GT(held, -40.0);
+  for (std::uint64_t c = 1200; c <= 2000; c += 10) {
+    EXPECT_DOUBLE_EQ(z.at(c), held) << c;
+  }
+  // Before the hold Z went at 25 mm/s.
+  EXPECT_NEAR((z.at(900) - z.at(500)) / 0.4, -25.0, 0.01);
+  EXPECT_DOUBLE_EQ(last_positions(trace).at("Z1")["cmd"].get<double>(), -60.0);
+  // 2.4 s of feed, the hold of a second and the ramps.
+  const double cycle_time = trace.back()["channels"]["CH1"]["cycle_time_s"].get<double>();
+  EXPECT_GT(cycle_time, 3.4);
+  EXPECT_LT(cycle_time, 3.6);
+}
+
+}  // namespace

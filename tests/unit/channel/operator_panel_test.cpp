@@ -1,0 +1,188 @@
+// The operator panel as a channel acts on it: feed hold and cycle start, the feed, rapid and
+// spindle overrides. Channel 1 programs X and Z; its axis nodes follow every
+// valid setpoint.
+#include "channel_rig.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace mcnc::channel {
+namespace {
+
+constexpr double kDt = 0.001;
+
+interp::InterpreterConfig xz_channel() {
+  interp::InterpreterConfig c;
+  c.channel = 1;
+  c.spindles = 1;
+  c.axes = {interp::AxisConfig{'X'}, interp::AxisConfig{'Z'}};
+  return c;
+}
+
+ChannelSetup xz_setup() {
+  ChannelSetup s{2, {0.001, 0.001}, kDt};
+  s.channel_id = 1;
+  s.spindle_count = 1;
+  return s;
+}
+
+// X measures the radius of G96 (css_axis).
+motion::MotionConfig xz_motion() {
+  motion::MotionConfig c = alike_axes(2, kDt);
+  c.css_axis = 0;
+  return c;
+}
+
+class PanelRig : public ChannelRig {
+ public:
+  PanelRig() : ChannelRig(xz_channel(), xz_motion(), xz_setup()) {
+    feedback_.resize(3);
+    for (auto& f : feedback_) {
+      f.enabled = true;
+      f.present = true;
+      f.owner = 1;
+    }
+  }
+
+  const ChannelOutput& step() override {
+    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+    for (std::size_t a = 0; a < 2; ++a) {
+      if (out.setpoints[a].valid) {
+        feedback_[a].cmd = feedback_[a].act = out.setpoints[a].pos;
+      }
+    }
+    return out;
+  }
+
+  [[nodiscard]] double x() const { return feedback_[0].cmd; }
+  [[nodiscard]] std::uint64_t cycles() const { return cycle_; }
+
+ private:
+  std::vector<AxisFeedbackView> feedback_;
+  std::uint64_t cycle_ = 0;
+};
+
+// Cycles from the start to the program end.
+std::uint64_t run_time(PanelRig& rig) {
+  const std::uint64_t from = rig.cycles();
+  EXPECT_TRUE(rig.run_to_end());
+  return rig.cycles() - from;
+}
+
+TEST(OperatorPanel, FeedHoldStopsThePathWhereItIsAndACycleStartGoesOn) {
+  PanelRig rig;
+  rig.load("G01 X100 F6000\nM30\n");  // 100 mm/s for a second
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 30.0; }));
+  rig.ctl().request_feed_hold();
+  EXPECT_EQ(rig.step().state, ChannelState::hold);
+  // It decelerates along the path (1000 mm/s^2 from 100 mm/s: 5 mm and more for the jerk) and
+  // then stands.
+  for (int i = 0; i < 400; ++i) {
+    rig.step();
+  }
+  const double stood = rig.x();
+  EXPECT_GT(stood, 35.0);
+  EXPECT_LT(stood, 45.0);
+  for (int i = 0; i < 500; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::hold);
+  }
+  EXPECT_DOUBLE_EQ(rig.x(), stood);
+  rig.ctl().request_start();
+  EXPECT_EQ(rig.step().state, ChannelState::running);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_DOUBLE_EQ(rig.x(), 100.0);
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+}
+
+TEST(OperatorPanel, FeedHoldOutsideARunAndAStartWhileRunningDoNothing) {
+  PanelRig rig;
+  rig.load("G01 X10 F6000\nM30\n");
+  rig.ctl().request_feed_hold();  // before the axes are up: not kept for later
+  EXPECT_EQ(rig.step().state, ChannelState::idle);
+  rig.ctl().request_feed_hold();
+  EXPECT_EQ(rig.step().state, ChannelState::idle);
+  rig.ctl().request_start();
+  EXPECT_EQ(rig.step().state, ChannelState::running);
+  rig.ctl().request_start();  // again: no second start, no hold
+  EXPECT_EQ(rig.step().state, ChannelState::running);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_DOUBLE_EQ(rig.x(), 10.0);
+}
+
+TEST(OperatorPanel, AResetInFeedHoldEndsTheProgram) {
+  PanelRig rig;
+  rig.load("G01 X100 F6000\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 30.0; }));
+  rig.ctl().request_feed_hold();
+  for (int i = 0; i < 100; ++i) {
+    rig.step();  // still decelerating
+  }
+  rig.ctl().request_reset();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  const double stood = rig.x();
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::idle);
+  }
+  EXPECT_DOUBLE_EQ(rig.x(), stood);
+  EXPECT_LT(stood, 100.0);
+}
+
+TEST(OperatorPanel, TheFeedOverrideScalesTheFeedAndTheRapidOverrideTheRapids) {
+  const auto time_of = [](const char* program, double feed, double rapid) {
+    PanelRig rig;
+    rig.load(program);
+    rig.ctl().set_feed_override(feed);
+    rig.ctl().set_rapid_override(rapid);
+    return static_cast<double>(run_time(rig));
+  };
+  const char* feed = "G01 X100 F3000\nM30\n";  // 50 mm/s: 2 s, the ramps short beside it
+  const double full = time_of(feed, 100, 100);
+  EXPECT_NEAR(time_of(feed, 50, 100) / full, 2.0, 0.05);
+  EXPECT_NEAR(time_of(feed, 150, 100) / full, 1.0 / 1.5, 0.05);
+  EXPECT_NEAR(time_of(feed, 300, 100) / full, 0.5, 0.05);  // clamped at 200 %
+  // G00 at 100 mm/s takes 1.1 s with its ramps; at 25 % 4 s and shorter ramps.
+  const char* rapid = "G00 X100\nM30\n";
+  const double rapid_full = time_of(rapid, 100, 100);
+  EXPECT_NEAR(time_of(rapid, 100, 25) * kDt, 4.05, 0.05);
+  EXPECT_NEAR(time_of(rapid, 50, 100) / rapid_full, 1.0, 0.01);  // the feed override: not G00
+}
+
+TEST(OperatorPanel, TheSpindleOverrideScalesTheCommandedSpeedWithinItsRange) {
+  PanelRig rig;
+  rig.load("M03 S1000\nG04 X1\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.spindle_rpm > 0.0; }));
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 1000.0);
+  rig.ctl().set_spindle_override(120);
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 1200.0);
+  rig.ctl().set_spindle_override(200);
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 1200.0);  // at most 120 %
+  rig.ctl().set_spindle_override(10);
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 500.0);  // at least 50 %
+  rig.ctl().set_spindle_override(std::nan(""));
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 500.0);  // not a number: ignored
+  rig.ctl().set_feed_override(std::nan(""));
+  rig.ctl().set_rapid_override(std::nan(""));
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+}
+
+TEST(OperatorPanel, TheSpindleOverrideUnderG96StaysWithinTheG50Limit) {
+  PanelRig rig;
+  // 100 m/min at a radius of 20 mm is 796 rpm; 120 % of it would be 955, G50 S800 limits it.
+  rig.load("G00 X20\nG50 S800\nG96 S100 M03\nG04 X1\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.spindle_rpm > 0.0; }));
+  const double base = rig.step().spindle_rpm;
+  EXPECT_LT(base, 800.0);
+  rig.ctl().set_spindle_override(120);
+  EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 800.0);
+}
+
+}  // namespace
+}  // namespace mcnc::channel

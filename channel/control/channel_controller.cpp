@@ -269,7 +269,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   out_.aux_due = false;
   out_.spindle_sync_due = false;
   out_.axis_sync_due = false;
-  const bool was_position = position_control_;
+  const bool was_position = under_position_control();
   received_ = feedback;
   update_slots();
   build_views(feedback);
@@ -1159,8 +1159,7 @@ void ChannelController::settle_slots() noexcept {
   }
   for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
     if (s == setup_.spindle_c_slot) {
-      slot_use_[s] = position_control_ ? SlotUse::commanded : SlotUse::speed_control;
-      continue;
+      continue;  // commanded only between M18 and M17 (run_control)
     }
     const AxisFeedbackView& f = received_[s];
     if (f.present && f.owner == setup_.channel_id) {
@@ -1525,7 +1524,7 @@ void ChannelController::run_control() noexcept {
           b.block.line, 0, 0);
     return;
   }
-  if (b.position && !position_control_) {
+  if (b.position && !under_position_control()) {
     const AxisFeedbackView& f = received_[*c];  // the spindle's own feedback
     if (f.coupled_to != 0) {
       raise(kAlarmSlaveSpindle,
@@ -1551,7 +1550,6 @@ void ChannelController::run_control() noexcept {
     }
     c_base_ = 360.0 * std::floor(f.act / 360.0);
     commanded_[*c] = f.act - c_base_;
-    position_control_ = true;
     slot_use_[*c] = SlotUse::commanded;
     sync_positions();
   } else if (!b.position) {
@@ -1562,7 +1560,6 @@ void ChannelController::run_control() noexcept {
 }
 
 void ChannelController::leave_position_control() noexcept {
-  position_control_ = false;
   if (setup_.spindle_c_slot && *setup_.spindle_c_slot < slot_use_.size()) {
     slot_use_[*setup_.spindle_c_slot] = SlotUse::speed_control;
   }

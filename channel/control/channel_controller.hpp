@@ -585,7 +585,9 @@ class ChannelController {
   std::optional<ControlBlock> control_block_;
   void run_control() noexcept;
   void leave_position_control() noexcept;  // no program runs: speed control, at rest
-  bool position_control_ = false;
+  [[nodiscard]] bool under_position_control() const noexcept {
+    return setup_.spindle_c_slot && slot_use_[*setup_.spindle_c_slot] == SlotUse::commanded;
+  }
   // C = the spindle's position - c_base_ (whole turns): C starts within 0-360 degrees.
   double c_base_ = 0.0;
   // Hands a command to the planner and the block queue; false (and a source alarm) when the

@@ -21,7 +21,10 @@ std::map<std::string, nlohmann::json> last_positions(const std::vector<nlohmann:
   return last;
 }
 
-void expect_xz_move_result(const std::vector<nlohmann::json>& trace) {
+// `corner_tolerance`: how far from the blended corner the axes may be when the channel sees its
+// block end (realtime: the feedback the channel has may be older by up to the deadline).
+void expect_xz_move_result(const std::vector<nlohmann::json>& trace,
+                           double corner_tolerance = 0.1) {
   ASSERT_FALSE(trace.empty());
   // Summary last, ok, program end M30.
   const auto& summary = trace.back();
@@ -76,7 +79,7 @@ void expect_xz_move_result(const std::vector<nlohmann::json>& trace) {
   for (const auto& e : ends) {
     if (e["axis"] == "Z1" && std::fabs(e["cmd"].get<double>() + 20.0) < 1e-9) {
       corner = true;
-      EXPECT_NEAR(e["act"].get<double>(), -20.0, 0.1);
+      EXPECT_NEAR(e["act"].get<double>(), -20.0, corner_tolerance);
     }
     if (e["axis"] == "Z1" && std::fabs(e["cmd"].get<double>() + 25.0) < 1e-9) {
       stop = true;
@@ -111,7 +114,8 @@ TEST(Run, RealtimeMoveEndsOnTheProgrammedPoint) {
                            "--trace", trace, "--trace-pos-every", "5"},
                           -1, 180s);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  expect_xz_move_result(read_trace(trace));
+  // At the corner the axes move at 10 mm/s: 50 cycles of 1 ms of late feedback are 0.5 mm more.
+  expect_xz_move_result(read_trace(trace), 0.6);
 }
 
 TEST(Run, LockstepArcContourEndsOnItsPoints) {

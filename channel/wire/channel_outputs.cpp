@@ -134,8 +134,8 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   // The setpoints after the events they announce: an axis node applies a G141 from the cycle
   // after it was sent, once it holds every event the setpoint announces.
   for (std::size_t i = 0; i < axes_.size(); ++i) {
-    if (!axes_[i]->spindle.empty()) {
-      continue;  // a spindle's C axis: the spindle's setpoint below carries it
+    if (i == c_slot_) {
+      continue;  // the spindle's C axis: the spindle's setpoint below carries it
     }
     AxisSetpoint sp;
     sp.axis(static_cast<std::uint32_t>(axes_[i]->id));

@@ -24,9 +24,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <thread>
 
 using namespace std::chrono_literals;
 using namespace mcnc;
@@ -747,6 +749,15 @@ int main(int argc, char** argv) {
       spdlog::warn("{} axis requests dropped (more waiting than the node keeps)", pending_dropped);
     }
     node.announce(PHASE_STOPPED);
+    // The drives leave last: a channel still waiting for this cycle's feedback when the run
+    // stops would otherwise see its axis go before it has seen the stop, and raise alarm 1202
+    // for what is only the end of the run. Its feedback writer stays until the channels have
+    // gone (2 s at most; the launcher waits 3 s for every DDS process).
+    const auto linger_end = std::chrono::steady_clock::now() + 2s;
+    while (process::g_stop_signal == 0 && setpoint_reader.matched_writers() > 0 &&
+           std::chrono::steady_clock::now() < linger_end) {
+      std::this_thread::sleep_for(10ms);
+    }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

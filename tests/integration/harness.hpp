@@ -46,6 +46,14 @@ struct RunResult {
 // Runs argv to its end (killed after `timeout`), with MCNC_DOMAIN set when domain >= 0.
 RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::seconds timeout);
 
+// A realtime run depends on the host giving its processes the CPU in time: a stall of the
+// virtual machine longer than the machine's deadlines ends it in a timing alarm, as it must
+// (2001 setpoint deadline, 2006 heartbeat, 2009 following error, and the channel's 1201/1202
+// that follow). Runs argv up to `attempts` times while it ends in those alarms only, saying so
+// on the test's output; any other result is returned at once.
+RunResult run_realtime(const std::vector<std::string>& argv, std::chrono::seconds timeout,
+                       int attempts = 3);
+
 // A process started in the background, its output going to files in `log_dir`.
 class Background {
  public:

@@ -109,10 +109,10 @@ TEST(Run, LockstepMoveEndsOnTheProgrammedPoint) {
 TEST(Run, RealtimeMoveEndsOnTheProgrammedPoint) {
   TestMachine machine("small_lathe.yaml", 12, /*deadline_cycles=*/50);
   const std::string trace = machine.file("trace.jsonl");
-  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
-                           "CH1=" + source("launch/programs/xz_move.nc"), "--clock", "realtime",
-                           "--trace", trace, "--trace-pos-every", "5"},
-                          -1, 180s);
+  const RunResult r = run_realtime({bin("mcnc"), "run", machine.path(), "--program",
+                                    "CH1=" + source("launch/programs/xz_move.nc"), "--clock",
+                                    "realtime", "--trace", trace, "--trace-pos-every", "5"},
+                                   180s);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   // At the corner the axes move at 10 mm/s: 50 cycles of 1 ms of late feedback are 0.5 mm more.
   expect_xz_move_result(read_trace(trace), 0.6);

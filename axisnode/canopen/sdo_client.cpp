@@ -97,18 +97,21 @@ bool SdoClient::on_frame(const can::CanFrame& in, std::uint64_t now_us,
     ++malformed_;
     return false;
   }
-  last_us_ = now_us;
   const std::uint8_t scs = sdo::specifier(in);
+  const bool multiplexed = scs == sdo::kUploadInitiateResponse ||
+                           scs == sdo::kDownloadInitiateResponse || scs == sdo::kAbortSpecifier;
+  if (multiplexed && (sdo::index_of(in) != index_ || in.data[3] != sub_)) {
+    // The late answer to an earlier request that was sent again (start-up retries): the
+    // server answered both. Not this request's: it neither ends it nor restarts its timeout.
+    ++stale_;
+    return false;
+  }
+  last_us_ = now_us;
   if (scs == sdo::kAbortSpecifier) {
     state_ = State::aborted;
     abort_code_ = sdo::u32_at4(in);
     by_server_ = true;
     return false;
-  }
-  const bool multiplexed =
-      scs == sdo::kUploadInitiateResponse || scs == sdo::kDownloadInitiateResponse;
-  if (multiplexed && (sdo::index_of(in) != index_ || in.data[3] != sub_)) {
-    return fail(sdo_abort::kBadCommand, out);
   }
   if (state_ == State::downloading) {
     if (!initiated_) {

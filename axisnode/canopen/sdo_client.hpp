@@ -29,7 +29,9 @@ class SdoClient {
 
   // A frame from the bus: true when `out` must be sent (the next request, or an abort).
   // Frames of other COB-IDs are not looked at; a response of the wrong length is counted as
-  // malformed and dropped (the transfer then times out).
+  // malformed and dropped (the transfer then times out); an initiate response or abort for
+  // another object than this transfer's is a late answer to an earlier request, counted as
+  // stale and dropped.
   bool on_frame(const can::CanFrame& in, std::uint64_t now_us, can::CanFrame& out) noexcept;
   // Time passes: true with an abort in `out` when the server took longer than the timeout.
   bool on_time(std::uint64_t now_us, can::CanFrame& out) noexcept;
@@ -44,6 +46,8 @@ class SdoClient {
   [[nodiscard]] std::uint16_t index() const noexcept { return index_; }
   [[nodiscard]] std::uint8_t sub() const noexcept { return sub_; }
   [[nodiscard]] std::uint64_t malformed() const noexcept { return malformed_; }
+  // Answers to another object than the request's (late answers to earlier requests), ignored.
+  [[nodiscard]] std::uint64_t stale() const noexcept { return stale_; }
 
  private:
   bool fail(std::uint32_t code, can::CanFrame& out) noexcept;
@@ -67,6 +71,7 @@ class SdoClient {
   std::uint32_t abort_code_ = 0;
   bool by_server_ = false;
   std::uint64_t malformed_ = 0;
+  std::uint64_t stale_ = 0;
 };
 
 }  // namespace mcnc::canopen

@@ -190,6 +190,39 @@ TEST(Sdo, ServerAbortNamesTheReason) {
   EXPECT_EQ(client.abort_code(), sdo_abort::kNoObject);
 }
 
+TEST(Sdo, ALateAnswerToAnotherObjectIsIgnoredNotTakenForAnError) {
+  // Start-up sent the write of 0x6060 twice (the first answer was late); the server answered
+  // both. The second answer arrives while the next request, the read of 0x6041, is under way.
+  TestDictionary od;
+  SdoClient client(kNode, 100000);
+  SdoServer server(kNode, od);
+  can::CanFrame write;
+  const std::uint8_t csp = 8;
+  ASSERT_TRUE(client.download(0x6060, 0, &csp, 1, 0, write));
+  can::CanFrame first;
+  can::CanFrame second;
+  ASSERT_TRUE(server.on_frame(write, first));
+  ASSERT_TRUE(server.on_frame(write, second));
+  can::CanFrame out;
+  EXPECT_FALSE(client.on_frame(first, 10, out));
+  ASSERT_EQ(client.state(), SdoClient::State::done);
+
+  can::CanFrame read;
+  ASSERT_TRUE(client.upload(0x6041, 0, 20, read));
+  EXPECT_FALSE(client.on_frame(second, 30, out));
+  EXPECT_EQ(client.state(), SdoClient::State::uploading);
+  EXPECT_EQ(client.stale(), 1U);
+  // Nor is a late abort for another object.
+  EXPECT_FALSE(
+      client.on_frame(frame(kResponse, {0x80, 0x00, 0x70, 0x03, 0, 0, 0x02, 0x06}), 40, out));
+  EXPECT_EQ(client.state(), SdoClient::State::uploading);
+  can::CanFrame answer;
+  ASSERT_TRUE(server.on_frame(read, answer));
+  EXPECT_FALSE(client.on_frame(answer, 50, out));
+  EXPECT_EQ(client.state(), SdoClient::State::done);
+  EXPECT_EQ(client.value().size, 2U);
+}
+
 TEST(Sdo, ClientAbortsOnAToggleError) {
   SdoClient client(kNode, 100000);
   can::CanFrame f;

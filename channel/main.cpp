@@ -15,6 +15,7 @@
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
+#include "common/text/text_lines.hpp"
 #include "common/trace/trace_writer.hpp"
 
 #include <spdlog/spdlog.h>
@@ -50,6 +51,9 @@ int main(int argc, char** argv) {
   app.add_option("--retained", retained_path,
                  "keep the machine's retained macro variables #500-#999 in FILE (loaded at start; "
                  "channel 1 saves them when the run ends; overrides the machine file's)");
+  bool manual_start = false;
+  app.add_flag("--manual-start", manual_start,
+               "load the program and wait for CYCLE START (an operator command)");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
@@ -134,11 +138,11 @@ int main(int argc, char** argv) {
   std::optional<interp::ProgramAlarm> load_alarm;
   if (!program_path.empty()) {
     std::ifstream file(program_path);
-    std::stringstream text;
-    text << file.rdbuf();
-    program_lines = channel::split_lines(text.str());
+    std::stringstream content;
+    content << file.rdbuf();
+    program_lines = text::split_lines(content.str());
     program_name = program_path.substr(program_path.find_last_of('/') + 1);
-    load_alarm = interpreter.load(text.str(), program_name);
+    load_alarm = interpreter.load(content.str(), program_name);
   }
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   setup.shared_writes = &shared_writes;
@@ -229,7 +233,7 @@ int main(int argc, char** argv) {
     const bool lockstep = loop.lockstep();
     if (load_alarm) {
       controller.report_alarm(*load_alarm);
-    } else if (!program_path.empty()) {
+    } else if (!program_path.empty() && !manual_start) {
       controller.request_start();
     }
 
@@ -271,8 +275,13 @@ int main(int argc, char** argv) {
           case Kind::spindle_override:
             controller.set_spindle_override(request->value);
             break;
+          case Kind::single_block:
+          case Kind::select_program:
+          case Kind::mdi:
+            // Not run by the channel yet: mcnc-hmi refuses them before they are sent.
+          case Kind::alarm_ack:  // for the HMIs: which alarms an operator has seen
           case Kind::none:
-            break;
+            continue;
         }
         if (request->action == Kind::reset || request->action == Kind::cycle_start ||
             request->action == Kind::feed_hold) {

@@ -32,6 +32,8 @@ const char* to_string(::mcnc::ChannelState state) noexcept {
 
 namespace {
 
+constexpr const char* kHmiName = "hmi";  // the operator station's child
+
 struct Observed {
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
@@ -167,6 +169,9 @@ LaunchResult Launcher::run(
     if (!options_.program_dir.empty()) {
       args.insert(args.end(), {"--progdir", options_.program_dir});
     }
+    if (options_.manual_start) {
+      args.emplace_back("--manual-start");
+    }
     if (!parts_dir.empty()) {
       args.insert(args.end(), {"--trace", parts_dir + "/" + ch.name + ".jsonl"});
       channel_parts.push_back(parts_dir + "/" + ch.name + ".jsonl");
@@ -182,6 +187,20 @@ LaunchResult Launcher::run(
     }
     children.emplace_back("PLC", common_args(args));
     dds_processes.push_back("PLC");
+  }
+  if (!options_.hmi_listen.empty()) {
+    std::vector<std::string> args{bin + "/mcnc-hmi", "--machine", options_.machine_path, "--listen",
+                                  options_.hmi_listen};
+    for (const auto& [channel, file] : options_.programs) {
+      args.insert(args.end(), {"--program", channel + "=" + file});
+    }
+    if (!options_.program_dir.empty()) {
+      args.insert(args.end(), {"--progdir", options_.program_dir});
+    }
+    if (!options_.log_level.empty()) {
+      args.insert(args.end(), {"--log-level", options_.log_level});
+    }
+    children.emplace_back(kHmiName, args);
   }
   // Merge order inside a cycle: channels, axes, the PLC, launch.
   std::vector<std::string> merge_order = channel_parts;
@@ -225,6 +244,12 @@ LaunchResult Launcher::run(
   auto find_exited = [&]() -> ChildProcess* {
     for (auto& child : children) {
       if (child.running() && child.poll_exited()) {
+        if (child.name() == kHmiName) {
+          // The operator station is not the machine: without it, the machine goes on.
+          spdlog::warn("{} {}; the machine goes on without it", child.name(),
+                       child.exit_description());
+          continue;
+        }
         return &child;
       }
     }
@@ -286,6 +311,7 @@ LaunchResult Launcher::run(
     const auto run_start = std::chrono::steady_clock::now();
     auto last_progress = std::chrono::steady_clock::now() - 1s;
     std::optional<std::chrono::steady_clock::time_point> alarm_since;
+    std::uint64_t alarm_cycle = 0;
     for (;;) {
       std::this_thread::sleep_for(2ms);
       const auto list = progress();
@@ -310,8 +336,10 @@ LaunchResult Launcher::run(
         break;
       }
       // An alarm anywhere stops the run: wait until the channels have reacted (alarm, end or
-      // reset), at most a second, then stop cleanly. The alarm makes the result a failure.
-      // A scripted operator still to act keeps the run going.
+      // reset), at most a second of machine time, then stop cleanly. The alarm makes the result
+      // a failure. A scripted operator still to act keeps the run going. In lockstep the second
+      // is counted in cycles, so that a loaded host does not cut short what the others do in
+      // it; 30 s of wall time end a machine that no longer steps.
       const bool script_pending = last_cycle <= script_end;
       std::size_t alarm_count = 0;
       {
@@ -323,13 +351,19 @@ LaunchResult Launcher::run(
       if (alarm_count > 0 && !script_pending) {
         if (!alarm_since) {
           alarm_since = std::chrono::steady_clock::now();
+          alarm_cycle = last_cycle;
         }
         bool settled = true;
         for (const auto& p : list) {
           settled =
               settled && (!p.has_program || p.ended || p.state == CH_ALARM || p.state == CH_RESET);
         }
-        if (settled || std::chrono::steady_clock::now() - *alarm_since > 1s) {
+        const auto waited = std::chrono::steady_clock::now() - *alarm_since;
+        const bool second_passed =
+            options_.clock == LOCKSTEP_CLOCK
+                ? last_cycle > alarm_cycle + machine_.cycles_of(1000) || waited > 30s
+                : waited > 1s;
+        if (settled || second_passed) {
           break;
         }
       }
@@ -392,8 +426,9 @@ LaunchResult Launcher::run(
     for (;;) {
       bool any = false;
       for (auto& child : children) {
-        const bool is_sim = child.name().rfind("drivesim-", 0) == 0;
-        if (dds_only && is_sim) {
+        // Drive simulators and the HMI take no run control: they are signalled after the rest.
+        const bool signalled = child.name().rfind("drivesim-", 0) == 0 || child.name() == kHmiName;
+        if (dds_only && signalled) {
           continue;
         }
         any = any || (child.running() && !child.poll_exited());
@@ -406,7 +441,7 @@ LaunchResult Launcher::run(
   };
   wait_all(3s, true);
   for (auto& child : children) {
-    if (child.name().rfind("drivesim-", 0) == 0) {
+    if (child.name().rfind("drivesim-", 0) == 0 || child.name() == kHmiName) {
       child.signal(SIGTERM);
     }
   }
@@ -442,7 +477,7 @@ LaunchResult Launcher::run(
       killed_child = true;  // its shared-memory files stay behind, as after a kill
       continue;
     }
-    if (child.exit_code() != 0 && failure.empty()) {
+    if (child.exit_code() != 0 && failure.empty() && child.name() != kHmiName) {
       failure = child.name() + " " + child.exit_description();
     }
   }

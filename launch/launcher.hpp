@@ -42,6 +42,10 @@ struct LaunchOptions {
   // until the last of them has taken effect; then alarms raised before the last reset no
   // longer stop it (they still make the result a failure).
   std::vector<ScriptedOperatorCommand> operator_script;
+  // The operator station: mcnc-hmi on this HOST:PORT beside the machine ("": none). It is
+  // not part of the run: it starts with it and stops at its end, and its exit stops nothing.
+  std::string hmi_listen;
+  bool manual_start = false;  // the channels wait for CYCLE START
 };
 
 struct ChannelProgress {

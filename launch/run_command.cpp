@@ -168,6 +168,14 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--retained", args.retained_file,
                  "keep the shared retained macro variables #500-#999 in FILE between runs "
                  "(overrides the machine file's retained_file)");
+  app.add_option("--hmi", args.hmi,
+                 "serve the operator HMI (mcnc-hmi) while the machine runs, on HOST:PORT "
+                 "(without a value: the machine file's hmi.listen, else 127.0.0.1:8080)")
+      ->expected(0, 1)
+      ->default_str("default");
+  app.add_flag("--manual-start", args.manual_start,
+               "the channels load their programs and wait for CYCLE START (from the HMI or "
+               "--operator)");
   app.add_option("--operator", args.operator_script,
                  "scripted operator: ACTION[=VALUE][:CHANNEL]@CYCLE, ACTION reset, cycle_start, "
                  "feed_hold, feed_override=P, rapid_override=P or spindle_override=P (percent), "
@@ -216,6 +224,10 @@ int execute_run(const RunArguments& args) {
   }
   options.clock = args.clock == "realtime" ? REALTIME_CLOCK : LOCKSTEP_CLOCK;
   options.pace = args.pace;
+  if (!args.hmi.empty()) {
+    options.hmi_listen = args.hmi == "default" ? machine.hmi.listen : args.hmi;
+  }
+  options.manual_start = args.manual_start;
   options.trace_path = args.trace_path;
   options.trace_pos_every = args.trace_pos_every;
   options.bin_dir = executable_dir();

@@ -27,6 +27,8 @@ struct RunArguments {
   std::vector<std::string> operator_script;     // ACTION[:CHANNEL]@CYCLE (scripted operator)
   std::string program_dir;                      // --progdir: overrides machine.program_dir
   std::string retained_file;                    // --retained: overrides machine.retained_file
+  std::string hmi;            // --hmi: serve the operator HMI on this HOST:PORT ("" none)
+  bool manual_start = false;  // --manual-start: the channels wait for CYCLE START
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

@@ -4,6 +4,7 @@
 #include "common/process/startup.hpp"
 #include "idl/dds_participant.hpp"
 #include "tools/status/status_lines.hpp"
+#include "tools/status/wire/status_wire.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -13,39 +14,6 @@
 #include <thread>
 
 namespace mcnc::launch {
-namespace {
-
-status::ChannelView view_of(const ::mcnc::ChannelStatus& s) {
-  status::ChannelView v;
-  v.state = static_cast<channel::ChannelState>(static_cast<int>(s.state()));
-  v.block = s.block();
-  v.block_total = s.block_total();
-  v.line = s.line();
-  v.alarms = s.alarms();
-  v.program_end = s.program_end();
-  v.sync_p = s.sync_p();
-  v.sync_waiting_for = s.sync_waiting_for();
-  v.call_caller = s.call_caller();
-  return v;
-}
-
-status::AxisView view_of(const AxisFeedback& f) {
-  status::AxisView v;
-  v.cmd = f.cmd();
-  v.act = f.act();
-  v.vel = f.vel();
-  v.following_error = f.following_error();
-  v.enabled = f.enabled();
-  v.alarm = f.alarm();
-  v.owner = f.owner();
-  v.released_by = f.released_by();
-  v.coupled_to = f.coupled_to();
-  v.coupling_locked = f.coupling_locked();
-  v.mode_display = f.mode_display();
-  return v;
-}
-
-}  // namespace
 
 void add_status_options(CLI::App& app, StatusArguments& args) {
   app.add_option("machine", args.machine_path, "machine file (YAML)")
@@ -68,11 +36,11 @@ int execute_status(const StatusArguments& args) {
   dds::Reader<::mcnc::ChannelStatus> channels(
       participant, [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(mutex);
-        snapshot.channels[s.channel()] = view_of(s);
+        snapshot.channels[s.channel()] = status::view_of(s);
       });
   dds::Reader<AxisFeedback> axes(participant, [&](const AxisFeedback& f, const dds::WriterId&) {
     std::lock_guard<std::mutex> lock(mutex);
-    snapshot.axes[f.axis()] = view_of(f);
+    snapshot.axes[f.axis()] = status::view_of(f);
   });
   const auto copy = [&] {
     std::lock_guard<std::mutex> lock(mutex);

@@ -363,6 +363,16 @@ class ChannelController {
   [[nodiscard]] std::uint64_t serving_call() const noexcept {
     return serving_ ? serving_->call.call_id : 0;
   }
+  // The operator panel's overrides as applied, as fractions (1.0: 100 %).
+  [[nodiscard]] double feed_override() const noexcept { return feed_override_; }
+  [[nodiscard]] double rapid_override() const noexcept { return rapid_override_; }
+  [[nodiscard]] double spindle_override() const noexcept { return spindle_override_; }
+  // G144 H1: the channel this one's sent call waits for, 0 when none.
+  [[nodiscard]] std::uint32_t waiting_for_call() const noexcept {
+    return call_block_ && call_block_->phase == CallPhase::sent && call_block_->call.wait
+               ? call_block_->call.target
+               : 0;
+  }
   [[nodiscard]] std::uint32_t serving_caller() const noexcept {
     return serving_ ? serving_->call.caller : 0;
   }

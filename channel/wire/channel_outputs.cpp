@@ -1,14 +1,14 @@
 #include "channel/wire/channel_outputs.hpp"
 
 #include "channel/wire/channel_mask.hpp"
+#include "common/text/text_lines.hpp"
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace mcnc::channel {
 
@@ -44,6 +44,13 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
   }
+  set_program_now(program_name_);
+}
+
+void ChannelOutputs::set_program_now(const std::string& name) noexcept {
+  const std::size_t n = std::min(name.size(), program_now_.size() - 1);
+  std::copy_n(name.begin(), n, program_now_.begin());
+  program_now_[n] = '\0';
 }
 
 const char* ChannelOutputs::channel_name(std::uint32_t id) const {
@@ -204,12 +211,18 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.end_code(out.end_code);
   status.run_start_cycle(out.run_start_cycle);
   status.end_cycle(out.end_cycle);
-  status_.write(status);
+  status.feed_override(controller.feed_override() * 100.0);
+  status.rapid_override(controller.rapid_override() * 100.0);
+  status.spindle_override(controller.spindle_override() * 100.0);
+  status.spindle_rpm(rpm);
+  status.call_waiting_for(controller.waiting_for_call());
 
   out_call_ = out.call;
   for (std::size_t e = 0; e < out.event_count; ++e) {
     record(cycle, controller, out.events[e], views);
   }
+  status.program(program_now_);  // after the records: this cycle's block's file
+  status_.write(status);
 }
 
 CoordinationEvent ChannelOutputs::event(std::uint64_t cycle, CoordinationKind kind) {
@@ -219,18 +232,6 @@ CoordinationEvent ChannelOutputs::event(std::uint64_t cycle, CoordinationKind ki
   e.cycle(cycle);
   e.kind(kind);
   return e;
-}
-
-std::vector<std::string> split_lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty() && line.back() == '\r') {
-      line.pop_back();
-    }
-    lines.push_back(line);
-  }
-  return lines;
 }
 
 void ChannelOutputs::preload_program_dir(const std::string& dir) {
@@ -245,11 +246,7 @@ void ChannelOutputs::preload_program_dir(const std::string& dir) {
 const std::vector<std::string>& ChannelOutputs::lines_of(const std::string& path) {
   auto it = other_lines_.find(path);
   if (it == other_lines_.end()) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    std::vector<std::string> lines = split_lines(text.str());
-    it = other_lines_.emplace(path, std::move(lines)).first;
+    it = other_lines_.emplace(path, text::read_lines(path)).first;
   }
   return it->second;
 }
@@ -272,6 +269,7 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
                    name.c_str(), event.line, escaped_);
+      set_program_now(name);
       break;
     }
     case ChannelEventKind::block_ended:

@@ -9,6 +9,7 @@
 #include "common/process/process_node.hpp"
 #include "common/trace/trace_writer.hpp"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <span>
@@ -16,9 +17,6 @@
 #include <vector>
 
 namespace mcnc::channel {
-
-// A program text's lines as written (a trailing CR dropped), for the trace's block text.
-std::vector<std::string> split_lines(const std::string& text);
 
 class ChannelOutputs {
  public:
@@ -48,6 +46,8 @@ class ChannelOutputs {
   // The next CoordinationEvent of this channel (numbered, stamped).
   CoordinationEvent event(std::uint64_t cycle, CoordinationKind kind);
   [[nodiscard]] const char* channel_name(std::uint32_t id) const;
+  // The file of the executing block, for the status (cut to fit).
+  void set_program_now(const std::string& name) noexcept;
   // The lines of another program file (preloaded; read at its first use if not).
   const std::vector<std::string>& lines_of(const std::string& path);
 
@@ -60,6 +60,7 @@ class ChannelOutputs {
   bool spindle_position_ = false;  // the first spindle under position control, as last traced
   std::size_t c_slot_ = ~std::size_t{0};  // the slot of that spindle's C axis (none: past the end)
   std::string program_name_;
+  std::array<char, 64> program_now_{};
   std::vector<std::string> program_lines_;
   std::map<std::string, std::vector<std::string>> other_lines_;
   dds::Writer<AxisSetpoint> setpoints_;

@@ -602,12 +602,37 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
   read_optional_int(map, "tool_change_ms", 0, 600000, plc.tool_change_ms);
 }
 
+void parse_hmi(const YamlValue& value, HmiConfig& hmi) {
+  const YamlMap map = value.map({"listen", "operator_token", "viewer_token"});
+  if (auto listen = map.optional("listen")) {
+    hmi.listen = listen->string();
+    const std::size_t colon = hmi.listen.rfind(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == hmi.listen.size()) {
+      listen->fail("listen is HOST:PORT, e.g. 127.0.0.1:8080");
+    }
+  }
+  // A token short enough to guess protects nothing.
+  for (const char* key : {"operator_token", "viewer_token"}) {
+    if (auto token = map.optional(key)) {
+      std::string& field = key[0] == 'o' ? hmi.operator_token : hmi.viewer_token;
+      field = token->string();
+      if (field.size() < 16) {
+        token->fail(std::string(key) + " needs at least 16 characters");
+      }
+    }
+  }
+  if (!hmi.viewer_token.empty() && hmi.viewer_token == hmi.operator_token) {
+    map.required("viewer_token").fail("viewer_token must differ from operator_token");
+  }
+}
+
 MachineConfig parse_document(const YAML::Node& root) {
   const YamlValue top(root, "");
   if (!root.IsMap()) {
     top.fail("a machine file is a map with the keys machine, buses, channels and axes");
   }
-  const YamlMap doc = top.map({"machine", "buses", "channels", "axes", "plc", "spindle_sync"});
+  const YamlMap doc =
+      top.map({"machine", "buses", "channels", "axes", "plc", "spindle_sync", "hmi"});
   MachineConfig config;
   parse_machine_section(doc.required("machine"), config);
 
@@ -893,6 +918,9 @@ MachineConfig parse_document(const YAML::Node& root) {
   }
   if (auto plc = doc.optional("plc")) {
     parse_plc(*plc, config);
+  }
+  if (auto hmi = doc.optional("hmi")) {
+    parse_hmi(*hmi, config.hmi);
   }
   if (auto groups = doc.optional("spindle_sync")) {
     for (const YamlValue& v : groups->list()) {

@@ -141,6 +141,13 @@ struct SpindleSyncGroup {
   int channel = 0;  // the master's channel id
 };
 
+// The operator station (mcnc-hmi, docs/hmi.md); its command line overrides each.
+struct HmiConfig {
+  std::string listen = "127.0.0.1:8080";  // HOST:PORT
+  std::string operator_token;             // empty: generated at start and printed once
+  std::string viewer_token;               // empty: viewing needs no token
+};
+
 struct MachineConfig {
   std::string name;
   int cycle_us = 1000;
@@ -162,6 +169,7 @@ struct MachineConfig {
   std::vector<AxisConfig> c_axes;
   PlcConfig plc;  // plc.present: the machine has a PLC node
   std::vector<SpindleSyncGroup> spindle_sync;
+  HmiConfig hmi;
 
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;

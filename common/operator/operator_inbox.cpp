@@ -1,4 +1,4 @@
-#include "common/process/operator_inbox.hpp"
+#include "common/operator/operator_inbox.hpp"
 
 namespace mcnc::process {
 
@@ -18,8 +18,27 @@ const char* to_string(OperatorActionKind action) noexcept {
       return "rapid_override";
     case OperatorActionKind::spindle_override:
       return "spindle_override";
+    case OperatorActionKind::single_block:
+      return "single_block";
+    case OperatorActionKind::select_program:
+      return "select_program";
+    case OperatorActionKind::mdi:
+      return "mdi";
+    case OperatorActionKind::alarm_ack:
+      return "alarm_ack";
   }
   return "none";
+}
+
+OperatorActionKind action_named(std::string_view name) noexcept {
+  for (auto k = static_cast<int>(OperatorActionKind::reset);
+       k <= static_cast<int>(OperatorActionKind::alarm_ack); ++k) {
+    const auto action = static_cast<OperatorActionKind>(k);
+    if (name == to_string(action)) {
+      return action;
+    }
+  }
+  return OperatorActionKind::none;
 }
 
 bool OperatorInbox::put(const OperatorRequest& request) noexcept {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 namespace mcnc::process {
 
@@ -15,12 +16,18 @@ enum class OperatorActionKind : std::uint8_t {
   reset,
   cycle_start,
   feed_hold,
-  feed_override,    // value: percent
-  rapid_override,   // value: percent
-  spindle_override  // value: percent
+  feed_override,     // value: percent
+  rapid_override,    // value: percent
+  spindle_override,  // value: percent
+  single_block,      // value: 1 on, 0 off
+  select_program,    // text: a file of the program store
+  mdi,               // text: one block
+  alarm_ack          // value: the alarm's seq
 };
 
 const char* to_string(OperatorActionKind action) noexcept;
+// The action of that name (to_string's), none when there is no such action.
+OperatorActionKind action_named(std::string_view name) noexcept;
 
 struct OperatorRequest {
   std::uint64_t seq = 0;
@@ -29,6 +36,9 @@ struct OperatorRequest {
   std::uint32_t channel = 0;     // 0: the whole machine
   OperatorActionKind action = OperatorActionKind::none;
   double value = 0.0;
+  // SELECT_PROGRAM, MDI: NUL-terminated; a longer text does not fit and is refused on arrival.
+  static constexpr std::size_t kTextSize = 128;
+  std::array<char, kTextSize> text{};
   // For the channel with this id (an axis node: of its owner channel).
   [[nodiscard]] bool concerns(std::uint32_t channel_id) const noexcept {
     return channel == 0 || channel == channel_id;

@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -49,29 +50,15 @@ ProcessNode::ProcessNode(int domain, std::string name)
         r.cycle = c.cycle();
         r.channel = c.channel();
         r.value = c.value();
-        switch (c.action()) {
-          case OP_RESET:
-            r.action = OperatorActionKind::reset;
-            break;
-          case OP_CYCLE_START:
-            r.action = OperatorActionKind::cycle_start;
-            break;
-          case OP_FEED_HOLD:
-            r.action = OperatorActionKind::feed_hold;
-            break;
-          case OP_FEED_OVERRIDE:
-            r.action = OperatorActionKind::feed_override;
-            break;
-          case OP_RAPID_OVERRIDE:
-            r.action = OperatorActionKind::rapid_override;
-            break;
-          case OP_SPINDLE_OVERRIDE:
-            r.action = OperatorActionKind::spindle_override;
-            break;
-          default:
-            operator_dropped_.fetch_add(1);  // an action this build does not know
-            return;
+        // The wire's actions and the inbox's kinds are in the same order.
+        static_assert(static_cast<int>(OperatorActionKind::alarm_ack) == OP_ALARM_ACK);
+        if (c.action() <= OP_NONE || c.action() > OP_ALARM_ACK ||
+            c.text().size() >= r.text.size()) {
+          operator_dropped_.fetch_add(1);  // an action this build does not know, a text too long
+          return;
         }
+        r.action = static_cast<OperatorActionKind>(c.action());
+        std::copy(c.text().begin(), c.text().end(), r.text.begin());
         wakeup_.update([&] {
           if (!operator_inbox_.put(r)) {
             operator_dropped_.fetch_add(1);

@@ -2,7 +2,7 @@
 // What every mcnc process that speaks DDS has: its participant, its ProcessState announcement,
 // the run control from mcnc-launch, the alarm writer, and one wake-up that DDS callbacks and
 // other receive threads signal so that the cyclic loop can wait for "something arrived".
-#include "common/process/operator_inbox.hpp"
+#include "common/operator/operator_inbox.hpp"
 #include "idl/dds_participant.hpp"
 
 #include <algorithm>

@@ -31,14 +31,14 @@ std::string source(const std::string& relative) {
   return std::string(MCNC_SOURCE_DIR) + "/" + relative;
 }
 
-namespace {
-
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
 }
+
+namespace {
 
 pid_t spawn(const std::vector<std::string>& argv, int domain, const std::string& out_path,
             const std::string& err_path) {

@@ -69,6 +69,9 @@ class Background {
   bool reaped_ = false;
 };
 
+// The whole content of a file ("" when it cannot be read).
+std::string slurp(const std::string& path);
+
 // Every JSON line of a trace file (or trace part).
 std::vector<nlohmann::json> read_trace(const std::string& path);
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,

@@ -1,9 +1,19 @@
 #include "tools/status/status_lines.hpp"
 
+#include "axisnode/cia402/cia402_state.hpp"
+
 #include <algorithm>
 #include <cstdio>
 
 namespace mcnc::status {
+
+const char* drive_state_name(std::uint8_t drive_state) noexcept {
+  // The wire's DriveState is cia402::State in the same order (axisnode's to_wire).
+  return drive_state <= static_cast<std::uint8_t>(cia402::State::fault)
+             ? cia402::to_string(static_cast<cia402::State>(drive_state))
+             : "unknown";
+}
+
 namespace {
 
 std::string channel_name(const config::MachineConfig& machine, std::uint32_t id) {

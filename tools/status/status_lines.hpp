@@ -24,6 +24,17 @@ struct ChannelView {
   std::int32_t sync_p = 0;             // G04.1 mark it waits at (state waiting)
   std::uint64_t sync_waiting_for = 0;  // bit c-1: channel c has not arrived yet
   std::uint32_t call_caller = 0;       // G144: the channel whose call it runs, 0: none
+  // For the HMI (docs/hmi.md).
+  std::uint64_t cycle = 0;
+  std::int32_t end_code = -1;
+  std::uint64_t sync_channels = 0;     // the mark's participants, bit c-1 for channel c
+  std::uint32_t call_waiting_for = 0;  // G144 H1: the called channel, 0: none
+  double feed_override = 100.0;        // percent
+  double rapid_override = 100.0;
+  double spindle_override = 100.0;
+  bool single_block = false;
+  double spindle_rpm = 0.0;  // commanded, M04 negative
+  std::string program;       // the file of the executing block
 };
 
 // The last AxisFeedback of one axis or spindle.
@@ -39,7 +50,12 @@ struct AxisView {
   std::uint32_t coupled_to = 0;   // G114.1 / G51.4: the master's axis id
   bool coupling_locked = false;
   std::int16_t mode_display = 0;  // a spindle: 8 CSP, 9 CSV
+  std::uint64_t cycle = 0;
+  std::uint8_t drive_state = 0;  // the wire's DriveState, in its order (drive_state_name)
 };
+
+// The CiA 402 state of the wire's DriveState number: "operation_enabled", "fault", ...
+const char* drive_state_name(std::uint8_t drive_state) noexcept;
 
 // By channel id and by axis id (the machine file's 1-based positions).
 struct StatusSnapshot {

@@ -1,5 +1,5 @@
 // Operator commands wait for their cycle; commands of another run are dropped.
-#include "common/process/operator_inbox.hpp"
+#include "common/operator/operator_inbox.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,267 @@
+#include "hmi_bridge/server/hmi_server.hpp"
+
+#include "hmi_bridge/core/client_message.hpp"
+#include "hmi_bridge/core/hmi_messages.hpp"
+
+#include <civetweb.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <variant>
+
+namespace mcnc::hmi {
+
+namespace {
+
+HmiServer& server_of(void* cbdata) {
+  return *static_cast<HmiServer*>(cbdata);
+}
+
+int connect_trampoline(const mg_connection* conn, void* cbdata) {
+  return server_of(cbdata).on_connect(conn);
+}
+void ready_trampoline(mg_connection* conn, void* cbdata) {
+  server_of(cbdata).on_ready(conn);
+}
+int data_trampoline(mg_connection* conn, int bits, char* data, size_t size, void* cbdata) {
+  return server_of(cbdata).on_data(conn, bits, data, size);
+}
+void close_trampoline(const mg_connection* conn, void* cbdata) {
+  server_of(cbdata).on_close(conn);
+}
+
+int log_trampoline(const mg_connection* /*conn*/, const char* message) {
+  spdlog::debug("civetweb: {}", message);
+  return 1;  // logged here; civetweb prints nothing itself
+}
+
+// The actions the channels do not run yet: refused here, so that nothing is sent that would do
+// nothing.
+bool channels_run(process::OperatorActionKind action) {
+  using process::OperatorActionKind;
+  return action != OperatorActionKind::single_block &&
+         action != OperatorActionKind::select_program && action != OperatorActionKind::mdi;
+}
+
+}  // namespace
+
+HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machine,
+                     AccessPolicy access, MachineFeed& feed)
+    : config_(std::move(config)),
+      machine_(machine),
+      access_(std::move(access)),
+      feed_(feed),
+      origins_(allowed_origins(config_.listen, config_.extra_origins)) {
+  mg_init_library(0);
+  const std::string threads = std::to_string(config_.threads);
+  // The page only talks to its own server, and is never framed by another site's.
+  const std::string headers =
+      "Content-Security-Policy: default-src 'self'; connect-src 'self'; img-src 'self' data:\r\n"
+      "X-Frame-Options: DENY\r\n"
+      "X-Content-Type-Options: nosniff";
+  const char* options[] = {"listening_ports",
+                           config_.listen.c_str(),
+                           "document_root",
+                           config_.web_dir.c_str(),
+                           "num_threads",
+                           threads.c_str(),
+                           "enable_directory_listing",
+                           "no",
+                           "additional_header",
+                           headers.c_str(),
+                           nullptr};
+  mg_callbacks callbacks{};
+  callbacks.log_message = log_trampoline;
+  ctx_ = mg_start(&callbacks, this, options);
+  if (ctx_ == nullptr) {
+    mg_exit_library();
+    throw std::runtime_error("mcnc-hmi: cannot listen on " + config_.listen +
+                             " (address in use, or not an address of this host)");
+  }
+  mg_server_port ports[4] = {};
+  if (mg_get_server_ports(ctx_, 4, ports) > 0) {
+    port_ = ports[0].port;
+  }
+  if (port_ != 0 && config_.listen.ends_with(":0")) {
+    // A port chosen by the system: the page's own origin has that port.
+    const std::string host = config_.listen.substr(0, config_.listen.size() - 2);
+    origins_ = allowed_origins(host + ":" + std::to_string(port_), config_.extra_origins);
+  }
+  mg_set_websocket_handler(ctx_, "/ws", connect_trampoline, ready_trampoline, data_trampoline,
+                           close_trampoline, this);
+  publisher_ = std::thread([this] { publish_loop(); });
+}
+
+HmiServer::~HmiServer() {
+  stop_ = true;
+  if (publisher_.joinable()) {
+    publisher_.join();
+  }
+  mg_stop(ctx_);
+  mg_exit_library();
+}
+
+std::string HmiServer::address() const {
+  const std::size_t colon = config_.listen.rfind(':');
+  return "http://" + config_.listen.substr(0, colon) + ":" + std::to_string(port_) + "/";
+}
+
+HmiCounters HmiServer::counters() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return counters_;
+}
+
+int HmiServer::on_connect(const mg_connection* conn) {
+  const char* origin = mg_get_header(conn, "Origin");
+  if (!origin_allowed(origin != nullptr ? origin : "", origins_)) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.origin_refused;
+    spdlog::warn("WebSocket from origin {} refused (allowed: this server's own pages)", origin);
+    return 1;  // closed before the handshake
+  }
+  return 0;
+}
+
+void HmiServer::on_ready(mg_connection* conn) {
+  const Role role = access_.initial_role();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    clients_[conn] = Client{Role::none};
+  }
+  set_role(conn, role);
+}
+
+Role HmiServer::set_role(mg_connection* conn, Role role) {
+  // Under the lock: the publisher sends this client nothing until its welcome is out.
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = clients_.find(conn);
+  if (it == clients_.end()) {
+    return Role::none;
+  }
+  const Role before = it->second.role;
+  it->second.role = role;
+  send(conn, role_message(role));
+  if (before == Role::none && role != Role::none) {
+    // It starts to see: the layout, the alarm history and the programs, then the states.
+    send(conn, machine_message(machine_));
+    for (const std::string& m : feed_.welcome()) {
+      send(conn, m);
+    }
+  }
+  return role;
+}
+
+void HmiServer::on_close(const mg_connection* conn) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  clients_.erase(conn);
+}
+
+void HmiServer::send(mg_connection* conn, const std::string& text) {
+  mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+}
+
+int HmiServer::on_data(mg_connection* conn, int bits, const char* data, std::size_t size) {
+  const int opcode = bits & 0x0f;
+  const bool final_frame = (bits & 0x80) != 0;
+  switch (opcode) {
+    case MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE:
+      return 0;
+    case MG_WEBSOCKET_OPCODE_PING:
+      mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_PONG, data, size);
+      return 1;
+    case MG_WEBSOCKET_OPCODE_PONG:
+      return 1;
+    case MG_WEBSOCKET_OPCODE_TEXT:
+      if (final_frame) {
+        handle_text(conn, std::string_view(data, size));
+        return 1;
+      }
+      break;
+    default:
+      break;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.malformed;
+  }
+  send(conn, error_message("only whole text messages are read"));
+  return 1;
+}
+
+void HmiServer::handle_text(mg_connection* conn, std::string_view text) {
+  const ClientMessage message = read_client_message(text, machine_);
+  if (const auto* e = std::get_if<MessageError>(&message)) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++counters_.malformed;
+    }
+    send(conn, e->id >= 0 ? reply_message(e->id, false, e->reason) : error_message(e->reason));
+    return;
+  }
+  if (const auto* auth = std::get_if<AuthMessage>(&message)) {
+    const Role role = access_.role_of(auth->token);
+    if (role == Role::none) {
+      send(conn, error_message("unknown token"));
+      return;
+    }
+    set_role(conn, role);
+    return;
+  }
+  const auto& command = std::get<CommandMessage>(message);
+  Role role = Role::none;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = clients_.find(conn);
+    role = it == clients_.end() ? Role::none : it->second.role;
+  }
+  std::string reason;
+  if (role != Role::operator_) {
+    reason = role == Role::viewer ? "a viewer cannot command: show the operator token"
+                                  : "commands need the operator token";
+  } else if (!channels_run(command.action)) {
+    reason = std::string(process::to_string(command.action)) + " is not run by the channels yet";
+  }
+  if (reason.empty() && feed_.send(command, reason)) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++counters_.commands;
+    }
+    spdlog::info("operator command {} {}", process::to_string(command.action),
+                 command.channel == 0 ? std::string("(machine)")
+                                      : machine_.channels[command.channel - 1].name);
+    send(conn, reply_message(command.id, true, ""));
+    return;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counters_.refused;
+  }
+  send(conn, reply_message(command.id, false, reason));
+}
+
+void HmiServer::publish_loop() {
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(1.0 / config_.rate_hz));
+  auto next = std::chrono::steady_clock::now();
+  while (!stop_) {
+    next += period;
+    std::this_thread::sleep_until(next);
+    const std::string state = feed_.state();
+    const std::vector<std::string> news = feed_.take_news();
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [conn, client] : clients_) {
+      if (client.role == Role::none) {
+        continue;
+      }
+      // The connection stays open while it is in clients_ (its close waits for this lock).
+      auto* c = const_cast<mg_connection*>(conn);
+      for (const std::string& m : news) {
+        send(c, m);
+      }
+      send(c, state);
+    }
+  }
+}
+
+}  // namespace mcnc::hmi

@@ -1,0 +1,82 @@
+#pragma once
+// mcnc-hmi's web server (civetweb): the static HMI from a folder, and one WebSocket at /ws that
+// carries the protocol of docs/hmi.md. A connection starts with AccessPolicy's initial role and
+// changes it with an auth message; commands need the operator role; an upgrade from a foreign
+// Origin is refused before the socket opens. Every browser that views gets the state at `rate`
+// per second and the news (alarms, programs) as they come.
+#include "common/config/machine_config.hpp"
+#include "hmi_bridge/core/access_policy.hpp"
+#include "hmi_bridge/server/machine_feed.hpp"
+
+#include <atomic>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+struct mg_context;
+struct mg_connection;
+
+namespace mcnc::hmi {
+
+struct HmiServerConfig {
+  std::string listen = "127.0.0.1:8080";   // HOST:PORT
+  std::string web_dir;                     // the static files
+  std::vector<std::string> extra_origins;  // besides the listen address's own
+  double rate_hz = 25.0;                   // state messages per second
+  int threads = 16;                        // each open WebSocket holds one
+};
+
+struct HmiCounters {
+  std::uint64_t malformed = 0;  // messages answered with an error
+  std::uint64_t refused = 0;    // commands refused (role, not supported)
+  std::uint64_t commands = 0;   // commands sent
+  std::uint64_t origin_refused = 0;
+};
+
+class HmiServer {
+ public:
+  // Throws std::runtime_error when it cannot listen (start-up error).
+  HmiServer(HmiServerConfig config, const config::MachineConfig& machine, AccessPolicy access,
+            MachineFeed& feed);
+  ~HmiServer();
+  HmiServer(const HmiServer&) = delete;
+  HmiServer& operator=(const HmiServer&) = delete;
+
+  // The address browsers open, http://HOST:PORT/ (the port the server got).
+  [[nodiscard]] std::string address() const;
+  [[nodiscard]] HmiCounters counters() const;
+
+  // civetweb's callbacks (public for the C trampolines only).
+  int on_connect(const mg_connection* conn);
+  void on_ready(mg_connection* conn);
+  int on_data(mg_connection* conn, int bits, const char* data, std::size_t size);
+  void on_close(const mg_connection* conn);
+
+ private:
+  struct Client {
+    Role role = Role::none;
+  };
+  void send(mg_connection* conn, const std::string& text);
+  void handle_text(mg_connection* conn, std::string_view text);
+  // The client's role after it: none while it is not (or no longer) connected.
+  Role set_role(mg_connection* conn, Role role);
+  void publish_loop();
+
+  HmiServerConfig config_;
+  const config::MachineConfig& machine_;
+  AccessPolicy access_;
+  MachineFeed& feed_;
+  std::vector<std::string> origins_;
+  mg_context* ctx_ = nullptr;
+  int port_ = 0;
+  mutable std::mutex mutex_;  // clients_ and counters_
+  std::map<const mg_connection*, Client> clients_;
+  HmiCounters counters_;
+  std::atomic<bool> stop_{false};
+  std::thread publisher_;
+};
+
+}  // namespace mcnc::hmi

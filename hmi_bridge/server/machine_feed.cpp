@@ -1,0 +1,148 @@
+#include "hmi_bridge/server/machine_feed.hpp"
+
+#include "common/text/text_lines.hpp"
+#include "hmi_bridge/core/hmi_messages.hpp"
+#include "tools/status/wire/status_wire.hpp"
+
+#include <chrono>
+#include <filesystem>
+
+namespace mcnc::hmi {
+
+MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
+                         std::map<std::string, std::string> programs, std::string program_dir)
+    : machine_(machine),
+      main_programs_(std::move(programs)),
+      program_dir_(std::move(program_dir)),
+      participant_(domain, "hmi"),
+      commands_(participant_),
+      channels_(participant_,
+                [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+                  std::lock_guard<std::mutex> lock(mutex_);
+                  snapshot_.channels[s.channel()] = status::view_of(s);
+                }),
+      axes_(participant_,
+            [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {
+              std::lock_guard<std::mutex> lock(mutex_);
+              snapshot_.axes[f.axis()] = status::view_of(f);
+            }),
+      alarm_reader_(participant_,
+                    [this](const ::mcnc::Alarm& a, const dds::WriterId&) { on_alarm(a); }),
+      command_reader_(participant_, [this](const ::mcnc::OperatorCommand& c, const dds::WriterId&) {
+        on_operator(c);
+      }) {
+  for (const auto& [channel, path] : main_programs_) {
+    programs_[channel] =
+        Program{std::filesystem::path(path).filename().string(), text::read_lines(path)};
+  }
+}
+
+void MachineFeed::on_alarm(const ::mcnc::Alarm& a) {
+  AlarmEntry e;
+  e.src = a.src();
+  e.seq = a.seq();
+  e.number = a.number();
+  e.text = a.text();
+  e.channel = a.channel();
+  e.axis = a.axis();
+  e.line = a.line();
+  e.cycle = a.cycle();
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (alarms_.add(e)) {
+    news_.push_back(alarm_message(machine_, alarms_.entries().back()));
+  }
+}
+
+void MachineFeed::on_operator(const ::mcnc::OperatorCommand& c) {
+  // Any HMI's acknowledgement (this one's too, as it comes back) marks the alarm everywhere.
+  if (c.action() != OP_ALARM_ACK) {
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (const AlarmEntry* e = alarms_.acknowledge(c.text(), static_cast<std::uint64_t>(c.value()))) {
+    news_.push_back(alarm_message(machine_, *e));
+  }
+}
+
+MachineFeed::Program MachineFeed::load(const std::string& channel, const std::string& name) const {
+  const auto main = main_programs_.find(channel);
+  if (main != main_programs_.end() && std::filesystem::path(main->second).filename() == name) {
+    return Program{name, text::read_lines(main->second)};
+  }
+  if (!program_dir_.empty()) {
+    return Program{name, text::read_lines((std::filesystem::path(program_dir_) / name).string())};
+  }
+  return Program{name, {}};
+}
+
+std::string MachineFeed::state() {
+  status::StatusSnapshot snapshot;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    snapshot = snapshot_;
+  }
+  // A channel that moved to another file (a subprogram, a selected program): its text, read
+  // here, outside the lock and the DDS threads.
+  for (const auto& [id, view] : snapshot.channels) {
+    if (id < 1 || id > machine_.channels.size() || view.program.empty()) {
+      continue;
+    }
+    const std::string& channel = machine_.channels[id - 1].name;
+    bool changed = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto it = programs_.find(channel);
+      changed = it == programs_.end() || it->second.name != view.program;
+    }
+    if (changed) {
+      Program p = load(channel, view.program);
+      std::lock_guard<std::mutex> lock(mutex_);
+      news_.push_back(program_message(channel, p.name, p.lines));
+      programs_[channel] = std::move(p);
+    }
+  }
+  return state_message(machine_, snapshot);
+}
+
+std::vector<std::string> MachineFeed::take_news() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> news;
+  news.swap(news_);
+  return news;
+}
+
+std::vector<std::string> MachineFeed::welcome() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> messages{alarms_message(machine_, alarms_)};
+  for (const auto& [channel, program] : programs_) {
+    messages.push_back(program_message(channel, program.name, program.lines));
+  }
+  return messages;
+}
+
+bool MachineFeed::send(const CommandMessage& command, std::string& reason) {
+  ::mcnc::OperatorCommand c;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    c.seq(++seq_);
+  }
+  c.generation(0);  // the run going on
+  c.cycle(0);       // at the channel's next cycle
+  c.channel(command.channel);
+  c.action(static_cast<::mcnc::OperatorAction>(static_cast<int>(command.action)));
+  c.origin("hmi");
+  c.value(command.value);
+  c.text(command.text);
+  if (!commands_.write(c)) {
+    reason = "the command could not be sent (DDS write failed)";
+    return false;
+  }
+  return true;
+}
+
+bool MachineFeed::all_heard() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status::missing(machine_, snapshot_).empty();
+}
+
+}  // namespace mcnc::hmi

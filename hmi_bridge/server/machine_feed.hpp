@@ -1,0 +1,64 @@
+#pragma once
+// mcnc-hmi's side of DDS: what the status topics and the alarm topic say, kept for the
+// browsers as the HMI's messages, and the operator commands it sends. Thread-safe: DDS
+// callbacks fill it, the server's threads read it.
+#include "common/config/machine_config.hpp"
+#include "hmi_bridge/core/alarm_log.hpp"
+#include "hmi_bridge/core/client_message.hpp"
+#include "idl/dds_participant.hpp"
+#include "idl/topics.hpp"
+#include "tools/status/status_lines.hpp"
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace mcnc::hmi {
+
+class MachineFeed {
+ public:
+  // `programs`: the main program file of a channel, by channel name (its text is shown until
+  // the channel names another file); `program_dir`: where the others are.
+  MachineFeed(const config::MachineConfig& machine, int domain,
+              std::map<std::string, std::string> programs, std::string program_dir);
+
+  // The state message of now; notes the programs channels have moved to.
+  std::string state();
+  // Alarms and programs that changed since the last call, as messages for every browser.
+  std::vector<std::string> take_news();
+  // What a browser that starts viewing gets first: the alarm history and every program known.
+  std::vector<std::string> welcome();
+  // Sends the command as a DDS operator command; false with the reason when it cannot go out.
+  bool send(const CommandMessage& command, std::string& reason);
+  // Whether every channel and axis has been heard (for start-up logs).
+  [[nodiscard]] bool all_heard();
+
+ private:
+  struct Program {
+    std::string name;
+    std::vector<std::string> lines;
+  };
+  void on_alarm(const ::mcnc::Alarm& a);
+  void on_operator(const ::mcnc::OperatorCommand& c);
+  // The text of `name` for `channel`: its main program or a file of the program store.
+  Program load(const std::string& channel, const std::string& name) const;
+
+  const config::MachineConfig& machine_;
+  std::map<std::string, std::string> main_programs_;
+  std::string program_dir_;
+  std::mutex mutex_;
+  status::StatusSnapshot snapshot_;
+  AlarmLog alarms_;
+  std::map<std::string, Program> programs_;  // by channel name
+  std::vector<std::string> news_;
+  std::uint64_t seq_ = 0;
+  dds::Participant participant_;
+  dds::Writer<::mcnc::OperatorCommand> commands_;
+  dds::Reader<::mcnc::ChannelStatus> channels_;
+  dds::Reader<::mcnc::AxisFeedback> axes_;
+  dds::Reader<::mcnc::Alarm> alarm_reader_;
+  dds::Reader<::mcnc::OperatorCommand> command_reader_;
+};
+
+}  // namespace mcnc::hmi

@@ -1,0 +1,124 @@
+// The browser half of the HMI end-to-end test (tests/integration/hmi_test.cpp starts the
+// machine with its HMI and runs this): Debian's Chromium driven by playwright-core opens the
+// HMI, starts the part-transfer programs from the page and watches them run. Exits 0 when every
+// check held, 1 with the failed check on stderr.
+//
+//   node hmi_browser.mjs URL OUT_DIR
+//
+// URL carries the operator token in its fragment (#token=...); screenshots go to OUT_DIR.
+import { chromium } from 'playwright-core';
+import { mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+
+const [url, outDir] = process.argv.slice(2);
+if (!url || !outDir) {
+  console.error('usage: node hmi_browser.mjs URL OUT_DIR');
+  process.exit(2);
+}
+mkdirSync(outDir, { recursive: true });
+
+const browser = await chromium.launch({
+  executablePath: process.env.MCNC_CHROMIUM || '/usr/bin/chromium',
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+});
+const page = await browser.newPage({ viewport: { width: 1600, height: 1000 } });
+const errors = [];
+page.on('pageerror', (e) => errors.push(String(e)));
+
+let shot = 0;
+async function screenshot(name) {
+  shot += 1;
+  await page.screenshot({ path: join(outDir, `${String(shot).padStart(2, '0')}-${name}.png`), fullPage: true });
+}
+
+// Polls `probe` (run in the page) until it returns true; fails with `what` after `ms`.
+async function until(what, probe, arg, ms = 30000) {
+  try {
+    await page.waitForFunction(probe, arg, { timeout: ms, polling: 20 });
+  } catch (e) {
+    await screenshot('failed');
+    throw new Error(`${what}: not seen within ${ms} ms`);
+  }
+}
+
+const text = (sel) => page.locator(sel).first().innerText();
+const stateOf = (ch) => `[data-channel="${ch}"] .ch-state`;
+
+try {
+  await page.goto(url);
+  await until('connected as operator', () =>
+    document.querySelector('#role')?.textContent.trim() === 'operator' &&
+    document.querySelector('#connection')?.textContent.trim() === 'connected');
+  // Manual start: every channel idle with its program loaded.
+  for (const ch of ['CH1', 'CH2', 'CH3']) {
+    await until(`${ch} idle`, (sel) => document.querySelector(sel)?.textContent.trim() === 'idle', stateOf(ch));
+  }
+  await until('A1 owned by CH1', () =>
+    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH1');
+  await until('CH1 program shown', () =>
+    document.querySelectorAll('[data-channel="CH1"] .ch-program .line').length >= 10);
+  await screenshot('ready');
+
+  // Start both turrets from the page; CH2 waits at P1 for CH1.
+  await page.click('[data-channel="CH1"] button[data-action="cycle_start"]');
+  await page.click('[data-channel="CH2"] button[data-action="cycle_start"]');
+  await until('CH2 waits at G04.1 P1 for CH1', () => {
+    const ch = document.querySelector('[data-channel="CH2"]');
+    const wait = ch?.querySelector('.ch-wait')?.textContent || '';
+    return ch?.querySelector('.ch-state')?.textContent.trim() === 'waiting' &&
+      wait.includes('P1') && wait.includes('CH1');
+  });
+  await screenshot('barrier-wait');
+
+  // Feed hold while CH1 turns the left end (line 9: G01 Z-30): Z1 stands still.
+  await until('CH1 turning the left end', () =>
+    document.querySelector('[data-channel="CH1"] .line.current')?.dataset.line === '9' &&
+    document.querySelector('[data-channel="CH1"] .ch-state')?.textContent.trim() === 'running');
+  await page.click('[data-channel="CH1"] button[data-action="feed_hold"]');
+  await until('CH1 in feed hold', (sel) => document.querySelector(sel)?.textContent.trim() === 'hold', stateOf('CH1'));
+  await page.waitForTimeout(300);  // the axes decelerate to rest
+  const z1Before = await text('#axes tr[data-axis="Z1"] .act');
+  await page.waitForTimeout(700);
+  const z1After = await text('#axes tr[data-axis="Z1"] .act');
+  if (z1Before !== z1After) {
+    throw new Error(`Z1 moved in feed hold: ${z1Before} -> ${z1After}`);
+  }
+  if (!(await text('#last-reply')).includes('ok')) {
+    throw new Error(`feed hold reply: ${await text('#last-reply')}`);
+  }
+  await screenshot('feed-hold');
+  await page.click('[data-channel="CH1"] button[data-action="cycle_start"]');
+  await until('CH1 running again', (sel) => document.querySelector(sel)?.textContent.trim() === 'running', stateOf('CH1'));
+
+  // A1 goes to CH2 (G140 in CH1, G141 in CH2) and back (G142).
+  await until('A1 owned by CH2', () =>
+    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH2', undefined, 60000);
+  await screenshot('a1-with-ch2');
+  await until('A1 back with CH1', () =>
+    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH1', undefined, 60000);
+  await until('both programs ended', () =>
+    ['CH1', 'CH2'].every((ch) =>
+      document.querySelector(`[data-channel="${ch}"] .ch-end`)?.textContent.trim() === 'end M30'),
+    undefined, 60000);
+  await screenshot('ended');
+  // The timeline has a lane per channel and the sync point.
+  const lanes = await page.locator('#timeline [data-lane]').count();
+  if (lanes !== 3) {
+    throw new Error(`timeline lanes: ${lanes}, not one per channel`);
+  }
+  // CH2's wait at P1 ended in a G04.1 release marker.
+  if ((await page.locator('#timeline [data-lane="CH2"] [data-p="1"], #timeline [data-p="1"]').count()) === 0) {
+    throw new Error('no P1 marker on the timeline');
+  }
+  if (errors.length > 0) {
+    throw new Error(`page errors: ${errors.join('; ')}`);
+  }
+  console.log(`ok: ${shot} screenshots in ${outDir}`);
+  await browser.close();
+  process.exit(0);
+} catch (e) {
+  console.error(`FAILED: ${e.message}`);
+  await browser.close();
+  process.exit(1);
+}

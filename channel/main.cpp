@@ -276,6 +276,8 @@ int main(int argc, char** argv) {
             controller.set_spindle_override(request->value);
             break;
           case Kind::single_block:
+            controller.set_single_block(request->value != 0.0);
+            break;
           case Kind::select_program:
           case Kind::mdi:
             // Not run by the channel yet: mcnc-hmi refuses them before they are sent.

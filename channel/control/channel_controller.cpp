@@ -133,6 +133,11 @@ void ChannelController::partner_lost(std::uint32_t channel) noexcept {
   }
 }
 
+void ChannelController::set_single_block(bool on) noexcept {
+  single_block_ = on;
+  planner_.set_single_block(on);
+}
+
 void ChannelController::set_feed_override(double percent) noexcept {
   feed_override_ =
       std::isfinite(percent) ? std::clamp(percent, 0.0, 200.0) / 100.0 : feed_override_;
@@ -318,6 +323,7 @@ const ChannelOutput& ChannelController::run_cycle(
     set_state(ChannelState::hold);
   } else if (resume_requested_ && out_.state == ChannelState::hold) {
     set_state(ChannelState::running);
+    planner_.resume();  // a single block stop goes on too
   }
   hold_requested_ = false;
   resume_requested_ = false;
@@ -435,6 +441,7 @@ const ChannelOutput& ChannelController::run_cycle(
     source_.rewind(commanded_);
     planner_.restart(commanded_);
     forget_program_run();
+    single_block_stop_ = 0;
     out_.run_start_cycle = cycle;
     set_state(ChannelState::running);
   }
@@ -724,8 +731,21 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.line = m.line;
   }
   block_events(m, feedback);
+  if (m.state == motion::MotionState::block_stop && out_.state == ChannelState::running) {
+    set_state(ChannelState::hold);  // single block: at the block's end until a cycle start
+    single_block_stop_ = m.completed_block;
+  }
   if (out_.state == ChannelState::hold || !planner_.idle() || queued_count_ > 0) {
     return;  // in feed hold nothing new starts
+  }
+  // Single block: the motion before a block that moves nothing (the planner ran dry there)
+  // stops too, before that block runs.
+  const bool held_block = sync_block_ || call_block_ || exchange_block_ || aux_block_ ||
+                          coupling_block_ || control_block_ || release_block_;
+  if (single_block_ && held_block && m.completed_block > single_block_stop_) {
+    single_block_stop_ = m.completed_block;
+    set_state(ChannelState::hold);
+    return;
   }
   // Everything pulled so far has run.
   if (sync_block_) {

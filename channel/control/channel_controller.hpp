@@ -303,6 +303,12 @@ class ChannelController {
   // The operator panel's overrides, in percent, clamped: feed 0-200, rapid 0-100 (as the planner
   // applies them), spindle 50-120 (before the G50 S limit of G96). A value that is not a number
   // is ignored.
+  // Single block: a running program stops (state hold) at the end of each motion block it
+  // reaches from now on, blended corners included, until a cycle start runs the next; blocks
+  // that move nothing (waits, M codes) pass. Turned off at a stop, the program stays stopped
+  // until the cycle start.
+  void set_single_block(bool on) noexcept;
+  [[nodiscard]] bool single_block() const noexcept { return single_block_; }
   void set_feed_override(double percent) noexcept;
   void set_rapid_override(double percent) noexcept;
   void set_spindle_override(double percent) noexcept;
@@ -429,6 +435,8 @@ class ChannelController {
   bool start_requested_ = false;
   bool resume_requested_ = false;
   bool hold_requested_ = false;
+  bool single_block_ = false;
+  std::uint64_t single_block_stop_ = 0;  // the block a single block stop was last made after
   double feed_override_ = 1.0;
   double rapid_override_ = 1.0;
   double spindle_override_ = 1.0;

@@ -696,6 +696,9 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
   const bool resume = resume_requested_;
   resume_requested_ = false;
   if (item_count_ == 0) {
+    if (resume) {
+      block_stopped_ = false;  // stopped after the last block queued: the next one runs
+    }
     write_rest(out_.sample.pos);
     out_.state = MotionState::idle;
     // Everything taken has run: a spindle command after the last move (M03 before a G04.1

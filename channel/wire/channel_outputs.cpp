@@ -214,6 +214,7 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.feed_override(controller.feed_override() * 100.0);
   status.rapid_override(controller.rapid_override() * 100.0);
   status.spindle_override(controller.spindle_override() * 100.0);
+  status.single_block(controller.single_block());
   status.spindle_rpm(rpm);
   status.call_waiting_for(controller.waiting_for_call());
 

@@ -40,8 +40,7 @@ int log_trampoline(const mg_connection* /*conn*/, const char* message) {
 // nothing.
 bool channels_run(process::OperatorActionKind action) {
   using process::OperatorActionKind;
-  return action != OperatorActionKind::single_block &&
-         action != OperatorActionKind::select_program && action != OperatorActionKind::mdi;
+  return action != OperatorActionKind::select_program && action != OperatorActionKind::mdi;
 }
 
 }  // namespace

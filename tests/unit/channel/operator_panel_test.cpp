@@ -1,10 +1,11 @@
-// The operator panel as a channel acts on it: feed hold and cycle start, the feed, rapid and
-// spindle overrides. Channel 1 programs X and Z; its axis nodes follow every
+// The operator panel as a channel acts on it: feed hold and cycle start, single block, the feed,
+// rapid and spindle overrides. Channel 1 programs X and Z; its axis nodes follow every
 // valid setpoint.
 #include "channel_rig.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -58,6 +59,7 @@ class PanelRig : public ChannelRig {
   }
 
   [[nodiscard]] double x() const { return feedback_[0].cmd; }
+  [[nodiscard]] double z() const { return feedback_[1].cmd; }
   [[nodiscard]] std::uint64_t cycles() const { return cycle_; }
 
  private:
@@ -130,6 +132,83 @@ TEST(OperatorPanel, AResetInFeedHoldEndsTheProgram) {
   }
   EXPECT_DOUBLE_EQ(rig.x(), stood);
   EXPECT_LT(stood, 100.0);
+}
+
+// Runs until the channel stops in hold (single block) or ends; the state it stopped in.
+ChannelState run_to_stop(PanelRig& rig) {
+  ChannelState state = ChannelState::running;
+  EXPECT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+    state = o.state;
+    return o.state == ChannelState::hold || o.program_end;
+  }));
+  return state;
+}
+
+TEST(OperatorPanel, SingleBlockStopsOnEachBlocksEndPointAndACycleStartRunsTheNext) {
+  PanelRig rig;
+  // Corners that G64 would blend: in single block each block ends on its point.
+  rig.load("G01 X10 F3000\nZ10\nX20\nM30\n");
+  rig.ctl().set_single_block(true);
+  rig.ctl().request_start();
+  const double ends[2][2] = {{10.0, 0.0}, {10.0, 10.0}};
+  for (const auto& end : ends) {
+    ASSERT_EQ(run_to_stop(rig), ChannelState::hold);
+    EXPECT_DOUBLE_EQ(rig.x(), end[0]);
+    EXPECT_DOUBLE_EQ(rig.z(), end[1]);
+    for (int i = 0; i < 300; ++i) {
+      EXPECT_EQ(rig.step().state, ChannelState::hold);  // it waits for the operator
+    }
+    EXPECT_DOUBLE_EQ(rig.x(), end[0]);
+    EXPECT_DOUBLE_EQ(rig.z(), end[1]);
+    rig.ctl().request_start();
+  }
+  // The last block's end is the program's end.
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_DOUBLE_EQ(rig.x(), 20.0);
+  EXPECT_DOUBLE_EQ(rig.z(), 10.0);
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+}
+
+TEST(OperatorPanel, SingleBlockStopsBeforeABlockThatMovesNothing) {
+  PanelRig rig;
+  // G04.1 of a channel alone passes at once; the motion before it ends the planner's queue.
+  rig.load("G01 X10 F3000\nG04.1 P1\nG01 X20\nM30\n");
+  rig.ctl().set_single_block(true);
+  rig.ctl().request_start();
+  ASSERT_EQ(run_to_stop(rig), ChannelState::hold);
+  EXPECT_DOUBLE_EQ(rig.x(), 10.0);
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_DOUBLE_EQ(rig.x(), 20.0);
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+}
+
+TEST(OperatorPanel, SingleBlockOnMidRunStopsAtTheNextReachableBlockEndAndOffRunsOn) {
+  PanelRig rig;
+  rig.load("G01 X10 F3000\nZ10\nX20\nZ20\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 2.0; }));
+  rig.ctl().set_single_block(true);
+  ASSERT_EQ(run_to_stop(rig), ChannelState::hold);
+  // At a block's end as the path runs: the blocks already blended end where their line meets
+  // the blend, within the path tolerance of the corner.
+  const double corners[3][2] = {{10.0, 0.0}, {10.0, 10.0}, {20.0, 10.0}};
+  double nearest = 1e9;
+  for (const auto& c : corners) {
+    nearest = std::min(nearest, std::hypot(rig.x() - c[0], rig.z() - c[1]));
+  }
+  EXPECT_LT(nearest, 0.1) << rig.x() << " " << rig.z();
+  const double stood_x = rig.x();
+  // Off while stopped: still stopped until the cycle start, then no more stops.
+  rig.ctl().set_single_block(false);
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::hold);
+  }
+  EXPECT_DOUBLE_EQ(rig.x(), stood_x);
+  rig.ctl().request_start();
+  EXPECT_EQ(run_to_stop(rig), ChannelState::idle);
+  EXPECT_DOUBLE_EQ(rig.x(), 20.0);
+  EXPECT_DOUBLE_EQ(rig.z(), 20.0);
 }
 
 TEST(OperatorPanel, TheFeedOverrideScalesTheFeedAndTheRapidOverrideTheRapids) {

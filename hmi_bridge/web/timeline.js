@@ -39,6 +39,7 @@ class Lane {
     this.lastBlock = null;
     this.lastTick = -Infinity;
     this.markP = null;    // the P of the G04.1 mark the channel waits at
+    this.markKey = undefined;  // "P#round" of the mark last passed; undefined: not seen yet
     this.pixelsPerSecond = 1;
 
     this.segmentLayer = svg('g', { class: 'segments' });
@@ -69,6 +70,7 @@ class Lane {
     this.close(t);
     this.lastBlock = null;
     this.markP = null;
+    this.markKey = undefined;
   }
 
   record(t, channel) {
@@ -96,6 +98,15 @@ class Lane {
       this.addSync(t, this.markP);
     }
     this.markP = markP;
+
+    // A new round at a mark that the channel did not wait at (it came last, or its wait was
+    // shorter than a frame): it passed the mark in this frame.
+    const mark = isObject(channel.mark) ? channel.mark : null;
+    const markKey = mark ? `${asNumber(mark.p)}#${asNumber(mark.round)}` : null;
+    if (this.markKey !== undefined && markKey !== null && markKey !== this.markKey && !wait) {
+      this.addSync(t, asNumber(mark.p));
+    }
+    this.markKey = markKey;
   }
 
   addTick(t) {

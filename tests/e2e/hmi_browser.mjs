@@ -107,9 +107,14 @@ try {
   if (lanes !== 3) {
     throw new Error(`timeline lanes: ${lanes}, not one per channel`);
   }
-  // CH2's wait at P1 ended in a G04.1 release marker.
-  if ((await page.locator('#timeline [data-lane="CH2"] [data-p="1"], #timeline [data-p="1"]').count()) === 0) {
-    throw new Error('no P1 marker on the timeline');
+  // Both turrets met at P1 and P2: a marker on each lane, also where a channel came last and
+  // never waited.
+  for (const ch of ['CH1', 'CH2']) {
+    for (const p of ['1', '2']) {
+      if ((await page.locator(`#timeline [data-lane="${ch}"] [data-p="${p}"]`).count()) === 0) {
+        throw new Error(`no P${p} marker on ${ch}'s timeline lane`);
+      }
+    }
   }
   if (errors.length > 0) {
     throw new Error(`page errors: ${errors.join('; ')}`);

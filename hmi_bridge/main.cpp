@@ -79,6 +79,12 @@ int main(int argc, char** argv) {
                           progdir.empty() ? machine.program_dir : progdir);
     hmi::HmiServerConfig config;
     config.listen = listen.empty() ? machine.hmi.listen : listen;
+    const std::size_t colon = config.listen.rfind(':');
+    if (colon == std::string::npos || colon == 0 || colon + 1 == config.listen.size()) {
+      std::fprintf(stderr, "error: --listen %s: expected HOST:PORT, e.g. 127.0.0.1:8080\n",
+                   config.listen.c_str());
+      return 2;
+    }
     config.web_dir = web_dir;
     config.extra_origins = origins;
     config.rate_hz = rate;

@@ -53,11 +53,6 @@ bool printable(const std::string& text) noexcept {
   return true;
 }
 
-bool plain_file_name(const std::string& name) noexcept {
-  return name.find('/') == std::string::npos && name != "." && name != ".." &&
-         name.find('\\') == std::string::npos;
-}
-
 MessageError error(std::int64_t id, std::string reason) {
   return MessageError{id, std::move(reason)};
 }
@@ -123,7 +118,7 @@ ClientMessage read_command(const Json& j, const config::MachineConfig& machine) 
                              std::to_string(process::OperatorRequest::kTextSize - 1) +
                              " characters");
     }
-    if (c.action == OperatorActionKind::select_program && !plain_file_name(c.text)) {
+    if (c.action == OperatorActionKind::select_program && !is_plain_file_name(c.text)) {
       return error(c.id, "a program is named by its file name in the program store");
     }
   }
@@ -131,6 +126,11 @@ ClientMessage read_command(const Json& j, const config::MachineConfig& machine) 
 }
 
 }  // namespace
+
+bool is_plain_file_name(std::string_view name) noexcept {
+  return !name.empty() && name.find('/') == std::string_view::npos &&
+         name.find('\\') == std::string_view::npos && name != "." && name != "..";
+}
 
 ClientMessage read_client_message(std::string_view text, const config::MachineConfig& machine) {
   if (text.size() > kMaxMessageBytes) {

@@ -6,6 +6,7 @@
 #include <civetweb.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <variant>
@@ -59,6 +60,8 @@ HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machin
       "Content-Security-Policy: default-src 'self'; connect-src 'self'; img-src 'self' data:\r\n"
       "X-Frame-Options: DENY\r\n"
       "X-Content-Type-Options: nosniff";
+  // A write to a client that stopped reading gives up after request_timeout_ms, and the
+  // client goes; a browser that only listens answers civetweb's pings, and stays.
   const char* options[] = {"listening_ports",
                            config_.listen.c_str(),
                            "document_root",
@@ -69,6 +72,12 @@ HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machin
                            "no",
                            "additional_header",
                            headers.c_str(),
+                           "request_timeout_ms",
+                           "5000",
+                           "websocket_timeout_ms",
+                           "30000",
+                           "enable_websocket_ping_pong",
+                           "yes",
                            nullptr};
   mg_callbacks callbacks{};
   callbacks.log_message = log_trampoline;
@@ -113,106 +122,128 @@ HmiCounters HmiServer::counters() const {
 
 int HmiServer::on_connect(const mg_connection* conn) {
   const char* origin = mg_get_header(conn, "Origin");
+  std::lock_guard<std::mutex> lock(mutex_);
   if (!origin_allowed(origin != nullptr ? origin : "", origins_)) {
-    std::lock_guard<std::mutex> lock(mutex_);
     ++counters_.origin_refused;
     spdlog::warn("WebSocket from origin {} refused (allowed: this server's own pages)", origin);
     return 1;  // closed before the handshake
   }
+  if (clients_.size() + 2 >= static_cast<std::size_t>(config_.threads)) {
+    spdlog::warn("WebSocket refused: {} are open, the most this server keeps", clients_.size());
+    return 1;  // every socket holds a thread: two stay for the page's files
+  }
   return 0;
 }
 
-void HmiServer::on_ready(mg_connection* conn) {
-  const Role role = access_.initial_role();
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    clients_[conn] = Client{Role::none};
-  }
-  set_role(conn, role);
-}
-
-Role HmiServer::set_role(mg_connection* conn, Role role) {
-  // Under the lock: the publisher sends this client nothing until its welcome is out.
+std::shared_ptr<HmiServer::Client> HmiServer::client_of(const mg_connection* conn) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto it = clients_.find(conn);
-  if (it == clients_.end()) {
-    return Role::none;
+  return it == clients_.end() ? nullptr : it->second;
+}
+
+void HmiServer::on_ready(mg_connection* conn) {
+  auto client = std::make_shared<Client>();
+  client->conn = conn;
+  client->connected = std::chrono::steady_clock::now();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    clients_[conn] = client;
   }
-  const Role before = it->second.role;
-  it->second.role = role;
-  send(conn, role_message(role));
+  set_role(*client, access_.initial_role());
+}
+
+void HmiServer::set_role(Client& client, Role role) {
+  // Under the client's write lock: the publisher sends it nothing until its welcome is out.
+  std::lock_guard<std::mutex> lock(client.write);
+  const Role before = client.role;
+  client.role = role;
+  write_locked(client, role_message(role));
   if (before == Role::none && role != Role::none) {
     // It starts to see: the layout, the alarm history and the programs, then the states.
-    send(conn, machine_message(machine_));
+    write_locked(client, machine_message(machine_));
     for (const std::string& m : feed_.welcome()) {
-      send(conn, m);
+      write_locked(client, m);
     }
   }
-  return role;
 }
 
 void HmiServer::on_close(const mg_connection* conn) {
+  const std::shared_ptr<Client> client = client_of(conn);
+  if (client) {
+    std::lock_guard<std::mutex> lock(client->write);  // waits for a write under way
+    client->open = false;
+  }
   std::lock_guard<std::mutex> lock(mutex_);
   clients_.erase(conn);
 }
 
-void HmiServer::send(mg_connection* conn, const std::string& text) {
-  mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+void HmiServer::write_locked(Client& client, const std::string& text) {
+  if (client.open) {
+    mg_websocket_write(client.conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+  }
+}
+
+void HmiServer::send(Client& client, const std::string& text) {
+  std::lock_guard<std::mutex> lock(client.write);
+  write_locked(client, text);
+}
+
+void HmiServer::count(std::uint64_t HmiCounters::*counter) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++(counters_.*counter);
 }
 
 int HmiServer::on_data(mg_connection* conn, int bits, const char* data, std::size_t size) {
+  const std::shared_ptr<Client> client = client_of(conn);
+  if (!client) {
+    return 0;
+  }
   const int opcode = bits & 0x0f;
   const bool final_frame = (bits & 0x80) != 0;
   switch (opcode) {
     case MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE:
       return 0;
-    case MG_WEBSOCKET_OPCODE_PING:
+    case MG_WEBSOCKET_OPCODE_PING: {
+      std::lock_guard<std::mutex> lock(client->write);
       mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_PONG, data, size);
       return 1;
+    }
     case MG_WEBSOCKET_OPCODE_PONG:
       return 1;
     case MG_WEBSOCKET_OPCODE_TEXT:
       if (final_frame) {
-        handle_text(conn, std::string_view(data, size));
-        return 1;
+        return handle_text(*client, std::string_view(data, size)) ? 1 : 0;
       }
       break;
     default:
       break;
   }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.malformed;
-  }
-  send(conn, error_message("only whole text messages are read"));
+  count(&HmiCounters::malformed);
+  send(*client, error_message("only whole text messages are read"));
   return 1;
 }
 
-void HmiServer::handle_text(mg_connection* conn, std::string_view text) {
+bool HmiServer::handle_text(Client& client, std::string_view text) {
   const ClientMessage message = read_client_message(text, machine_);
   if (const auto* e = std::get_if<MessageError>(&message)) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.malformed;
-    }
-    send(conn, e->id >= 0 ? reply_message(e->id, false, e->reason) : error_message(e->reason));
-    return;
+    count(&HmiCounters::malformed);
+    send(client, e->id >= 0 ? reply_message(e->id, false, e->reason) : error_message(e->reason));
+    return true;
   }
   if (const auto* auth = std::get_if<AuthMessage>(&message)) {
     const Role role = access_.role_of(auth->token);
     if (role == Role::none) {
-      send(conn, error_message("unknown token"));
-      return;
+      send(client, error_message("unknown token"));
+      return false;  // closed: every guess costs a new connection
     }
-    set_role(conn, role);
-    return;
+    set_role(client, role);
+    return true;
   }
   const auto& command = std::get<CommandMessage>(message);
   Role role = Role::none;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = clients_.find(conn);
-    role = it == clients_.end() ? Role::none : it->second.role;
+    std::lock_guard<std::mutex> lock(client.write);
+    role = client.role;
   }
   std::string reason;
   if (role != Role::operator_) {
@@ -222,43 +253,51 @@ void HmiServer::handle_text(mg_connection* conn, std::string_view text) {
     reason = std::string(process::to_string(command.action)) + " is not run by the channels yet";
   }
   if (reason.empty() && feed_.send(command, reason)) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++counters_.commands;
-    }
+    count(&HmiCounters::commands);
     spdlog::info("operator command {} {}", process::to_string(command.action),
                  command.channel == 0 ? std::string("(machine)")
                                       : machine_.channels[command.channel - 1].name);
-    send(conn, reply_message(command.id, true, ""));
-    return;
+    send(client, reply_message(command.id, true, ""));
+    return true;
   }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    ++counters_.refused;
-  }
-  send(conn, reply_message(command.id, false, reason));
+  count(&HmiCounters::refused);
+  send(client, reply_message(command.id, false, reason));
+  return true;
 }
 
 void HmiServer::publish_loop() {
   const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(1.0 / config_.rate_hz));
   auto next = std::chrono::steady_clock::now();
+  std::vector<std::shared_ptr<Client>> clients;
   while (!stop_) {
-    next += period;
+    // After a stall, the next state on time rather than the missed ones in a burst.
+    next = std::max(next + period, std::chrono::steady_clock::now());
     std::this_thread::sleep_until(next);
     const std::string state = feed_.state();
     const std::vector<std::string> news = feed_.take_news();
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& [conn, client] : clients_) {
-      if (client.role == Role::none) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      clients.clear();
+      for (const auto& [conn, client] : clients_) {
+        clients.push_back(client);
+      }
+    }
+    const auto now = std::chrono::steady_clock::now();
+    for (const std::shared_ptr<Client>& client : clients) {
+      std::lock_guard<std::mutex> lock(client->write);
+      if (client->role == Role::none) {
+        if (client->open && !client->closing && now - client->connected > config_.auth_within) {
+          // No token shown in time: the connection ends when the client answers the close.
+          mg_websocket_write(client->conn, MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE, "", 0);
+          client->closing = true;
+        }
         continue;
       }
-      // The connection stays open while it is in clients_ (its close waits for this lock).
-      auto* c = const_cast<mg_connection*>(conn);
       for (const std::string& m : news) {
-        send(c, m);
+        write_locked(*client, m);
       }
-      send(c, state);
+      write_locked(*client, state);
     }
   }
 }

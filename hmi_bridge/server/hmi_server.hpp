@@ -9,8 +9,10 @@
 #include "hmi_bridge/server/machine_feed.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -26,7 +28,9 @@ struct HmiServerConfig {
   std::string web_dir;                     // the static files
   std::vector<std::string> extra_origins;  // besides the listen address's own
   double rate_hz = 25.0;                   // state messages per second
-  int threads = 16;                        // each open WebSocket holds one
+  int threads = 16;                        // each open WebSocket holds one; two stay for pages
+  // A socket that has shown no token by then is closed (when viewing needs one).
+  std::chrono::milliseconds auth_within{10000};
 };
 
 struct HmiCounters {
@@ -56,13 +60,25 @@ class HmiServer {
   void on_close(const mg_connection* conn);
 
  private:
+  // One WebSocket. Its writes go one at a time under `write`, never under mutex_, so that a
+  // client that stops reading holds up only itself. The close handler clears `open` under
+  // `write`: nothing is written to the connection once civetweb frees it.
   struct Client {
-    Role role = Role::none;
+    mg_connection* conn = nullptr;
+    std::mutex write;
+    bool open = true;        // under write
+    Role role = Role::none;  // under write
+    bool closing = false;    // under write: asked to close (no token in time)
+    std::chrono::steady_clock::time_point connected;
   };
-  void send(mg_connection* conn, const std::string& text);
-  void handle_text(mg_connection* conn, std::string_view text);
-  // The client's role after it: none while it is not (or no longer) connected.
-  Role set_role(mg_connection* conn, Role role);
+  [[nodiscard]] std::shared_ptr<Client> client_of(const mg_connection* conn) const;
+  // Writes `text` unless the client closed; the caller holds client.write.
+  static void write_locked(Client& client, const std::string& text);
+  void send(Client& client, const std::string& text);
+  // False when the connection is to be closed (a wrong token).
+  bool handle_text(Client& client, std::string_view text);
+  void set_role(Client& client, Role role);
+  void count(std::uint64_t HmiCounters::*counter);
   void publish_loop();
 
   HmiServerConfig config_;
@@ -73,7 +89,7 @@ class HmiServer {
   mg_context* ctx_ = nullptr;
   int port_ = 0;
   mutable std::mutex mutex_;  // clients_ and counters_
-  std::map<const mg_connection*, Client> clients_;
+  std::map<const mg_connection*, std::shared_ptr<Client>> clients_;
   HmiCounters counters_;
   std::atomic<bool> stop_{false};
   std::thread publisher_;

@@ -69,8 +69,15 @@ MachineFeed::Program MachineFeed::load(const std::string& channel, const std::st
   if (main != main_programs_.end() && std::filesystem::path(main->second).filename() == name) {
     return Program{name, text::read_lines(main->second)};
   }
-  if (!program_dir_.empty()) {
-    return Program{name, text::read_lines((std::filesystem::path(program_dir_) / name).string())};
+  // The name comes from the wire: a plain file of the program store, of a program's size.
+  constexpr std::uintmax_t kLargestProgram = 16U << 20U;
+  if (!program_dir_.empty() && is_plain_file_name(name)) {
+    const std::filesystem::path path = std::filesystem::path(program_dir_) / name;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(path, ec) &&
+        std::filesystem::file_size(path, ec) <= kLargestProgram && !ec) {
+      return Program{name, text::read_lines(path.string())};
+    }
   }
   return Program{name, {}};
 }

@@ -99,11 +99,13 @@ class Lane {
     }
     this.markP = markP;
 
-    // A new round at a mark that the channel did not wait at (it came last, or its wait was
-    // shorter than a frame): it passed the mark in this frame.
+    // A new round at a mark that the channel is not seen waiting at (it came last, its wait
+    // was shorter than a frame, or the frame caught it between arriving and being released):
+    // it passed the mark in this frame.
     const mark = isObject(channel.mark) ? channel.mark : null;
     const markKey = mark ? `${asNumber(mark.p)}#${asNumber(mark.round)}` : null;
-    if (this.markKey !== undefined && markKey !== null && markKey !== this.markKey && !wait) {
+    if (this.markKey !== undefined && markKey !== null && markKey !== this.markKey &&
+        markP === null) {
       this.addSync(t, asNumber(mark.p));
     }
     this.markKey = markKey;

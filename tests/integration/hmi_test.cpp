@@ -129,10 +129,16 @@ TEST(Hmi, CommandsWithoutTheOperatorTokenOrFromAForeignPageChangeNothing) {
   ASSERT_FALSE(viewer_refused.is_null());
   EXPECT_EQ(viewer_refused["ok"], false);
   EXPECT_EQ(viewer_refused["reason"], "a viewer cannot command: show the operator token");
-  // A wrong token gives nothing.
-  viewer.send(R"({"type":"auth","token":"guess"})");
-  EXPECT_FALSE(viewer.wait_for(type_is("error"), 5s).is_null());
-  EXPECT_EQ(viewer.of_type("role").back()["role"], "viewer");
+  // A wrong token gives nothing, and the socket is closed: every guess costs a connection.
+  WsClient guesser("127.0.0.1", hmi.port, "");
+  ASSERT_TRUE(guesser.connected()) << guesser.error();
+  guesser.send(R"({"type":"auth","token":"guess"})");
+  const nlohmann::json unknown = guesser.wait_for(type_is("error"), 5s);
+  ASSERT_FALSE(unknown.is_null());
+  EXPECT_EQ(unknown["reason"], "unknown token");
+  EXPECT_EQ(guesser.of_type("role").back()["role"], "none");
+  guesser.send(command(3, "cycle_start", "CH1"));
+  EXPECT_TRUE(guesser.wait_for(reply_to(3), 2s).is_null());
 
   // Nothing changed: the channel still waits for its cycle start, a second later.
   std::this_thread::sleep_for(1s);

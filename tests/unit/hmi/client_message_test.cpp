@@ -109,6 +109,14 @@ TEST(ClientMessage, UnknownChannelsActionsAndTypesAreErrors) {
             "message longer than 4096 bytes");
 }
 
+TEST(ClientMessage, OnlyPlainFileNamesNameAProgram) {
+  EXPECT_TRUE(is_plain_file_name("O1100.nc"));
+  EXPECT_TRUE(is_plain_file_name("part transfer.nc"));
+  for (const char* name : {"", ".", "..", "../O1100.nc", "/etc/passwd", "a/b.nc", "a\\b.nc"}) {
+    EXPECT_FALSE(is_plain_file_name(name)) << name;
+  }
+}
+
 TEST(ClientMessage, AnAuthCarriesItsToken) {
   const ClientMessage m = read_client_message(R"({"type":"auth","token":"abc"})", two_channels());
   ASSERT_TRUE(std::holds_alternative<AuthMessage>(m));

@@ -202,6 +202,14 @@ std::string alarm_message(const config::MachineConfig& machine, const AlarmEntry
   return dump(j);
 }
 
+std::string meeting_message(const config::MachineConfig& machine, const Meeting& meeting) {
+  return dump({{"type", "meeting"},
+               {"p", meeting.p},
+               {"channels", channel_names(machine, meeting.channels)},
+               {"cycle", meeting.cycle},
+               {"time_s", static_cast<double>(meeting.cycle) * machine.cycle_s()}});
+}
+
 std::string reply_message(std::int64_t id, bool ok, std::string_view reason) {
   return dump({{"type", "reply"}, {"id", id}, {"ok", ok}, {"reason", reason}});
 }

@@ -4,6 +4,7 @@
 #include "common/config/machine_config.hpp"
 #include "hmi_bridge/core/access_policy.hpp"
 #include "hmi_bridge/core/alarm_log.hpp"
+#include "hmi_bridge/core/meeting_tracker.hpp"
 #include "tools/status/status_lines.hpp"
 
 #include <cstdint>
@@ -23,6 +24,8 @@ std::string program_message(std::string_view channel, std::string_view name,
                             const std::vector<std::string>& lines);
 std::string alarms_message(const config::MachineConfig& machine, const AlarmLog& log);
 std::string alarm_message(const config::MachineConfig& machine, const AlarmEntry& entry);
+// A G04.1 meeting: its mark, its channels and when (machine time), for the timeline.
+std::string meeting_message(const config::MachineConfig& machine, const Meeting& meeting);
 std::string reply_message(std::int64_t id, bool ok, std::string_view reason);
 std::string error_message(std::string_view reason);
 

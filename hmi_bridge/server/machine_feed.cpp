@@ -28,9 +28,10 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
             }),
       alarm_reader_(participant_,
                     [this](const ::mcnc::Alarm& a, const dds::WriterId&) { on_alarm(a); }),
-      command_reader_(participant_, [this](const ::mcnc::OperatorCommand& c, const dds::WriterId&) {
-        on_operator(c);
-      }) {
+      command_reader_(participant_, [this](const ::mcnc::OperatorCommand& c,
+                                           const dds::WriterId&) { on_operator(c); }),
+      coordination_reader_(participant_, [this](const ::mcnc::CoordinationEvent& e,
+                                                const dds::WriterId&) { on_coordination(e); }) {
   for (const auto& [channel, path] : main_programs_) {
     programs_[channel] =
         Program{std::filesystem::path(path).filename().string(), text::read_lines(path)};
@@ -61,6 +62,17 @@ void MachineFeed::on_operator(const ::mcnc::OperatorCommand& c) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (const AlarmEntry* e = alarms_.acknowledge(c.text(), static_cast<std::uint64_t>(c.value()))) {
     news_.push_back(alarm_message(machine_, *e));
+  }
+}
+
+void MachineFeed::on_coordination(const ::mcnc::CoordinationEvent& e) {
+  if (e.kind() != COORD_SYNC_ARRIVE) {
+    return;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (const auto m =
+          meetings_.arrive(e.channel(), e.p(), e.generation(), e.channels(), e.cycle())) {
+    news_.push_back(meeting_message(machine_, *m));
   }
 }
 

@@ -5,6 +5,7 @@
 #include "common/config/machine_config.hpp"
 #include "hmi_bridge/core/alarm_log.hpp"
 #include "hmi_bridge/core/client_message.hpp"
+#include "hmi_bridge/core/meeting_tracker.hpp"
 #include "idl/dds_participant.hpp"
 #include "idl/topics.hpp"
 #include "tools/status/status_lines.hpp"
@@ -41,6 +42,7 @@ class MachineFeed {
   };
   void on_alarm(const ::mcnc::Alarm& a);
   void on_operator(const ::mcnc::OperatorCommand& c);
+  void on_coordination(const ::mcnc::CoordinationEvent& e);
   // The text of `name` for `channel`: its main program or a file of the program store.
   Program load(const std::string& channel, const std::string& name) const;
 
@@ -50,6 +52,7 @@ class MachineFeed {
   std::mutex mutex_;
   status::StatusSnapshot snapshot_;
   AlarmLog alarms_;
+  MeetingTracker meetings_;
   std::map<std::string, Program> programs_;  // by channel name
   std::vector<std::string> news_;
   std::uint64_t seq_ = 0;
@@ -59,6 +62,7 @@ class MachineFeed {
   dds::Reader<::mcnc::AxisFeedback> axes_;
   dds::Reader<::mcnc::Alarm> alarm_reader_;
   dds::Reader<::mcnc::OperatorCommand> command_reader_;
+  dds::Reader<::mcnc::CoordinationEvent> coordination_reader_;
 };
 
 }  // namespace mcnc::hmi

@@ -138,6 +138,7 @@ const handlers = new Map([
   ['machine', onMachine],
   ['role', onRole],
   ['state', onState],
+  ['meeting', (message) => timeline.meeting(message.time_s, message.p, message.channels)],
   ['program', onProgram],
   ['alarms', (message) => alarmList.replaceAll(asArray(message.list))],
   ['alarm', (message) => alarmList.upsert(message)],

@@ -3,7 +3,7 @@
 // moving the group and stretching the open segment, not laying the lane out again. Every frame
 // is recorded; the SVG is touched at most a few times a second, as repainting it is what costs.
 
-import { svg, setText, asNumber, isObject, throttled } from './dom.js';
+import { svg, setText, asNumber, throttled } from './dom.js';
 
 const LANE_HEIGHT = 26;
 const LANE_GAP = 6;
@@ -38,8 +38,6 @@ class Lane {
     this.open = null;
     this.lastBlock = null;
     this.lastTick = -Infinity;
-    this.markP = null;    // the P of the G04.1 mark the channel waits at
-    this.markKey = undefined;  // "P#round" of the mark last passed; undefined: not seen yet
     this.pixelsPerSecond = 1;
 
     this.segmentLayer = svg('g', { class: 'segments' });
@@ -69,8 +67,6 @@ class Lane {
   interrupt(t) {
     this.close(t);
     this.lastBlock = null;
-    this.markP = null;
-    this.markKey = undefined;
   }
 
   record(t, channel) {
@@ -90,25 +86,6 @@ class Lane {
       this.lastTick = t;
     }
     if (block !== null) this.lastBlock = block;
-
-    const wait = isObject(channel.wait) ? channel.wait : null;
-    const markP = wait && wait.kind === 'mark' ? asNumber(wait.p) : null;
-    // A reset or an alarm also ends the wait, but that is no meeting of the channels.
-    if (this.markP !== null && markP !== this.markP && state !== 'reset' && state !== 'alarm') {
-      this.addSync(t, this.markP);
-    }
-    this.markP = markP;
-
-    // A new round at a mark that the channel is not seen waiting at (it came last, its wait
-    // was shorter than a frame, or the frame caught it between arriving and being released):
-    // it passed the mark in this frame.
-    const mark = isObject(channel.mark) ? channel.mark : null;
-    const markKey = mark ? `${asNumber(mark.p)}#${asNumber(mark.round)}` : null;
-    if (this.markKey !== undefined && markKey !== null && markKey !== this.markKey &&
-        markP === null) {
-      this.addSync(t, asNumber(mark.p));
-    }
-    this.markKey = markKey;
   }
 
   addTick(t) {
@@ -221,6 +198,18 @@ export class Timeline {
     for (const lane of this.lanes) {
       const channel = channelsByName.get(lane.name);
       if (channel) lane.record(t, channel);
+    }
+    this.requestDraw();
+  }
+
+  // A G04.1 meeting (from the server, taken from the channels' arrivals): a marker on each
+  // participant's lane at the time the last of them arrived.
+  meeting(timeS, p, channels) {
+    const t = asNumber(timeS);
+    const mark = asNumber(p);
+    if (t === null || mark === null || !Array.isArray(channels)) return;
+    for (const lane of this.lanes) {
+      if (channels.includes(lane.name)) lane.addSync(t, mark);
     }
     this.requestDraw();
   }

@@ -107,12 +107,17 @@ try {
   if (lanes !== 3) {
     throw new Error(`timeline lanes: ${lanes}, not one per channel`);
   }
-  // The turrets met at P1 and P2: a marker where each left its long wait (CH2 at P1, CH1 at
-  // P2). A mark a channel passes within one state frame (25 a second) may show on no lane.
-  for (const [ch, p] of [['CH2', '1'], ['CH1', '2']]) {
-    if ((await page.locator(`#timeline [data-lane="${ch}"] [data-p="${p}"]`).count()) === 0) {
-      throw new Error(`no P${p} marker on ${ch}'s timeline lane`);
+  // The turrets met at P1 and P2: a marker on both lanes, also where a channel came last and
+  // never waited (the meetings come from the channels' arrivals, not from sampled states).
+  for (const ch of ['CH1', 'CH2']) {
+    for (const p of ['1', '2']) {
+      if ((await page.locator(`#timeline [data-lane="${ch}"] [data-p="${p}"]`).count()) !== 1) {
+        throw new Error(`not one P${p} marker on ${ch}'s timeline lane`);
+      }
     }
+  }
+  if ((await page.locator('#timeline [data-lane="CH3"] [data-p]').count()) !== 0) {
+    throw new Error('a marker on the loader\'s lane, which met nobody');
   }
   if (errors.length > 0) {
     throw new Error(`page errors: ${errors.join('; ')}`);

@@ -79,10 +79,6 @@ Json channel_state(const config::MachineConfig& machine, const config::ChannelCo
   j["ended"] = v->program_end;
   j["end_code"] = v->end_code;
   j["wait"] = wait_of(machine, *v);
-  // The G04.1 mark it waits at or passed last, and its round there: a new round is a meeting
-  // even when this channel, the last to arrive, never waited.
-  j["mark"] =
-      v->sync_p != 0 ? Json{{"p", v->sync_p}, {"round", v->sync_generation}} : Json(nullptr);
   j["call"] =
       v->call_caller != 0 ? Json{{"caller", channel_name(machine, v->call_caller)}} : Json(nullptr);
   j["feed_override"] = v->feed_override;

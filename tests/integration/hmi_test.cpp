@@ -77,6 +77,15 @@ bool shows_role(WsClient& client, const std::string& role) {
               .is_null();
 }
 
+// Sends a cycle start for CH1 as command `id`; expects it refused for `reason`.
+void expect_refused(WsClient& client, int id, const std::string& reason) {
+  client.send(command(id, "cycle_start", "CH1"));
+  const nlohmann::json reply = client.wait_for(reply_to(id), 5s);
+  ASSERT_FALSE(reply.is_null());
+  EXPECT_EQ(reply["ok"], false);
+  EXPECT_EQ(reply["reason"], reason);
+}
+
 auto type_is(const std::string& type) {
   return [type](const nlohmann::json& j) { return j.is_object() && j.value("type", "") == type; };
 }
@@ -112,11 +121,7 @@ TEST(Hmi, CommandsWithoutTheOperatorTokenOrFromAForeignPageChangeNothing) {
   ASSERT_TRUE(anonymous.connected()) << anonymous.error();
   ASSERT_FALSE(anonymous.wait_for(type_is("role"), 5s).is_null());
   EXPECT_EQ(anonymous.of_type("role").back()["role"], "none");
-  anonymous.send(command(1, "cycle_start", "CH1"));
-  const nlohmann::json refused = anonymous.wait_for(reply_to(1), 5s);
-  ASSERT_FALSE(refused.is_null());
-  EXPECT_EQ(refused["ok"], false);
-  EXPECT_EQ(refused["reason"], "commands need the operator token");
+  expect_refused(anonymous, 1, "commands need the operator token");
 
   // A viewer sees the machine and cannot command it.
   WsClient viewer("127.0.0.1", hmi.port, "");
@@ -124,11 +129,7 @@ TEST(Hmi, CommandsWithoutTheOperatorTokenOrFromAForeignPageChangeNothing) {
   viewer.send(std::string(R"({"type":"auth","token":")") + kViewerToken + "\"}");
   ASSERT_TRUE(shows_role(viewer, "viewer"));
   ASSERT_TRUE(eventually([&] { return ch1_state(viewer) == "idle"; }, 60s));
-  viewer.send(command(2, "cycle_start", "CH1"));
-  const nlohmann::json viewer_refused = viewer.wait_for(reply_to(2), 5s);
-  ASSERT_FALSE(viewer_refused.is_null());
-  EXPECT_EQ(viewer_refused["ok"], false);
-  EXPECT_EQ(viewer_refused["reason"], "a viewer cannot command: show the operator token");
+  expect_refused(viewer, 2, "a viewer cannot command: show the operator token");
   // A wrong token gives nothing, and the socket is closed: every guess costs a connection.
   WsClient guesser("127.0.0.1", hmi.port, "");
   ASSERT_TRUE(guesser.connected()) << guesser.error();

@@ -28,7 +28,6 @@ struct ChannelView {
   std::uint64_t cycle = 0;
   std::int32_t end_code = -1;
   std::uint64_t sync_channels = 0;     // the mark's participants, bit c-1 for channel c
-  std::uint64_t sync_generation = 0;   // the channel's round at that mark, from 1
   std::uint32_t call_waiting_for = 0;  // G144 H1: the called channel, 0: none
   double feed_override = 100.0;        // percent
   double rapid_override = 100.0;

@@ -49,7 +49,6 @@ TEST(HmiMessages, TheStateSaysWhatEachChannelWaitsForAndWhoOwnsEachAxis) {
   ch2.sync_p = 1;
   ch2.sync_channels = 0b11;
   ch2.sync_waiting_for = 0b01;
-  ch2.sync_generation = 2;
   ch2.program = "ch2.nc";
   ch2.line = 4;
   ch2.feed_override = 50.0;
@@ -69,7 +68,6 @@ TEST(HmiMessages, TheStateSaysWhatEachChannelWaitsForAndWhoOwnsEachAxis) {
   EXPECT_EQ(c["wait"]["p"], 1);
   EXPECT_EQ(c["wait"]["participants"], nlohmann::json::array({"CH1", "CH2"}));
   EXPECT_EQ(c["wait"]["waiting_for"], nlohmann::json::array({"CH1"}));
-  EXPECT_EQ(c["mark"], (nlohmann::json{{"p", 1}, {"round", 2}}));
   EXPECT_EQ(c["program"], "ch2.nc");
   EXPECT_EQ(c["line"], 4);
   EXPECT_DOUBLE_EQ(c["feed_override"].get<double>(), 50.0);

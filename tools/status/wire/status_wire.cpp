@@ -19,7 +19,6 @@ ChannelView view_of(const ::mcnc::ChannelStatus& s) {
   v.cycle = s.cycle();
   v.end_code = s.end_code();
   v.sync_channels = s.sync_channels();
-  v.sync_generation = s.sync_generation();
   v.call_waiting_for = s.call_waiting_for();
   v.feed_override = s.feed_override();
   v.rapid_override = s.rapid_override();

@@ -32,13 +32,26 @@ async function screenshot(name) {
   await page.screenshot({ path: join(outDir, `${String(shot).padStart(2, '0')}-${name}.png`), fullPage: true });
 }
 
-// Polls `probe` (run in the page) until it returns true; fails with `what` after `ms`.
-async function until(what, probe, arg, ms = 30000) {
+// What the page shows, for a failure's message: the connection, and each channel's state,
+// current line and wait.
+function pageSummary() {
+  const text = (el, sel) => el.querySelector(sel)?.textContent.trim().replace(/\s+/g, ' ') || '-';
+  const channels = [...document.querySelectorAll('[data-channel]')].map((ch) =>
+    `${ch.dataset.channel} ${text(ch, '.ch-state')} line ${ch.querySelector('.line.current')?.dataset.line || '-'}` +
+    ` wait "${text(ch, '.ch-wait')}" end "${text(ch, '.ch-end')}"`);
+  return `${text(document, '#connection')} as ${text(document, '#role')}; ${channels.join('; ')}`;
+}
+
+// Polls `probe` (run in the page) until it returns true; fails with `what` after `ms`. The
+// machine runs in paced lockstep, which a loaded host slows down (the CI host runs another
+// machine beside this one), so the time allowed is a backstop, not a measure.
+async function until(what, probe, arg, ms = 90000) {
   try {
     await page.waitForFunction(probe, arg, { timeout: ms, polling: 20 });
   } catch (e) {
+    const seen = await page.evaluate(pageSummary).catch((err) => `page not readable: ${err}`);
     await screenshot('failed');
-    throw new Error(`${what}: not seen within ${ms} ms`);
+    throw new Error(`${what}: not seen within ${ms} ms; the page shows: ${seen}`);
   }
 }
 
@@ -93,14 +106,14 @@ try {
 
   // A1 goes to CH2 (G140 in CH1, G141 in CH2) and back (G142).
   await until('A1 owned by CH2', () =>
-    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH2', undefined, 60000);
+    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH2', undefined, 120000);
   await screenshot('a1-with-ch2');
   await until('A1 back with CH1', () =>
-    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH1', undefined, 60000);
+    document.querySelector('#axes tr[data-axis="A1"] .owner')?.textContent.trim() === 'CH1', undefined, 120000);
   await until('both programs ended', () =>
     ['CH1', 'CH2'].every((ch) =>
       document.querySelector(`[data-channel="${ch}"] .ch-end`)?.textContent.trim() === 'end M30'),
-    undefined, 60000);
+    undefined, 120000);
   await screenshot('ended');
   // The timeline has a lane per channel and the sync point.
   const lanes = await page.locator('#timeline [data-lane]').count();

@@ -2,6 +2,7 @@
 // cycle over DDS, feedback back. Wiring only: the behaviour is in ChannelController.
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
+#include "channel/loading/program_loader.hpp"
 #include "channel/motion/motion_planner.hpp"
 #include "channel/setup/interpreter_setup.hpp"
 #include "channel/setup/motion_setup.hpp"
@@ -30,7 +31,20 @@
 using namespace std::chrono_literals;
 using namespace mcnc;
 
-namespace {}  // namespace
+namespace {
+
+// What the operator asked for, as the trace's `text` (escaped).
+struct EscapedText {
+  char text[2 * process::OperatorRequest::kTextSize + 8] = {};
+};
+
+EscapedText escaped(const char* text) noexcept {
+  EscapedText e;
+  trace::json_escape(text, e.text, sizeof e.text);
+  return e;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
@@ -144,6 +158,9 @@ int main(int argc, char** argv) {
     program_name = program_path.substr(program_path.find_last_of('/') + 1);
     load_alarm = interpreter.load(content.str(), program_name);
   }
+  // Programs the operator selects and MDI blocks are checked off the cycle.
+  channel::ProgramLoader loader(interp_config);
+  std::optional<channel::LoadedProgram> loaded;  // checked, waiting for the channel to stand
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   setup.shared_writes = &shared_writes;
   channel::ChannelController controller(setup, interpreter, planner);
@@ -279,8 +296,22 @@ int main(int argc, char** argv) {
             controller.set_single_block(request->value != 0.0);
             break;
           case Kind::select_program:
-          case Kind::mdi:
-            // Not run by the channel yet: mcnc-hmi refuses them before they are sent.
+          case Kind::mdi: {
+            // Checked off the cycle; the channel takes the result once it stands in reset or
+            // idle (a cycle start waits for it).
+            const bool mdi = request->action == Kind::mdi;
+            const char* refused =
+                !controller.may_change_program()
+                    ? "the channel runs: programs are selected and MDI blocks run in reset or idle"
+                : loaded || !loader.submit(mdi, request->text.data())
+                    ? "another program or MDI block is still being checked"
+                    : nullptr;
+            tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\",\"text\":\"%s\"%s%s%s",
+                        ch->name.c_str(), process::to_string(request->action),
+                        escaped(request->text.data()).text, refused ? ",\"refused\":\"" : "",
+                        refused ? refused : "", refused ? "\"" : "");
+            continue;
+          }
           case Kind::alarm_ack:  // for the HMIs: which alarms an operator has seen
           case Kind::none:
             continue;
@@ -330,6 +361,27 @@ int main(int argc, char** argv) {
         }
       });
 
+      if (!loaded) {
+        loaded = loader.take();
+      }
+      if (loaded && controller.may_change_program()) {
+        if (loaded->program.alarm) {
+          controller.report_alarm(*loaded->program.alarm);  // the program selected stays
+        } else if (loaded->mdi) {
+          outputs.set_mdi_lines(std::move(loaded->lines));
+          interpreter.prepare_mdi(std::move(loaded->program));
+          controller.request_mdi();
+        } else {
+          tracer.emit(cycle, "program", "\"ch\":\"%s\",\"prog\":\"%s\",\"blocks\":%zu",
+                      ch->name.c_str(), escaped(loaded->program.name.c_str()).text,
+                      loaded->program.block_count);
+          outputs.set_program(loaded->program.name, std::move(loaded->lines));
+          interpreter.adopt(std::move(loaded->program));
+        }
+        loaded.reset();
+      }
+      controller.set_program_pending(loaded.has_value() || loader.busy());
+
       peers.apply(cycle, lockstep, controller);
       if (plc) {
         plc->apply(cycle, controller);
@@ -337,7 +389,7 @@ int main(int argc, char** argv) {
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,
                       static_cast<std::uint32_t>(interpreter.block_count()),
-                      !program_path.empty() && !load_alarm);
+                      interpreter.has_program());
     }
     tracer.flush();
     if (ch->id == 1 && !retained_path.empty()) {

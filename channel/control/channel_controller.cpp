@@ -227,6 +227,7 @@ void ChannelController::hold_outputs(bool valid) noexcept {
 
 void ChannelController::forget_program_run() noexcept {
   withdraw_waits();
+  mdi_run_ = false;
   exchange_block_.reset();
   aux_block_.reset();
   aux_answer_.reset();
@@ -345,6 +346,7 @@ const ChannelOutput& ChannelController::run_cycle(
     halted_ = true;
     resetting_ = false;  // no reset ramp after an emergency stop: the drives stop themselves
     start_requested_ = false;
+    mdi_requested_ = false;
     release_caller(CallOutcome::aborted);
     serving_.reset();
     withdraw_waits();
@@ -435,12 +437,19 @@ const ChannelOutput& ChannelController::run_cycle(
     raise(kAlarmCallRefused, text, out_.line, 0, 0);
   }
   refused_.reset();
-  if (out_.state == ChannelState::idle && start_requested_) {
+  if (out_.state == ChannelState::idle && start_requested_ && !program_pending_) {
     start_requested_ = false;
     settle_slots();
-    source_.rewind(commanded_);
+    if (mdi_requested_) {
+      // An alarm starting them comes as the source's first pull, as a program's does.
+      (void)source_.start_mdi(commanded_);
+    } else {
+      source_.rewind(commanded_);
+    }
     planner_.restart(commanded_);
     forget_program_run();
+    mdi_run_ = mdi_requested_;
+    mdi_requested_ = false;
     single_block_stop_ = 0;
     out_.run_start_cycle = cycle;
     set_state(ChannelState::running);
@@ -788,6 +797,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   if (!end_pulled_) {
     return;
   }
+  if (!end_started_ && mdi_run_ && end_.code == 0) {
+    end_started_ = true;  // MDI blocks end with their text: no block of its own
+  }
   if (!end_started_) {
     end_started_ = true;
     out_.block = end_.n;
@@ -808,11 +820,16 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   ended.block = end_.n;
   ended.pos = commanded_;
   push_event(ended);
-  out_.program_end = true;
-  out_.end_code = end_.code;
-  out_.end_cycle = cycle;
+  // MDI blocks are no program: their end is no program end (the launcher's run goes on).
+  const bool mdi = mdi_run_;
+  mdi_run_ = false;
+  if (!mdi) {
+    out_.program_end = true;
+    out_.end_code = end_.code;
+    out_.end_cycle = cycle;
+  }
   ChannelEvent end;
-  end.kind = ChannelEventKind::program_end;
+  end.kind = mdi ? ChannelEventKind::mdi_end : ChannelEventKind::program_end;
   end.line = end_.line;
   end.end_code = end_.code;
   push_event(end);

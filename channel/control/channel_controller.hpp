@@ -145,6 +145,7 @@ enum class ChannelEventKind : std::uint8_t {
   block_ended,    // the path passed the block's end (an exact stop: and every axis is in position)
   alarm,          // alarm_number / alarm text via last_alarm()
   program_end,    // end_code
+  mdi_end,        // MDI blocks ended (end_code: 0 at their text's end, else 30, 2 or 99)
   sync_arrive,    // G04.1 P: the channel arrived at the mark (ChannelOutput::arrival)
   sync_release,   // every participant arrived: the channel goes on
   subcall,        // G144: this channel sent ChannelOutput::call
@@ -294,8 +295,26 @@ class ChannelController {
       resume_requested_ = true;
     } else if (out_.state != ChannelState::running && out_.state != ChannelState::waiting) {
       start_requested_ = true;
+      mdi_requested_ = false;
     }
   }
+  // MDI: the blocks prepared in the source (CommandSource::start_mdi) run as a cycle start runs
+  // the program, from idle (from reset once the axes are enabled). Their end brings the channel
+  // back to idle without a program end; the next cycle start runs the channel's program.
+  // Ignored while the channel runs, holds or waits.
+  void request_mdi() noexcept {
+    if (may_change_program()) {
+      start_requested_ = true;
+      mdi_requested_ = true;
+    }
+  }
+  // Whether the channel's program may change now: it stands in reset or idle and no reset
+  // ramps down. A start asked for waits for a program being checked (set_program_pending).
+  [[nodiscard]] bool may_change_program() const noexcept {
+    return (out_.state == ChannelState::reset || out_.state == ChannelState::idle) && !resetting_;
+  }
+  // A program or MDI blocks are being checked for this channel: a cycle start waits for them.
+  void set_program_pending(bool pending) noexcept { program_pending_ = pending; }
   // Feed hold: a running channel's path decelerates to a stop and stays (state hold) until a
   // cycle start; the spindle keeps turning. Ignored when the channel does not run (a channel
   // waiting at a mark or for an answer moves nothing).
@@ -319,6 +338,7 @@ class ChannelController {
   void request_reset() noexcept {
     reset_requested_ = true;
     start_requested_ = false;  // a start asked for after this reset still counts
+    mdi_requested_ = false;
   }
   // Emergency stop: motion ends at once, the channel goes to reset and stays there.
   void emergency_stop() noexcept { estop_requested_ = true; }
@@ -433,6 +453,9 @@ class ChannelController {
   AxisVector commanded_{};
   bool position_known_ = false;
   bool start_requested_ = false;
+  bool mdi_requested_ = false;    // the start asked for runs the MDI blocks
+  bool mdi_run_ = false;          // the run under way is MDI blocks
+  bool program_pending_ = false;  // a program being checked: a start waits
   bool resume_requested_ = false;
   bool hold_requested_ = false;
   bool single_block_ = false;

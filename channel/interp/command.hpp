@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -50,6 +51,9 @@ enum class SpindleDirection : std::uint8_t { cw, ccw, stop, orient, keep };
 
 // Spindle arguments of G114.1 and the G144 argument vector use these sizes.
 inline constexpr int kSubcallArgs = 26;  // #1-#26
+
+// The file name of blocks the operator typed (MDI), in their alarms and the trace.
+inline constexpr std::string_view kMdiName = "MDI";
 
 struct Command {
   Op op = Op::rapid;

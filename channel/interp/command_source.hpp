@@ -37,6 +37,13 @@ class CommandSource {
     return ProgramAlarm{1100, "this channel cannot run programs called by another channel", "", 0,
                         0};
   }
+  // Positions the source at the start of the MDI blocks the operator typed (prepared before),
+  // at `current`; an alarm when there are none. Outside the cycle's allocation rule, as call().
+  // The next rewind() goes back to the channel's own program.
+  virtual std::optional<ProgramAlarm> start_mdi(const AxisVector& current) {
+    (void)current;
+    return ProgramAlarm{1100, "this channel cannot run MDI blocks", "", 0, 0};
+  }
 };
 
 }  // namespace mcnc::interp

@@ -22,6 +22,10 @@ std::optional<ProgramAlarm> Interpreter::start_called(
   return run_->start_called(number, args);
 }
 
+std::optional<ProgramAlarm> Interpreter::start_mdi(std::string text) {
+  return run_->start_mdi(std::move(text));
+}
+
 std::optional<InterpResult> Interpreter::next() {
   return run_->next();
 }

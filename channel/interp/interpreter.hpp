@@ -51,6 +51,9 @@ class Interpreter {
   // #1-#26 from `args` (#number, value), and M99 in it ends the program (M99 code 99).
   std::optional<ProgramAlarm> start_called(int number,
                                            const std::vector<std::pair<int, double>>& args);
+  // Starts blocks the operator typed (MDI, file name kMdiName): the end of the text ends them
+  // with end code 0, as do M30, M02 and an M99 at their top level.
+  std::optional<ProgramAlarm> start_mdi(std::string text);
 
   // The next command; or an alarm (the program stops there, later pulls return nullopt); or
   // nullopt once the program has ended.

@@ -61,64 +61,102 @@ InterpreterSource::InterpreterSource(InterpreterConfig config) : config_(std::mo
 
 InterpreterSource::~InterpreterSource() = default;
 
-std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_text,
-                                                    const std::string& program_name) {
-  text_ = program_text;
-  name_ = program_name;
-  loaded_ = true;
-  InterpreterConfig dry = config_;
+CheckedProgram InterpreterSource::check(const InterpreterConfig& config, std::string text,
+                                        std::string name, bool mdi) {
+  CheckedProgram checked{std::move(name), std::move(text), 0, std::nullopt};
+  InterpreterConfig dry = config;
   dry.retained_file.clear();       // a dry run must not write the retained variables
   dry.shared_variables = nullptr;  // nor tell the other channels of its writes
   dry.shared_sink = nullptr;
   Interpreter probe(dry);
-  load_alarm_ = probe.start(text_, name_);
-  block_count_ = load_alarm_ ? 0 : probe.main_block_count();
-  for (int i = 0; i < kDryRunCommands && !load_alarm_; ++i) {
+  std::optional<ProgramAlarm>& alarm = checked.alarm;
+  alarm = mdi ? probe.start_mdi(checked.text) : probe.start(checked.text, checked.name);
+  checked.block_count = alarm ? 0 : probe.main_block_count();
+  for (int i = 0; i < kDryRunCommands && !alarm; ++i) {
     std::optional<InterpResult> r = probe.next();
     if (!r) {
       break;
     }
-    if (const auto* alarm = std::get_if<ProgramAlarm>(&*r)) {
-      load_alarm_ = *alarm;
+    if (const auto* a = std::get_if<ProgramAlarm>(&*r)) {
+      alarm = *a;
       break;
     }
     const Command& c = std::get<Command>(*r);
     std::string why;
-    if (!for_channel(c, why, config_)) {
-      load_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
+    if (!for_channel(c, why, config)) {
+      alarm =
+          ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : checked.name, c.line, 0};
     } else if (c.op == Op::end) {
       break;
     }
   }
-  interpreter_.reset();
+  return checked;
+}
+
+std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_text,
+                                                    const std::string& program_name) {
+  adopt(check(config_, program_text, program_name, false));
   return load_alarm_;
+}
+
+void InterpreterSource::adopt(CheckedProgram program) noexcept {
+  text_ = std::move(program.text);
+  name_ = std::move(program.name);
+  block_count_ = program.block_count;
+  load_alarm_ = std::move(program.alarm);
+  loaded_ = true;
+}
+
+void InterpreterSource::prepare_mdi(CheckedProgram blocks) noexcept {
+  mdi_text_ = std::move(blocks.text);
+  mdi_blocks_ = blocks.block_count;
+}
+
+void InterpreterSource::start_interpreter(const AxisVector& current) {
+  InterpreterConfig c = config_;
+  for (std::size_t i = 0; i < c.axes.size() && i < kMaxChannelAxes; ++i) {
+    c.axes[i].start = current[i];
+  }
+  interpreter_ = std::make_unique<Interpreter>(c);
+  run_alarm_.reset();
 }
 
 void InterpreterSource::rewind(const AxisVector& current) {
   interpreter_.reset();
   run_alarm_.reset();
   calling_ = false;
+  run_blocks_ = block_count_;
   if (!loaded_ || load_alarm_) {
     return;
   }
-  InterpreterConfig c = config_;
-  for (std::size_t i = 0; i < c.axes.size() && i < kMaxChannelAxes; ++i) {
-    c.axes[i].start = current[i];
-  }
-  interpreter_ = std::make_unique<Interpreter>(c);
+  start_interpreter(current);
   run_alarm_ = interpreter_->start(text_, name_);
 }
 
 std::optional<ProgramAlarm> InterpreterSource::call(int number,
                                                     const std::vector<std::pair<int, double>>& args,
                                                     const AxisVector& current) {
-  InterpreterConfig c = config_;
-  for (std::size_t i = 0; i < c.axes.size() && i < kMaxChannelAxes; ++i) {
-    c.axes[i].start = current[i];
-  }
-  interpreter_ = std::make_unique<Interpreter>(c);
+  start_interpreter(current);
   calling_ = true;
   run_alarm_ = interpreter_->start_called(number, args);
+  run_blocks_ = run_alarm_ ? 0 : interpreter_->main_block_count();
+  if (run_alarm_) {
+    interpreter_.reset();
+  }
+  return run_alarm_;
+}
+
+std::optional<ProgramAlarm> InterpreterSource::start_mdi(const AxisVector& current) {
+  if (mdi_text_.empty()) {
+    interpreter_.reset();
+    calling_ = true;
+    run_alarm_ = ProgramAlarm{1100, "no MDI blocks to run", std::string(kMdiName), 0, 0};
+    return run_alarm_;
+  }
+  start_interpreter(current);
+  calling_ = true;
+  run_blocks_ = mdi_blocks_;
+  run_alarm_ = interpreter_->start_mdi(mdi_text_);
   if (run_alarm_) {
     interpreter_.reset();
   }

@@ -15,23 +15,46 @@
 
 namespace mcnc::interp {
 
+// A program checked before it runs (InterpreterSource::check): its text, its block count and
+// the first alarm of its dry run.
+struct CheckedProgram {
+  std::string name;
+  std::string text;
+  std::size_t block_count = 0;
+  std::optional<ProgramAlarm> alarm;
+};
+
 class InterpreterSource final : public CommandSource {
  public:
   explicit InterpreterSource(InterpreterConfig config);
   ~InterpreterSource() override;
 
-  // Parses the whole file, then interprets it to its end from machine position 0 (a dry run of
+  // Parses the whole text, then interprets it to its end from machine position 0 (a dry run of
   // at most kDryRunCommands commands, since a program may loop for ever), so that a bad block
   // is an alarm before the program starts, including commands the channel cannot execute yet.
-  // Returns the first alarm, or nullopt.
+  // `mdi`: blocks the operator typed, which their text's end ends (file name kMdiName).
+  // Touches no source: it may run on another thread than the channel's cycle, and take long.
+  static CheckedProgram check(const InterpreterConfig& config, std::string text, std::string name,
+                              bool mdi);
+  static constexpr int kDryRunCommands = 1000000;
+  // check(), then adopt(). Returns the program's first alarm, or nullopt.
   std::optional<ProgramAlarm> load(const std::string& program_text,
                                    const std::string& program_name);
-  static constexpr int kDryRunCommands = 1000000;
+  // Makes `program` the channel's own: the next rewind() starts it; an alarm in it is the
+  // answer of every pull until another program is adopted. A run under way goes on (it has its
+  // own copy of its text).
+  void adopt(CheckedProgram program) noexcept;
+  // The checked MDI blocks that the next start_mdi() starts.
+  void prepare_mdi(CheckedProgram blocks) noexcept;
+  // Whether the channel has its own program, free of alarms.
+  [[nodiscard]] bool has_program() const noexcept { return loaded_ && !load_alarm_; }
   void rewind(const AxisVector& current) override;
   std::optional<PullResult> next() override;
   std::optional<ProgramAlarm> call(int number, const std::vector<std::pair<int, double>>& args,
                                    const AxisVector& current) override;
-  [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
+  std::optional<ProgramAlarm> start_mdi(const AxisVector& current) override;
+  // The blocks of the run under way (the channel's program, a called program, MDI blocks).
+  [[nodiscard]] std::size_t block_count() const noexcept override { return run_blocks_; }
   void adopt_position(const AxisVector& at) override;
 
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
@@ -41,15 +64,21 @@ class InterpreterSource final : public CommandSource {
   static bool for_channel(const Command& c, std::string& why, const InterpreterConfig& config);
 
  private:
+  // A fresh interpreter at `current` for a run.
+  void start_interpreter(const AxisVector& current);
+
   InterpreterConfig config_;
   std::string text_;
   std::string name_;
   std::unique_ptr<Interpreter> interpreter_;
   std::optional<ProgramAlarm> load_alarm_;  // the channel's own program, found at load()
   std::optional<ProgramAlarm> run_alarm_;   // the run under way stopped there
-  bool calling_ = false;                    // the run is a program another channel called
-  std::size_t block_count_ = 0;
+  bool calling_ = false;  // the run is not the channel's program: a called one, or MDI blocks
+  std::size_t block_count_ = 0;  // of the channel's program
+  std::size_t run_blocks_ = 0;   // of the run under way
   bool loaded_ = false;
+  std::string mdi_text_;  // prepared by prepare_mdi()
+  std::size_t mdi_blocks_ = 0;
 };
 
 }  // namespace mcnc::interp

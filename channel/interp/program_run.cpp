@@ -156,6 +156,14 @@ std::optional<ProgramAlarm> ProgramRun::start_called(
   return std::nullopt;
 }
 
+std::optional<ProgramAlarm> ProgramRun::start_mdi(std::string text) {
+  if (auto alarm = start_text(std::move(text), std::string(kMdiName))) {
+    return alarm;
+  }
+  mdi_ = true;
+  return std::nullopt;
+}
+
 const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
   for (const auto& p : file_programs_) {
     if (p->number && *p->number == number) {
@@ -282,6 +290,10 @@ bool ProgramRun::step() {
   if (f.pc >= static_cast<int>(p.lines.size())) {
     file_ = &p.file;
     line_ = p.lines.empty() ? nullptr : &p.lines.back();
+    if (f.kind == CallKind::main && frames_.size() == 1 && mdi_) {
+      end_program(0);  // MDI blocks end with their text
+      return true;
+    }
     if (f.kind == CallKind::main && frames_.size() == 1) {
       return fail(alarm::kProgramEndMissing, "program end M30 or M02 missing", 0);
     }
@@ -595,7 +607,7 @@ bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column
   if (contour_mode_ != ContourMode::none) {
     return contour_forbids("M99", column);
   }
-  if (frames_.size() == 1 && called_) {
+  if (frames_.size() == 1 && (called_ || mdi_)) {
     end_program(99);  // a program called by G144 ends at its M99 (spec dafeng §3.4 decide 4)
     return true;
   }

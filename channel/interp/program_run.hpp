@@ -40,6 +40,9 @@ class ProgramRun final : public macro::VariableProvider {
   // the call's arguments, and M99 at its top level ends it instead of looping.
   std::optional<ProgramAlarm> start_called(int number,
                                            const std::vector<std::pair<int, double>>& args);
+  // Starts blocks the operator typed (MDI): the end of the text ends them (end code 0), as do
+  // M30, M02 and an M99 at their top level.
+  std::optional<ProgramAlarm> start_mdi(std::string text);
   std::optional<InterpResult> next();
 
   macro::VariableStore& variables() { return vars_; }
@@ -266,6 +269,7 @@ class ProgramRun final : public macro::VariableProvider {
   std::uint64_t sequence_ = 0;
   bool started_ = false;
   bool called_ = false;  // started by G144: M99 in the main program ends it
+  bool mdi_ = false;     // MDI blocks: their end and M99 end them
   bool ended_ = false;
   std::optional<ProgramAlarm> alarm_;
   bool alarm_reported_ = false;

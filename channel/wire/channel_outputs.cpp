@@ -1,5 +1,6 @@
 #include "channel/wire/channel_outputs.hpp"
 
+#include "channel/interp/command.hpp"
 #include "channel/wire/channel_mask.hpp"
 #include "common/text/text_lines.hpp"
 
@@ -44,6 +45,12 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
   }
+  set_program_now(program_name_);
+}
+
+void ChannelOutputs::set_program(std::string name, std::vector<std::string> lines) noexcept {
+  program_name_ = std::move(name);
+  program_lines_ = std::move(lines);
   set_program_now(program_name_);
 }
 
@@ -262,10 +269,14 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
     case ChannelEventKind::block_started: {
       // A block of another file (a subprogram from the program directory): its own name and
       // line text. Its lines are read once, at its first block.
-      const bool other = event.file != nullptr && *event.file != program_name_;
-      const std::vector<std::string>& lines = other ? lines_of(*event.file) : program_lines_;
-      const std::string name =
-          other ? std::filesystem::path(*event.file).filename().string() : program_name_;
+      const bool mdi = event.file != nullptr && *event.file == interp::kMdiName;
+      const bool other = !mdi && event.file != nullptr && *event.file != program_name_;
+      const std::vector<std::string>& lines = mdi     ? mdi_lines_
+                                              : other ? lines_of(*event.file)
+                                                      : program_lines_;
+      const std::string name = mdi     ? std::string(interp::kMdiName)
+                               : other ? std::filesystem::path(*event.file).filename().string()
+                                       : program_name_;
       const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
       trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
@@ -339,6 +350,9 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       tracer_.emit(cycle, "subcall_release", "\"ch\":\"%s\",\"call_id\":%llu,\"outcome\":\"%s\"",
                    ch, static_cast<unsigned long long>(event.call_id),
                    to_string(event.call_outcome));
+      break;
+    case ChannelEventKind::mdi_end:
+      tracer_.emit(cycle, "mdi_end", "\"ch\":\"%s\",\"code\":%d", ch, event.end_code);
       break;
     case ChannelEventKind::program_end:
       tracer_.emit(cycle, "end", "\"ch\":\"%s\",\"code\":%d", ch, event.end_code);

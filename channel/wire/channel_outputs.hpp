@@ -39,6 +39,11 @@ class ChannelOutputs {
   // Reads the line text of every file of `dir` (the program store), at set-up: the blocks of a
   // subprogram from there are traced with their text without reading the disk in the cycle.
   void preload_program_dir(const std::string& dir);
+  // The channel's own program is another file now (the operator selected it): its name and
+  // lines for the trace; the status names it from now on.
+  void set_program(std::string name, std::vector<std::string> lines) noexcept;
+  // The lines of the MDI blocks about to run, for the trace.
+  void set_mdi_lines(std::vector<std::string> lines) noexcept { mdi_lines_ = std::move(lines); }
 
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
@@ -62,6 +67,7 @@ class ChannelOutputs {
   std::string program_name_;
   std::array<char, 64> program_now_{};
   std::vector<std::string> program_lines_;
+  std::vector<std::string> mdi_lines_;
   std::map<std::string, std::vector<std::string>> other_lines_;
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;

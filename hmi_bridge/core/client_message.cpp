@@ -1,5 +1,7 @@
 #include "hmi_bridge/core/client_message.hpp"
 
+#include "common/text/file_name.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -118,7 +120,7 @@ ClientMessage read_command(const Json& j, const config::MachineConfig& machine) 
                              std::to_string(process::OperatorRequest::kTextSize - 1) +
                              " characters");
     }
-    if (c.action == OperatorActionKind::select_program && !is_plain_file_name(c.text)) {
+    if (c.action == OperatorActionKind::select_program && !text::is_plain_file_name(c.text)) {
       return error(c.id, "a program is named by its file name in the program store");
     }
   }
@@ -126,11 +128,6 @@ ClientMessage read_command(const Json& j, const config::MachineConfig& machine) 
 }
 
 }  // namespace
-
-bool is_plain_file_name(std::string_view name) noexcept {
-  return !name.empty() && name.find('/') == std::string_view::npos &&
-         name.find('\\') == std::string_view::npos && name != "." && name != "..";
-}
 
 ClientMessage read_client_message(std::string_view text, const config::MachineConfig& machine) {
   if (text.size() > kMaxMessageBytes) {

@@ -33,9 +33,6 @@ struct MessageError {
 
 using ClientMessage = std::variant<AuthMessage, CommandMessage, MessageError>;
 
-// A file name without a directory part ("O1100.nc"; not "../x", "/etc/x", "." or "..").
-bool is_plain_file_name(std::string_view name) noexcept;
-
 // Reads one text message. Channel names are the machine's; values must be finite and within
 // the action's range (overrides, single block 0/1); texts printable ASCII and shorter than an
 // operator command's text; a program name a plain file name.

@@ -37,13 +37,6 @@ int log_trampoline(const mg_connection* /*conn*/, const char* message) {
   return 1;  // logged here; civetweb prints nothing itself
 }
 
-// The actions the channels do not run yet: refused here, so that nothing is sent that would do
-// nothing.
-bool channels_run(process::OperatorActionKind action) {
-  using process::OperatorActionKind;
-  return action != OperatorActionKind::select_program && action != OperatorActionKind::mdi;
-}
-
 }  // namespace
 
 HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machine,
@@ -249,8 +242,6 @@ bool HmiServer::handle_text(Client& client, std::string_view text) {
   if (role != Role::operator_) {
     reason = role == Role::viewer ? "a viewer cannot command: show the operator token"
                                   : "commands need the operator token";
-  } else if (!channels_run(command.action)) {
-    reason = std::string(process::to_string(command.action)) + " is not run by the channels yet";
   }
   if (reason.empty() && feed_.send(command, reason)) {
     count(&HmiCounters::commands);

@@ -1,5 +1,7 @@
 #include "hmi_bridge/server/machine_feed.hpp"
 
+#include "channel/interp/command.hpp"
+#include "common/text/file_name.hpp"
 #include "common/text/text_lines.hpp"
 #include "hmi_bridge/core/hmi_messages.hpp"
 #include "tools/status/wire/status_wire.hpp"
@@ -55,6 +57,17 @@ void MachineFeed::on_alarm(const ::mcnc::Alarm& a) {
 }
 
 void MachineFeed::on_operator(const ::mcnc::OperatorCommand& c) {
+  if (c.action() == OP_MDI && c.channel() >= 1 && c.channel() <= machine_.channels.size()) {
+    // Any HMI's MDI blocks (this one's too): the text the channel's "MDI" program shows.
+    const std::string& channel = machine_.channels[c.channel() - 1].name;
+    std::lock_guard<std::mutex> lock(mutex_);
+    mdi_[channel] = c.text();
+    if (const auto it = programs_.find(channel);
+        it != programs_.end() && it->second.name == interp::kMdiName) {
+      programs_.erase(it);  // shown again, with the new blocks, when they run
+    }
+    return;
+  }
   // Any HMI's acknowledgement (this one's too, as it comes back) marks the alarm everywhere.
   if (c.action() != OP_ALARM_ACK) {
     return;
@@ -76,14 +89,20 @@ void MachineFeed::on_coordination(const ::mcnc::CoordinationEvent& e) {
   }
 }
 
-MachineFeed::Program MachineFeed::load(const std::string& channel, const std::string& name) const {
+MachineFeed::Program MachineFeed::load(const std::string& channel, const std::string& name) {
+  if (name == interp::kMdiName) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = mdi_.find(channel);
+    return Program{name,
+                   it == mdi_.end() ? std::vector<std::string>{} : text::split_lines(it->second)};
+  }
   const auto main = main_programs_.find(channel);
   if (main != main_programs_.end() && std::filesystem::path(main->second).filename() == name) {
     return Program{name, text::read_lines(main->second)};
   }
   // The name comes from the wire: a plain file of the program store, of a program's size.
   constexpr std::uintmax_t kLargestProgram = 16U << 20U;
-  if (!program_dir_.empty() && is_plain_file_name(name)) {
+  if (!program_dir_.empty() && text::is_plain_file_name(name)) {
     const std::filesystem::path path = std::filesystem::path(program_dir_) / name;
     std::error_code ec;
     if (std::filesystem::is_regular_file(path, ec) &&
@@ -143,6 +162,18 @@ bool MachineFeed::send(const CommandMessage& command, std::string& reason) {
   ::mcnc::OperatorCommand c;
   {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (command.action == process::OperatorActionKind::select_program ||
+        command.action == process::OperatorActionKind::mdi) {
+      const auto it = snapshot_.channels.find(command.channel);
+      const bool stands =
+          it != snapshot_.channels.end() && (it->second.state == status::ChannelState::reset ||
+                                             it->second.state == status::ChannelState::idle);
+      if (!stands) {
+        reason = std::string(process::to_string(command.action)) +
+                 ": the channel must stand in reset or idle";
+        return false;
+      }
+    }
     c.seq(++seq_);
   }
   c.generation(0);  // the run going on

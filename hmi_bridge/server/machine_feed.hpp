@@ -30,7 +30,9 @@ class MachineFeed {
   std::vector<std::string> take_news();
   // What a browser that starts viewing gets first: the alarm history and every program known.
   std::vector<std::string> welcome();
-  // Sends the command as a DDS operator command; false with the reason when it cannot go out.
+  // Sends the command as a DDS operator command; false with the reason when it cannot go out,
+  // or when it asks for a program or MDI blocks while the channel does not stand in reset or
+  // idle (the channel would refuse it too).
   bool send(const CommandMessage& command, std::string& reason);
   // Whether every channel and axis has been heard (for start-up logs).
   [[nodiscard]] bool all_heard();
@@ -43,8 +45,9 @@ class MachineFeed {
   void on_alarm(const ::mcnc::Alarm& a);
   void on_operator(const ::mcnc::OperatorCommand& c);
   void on_coordination(const ::mcnc::CoordinationEvent& e);
-  // The text of `name` for `channel`: its main program or a file of the program store.
-  Program load(const std::string& channel, const std::string& name) const;
+  // The text of `name` for `channel`: its main program, a file of the program store, or its
+  // last MDI blocks.
+  Program load(const std::string& channel, const std::string& name);
 
   const config::MachineConfig& machine_;
   std::map<std::string, std::string> main_programs_;
@@ -54,6 +57,7 @@ class MachineFeed {
   AlarmLog alarms_;
   MeetingTracker meetings_;
   std::map<std::string, Program> programs_;  // by channel name
+  std::map<std::string, std::string> mdi_;   // the last MDI blocks sent to a channel, by name
   std::vector<std::string> news_;
   std::uint64_t seq_ = 0;
   dds::Participant participant_;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <regex>
@@ -20,8 +21,10 @@ namespace {
 // `mcnc run` of `programs` (CH=FILE) waiting for CYCLE START, paced, with the HMI on any
 // free port.
 std::vector<std::string> hmi_run(const TestMachine& machine,
-                                 const std::vector<std::string>& programs) {
+                                 const std::vector<std::string>& programs,
+                                 const std::vector<std::string>& more = {}) {
   std::vector<std::string> argv{bin("mcnc"), "run", machine.path()};
+  argv.insert(argv.end(), more.begin(), more.end());
   for (const std::string& p : programs) {
     argv.insert(argv.end(), {"--program", p});
   }
@@ -239,4 +242,106 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
   EXPECT_EQ(actions("CH2"), (std::vector<std::string>{"cycle_start"}));
   EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
   EXPECT_EQ(trace.back()["channels"]["CH2"]["end"], 30);
+}
+
+TEST(Hmi, AnOperatorRunsMdiBlocksThenSelectsAnotherProgramAndRunsIt) {
+  TestMachine machine("small_lathe.yaml", 89);
+  const std::string store = machine.file("store");
+  std::filesystem::create_directories(store);
+  std::ofstream(store + "/other.nc") << "O2000 (selected from the HMI)\nG00 X30 Z20\n"
+                                        "G01 Z-20 F600\nM30\n";
+  Background launch(
+      hmi_run(machine, {"CH1=" + source("launch/programs/xz_move.nc")}, {"--progdir", store}), -1,
+      machine.file("launch"));
+  const HmiAddress hmi = wait_for_hmi(machine.file("launch.out"));
+  ASSERT_NE(hmi.port, 0) << slurp(machine.file("launch.out"));
+  WsClient op("127.0.0.1", hmi.port, "");
+  ASSERT_TRUE(op.connected()) << op.error();
+  op.send(R"({"type":"auth","token":")" + hmi.token + "\"}");
+  ASSERT_TRUE(shows_role(op, "operator"));
+  ASSERT_TRUE(eventually([&] { return ch1_state(op) == "idle"; }, 60s));
+  const auto with_text = [](int id, const std::string& action, const std::string& text) {
+    return R"({"type":"command","id":)" + std::to_string(id) + R"(,"action":")" + action +
+           R"(","channel":"CH1","text":")" + text + "\"}";
+  };
+  const auto program_named = [](const std::string& name) {
+    return [name](const nlohmann::json& j) {
+      return j.is_object() && j.value("type", "") == "program" && j.value("name", "") == name;
+    };
+  };
+
+  // MDI: the block runs at once; the page shows it as the channel's "MDI" program.
+  op.send(with_text(1, "mdi", "G00 X20 Z5"));
+  nlohmann::json reply = op.wait_for(reply_to(1), 5s);
+  ASSERT_FALSE(reply.is_null());
+  EXPECT_EQ(reply["ok"], true) << reply;
+  const nlohmann::json mdi = op.wait_for(program_named("MDI"), 60s);
+  ASSERT_FALSE(mdi.is_null());
+  EXPECT_EQ(mdi["lines"], nlohmann::json::array({"G00 X20 Z5"}));
+  ASSERT_TRUE(eventually([&] { return ch1_state(op) == "idle"; }, 60s));
+
+  // Select a file of the program store; it replaces xz_move.nc, which never runs.
+  op.send(with_text(2, "select_program", "other.nc"));
+  reply = op.wait_for(reply_to(2), 5s);
+  ASSERT_FALSE(reply.is_null());
+  EXPECT_EQ(reply["ok"], true) << reply;
+  const nlohmann::json other = op.wait_for(program_named("other.nc"), 60s);
+  ASSERT_FALSE(other.is_null());
+  EXPECT_EQ(other["lines"].size(), 4U);
+  op.send(command(3, "cycle_start", "CH1"));
+  ASSERT_TRUE(eventually([&] { return ch1_state(op) == "running"; }, 60s));
+  // While it runs, neither MDI nor another program: refused by the HMI, as by the channel.
+  op.send(with_text(4, "mdi", "G00 X0"));
+  reply = op.wait_for(reply_to(4), 5s);
+  ASSERT_FALSE(reply.is_null());
+  EXPECT_EQ(reply["ok"], false);
+  EXPECT_EQ(reply["reason"], "mdi: the channel must stand in reset or idle");
+  EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
+
+  const auto trace = read_trace(machine.file("trace.jsonl"));
+  std::vector<std::string> order;  // what CH1 did, in order
+  for (const auto& e : trace) {
+    if (e.value("src", "") != "CH1") {
+      continue;
+    }
+    const std::string ev = e["ev"];
+    if (ev == "operator") {
+      order.push_back("operator " + e["action"].get<std::string>() +
+                      (e.contains("text") ? " " + e["text"].get<std::string>() : ""));
+    } else if (ev == "block") {
+      order.push_back("block " + e["prog"].get<std::string>() + ":" +
+                      std::to_string(e["line"].get<int>()) + " " + e["text"].get<std::string>());
+    } else if (ev == "mdi_end" || ev == "end") {
+      order.push_back(ev + " " + std::to_string(e["code"].get<int>()));
+    } else if (ev == "program") {
+      order.push_back("program " + e["prog"].get<std::string>() + " " +
+                      std::to_string(e["blocks"].get<int>()));
+    }
+  }
+  EXPECT_EQ(order, (std::vector<std::string>{
+                       "operator mdi G00 X20 Z5",
+                       "block MDI:1 G00 X20 Z5",
+                       "mdi_end 0",
+                       "operator select_program other.nc",
+                       "program other.nc 3",
+                       "operator cycle_start",
+                       "block other.nc:2 G00 X30 Z20",
+                       "block other.nc:3 G01 Z-20 F600",
+                       "block other.nc:4 M30",
+                       "end 30",
+                   }));
+  // The MDI block went where it said (X in diameter: the slide at radius 10).
+  bool mdi_end_seen = false;
+  for (const auto& e : trace) {
+    if (e.value("src", "") == "CH1" && e["ev"] == "pos" && !mdi_end_seen) {
+      if (e["axis"] == "X1") {
+        EXPECT_NEAR(e["cmd"].get<double>(), 10.0, 1e-6);
+      } else {
+        EXPECT_NEAR(e["cmd"].get<double>(), 5.0, 1e-6);
+      }
+    }
+    mdi_end_seen = mdi_end_seen || e["ev"] == "mdi_end";
+  }
+  EXPECT_TRUE(mdi_end_seen);
+  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
 }

@@ -72,6 +72,7 @@ class ChannelRig {
   }
 
   ChannelController& ctl() { return ctl_; }
+  interp::InterpreterSource& source() { return source_; }
 
   std::vector<int> alarms;  // numbers, in the order raised
   std::vector<int> alarm_lines;

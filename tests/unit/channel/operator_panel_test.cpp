@@ -263,5 +263,97 @@ TEST(OperatorPanel, TheSpindleOverrideUnderG96StaysWithinTheG50Limit) {
   EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 800.0);
 }
 
+// MDI blocks, checked as the channel shell checks them, prepared in the source.
+void prepare_mdi(PanelRig& rig, const std::string& blocks) {
+  interp::CheckedProgram checked =
+      interp::InterpreterSource::check(xz_channel(), blocks, std::string(interp::kMdiName), true);
+  ASSERT_FALSE(checked.alarm.has_value()) << checked.alarm->text;
+  rig.source().prepare_mdi(std::move(checked));
+}
+
+// Runs until the channel has run and stands in idle again; the kinds of its events on the way.
+std::vector<ChannelEventKind> run_back_to_idle(PanelRig& rig) {
+  std::vector<ChannelEventKind> kinds;
+  bool ran = false;
+  EXPECT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+    for (std::size_t e = 0; e < o.event_count; ++e) {
+      kinds.push_back(o.events[e].kind);
+    }
+    ran = ran || o.state == ChannelState::running;
+    return ran && o.state != ChannelState::running;
+  }));
+  return kinds;
+}
+
+TEST(OperatorPanel, MdiBlocksRunFromIdleAndEndWithoutAProgramEnd) {
+  PanelRig rig;
+  rig.load("G01 X100 F6000\nM30\n");
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  prepare_mdi(rig, "G01 X10 Z5 F6000");
+  ASSERT_TRUE(rig.ctl().may_change_program());
+  rig.ctl().request_mdi();
+  const std::vector<ChannelEventKind> kinds = run_back_to_idle(rig);
+  EXPECT_EQ(rig.step().state, ChannelState::idle);
+  EXPECT_NEAR(rig.x(), 10.0, 1e-9);
+  EXPECT_NEAR(rig.z(), 5.0, 1e-9);
+  EXPECT_EQ(std::count(kinds.begin(), kinds.end(), ChannelEventKind::mdi_end), 1);
+  EXPECT_EQ(std::count(kinds.begin(), kinds.end(), ChannelEventKind::program_end), 0);
+  EXPECT_FALSE(rig.step().program_end);
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+
+  // The next cycle start runs the channel's own program from its start.
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_NEAR(rig.x(), 100.0, 1e-9);
+  EXPECT_EQ(rig.step().end_code, 30);
+}
+
+TEST(OperatorPanel, MdiIsIgnoredWhileTheProgramRuns) {
+  PanelRig rig;
+  rig.load("G01 X50 F6000\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 10.0; }));
+  EXPECT_FALSE(rig.ctl().may_change_program());
+  prepare_mdi(rig, "G00 Z30");
+  rig.ctl().request_mdi();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_NEAR(rig.x(), 50.0, 1e-9);
+  for (int i = 0; i < 200; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::idle);
+  }
+  EXPECT_NEAR(rig.z(), 0.0, 1e-9);  // the MDI block never ran
+}
+
+TEST(OperatorPanel, ACycleStartWaitsForAProgramBeingCheckedThenRunsIt) {
+  PanelRig rig;
+  rig.load("G01 X50 F6000\nM30\n");
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  rig.ctl().set_program_pending(true);
+  rig.ctl().request_start();
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_EQ(rig.step().state, ChannelState::idle);
+  }
+  rig.source().adopt(
+      interp::InterpreterSource::check(xz_channel(), "G01 Z20 F6000\nM30\n", "NEW.nc", false));
+  rig.ctl().set_program_pending(false);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  EXPECT_NEAR(rig.z(), 20.0, 1e-9);
+  EXPECT_NEAR(rig.x(), 0.0, 1e-9);  // the program selected before never ran
+}
+
+TEST(OperatorPanel, AResetDuringMdiBlocksLeavesTheChannelsProgramToRun) {
+  PanelRig rig;
+  rig.load("G01 Z10 F6000\nM30\n");
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  prepare_mdi(rig, "G01 X100 F600");
+  rig.ctl().request_mdi();
+  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 1.0; }));
+  rig.ctl().request_reset();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  EXPECT_LT(rig.x(), 100.0);
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_NEAR(rig.z(), 10.0, 1e-9);
+  EXPECT_EQ(rig.step().end_code, 30);
+}
+
 }  // namespace
 }  // namespace mcnc::channel

@@ -1,5 +1,7 @@
 #include "hmi_bridge/core/client_message.hpp"
 
+#include "common/text/file_name.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -110,10 +112,10 @@ TEST(ClientMessage, UnknownChannelsActionsAndTypesAreErrors) {
 }
 
 TEST(ClientMessage, OnlyPlainFileNamesNameAProgram) {
-  EXPECT_TRUE(is_plain_file_name("O1100.nc"));
-  EXPECT_TRUE(is_plain_file_name("part transfer.nc"));
+  EXPECT_TRUE(text::is_plain_file_name("O1100.nc"));
+  EXPECT_TRUE(text::is_plain_file_name("part transfer.nc"));
   for (const char* name : {"", ".", "..", "../O1100.nc", "/etc/passwd", "a/b.nc", "a\\b.nc"}) {
-    EXPECT_FALSE(is_plain_file_name(name)) << name;
+    EXPECT_FALSE(text::is_plain_file_name(name)) << name;
   }
 }
 

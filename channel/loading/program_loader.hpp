@@ -1,0 +1,62 @@
+#pragma once
+// The channel's program checks off the cycle: a program the operator selects, or MDI blocks,
+// checked on a thread of its own, since a dry run (InterpreterSource::check) may take seconds
+// where a cycle has milliseconds. The cycle hands a request over and later takes the result;
+// neither blocks nor allocates. One request at a time.
+#include "channel/interp/interpreter_source.hpp"
+
+#include <array>
+#include <condition_variable>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+#include <vector>
+
+namespace mcnc::channel {
+
+// A checked request: a program file of the program store, or MDI blocks, with the lines the
+// trace shows. A file that cannot be read is an alarm of its own.
+struct LoadedProgram {
+  bool mdi = false;
+  interp::CheckedProgram program;
+  std::vector<std::string> lines;
+};
+
+class ProgramLoader {
+ public:
+  static constexpr std::size_t kMaxText = 128;  // a file name or MDI blocks, as the wire holds
+
+  // `config`: the channel's interpreter configuration; a selected file is read from its
+  // program_dir.
+  explicit ProgramLoader(interp::InterpreterConfig config);
+  ~ProgramLoader();
+  ProgramLoader(const ProgramLoader&) = delete;
+  ProgramLoader& operator=(const ProgramLoader&) = delete;
+
+  // Hands over a program file name (`mdi` false) or MDI blocks. False when the text is empty or
+  // longer than kMaxText, or when a request is still checked or its result not taken.
+  bool submit(bool mdi, std::string_view text) noexcept;
+  // The result of the request, once checked.
+  std::optional<LoadedProgram> take() noexcept;
+  // A request is checked, or its result waits to be taken.
+  [[nodiscard]] bool busy() const noexcept;
+
+ private:
+  void run();
+  LoadedProgram load(bool mdi, const std::string& text) const;
+
+  const interp::InterpreterConfig config_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  bool requested_ = false;  // a request waits for the thread
+  bool checking_ = false;
+  bool mdi_ = false;
+  std::array<char, kMaxText + 1> text_{};
+  std::optional<LoadedProgram> result_;
+  std::thread thread_;  // last: starts once the rest is built
+};
+
+}  // namespace mcnc::channel

@@ -375,7 +375,10 @@ int main(int argc, char** argv) {
     if (axis->tpdo2_following_error) {
       startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x60F4, 0, 32};
     }
-    link.set_tpdo2(axis->tpdo2_velocity, axis->tpdo2_following_error);
+    if (axis->tpdo2_torque) {
+      startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x6077, 0, 16};
+    }
+    link.set_tpdo2(axis->tpdo2_velocity, axis->tpdo2_following_error, axis->tpdo2_torque);
     if (const auto error = link.bring_up(startup, 10s)) {
       spdlog::error("drive on {}: {}", bus->uri, *error);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
@@ -700,6 +703,8 @@ int main(int argc, char** argv) {
                              ? tpdo.following_error_actual / axis->counts_per_unit
                              : out.cmd - out.act);
       fb.last_emcy(link.last_emcy());
+      fb.load_known(axis->tpdo2_torque);
+      fb.load(axis->tpdo2_torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
       fb.mode_display(out.mode_display);
       fb.alarm(out.alarm != axisnode::AxisAlarm::none);
       feedback_writer.write(fb);

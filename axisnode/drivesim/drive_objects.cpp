@@ -39,7 +39,7 @@ bool mappable(bool receive, std::uint16_t index) noexcept {
     return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060;
   }
   return index == 0x6041 || index == 0x6064 || index == 0x606C || index == 0x60F4 ||
-         index == 0x6061;
+         index == 0x6061 || index == 0x6077;
 }
 
 }  // namespace
@@ -93,6 +93,9 @@ bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept
         break;
       case 0x60F4:
         value = live.following_error;
+        break;
+      case 0x6077:
+        value = live.torque;
         break;
       default:
         break;
@@ -299,6 +302,10 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::int32_t>(out, target_position_);
     case 0x60F4:
       return put<std::int32_t>(out, live.following_error);
+    case 0x6076:
+      return put<std::uint32_t>(out, live.rated_torque);
+    case 0x6077:
+      return put<std::int16_t>(out, live.torque);
     case 0x607C:
       return put<std::int32_t>(out, home_offset_);
     case 0x6098:
@@ -342,6 +349,8 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
     case 0x6064:
     case 0x606C:
     case 0x60F4:
+    case 0x6076:
+    case 0x6077:
       return abort::kReadOnly;
     case 0x1017:
       if (const std::uint32_t e = expect_size(size, 2)) {

@@ -2,7 +2,8 @@
 // The object dictionary of one simulated CiA 402 drive, as its SDO server sees it: the
 // communication objects a master configures at start-up (device type, heartbeat time, the
 // PDOs' communication and mapping parameters) and the drive-profile objects (controlword,
-// statusword, modes of operation and display, position, velocity, following error). Mapping
+// statusword, modes of operation and display, position, velocity, following error, rated and
+// actual torque). Mapping
 // follows CiA 301: a PDO's mapping changes only while the PDO is invalid (COB-ID bit 31) and
 // its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
 // object. Pure.
@@ -20,6 +21,8 @@ struct DriveLiveValues {
   std::int32_t position = 0;         // counts (0x6064)
   std::int32_t velocity = 0;         // counts/s (0x606C)
   std::int32_t following_error = 0;  // counts (0x60F4)
+  std::int16_t torque = 0;           // per mille of the rated torque (0x6077)
+  std::uint32_t rated_torque = 0;    // mN m (0x6076)
 };
 
 // What an RPDO carried, by its mapping: only the objects it maps are set.

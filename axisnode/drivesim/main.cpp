@@ -90,6 +90,7 @@ int main(int argc, char** argv) {
     params.inertia = axis.drive.inertia;
     params.friction = axis.drive.friction;
     params.torque_limit = axis.drive.torque_limit;
+    params.rated_torque = axis.drive.rated_torque;
     params.velocity_bandwidth_hz = axis.drive.velocity_bandwidth_hz;
     for (const config::DriveObjectDefault& o : axis.drive.objects) {
       params.objects[params.object_count++] = drivesim::ObjectDefault{

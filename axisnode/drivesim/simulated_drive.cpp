@@ -202,6 +202,10 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   objects_.live.position = out.position_actual;
   objects_.live.velocity = to_counts(velocity_);
   objects_.live.following_error = to_counts(target_ - position_);
+  objects_.live.torque = static_cast<std::int16_t>(
+      std::clamp(std::lround(torque_ / params_.rated_torque * 1000.0), -32768L, 32767L));
+  objects_.live.rated_torque =
+      static_cast<std::uint32_t>(std::lround(params_.rated_torque * 1000.0));
   ++syncs_;
   if (fault_ != DriveFault::none && syncs_ == fault_at_) {
     if (fault_ == DriveFault::heartbeat_stop) {

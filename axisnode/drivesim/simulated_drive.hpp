@@ -39,6 +39,7 @@ struct DriveParams {
   double inertia = 0.0005;               // J, kg m^2 (motor and load, reflected)
   double friction = 0.001;               // B, N m s/rad (viscous)
   double torque_limit = 10.0;            // N m
+  double rated_torque = 3.0;             // N m, the motor's (0x6076): 0x6077 is per mille of it
   double velocity_bandwidth_hz = 200.0;  // the velocity loop (PI) is tuned for this
   // Object defaults from the machine file (drive.objects), applied after the built-in ones.
   std::array<ObjectDefault, 16> objects{};

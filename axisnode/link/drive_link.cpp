@@ -106,7 +106,7 @@ void DriveLink::receive_loop() {
       case canopen::FrameKind::tpdo1:
         if (cls.node == node_id_) {
           if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
-            const bool paired = tpdo2_velocity_ || tpdo2_following_error_;
+            const bool paired = tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_;
             wakeup_.update([&] {
               tpdo_statusword_ = pdo->statusword;
               tpdo_position_ = pdo->position_actual;
@@ -121,8 +121,9 @@ void DriveLink::receive_loop() {
         }
         break;
       case canopen::FrameKind::tpdo2:
-        if (cls.node == node_id_ && (tpdo2_velocity_ || tpdo2_following_error_)) {
-          const std::size_t want = (tpdo2_velocity_ ? 4U : 0U) + (tpdo2_following_error_ ? 4U : 0U);
+        if (cls.node == node_id_ && (tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_)) {
+          const std::size_t want = (tpdo2_velocity_ ? 4U : 0U) +
+                                   (tpdo2_following_error_ ? 4U : 0U) + (tpdo2_torque_ ? 2U : 0U);
           if (frame.dlc != want) {
             ++malformed_;
             break;
@@ -133,10 +134,17 @@ void DriveLink::receive_loop() {
                                              static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
                                              static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
           };
+          // In the order the start-up mapped them: velocity, following error, torque.
+          const std::size_t torque_at = want - 2U;
           wakeup_.update([&] {
             tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
             tpdo2_following_error_value_ =
                 tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
+            tpdo2_torque_value_ =
+                tpdo2_torque_ ? static_cast<std::int16_t>(
+                                    static_cast<std::uint16_t>(frame.data[torque_at]) |
+                                    static_cast<std::uint16_t>(frame.data[torque_at + 1] << 8))
+                              : std::int16_t{0};
             ++tpdo2_count_;
             tpdo_count_ = std::min(tpdo1_count_, tpdo2_count_);
           });
@@ -332,6 +340,7 @@ TpdoSample DriveLink::tpdo() noexcept {
     sample.pdo.has_mode_display = with_mode_;
     sample.velocity_actual = tpdo2_velocity_value_.load();
     sample.following_error_actual = tpdo2_following_error_value_.load();
+    sample.torque_actual = tpdo2_torque_value_.load();
     sample.count = tpdo_count_.load();
   });
   return sample;

@@ -28,6 +28,7 @@ struct TpdoSample {
   std::uint64_t count = 0;           // complete answers so far (TPDO1, and TPDO2 when mapped)
   std::int32_t velocity_actual = 0;  // 0x606C from TPDO2, counts/s (when mapped)
   std::int32_t following_error_actual = 0;  // 0x60F4 from TPDO2, counts (when mapped)
+  std::int16_t torque_actual = 0;  // 0x6077 from TPDO2, per mille of rated torque (when mapped)
 };
 
 // What the node sends its drive each cycle. `mode` and `target_velocity_counts` go out only
@@ -68,11 +69,12 @@ class DriveLink {
   // Stops with stop_sync_timer() or the link.
   void start_sync_timer(const canopen::SyncSchedule& schedule);
   void stop_sync_timer();
-  // TPDO2 as the start-up mapped it (0x606C, then 0x60F4): set before bring_up(). An answer
-  // to a SYNC counts as complete once both TPDOs are in.
-  void set_tpdo2(bool velocity_actual, bool following_error) noexcept {
+  // TPDO2 as the start-up mapped it (0x606C, then 0x60F4, then 0x6077): set before
+  // bring_up(). An answer to a SYNC counts as complete once both TPDOs are in.
+  void set_tpdo2(bool velocity_actual, bool following_error, bool torque = false) noexcept {
     tpdo2_velocity_.store(velocity_actual);
     tpdo2_following_error_.store(following_error);
+    tpdo2_torque_.store(torque);
   }
   [[nodiscard]] bool sync_timer_running() const noexcept { return sync_thread_.joinable(); }
   [[nodiscard]] std::uint64_t syncs_skipped() const noexcept { return syncs_skipped_.load(); }
@@ -134,10 +136,12 @@ class DriveLink {
   std::atomic<bool> with_velocity_{false};
   std::atomic<bool> tpdo2_velocity_{false};
   std::atomic<bool> tpdo2_following_error_{false};
+  std::atomic<bool> tpdo2_torque_{false};
   std::uint64_t tpdo1_count_ = 0;  // guarded by the wakeup's lock
   std::uint64_t tpdo2_count_ = 0;
   std::atomic<std::int32_t> tpdo2_velocity_value_{0};
   std::atomic<std::int32_t> tpdo2_following_error_value_{0};
+  std::atomic<std::int16_t> tpdo2_torque_value_{0};
   // RPDOs seen from other nodes since the last SYNC (guarded by the wakeup's lock).
   std::bitset<128> rpdo_seen_;
   std::uint8_t sync_counter_ = 0;

@@ -662,10 +662,13 @@ bool ChannelController::queue_command(const interp::Command& c) noexcept {
   // and passes at once.
   const bool spindle = c.op == interp::Op::spindle;
   q = QueuedBlock{
-      c.n, c.line, c.op == interp::Op::dwell || spindle ? start : c.to,
+      c.n,
+      c.line,
+      c.op == interp::Op::dwell || spindle ? start : c.to,
       c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell,
-      spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start)};
-  q.file = c.file;
+      spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start),
+      c.file,
+      c.modal};
   ++queued_count_;
   return true;
 }
@@ -691,6 +694,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
       started.file = q.file;
       started.block = q.n;
       push_event(started);
+      out_.modal = q.modal;
       queued_started_ = 1;
       continue;
     }
@@ -867,6 +871,7 @@ void ChannelController::start_held(HeldBlock& b) noexcept {
   b.started = true;
   out_.block = b.n;
   out_.line = b.line;
+  out_.modal = b.modal;
   push_event(block_event(b, ChannelEventKind::block_started));
 }
 

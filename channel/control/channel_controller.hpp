@@ -186,6 +186,7 @@ struct ChannelOutput {
   ChannelState state = ChannelState::reset;
   std::size_t block = 0;
   int line = 0;
+  interp::ModalState modal;  // of the block under way (of the last one, between runs)
   bool program_end = false;
   int end_code = -1;
   std::uint64_t run_start_cycle = 0;  // cycle the program started (valid once it has run)
@@ -399,6 +400,29 @@ class ChannelController {
                ? call_block_->call.target
                : 0;
   }
+  // The M or T code whose answer (FIN) from the PLC the channel waits for, or nullptr.
+  [[nodiscard]] const AuxRequestOut* waiting_for_fin() const noexcept {
+    return aux_block_ && aux_block_->sent ? &aux_block_->request : nullptr;
+  }
+  // The axis exchange the channel waits for: its G code (140, 141, 142; 0: none) and the slot
+  // (AxisRequestOut::kAllSlots for G142).
+  struct ExchangeWait {
+    int g = 0;
+    std::size_t slot = 0;
+  };
+  [[nodiscard]] ExchangeWait waiting_for_exchange() const noexcept {
+    if (!exchange_block_ || !exchange_block_->sent) {
+      return {};
+    }
+    switch (exchange_block_->op) {
+      case interp::Op::axis_release:
+        return {140, exchange_block_->slot};
+      case interp::Op::axis_acquire:
+        return {141, exchange_block_->slot};
+      default:
+        return {142, AxisRequestOut::kAllSlots};
+    }
+  }
   [[nodiscard]] std::uint32_t serving_caller() const noexcept {
     return serving_ ? serving_->call.caller : 0;
   }
@@ -442,6 +466,7 @@ class ChannelController {
     bool exact_stop = false;
     bool still = false;                 // a move to where the axes already are
     const std::string* file = nullptr;  // owned by the interpreter
+    interp::ModalState modal;
   };
 
   ChannelSetup setup_;
@@ -488,9 +513,10 @@ class ChannelController {
     int line = 0;
     const std::string* file = nullptr;
     bool started = false;  // its block_started event is out
+    interp::ModalState modal;
   };
   static HeldBlock held(const interp::Command& c) noexcept {
-    return HeldBlock{c.n, c.line, c.file, false};
+    return HeldBlock{c.n, c.line, c.file, false, c.modal};
   }
   // The block's event of `kind`, with the channel's position.
   [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;

@@ -52,6 +52,17 @@ enum class SpindleDirection : std::uint8_t { cw, ccw, stop, orient, keep };
 // Spindle arguments of G114.1 and the G144 argument vector use these sizes.
 inline constexpr int kSubcallArgs = 26;  // #1-#26
 
+// The modal state a block runs in, as a control's modal screen shows it: the G code of groups
+// 01 (motion), 16 (plane), 03 (G90/G91: system B only), 05 (feed per minute or revolution), 02
+// (G96/G97), 06 (inch/metric), 07 (nose radius compensation) and 14 (work coordinates), each
+// as ten times its number (G54.1: 541; 0 in any group but 01: the group has no code), and the
+// modal F (per minute or revolution, by group 05).
+inline constexpr std::array<int, 8> kShownModalGroups{1, 16, 3, 5, 2, 6, 7, 14};
+struct ModalState {
+  std::array<std::uint16_t, kShownModalGroups.size()> g{};
+  double feed = 0.0;
+};
+
 // The file name of blocks the operator typed (MDI), in their alarms and the trace.
 inline constexpr std::string_view kMdiName = "MDI";
 
@@ -63,6 +74,7 @@ struct Command {
   // The interpreter evaluated nothing after this block and will not until it is pulled past:
   // the read-ahead barriers of spec dafeng §4.3 and the multi-channel words.
   bool barrier = false;
+  ModalState modal;  // in force for this block
 
   // rapid, linear, arc: end point of every channel axis (unmoved axes keep their position).
   AxisVector to{};

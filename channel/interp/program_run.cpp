@@ -697,6 +697,11 @@ Command& ProgramRun::emit(Op op) {
   }
   c.line = line_ != nullptr ? line_->line : 0;
   c.file = file_;
+  for (std::size_t k = 0; k < kShownModalGroups.size(); ++k) {
+    const double g = modal_codes_[static_cast<std::size_t>(kShownModalGroups[k])];
+    c.modal.g[k] = static_cast<std::uint16_t>(std::lround(g * 10.0));
+  }
+  c.modal.feed = feed_;
   c.to = machine_;
   return c;
 }

@@ -224,6 +224,16 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
   status.single_block(controller.single_block());
   status.spindle_rpm(rpm);
   status.call_waiting_for(controller.waiting_for_call());
+  const AuxRequestOut* fin = controller.waiting_for_fin();
+  status.waiting_m(fin != nullptr && fin->kind == AuxKind::m_code ? fin->code : -1);
+  status.waiting_t(fin != nullptr && fin->kind == AuxKind::t_code ? fin->code : -1);
+  const ChannelController::ExchangeWait exchange = controller.waiting_for_exchange();
+  status.waiting_exchange(static_cast<std::int16_t>(exchange.g));
+  status.waiting_axis(exchange.g != 0 && exchange.slot < axes_.size()
+                          ? static_cast<std::uint32_t>(axes_[exchange.slot]->id)
+                          : 0);
+  std::copy(out.modal.g.begin(), out.modal.g.end(), status.modal_g().begin());
+  status.modal_feed(out.modal.feed);
 
   out_call_ = out.call;
   for (std::size_t e = 0; e < out.event_count; ++e) {

@@ -217,7 +217,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
 DriveSimConfig parse_drive(const YamlValue& value) {
   const YamlMap map =
       value.map({"time_constant_s", "max_velocity", "quick_stop_decel", "units_per_rev", "inertia",
-                 "friction", "torque_limit", "velocity_bandwidth_hz", "objects"});
+                 "friction", "torque_limit", "rated_torque", "velocity_bandwidth_hz", "objects"});
   DriveSimConfig drive;
   read_optional_positive(map, "time_constant_s", drive.time_constant_s);
   read_optional_positive(map, "max_velocity", drive.max_velocity);
@@ -226,6 +226,7 @@ DriveSimConfig parse_drive(const YamlValue& value) {
   read_optional_positive(map, "inertia", drive.inertia);
   read_optional_positive(map, "friction", drive.friction);
   read_optional_positive(map, "torque_limit", drive.torque_limit);
+  read_optional_positive(map, "rated_torque", drive.rated_torque);
   read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
   if (auto objects = map.optional("objects")) {
     const std::vector<YamlValue> list = objects->list();
@@ -364,9 +365,17 @@ AxisConfig parse_axis(const YamlValue& value) {
         axis.tpdo2_velocity = true;
       } else if (what == "following_error_actual") {
         axis.tpdo2_following_error = true;
+      } else if (what == "torque_actual") {
+        axis.tpdo2_torque = true;
       } else {
-        entry.fail("tpdo2 maps velocity_actual and following_error_actual, got '" + what + "'");
+        entry.fail("tpdo2 maps velocity_actual, following_error_actual and torque_actual, got '" +
+                   what + "'");
       }
+    }
+    if (tpdo2_bytes(axis) > 8) {
+      tpdo2->fail(
+          "tpdo2 holds 8 bytes: velocity_actual (4), following_error_actual (4) and "
+          "torque_actual (2) do not all fit");
     }
   }
   if (auto homing = map.optional("homing")) {
@@ -1013,9 +1022,14 @@ int bus_bits_per_cycle(int axis_count, int spindle_count) noexcept {
          spindle_count * (2 * can_frame_bits(kSpindlePdoBytes) + can_frame_bits(kVelocityBytes));
 }
 
+int tpdo2_bytes(const AxisConfig& axis) noexcept {
+  return (axis.tpdo2_velocity ? 4 : 0) + (axis.tpdo2_following_error ? 4 : 0) +
+         (axis.tpdo2_torque ? 2 : 0);
+}
+
 int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
-  const int tpdo2_bytes = (axis.tpdo2_velocity ? 4 : 0) + (axis.tpdo2_following_error ? 4 : 0);
-  const int tpdo2 = tpdo2_bytes > 0 ? can_frame_bits(tpdo2_bytes) : 0;
+  const int bytes = tpdo2_bytes(axis);
+  const int tpdo2 = bytes > 0 ? can_frame_bits(bytes) : 0;
   if (axis.type == AxisType::spindle) {
     return 2 * can_frame_bits(7) + can_frame_bits(4) + tpdo2;
   }

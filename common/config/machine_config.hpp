@@ -42,6 +42,7 @@ struct DriveSimConfig {
   double inertia = 0.0005;           // kg m^2 at the motor, load included
   double friction = 0.001;           // N m s/rad, viscous
   double torque_limit = 10.0;        // N m
+  double rated_torque = 3.0;         // N m, the motor's (0x6076): 100 % load
   double velocity_bandwidth_hz = 200.0;
   std::vector<DriveObjectDefault> objects;  // at most 16
 };
@@ -80,6 +81,7 @@ struct AxisConfig {
   double quick_stop_deceleration = 0.0;
   bool tpdo2_velocity = false;
   bool tpdo2_following_error = false;
+  bool tpdo2_torque = false;  // 0x6077, after the others
   // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
   bool has_homing = false;
   int homing_method = 0;
@@ -193,6 +195,8 @@ MachineConfig load_machine_file(const std::string& path);
 // One axis's PDO bits per cycle: 2 x bits(6); a homing axis's PDOs carry the mode (2 x bits(7));
 // a spindle's besides its target velocity (2 x bits(7) + bits(4)).
 [[nodiscard]] int axis_bits_per_cycle(const AxisConfig& axis) noexcept;
+// The bytes the axis's TPDO2 carries (0: not mapped).
+[[nodiscard]] int tpdo2_bytes(const AxisConfig& axis) noexcept;
 // Share of the bit rate that traffic takes at the given cycle; the loader rejects a bus above
 // kMaxBusLoad so that SDO, EMCY and heartbeat frames still fit.
 [[nodiscard]] double bus_load(int axis_count, int bitrate, int cycle_us,

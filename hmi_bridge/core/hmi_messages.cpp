@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
+
 namespace mcnc::hmi {
 
 namespace {
@@ -47,6 +49,16 @@ const char* type_name(config::AxisType type) {
 
 // What a channel waits for, null when it does not.
 Json wait_of(const config::MachineConfig& machine, const status::ChannelView& v) {
+  // The PLC's FIN is waited for while running (the path may still move); the others stop it.
+  if (v.waiting_m >= 0 || v.waiting_t >= 0) {
+    char code[16];
+    if (v.waiting_m >= 0) {
+      std::snprintf(code, sizeof code, "M%02d", static_cast<int>(v.waiting_m));
+    } else {
+      std::snprintf(code, sizeof code, "T%04d", static_cast<int>(v.waiting_t));
+    }
+    return {{"kind", "fin"}, {"code", code}};
+  }
   if (v.state != channel::ChannelState::waiting) {
     return nullptr;
   }
@@ -59,7 +71,35 @@ Json wait_of(const config::MachineConfig& machine, const status::ChannelView& v)
             {"participants", channel_names(machine, v.sync_channels)},
             {"waiting_for", channel_names(machine, v.sync_waiting_for)}};
   }
+  if (v.waiting_exchange != 0) {
+    return {{"kind", "exchange"},
+            {"g", v.waiting_exchange},
+            {"axis", v.waiting_axis != 0 ? axis_name(machine, v.waiting_axis) : Json(nullptr)}};
+  }
   return {{"kind", "other"}};
+}
+
+// A G code ten times its number as a control writes it: 10 "G01", 0 "G00", 541 "G54.1".
+std::string g_code(std::uint16_t g10) {
+  char text[16];
+  if (g10 % 10 == 0) {
+    std::snprintf(text, sizeof text, "G%02u", static_cast<unsigned>(g10 / 10));
+  } else {
+    std::snprintf(text, sizeof text, "G%02u.%u", static_cast<unsigned>(g10 / 10),
+                  static_cast<unsigned>(g10 % 10));
+  }
+  return text;
+}
+
+// The modal G codes of the executing block, in the order of the control's modal screen.
+Json modal_of(const status::ChannelView& v) {
+  Json list = Json::array();
+  for (std::size_t k = 0; k < v.modal_g.size(); ++k) {
+    if (k == 0 || v.modal_g[k] != 0) {  // group 01's G00 is a code; elsewhere 0 is none
+      list.push_back(g_code(v.modal_g[k]));
+    }
+  }
+  return list;
 }
 
 Json channel_state(const config::MachineConfig& machine, const config::ChannelConfig& ch,
@@ -86,6 +126,8 @@ Json channel_state(const config::MachineConfig& machine, const config::ChannelCo
   j["spindle_override"] = v->spindle_override;
   j["single_block"] = v->single_block;
   j["spindle_rpm"] = v->spindle_rpm;
+  j["modal"] = modal_of(*v);
+  j["feed"] = v->modal_feed;
   return j;
 }
 
@@ -106,6 +148,7 @@ Json axis_state(const config::MachineConfig& machine, const config::AxisConfig& 
   j["alarm"] = v->alarm;
   j["coupled_to"] = axis_name(machine, v->coupled_to);
   j["locked"] = v->coupling_locked;
+  j["load"] = v->load_known ? Json(v->load) : Json(nullptr);
   return j;
 }
 
@@ -172,9 +215,13 @@ std::string state_message(const config::MachineConfig& machine,
     const auto it = snapshot.axes.find(static_cast<std::uint32_t>(a.id));
     axes.push_back(axis_state(machine, a, it == snapshot.axes.end() ? nullptr : &it->second));
   }
+  static constexpr const char* kPhases[] = {"starting", "running", "stopped", "estop"};
+  const Json run = {{"phase", kPhases[static_cast<std::size_t>(snapshot.run.phase)]},
+                    {"reason", snapshot.run.reason}};
   return dump({{"type", "state"},
                {"cycle", cycle},
                {"time_s", static_cast<double>(cycle) * machine.cycle_s()},
+               {"run", run},
                {"channels", channels},
                {"axes", axes}});
 }

@@ -33,7 +33,25 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       command_reader_(participant_, [this](const ::mcnc::OperatorCommand& c,
                                            const dds::WriterId&) { on_operator(c); }),
       coordination_reader_(participant_, [this](const ::mcnc::CoordinationEvent& e,
-                                                const dds::WriterId&) { on_coordination(e); }) {
+                                                const dds::WriterId&) { on_coordination(e); }),
+      run_reader_(participant_, [this](const ::mcnc::RunControl& r, const dds::WriterId&) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        switch (r.command()) {
+          case RUN_START:
+            snapshot_.run.phase = status::RunPhase::running;
+            break;
+          case RUN_STOP:
+            snapshot_.run.phase = status::RunPhase::stopped;
+            break;
+          case RUN_ESTOP:
+            snapshot_.run.phase = status::RunPhase::estop;
+            break;
+          default:
+            snapshot_.run.phase = status::RunPhase::starting;
+            break;
+        }
+        snapshot_.run.reason = r.reason();
+      }) {
   for (const auto& [channel, path] : main_programs_) {
     programs_[channel] =
         Program{std::filesystem::path(path).filename().string(), text::read_lines(path)};

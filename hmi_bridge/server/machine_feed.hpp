@@ -67,6 +67,7 @@ class MachineFeed {
   dds::Reader<::mcnc::Alarm> alarm_reader_;
   dds::Reader<::mcnc::OperatorCommand> command_reader_;
   dds::Reader<::mcnc::CoordinationEvent> coordination_reader_;
+  dds::Reader<::mcnc::RunControl> run_reader_;
 };
 
 }  // namespace mcnc::hmi

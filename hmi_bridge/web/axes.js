@@ -65,21 +65,26 @@ class SpindleCard {
       return [value, el('div', {}, el('dt', {}, label), value)];
     };
     const [speedEl, speedItem] = field('speed', 'speed');
+    const [loadEl, loadItem] = field('load', 'load');
     const [driveEl, driveItem] = field('drive', 'drive');
     const [ownerEl, ownerItem] = field('owner', 'owner');
     this.speedEl = speedEl;
+    this.loadEl = loadEl;
     this.driveEl = driveEl;
     this.ownerEl = ownerEl;
     this.syncEl = el('div', { class: 'sync' });
     this.root = el('article', { class: 'spindle', 'data-spindle': spindle.name },
       el('h3', {}, spindle.name),
-      el('dl', {}, speedItem, driveItem, ownerItem),
+      el('dl', {}, speedItem, loadItem, driveItem, ownerItem),
       this.syncEl);
   }
 
   update(axis) {
     const vel = asNumber(axis.vel);   // deg/s; 360 deg/rev, 60 s/min
     setText(this.speedEl, vel === null ? '—' : `${Math.round(vel / 6)} rpm`);
+    // The drive's torque in percent of the motor's rated torque, when it sends it.
+    const load = asNumber(axis.load);
+    setText(this.loadEl, load === null ? '—' : `${Math.round(load)} %`);
     setText(this.driveEl, asString(axis.drive) || '—');
     setData(this.driveEl, 'drive', asString(axis.drive));
     setText(this.ownerEl, ownerText(axis.owner));

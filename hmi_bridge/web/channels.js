@@ -27,7 +27,27 @@ function waitText(wait) {
     const target = asString(wait.target);
     return `G144: waiting${target ? ` for ${target}` : ''}`;
   }
+  if (wait.kind === 'fin') {
+    return `FIN: waiting for the PLC to finish ${asString(wait.code) || 'an M code'}`;
+  }
+  if (wait.kind === 'exchange') {
+    const g = asNumber(wait.g);
+    const axis = asString(wait.axis);
+    return `G${g ?? '?'}: waiting for ${axis || 'the axes'}`;
+  }
   return 'waiting';
+}
+
+// The modal G codes as the control's modal screen lists them, and the modal F with its unit.
+function modalText(channel) {
+  return stringsOf(channel.modal).join(' ');
+}
+
+function feedText(channel) {
+  const feed = asNumber(channel.feed);
+  if (feed === null) return '—';
+  const perRev = stringsOf(channel.modal).includes('G99');
+  return `F${Number(feed.toFixed(3))} ${perRev ? 'mm/rev' : 'mm/min'}`;
 }
 
 function callText(call) {
@@ -89,6 +109,8 @@ export class ChannelView {
     this.blockEl = el('span', { class: 'ch-block' }, '—');
     this.lineEl = el('span', { class: 'ch-line' }, '—');
     this.rpmEl = el('span', { class: 'ch-rpm' }, '—');
+    this.feedEl = el('span', { class: 'ch-feed' }, '—');
+    this.modalEl = el('div', { class: 'ch-modal', title: 'modal G codes of the executing block' });
     this.singleBlockEl = el('span', { class: 'ch-single-block' }, '—');
     this.alarmCountEl = el('span', { class: 'ch-alarms' }, '—');
 
@@ -118,9 +140,11 @@ export class ChannelView {
       el('dl', { class: 'ch-status' },
         statusItem('block', this.blockEl),
         statusItem('line', this.lineEl),
+        statusItem('feed', this.feedEl),
         statusItem('spindle', this.rpmEl),
         statusItem('single block', this.singleBlockEl),
         statusItem('alarms', this.alarmCountEl)),
+      this.modalEl,
       el('div', { class: 'ch-program' }, this.programNameEl, this.listing),
       this.canvas,
       el('div', { class: 'ch-controls' },
@@ -165,6 +189,8 @@ export class ChannelView {
     setText(this.lineEl, line ? String(line) : '—');
     const rpm = asNumber(channel.spindle_rpm);
     setText(this.rpmEl, rpm === null ? '—' : `${Math.round(rpm)} rpm`);
+    setText(this.feedEl, feedText(channel));
+    setText(this.modalEl, modalText(channel));
     const alarms = asNumber(channel.alarms);
     setText(this.alarmCountEl, alarms === null ? '—' : String(alarms));
     setData(this.alarmCountEl, 'count', alarms ? 'some' : 'none');

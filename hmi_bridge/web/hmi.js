@@ -15,6 +15,7 @@ const ROLES = new Set(['operator', 'viewer', 'none']);
 const ui = {
   machineName: document.getElementById('machine-name'),
   connection: document.getElementById('connection'),
+  run: document.getElementById('run'),
   role: document.getElementById('role'),
   cycle: document.getElementById('cycle'),
   time: document.getElementById('time'),
@@ -217,6 +218,18 @@ function onReply(message) {
   else showReply(`${what}: refused: ${asString(message.reason) || 'no reason given'}`, false);
 }
 
+// The machine-wide run as the launcher commands it: an E-stop names its cause.
+const RUN_PHASES = new Map([
+  ['starting', 'starting'], ['running', 'running'], ['stopped', 'stopped'], ['estop', 'E-STOP'],
+]);
+
+function showRun(run) {
+  const phase = isObject(run) && RUN_PHASES.has(run.phase) ? run.phase : 'starting';
+  const reason = isObject(run) ? asString(run.reason) : '';
+  setText(ui.run, phase === 'estop' && reason ? `E-STOP: ${reason}` : RUN_PHASES.get(phase));
+  setData(ui.run, 'run', phase);
+}
+
 function onState(message) {
   lastStateAt = performance.now();
   const cycle = asNumber(message.cycle);
@@ -224,6 +237,7 @@ function onState(message) {
   const timeS = asNumber(message.time_s);
   setText(ui.time, timeS === null ? '—' : `${timeS.toFixed(3)} s`);
   ui.time.classList.remove('stale');
+  showRun(message.run);
 
   const channelStates = new Map();
   for (const channel of asArray(message.channels)) {

@@ -83,19 +83,48 @@ try {
       wait.includes('P1') && wait.includes('CH1');
   });
   await screenshot('barrier-wait');
+  if ((await text('#run')) !== 'running') {
+    throw new Error(`the run shows "${await text('#run')}", not running`);
+  }
 
   // Feed hold while CH1 turns the left end (line 9: G01 Z-30): Z1 stands still.
   await until('CH1 turning the left end', () =>
     document.querySelector('[data-channel="CH1"] .line.current')?.dataset.line === '9' &&
     document.querySelector('[data-channel="CH1"] .ch-state')?.textContent.trim() === 'running');
+  // The turning block shows its modal state and feed, and the main spindle its drive's load.
+  const modal = await text('[data-channel="CH1"] .ch-modal');
+  if (!modal.startsWith('G01 ') || !modal.includes('G18')) {
+    throw new Error(`CH1's modal codes in G01 Z-30: "${modal}"`);
+  }
+  if (!(await text('[data-channel="CH1"] .ch-feed')).startsWith('F600 ')) {
+    throw new Error(`CH1's feed: ${await text('[data-channel="CH1"] .ch-feed')}`);
+  }
+  await until('S1 shows its load', () =>
+    /^-?[0-9]+ %$/.test(document.querySelector('[data-spindle="S1"] .load')?.textContent.trim() || ''));
   await page.click('[data-channel="CH1"] button[data-action="feed_hold"]');
   await until('CH1 in feed hold', (sel) => document.querySelector(sel)?.textContent.trim() === 'hold', stateOf('CH1'));
-  await page.waitForTimeout(300);  // the axes decelerate to rest
-  const z1Before = await text('#axes tr[data-axis="Z1"] .act');
+  // The path ramps down to rest; on a loaded host machine time runs slower than the page's, so
+  // wait until Z1's command has stood for 300 ms, then it must stand while machine time runs on.
+  // (The command, not the actual position: a servo settles by microns after the ramp.)
+  await until('Z1 at rest in feed hold', () => {
+    const now = document.querySelector('#axes tr[data-axis="Z1"] .cmd')?.textContent;
+    const t = performance.now();
+    if (window.z1Seen !== now) {
+      window.z1Seen = now;
+      window.z1Since = t;
+      return false;
+    }
+    return t - window.z1Since > 300;
+  });
+  const z1Before = await text('#axes tr[data-axis="Z1"] .cmd');
+  const timeBefore = await text('#time');
   await page.waitForTimeout(700);
-  const z1After = await text('#axes tr[data-axis="Z1"] .act');
+  const z1After = await text('#axes tr[data-axis="Z1"] .cmd');
   if (z1Before !== z1After) {
     throw new Error(`Z1 moved in feed hold: ${z1Before} -> ${z1After}`);
+  }
+  if (timeBefore === await text('#time')) {
+    throw new Error(`machine time stood still in feed hold (${timeBefore}): nothing was checked`);
   }
   if (!(await text('#last-reply')).includes('ok')) {
     throw new Error(`feed hold reply: ${await text('#last-reply')}`);

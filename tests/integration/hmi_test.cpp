@@ -211,6 +211,7 @@ TEST(Hmi, TenThousandMalformedMessagesLeaveItServingAndTheOperatorStartsTheProgr
   const auto ops = events(trace, "operator", "CH1");
   ASSERT_EQ(ops.size(), 1U);
   EXPECT_EQ(ops[0]["action"], "cycle_start");
+  ASSERT_FALSE(trace.empty());
   EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
 }
 
@@ -240,6 +241,7 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
   };
   EXPECT_EQ(actions("CH1"), (std::vector<std::string>{"cycle_start", "feed_hold", "cycle_start"}));
   EXPECT_EQ(actions("CH2"), (std::vector<std::string>{"cycle_start"}));
+  ASSERT_FALSE(trace.empty());
   EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
   EXPECT_EQ(trace.back()["channels"]["CH2"]["end"], 30);
 }
@@ -343,5 +345,6 @@ TEST(Hmi, AnOperatorRunsMdiBlocksThenSelectsAnotherProgramAndRunsIt) {
     mdi_end_seen = mdi_end_seen || e["ev"] == "mdi_end";
   }
   EXPECT_TRUE(mdi_end_seen);
+  ASSERT_FALSE(trace.empty());
   EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
 }

@@ -4,6 +4,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "common/config/machine_config.hpp"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -33,8 +34,14 @@ struct ChannelView {
   double rapid_override = 100.0;
   double spindle_override = 100.0;
   bool single_block = false;
-  double spindle_rpm = 0.0;  // commanded, M04 negative
-  std::string program;       // the file of the executing block
+  double spindle_rpm = 0.0;                // commanded, M04 negative
+  std::string program;                     // the file of the executing block
+  std::int32_t waiting_m = -1;             // the M code whose FIN it waits for, -1: none
+  std::int32_t waiting_t = -1;             // the T code whose FIN it waits for, -1: none
+  std::int16_t waiting_exchange = 0;       // G140/G141/G142 it waits for, 0: none
+  std::uint32_t waiting_axis = 0;          // that exchange's axis (machine number), 0: every axis
+  std::array<std::uint16_t, 8> modal_g{};  // ChannelStatus.modal_g
+  double modal_feed = 0.0;
 };
 
 // The last AxisFeedback of one axis or spindle.
@@ -52,15 +59,25 @@ struct AxisView {
   std::int16_t mode_display = 0;  // a spindle: 8 CSP, 9 CSV
   std::uint64_t cycle = 0;
   std::uint8_t drive_state = 0;  // the wire's DriveState, in its order (drive_state_name)
+  bool load_known = false;       // the drive sends its torque (TPDO2)
+  double load = 0.0;             // percent of the motor's rated torque
 };
 
 // The CiA 402 state of the wire's DriveState number: "operation_enabled", "fault", ...
 const char* drive_state_name(std::uint8_t drive_state) noexcept;
 
 // By channel id and by axis id (the machine file's 1-based positions).
+// The run as the launcher commands it (RunControl): `starting` until a start is heard.
+enum class RunPhase : std::uint8_t { starting, running, stopped, estop };
+struct RunView {
+  RunPhase phase = RunPhase::starting;
+  std::string reason;  // why it stopped (an E-stop's cause)
+};
+
 struct StatusSnapshot {
   std::map<std::uint32_t, ChannelView> channels;
   std::map<std::uint32_t, AxisView> axes;
+  RunView run;
 };
 
 // One line per channel, then one per axis and spindle, in the machine file's order; a channel

@@ -323,6 +323,22 @@ TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
   EXPECT_EQ(
       rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["tpdo2"].push_back("torque"); })),
       "axes[0].tpdo2[0]");
+  // The torque (2 bytes) fits beside one of the others, not both.
+  const MachineConfig loaded = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][0]["tpdo2"].push_back("velocity_actual");
+    r["axes"][0]["tpdo2"].push_back("torque_actual");
+    r["axes"][0]["drive"]["rated_torque"] = 4.5;
+  }));
+  EXPECT_TRUE(loaded.axes[0].tpdo2_torque);
+  EXPECT_DOUBLE_EQ(loaded.axes[0].drive.rated_torque, 4.5);
+  EXPECT_EQ(tpdo2_bytes(loaded.axes[0]), 6);
+  EXPECT_EQ(axis_bits_per_cycle(loaded.axes[0]), 2 * can_frame_bits(6) + can_frame_bits(6));
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              for (const char* o : {"velocity_actual", "following_error_actual", "torque_actual"}) {
+                r["axes"][0]["tpdo2"].push_back(o);
+              }
+            })),
+            "axes[0].tpdo2");
   EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][0]["heartbeat_ms"] = 70000; })),
             "axes[0].heartbeat_ms");
   for (const char* bad : {"6085", "0x60", "0xZZZZ", "0x0FFF"}) {

@@ -63,6 +63,26 @@ TEST(DriveObjects, TheMastersStartupConfiguresTheDrive) {
   EXPECT_EQ(od.tpdo(1).entries[1], 0x60F40020U);
 }
 
+TEST(DriveObjects, TheTorqueGoesInTpdo2InPerMilleOfTheRatedTorque) {
+  DriveObjects od(2);
+  canopen::NodeStartupConfig c{2};
+  c.pdos = canopen::spindle_pdos();
+  c.pdos.tpdo2.objects[c.pdos.tpdo2.count++] = canopen::MappedObject{0x6077, 0, 16};
+  canopen::NodeStartup s(c);
+  ASSERT_EQ(start(od, s), canopen::NodeStartup::Status::done) << s.error();
+  od.live.torque = -1234;  // -123.4 % of the rated torque: braking
+  od.live.rated_torque = 3000;
+  can::CanFrame f;
+  ASSERT_TRUE(od.encode_tpdo(1, f));
+  EXPECT_EQ(f.id, 0x282U);
+  ASSERT_EQ(f.dlc, 2);
+  EXPECT_EQ(static_cast<std::int16_t>(f.data[0] | f.data[1] << 8), -1234);
+  canopen::SdoValue v;
+  ASSERT_EQ(od.read(0x6076, 0, v), 0U);
+  EXPECT_EQ(v.size, 4U);
+  EXPECT_EQ(write_u(od, 0x6077, 0, 0, 2), abort::kReadOnly);
+}
+
 TEST(DriveObjects, AnInjectedRefusalStopsTheStartupNamingTheObject) {
   DriveObjects od(2);
   od.refuse(0x6060, abort::kDeviceState);

@@ -87,6 +87,55 @@ TEST(HmiMessages, AG144WaitNamesItsTarget) {
   EXPECT_EQ(j["channels"][0]["wait"], (nlohmann::json{{"kind", "call"}, {"target", "CH2"}}));
 }
 
+TEST(HmiMessages, AFinWaitNamesItsCodeEvenWhileThePathRunsAndAnExchangeItsAxis) {
+  status::StatusSnapshot s;
+  status::ChannelView ch1;
+  ch1.state = channel::ChannelState::running;  // an M code's FIN: the path may still move
+  ch1.waiting_m = 10;
+  s.channels[1] = ch1;
+  status::ChannelView ch2;
+  ch2.state = channel::ChannelState::waiting;
+  ch2.waiting_exchange = 141;
+  ch2.waiting_axis = 3;
+  s.channels[2] = ch2;
+  auto j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_EQ(j["channels"][0]["wait"], (nlohmann::json{{"kind", "fin"}, {"code", "M10"}}));
+  EXPECT_EQ(j["channels"][1]["wait"],
+            (nlohmann::json{{"kind", "exchange"}, {"g", 141}, {"axis", "A1"}}));
+  s.channels[1].waiting_m = -1;
+  s.channels[1].waiting_t = 101;
+  s.channels[2].waiting_exchange = 142;
+  s.channels[2].waiting_axis = 0;  // G142: every axis the channel lent or took
+  j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_EQ(j["channels"][0]["wait"]["code"], "T0101");
+  EXPECT_TRUE(j["channels"][1]["wait"]["axis"].is_null());
+  s.channels[1].waiting_t = -1;
+  j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_TRUE(j["channels"][0]["wait"].is_null());  // running, waiting for nothing
+}
+
+TEST(HmiMessages, TheRunPhaseAndAnEStopsCause) {
+  status::StatusSnapshot s;
+  auto j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_EQ(j["run"]["phase"], "starting");
+  s.run.phase = status::RunPhase::estop;
+  s.run.reason = "CH1 lost axis Z1";
+  j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_EQ(j["run"], (nlohmann::json{{"phase", "estop"}, {"reason", "CH1 lost axis Z1"}}));
+}
+
+TEST(HmiMessages, TheModalCodesAreListedAsTheControlWritesThem) {
+  status::StatusSnapshot s;
+  status::ChannelView ch1;
+  ch1.modal_g = {0, 180, 0, 990, 960, 210, 410, 541};  // group 03 (G90/G91) has no code
+  ch1.modal_feed = 0.25;
+  s.channels[1] = ch1;
+  const auto j = nlohmann::json::parse(state_message(twin(), s));
+  EXPECT_EQ(j["channels"][0]["modal"],
+            nlohmann::json::array({"G00", "G18", "G99", "G96", "G21", "G41", "G54.1"}));
+  EXPECT_DOUBLE_EQ(j["channels"][0]["feed"].get<double>(), 0.25);
+}
+
 TEST(HmiMessages, AlarmsAndProgramTextsThatAreNotUtf8StillMakeJson) {
   AlarmLog log;
   AlarmEntry e;

@@ -28,6 +28,12 @@ ChannelView view_of(const ::mcnc::ChannelStatus& s) {
   // NUL-terminated by the sender; a sample without the NUL is read up to its size.
   const auto& name = s.program();
   v.program.assign(name.data(), std::find(name.begin(), name.end(), '\0'));
+  v.waiting_m = s.waiting_m();
+  v.waiting_t = s.waiting_t();
+  v.waiting_exchange = s.waiting_exchange();
+  v.waiting_axis = s.waiting_axis();
+  v.modal_g = s.modal_g();
+  v.modal_feed = s.modal_feed();
   return v;
 }
 
@@ -43,6 +49,8 @@ AxisView view_of(const ::mcnc::AxisFeedback& f) {
   v.released_by = f.released_by();
   v.coupled_to = f.coupled_to();
   v.coupling_locked = f.coupling_locked();
+  v.load_known = f.load_known();
+  v.load = f.load();
   v.mode_display = f.mode_display();
   v.cycle = f.cycle();
   v.drive_state = static_cast<std::uint8_t>(f.drive_state());

@@ -161,6 +161,7 @@ int main(int argc, char** argv) {
   // Programs the operator selects and MDI blocks are checked off the cycle.
   channel::ProgramLoader loader(interp_config);
   std::optional<channel::LoadedProgram> loaded;  // checked, waiting for the channel to stand
+  std::uint64_t mdi_epoch = 0;  // the controller's run epoch when the MDI blocks were asked for
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   setup.shared_writes = &shared_writes;
   channel::ChannelController controller(setup, interpreter, planner);
@@ -302,10 +303,11 @@ int main(int argc, char** argv) {
             const bool mdi = request->action == Kind::mdi;
             const char* refused =
                 !controller.may_change_program()
-                    ? "the channel runs: programs are selected and MDI blocks run in reset or idle"
+                    ? "programs are selected and MDI blocks run only in reset or idle"
                 : loaded || !loader.submit(mdi, request->text.data())
                     ? "another program or MDI block is still being checked"
                     : nullptr;
+            mdi_epoch = mdi && refused == nullptr ? controller.run_epoch() : mdi_epoch;
             tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\",\"text\":\"%s\"%s%s%s",
                         ch->name.c_str(), process::to_string(request->action),
                         escaped(request->text.data()).text, refused ? ",\"refused\":\"" : "",
@@ -363,6 +365,14 @@ int main(int argc, char** argv) {
 
       if (!loaded) {
         loaded = loader.take();
+      }
+      if (loaded && loaded->mdi && controller.run_epoch() != mdi_epoch) {
+        // A reset or another run came while the blocks were checked: they no longer run.
+        tracer.emit(cycle, "operator",
+                    "\"ch\":\"%s\",\"action\":\"mdi\",\"text\":\"%s\",\"refused\":\"a reset "
+                    "or another run came first\"",
+                    ch->name.c_str(), escaped(loaded->program.text.c_str()).text);
+        loaded.reset();
       }
       if (loaded && controller.may_change_program()) {
         if (loaded->program.alarm) {

@@ -19,6 +19,8 @@ SimulatedDrive::SimulatedDrive(const DriveParams& params, double cycle_s) noexce
       target_(params.initial_position),
       objects_(params.node_id) {
   previous_target_ = params.initial_position;
+  objects_.live.rated_torque =
+      static_cast<std::uint32_t>(std::lround(std::min(params.rated_torque * 1000.0, 4.0e9)));
   (void)apply_defaults();  // the simulator's shell checks them at start (apply_defaults)
 }
 
@@ -203,9 +205,7 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   objects_.live.velocity = to_counts(velocity_);
   objects_.live.following_error = to_counts(target_ - position_);
   objects_.live.torque = static_cast<std::int16_t>(
-      std::clamp(std::lround(torque_ / params_.rated_torque * 1000.0), -32768L, 32767L));
-  objects_.live.rated_torque =
-      static_cast<std::uint32_t>(std::lround(params_.rated_torque * 1000.0));
+      std::lround(std::clamp(torque_ / params_.rated_torque * 1000.0, -32768.0, 32767.0)));
   ++syncs_;
   if (fault_ != DriveFault::none && syncs_ == fault_at_) {
     if (fault_ == DriveFault::heartbeat_stop) {

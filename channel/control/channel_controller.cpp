@@ -157,6 +157,10 @@ void ChannelController::set_state(ChannelState state) noexcept {
   if (out_.state == state) {
     return;
   }
+  // A run starts (from idle or reset) or a reset ends one: what was asked for before is stale.
+  const bool starts = state == ChannelState::running &&
+                      (out_.state == ChannelState::idle || out_.state == ChannelState::reset);
+  run_epoch_ += starts || state == ChannelState::reset ? 1 : 0;
   out_.state = state;
   if (state == ChannelState::idle || state == ChannelState::reset || state == ChannelState::alarm) {
     leave_position_control();
@@ -440,11 +444,18 @@ const ChannelOutput& ChannelController::run_cycle(
   if (out_.state == ChannelState::idle && start_requested_ && !program_pending_) {
     start_requested_ = false;
     settle_slots();
-    if (mdi_requested_) {
-      // An alarm starting them comes as the source's first pull, as a program's does.
-      (void)source_.start_mdi(commanded_);
-    } else {
-      source_.rewind(commanded_);
+    // A start builds the run's interpreter (the allocation a start makes): out of memory is an
+    // alarm, not the end of the process. An alarm of the blocks themselves comes as the
+    // source's first pull, as a program's does.
+    bool out_of_memory = false;
+    try {
+      if (mdi_requested_) {
+        (void)source_.start_mdi(commanded_);
+      } else {
+        source_.rewind(commanded_);
+      }
+    } catch (...) {
+      out_of_memory = true;
     }
     planner_.restart(commanded_);
     forget_program_run();
@@ -453,6 +464,9 @@ const ChannelOutput& ChannelController::run_cycle(
     single_block_stop_ = 0;
     out_.run_start_cycle = cycle;
     set_state(ChannelState::running);
+    if (out_of_memory) {
+      raise(kAlarmPlannerRejected, "the interpreter ran out of memory", out_.line, 0, 0);
+    }
   }
 
   const bool in_program = out_.state == ChannelState::running ||
@@ -801,9 +815,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   if (!end_pulled_) {
     return;
   }
-  if (!end_started_ && mdi_run_ && end_.code == 0) {
-    end_started_ = true;  // MDI blocks end with their text: no block of its own
-  }
+  // MDI blocks that end with their text have no end block of their own: no start, no end.
+  const bool end_block = !(mdi_run_ && end_.code == 0);
+  end_started_ = end_started_ || !end_block;
   if (!end_started_) {
     end_started_ = true;
     out_.block = end_.n;
@@ -818,12 +832,14 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   if (!in_pos) {
     return;  // the program ends when every axis stands in position
   }
-  ChannelEvent ended;
-  ended.kind = ChannelEventKind::block_ended;
-  ended.line = end_.line;
-  ended.block = end_.n;
-  ended.pos = commanded_;
-  push_event(ended);
+  if (end_block) {
+    ChannelEvent ended;
+    ended.kind = ChannelEventKind::block_ended;
+    ended.line = end_.line;
+    ended.block = end_.n;
+    ended.pos = commanded_;
+    push_event(ended);
+  }
   // MDI blocks are no program: their end is no program end (the launcher's run goes on).
   const bool mdi = mdi_run_;
   mdi_run_ = false;

@@ -316,6 +316,9 @@ class ChannelController {
   }
   // A program or MDI blocks are being checked for this channel: a cycle start waits for them.
   void set_program_pending(bool pending) noexcept { program_pending_ = pending; }
+  // Counts the runs started from idle or reset and the resets (E-stop included): MDI blocks
+  // asked for under another count are stale (a reset or another run came first).
+  [[nodiscard]] std::uint64_t run_epoch() const noexcept { return run_epoch_; }
   // Feed hold: a running channel's path decelerates to a stop and stays (state hold) until a
   // cycle start; the spindle keeps turning. Ignored when the channel does not run (a channel
   // waiting at a mark or for an answer moves nothing).
@@ -402,7 +405,7 @@ class ChannelController {
   }
   // The M or T code whose answer (FIN) from the PLC the channel waits for, or nullptr.
   [[nodiscard]] const AuxRequestOut* waiting_for_fin() const noexcept {
-    return aux_block_ && aux_block_->sent ? &aux_block_->request : nullptr;
+    return aux_block_ && aux_block_->sent && in_run() ? &aux_block_->request : nullptr;
   }
   // The axis exchange the channel waits for: its G code (140, 141, 142; 0: none) and the slot
   // (AxisRequestOut::kAllSlots for G142).
@@ -411,7 +414,7 @@ class ChannelController {
     std::size_t slot = 0;
   };
   [[nodiscard]] ExchangeWait waiting_for_exchange() const noexcept {
-    if (!exchange_block_ || !exchange_block_->sent) {
+    if (!exchange_block_ || !exchange_block_->sent || !in_run()) {
       return {};
     }
     switch (exchange_block_->op) {
@@ -422,6 +425,11 @@ class ChannelController {
       default:
         return {142, AxisRequestOut::kAllSlots};
     }
+  }
+  // A run is under way (not stopped by an alarm or a reset): what it waits for is real.
+  [[nodiscard]] bool in_run() const noexcept {
+    return out_.state == ChannelState::running || out_.state == ChannelState::waiting ||
+           out_.state == ChannelState::hold;
   }
   [[nodiscard]] std::uint32_t serving_caller() const noexcept {
     return serving_ ? serving_->call.caller : 0;
@@ -481,6 +489,7 @@ class ChannelController {
   bool mdi_requested_ = false;    // the start asked for runs the MDI blocks
   bool mdi_run_ = false;          // the run under way is MDI blocks
   bool program_pending_ = false;  // a program being checked: a start waits
+  std::uint64_t run_epoch_ = 0;
   bool resume_requested_ = false;
   bool hold_requested_ = false;
   bool single_block_ = false;

@@ -103,6 +103,7 @@ void InterpreterSource::adopt(CheckedProgram program) noexcept {
   text_ = std::move(program.text);
   name_ = std::move(program.name);
   block_count_ = program.block_count;
+  run_blocks_ = block_count_;  // adopted while no run is under way: the status shows its count
   load_alarm_ = std::move(program.alarm);
   loaded_ = true;
 }

@@ -41,8 +41,8 @@ class InterpreterSource final : public CommandSource {
   std::optional<ProgramAlarm> load(const std::string& program_text,
                                    const std::string& program_name);
   // Makes `program` the channel's own: the next rewind() starts it; an alarm in it is the
-  // answer of every pull until another program is adopted. A run under way goes on (it has its
-  // own copy of its text).
+  // answer of every pull until another program is adopted. Called while no run is under way;
+  // block_count() is the new program's from then on.
   void adopt(CheckedProgram program) noexcept;
   // The checked MDI blocks that the next start_mdi() starts.
   void prepare_mdi(CheckedProgram blocks) noexcept;

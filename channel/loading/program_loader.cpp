@@ -4,6 +4,9 @@
 #include "common/text/file_name.hpp"
 #include "common/text/text_lines.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -57,6 +60,10 @@ bool ProgramLoader::busy() const noexcept {
 }
 
 void ProgramLoader::run() {
+  // A check may take seconds of CPU: never at the cycle's real-time priority, which a thread
+  // inherits from the process (--clock realtime).
+  sched_param normal{};
+  (void)pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return stop_ || requested_; });

@@ -289,8 +289,10 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
                                        : program_name_;
       const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
       trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
+      // A selected program's name comes from the operator: escaped like the text.
+      trace::json_escape(name.c_str(), escaped_name_, sizeof escaped_name_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
-                   name.c_str(), event.line, escaped_);
+                   escaped_name_, event.line, escaped_);
       set_program_now(name);
       break;
     }

@@ -77,6 +77,7 @@ class ChannelOutputs {
   SharedWriteLog& writes_;
   std::vector<std::string> channel_names_;  // by channel id - 1
   char escaped_[512] = {};
+  char escaped_name_[160] = {};
 };
 
 }  // namespace mcnc::channel

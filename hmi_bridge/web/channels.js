@@ -46,7 +46,8 @@ function modalText(channel) {
 function feedText(channel) {
   const feed = asNumber(channel.feed);
   if (feed === null) return '—';
-  const perRev = stringsOf(channel.modal).includes('G99');
+  const modal = stringsOf(channel.modal);
+  const perRev = modal.includes('G99') || modal.includes('G95');  // system A, system B
   return `F${Number(feed.toFixed(3))} ${perRev ? 'mm/rev' : 'mm/min'}`;
 }
 

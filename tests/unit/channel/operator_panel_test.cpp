@@ -340,6 +340,22 @@ TEST(OperatorPanel, ACycleStartWaitsForAProgramBeingCheckedThenRunsIt) {
   EXPECT_NEAR(rig.x(), 0.0, 1e-9);  // the program selected before never ran
 }
 
+TEST(OperatorPanel, TheRunEpochCountsRunStartsAndResetsSoThatStaleMdiIsDropped) {
+  PanelRig rig;
+  rig.load("G01 X10 F6000\nM30\n");
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  const std::uint64_t idle = rig.ctl().run_epoch();
+  for (int i = 0; i < 50; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.ctl().run_epoch(), idle);  // standing changes nothing
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.ctl().run_epoch(), idle + 1);  // the start; the end is no new epoch
+  rig.ctl().request_reset();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  EXPECT_EQ(rig.ctl().run_epoch(), idle + 2);
+}
+
 TEST(OperatorPanel, AResetDuringMdiBlocksLeavesTheChannelsProgramToRun) {
   PanelRig rig;
   rig.load("G01 Z10 F6000\nM30\n");

@@ -258,6 +258,7 @@ LaunchResult Launcher::run(
 
   std::string failure;
   bool killed_child = false;
+  bool sent_kill = false;  // children that had not left after the run were killed
 
   // 1. Wait until every DDS process is ready (discovery done, drive answered).
   const auto start_deadline =
@@ -454,6 +455,7 @@ LaunchResult Launcher::run(
         child.signal(SIGKILL);
       }
       killed_child = true;
+      sent_kill = true;
       wait_all(3s);
     }
   }
@@ -468,7 +470,11 @@ LaunchResult Launcher::run(
       const auto it = seen.phases.find(child.name());
       stopped = it != seen.phases.end() && it->second == PHASE_STOPPED;
     });
-    if (child.exit_code() == -SIGABRT && (stopped || !run_failed)) {
+    // A child killed because it had not left 9 s after the run hangs in the same teardown: when
+    // it had said it stopped, its work was done and reported too.
+    const bool aborted = child.exit_code() == -SIGABRT && (stopped || !run_failed);
+    const bool hung = sent_kill && child.exit_code() == -SIGKILL && stopped;
+    if (aborted || hung) {
       spdlog::warn("{} {} after the run ended (DDS teardown){}", child.name(),
                    child.exit_description(),
                    stopped ? ""

@@ -1,6 +1,5 @@
 #include "channel/wire/channel_outputs.hpp"
 
-#include "channel/interp/command.hpp"
 #include "channel/wire/channel_mask.hpp"
 #include "common/text/text_lines.hpp"
 
@@ -279,14 +278,11 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
     case ChannelEventKind::block_started: {
       // A block of another file (a subprogram from the program directory): its own name and
       // line text. Its lines are read once, at its first block.
-      const bool mdi = event.file != nullptr && *event.file == interp::kMdiName;
-      const bool other = !mdi && event.file != nullptr && *event.file != program_name_;
-      const std::vector<std::string>& lines = mdi     ? mdi_lines_
-                                              : other ? lines_of(*event.file)
-                                                      : program_lines_;
-      const std::string name = mdi     ? std::string(interp::kMdiName)
-                               : other ? std::filesystem::path(*event.file).filename().string()
-                                       : program_name_;
+      // MDI blocks are another "file" too, their lines set before they run.
+      const bool other = event.file != nullptr && *event.file != program_name_;
+      const std::vector<std::string>& lines = other ? lines_of(*event.file) : program_lines_;
+      const std::string name =
+          other ? std::filesystem::path(*event.file).filename().string() : program_name_;
       const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
       trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
       // A selected program's name comes from the operator: escaped like the text.

@@ -43,7 +43,9 @@ class ChannelOutputs {
   // lines for the trace; the status names it from now on.
   void set_program(std::string name, std::vector<std::string> lines) noexcept;
   // The lines of the MDI blocks about to run, for the trace.
-  void set_mdi_lines(std::vector<std::string> lines) noexcept { mdi_lines_ = std::move(lines); }
+  void set_mdi_lines(std::vector<std::string> lines) {
+    other_lines_[std::string(interp::kMdiName)] = std::move(lines);
+  }
 
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
@@ -67,7 +69,6 @@ class ChannelOutputs {
   std::string program_name_;
   std::array<char, 64> program_now_{};
   std::vector<std::string> program_lines_;
-  std::vector<std::string> mdi_lines_;
   std::map<std::string, std::vector<std::string>> other_lines_;
   dds::Writer<AxisSetpoint> setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;

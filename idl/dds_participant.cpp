@@ -43,10 +43,10 @@ const char* writer_profile(QosKind qos) {
   return "state_writer";
 }
 
-const char* reader_profile(QosKind qos) {
+const char* reader_profile(QosKind qos, ReaderRole role) {
   switch (qos) {
     case QosKind::cyclic:
-      return "cyclic_reader";
+      return role == ReaderRole::observer ? "cyclic_observer" : "cyclic_reader";
     case QosKind::state:
       return "state_reader";
     case QosKind::event:
@@ -147,9 +147,10 @@ void Participant::delete_writer(fdds::DataWriter* writer) noexcept {
   }
 }
 
-fdds::DataReader* Participant::create_reader(fdds::Topic* topic, QosKind qos, void* listener) {
+fdds::DataReader* Participant::create_reader(fdds::Topic* topic, QosKind qos, ReaderRole role,
+                                             void* listener) {
   fdds::DataReader* reader = subscriber_->create_datareader_with_profile(
-      topic, reader_profile(qos), static_cast<fdds::DataReaderListener*>(listener),
+      topic, reader_profile(qos, role), static_cast<fdds::DataReaderListener*>(listener),
       fdds::StatusMask::data_available() << fdds::StatusMask::subscription_matched());
   if (reader == nullptr) {
     throw std::runtime_error("cannot create DDS reader for " + topic->get_name());
@@ -209,14 +210,15 @@ struct ReaderBase::Listener : public fdds::DataReaderListener {
 };
 
 ReaderBase::ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-                       std::function<void*()> make_sample, std::function<void(void*)> free_sample,
-                       SampleFn on_sample, MatchFn on_match)
+                       ReaderRole role, std::function<void*()> make_sample,
+                       std::function<void(void*)> free_sample, SampleFn on_sample, MatchFn on_match)
     : participant_(participant), listener_(std::make_unique<Listener>()) {
   listener_->make_sample = std::move(make_sample);
   listener_->free_sample = std::move(free_sample);
   listener_->on_sample = std::move(on_sample);
   listener_->on_match = std::move(on_match);
-  reader_ = participant.create_reader(participant.topic(topic, pubsub_type), qos, listener_.get());
+  reader_ =
+      participant.create_reader(participant.topic(topic, pubsub_type), qos, role, listener_.get());
 }
 
 ReaderBase::~ReaderBase() {

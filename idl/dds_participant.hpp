@@ -43,7 +43,7 @@ class Participant {
                                                     QosKind qos);
   void delete_writer(eprosima::fastdds::dds::DataWriter* writer) noexcept;
   eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic,
-                                                    QosKind qos, void* listener);
+                                                    QosKind qos, ReaderRole role, void* listener);
   void delete_reader(eprosima::fastdds::dds::DataReader* reader) noexcept;
 
   [[nodiscard]] eprosima::fastdds::dds::DomainParticipant* native() const noexcept {
@@ -82,8 +82,8 @@ class ReaderBase {
   using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
   using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
   ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-             std::function<void*()> make_sample, std::function<void(void*)> free_sample,
-             SampleFn on_sample, MatchFn on_match);
+             ReaderRole role, std::function<void*()> make_sample,
+             std::function<void(void*)> free_sample, SampleFn on_sample, MatchFn on_match);
   ~ReaderBase();
   ReaderBase(const ReaderBase&) = delete;
   ReaderBase& operator=(const ReaderBase&) = delete;
@@ -116,10 +116,11 @@ class Reader {
  public:
   using SampleFn = std::function<void(const T&, const WriterId&)>;
   using MatchFn = detail::ReaderBase::MatchFn;
-  Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {})
+  Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {},
+         ReaderRole role = ReaderRole::consumer)
       : base_(
             participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-            TopicTraits<T>::qos, [] { return static_cast<void*>(new T()); },
+            TopicTraits<T>::qos, role, [] { return static_cast<void*>(new T()); },
             [](void* p) { delete static_cast<T*>(p); },
             [fn = std::move(on_sample)](const void* s, const WriterId& w) {
               fn(*static_cast<const T*>(s), w);

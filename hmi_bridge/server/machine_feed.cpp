@@ -18,16 +18,21 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       program_dir_(std::move(program_dir)),
       participant_(domain, "hmi"),
       commands_(participant_),
-      channels_(participant_,
-                [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
-                  std::lock_guard<std::mutex> lock(mutex_);
-                  snapshot_.channels[s.channel()] = status::view_of(s);
-                }),
-      axes_(participant_,
-            [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {
-              std::lock_guard<std::mutex> lock(mutex_);
-              snapshot_.axes[f.axis()] = status::view_of(f);
-            }),
+      // An observer of the cyclic topics: an HMI behind the machine must not hold it back.
+      channels_(
+          participant_,
+          [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            snapshot_.channels[s.channel()] = status::view_of(s);
+          },
+          {}, dds::ReaderRole::observer),
+      axes_(
+          participant_,
+          [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            snapshot_.axes[f.axis()] = status::view_of(f);
+          },
+          {}, dds::ReaderRole::observer),
       alarm_reader_(participant_,
                     [this](const ::mcnc::Alarm& a, const dds::WriterId&) { on_alarm(a); }),
       command_reader_(participant_, [this](const ::mcnc::OperatorCommand& c,

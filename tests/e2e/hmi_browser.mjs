@@ -18,6 +18,8 @@ if (!url || !outDir) {
 mkdirSync(outDir, { recursive: true });
 
 const browser = await chromium.launch({
+  // The harness stops a run that overstays with SIGINT: our handler below says where it stood.
+  handleSIGINT: false,
   executablePath: process.env.MCNC_CHROMIUM || '/usr/bin/chromium',
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run',
     '--disable-background-networking', '--disable-component-update', '--disable-sync'],
@@ -32,22 +34,34 @@ async function screenshot(name) {
   await page.screenshot({ path: join(outDir, `${String(shot).padStart(2, '0')}-${name}.png`), fullPage: true });
 }
 
-// What the page shows, for a failure's message: the connection, and each channel's state,
-// current line and wait.
+// What the page shows, for a failure's message: the connection, the machine's time, and each
+// channel's state, current line and wait.
 function pageSummary() {
   const text = (el, sel) => el.querySelector(sel)?.textContent.trim().replace(/\s+/g, ' ') || '-';
   const channels = [...document.querySelectorAll('[data-channel]')].map((ch) =>
     `${ch.dataset.channel} ${text(ch, '.ch-state')} line ${ch.querySelector('.line.current')?.dataset.line || '-'}` +
     ` wait "${text(ch, '.ch-wait')}" end "${text(ch, '.ch-end')}"`);
-  return `${text(document, '#connection')} as ${text(document, '#role')}; ${channels.join('; ')}`;
+  return `${text(document, '#connection')} as ${text(document, '#role')}, machine time ` +
+    `${text(document, '#time')}; ${channels.join('; ')}`;
+}
+
+// Each check passed is printed with the wall time since the start and the machine's time, so a
+// run that is stopped from outside still tells which step took long.
+const started = Date.now();
+let step = 'opening the page';
+async function passed(what) {
+  const machineTime = await page.locator('#time').first().innerText().catch(() => '-');
+  console.log(`[${((Date.now() - started) / 1000).toFixed(1)} s, machine ${machineTime}] ${what}`);
 }
 
 // Polls `probe` (run in the page) until it returns true; fails with `what` after `ms`. The
 // machine runs in paced lockstep, which a loaded host slows down (the CI host runs another
 // machine beside this one), so the time allowed is a backstop, not a measure.
 async function until(what, probe, arg, ms = 90000) {
+  step = what;
   try {
     await page.waitForFunction(probe, arg, { timeout: ms, polling: 20 });
+    await passed(what);
   } catch (e) {
     const seen = await page.evaluate(pageSummary).catch((err) => `page not readable: ${err}`);
     await screenshot('failed');
@@ -56,6 +70,14 @@ async function until(what, probe, arg, ms = 90000) {
 }
 
 const text = (sel) => page.locator(sel).first().innerText();
+
+process.on('SIGINT', async () => {
+  const seen = await page.evaluate(pageSummary).catch((err) => `page not readable: ${err}`);
+  console.error(`FAILED: stopped from outside while waiting for "${step}" after ` +
+    `${((Date.now() - started) / 1000).toFixed(1)} s; the page shows: ${seen}`);
+  await browser.close();
+  process.exit(1);
+});
 const stateOf = (ch) => `[data-channel="${ch}"] .ch-state`;
 
 try {
@@ -103,18 +125,19 @@ try {
     /^-?[0-9]+ %$/.test(document.querySelector('[data-spindle="S1"] .load')?.textContent.trim() || ''));
   await page.click('[data-channel="CH1"] button[data-action="feed_hold"]');
   await until('CH1 in feed hold', (sel) => document.querySelector(sel)?.textContent.trim() === 'hold', stateOf('CH1'));
-  // The path ramps down to rest; on a loaded host machine time runs slower than the page's, so
-  // wait until Z1's command has stood for 300 ms, then it must stand while machine time runs on.
-  // (The command, not the actual position: a servo settles by microns after the ramp.)
+  // The path ramps down to rest; wait until Z1's command has stood for 0.3 s of machine time (a
+  // loaded host runs the machine far slower than the page's clock), then it must stand while
+  // machine time runs on. (The command, not the actual position: a servo settles by microns
+  // after the ramp.)
   await until('Z1 at rest in feed hold', () => {
     const now = document.querySelector('#axes tr[data-axis="Z1"] .cmd')?.textContent;
-    const t = performance.now();
-    if (window.z1Seen !== now) {
+    const t = parseFloat(document.querySelector('#time')?.textContent);
+    if (window.z1Seen !== now || !(t >= window.z1Since)) {
       window.z1Seen = now;
       window.z1Since = t;
       return false;
     }
-    return t - window.z1Since > 300;
+    return t - window.z1Since > 0.3;
   });
   const z1Before = await text('#axes tr[data-axis="Z1"] .cmd');
   const timeBefore = await text('#time');

@@ -226,8 +226,9 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
   const RunResult browser =
       run({"/usr/bin/env", "node", source("tests/e2e/hmi_browser.mjs"),
            "http://127.0.0.1:" + std::to_string(hmi.port) + "/#token=" + hmi.token, shots},
-          -1, 240s);
-  EXPECT_EQ(browser.exit_code, 0) << browser.out << browser.err;
+          -1, 360s);
+  std::cout << browser.out;  // the steps, each with its wall and machine time
+  EXPECT_EQ(browser.exit_code, 0) << browser.err;
   EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
 
   // What the page did reached the machine: the cycle starts and the feed hold from the HMI.

@@ -7,11 +7,12 @@ namespace mcnc::dds {
 
 enum class QosKind { cyclic, state, event };
 
-// Who reads a cyclic topic. A `consumer` (a lockstep peer) gets every sample, reliably. An
-// `observer` (an HMI, a status view) gets the latest samples it keeps up with, best effort: no
-// writer heartbeats it or repeats a sample for it, so an observer that falls behind cannot slow
-// the machine. State and event topics are read reliably by both: their samples are few and
-// none may be lost.
+// Who reads a cyclic topic. A `consumer` (a lockstep peer) gets every sample, reliably, and the
+// writers' recent history when it matches. An `observer` (the HMI's axis view) gets the latest
+// samples it keeps up with, best effort, and only those written after it matched: no writer
+// repeats a sample for it or counts on its acknowledgements, so an observer that falls behind
+// adds nothing to the machine's work. State and event topics are read reliably by both: their
+// samples are few and none may be lost.
 enum class ReaderRole { consumer, observer };
 
 template <class T>

@@ -33,21 +33,15 @@ int execute_status(const StatusArguments& args) {
   dds::Participant participant(process::resolve_domain(machine), "status");
   std::mutex mutex;
   status::StatusSnapshot snapshot;
-  // An observer: a status view never adds to what the machine's writers do.
   dds::Reader<::mcnc::ChannelStatus> channels(
-      participant,
-      [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+      participant, [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(mutex);
         snapshot.channels[s.channel()] = status::view_of(s);
-      },
-      {}, dds::ReaderRole::observer);
-  dds::Reader<AxisFeedback> axes(
-      participant,
-      [&](const AxisFeedback& f, const dds::WriterId&) {
-        std::lock_guard<std::mutex> lock(mutex);
-        snapshot.axes[f.axis()] = status::view_of(f);
-      },
-      {}, dds::ReaderRole::observer);
+      });
+  dds::Reader<AxisFeedback> axes(participant, [&](const AxisFeedback& f, const dds::WriterId&) {
+    std::lock_guard<std::mutex> lock(mutex);
+    snapshot.axes[f.axis()] = status::view_of(f);
+  });
   const auto copy = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     return snapshot;

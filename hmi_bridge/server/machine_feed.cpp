@@ -18,14 +18,14 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       program_dir_(std::move(program_dir)),
       participant_(domain, "hmi"),
       commands_(participant_),
-      // An observer of the cyclic topics: an HMI behind the machine must not hold it back.
-      channels_(
-          participant_,
-          [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
-            std::lock_guard<std::mutex> lock(mutex_);
-            snapshot_.channels[s.channel()] = status::view_of(s);
-          },
-          {}, dds::ReaderRole::observer),
+      // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
+      channels_(participant_,
+                [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+                  std::lock_guard<std::mutex> lock(mutex_);
+                  snapshot_.channels[s.channel()] = status::view_of(s);
+                }),
+      // An observer: the axes' feedback changes every cycle, and an HMI behind the machine
+      // must not add to its work.
       axes_(
           participant_,
           [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {

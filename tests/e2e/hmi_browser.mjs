@@ -71,11 +71,18 @@ async function until(what, probe, arg, ms = 90000) {
 
 const text = (sel) => page.locator(sel).first().innerText();
 
+// The harness kills 5 s after its SIGINT: say where we stood first, then what the page shows
+// if a starved renderer answers within 2 s.
+let stopping = false;
 process.on('SIGINT', async () => {
-  const seen = await page.evaluate(pageSummary).catch((err) => `page not readable: ${err}`);
-  console.error(`FAILED: stopped from outside while waiting for "${step}" after ` +
-    `${((Date.now() - started) / 1000).toFixed(1)} s; the page shows: ${seen}`);
-  await browser.close();
+  stopping = true;
+  console.error(`FAILED: stopped from outside ${((Date.now() - started) / 1000).toFixed(1)} s ` +
+    `after the start, at or after "${step}"`);
+  const seen = await Promise.race([
+    page.evaluate(pageSummary).catch((err) => `not readable: ${err}`),
+    new Promise((resolve) => setTimeout(() => resolve('no answer within 2 s'), 2000)),
+  ]);
+  console.error(`the page shows: ${seen}`);
   process.exit(1);
 });
 const stateOf = (ch) => `[data-channel="${ch}"] .ch-state`;
@@ -191,6 +198,9 @@ try {
   await browser.close();
   process.exit(0);
 } catch (e) {
+  if (stopping) {
+    await new Promise(() => {});  // the SIGINT handler reports and exits
+  }
   console.error(`FAILED: ${e.message}`);
   await browser.close();
   process.exit(1);

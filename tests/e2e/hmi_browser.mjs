@@ -49,14 +49,15 @@ function pageSummary() {
 // run that is stopped from outside still tells which step took long.
 const started = Date.now();
 let step = 'opening the page';
+const elapsed = () => `${((Date.now() - started) / 1000).toFixed(1)} s`;
 async function passed(what) {
   const machineTime = await page.locator('#time').first().innerText().catch(() => '-');
-  console.log(`[${((Date.now() - started) / 1000).toFixed(1)} s, machine ${machineTime}] ${what}`);
+  console.log(`[${elapsed()}, machine ${machineTime}] ${what}`);
 }
 
 // Polls `probe` (run in the page) until it returns true; fails with `what` after `ms`. The
-// machine runs in paced lockstep, which a loaded host slows down (the CI host runs another
-// machine beside this one), so the time allowed is a backstop, not a measure.
+// machine runs in paced lockstep, which a loaded host slows down (two cores run it at a fifth
+// of real time or less), so the time allowed is a backstop, not a measure.
 async function until(what, probe, arg, ms = 90000) {
   step = what;
   try {
@@ -76,8 +77,7 @@ const text = (sel) => page.locator(sel).first().innerText();
 let stopping = false;
 process.on('SIGINT', async () => {
   stopping = true;
-  console.error(`FAILED: stopped from outside ${((Date.now() - started) / 1000).toFixed(1)} s ` +
-    `after the start, at or after "${step}"`);
+  console.error(`FAILED: stopped from outside ${elapsed()} after the start, at or after "${step}"`);
   const seen = await Promise.race([
     page.evaluate(pageSummary).catch((err) => `not readable: ${err}`),
     new Promise((resolve) => setTimeout(() => resolve('no answer within 2 s'), 2000)),

@@ -103,7 +103,8 @@ int main(int argc, char** argv) {
   const auto node_id = static_cast<std::uint8_t>(axis->node_id);
 
   try {
-    process::ProcessNode node(process::resolve_domain(machine), axis->name);
+    process::ProcessNode node(process::resolve_domain(machine), axis->name,
+                              process::cyclic_clock(shell));
     trace::TraceWriter tracer(trace_path, axis->name);
     node.announce(PHASE_STARTING);
 

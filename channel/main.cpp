@@ -167,7 +167,8 @@ int main(int argc, char** argv) {
   channel::ChannelController controller(setup, interpreter, planner);
 
   try {
-    process::ProcessNode node(process::resolve_domain(machine), ch->name);
+    process::ProcessNode node(process::resolve_domain(machine), ch->name,
+                              process::cyclic_clock(shell));
     trace::TraceWriter tracer(trace_path, ch->name);
     node.announce(PHASE_STARTING);
     process::Wakeup& wake = node.wakeup();

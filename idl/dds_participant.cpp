@@ -31,10 +31,10 @@ WriterId to_writer_id(const fdds::InstanceHandle_t& handle) {
   return id;
 }
 
-const char* writer_profile(QosKind qos) {
+const char* writer_profile(QosKind qos, CyclicClock clock) {
   switch (qos) {
     case QosKind::cyclic:
-      return "cyclic_writer";
+      return clock == CyclicClock::lockstep ? "cyclic_writer_lockstep" : "cyclic_writer";
     case QosKind::state:
       return "state_writer";
     case QosKind::event:
@@ -84,8 +84,8 @@ struct Participant::Topics {
   std::map<std::string, fdds::Topic*> by_name;
 };
 
-Participant::Participant(int domain, const std::string& name)
-    : topics_(std::make_unique<Topics>()) {
+Participant::Participant(int domain, const std::string& name, CyclicClock clock)
+    : clock_(clock), topics_(std::make_unique<Topics>()) {
   load_profiles_once();
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   // Copying PARTICIPANT_QOS_DEFAULT would bypass the XML profile, and on Fast DDS 2.9 so does
@@ -134,7 +134,8 @@ fdds::Topic* Participant::topic(const std::string& name, void* pubsub_type) {
 }
 
 fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, QosKind qos) {
-  fdds::DataWriter* writer = publisher_->create_datawriter_with_profile(topic, writer_profile(qos));
+  fdds::DataWriter* writer =
+      publisher_->create_datawriter_with_profile(topic, writer_profile(qos, clock_));
   if (writer == nullptr) {
     throw std::runtime_error("cannot create DDS writer for " + topic->get_name());
   }

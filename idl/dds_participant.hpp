@@ -31,7 +31,7 @@ std::string qos_profiles_path();
 class Participant {
  public:
   // Throws std::runtime_error when the participant cannot be created (start-up error).
-  Participant(int domain, const std::string& name);
+  Participant(int domain, const std::string& name, CyclicClock clock = CyclicClock::realtime);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
@@ -51,6 +51,7 @@ class Participant {
   }
 
  private:
+  CyclicClock clock_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
   process::start_process("PLC", shell);
 
   try {
-    process::ProcessNode node(process::resolve_domain(machine), "PLC");
+    process::ProcessNode node(process::resolve_domain(machine), "PLC",
+                              process::cyclic_clock(shell));
     trace::TraceWriter tracer(trace_path, "PLC");
     node.announce(PHASE_STARTING);
     process::Wakeup& wake = node.wakeup();

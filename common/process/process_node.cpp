@@ -28,9 +28,9 @@ int resolve_domain(const config::MachineConfig& machine) {
   return static_cast<int>(value);
 }
 
-ProcessNode::ProcessNode(int domain, std::string name)
+ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock)
     : name_(std::move(name)),
-      participant_(domain, name_),
+      participant_(domain, name_, clock),
       state_writer_(participant_),
       alarm_writer_(participant_),
       run_control_reader_(participant_,

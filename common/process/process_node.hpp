@@ -84,7 +84,8 @@ struct RunControlView {
 
 class ProcessNode {
  public:
-  ProcessNode(int domain, std::string name);
+  // `clock` chooses the cyclic writers' heartbeat (dds::CyclicClock).
+  ProcessNode(int domain, std::string name, dds::CyclicClock clock = dds::CyclicClock::realtime);
   ProcessNode(const ProcessNode&) = delete;
   ProcessNode& operator=(const ProcessNode&) = delete;
 

@@ -2,6 +2,7 @@
 
 #include "common/clock/cycle_clock.hpp"
 #include "common/log/logging.hpp"
+#include "idl/topics.hpp"
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -21,6 +22,10 @@ void add_shell_options(CLI::App& app, ShellOptions& options) {
                  "lockstep or realtime (realtime: SCHED_FIFO, memory locked)")
       ->check(CLI::IsMember({"lockstep", "realtime"}));
   app.add_option("--log-level", options.log_level, "trace|debug|info|warn|error|off");
+}
+
+dds::CyclicClock cyclic_clock(const ShellOptions& options) {
+  return options.clock == "lockstep" ? dds::CyclicClock::lockstep : dds::CyclicClock::realtime;
 }
 
 void start_process(const std::string& process_name, const ShellOptions& options) {

@@ -8,6 +8,9 @@
 namespace CLI {
 class App;
 }
+namespace mcnc::dds {
+enum class CyclicClock;
+}
 
 namespace mcnc::process {
 
@@ -18,6 +21,8 @@ struct ShellOptions {
   std::string log_level;
 };
 void add_shell_options(CLI::App& app, ShellOptions& options);
+// The heartbeat its clock asks of the process's cyclic writers (dds::CyclicClock).
+dds::CyclicClock cyclic_clock(const ShellOptions& options);
 
 // The first things a process does once it knows its name: its logger, real-time scheduling
 // when the clock is realtime (before any thread starts, so that all inherit it), and the stop

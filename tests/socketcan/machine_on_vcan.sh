@@ -32,9 +32,14 @@ case $scenario in
 esac
 candump -L vcan0 > "$work/candump.log" &
 dump=$!
-"$build/bin/mcnc" run "$work/lathe.yaml" --program "CH1=$program" \
-  --trace "$work/trace.jsonl" "$@" > "$work/run.log" 2>&1
-rc=$?
+# The run's log goes to standard output too, which uml_run.sh shows even when its time limit
+# cut the run short: how far it got.
+{
+  "$build/bin/mcnc" run "$work/lathe.yaml" --program "CH1=$program" \
+    --trace "$work/trace.jsonl" "$@" 2>&1
+  echo $? > "$work/rc"
+} | tee "$work/run.log"
+rc=$(cat "$work/rc")
 sleep 0.2
 kill $dump
 wait $dump 2>/dev/null
@@ -134,6 +139,5 @@ elif scenario == "heartbeat":
 sys.exit(0 if good else 1)
 PY
 status=$?
-[ $status -eq 0 ] || { echo "--- run log"; tail -20 "$work/run.log"; }
 rm -rf "$work"
 exit $status

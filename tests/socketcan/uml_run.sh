@@ -6,6 +6,8 @@
 # AF_CAN, so this is how the socketcan transport meets a real CAN stack in tests.
 #
 #   tests/socketcan/uml_run.sh COMMAND [ARG...]
+# UML_TIME_LIMIT (seconds, default 840, under ctest's 900): past it, user-mode Linux is killed
+# and what the command had printed so far is shown, so that a slow host says where it stood.
 set -euo pipefail
 
 uml=$(command -v linux.uml || true)
@@ -45,11 +47,14 @@ sleep 10
 INIT
 chmod +x "$work/init"
 
-"$uml" mem=768M rootfstype=hostfs rootflags=/ rw init="$work/init" con=null con0=fd:0,fd:1 \
-  quiet < /dev/null > "$work/console" 2>&1 || true
+limit=${UML_TIME_LIMIT:-840}
+started=$SECONDS
+timeout --kill-after=10 "$limit" "$uml" mem=768M rootfstype=hostfs rootflags=/ rw \
+  init="$work/init" con=null con0=fd:0,fd:1 quiet < /dev/null > "$work/console" 2>&1 || true
 cat "$work/output" 2>/dev/null || true
 if [ ! -s "$work/status" ]; then
-  echo "uml_run: the command did not finish inside user-mode Linux" >&2
+  echo "uml_run: the command did not finish inside user-mode Linux" \
+    "($((SECONDS - started)) s, limit $limit s)" >&2
   cat "$work/modules.log" "$work/console" >&2 2>/dev/null || true
   exit 2
 fi

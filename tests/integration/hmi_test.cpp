@@ -227,9 +227,15 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
       run({"/usr/bin/env", "node", source("tests/e2e/hmi_browser.mjs"),
            "http://127.0.0.1:" + std::to_string(hmi.port) + "/#token=" + hmi.token, shots},
           -1, 360s);
-  std::cout << browser.out;  // the steps, each with its wall and machine time
-  EXPECT_EQ(browser.exit_code, 0) << browser.err;
-  EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
+  if (browser.exit_code != 0) {
+    launch.kill(SIGINT);  // the machine would wait for its operator
+  }
+  const int launch_exit = launch.wait(120s);
+  // The browser's steps (each with its wall and machine time) and its error come last, where
+  // the end of a long log still shows them.
+  const std::string launch_out = slurp(machine.file("launch.out"));
+  EXPECT_EQ(launch_exit, 0) << launch_out.substr(launch_out.size() -
+                                                 std::min<std::size_t>(launch_out.size(), 2000));
 
   // What the page did reached the machine: the cycle starts and the feed hold from the HMI.
   const auto trace = read_trace(machine.file("trace.jsonl"));
@@ -242,9 +248,13 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
   };
   EXPECT_EQ(actions("CH1"), (std::vector<std::string>{"cycle_start", "feed_hold", "cycle_start"}));
   EXPECT_EQ(actions("CH2"), (std::vector<std::string>{"cycle_start"}));
-  ASSERT_FALSE(trace.empty());
-  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
-  EXPECT_EQ(trace.back()["channels"]["CH2"]["end"], 30);
+  EXPECT_FALSE(trace.empty());
+  if (!trace.empty()) {
+    EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+    EXPECT_EQ(trace.back()["channels"]["CH2"]["end"], 30);
+  }
+  std::cout << browser.out;
+  EXPECT_EQ(browser.exit_code, 0) << browser.err;
 }
 
 TEST(Hmi, AnOperatorRunsMdiBlocksThenSelectsAnotherProgramAndRunsIt) {

@@ -9,11 +9,10 @@ enum class QosKind { cyclic, state, event };
 
 // Who reads a cyclic topic. A `consumer` (a lockstep peer) gets every sample, reliably, and the
 // writers' recent history when it matches. An `observer` (the HMI's axis view, the launcher's
-// view of the run) gets the latest
-// samples it keeps up with, best effort, and only those written after it matched: no writer
-// repeats a sample for it or counts on its acknowledgements, so an observer that falls behind
-// adds nothing to the machine's work. State and event topics are read reliably by both: their
-// samples are few and none may be lost.
+// view of the run) gets the latest samples it keeps up with, best effort, and only those
+// written after it matched: no writer repeats a sample for it or counts on its
+// acknowledgements, so an observer that falls behind adds nothing to the machine's work. State
+// and event topics are read reliably by both: their samples are few and none may be lost.
 enum class ReaderRole { consumer, observer };
 
 // Which clock a participant's cyclic writers serve. A realtime consumer must have a lost sample

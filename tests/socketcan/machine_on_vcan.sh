@@ -39,7 +39,7 @@ dump=$!
     --trace "$work/trace.jsonl" "$@" 2>&1
   echo $? > "$work/rc"
 } | tee "$work/run.log"
-rc=$(cat "$work/rc")
+rc=$(cat "$work/rc" 2>/dev/null || echo 1)  # no file: the run's shell was killed
 sleep 0.2
 kill $dump
 wait $dump 2>/dev/null

@@ -754,7 +754,7 @@ int main(int argc, char** argv) {
     if (pending_dropped > 0) {
       spdlog::warn("{} axis requests dropped (more waiting than the node keeps)", pending_dropped);
     }
-    node.announce(PHASE_STOPPED);
+    node.announce_stopped();
     // The drives leave last: a channel still waiting for this cycle's feedback when the run
     // stops would otherwise see its axis go before it has seen the stop, and raise alarm 1202
     // for what is only the end of the run. Its feedback writer stays until the channels have

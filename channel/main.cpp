@@ -419,7 +419,7 @@ int main(int argc, char** argv) {
     if (tracer.dropped() > 0) {
       spdlog::warn("{} trace events dropped (trace writer could not keep up)", tracer.dropped());
     }
-    node.announce(PHASE_STOPPED);
+    node.announce_stopped();
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

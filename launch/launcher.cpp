@@ -2,11 +2,13 @@
 
 #include "channel/control/channel_controller.hpp"
 #include "common/clock/cycle_clock.hpp"
+#include "common/process/exit_deadline.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
 #include "common/process/startup.hpp"
 #include "common/trace/trace_merge.hpp"
 #include "common/trace/trace_writer.hpp"
+#include "launch/child_end.hpp"
 #include "launch/child_process.hpp"
 
 #include <spdlog/spdlog.h>
@@ -460,7 +462,9 @@ LaunchResult Launcher::run(
     for (auto& child : children) {
       child.signal(SIGTERM);
     }
-    if (!wait_all(3s)) {
+    // Longer than a process's exit deadline after its stop (kStopToExitLimit), so that one
+    // stopped by this SIGTERM whose DDS teardown then hangs leaves by itself, saying so.
+    if (!wait_all(process::kStopToExitLimit + 2s)) {
       for (auto& child : children) {
         child.signal(SIGKILL);
       }
@@ -471,29 +475,25 @@ LaunchResult Launcher::run(
   }
   const bool run_failed = !failure.empty();
   for (auto& child : children) {
-    // An abort once the run was over is Fast DDS 2.9.1 tearing down a participant while the
-    // others leave (an assertion in PDP::check_remote_participant_liveliness), before or after
-    // the process said it stopped: its work was done and reported; the run's result stands
-    // (docs/operations.md). An abort during the run failed it above.
-    bool stopped = false;
+    ChildExit how;
+    how.exit_code = child.exit_code();
+    how.killed_by_launcher = sent_kill;
+    how.run_failed = run_failed;
     wake.update([&] {
       const auto it = seen.phases.find(child.name());
-      stopped = it != seen.phases.end() && it->second == PHASE_STOPPED;
+      how.announced_stop = it != seen.phases.end() && it->second == PHASE_STOPPED;
     });
-    // A child killed because it had not left 9 s after the run hangs in the same teardown: when
-    // it had said it stopped, its work was done and reported too.
-    const bool aborted = child.exit_code() == -SIGABRT && (stopped || !run_failed);
-    const bool hung = sent_kill && child.exit_code() == -SIGKILL && stopped;
-    if (aborted || hung) {
-      spdlog::warn("{} {} after the run ended (DDS teardown){}", child.name(),
-                   child.exit_description(),
-                   stopped ? ""
-                           : ", before it had stopped: what it does at its end (a channel "
-                             "saving the retained variables) may not be done");
+    const ChildEnd end = classify_child_end(how);
+    if (end == ChildEnd::teardown || end == ChildEnd::teardown_early) {
+      spdlog::warn(
+          "{} {} after the run ended (DDS teardown){}", child.name(), child.exit_description(),
+          end == ChildEnd::teardown ? ""
+                                    : ", before it had stopped: what it does at its end (a channel "
+                                      "saving the retained variables) may not be done");
       killed_child = true;  // its shared-memory files stay behind, as after a kill
       continue;
     }
-    if (child.exit_code() != 0 && failure.empty() && child.name() != kHmiName) {
+    if (end == ChildEnd::failed && failure.empty() && child.name() != kHmiName) {
       failure = child.name() + " " + child.exit_description();
     }
   }

@@ -243,7 +243,7 @@ int main(int argc, char** argv) {
     if (dropped > 0) {
       spdlog::warn("{} aux requests dropped (queue full)", dropped);
     }
-    node.announce(PHASE_STOPPED);
+    node.announce_stopped();
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

@@ -1,6 +1,7 @@
 #include "common/process/process_node.hpp"
 
 #include "common/config/machine_config.hpp"
+#include "common/process/exit_deadline.hpp"
 #include "common/process/startup.hpp"
 
 #include <unistd.h>
@@ -76,6 +77,11 @@ void ProcessNode::announce(ProcessPhase phase, std::uint64_t cycle, const std::s
   state.cycle(cycle);
   state.detail(detail);
   state_writer_.write(state);
+}
+
+void ProcessNode::announce_stopped() {
+  announce(PHASE_STOPPED);
+  arm_exit_deadline(kStopToExitLimit);
 }
 
 RunControlView ProcessNode::run_control() const noexcept {

@@ -94,6 +94,9 @@ class ProcessNode {
   Wakeup& wakeup() noexcept { return wakeup_; }
 
   void announce(ProcessPhase phase, std::uint64_t cycle = 0, const std::string& detail = {});
+  // The end work is done: announces PHASE_STOPPED and arms the exit deadline
+  // (kStopToExitLimit, common/process/exit_deadline.hpp) against a DDS teardown that hangs.
+  void announce_stopped();
   [[nodiscard]] RunControlView run_control() const noexcept;
   // A peer that leaves may be leaving because the run ends: its STOP and ours were sent
   // together but may arrive in either order. True when STOP (or a stop signal) arrives within

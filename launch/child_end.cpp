@@ -10,7 +10,8 @@ ChildEnd classify_child_end(const ChildExit& e) noexcept {
   if (e.exit_code == 0) {
     return ChildEnd::clean;
   }
-  // It left by its own exit deadline, which it arms only after its end work.
+  // It left by its own exit deadline, which it arms only after its end work. (With alarms it
+  // had raised, kExitTeardownHungAfterAlarms, they may not have arrived: that fails below.)
   if (e.exit_code == process::kExitTeardownHung) {
     return ChildEnd::teardown;
   }

@@ -15,7 +15,7 @@ enum class ChildEnd {
 struct ChildExit {
   int exit_code = 0;                // ChildProcess::exit_code(): -signal when killed by one
   bool announced_stop = false;      // the launcher saw its PHASE_STOPPED
-  bool killed_by_launcher = false;  // it had not left and the launcher sent SIGKILL
+  bool killed_by_launcher = false;  // the launcher sent SIGKILL to the children still there
   bool run_failed = false;          // the run had failed before the stop
 };
 

@@ -475,15 +475,15 @@ LaunchResult Launcher::run(
   }
   const bool run_failed = !failure.empty();
   for (auto& child : children) {
-    ChildExit how;
-    how.exit_code = child.exit_code();
-    how.killed_by_launcher = sent_kill;
-    how.run_failed = run_failed;
+    ChildExit exit_facts;
+    exit_facts.exit_code = child.exit_code();
+    exit_facts.killed_by_launcher = sent_kill;
+    exit_facts.run_failed = run_failed;
     wake.update([&] {
       const auto it = seen.phases.find(child.name());
-      how.announced_stop = it != seen.phases.end() && it->second == PHASE_STOPPED;
+      exit_facts.announced_stop = it != seen.phases.end() && it->second == PHASE_STOPPED;
     });
-    const ChildEnd end = classify_child_end(how);
+    const ChildEnd end = classify_child_end(exit_facts);
     if (end == ChildEnd::teardown || end == ChildEnd::teardown_early) {
       spdlog::warn(
           "{} {} after the run ended (DDS teardown){}", child.name(), child.exit_description(),

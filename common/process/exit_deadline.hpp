@@ -1,26 +1,28 @@
 #pragma once
 // A bound on how long a process may take to leave once its end work is done. Fast DDS 2.9.1
-// (Debian 12) now and then hangs for good while it deletes a participant whose peers leave at
-// the same moment (docs/operations.md). A process that hangs there has done and reported its
-// work, but the launcher could only kill it, and a kill cannot tell "hung after the work" from
-// "killed before it": the run failed although nothing was wrong with it (docs/decisions.md 28).
+// (Debian 12) now and then hangs while it deletes a participant whose peers leave at the same
+// moment (docs/operations.md). A process stuck there has done its work, but the launcher could
+// only kill it, and a kill cannot tell "stuck after the work" from "killed before it"; the stop
+// announcement that would tell is lost in the same hang (docs/decisions.md 28).
 #include <chrono>
 
 namespace mcnc::process {
 
-// The exit code of a process that left by its deadline: its end work was done, its DDS
-// teardown was not.
+// The exit codes of a process that left by its deadline: its end work was done, its DDS
+// teardown was not. With kExitTeardownHungAfterAlarms it had raised alarms (or lost some),
+// which may not have reached anyone: that end fails the run.
 inline constexpr int kExitTeardownHung = 3;
+inline constexpr int kExitTeardownHungAfterAlarms = 4;
 
-// The deadline the DDS processes arm when they announce their stop: an axis node lingers up to
-// 2 s for its channels to go, and a participant is deleted in well under a second when nothing
-// hangs.
+// The deadline the DDS processes arm when they announce their stop: an axis node waits up to
+// 2 s for its channels to go, which leaves 2 s for the participant's deletion.
 inline constexpr std::chrono::milliseconds kStopToExitLimit{4000};
 
 // Called once, after the end work (trace flushed, retained data saved, stop announced). If the
-// process is still there `limit` later, it logs a warning and leaves at once with
-// kExitTeardownHung, skipping every destructor still to run. A process that leaves in time
-// never notices.
-void arm_exit_deadline(std::chrono::milliseconds limit);
+// process is still there `limit` later, it says so on stderr (naming itself) and leaves at once
+// with `exit_code`, skipping every destructor still to run. A process that leaves in time never
+// notices. Without a thread to spare, there is no deadline.
+void arm_exit_deadline(const char* process_name, std::chrono::milliseconds limit,
+                       int exit_code) noexcept;
 
 }  // namespace mcnc::process

@@ -81,7 +81,11 @@ void ProcessNode::announce(ProcessPhase phase, std::uint64_t cycle, const std::s
 
 void ProcessNode::announce_stopped() {
   announce(PHASE_STOPPED);
-  arm_exit_deadline(kStopToExitLimit);
+  // Alarms are sent by the alarm thread and the last ones only in the destructor: a process
+  // that raised any may leave by its deadline before they reached the launcher.
+  const bool raised = alarm_head_.load() > 0 || alarms_lost_.load() > 0;
+  arm_exit_deadline(name_.c_str(), kStopToExitLimit,
+                    raised ? kExitTeardownHungAfterAlarms : kExitTeardownHung);
 }
 
 RunControlView ProcessNode::run_control() const noexcept {

@@ -95,7 +95,8 @@ class ProcessNode {
 
   void announce(ProcessPhase phase, std::uint64_t cycle = 0, const std::string& detail = {});
   // The end work is done: announces PHASE_STOPPED and arms the exit deadline
-  // (kStopToExitLimit, common/process/exit_deadline.hpp) against a DDS teardown that hangs.
+  // (kStopToExitLimit, common/process/exit_deadline.hpp) against a DDS teardown that hangs;
+  // its exit code says whether this process had raised alarms.
   void announce_stopped();
   [[nodiscard]] RunControlView run_control() const noexcept;
   // A peer that leaves may be leaving because the run ends: its STOP and ours were sent

@@ -31,6 +31,9 @@ TEST(ChildEnd, LeavingByTheExitDeadlineIsTeardownEvenWhenTheStopWasNotSeen) {
   EXPECT_EQ(classify_child_end(exit_with(process::kExitTeardownHung, false)), ChildEnd::teardown);
   EXPECT_EQ(classify_child_end(exit_with(process::kExitTeardownHung, true, false, true)),
             ChildEnd::teardown);
+  // Alarms it raised may be lost in the hang: the run fails.
+  EXPECT_EQ(classify_child_end(exit_with(process::kExitTeardownHungAfterAlarms, true)),
+            ChildEnd::failed);
 }
 
 TEST(ChildEnd, AnAbortAfterTheStopIsTeardownAndBeforeItOnlyInARunThatHadNotFailed) {

@@ -33,7 +33,7 @@ int exit_status_of(Body body) {
 TEST(ExitDeadline, AProcessHungAfterItsWorkLeavesWithTheTeardownCode) {
   const auto start = std::chrono::steady_clock::now();
   const int status = exit_status_of([] {
-    arm_exit_deadline(100ms);
+    arm_exit_deadline("test", 100ms, kExitTeardownHung);
     std::this_thread::sleep_for(60s);  // a teardown that never ends
   });
   EXPECT_EQ(status, kExitTeardownHung);
@@ -42,7 +42,7 @@ TEST(ExitDeadline, AProcessHungAfterItsWorkLeavesWithTheTeardownCode) {
 
 TEST(ExitDeadline, AProcessThatLeavesInTimeKeepsItsExitCode) {
   const int status = exit_status_of([] {
-    arm_exit_deadline(5s);
+    arm_exit_deadline("test", 5s, kExitTeardownHung);
     std::this_thread::sleep_for(10ms);
     ::_exit(7);
   });

@@ -6,7 +6,8 @@ namespace mcnc::launch {
 
 enum class ChildEnd {
   clean,           // exited with code 0
-  teardown,        // aborted, hung or timed out in its DDS teardown after its work: warn
+  teardown,        // aborted, killed or left by its deadline (exit code 3) in its DDS
+                   // teardown after its work: warn
   teardown_early,  // aborted before it announced its stop, in a run that had not failed:
                    // warn that its end work may not be done
   failed,          // any other abnormal end: the run fails

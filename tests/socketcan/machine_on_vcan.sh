@@ -1,5 +1,5 @@
 #!/bin/sh
-# Inside user-mode Linux (uml_run.sh): the example lathe on real kernel CAN (socketcan:vcan0),
+# Inside the QEMU guest (qemu_run.sh): the example lathe on real kernel CAN (socketcan:vcan0),
 # in lockstep, candump recording every frame as an independent witness.
 #   machine_on_vcan.sh SOURCE_DIR BUILD_DIR SCENARIO
 # SCENARIO:
@@ -9,6 +9,9 @@
 #   fault_reset  over-current EMCY at SYNC 2000, operator reset at 3000, cycle start at 3100:
 #                the alarm, the fault reset and enable frames, the program run again
 #   heartbeat    node 2 stops its heartbeat at SYNC 1500: alarm and quick stop in time
+#   frames       the spindle lathe on vcan0 (X, Z) and vcan1 (the spindle), spindle_turn.nc:
+#                the frames a CANopen engineer looks for, counted against the machine file
+#                (bus_witness.cpp)
 # Checks in python3 below, from the trace and from candump's record of the bus.
 set -u
 src=$1
@@ -17,6 +20,7 @@ scenario=$3
 work=$(mktemp -d /tmp/mcnc-vcan-XXXXXX)
 sed 's|udp:[0-9.]*:[0-9]*|socketcan:vcan0|' "$src/launch/machines/small_lathe.yaml" > "$work/lathe.yaml"
 program="$src/launch/programs/xz_move.nc"
+buses=vcan0
 set --
 case $scenario in
   xz) ;;
@@ -28,12 +32,19 @@ case $scenario in
     set -- --drive-fault can0:1:overcurrent@2000 --operator reset@3000 \
       --operator cycle_start:CH1@3100 ;;
   heartbeat) set -- --drive-fault can0:2:heartbeat_stop@1500 ;;
+  frames)
+    # can0 on vcan0, can1 on vcan1, in the machine file's order.
+    awk '/uri: udp:/ { sub(/udp:[0-9.]*:[0-9]*/, "socketcan:vcan" n++) } { print }' \
+      "$src/launch/machines/spindle_lathe.yaml" > "$work/lathe.yaml"
+    program="$src/launch/programs/spindle_turn.nc"
+    buses="vcan0 vcan1" ;;
   *) echo "unknown scenario $scenario"; exit 2 ;;
 esac
-candump -L vcan0 > "$work/candump.log" &
+# shellcheck disable=SC2086  # one argument per interface
+candump -L $buses > "$work/candump.log" &
 dump=$!
-# The run's log goes to standard output too, which uml_run.sh shows even when its time limit
-# cut the run short: how far it got.
+# The run's log goes to standard output too, which qemu_run.sh shows as it comes: when its
+# time limit cuts the run short, how far it got.
 {
   "$build/bin/mcnc" run "$work/lathe.yaml" --program "CH1=$program" \
     --trace "$work/trace.jsonl" "$@" 2>&1
@@ -43,6 +54,35 @@ rc=$(cat "$work/rc" 2>/dev/null || echo 1)  # no file: the run's shell was kille
 sleep 0.2
 kill $dump
 wait $dump 2>/dev/null
+if [ "$scenario" = frames ]; then
+  status=1
+  if [ "$rc" -eq 0 ]; then
+    echo "ok   the run ends without alarm"
+    "$build/bin/mcnc_bus_witness" "$work/lathe.yaml" "$work/candump.log" "$work/trace.jsonl"
+    status=$?
+    # The witness can fail: the same record with node 2's 500th TPDO1 lost and a frame no
+    # node of the machine file sends must fail exactly those two checks.
+    awk '/ vcan0 182#/ && ++k == 500 { next } { print } END { print "(0.0) vcan0 123#00" }' \
+      "$work/candump.log" > "$work/tampered.log"
+    "$build/bin/mcnc_bus_witness" "$work/lathe.yaml" "$work/tampered.log" "$work/trace.jsonl" \
+      > "$work/tampered.out"
+    tampered=$?
+    fails=$(grep '^FAIL' "$work/tampered.out" | sed 's/ ([^()]*)$//')
+    if [ $tampered -eq 1 ] && [ "$(echo "$fails" | wc -l)" -eq 2 ] &&
+       echo "$fails" | grep -q '^FAIL can0 (vcan0): .* frames, none outside what the machine file accounts for: 0x123 x1$' &&
+       echo "$fails" | grep -q '^FAIL can0 (vcan0) node 2 (Z1): 0x182 once in every SYNC interval$'; then
+      echo "ok   a record with a lost TPDO1 and a stranger fails the witness on exactly those"
+    else
+      echo "FAIL a record with a lost TPDO1 and a stranger fails the witness on exactly those:"
+      cat "$work/tampered.out"
+      status=1
+    fi
+  else
+    echo "FAIL the run ends without alarm (exit $rc)"
+  fi
+  rm -rf "$work"
+  exit $status
+fi
 python3 - "$work" "$rc" "$scenario" <<'PY'
 import json, sys
 work, rc, scenario = sys.argv[1], int(sys.argv[2]), sys.argv[3]

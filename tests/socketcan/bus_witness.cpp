@@ -1,0 +1,329 @@
+// The bus as a CANopen engineer reads it: checks a `candump -L` record of a machine run against
+// what the machine file says must be on each bus. Standard tools are the witness; the
+// expectations come from the machine file, never from the master's code:
+//   - SYNC (0x080) every cycle of the run, from one producer per bus;
+//   - per node, every SYNC interval of the cyclic phase carries its RPDO1 (0x200+node) and
+//     TPDO1 (0x180+node), a spindle's RPDO2 (0x300+node) and, where the machine file maps
+//     one, its TPDO2 (0x280+node): 2 frames per axis per cycle plus one SYNC per bus;
+//   - heartbeats (0x700+node): the boot-up, then one every heartbeat_ms of SYNC time;
+//   - SDO at start-up (0x600+node requests, 0x580+node answers): each request answered before
+//     the next, no abort, all before the node's NMT start;
+//   - no frame with a COB-ID outside that set.
+//   bus_witness MACHINE.yaml CANDUMP.log TRACE.jsonl
+// Prints a line per check ("ok" or "FAIL"), exits 0 when all hold, 1 otherwise, 2 on bad input.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/config/machine_config.hpp"
+
+namespace {
+
+struct Frame {
+  std::string bus;  // interface, e.g. vcan0
+  std::uint32_t id = 0;
+  std::vector<std::uint8_t> data;
+};
+
+// "(1764770000.123456) vcan0 181#2700E8030000"
+bool parse_candump_line(const std::string& line, Frame& out) {
+  std::istringstream in(line);
+  std::string stamp;
+  std::string body;
+  if (!(in >> stamp >> out.bus >> body)) {
+    return false;
+  }
+  const auto hash = body.find('#');
+  if (hash == std::string::npos || hash == 0 || hash > 8) {
+    return false;
+  }
+  out.id = static_cast<std::uint32_t>(std::stoul(body.substr(0, hash), nullptr, 16));
+  out.data.clear();
+  const std::string hex = body.substr(hash + 1);
+  if (!hex.empty() && hex[0] == 'R') {
+    return true;  // remote frame, no data
+  }
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) {
+    out.data.push_back(static_cast<std::uint8_t>(std::stoul(hex.substr(i, 2), nullptr, 16)));
+  }
+  return true;
+}
+
+int failures = 0;
+
+void check(bool ok, const std::string& what) {
+  std::printf("%s%s\n", ok ? "ok   " : "FAIL ", what.c_str());
+  if (!ok) {
+    ++failures;
+  }
+}
+
+std::string hex(std::uint32_t v) {
+  char text[16];
+  std::snprintf(text, sizeof text, "0x%03X", v);
+  return text;
+}
+
+// The interface of a socketcan: URI ("socketcan:vcan0" -> "vcan0"); empty for other transports.
+std::string interface_of(const std::string& uri) {
+  const std::string scheme = "socketcan:";
+  return uri.rfind(scheme, 0) == 0 ? uri.substr(scheme.size()) : std::string();
+}
+
+struct NodeExpectation {
+  std::string axis;
+  int node = 0;
+  std::vector<std::uint32_t> cyclic;  // the PDO COB-IDs on the bus every cycle
+  int heartbeat_ms = 0;
+};
+
+void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::BusConfig& bus,
+               const std::vector<Frame>& all, std::uint64_t cycles) {
+  const std::string itf = interface_of(bus.uri);
+  std::vector<Frame> frames;
+  for (const auto& f : all) {
+    if (f.bus == itf) {
+      frames.push_back(f);
+    }
+  }
+  std::vector<NodeExpectation> nodes;
+  for (const auto& axis : machine.axes) {
+    if (axis.bus != bus.name) {
+      continue;
+    }
+    NodeExpectation e{axis.name, axis.node_id, {}, axis.heartbeat_ms};
+    const auto n = static_cast<std::uint32_t>(axis.node_id);
+    e.cyclic = {0x200 + n, 0x180 + n};
+    if (axis.type == mcnc::config::AxisType::spindle) {
+      e.cyclic.push_back(0x300 + n);  // target velocity
+    }
+    if (mcnc::config::tpdo2_bytes(axis) > 0) {
+      e.cyclic.push_back(0x280 + n);
+    }
+    nodes.push_back(e);
+  }
+  const std::string on = bus.name + " (" + itf + ")";
+
+  // COB-IDs the machine file accounts for.
+  std::set<std::uint32_t> known = {0x000, 0x080};
+  for (const auto& e : nodes) {
+    const auto n = static_cast<std::uint32_t>(e.node);
+    known.insert(e.cyclic.begin(), e.cyclic.end());
+    known.insert({0x600 + n, 0x580 + n, 0x700 + n});
+  }
+  std::map<std::uint32_t, int> strangers;
+  for (const auto& f : frames) {
+    if (known.count(f.id) == 0) {
+      ++strangers[f.id];
+    }
+  }
+  std::string stranger_text;
+  for (const auto& [id, count] : strangers) {
+    stranger_text += " " + hex(id) + " x" + std::to_string(count);
+  }
+  check(!frames.empty() && strangers.empty(),
+        on + ": " + std::to_string(frames.size()) +
+            " frames, none outside what the machine file accounts for" +
+            (stranger_text.empty() ? "" : ":" + stranger_text));
+
+  // SYNC: every cycle; the frame's position is the interval boundary.
+  std::vector<std::size_t> syncs;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (frames[i].id == 0x080) {
+      syncs.push_back(i);
+    }
+  }
+  check(syncs.size() >= cycles, on + ": a SYNC on 0x080 every cycle (" +
+                                    std::to_string(syncs.size()) + " SYNC, " +
+                                    std::to_string(cycles) + " cycles)");
+
+  // Frames per cycle, as the machine file counts them: SYNC plus each node's cyclic PDOs,
+  // over the SYNC intervals in which every node of the bus is started (the last SYNC's
+  // interval is cut short by the stop and is not counted).
+  std::size_t all_started = 0;
+  for (const auto& f : frames) {
+    if (f.id == 0x000 && f.data.size() == 2 && f.data[0] == 0x01) {
+      all_started = std::max(all_started, static_cast<std::size_t>(&f - frames.data()));
+    }
+  }
+  std::set<std::uint32_t> cyclic = {0x080};
+  for (const auto& e : nodes) {
+    cyclic.insert(e.cyclic.begin(), e.cyclic.end());
+  }
+  std::size_t from = 0;
+  while (from < syncs.size() && syncs[from] < all_started) {
+    ++from;
+  }
+  long long counted = 0;
+  const long long intervals =
+      syncs.size() > from + 1 ? static_cast<long long>(syncs.size() - from - 1) : 0;
+  if (intervals > 0) {
+    for (std::size_t i = syncs[from]; i < syncs.back(); ++i) {
+      counted += cyclic.count(frames[i].id);
+    }
+  }
+  const long long per_cycle = static_cast<long long>(cyclic.size());
+  check(intervals > 0 && std::llabs(counted - per_cycle * intervals) <= 2 * per_cycle,
+        on + ": " + std::to_string(per_cycle) + " frames a cycle as the machine file says (" +
+            std::to_string(counted) + " in " + std::to_string(intervals) + " cycles)");
+
+  for (const auto& e : nodes) {
+    const auto n = static_cast<std::uint32_t>(e.node);
+    const std::string who = on + " node " + std::to_string(e.node) + " (" + e.axis + ")";
+    // NMT start of the node: the end of its start-up, the start of its cyclic phase.
+    std::size_t started = frames.size();
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const auto& f = frames[i];
+      if (f.id == 0x000 && f.data.size() == 2 && f.data[0] == 0x01 &&
+          (f.data[1] == n || f.data[1] == 0)) {
+        started = i;
+        break;
+      }
+    }
+    check(started < frames.size(), who + ": NMT start (000#01" + hex(n).substr(3) + ")");
+
+    // SDO: request, answer, request, answer ... all before the NMT start, none refused.
+    int requests = 0;
+    int answers = 0;
+    int aborts = 0;
+    bool alternating = true;
+    bool before_start = true;
+    bool reads_device_type_first = false;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const auto& f = frames[i];
+      if (f.id == 0x600 + n) {
+        if (requests == 0) {
+          reads_device_type_first = f.data.size() == 8 && f.data[0] == 0x40 && f.data[1] == 0x00 &&
+                                    f.data[2] == 0x10 && f.data[3] == 0x00;
+        }
+        alternating &= requests == answers;
+        ++requests;
+        before_start &= i < started;
+      } else if (f.id == 0x580 + n) {
+        alternating &= answers + 1 == requests;
+        ++answers;
+        aborts += !f.data.empty() && f.data[0] == 0x80;
+        before_start &= i < started;
+      }
+    }
+    check(requests >= 3 && reads_device_type_first,
+          who + ": SDO requests on " + hex(0x600 + n) + " at start-up, device type 0x1000 first (" +
+              std::to_string(requests) + ")");
+    check(answers == requests && alternating && aborts == 0,
+          who + ": each answered on " + hex(0x580 + n) + " before the next, no abort (" +
+              std::to_string(answers) + " answers, " + std::to_string(aborts) + " aborts)");
+    check(before_start, who + ": all SDO traffic before the NMT start");
+
+    // The cyclic phase: from the first SYNC after the NMT start to the last SYNC. Every
+    // interval between two SYNCs carries each cyclic PDO once; the interval after the last
+    // SYNC is not complete and is not counted.
+    std::size_t first = 0;
+    while (first < syncs.size() && syncs[first] < started) {
+      ++first;
+    }
+    for (const std::uint32_t id : e.cyclic) {
+      int intervals = 0;
+      int once = 0;
+      int missing = 0;
+      int doubled = 0;
+      for (std::size_t k = first; k + 1 < syncs.size(); ++k) {
+        int count = 0;
+        for (std::size_t i = syncs[k] + 1; i < syncs[k + 1]; ++i) {
+          count += frames[i].id == id;
+        }
+        ++intervals;
+        once += count == 1;
+        // The master's RPDO of the interval's cycle goes out before the next SYNC; a drive's
+        // TPDO answers the SYNC that opens the interval. Only the first interval after the
+        // start may lack its frame (the last SYNC's interval is not counted at all).
+        missing += count == 0 && k != first;
+        doubled += count > 1;
+      }
+      check(intervals > 0 && missing == 0 && doubled == 0,
+            who + ": " + hex(id) + " once in every SYNC interval (" + std::to_string(once) +
+                " of " + std::to_string(intervals) + ", " + std::to_string(missing) +
+                " without, " + std::to_string(doubled) + " with more)");
+    }
+
+    // Heartbeats: a boot-up (state 0) at power-on and after each NMT reset, then one every
+    // heartbeat_ms of SYNC time while the node runs.
+    int bootups = 0;
+    int beats = 0;
+    int resets = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      const auto& f = frames[i];
+      if (f.id == 0x700 + n && f.data.size() == 1) {
+        (f.data[0] == 0x00 ? bootups : beats) += 1;
+      }
+      // NMT reset node (0x81) or reset communication (0x82), to this node or to all.
+      resets += f.id == 0x000 && f.data.size() == 2 && (f.data[0] == 0x81 || f.data[0] == 0x82) &&
+                (f.data[1] == n || f.data[1] == 0);
+    }
+    const std::uint64_t cyclic_syncs = syncs.size() - first;
+    const long long expected = e.heartbeat_ms > 0
+                                   ? static_cast<long long>(cyclic_syncs) * machine.cycle_us /
+                                         (static_cast<long long>(e.heartbeat_ms) * 1000)
+                                   : 0;
+    check(resets >= 1 && bootups == resets + 1,
+          who + ": a boot-up on " + hex(0x700 + n) + " at power-on and after each of the " +
+              std::to_string(resets) + " NMT resets (" + std::to_string(bootups) + ")");
+    check(beats >= expected - 2 && beats <= expected + 3,
+          who + ": a heartbeat every " + std::to_string(e.heartbeat_ms) + " ms of SYNC time (" +
+              std::to_string(beats) + ", expected about " + std::to_string(expected) + ")");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: bus_witness MACHINE.yaml CANDUMP.log TRACE.jsonl\n");
+    return 2;
+  }
+  try {
+    const auto machine = mcnc::config::load_machine_file(argv[1]);
+    std::vector<Frame> frames;
+    std::ifstream dump(argv[2]);
+    if (!dump) {
+      std::fprintf(stderr, "bus_witness: cannot read %s\n", argv[2]);
+      return 2;
+    }
+    for (std::string line; std::getline(dump, line);) {
+      Frame f;
+      if (parse_candump_line(line, f)) {
+        frames.push_back(std::move(f));
+      }
+    }
+    std::uint64_t cycles = 0;
+    std::ifstream trace(argv[3]);
+    for (std::string line; std::getline(trace, line);) {
+      const auto event = nlohmann::json::parse(line, nullptr, false);
+      if (event.is_object() && event.contains("cycles") && event.contains("ok")) {
+        cycles = event["cycles"].get<std::uint64_t>();
+      }
+    }
+    check(cycles > 0, "the trace has the run's summary (" + std::to_string(cycles) + " cycles)");
+    for (const auto& bus : machine.buses) {
+      if (interface_of(bus.uri).empty()) {
+        std::fprintf(stderr, "bus_witness: bus %s is not on socketcan (%s)\n", bus.name.c_str(),
+                     bus.uri.c_str());
+        return 2;
+      }
+      check_bus(machine, bus, frames, cycles);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bus_witness: %s\n", e.what());
+    return 2;
+  }
+  return failures == 0 ? 0 : 1;
+}

@@ -1,6 +1,7 @@
 // CAN bus figures of a machine (bench/README.md): frames and bus load per bus at the machine's
 // cycle, and the round trip RPDO + SYNC -> TPDO on a transport, measured against the drive
-// simulator on the same bus (UDP here; SocketCAN inside user-mode Linux). Not a test.
+// simulator on the same bus (UDP here; SocketCAN inside the socketcan tests' QEMU guest). Not a
+// test.
 // Also how punctually the realtime SYNC timer sends at its offset inside the cycle.
 //   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N] [--sync-seconds S]
 #include "axisnode/cia402/canopen_frames.hpp"

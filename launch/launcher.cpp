@@ -324,8 +324,9 @@ LaunchResult Launcher::run(
     std::uint64_t alarm_cycle = 0;
     for (;;) {
       // Ends, alarms and exits are noticed within this period. Each look costs system calls,
-      // which are dear under user-mode Linux (about 40 us each): polling every 2 ms made the
-      // socketcan tests' machine a fifth slower there (docs/decisions.md 27).
+      // which are dear in an emulated machine (about 40 us each under the user-mode Linux the
+      // socketcan tests once ran in): polling every 2 ms made their machine a fifth slower
+      // there (docs/decisions.md 27).
       std::this_thread::sleep_for(20ms);
       const auto list = progress();
       if (std::chrono::steady_clock::now() - last_progress > 100ms) {

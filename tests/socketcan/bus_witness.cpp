@@ -169,10 +169,10 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
       syncs.size() > from + 1 ? static_cast<long long>(syncs.size() - from - 1) : 0;
   if (intervals > 0) {
     for (std::size_t i = syncs[from]; i < syncs.back(); ++i) {
-      counted += cyclic.count(frames[i].id);
+      counted += static_cast<long long>(cyclic.count(frames[i].id));
     }
   }
-  const long long per_cycle = static_cast<long long>(cyclic.size());
+  const auto per_cycle = static_cast<long long>(cyclic.size());
   check(intervals > 0 && std::llabs(counted - per_cycle * intervals) <= 2 * per_cycle,
         on + ": " + std::to_string(per_cycle) + " frames a cycle as the machine file says (" +
             std::to_string(counted) + " in " + std::to_string(intervals) + " cycles)");
@@ -216,9 +216,9 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
         before_start &= i < started;
       }
     }
-    check(requests >= 3 && reads_device_type_first,
-          who + ": SDO requests on " + hex(0x600 + n) + " at start-up, device type 0x1000 first (" +
-              std::to_string(requests) + ")");
+    check(requests >= 3 && reads_device_type_first, who + ": SDO requests on " + hex(0x600 + n) +
+                                                        " at start-up, device type 0x1000 first (" +
+                                                        std::to_string(requests) + ")");
     check(answers == requests && alternating && aborts == 0,
           who + ": each answered on " + hex(0x580 + n) + " before the next, no abort (" +
               std::to_string(answers) + " answers, " + std::to_string(aborts) + " aborts)");
@@ -251,8 +251,8 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
       }
       check(intervals > 0 && missing == 0 && doubled == 0,
             who + ": " + hex(id) + " once in every SYNC interval (" + std::to_string(once) +
-                " of " + std::to_string(intervals) + ", " + std::to_string(missing) +
-                " without, " + std::to_string(doubled) + " with more)");
+                " of " + std::to_string(intervals) + ", " + std::to_string(missing) + " without, " +
+                std::to_string(doubled) + " with more)");
     }
 
     // Heartbeats: a boot-up (state 0) at power-on and after each NMT reset, then one every
@@ -260,8 +260,7 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     int bootups = 0;
     int beats = 0;
     int resets = 0;
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      const auto& f = frames[i];
+    for (const auto& f : frames) {
       if (f.id == 0x700 + n && f.data.size() == 1) {
         (f.data[0] == 0x00 ? bootups : beats) += 1;
       }

@@ -57,7 +57,9 @@ void say(const std::string& line) {
   power_off();
 }
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text() {
+  return std::strerror(errno);
+}
 
 void must_mount(const char* source, const std::string& target, const char* type,
                 unsigned long flags, const char* data) {
@@ -123,6 +125,7 @@ int load_modules() {
 // inherits meanwhile are reaped as they end.
 int run(const std::vector<std::string>& args) {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const auto& a : args) {
     argv.push_back(const_cast<char*>(a.c_str()));
   }

@@ -23,21 +23,29 @@ missing() {
   exit 0
 }
 
-package=$(apt-cache depends linux-image-amd64 2>/dev/null |
+package=$( (apt-cache depends linux-image-amd64 2>/dev/null || true) |
   awk '/Depends: linux-image-[^ ]*-amd64/ { print $2; exit }')
 [ -n "$package" ] || missing "the kernel package's name cannot be read" \
   "(apt-cache depends linux-image-amd64 names no linux-image-*-amd64): run scripts/install-deps"
+# The kernel tree (its boot/ and lib/modules/) stays in the build tree, for the next build;
+# .from names the package file it came from.
+tree="$guest/kernel"
 deb=$(ls /var/cache/apt/archives/"${package}"_*_amd64.deb 2>/dev/null | sort -V | tail -1 || true)
-[ -n "$deb" ] || missing "$package is not in /var/cache/apt/archives: run scripts/install-deps"
+if [ -n "$deb" ]; then
+  from=$(basename "$deb")
+elif [ -f "$tree/.from" ] && [[ $(cat "$tree/.from") == "${package}"_* ]]; then
+  from=$(cat "$tree/.from")  # apt's cache was cleaned since; the tree unpacked from it stays good
+else
+  missing "$package is not in /var/cache/apt/archives: run scripts/install-deps"
+fi
 
-stamp="$(basename "$deb") $(sha256sum "$init" | cut -d' ' -f1) $(sha256sum "$0" | cut -d' ' -f1)"
-if [ -f "$guest/stamp" ] && [ "$(cat "$guest/stamp")" = "$stamp" ] && [ -f "$guest/initrd.img" ]; then
+stamp="$from $(sha256sum "$init" | cut -d' ' -f1) $(sha256sum "$0" | cut -d' ' -f1)"
+if [ -f "$guest/stamp" ] && [ "$(cat "$guest/stamp")" = "$stamp" ] && [ -f "$guest/initrd.img" ] &&
+   [ -f "$guest/vmlinuz" ]; then
   exit 0
 fi
 
-# The kernel tree (its boot/ and lib/modules/) stays in the build tree, for the next build.
-tree="$guest/kernel"
-if [ ! -f "$tree/.from" ] || [ "$(cat "$tree/.from")" != "$(basename "$deb")" ]; then
+if [ ! -f "$tree/.from" ] || [ "$(cat "$tree/.from")" != "$from" ]; then
   rm -rf "$tree"
   mkdir -p "$tree"
   dpkg-deb --fsys-tarfile "$deb" | tar -x -C "$tree" --wildcards './boot/vmlinuz-*' './lib/modules/*'
@@ -46,20 +54,27 @@ fi
 release=$(ls "$tree/lib/modules" | head -1)
 kernel_dir="$tree/lib/modules/$release/kernel"
 
-# Modules by name (a module's name has "_" where its file may have "-").
-declare -A path_of
+# Modules by name (a module's name has "_" where its file may have "-"); those built into
+# the kernel need no file.
+declare -A path_of builtin
 while IFS= read -r -d '' f; do
   name=$(basename "$f" .ko)
   path_of[${name//-/_}]=$f
 done < <(find "$kernel_dir" -name '*.ko' -print0)
+if [ -f "$tree/lib/modules/$release/modules.builtin" ]; then
+  while IFS= read -r f; do
+    name=$(basename "$f" .ko)
+    builtin[${name//-/_}]=1
+  done < "$tree/lib/modules/$release/modules.builtin"
+fi
 
 # Dependencies first (depth first on depends=), each once.
 order=()
 declare -A placed
 place() {
   local name=${1//-/_} dep deps
-  [ -z "${placed[$name]:-}" ] || return 0
-  [ -n "${path_of[$name]:-}" ] || missing "module $name is not in $package"
+  [ -z "${placed[$name]:-}" ] && [ -z "${builtin[$name]:-}" ] || return 0
+  [ -n "${path_of[$name]:-}" ] || missing "module $name is not in $package (as a .ko file)"
   placed[$name]=1
   deps=$(strings "${path_of[$name]}" | sed -n 's/^depends=//p' | head -1)
   for dep in ${deps//,/ }; do

@@ -43,6 +43,23 @@ esac
 # shellcheck disable=SC2086  # one argument per interface
 candump -L $buses > "$work/candump.log" &
 dump=$!
+# The record must hold the drives' power-on boot-ups: wait until candump's receivers are in
+# the kernel's list of every bus before the machine starts.
+listening() {
+  for bus in $buses; do
+    grep -Eq "^ +$bus +000 +00000000 .* raw\$" /proc/net/can/rcvlist_all || return 1
+  done
+}
+tries=0
+until listening; do
+  tries=$((tries + 1))
+  if [ $tries -gt 100 ]; then
+    echo "FAIL candump is not listening on $buses after 5 s"
+    kill $dump
+    exit 1
+  fi
+  sleep 0.05
+done
 # The run's log goes to standard output too, which qemu_run.sh shows as it comes: when its
 # time limit cuts the run short, how far it got.
 {

@@ -29,11 +29,15 @@ while [ $# -gt 0 ]; do
     *) break ;;
   esac
 done
+[[ $limit =~ ^[1-9][0-9]*$ ]] || { echo "qemu_run: --time-limit takes whole seconds, not '$limit'" >&2; exit 2; }
 [ $# -gt 0 ] || { echo "usage: qemu_run.sh [--guest DIR] [--can LIST] [--time-limit S] COMMAND [ARG...]" >&2; exit 2; }
 
 say() { echo "qemu_run: $*" >&2; }
 [ -d "$guest" ] || { say "no kernel CAN: no guest image in $guest (built with the tests)"; exit 2; }
 guest=$(cd "$guest" && pwd)  # the guest sees the host's root: absolute paths only
+# The work folder's path goes on the kernel command line, which splits at white space.
+[[ $guest != *[[:space:]]* ]] || { say "the guest image's path may not hold white space: $guest"; exit 2; }
+[[ $buses =~ ^[a-z0-9]+(,[a-z0-9]+)*$ ]] || { say "--can takes interface names separated by commas, not '$buses'"; exit 2; }
 if [ -f "$guest/missing" ]; then
   say "no kernel CAN: $(cat "$guest/missing")"
   exit 2
@@ -63,15 +67,20 @@ trap 'say "stopped by a signal"; exit 2' INT TERM
   printf 'export PATH=%q\n' "$PATH"
   while IFS='=' read -r -d '' name value; do
     case $name in
-      MCNC_*|FASTRTPS_*|FASTDDS_*|CYCLONEDDS_*|IOX_*|LANG|LC_*) printf 'export %s=%q\n' "$name" "$value" ;;
+      MCNC_*|FASTRTPS_*|FASTDDS_*|CYCLONEDDS_*|IOX_*|*SAN_OPTIONS|LANG|LC_*) printf 'export %s=%q\n' "$name" "$value" ;;
     esac
   done < <(env -0)
   printf 'exec'
   printf ' %q' "$@"
   printf '\n'
 } > "$work/command"
+# Made here, so that the guest only writes into it: with passthrough, a file the guest
+# creates is given the guest's owner (root), which QEMU run by another user cannot do.
+: > "$work/status"
 
-shm_before=$(ls -A /dev/shm 2>/dev/null | sort)
+# What our processes name their shared memory (Fast DDS, iceoryx): none may appear here.
+ours() { ls -A /dev/shm 2>/dev/null | grep -E '^(fastrtps_|sem\.fastrtps_|fast_datasharing_|iox_)' | sort || true; }
+shm_before=$(ours)
 now() { echo "${EPOCHREALTIME/,/.}"; }
 since() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.1f", b - a }'; }
 t_start=$(now)
@@ -111,7 +120,8 @@ say "$report (accel ${QEMU_ACCEL:-tcg})"
 
 status=
 [ -s "$work/status" ] && status=$(cat "$work/status")
-if [ "$qemu_rc" -eq 124 ] || [ "$qemu_rc" -eq 137 ]; then
+elapsed=$(since "$t_start" "$t_off")
+if [ "$qemu_rc" -eq 124 ] || { [ "$qemu_rc" -eq 137 ] && [ "${elapsed%.*}" -ge "$limit" ]; }; then
   say "the guest was stopped at the time limit of $limit s; its console is above"
   exit 2
 fi
@@ -124,8 +134,8 @@ if [ -z "$status" ]; then
   exit 2
 fi
 
-# Nothing of the guest's stays behind: shared memory was its own.
-left=$(comm -13 <(printf '%s\n' "$shm_before") <(ls -A /dev/shm 2>/dev/null | sort) || true)
+# Nothing of the guest's stays behind: its shared memory was its own tmpfs.
+left=$(comm -13 <(printf '%s\n' "$shm_before") <(ours) || true)
 if [ -n "$left" ]; then
   say "left behind in /dev/shm: $(echo $left)"
   exit 2

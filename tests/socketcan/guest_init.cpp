@@ -2,8 +2,8 @@
 // It runs as PID 1 from the initramfs that guest_image.sh assembles:
 //   1. loads the modules listed in /modules/order (dependencies first: virtio, 9p, can, vcan),
 //   2. mounts the host's root (9p, tag "hostroot") and makes it the root, with the guest's own
-//      proc, sys, dev and a tmpfs on /dev/shm, /run and /tmp, so nothing the command leaves
-//      there outlives the guest,
+//      proc, sys, dev and a tmpfs on /dev/shm and /run, so no shared memory the command
+//      leaves outlives the guest (/tmp stays the host's: a build tree may be there),
 //   3. brings up lo and the vcan interfaces named by `mcnc.can=` (default vcan0),
 //   4. runs `/bin/bash <mcnc.work>/command` on the console, writes its exit code to
 //      <mcnc.work>/status, and powers the guest off.
@@ -197,10 +197,9 @@ int main() {
   must_mount("sysfs", root + "/sys", "sysfs", 0, nullptr);
   must_mount("devtmpfs", root + "/dev", "devtmpfs", 0, nullptr);
   must_mount("devpts", root + "/dev/pts", "devpts", 0, nullptr);
-  // The guest's own: what the command leaves in shared memory or /tmp goes with the guest.
+  // The guest's own: what the command leaves in shared memory goes with the guest.
   must_mount("tmpfs", root + "/dev/shm", "tmpfs", 0, "mode=1777");
   must_mount("tmpfs", root + "/run", "tmpfs", 0, "mode=0755");
-  must_mount("tmpfs", root + "/tmp", "tmpfs", 0, "mode=1777");
   if (chroot(kNewRoot) != 0 || chdir("/") != 0) {
     fail("chroot to the host's root: " + errno_text());
   }

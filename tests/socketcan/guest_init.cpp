@@ -2,8 +2,9 @@
 // It runs as PID 1 from the initramfs that guest_image.sh assembles:
 //   1. loads the modules listed in /modules/order (dependencies first: virtio, 9p, can, vcan),
 //   2. mounts the host's root (9p, tag "hostroot") and makes it the root, with the guest's own
-//      proc, sys, dev and a tmpfs on /dev/shm and /run, so no shared memory the command
-//      leaves outlives the guest (/tmp stays the host's: a build tree may be there),
+//      proc, sys, dev and a tmpfs on /dev/shm and /run, so no shared memory or temporary file
+//      the command leaves outlives the guest: its TMPDIR is /run/tmp (/tmp stays the host's,
+//      since a build tree may be there),
 //   3. brings up lo and the vcan interfaces named by `mcnc.can=` (default vcan0),
 //   4. runs `/bin/bash <mcnc.work>/command` on the console, writes its exit code to
 //      <mcnc.work>/status, and powers the guest off.
@@ -200,11 +201,15 @@ int main() {
   // The guest's own: what the command leaves in shared memory goes with the guest.
   must_mount("tmpfs", root + "/dev/shm", "tmpfs", 0, "mode=1777");
   must_mount("tmpfs", root + "/run", "tmpfs", 0, "mode=0755");
+  // Temporary files in the guest's memory: a candump record written over 9p lost frames.
+  mkdir((root + "/run/tmp").c_str(), 01777);
+  chmod((root + "/run/tmp").c_str(), 01777);  // past the umask
   if (chroot(kNewRoot) != 0 || chdir("/") != 0) {
     fail("chroot to the host's root: " + errno_text());
   }
   setenv("PATH", "/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin", 1);
   setenv("HOME", "/root", 1);
+  setenv("TMPDIR", "/run/tmp", 1);
 
   must_run({"ip", "link", "set", "lo", "up"});
   for (const auto& bus : buses) {

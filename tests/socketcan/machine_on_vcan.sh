@@ -17,7 +17,7 @@ set -u
 src=$1
 build=$2
 scenario=$3
-work=$(mktemp -d -t mcnc-vcan-XXXXXX)  # in the runner's TMPDIR
+work=$(mktemp -d -t mcnc-vcan-XXXXXX)  # in the guest's TMPDIR, its memory
 sed 's|udp:[0-9.]*:[0-9]*|socketcan:vcan0|' "$src/launch/machines/small_lathe.yaml" > "$work/lathe.yaml"
 program="$src/launch/programs/xz_move.nc"
 buses=vcan0

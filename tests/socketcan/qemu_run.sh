@@ -2,9 +2,9 @@
 # Runs a command inside a QEMU guest with real kernel CAN and exits with its exit code. The
 # guest is Debian's kernel under TCG emulation (guest_image.sh builds it into the build tree),
 # its root is the host's root over 9p, and our init (guest_init.cpp) brings up lo and the vcan
-# interfaces first. The guest's /run and /dev/shm are its own tmpfs, and its TMPDIR is a
-# folder of the runner's that goes at the end; everything else, the build tree and /tmp
-# included, is the host's (a build tree may well be under /tmp). The command's output and the guest's console go to
+# interfaces first. The guest's /run and /dev/shm are its own tmpfs, and its TMPDIR is
+# /run/tmp; everything else, the build tree and /tmp included, is the host's (a build tree may
+# well be under /tmp). The command's output and the guest's console go to
 # standard output as they come, and the runner says where the time went: boot, the command,
 # power-off.
 #
@@ -50,7 +50,6 @@ qemu=$(command -v qemu-system-x86_64 || true)
 [ -n "$qemu" ] || { say "no kernel CAN: qemu-system-x86_64 not found (package qemu-system-x86)"; exit 2; }
 
 work=$(mktemp -d "$guest/run-XXXXXX")
-mkdir "$work/tmp"
 qemu_pid=
 # No guest outlives the runner: timeout leads a process group of its own with QEMU in it.
 cleanup() {
@@ -67,7 +66,6 @@ trap 'say "stopped by a signal"; exit 2' INT TERM
 {
   printf 'cd %q || exit 126\n' "$PWD"
   printf 'export PATH=%q\n' "$PATH"
-  printf 'export TMPDIR=%q\n' "$work/tmp"
   while IFS='=' read -r -d '' name value; do
     case $name in
       MCNC_*|FASTRTPS_*|FASTDDS_*|CYCLONEDDS_*|IOX_*|*SAN_OPTIONS|LANG|LC_*) printf 'export %s=%q\n' "$name" "$value" ;;

@@ -15,46 +15,9 @@ import subprocess
 import sys
 import tempfile
 
+from bench_machine import machine_yaml
+
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def machine_yaml(channels, cycle_us, domain):
-    per_bus = 4
-    buses = (channels + per_bus - 1) // per_bus
-    lines = [
-        "machine:",
-        f"  name: barrier_bench_{channels}",
-        f"  cycle_us: {cycle_us}",
-        "  deadline_cycles: 50",
-        "buses:",
-    ]
-    for b in range(buses):
-        lines += [
-            f"  - name: can{b}",
-            f"    uri: udp:239.255.{domain}.{b + 1}:{24000 + domain + 300 * b}",
-            "    bitrate: 1000000",
-            f"    sync_producer: X{b * per_bus + 1}",
-        ]
-    lines.append("channels:")
-    for c in range(1, channels + 1):
-        lines += [f"  - name: CH{c}", f"    axes: [X{c}]"]
-    lines.append("axes:")
-    for c in range(1, channels + 1):
-        lines += [
-            f"  - name: X{c}",
-            "    address: X",
-            "    type: linear",
-            f"    bus: can{(c - 1) // per_bus}",
-            f"    node_id: {(c - 1) % per_bus + 1}",
-            "    counts_per_unit: 10000",
-            "    rapid_rate: 8000",
-            "    max_feed: 5000",
-            "    acceleration: 1500",
-            "    in_position: 0.0005",
-            "    drive:",
-            "      max_velocity: 200",
-        ]
-    return "\n".join(lines) + "\n"
 
 
 def program(rounds, cycle_s):
@@ -74,7 +37,7 @@ def run(build, channels, rounds, cycle_us, domain):
     with tempfile.TemporaryDirectory() as tmp:
         machine = os.path.join(tmp, "m.yaml")
         with open(machine, "w") as f:
-            f.write(machine_yaml(channels, cycle_us, domain))
+            f.write(machine_yaml(f"barrier_bench_{channels}", channels, 1, cycle_us, domain))
         prog = os.path.join(tmp, "p.nc")
         with open(prog, "w") as f:
             f.write(program(rounds, cycle_us / 1e6))

@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""How the machine scales with its channels: N channels of two axes (X, Z) each, four axes per
+CAN bus, a 2 ms cycle. Every channel runs the same program, two all-channel G04.1 marks and
+two moves, about 3 600 cycles. For each N it runs the machine with `mcnc run`:
+  - in lockstep: cycles, wall time of the whole run and of its run phase (from the launcher's
+    "starting the run" to its verdict), times real time over each, and CPU (user plus system
+    of the whole run, start-up included) per machine cycle and per channel;
+  - in realtime at the same cycle: whether the run ends without alarm, the share of one core
+    it took, and its alarms (a deadline missed ends in a quick stop, alarm 2006).
+Figures, not a test: bench/README.md has them with this command.
+
+Usage: bench/scale.py [--build DIR] [--no-realtime] [N ...]   (default N: 1 2 4 8 16)
+"""
+import argparse
+import os
+import re
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+from bench_machine import machine_yaml
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CYCLE_US = 2000
+
+# Two moves of 42 mm at 12 mm/s, each after a mark every channel meets: about 3 600 cycles.
+PROGRAM = """%
+O0001 (scale bench)
+G04.1 P1
+G01 X30. Z-30. F720
+G04.1 P2
+G01 X0 Z0 F720
+M30
+%
+"""
+
+
+def run(build, channels, clock, domain):
+    with tempfile.TemporaryDirectory() as tmp:
+        machine = os.path.join(tmp, "m.yaml")
+        with open(machine, "w") as f:
+            f.write(machine_yaml(f"scale_{channels}", channels, 2, CYCLE_US, domain,
+                                 deadline_cycles=10))
+        prog = os.path.join(tmp, "p.nc")
+        with open(prog, "w") as f:
+            f.write(PROGRAM)
+        trace = os.path.join(tmp, "t.jsonl")
+        argv = [os.path.join(build, "bin", "mcnc"), "run", machine, "--clock", clock,
+                "--trace", trace, "--trace-pos-every", "1000", "--timeout", "600"]
+        for c in range(1, channels + 1):
+            argv += ["--program", f"CH{c}={prog}"]
+        env = dict(os.environ, MCNC_DOMAIN=str(domain))
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.monotonic()
+        run_start = None
+        out = []
+        with subprocess.Popen(argv, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              text=True) as p:
+            for line in p.stdout:
+                out.append(line)
+                if run_start is None and "starting the run" in line:
+                    run_start = time.monotonic()
+            code = p.wait()
+        end = time.monotonic()
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        text = "".join(out)
+        m = re.search(r"^ok after (\d+) cycles$", text, re.M)
+        alarms = sorted(set(re.findall(r"alarm (\d{4})", text)))
+        cycles = int(m.group(1)) if m else None
+        if cycles is None:
+            m = re.search(r"after (\d+) cycles", text)
+            cycles = int(m.group(1)) if m else 0
+        return {"code": code, "cycles": cycles, "wall": end - start,
+                "run": end - (run_start or start), "cpu": cpu, "alarms": alarms,
+                "tail": text[-1500:]}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(HERE, "..", "build"))
+    ap.add_argument("--no-realtime", action="store_true")
+    ap.add_argument("channels", type=int, nargs="*", default=[1, 2, 4, 8, 16])
+    args = ap.parse_args()
+    print("| N channels | cycles | lockstep: times real time (whole run / run phase) "
+          "| CPU per machine cycle | per channel | realtime 2 ms |")
+    print("|---|---|---|---|---|---|")
+    for i, n in enumerate(args.channels):
+        lock = run(args.build, n, "lockstep", 60 + 2 * i)
+        if lock["code"] != 0 or lock["cycles"] == 0:
+            print(f"| {n} | the lockstep run failed (exit {lock['code']}) | | | | |", flush=True)
+            print(lock["tail"], file=sys.stderr)
+            continue
+        machine_s = lock["cycles"] * CYCLE_US / 1e6
+        per_cycle = lock["cpu"] / lock["cycles"] * 1e6
+        realtime = "not run"
+        if not args.no_realtime:
+            rt = run(args.build, n, "realtime", 61 + 2 * i)
+            share = 100 * rt["cpu"] / rt["wall"]
+            if rt["code"] == 0:
+                realtime = f"runs, {share:.0f} % of one core"
+            else:
+                realtime = (f"fails after {rt['cycles']} cycles (alarms {', '.join(rt['alarms'])}),"
+                            f" {share:.0f} % of one core")
+        print(f"| {n} | {lock['cycles']} | {machine_s / lock['wall']:.2f} × / "
+              f"{machine_s / lock['run']:.2f} × | {per_cycle:.0f} µs | {per_cycle / n:.0f} µs "
+              f"| {realtime} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -41,7 +41,8 @@ case $scenario in
   *) echo "unknown scenario $scenario"; exit 2 ;;
 esac
 # shellcheck disable=SC2086  # one argument per interface
-candump -L $buses > "$work/candump.log" &
+# A receive buffer of 4 MiB, and -d: a frame candump could not take is said, not just missing.
+candump -L -d -r 4194304 $buses > "$work/candump.log" &
 dump=$!
 # The record must hold the drives' power-on boot-ups: wait until candump's receivers are in
 # the kernel's list of every bus before the machine starts.
@@ -71,6 +72,11 @@ rc=$(cat "$work/rc" 2>/dev/null || echo 1)  # no file: the run's shell was kille
 sleep 0.2
 kill $dump
 wait $dump 2>/dev/null
+if grep -q DROPCOUNT "$work/candump.log"; then
+  echo "FAIL candump lost frames, so its record is no witness: $(grep DROPCOUNT "$work/candump.log" | tail -1)"
+  rm -rf "$work"
+  exit 1
+fi
 if [ "$scenario" = frames ]; then
   status=1
   if [ "$rc" -eq 0 ]; then

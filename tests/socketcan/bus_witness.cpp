@@ -1,6 +1,7 @@
 // The bus as a CANopen engineer reads it: checks a `candump -L` record of a machine run against
 // what the machine file says must be on each bus. Standard tools are the witness; the
-// expectations come from the machine file, never from the master's code:
+// expectations come from the machine file, never from the master's code (only CiA 301's
+// COB-IDs and codes are shared with it):
 //   - SYNC (0x080) every cycle of the run on each bus;
 //   - per node, every SYNC interval of the cyclic phase carries its RPDO1 (0x200+node) and
 //     TPDO1 (0x180+node), a spindle's RPDO2 (0x300+node) and, where the machine file maps
@@ -27,9 +28,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include "axisnode/canopen/sdo_client.hpp"
+#include "axisnode/canopen/sdo_frames.hpp"
+#include "axisnode/cia402/canopen_frames.hpp"
 #include "common/config/machine_config.hpp"
 
 namespace {
+
+using mcnc::canopen::kHeartbeatBase;
+using mcnc::canopen::kNmtId;
+using mcnc::canopen::kRpdo1Base;
+using mcnc::canopen::kRpdo2Base;
+using mcnc::canopen::kSdoRequestBase;
+using mcnc::canopen::kSdoResponseBase;
+using mcnc::canopen::kSyncId;
+using mcnc::canopen::kTpdo1Base;
+using mcnc::canopen::kTpdo2Base;
+using mcnc::canopen::NmtCommand;
+using mcnc::canopen::NmtState;
 
 struct Frame {
   std::string bus;  // interface, e.g. vcan0
@@ -51,7 +67,7 @@ bool parse_candump_line(const std::string& line, Frame& out) {
     return false;
   }
   const auto hash = body.find('#');
-  if (hash == std::string::npos || hash > 8 || !is_hex(body.substr(0, hash))) {
+  if (hash > 8 || !is_hex(body.substr(0, hash))) {  // no "#" is npos, above 8 too
     return false;
   }
   out.id = static_cast<std::uint32_t>(std::stoul(body.substr(0, hash), nullptr, 16));
@@ -97,6 +113,33 @@ struct NodeExpectation {
   int heartbeat_ms = 0;
 };
 
+bool is_tpdo(std::uint32_t id) {
+  const std::uint32_t base = id & 0x780;  // the function code, bits 10-7 of the COB-ID
+  return base == kTpdo1Base || base == kTpdo2Base;
+}
+
+// An NMT command to `node` (or to all, node 0).
+bool is_nmt(const Frame& f, NmtCommand command, std::uint32_t node) {
+  return f.id == kNmtId && f.data.size() == 2 && f.data[0] == static_cast<std::uint8_t>(command) &&
+         (f.data[1] == node || f.data[1] == 0);
+}
+
+// The index of the first NMT start of `node`; frames.size() when there is none.
+std::size_t nmt_start(const std::vector<Frame>& frames, std::uint32_t node) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (is_nmt(frames[i], NmtCommand::start, node)) {
+      return i;
+    }
+  }
+  return frames.size();
+}
+
+// The position in `syncs` (frame indices of SYNCs) of the first SYNC after frame `index`.
+std::size_t first_sync_after(const std::vector<std::size_t>& syncs, std::size_t index) {
+  return static_cast<std::size_t>(std::upper_bound(syncs.begin(), syncs.end(), index) -
+                                  syncs.begin());
+}
+
 void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::BusConfig& bus,
                const std::vector<Frame>& all, std::uint64_t cycles) {
   const std::string itf = interface_of(bus.uri);
@@ -113,23 +156,23 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     }
     NodeExpectation e{axis.name, axis.node_id, {}, axis.heartbeat_ms};
     const auto n = static_cast<std::uint32_t>(axis.node_id);
-    e.cyclic = {0x200 + n, 0x180 + n};
+    e.cyclic = {kRpdo1Base + n, kTpdo1Base + n};
     if (axis.type == mcnc::config::AxisType::spindle) {
-      e.cyclic.push_back(0x300 + n);  // target velocity
+      e.cyclic.push_back(kRpdo2Base + n);  // target velocity
     }
     if (mcnc::config::tpdo2_bytes(axis) > 0) {
-      e.cyclic.push_back(0x280 + n);
+      e.cyclic.push_back(kTpdo2Base + n);
     }
     nodes.push_back(e);
   }
   const std::string on = bus.name + " (" + itf + ")";
 
   // COB-IDs the machine file accounts for.
-  std::set<std::uint32_t> known = {0x000, 0x080};
+  std::set<std::uint32_t> known = {kNmtId, kSyncId};
   for (const auto& e : nodes) {
     const auto n = static_cast<std::uint32_t>(e.node);
     known.insert(e.cyclic.begin(), e.cyclic.end());
-    known.insert({0x600 + n, 0x580 + n, 0x700 + n});
+    known.insert({kSdoRequestBase + n, kSdoResponseBase + n, kHeartbeatBase + n});
   }
   std::map<std::uint32_t, int> strangers;
   for (const auto& f : frames) {
@@ -149,31 +192,26 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
   // SYNC: every cycle; the frame's position is the interval boundary.
   std::vector<std::size_t> syncs;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (frames[i].id == 0x080) {
+    if (frames[i].id == kSyncId) {
       syncs.push_back(i);
     }
   }
-  check(syncs.size() >= cycles, on + ": a SYNC on 0x080 every cycle (" +
+  check(syncs.size() >= cycles, on + ": a SYNC on " + hex(kSyncId) + " every cycle (" +
                                     std::to_string(syncs.size()) + " SYNC, " +
                                     std::to_string(cycles) + " cycles)");
 
   // Frames per cycle, as the machine file counts them: SYNC plus each node's cyclic PDOs,
   // over the SYNC intervals in which every node of the bus is started (the last SYNC's
   // interval is cut short by the stop and is not counted).
+  std::vector<std::size_t> started;  // per node, the frame of its NMT start
   std::size_t all_started = 0;
-  for (const auto& f : frames) {
-    if (f.id == 0x000 && f.data.size() == 2 && f.data[0] == 0x01) {
-      all_started = std::max(all_started, static_cast<std::size_t>(&f - frames.data()));
-    }
-  }
-  std::set<std::uint32_t> cyclic = {0x080};
+  std::set<std::uint32_t> cyclic = {kSyncId};
   for (const auto& e : nodes) {
+    started.push_back(nmt_start(frames, static_cast<std::uint32_t>(e.node)));
+    all_started = std::max(all_started, started.back());
     cyclic.insert(e.cyclic.begin(), e.cyclic.end());
   }
-  std::size_t from = 0;
-  while (from < syncs.size() && syncs[from] < all_started) {
-    ++from;
-  }
+  const std::size_t from = first_sync_after(syncs, all_started);
   long long counted = 0;
   const long long intervals =
       syncs.size() > from + 1 ? static_cast<long long>(syncs.size() - from - 1) : 0;
@@ -184,29 +222,19 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
   }
   const auto per_cycle = static_cast<long long>(cyclic.size());
   // Only a drive's TPDOs may be missing, in the first interval after its start.
-  long long tpdos = 0;
-  for (const auto id : cyclic) {
-    tpdos += (id & 0x780) == 0x180 || (id & 0x780) == 0x280;
-  }
+  const auto tpdos = static_cast<long long>(std::count_if(cyclic.begin(), cyclic.end(), is_tpdo));
   check(
       intervals > 0 && counted <= per_cycle * intervals && counted >= per_cycle * intervals - tpdos,
       on + ": " + std::to_string(per_cycle) + " frames a cycle as the machine file says (" +
           std::to_string(counted) + " in " + std::to_string(intervals) + " cycles)");
 
-  for (const auto& e : nodes) {
+  for (std::size_t j = 0; j < nodes.size(); ++j) {
+    const auto& e = nodes[j];
     const auto n = static_cast<std::uint32_t>(e.node);
     const std::string who = on + " node " + std::to_string(e.node) + " (" + e.axis + ")";
     // NMT start of the node: the end of its start-up, the start of its cyclic phase.
-    std::size_t started = frames.size();
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      const auto& f = frames[i];
-      if (f.id == 0x000 && f.data.size() == 2 && f.data[0] == 0x01 &&
-          (f.data[1] == n || f.data[1] == 0)) {
-        started = i;
-        break;
-      }
-    }
-    check(started < frames.size(), who + ": NMT start (000#01" + hex(n).substr(3) + ")");
+    const std::size_t start = started[j];
+    check(start < frames.size(), who + ": NMT start (000#01" + hex(n).substr(3) + ")");
 
     // SDO: request, answer, request, answer ... all before the NMT start, none refused.
     int requests = 0;
@@ -217,38 +245,35 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     bool reads_device_type_first = false;
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const auto& f = frames[i];
-      if (f.id == 0x600 + n) {
+      if (f.id == kSdoRequestBase + n) {
         if (requests == 0) {
           reads_device_type_first = f.data.size() == 8 && f.data[0] == 0x40 && f.data[1] == 0x00 &&
                                     f.data[2] == 0x10 && f.data[3] == 0x00;
         }
         alternating &= requests == answers;
         ++requests;
-        before_start &= i < started;
-      } else if (f.id == 0x580 + n) {
+        before_start &= i < start;
+      } else if (f.id == kSdoResponseBase + n) {
         alternating &= answers + 1 == requests;
         ++answers;
-        aborts += !f.data.empty() && f.data[0] == 0x80;
-        before_start &= i < started;
+        aborts += !f.data.empty() && f.data[0] == mcnc::canopen::sdo::kAbort;
+        before_start &= i < start;
       }
     }
-    check(requests >= 3 && reads_device_type_first, who + ": SDO requests on " + hex(0x600 + n) +
-                                                        " at start-up, device type 0x1000 first (" +
-                                                        std::to_string(requests) + ")");
+    check(requests >= 3 && reads_device_type_first,
+          who + ": SDO requests on " + hex(kSdoRequestBase + n) +
+              " at start-up, device type 0x1000 first (" + std::to_string(requests) + ")");
     check(answers == requests && alternating && aborts == 0,
-          who + ": each answered on " + hex(0x580 + n) + " before the next, no abort (" +
+          who + ": each answered on " + hex(kSdoResponseBase + n) + " before the next, no abort (" +
               std::to_string(answers) + " answers, " + std::to_string(aborts) + " aborts)");
     check(before_start, who + ": all SDO traffic before the NMT start");
 
     // The cyclic phase: from the first SYNC after the NMT start to the last SYNC. Every
     // interval between two SYNCs carries each cyclic PDO once; the interval after the last
     // SYNC is not complete and is not counted.
-    std::size_t first = 0;
-    while (first < syncs.size() && syncs[first] < started) {
-      ++first;
-    }
+    const std::size_t first = first_sync_after(syncs, start);
     for (const std::uint32_t id : e.cyclic) {
-      const bool transmitted = (id & 0x780) == 0x180 || (id & 0x780) == 0x280;  // TPDO1, TPDO2
+      const bool transmitted = is_tpdo(id);
       int intervals = 0;
       int once = 0;
       int missing = 0;
@@ -280,25 +305,26 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     int resets = 0;
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const auto& f = frames[i];
-      if (f.id == 0x700 + n && f.data.size() == 1) {
-        if (f.data[0] == 0x00) {
+      if (f.id == kHeartbeatBase + n && f.data.size() == 1) {
+        if (f.data[0] == static_cast<std::uint8_t>(NmtState::bootup)) {
           ++bootups;
-        } else if (i > started) {
-          (f.data[0] == 0x05 ? beats : other_after) += 1;
+        } else if (i > start) {
+          (f.data[0] == static_cast<std::uint8_t>(NmtState::operational) ? beats : other_after) +=
+              1;
         }
       }
-      // NMT reset node (0x81) or reset communication (0x82), to this node or to all.
-      resets += f.id == 0x000 && f.data.size() == 2 && (f.data[0] == 0x81 || f.data[0] == 0x82) &&
-                (f.data[1] == n || f.data[1] == 0);
+      resets +=
+          is_nmt(f, NmtCommand::reset_node, n) || is_nmt(f, NmtCommand::reset_communication, n);
     }
     const std::uint64_t cyclic_syncs = syncs.size() - first;
     const long long expected = e.heartbeat_ms > 0
                                    ? static_cast<long long>(cyclic_syncs) * machine.cycle_us /
                                          (static_cast<long long>(e.heartbeat_ms) * 1000)
                                    : 0;
-    check(resets >= 1 && bootups == resets + 1,
-          who + ": a boot-up on " + hex(0x700 + n) + " at power-on and after each of the " +
-              std::to_string(resets) + " NMT resets (" + std::to_string(bootups) + ")");
+    check(resets >= 1 && bootups == resets + 1, who + ": a boot-up on " + hex(kHeartbeatBase + n) +
+                                                    " at power-on and after each of the " +
+                                                    std::to_string(resets) + " NMT resets (" +
+                                                    std::to_string(bootups) + ")");
     check(other_after == 0 && beats >= expected - 2 && beats <= expected + 3,
           who + ": operational (0x05) every " + std::to_string(e.heartbeat_ms) +
               " ms of SYNC time after the start (" + std::to_string(beats) + ", expected about " +

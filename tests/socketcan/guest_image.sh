@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Assembles the QEMU guest of the socketcan tests in GUEST_DIR (a folder of the build tree):
-#   GUEST_DIR/vmlinuz      Debian's kernel, from the linux-image-*-amd64 package that
-#                          linux-image-amd64 depends on (scripts/install-deps downloads it into
-#                          apt's archive cache; nothing is installed on the host)
+#   GUEST_DIR/vmlinuz      Debian's kernel, from the package scripts/guest-kernel names
+#                          (scripts/install-deps downloads it into apt's archive cache;
+#                          nothing is installed on the host)
 #   GUEST_DIR/initrd.img   our init (guest_init.cpp) and the modules it loads, in /modules with
 #                          their load order, dependencies first, read from each module's
 #                          depends= string
@@ -23,14 +23,14 @@ missing() {
   exit 0
 }
 
-package=$( (apt-cache depends linux-image-amd64 2>/dev/null || true) |
-  awk '/Depends: linux-image-[^ ]*-amd64/ { print $2; exit }')
+guest_kernel="$(dirname "$0")/../../scripts/guest-kernel"
+package=$("$guest_kernel" name)
 [ -n "$package" ] || missing "the kernel package's name cannot be read" \
   "(apt-cache depends linux-image-amd64 names no linux-image-*-amd64): run scripts/install-deps"
 # The kernel tree (its boot/ and lib/modules/) stays in the build tree, for the next build;
 # .from names the package file it came from.
 tree="$guest/kernel"
-deb=$(ls /var/cache/apt/archives/"${package}"_*_amd64.deb 2>/dev/null | sort -V | tail -1 || true)
+deb=$("$guest_kernel" deb)
 if [ -n "$deb" ]; then
   from=$(basename "$deb")
 elif [ -f "$tree/.from" ] && [[ $(cat "$tree/.from") == "${package}"_* ]]; then

@@ -86,6 +86,11 @@ process.on('SIGINT', async () => {
   process.exit(1);
 });
 const stateOf = (ch) => `[data-channel="${ch}"] .ch-state`;
+const FEED_OVERRIDE_CH1 = '[data-channel="CH1"] input[data-action="feed_override"]';
+// The slider's value went out and the HMI answered it.
+const feedOverrideTaken = (percent) => until(`CH1 takes ${percent} % feed override`, (p) =>
+  document.querySelector('#last-reply')?.textContent.trim() === 'CH1 feed_override: ok' &&
+  document.querySelector('[data-channel="CH1"] .ch-feed-override')?.textContent.trim() === `${p} %`, percent);
 
 try {
   await page.goto(url);
@@ -101,6 +106,13 @@ try {
   await until('CH1 program shown', () =>
     document.querySelectorAll('[data-channel="CH1"] .ch-program .line').length >= 10);
   await screenshot('ready');
+
+  // As an operator proving out a program: CH1's feed override down to 10 % before the start, so
+  // the turning block lasts 32 s of machine time and the feed hold below lands in it however
+  // slowly a loaded host lets the page poll (at 100 % it lasted 3.2 s and a starved browser
+  // could see CH1 past it).
+  await page.locator(FEED_OVERRIDE_CH1).fill('10');
+  await feedOverrideTaken(10);
 
   // Start both turrets from the page; CH2 waits at P1 for CH1.
   await page.click('[data-channel="CH1"] button[data-action="cycle_start"]');
@@ -162,6 +174,8 @@ try {
   await screenshot('feed-hold');
   await page.click('[data-channel="CH1"] button[data-action="cycle_start"]');
   await until('CH1 running again', (sel) => document.querySelector(sel)?.textContent.trim() === 'running', stateOf('CH1'));
+  await page.locator(FEED_OVERRIDE_CH1).fill('100');
+  await feedOverrideTaken(100);
 
   // A1 goes to CH2 (G140 in CH1, G141 in CH2) and back (G142).
   await until('A1 owned by CH2', () =>

@@ -246,7 +246,16 @@ TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
     }
     return list;
   };
-  EXPECT_EQ(actions("CH1"), (std::vector<std::string>{"cycle_start", "feed_hold", "cycle_start"}));
+  // CH1 is proved out at 10 % feed override, back to 100 % after the hold.
+  EXPECT_EQ(actions("CH1"), (std::vector<std::string>{"feed_override", "cycle_start", "feed_hold",
+                                                      "cycle_start", "feed_override"}));
+  std::vector<double> overrides;
+  for (const auto& e : events(trace, "operator", "CH1")) {
+    if (e["action"] == "feed_override") {
+      overrides.push_back(e["value"]);
+    }
+  }
+  EXPECT_EQ(overrides, (std::vector<double>{10.0, 100.0}));
   EXPECT_EQ(actions("CH2"), (std::vector<std::string>{"cycle_start"}));
   EXPECT_FALSE(trace.empty());
   if (!trace.empty()) {

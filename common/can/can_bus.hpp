@@ -3,6 +3,7 @@
 // CANopen code above it is identical on both. Calls never throw and never allocate.
 #include "common/can/can_frame.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstddef>
@@ -47,6 +48,11 @@ class CanFilterSet {
       }
     }
     return false;
+  }
+  // Copies the filters to `out` (room for kMaxFilters); returns how many.
+  std::size_t copy_to(std::span<CanFilter, kMaxFilters> out) const noexcept {
+    std::copy_n(filters_.begin(), count_, out.begin());
+    return count_;
   }
 
  private:

@@ -3,10 +3,12 @@
 #include "common/can/transport/fd_wait.hpp"
 
 #include <arpa/inet.h>
+#include <linux/filter.h>
 #include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -24,6 +26,43 @@ void set_option(int fd, int level, int name, const T& value, const std::string& 
   if (::setsockopt(fd, level, name, &value, sizeof(value)) != 0) {
     fail(uri, step, errno);
   }
+}
+
+// The socket filter (classic BPF) of a set of CanFilters, as CanFilterSet::passes() decides,
+// and dropping our own frames. A UDP socket's filter sees the datagram from its UDP header:
+// the source port at 0, the length at 4, the CanFrame at 8, whose id a word load reads in
+// network order (hence ntohl on the constants). A datagram that is not frame-sized passes, so
+// that receive() counts it as malformed.
+struct SocketFilterProgram {
+  std::array<sock_filter, 8 + 3 * kMaxFilters> code{};
+  unsigned short length = 0;
+};
+
+SocketFilterProgram socket_filter(std::span<const CanFilter> filters,
+                                  std::uint16_t own_port) noexcept {
+  constexpr std::uint32_t kUdpHeader = 8;
+  constexpr std::uint32_t kId = kUdpHeader;  // CanFrame::id is its first member
+  SocketFilterProgram p;
+  auto emit = [&p](sock_filter insn) { p.code[p.length++] = insn; };
+  // Jumps are relative to the next instruction; `accept` and `drop` are the last two.
+  const auto n = static_cast<unsigned short>(6 + 3 * filters.size());
+  const auto to_drop = [&p, n] { return static_cast<std::uint8_t>(n - p.length - 1); };
+  const auto to_accept = [&p, n] { return static_cast<std::uint8_t>(n + 1 - p.length - 1); };
+  emit(BPF_STMT(BPF_LD | BPF_H | BPF_ABS, 0));
+  emit(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, own_port, to_drop(), 0));
+  emit(BPF_STMT(BPF_LD | BPF_H | BPF_ABS, 4));
+  emit(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, kUdpHeader + sizeof(CanFrame), 0, to_accept()));
+  emit(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, kId));
+  emit(BPF_JUMP(BPF_JMP | BPF_JSET | BPF_K, ntohl(kErrFlag), to_accept(),
+                filters.empty() ? to_accept() : std::uint8_t{0}));
+  for (const CanFilter& f : filters) {
+    emit(BPF_STMT(BPF_LD | BPF_W | BPF_ABS, kId));
+    emit(BPF_STMT(BPF_ALU | BPF_AND | BPF_K, ntohl(f.mask)));
+    emit(BPF_JUMP(BPF_JMP | BPF_JEQ | BPF_K, ntohl(f.id & f.mask), to_accept(), 0));
+  }
+  emit(BPF_STMT(BPF_RET | BPF_K, 0));            // drop
+  emit(BPF_STMT(BPF_RET | BPF_K, 0xFFFFFFFFU));  // accept, whole
+  return p;
 }
 
 in_addr loopback() {
@@ -101,6 +140,9 @@ UdpCanBus::UdpCanBus(const std::string& uri, in_addr group, std::uint16_t port) 
   destination_.sin_family = AF_INET;
   destination_.sin_addr = group;
   destination_.sin_port = htons(port);
+  if (!attach_socket_filter()) {
+    fail(uri, "SO_ATTACH_FILTER", errno);
+  }
   guard.armed = false;
 }
 
@@ -161,7 +203,21 @@ BusResult UdpCanBus::receive(CanFrame& frame, std::chrono::microseconds timeout)
 }
 
 bool UdpCanBus::set_filters(std::span<const CanFilter> filters) noexcept {
-  return filters_.assign(filters);
+  if (!filters_.assign(filters)) {
+    return false;
+  }
+  // Should the kernel refuse, receive() still filters: the frames pass or not alike.
+  (void)attach_socket_filter();
+  return true;
+}
+
+bool UdpCanBus::attach_socket_filter() noexcept {
+  std::array<CanFilter, kMaxFilters> filters{};
+  const std::size_t n = filters_.copy_to(filters);
+  SocketFilterProgram program =
+      socket_filter(std::span(filters.data(), n), ntohs(own_source_.sin_port));
+  const sock_fprog fprog{program.length, program.code.data()};
+  return ::setsockopt(recv_fd_, SOL_SOCKET, SO_ATTACH_FILTER, &fprog, sizeof(fprog)) == 0;
 }
 
 unsigned long UdpCanBus::malformed_count() const noexcept {

@@ -1,7 +1,9 @@
 #pragma once
 // CAN over UDP multicast on loopback ("udp:GROUP:PORT"): one raw 16-byte CanFrame per
 // datagram, a broadcast medium shared by every endpoint of the same group and port on this
-// host. For multi-process tests on hosts without kernel CAN.
+// host. For multi-process tests on hosts without kernel CAN. Its receive filters run in the
+// kernel, as a socket filter, like a CAN controller's acceptance filter: a frame that no filter
+// passes, or one of our own looped back, never wakes the receiver.
 #include "common/can/can_bus.hpp"
 
 #include <netinet/in.h>
@@ -25,12 +27,15 @@ class UdpCanBus final : public CanBus {
   [[nodiscard]] int native_handle() const noexcept override;
 
  private:
+  // The socket filter of filters_ (and of our own frames). False when the kernel refused it.
+  bool attach_socket_filter() noexcept;
+
   int recv_fd_ = -1;
   int send_fd_ = -1;
   sockaddr_in destination_{};
   sockaddr_in own_source_{};  // the send socket's address: datagrams from it are our own
   unsigned long malformed_ = 0;
-  CanFilterSet filters_;  // applied in receive(): UDP has no kernel filter
+  CanFilterSet filters_;  // also applied in receive(), should the kernel refuse the socket filter
 };
 
 }  // namespace mcnc::can

@@ -221,5 +221,44 @@ TEST(UdpCanBus, ReceivesOnlyWhatItsFiltersLetThrough) {
   EXPECT_FALSE(b->set_filters(too_many));
 }
 
+// The filters run in the kernel, like a controller's acceptance filter: a frame no filter
+// passes, and our own looped back, never make the socket readable (no wake-up); error frames and
+// datagrams that are not frames still do (the latter to be counted as malformed).
+TEST(UdpCanBus, FilteredAndOwnFramesNeverWakeTheReceiver) {
+  const Endpoint e = test_endpoint();
+  auto a = open_can_bus(e.uri());
+  auto b = open_can_bus(e.uri());
+  const std::array<CanFilter, 2> filters{CanFilter{0x181}, CanFilter{0x700, 0x780}};
+  ASSERT_TRUE(b->set_filters(filters));
+  const auto readable = [&b](std::chrono::milliseconds wait) {
+    pollfd p{b->native_handle(), POLLIN, 0};
+    return ::poll(&p, 1, static_cast<int>(wait.count())) == 1;
+  };
+  for (const std::uint32_t id : {0x182U, 0x201U, 0x080U, 0x681U}) {
+    ASSERT_EQ(a->send(frame(id, {1})), BusResult::ok);
+  }
+  ASSERT_EQ(b->send(frame(0x181, {2})), BusResult::ok);  // b's own, looped back
+  EXPECT_FALSE(readable(100ms)) << "a frame no filter passes reached the socket";
+
+  // What passes: an id a filter names, one under a filter's mask, an error frame, a runt.
+  ASSERT_EQ(a->send(frame(0x181, {3})), BusResult::ok);
+  ASSERT_TRUE(readable(1000ms));
+  CanFrame got;
+  ASSERT_EQ(b->receive(got, 0ms), BusResult::ok);
+  EXPECT_EQ(got.id, 0x181U);
+  EXPECT_EQ(got.data[0], 3);
+  ASSERT_EQ(a->send(frame(0x705, {5})), BusResult::ok);
+  ASSERT_EQ(b->receive(got, 1s), BusResult::ok);
+  EXPECT_EQ(got.id, 0x705U);
+  ASSERT_EQ(a->send(frame(kErrFlag | 0x40, {0, 0, 0, 0, 0, 0, 0, 0})), BusResult::ok);
+  ASSERT_EQ(b->receive(got, 1s), BusResult::ok);
+  EXPECT_EQ(got.id, kErrFlag | 0x40);
+  const unsigned char runt[3] = {1, 2, 3};
+  send_raw(e, runt, sizeof(runt));
+  EXPECT_EQ(b->receive(got, 1s), BusResult::malformed);
+  EXPECT_EQ(b->malformed_count(), 1U);
+  EXPECT_FALSE(readable(50ms));
+}
+
 }  // namespace
 }  // namespace mcnc::can

@@ -10,6 +10,7 @@
 #include "axisnode/link/drive_link.hpp"
 #include "axisnode/ownership/axis_ownership.hpp"
 #include "common/clock/cycle_clock.hpp"
+#include "common/config/cyclic_routes.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/cycle/pending_events.hpp"
@@ -205,7 +206,7 @@ int main(int argc, char** argv) {
     bool owner_lost = false;            // the current owner's writer left
     process::Wakeup& wake = node.wakeup();
     dds::Reader<AxisSetpoint> setpoint_reader(
-        node.participant(),
+        node.participant(), dds::Partitions::of({axis->name}),
         [&](const AxisSetpoint& sp, const dds::WriterId& writer) {
           const int k = sp.axis() == axis_id ? candidate_of(sp.channel()) : -1;
           if (k < 0) {
@@ -238,8 +239,12 @@ int main(int argc, char** argv) {
     std::optional<dds::Reader<AxisFeedback>> master_reader;
     std::optional<dds::Reader<AxisFeedback>> leader_reader;
     if (may_follow) {
+      std::vector<std::string> leader_names;
+      for (const std::uint32_t id : leaders) {
+        leader_names.push_back(machine.axes[id - 1].name);
+      }
       leader_reader.emplace(
-          node.participant(),
+          node.participant(), dds::Partitions::of(leader_names),
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (master_history.may_lead(fb.axis())) {
               wake.update([&] {
@@ -268,6 +273,7 @@ int main(int argc, char** argv) {
       const auto sync_channel = static_cast<std::uint32_t>(sync_group->channel);
       sync_status_reader.emplace(
           node.participant(),
+          dds::Partitions::of({machine.channels[static_cast<std::size_t>(sync_channel - 1)].name}),
           [&, sync_channel](const ChannelStatus& s, const dds::WriterId& writer) {
             if (s.channel() == sync_channel) {
               wake.update([&] {
@@ -286,6 +292,8 @@ int main(int argc, char** argv) {
           });
       master_reader.emplace(
           node.participant(),
+          dds::Partitions::of(
+              {machine.axes[static_cast<std::size_t>(sync_group->master - 1)].name}),
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (static_cast<int>(fb.axis()) == sync_group->master) {
               wake.update([&] {
@@ -349,7 +357,7 @@ int main(int argc, char** argv) {
         });
       });
     }
-    dds::Writer<AxisFeedback> feedback_writer(node.participant());
+    dds::Writer<AxisFeedback> feedback_writer(node.participant(), axis->name);
 
     axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
     const bool spindle = axis->type == config::AxisType::spindle;
@@ -388,18 +396,19 @@ int main(int argc, char** argv) {
       return 1;
     }
 
-    // Discovery: every channel's setpoint writer and feedback reader matched.
-    const int channels = static_cast<int>(machine.channels.size());
+    // Discovery: the setpoint writer of every channel that may command the node and the feedback
+    // reader of every channel that reads it matched.
+    const auto fed_channels = static_cast<int>(config::channels_fed_by(machine, axis->name));
     process::CycleLoop loop(node, machine.cycle_us);
     spdlog::info("node {} on {}{}", node_id, bus->uri, sync_producer ? " (SYNC producer)" : "");
     if (!loop.start(
             [&] {
-              return setpoint_reader.matched_writers() >= channels &&
-                     (!sync_status_reader || sync_status_reader->matched_writers() >= channels) &&
+              return setpoint_reader.matched_writers() >= static_cast<int>(candidates.size()) &&
+                     (!sync_status_reader || sync_status_reader->matched_writers() >= 1) &&
                      (!master_reader || master_reader->matched_writers() >= 1) &&
                      (!leader_reader ||
                       leader_reader->matched_writers() >= static_cast<int>(leaders.size())) &&
-                     feedback_writer.matched_readers() >= channels &&
+                     feedback_writer.matched_readers() >= fed_channels &&
                      (!request_reader ||
                       request_reader->matched_writers() >= static_cast<int>(candidates.size()));
             },

@@ -21,6 +21,7 @@
 #include <csignal>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -66,8 +67,12 @@ int main(int argc, char** argv) {
                                      std::lock_guard<std::mutex> lock(mutex);
                                      phases[s.name()] = s.phase();
                                    });
-  dds::Writer<AxisSetpoint> setpoints(node.participant());
-  dds::Reader<AxisFeedback> feedback(node.participant(),
+  // One setpoint writer per axis, in its partition, as the channel has.
+  std::vector<std::unique_ptr<dds::Writer<AxisSetpoint>>> setpoints;
+  for (const auto& name : channel.axes) {
+    setpoints.push_back(std::make_unique<dds::Writer<AxisSetpoint>>(node.participant(), name));
+  }
+  dds::Reader<AxisFeedback> feedback(node.participant(), dds::Partitions::of(channel.axes),
                                      [](const AxisFeedback&, const dds::WriterId&) {});
   dds::Writer<RunControl> control(node.participant());
 
@@ -127,8 +132,8 @@ int main(int argc, char** argv) {
   const auto total = static_cast<std::uint64_t>(cycles + warmup);
   for (std::uint64_t cycle = 0; cycle < total; ++cycle) {
     clock::sleep_until_ns(start_ns + static_cast<std::int64_t>(cycle) * cycle_ns);
-    for (const auto& name : channel.axes) {
-      const config::AxisConfig& a = *machine.find_axis(name);
+    for (std::size_t k = 0; k < channel.axes.size(); ++k) {
+      const config::AxisConfig& a = *machine.find_axis(channel.axes[k]);
       AxisSetpoint sp;
       sp.axis(static_cast<std::uint32_t>(a.id));
       sp.channel(static_cast<std::uint32_t>(channel.id));
@@ -138,7 +143,7 @@ int main(int argc, char** argv) {
       if (a.id == axis.id) {
         published[cycle] = clock::monotonic_ns();
       }
-      setpoints.write(sp);
+      setpoints[k]->write(sp);
     }
   }
   std::this_thread::sleep_for(100ms);

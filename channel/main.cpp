@@ -10,6 +10,7 @@
 #include "channel/wire/channel_peers.hpp"
 #include "channel/wire/plc_link.hpp"
 #include "common/clock/cycle_clock.hpp"
+#include "common/config/cyclic_routes.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/log/logging.hpp"
@@ -181,9 +182,8 @@ int main(int argc, char** argv) {
     for (const std::string& name : ch->spindles) {
       spindles.push_back(machine.find_axis(name));
     }
-    std::vector<const config::AxisConfig*> fed = axes;
-    fed.insert(fed.end(), spindles.begin(), spindles.end());
-    fed.insert(fed.end(), sync_slaves.begin(), sync_slaves.end());
+    const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
+    const std::vector<std::string> fed_nodes = config::node_partitions(machine, fed);
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     std::vector<bool> axis_lost(fed.size(), false);
     // A spindle's feedback is also its C axis's.
     dds::Reader<AxisFeedback> feedback_reader(
-        node.participant(),
+        node.participant(), dds::Partitions::of(fed_nodes),
         [&](const AxisFeedback& fb, const dds::WriterId& writer) {
           wake.update([&] {
             for (std::size_t slot = 0; slot < fed.size(); ++slot) {
@@ -234,15 +234,15 @@ int main(int argc, char** argv) {
       outputs.preload_program_dir(interp_config.program_dir.string());
     }
 
-    // Discovery: every axis node's feedback writer and setpoint reader matched.
-    const int total_axes = static_cast<int>(machine.axes.size());
+    // Discovery: the feedback writer of every node it reads and the setpoint reader of every node
+    // it commands matched.
     spdlog::info("{} axes{}{}", axes.size(), program_path.empty() ? "" : ", program ",
                  program_name);
     process::CycleLoop loop(node, machine.cycle_us);
     if (!loop.start(
             [&] {
-              return feedback_reader.matched_writers() >= total_axes &&
-                     outputs.setpoint_readers() >= total_axes && peers.discovered() &&
+              return feedback_reader.matched_writers() >= static_cast<int>(fed_nodes.size()) &&
+                     outputs.setpoints_discovered() && peers.discovered() &&
                      (!plc || plc->discovered()) &&
                      outputs.event_readers() >= static_cast<int>(peers.inputs());
             },

@@ -82,7 +82,31 @@ std::chrono::nanoseconds participant_lease(const Participant& participant) {
 struct Participant::Topics {
   std::mutex mutex;
   std::map<std::string, fdds::Topic*> by_name;
+  // By their partitions, joined with '\n' ("" is the default partition).
+  std::map<std::string, fdds::Publisher*> publishers;
+  std::map<std::string, fdds::Subscriber*> subscribers;
 };
+
+namespace {
+
+std::string partition_key(const Partitions& partitions) {
+  std::string key;
+  for (const std::string& name : partitions.names) {
+    key += name;
+    key += '\n';
+  }
+  return key;
+}
+
+fdds::PartitionQosPolicy partition_policy(const Partitions& partitions) {
+  fdds::PartitionQosPolicy policy;
+  for (const std::string& name : partitions.names) {
+    policy.push_back(name.c_str());
+  }
+  return policy;
+}
+
+}  // namespace
 
 Participant::Participant(int domain, const std::string& name, CyclicClock clock)
     : clock_(clock), topics_(std::make_unique<Topics>()) {
@@ -100,11 +124,6 @@ Participant::Participant(int domain, const std::string& name, CyclicClock clock)
   participant_ = factory->create_participant(domain, qos);
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create DDS participant on domain " + std::to_string(domain));
-  }
-  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
-  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
-  if (publisher_ == nullptr || subscriber_ == nullptr) {
-    throw std::runtime_error("cannot create DDS publisher/subscriber");
   }
 }
 
@@ -133,9 +152,30 @@ fdds::Topic* Participant::topic(const std::string& name, void* pubsub_type) {
   return topic;
 }
 
-fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, QosKind qos) {
+template <class Entity, class Create>
+Entity* Participant::in_partitions(std::map<std::string, Entity*>& cache,
+                                   const Partitions& partitions, Create create) {
+  std::lock_guard<std::mutex> lock(topics_->mutex);
+  Entity*& entity = cache[partition_key(partitions)];
+  if (entity == nullptr) {
+    entity = create(partition_policy(partitions));
+  }
+  return entity;
+}
+
+fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, QosKind qos,
+                                             const Partitions& partitions) {
+  fdds::Publisher* publisher =
+      in_partitions(topics_->publishers, partitions, [this](const fdds::PartitionQosPolicy& p) {
+        fdds::PublisherQos qos_of_publisher = fdds::PUBLISHER_QOS_DEFAULT;
+        qos_of_publisher.partition(p);
+        return participant_->create_publisher(qos_of_publisher);
+      });
+  if (publisher == nullptr) {
+    throw std::runtime_error("cannot create DDS publisher for " + topic->get_name());
+  }
   fdds::DataWriter* writer =
-      publisher_->create_datawriter_with_profile(topic, writer_profile(qos, clock_));
+      publisher->create_datawriter_with_profile(topic, writer_profile(qos, clock_));
   if (writer == nullptr) {
     throw std::runtime_error("cannot create DDS writer for " + topic->get_name());
   }
@@ -144,13 +184,22 @@ fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, QosKind qos) {
 
 void Participant::delete_writer(fdds::DataWriter* writer) noexcept {
   if (writer != nullptr) {
-    publisher_->delete_datawriter(writer);
+    const_cast<fdds::Publisher*>(writer->get_publisher())->delete_datawriter(writer);
   }
 }
 
 fdds::DataReader* Participant::create_reader(fdds::Topic* topic, QosKind qos, ReaderRole role,
-                                             void* listener) {
-  fdds::DataReader* reader = subscriber_->create_datareader_with_profile(
+                                             void* listener, const Partitions& partitions) {
+  fdds::Subscriber* subscriber =
+      in_partitions(topics_->subscribers, partitions, [this](const fdds::PartitionQosPolicy& p) {
+        fdds::SubscriberQos qos_of_subscriber = fdds::SUBSCRIBER_QOS_DEFAULT;
+        qos_of_subscriber.partition(p);
+        return participant_->create_subscriber(qos_of_subscriber);
+      });
+  if (subscriber == nullptr) {
+    throw std::runtime_error("cannot create DDS subscriber for " + topic->get_name());
+  }
+  fdds::DataReader* reader = subscriber->create_datareader_with_profile(
       topic, reader_profile(qos, role), static_cast<fdds::DataReaderListener*>(listener),
       fdds::StatusMask::data_available() << fdds::StatusMask::subscription_matched());
   if (reader == nullptr) {
@@ -161,15 +210,16 @@ fdds::DataReader* Participant::create_reader(fdds::Topic* topic, QosKind qos, Re
 
 void Participant::delete_reader(fdds::DataReader* reader) noexcept {
   if (reader != nullptr) {
-    subscriber_->delete_datareader(reader);
+    const_cast<fdds::Subscriber*>(reader->get_subscriber())->delete_datareader(reader);
   }
 }
 
 namespace detail {
 
-WriterBase::WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos)
+WriterBase::WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
+                       const Partitions& partitions)
     : participant_(participant),
-      writer_(participant.create_writer(participant.topic(topic, pubsub_type), qos)) {}
+      writer_(participant.create_writer(participant.topic(topic, pubsub_type), qos, partitions)) {}
 
 WriterBase::~WriterBase() {
   participant_.delete_writer(writer_);
@@ -211,15 +261,16 @@ struct ReaderBase::Listener : public fdds::DataReaderListener {
 };
 
 ReaderBase::ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-                       ReaderRole role, std::function<void*()> make_sample,
-                       std::function<void(void*)> free_sample, SampleFn on_sample, MatchFn on_match)
+                       ReaderRole role, const Partitions& partitions,
+                       std::function<void*()> make_sample, std::function<void(void*)> free_sample,
+                       SampleFn on_sample, MatchFn on_match)
     : participant_(participant), listener_(std::make_unique<Listener>()) {
   listener_->make_sample = std::move(make_sample);
   listener_->free_sample = std::move(free_sample);
   listener_->on_sample = std::move(on_sample);
   listener_->on_match = std::move(on_match);
-  reader_ =
-      participant.create_reader(participant.topic(topic, pubsub_type), qos, role, listener_.get());
+  reader_ = participant.create_reader(participant.topic(topic, pubsub_type), qos, role,
+                                      listener_.get(), partitions);
 }
 
 ReaderBase::~ReaderBase() {

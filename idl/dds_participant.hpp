@@ -1,6 +1,7 @@
 #pragma once
 // The typed publish/subscribe layer over Fast DDS. One Participant per process; Writer<T> and
-// Reader<T> take their topic name and QoS profile from the topic catalogue (topics.hpp).
+// Reader<T> take their topic name and QoS profile from the topic catalogue (topics.hpp), and for a
+// routed topic the partition they write in or read.
 // Reader callbacks run on a Fast DDS thread: hand the data to your own thread, do not block.
 #include "idl/topics.hpp"
 
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -39,11 +41,13 @@ class Participant {
   // The topic of that name, created (and its type registered) on first use. Takes ownership of
   // `pubsub_type` (a new'd Fast DDS TopicDataType).
   eprosima::fastdds::dds::Topic* topic(const std::string& name, void* pubsub_type);
+  // An empty `partitions` is the default partition (the unrouted topics).
   eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic,
-                                                    QosKind qos);
+                                                    QosKind qos, const Partitions& partitions);
   void delete_writer(eprosima::fastdds::dds::DataWriter* writer) noexcept;
   eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic,
-                                                    QosKind qos, ReaderRole role, void* listener);
+                                                    QosKind qos, ReaderRole role, void* listener,
+                                                    const Partitions& partitions);
   void delete_reader(eprosima::fastdds::dds::DataReader* reader) noexcept;
 
   [[nodiscard]] eprosima::fastdds::dds::DomainParticipant* native() const noexcept {
@@ -51,11 +55,14 @@ class Participant {
   }
 
  private:
+  // The publisher or subscriber of those partitions, made by `create` on first use.
+  template <class Entity, class Create>
+  Entity* in_partitions(std::map<std::string, Entity*>& cache, const Partitions& partitions,
+                        Create create);
+
   CyclicClock clock_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
-  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
-  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
-  struct Topics;
+  struct Topics;  // also the publishers and subscribers, one per set of partitions
   std::unique_ptr<Topics> topics_;
 };
 
@@ -66,7 +73,8 @@ namespace detail {
 // Type-erased writer/reader so that the Fast DDS headers stay in one translation unit.
 class WriterBase {
  public:
-  WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos);
+  WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
+             const Partitions& partitions);
   ~WriterBase();
   WriterBase(const WriterBase&) = delete;
   WriterBase& operator=(const WriterBase&) = delete;
@@ -83,7 +91,7 @@ class ReaderBase {
   using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
   using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
   ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-             ReaderRole role, std::function<void*()> make_sample,
+             ReaderRole role, const Partitions& partitions, std::function<void*()> make_sample,
              std::function<void(void*)> free_sample, SampleFn on_sample, MatchFn on_match);
   ~ReaderBase();
   ReaderBase(const ReaderBase&) = delete;
@@ -102,9 +110,13 @@ class ReaderBase {
 template <class T>
 class Writer {
  public:
-  explicit Writer(Participant& participant)
+  explicit Writer(Participant& participant) requires(!TopicTraits<T>::routed)
       : base_(participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-              TopicTraits<T>::qos) {}
+              TopicTraits<T>::qos, Partitions{}) {}
+  // A routed topic's writer writes in the partition of its key (an axis's or channel's name).
+  Writer(Participant& participant, const std::string& key) requires TopicTraits<T>::routed
+      : base_(participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
+              TopicTraits<T>::qos, Partitions::of({key})) {}
   bool write(const T& sample) noexcept { return base_.write_raw(const_cast<T*>(&sample)); }
   [[nodiscard]] int matched_readers() const noexcept { return base_.matched_readers(); }
 
@@ -118,18 +130,27 @@ class Reader {
   using SampleFn = std::function<void(const T&, const WriterId&)>;
   using MatchFn = detail::ReaderBase::MatchFn;
   Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {},
-         ReaderRole role = ReaderRole::consumer)
+         ReaderRole role = ReaderRole::consumer) requires(!TopicTraits<T>::routed)
+      : Reader(participant, Partitions{}, std::move(on_sample), std::move(on_match), role, 0) {}
+  // A routed topic's reader hears the writers of the partitions it names, and only them.
+  Reader(Participant& participant, Partitions partitions, SampleFn on_sample, MatchFn on_match = {},
+         ReaderRole role = ReaderRole::consumer) requires TopicTraits<T>::routed
+      : Reader(participant, std::move(partitions), std::move(on_sample), std::move(on_match), role,
+               0) {}
+  [[nodiscard]] int matched_writers() const noexcept { return base_.matched_writers(); }
+
+ private:
+  Reader(Participant& participant, const Partitions& partitions, SampleFn on_sample,
+         MatchFn on_match, ReaderRole role, int /*either*/)
       : base_(
             participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-            TopicTraits<T>::qos, role, [] { return static_cast<void*>(new T()); },
+            TopicTraits<T>::qos, role, partitions, [] { return static_cast<void*>(new T()); },
             [](void* p) { delete static_cast<T*>(p); },
             [fn = std::move(on_sample)](const void* s, const WriterId& w) {
               fn(*static_cast<const T*>(s), w);
             },
             std::move(on_match)) {}
-  [[nodiscard]] int matched_writers() const noexcept { return base_.matched_writers(); }
 
- private:
   detail::ReaderBase base_;
 };
 

@@ -3,6 +3,10 @@
 #include "mcnc.h"
 #include "mcncPubSubTypes.h"
 
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace mcnc::dds {
 
 enum class QosKind { cyclic, state, event };
@@ -22,27 +26,42 @@ enum class ReaderRole { consumer, observer };
 // (docs/decisions.md 27).
 enum class CyclicClock { realtime, lockstep };
 
+// Where the samples of a routed topic travel (ARCHITECTURE.md §7: a cyclic sample goes only to
+// the readers that use it). Each key (an axis, a channel) has a DDS partition of its name: a
+// writer writes in its key's, a reader reads the partitions of the keys it uses, and an observer
+// (the HMI, `mcnc status`, the launcher) reads them all. Partitions, not per-key topics: the
+// topic names and keys stay `mcnc/<Name>` and the matching is done once, at discovery, by both
+// DDS implementations alike, so a sample is never sent to a process that would drop it.
+struct Partitions {
+  std::vector<std::string> names;
+  static Partitions of(std::vector<std::string> keys) { return Partitions{std::move(keys)}; }
+  static Partitions all() { return Partitions{{"*"}}; }
+};
+
 template <class T>
 struct TopicTraits;
 
-#define MCNC_TOPIC(Type, Kind)                         \
+// `routed`: its writers and readers name their partitions (the constructors without them do not
+// compile for it, so that no reader of a routed topic silently hears nothing).
+#define MCNC_TOPIC(Type, Kind, Routed)                 \
   template <>                                          \
   struct TopicTraits<::mcnc::Type> {                   \
     using PubSubType = ::mcnc::Type##PubSubType;       \
     static constexpr const char* name = "mcnc/" #Type; \
     static constexpr QosKind qos = QosKind::Kind;      \
+    static constexpr bool routed = Routed;             \
   };
 
-MCNC_TOPIC(AxisSetpoint, cyclic)
-MCNC_TOPIC(AxisFeedback, cyclic)
-MCNC_TOPIC(ChannelStatus, cyclic)
-MCNC_TOPIC(Alarm, event)
-MCNC_TOPIC(RunControl, state)
-MCNC_TOPIC(ProcessState, state)
-MCNC_TOPIC(OperatorCommand, event)
-MCNC_TOPIC(CoordinationEvent, event)
-MCNC_TOPIC(PlcStatus, cyclic)
-MCNC_TOPIC(AuxAck, event)
+MCNC_TOPIC(AxisSetpoint, cyclic, true)
+MCNC_TOPIC(AxisFeedback, cyclic, true)
+MCNC_TOPIC(ChannelStatus, cyclic, true)
+MCNC_TOPIC(Alarm, event, false)
+MCNC_TOPIC(RunControl, state, false)
+MCNC_TOPIC(ProcessState, state, false)
+MCNC_TOPIC(OperatorCommand, event, false)
+MCNC_TOPIC(CoordinationEvent, event, false)
+MCNC_TOPIC(PlcStatus, cyclic, false)  // one writer, read by every channel: nothing to route
+MCNC_TOPIC(AuxAck, event, false)
 
 #undef MCNC_TOPIC
 

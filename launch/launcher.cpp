@@ -89,7 +89,7 @@ LaunchResult Launcher::run(
   // channel's status carries its run's start and end cycles), so both cyclic readers are
   // observers: no writer waits for the launcher or repeats samples for it.
   dds::Reader<::mcnc::ChannelStatus> status_reader(
-      node.participant(),
+      node.participant(), dds::Partitions::all(),
       [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
         auto& slot = seen.status[s.channel()];
@@ -99,7 +99,7 @@ LaunchResult Launcher::run(
       },
       {}, dds::ReaderRole::observer);
   dds::Reader<AxisFeedback> feedback_reader(
-      node.participant(),
+      node.participant(), dds::Partitions::all(),
       [&](const AxisFeedback& f, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
         seen.feedback[f.axis()] = f;

@@ -34,14 +34,16 @@ int execute_status(const StatusArguments& args) {
   std::mutex mutex;
   status::StatusSnapshot snapshot;
   dds::Reader<::mcnc::ChannelStatus> channels(
-      participant, [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
+      participant, dds::Partitions::all(),
+      [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(mutex);
         snapshot.channels[s.channel()] = status::view_of(s);
       });
-  dds::Reader<AxisFeedback> axes(participant, [&](const AxisFeedback& f, const dds::WriterId&) {
-    std::lock_guard<std::mutex> lock(mutex);
-    snapshot.axes[f.axis()] = status::view_of(f);
-  });
+  dds::Reader<AxisFeedback> axes(participant, dds::Partitions::all(),
+                                 [&](const AxisFeedback& f, const dds::WriterId&) {
+                                   std::lock_guard<std::mutex> lock(mutex);
+                                   snapshot.axes[f.axis()] = status::view_of(f);
+                                 });
   const auto copy = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     return snapshot;

@@ -1,6 +1,7 @@
 // mcnc-plcnode: the machine's PLC. Aux requests from the channels (M and T codes) in, answers
 // (FIN) and the I/O image out, over DDS, in the machine's cycle. Wiring only: the behaviour is
 // in MachinePlc.
+#include "common/config/cyclic_routes.hpp"
 #include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/log/logging.hpp"
@@ -80,7 +81,7 @@ int main(int argc, char** argv) {
     std::vector<dds::WriterId> status_writer(channels);
     std::vector<bool> status_writer_known(channels, false);
     dds::Reader<ChannelStatus> status_reader(
-        node.participant(),
+        node.participant(), dds::Partitions::of(config::channel_names(machine)),
         [&](const ChannelStatus& s, const dds::WriterId& writer) {
           if (s.channel() < 1 || s.channel() > channels) {
             return;
@@ -134,8 +135,12 @@ int main(int argc, char** argv) {
     std::vector<dds::WriterId> spindle_writer(spindles.size());
     std::vector<bool> spindle_writer_known(spindles.size(), false);
     std::vector<bool> spindle_lost(spindles.size(), false);
+    std::vector<std::string> spindle_names;
+    for (const int id : spindles) {
+      spindle_names.push_back(machine.axes[static_cast<std::size_t>(id - 1)].name);
+    }
     dds::Reader<AxisFeedback> feedback_reader(
-        node.participant(),
+        node.participant(), dds::Partitions::of(spindle_names),
         [&](const AxisFeedback& fb, const dds::WriterId& writer) {
           for (std::size_t k = 0; k < spindles.size(); ++k) {
             if (static_cast<int>(fb.axis()) == spindles[k]) {

@@ -36,15 +36,29 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       spindles_(std::move(spindles)),
       program_name_(std::move(program_name)),
       program_lines_(std::move(program_lines)),
-      setpoints_(node.participant()),
-      status_(node.participant()),
+      status_(node.participant(), channel.name),
       events_(node.participant()),
       writes_(writes),
       channel_names_(std::move(channel_names)) {
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
+    axis_setpoints_.push_back(i == c_slot_ ? nullptr
+                                           : std::make_unique<dds::Writer<AxisSetpoint>>(
+                                                 node.participant(), axes_[i]->name));
+  }
+  for (const config::AxisConfig* spindle : spindles_) {
+    spindle_setpoints_.push_back(
+        std::make_unique<dds::Writer<AxisSetpoint>>(node.participant(), spindle->name));
   }
   set_program_now(program_name_);
+}
+
+bool ChannelOutputs::setpoints_discovered() const noexcept {
+  const auto matched = [](const auto& writer) {
+    return writer == nullptr || writer->matched_readers() >= 1;
+  };
+  return std::all_of(axis_setpoints_.begin(), axis_setpoints_.end(), matched) &&
+         std::all_of(spindle_setpoints_.begin(), spindle_setpoints_.end(), matched);
 }
 
 void ChannelOutputs::set_program(std::string name, std::vector<std::string> lines) noexcept {
@@ -159,7 +173,7 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.vel(out.setpoints[i].vel);
     sp.acc(out.setpoints[i].acc);
     sp.valid(out.setpoints[i].valid);
-    setpoints_.write(sp);
+    axis_setpoints_[i]->write(sp);
   }
   const double rpm = out.spindle_rpm * out.spindle_direction;
   for (std::size_t i = 0; i < spindles_.size(); ++i) {
@@ -180,7 +194,7 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
       sp.valid(true);
       sp.mode(SP_VELOCITY);
     }
-    setpoints_.write(sp);
+    spindle_setpoints_[i]->write(sp);
   }
   if (!spindles_.empty() && out.spindle_position != spindle_position_) {
     spindle_position_ = out.spindle_position;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,8 +35,8 @@ class ChannelOutputs {
                bool program_loaded);
   // Other channels matched on the coordination event topic, for discovery.
   [[nodiscard]] int event_readers() const noexcept { return events_.matched_readers(); }
-  // Axis nodes matched on the setpoint topic, for discovery.
-  [[nodiscard]] int setpoint_readers() const noexcept { return setpoints_.matched_readers(); }
+  // Every node the channel commands has matched its setpoint writer, for discovery.
+  [[nodiscard]] bool setpoints_discovered() const noexcept;
   // Reads the line text of every file of `dir` (the program store), at set-up: the blocks of a
   // subprogram from there are traced with their text without reading the disk in the cycle.
   void preload_program_dir(const std::string& dir);
@@ -70,7 +71,10 @@ class ChannelOutputs {
   std::array<char, 64> program_now_{};
   std::vector<std::string> program_lines_;
   std::map<std::string, std::vector<std::string>> other_lines_;
-  dds::Writer<AxisSetpoint> setpoints_;
+  // One per node, in its partition (config/cyclic_routes.hpp): by slot of axes_ (none for the
+  // C axis, which the spindle's carries), then by spindle.
+  std::vector<std::unique_ptr<dds::Writer<AxisSetpoint>>> axis_setpoints_;
+  std::vector<std::unique_ptr<dds::Writer<AxisSetpoint>>> spindle_setpoints_;
   dds::Writer<::mcnc::ChannelStatus> status_;
   dds::Writer<::mcnc::CoordinationEvent> events_;
   std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent

@@ -1,6 +1,7 @@
 #include "channel/wire/channel_peers.hpp"
 
 #include "channel/wire/channel_mask.hpp"
+#include "common/config/cyclic_routes.hpp"
 
 namespace mcnc::channel {
 
@@ -26,7 +27,7 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
       shared_(shared_variables),
       peers_(peers_of(machine, self)),
       status_reader_(
-          node.participant(),
+          node.participant(), dds::Partitions::of(config::other_channels(machine, self)),
           [this](const ::mcnc::ChannelStatus& status, const dds::WriterId& writer) {
             Peer* peer = find(status.channel());
             if (peer == nullptr) {

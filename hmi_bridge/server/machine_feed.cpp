@@ -19,7 +19,7 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       participant_(domain, "hmi"),
       commands_(participant_),
       // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
-      channels_(participant_,
+      channels_(participant_, dds::Partitions::all(),
                 [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
                   std::lock_guard<std::mutex> lock(mutex_);
                   snapshot_.channels[s.channel()] = status::view_of(s);
@@ -27,7 +27,7 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       // An observer: the axes' feedback changes every cycle, and an HMI behind the machine
       // must not add to its work.
       axes_(
-          participant_,
+          participant_, dds::Partitions::all(),
           [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {
             std::lock_guard<std::mutex> lock(mutex_);
             snapshot_.axes[f.axis()] = status::view_of(f);

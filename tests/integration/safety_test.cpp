@@ -56,13 +56,14 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
                                      std::lock_guard<std::mutex> lock(mutex);
                                      phases[s.name()] = s.phase();
                                    });
-  dds::Reader<AxisSetpoint> setpoints(
-      control.participant(), [&](const AxisSetpoint& sp, const dds::WriterId&) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (sp.axis() == 2) {
-          last_setpoint_cycle = std::max(last_setpoint_cycle, sp.cycle());
-        }
-      });
+  dds::Reader<AxisSetpoint> setpoints(control.participant(), dds::Partitions::all(),
+                                      [&](const AxisSetpoint& sp, const dds::WriterId&) {
+                                        std::lock_guard<std::mutex> lock(mutex);
+                                        if (sp.axis() == 2) {
+                                          last_setpoint_cycle =
+                                              std::max(last_setpoint_cycle, sp.cycle());
+                                        }
+                                      });
   dds::Writer<RunControl> run_control(control.participant());
   auto send = [&](RunCommand command, std::uint64_t generation) {
     RunControl rc;

@@ -1,0 +1,80 @@
+#include "common/config/cyclic_routes.hpp"
+
+#include <algorithm>
+
+namespace mcnc::config {
+
+namespace {
+
+void add_once(std::vector<std::string>& names, std::string name) {
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    names.push_back(std::move(name));
+  }
+}
+
+}  // namespace
+
+std::string node_partition(const MachineConfig& machine, const AxisConfig& axis) {
+  if (!axis.spindle.empty()) {
+    const AxisConfig* spindle = machine.find_axis(axis.spindle);
+    return spindle != nullptr ? spindle->name : axis.spindle;
+  }
+  return axis.name;
+}
+
+std::vector<const AxisConfig*> fed_axes(const MachineConfig& machine,
+                                        const ChannelConfig& channel) {
+  std::vector<const AxisConfig*> fed;
+  for (const std::string& name : channel.program_axes()) {
+    fed.push_back(machine.find_axis(name));
+  }
+  for (const std::string& name : channel.spindles) {
+    fed.push_back(machine.find_axis(name));
+  }
+  for (const SpindleSyncGroup& g : machine.spindle_sync) {
+    if (g.channel == channel.id) {
+      fed.push_back(&machine.axes[static_cast<std::size_t>(g.slave - 1)]);
+    }
+  }
+  return fed;
+}
+
+std::vector<std::string> node_partitions(const MachineConfig& machine,
+                                         const std::vector<const AxisConfig*>& axes) {
+  std::vector<std::string> names;
+  for (const AxisConfig* a : axes) {
+    if (a != nullptr) {
+      add_once(names, node_partition(machine, *a));
+    }
+  }
+  return names;
+}
+
+std::size_t channels_fed_by(const MachineConfig& machine, const std::string& node) {
+  std::size_t count = 0;
+  for (const ChannelConfig& c : machine.channels) {
+    const std::vector<std::string> nodes = node_partitions(machine, fed_axes(machine, c));
+    count += std::find(nodes.begin(), nodes.end(), node) != nodes.end() ? 1 : 0;
+  }
+  return count;
+}
+
+std::vector<std::string> other_channels(const MachineConfig& machine, const ChannelConfig& self) {
+  std::vector<std::string> names;
+  for (const ChannelConfig& c : machine.channels) {
+    if (c.id != self.id) {
+      names.push_back(c.name);
+    }
+  }
+  return names;
+}
+
+std::vector<std::string> channel_names(const MachineConfig& machine) {
+  std::vector<std::string> names;
+  for (const ChannelConfig& c : machine.channels) {
+    names.push_back(c.name);
+  }
+  return names;
+}
+
+}  // namespace mcnc::config

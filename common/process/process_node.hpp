@@ -3,6 +3,7 @@
 // the run control from mcnc-launch, the alarm writer, and one wake-up that DDS callbacks and
 // other receive threads signal so that the cyclic loop can wait for "something arrived".
 #include "common/operator/operator_inbox.hpp"
+#include "common/process/wakeup.hpp"
 #include "idl/dds_participant.hpp"
 
 #include <algorithm>
@@ -24,54 +25,6 @@ namespace mcnc::process {
 
 // The DDS domain: MCNC_DOMAIN when set, else the machine file's.
 int resolve_domain(const config::MachineConfig& machine);
-
-class Wakeup {
- public:
-  void notify() noexcept {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      ++count_;
-    }
-    cv_.notify_all();
-  }
-  // Waits until pred() holds, re-checking at every notify and at least every 50 ms (a signal
-  // handler cannot notify); false on timeout.
-  template <class Pred>
-  bool wait_for(Pred pred, std::chrono::microseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!pred()) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now >= deadline) {
-        return false;
-      }
-      cv_.wait_for(lock, std::min<std::chrono::steady_clock::duration>(
-                             deadline - now, std::chrono::milliseconds(50)));
-    }
-    return true;
-  }
-  // Runs fn under the lock the waiter uses, without waking anyone (to read shared state).
-  template <class Fn>
-  void with_lock(Fn fn) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    fn();
-  }
-  // Runs fn under the same lock the waiter uses, then wakes it (for state the predicate reads).
-  template <class Fn>
-  void update(Fn fn) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      fn();
-      ++count_;
-    }
-    cv_.notify_all();
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  std::uint64_t count_ = 0;
-};
 
 // The latest run control, readable without locks from the cyclic loop.
 struct RunControlView {

@@ -1,0 +1,58 @@
+#!/usr/bin/env python3
+"""Wake-ups and CPU of the running mcnc processes over a few seconds, from /proc: for each
+program, how many processes, their voluntary context switches per second (each one a wait that
+ended: a wake-up) and their CPU share of one core. Run it beside a machine run; divide by the
+machine's cycles per second for the figures per cycle.
+
+Usage: bench/thread_wakeups.py [SECONDS]   (default 5)
+"""
+import collections
+import os
+import sys
+import time
+
+TICKS = os.sysconf("SC_CLK_TCK")
+
+
+def snapshot():
+    threads = {}
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/comm") as f:
+                program = f.read().strip()
+            if not program.startswith("mcnc"):
+                continue
+            for tid in os.listdir(f"/proc/{pid}/task"):
+                with open(f"/proc/{pid}/task/{tid}/status") as f:
+                    status = f.read()
+                with open(f"/proc/{pid}/task/{tid}/stat") as f:
+                    fields = f.read().rsplit(")", 1)[1].split()
+                switches = int(status.split("voluntary_ctxt_switches:")[1].split()[0])
+                cpu_ticks = int(fields[11]) + int(fields[12])  # utime + stime
+                threads[(program, pid, tid)] = (switches, cpu_ticks)
+        except (FileNotFoundError, ProcessLookupError, IndexError):
+            continue  # a thread that ended meanwhile
+    return threads
+
+
+def main():
+    seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 5.0
+    before = snapshot()
+    time.sleep(seconds)
+    after = snapshot()
+    totals = collections.defaultdict(lambda: [0, 0, set()])
+    for key, (switches, ticks) in after.items():
+        if key in before:
+            t = totals[key[0]]
+            t[0] += switches - before[key][0]
+            t[1] += ticks - before[key][1]
+            t[2].add(key[1])
+    print("| program | processes | wake-ups per second | CPU, % of one core |")
+    print("|---|---|---|---|")
+    for program, (switches, ticks, pids) in sorted(totals.items(), key=lambda kv: -kv[1][1]):
+        print(f"| {program} | {len(pids)} | {switches / seconds:.0f} "
+              f"| {100 * ticks / TICKS / seconds:.1f} |")
+
+
+if __name__ == "__main__":
+    main()

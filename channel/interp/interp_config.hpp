@@ -23,6 +23,7 @@ inline constexpr int kMaxToolOffsets = 64;                     // offset numbers
 inline constexpr int kExtendedWorkSystems = 99;                // G54.1 P1-P99
 inline constexpr int kWorkSystems = 6 + kExtendedWorkSystems;  // G54-G59, then P1-P99
 inline constexpr int kReferencePoints = 4;                     // G28 (1), G30 P2-P4
+inline constexpr int kSpindlesUnknown = -1;                    // InterpreterConfig::spindles
 
 struct AxisConfig {
   char name = 'X';
@@ -86,7 +87,10 @@ struct InterpreterConfig {
   GCodeSystem system = GCodeSystem::a;
   Dialect dialect = Dialect::dafeng;
   int channel = 1;
-  int spindles = 0;       // spindles the channel drives (S1 first); their commands run, not alarm
+  // Spindles the channel drives (S1 first); their commands run, not alarm. A higher spindle
+  // number of this channel (S_ P, Sn=, M1xx..., SP) is an alarm. kSpindlesUnknown (`mcnc interp`
+  // without `spindles`): every spindle 1-9 is taken.
+  int spindles = kSpindlesUnknown;
   int channel_count = 0;  // channels of the machine (G04.1 Q must name them); 0: not checked
   bool plc = false;       // a PLC node runs M codes and T codes (else they are not executable)
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};

@@ -47,6 +47,7 @@ inline constexpr int kNoPlaneAxis = 1131;           // arc in a plane whose axes
 // C1 mode (M18/M17, GSK M14/M15): C moved under speed control, M03/M04/M19 under position
 // control, position control asked while the spindle turns.
 inline constexpr int kSpindleControl = 1132;
+inline constexpr int kNoSuchSpindle = 1133;  // S_ P4, S4=, M303, SP4 naming a spindle not there
 // Canned cycles, threading, corners and tool-nose compensation (issue 4).
 inline constexpr int kContourNotMonotonic = 1140;    // G71/G72 contour against its type's rule
 inline constexpr int kContourStart = 1141;           // first contour block not G00/G01 (or arc)

@@ -103,6 +103,9 @@ class ProgramRun final : public macro::VariableProvider {
                           bool reserve_p);
   bool apply_modal(GFunction f, int code10, int column);
   bool run_spindle_words(bool has_m_spindle);
+  // A spindle of this channel named by its number (`what`: the words that name it) must be one
+  // the channel has.
+  bool own_spindle(int spindle, const std::string& what, int column);
   // C1 mode codes: 1 for position control (Dafeng M18 + 100(n-1), GSK M14), 0 for speed
   // control (M17 + 100(n-1), GSK M15), -1 for any other M code; `spindle` is set to the one
   // addressed. position_code() names the code of the dialect, for messages.

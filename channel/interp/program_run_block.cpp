@@ -817,6 +817,10 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     if (spindle == 0) {
       return fail(alarm::kBadWordValue, "SP needs a spindle number b of 1-9", sp->column);
     }
+    if ((channel == 0 || channel == config_.channel) &&
+        !own_spindle(spindle, "SP" + std::to_string(v), sp->column)) {
+      return false;
+    }
     Command& c = emit(Op::spindle_select);
     c.channel = channel == config_.channel ? 0 : channel;
     c.spindle = spindle;
@@ -843,6 +847,9 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     if (addressed == 0) {
       return fail(alarm::kBadWordValue, "S_ P: the spindle number b must be 1-9", p->column);
     }
+    if (channel == 0 && !own_spindle(addressed, "S_ P" + std::to_string(v), p->column)) {
+      return false;
+    }
   }
   bool surface_changed = false;
   bool clamp_changed = false;
@@ -859,6 +866,10 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     }
     if (addressed != 0 && s->index >= 0 && s->index != addressed) {
       return fail(alarm::kBadWordValue, "Sn= and P name different spindles", s->column);
+    }
+    if (s->index >= 0 && channel == 0 &&
+        !own_spindle(spindle, "S" + std::to_string(spindle) + "=", s->column)) {
+      return false;
     }
     addressed = spindle;
     bool clamp = false;
@@ -919,6 +930,9 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
                   "M" + std::to_string(m) + " would address spindle " + std::to_string(spindle) +
                       "; spindles are 1-9",
                   w.column);
+    }
+    if (m >= 100 && channel == 0 && !own_spindle(spindle, "M" + std::to_string(m), w.column)) {
+      return false;
     }
     if (addressed != 0 && addressed != spindle &&
         (p != nullptr || (s != nullptr && s->index >= 0))) {
@@ -1041,6 +1055,20 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     }
   }
   return true;
+}
+
+bool ProgramRun::own_spindle(int spindle, const std::string& what, int column) {
+  if (config_.spindles == kSpindlesUnknown || spindle <= config_.spindles) {
+    return true;
+  }
+  const std::string has = config_.spindles == 0 ? "none"
+                          : config_.spindles == 1
+                              ? "spindle 1 only"
+                              : "spindles 1-" + std::to_string(config_.spindles);
+  return fail(alarm::kNoSuchSpindle,
+              what + " names spindle " + std::to_string(spindle) +
+                  ", which this channel does not have (it has " + has + ")",
+              column);
 }
 
 int ProgramRun::control_code(std::int64_t m, int& spindle) const {

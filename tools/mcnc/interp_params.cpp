@@ -188,6 +188,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
             {"system",
              "dialect",
              "channel",
+             "spindles",
              "decimal_point",
              "least_increment",
              "feed_mode",
@@ -234,6 +235,12 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     c.channel = get<int>(root["channel"], "channel");
     if (c.channel < 1 || c.channel > 255) {
       bad("channel", "1-255");
+    }
+  }
+  if (root["spindles"]) {
+    c.spindles = get<int>(root["spindles"], "spindles");
+    if (c.spindles < 0 || c.spindles > 9) {
+      bad("spindles", "0-9");
     }
   }
   if (root["decimal_point"]) {

@@ -117,5 +117,40 @@ TEST(InterpSpindles, SystemBFeedCodes) {
   EXPECT_EQ(l[1].feed_mode, FeedMode::per_min);
 }
 
+InterpreterConfig one_spindle() {
+  InterpreterConfig c = lathe();
+  c.spindles = 1;
+  return c;
+}
+
+// A spindle of this channel named by a number it does not have is an alarm at the word that
+// names it, whatever form names it (before, `S180 P4` was only remembered: no command, no alarm).
+TEST(InterpSpindles, SpindleTheChannelDoesNotHave) {
+  RunResult r = run_alarm("M03 S500\nS180 P4\nM30\n", alarm::kNoSuchSpindle, 2, 6, one_spindle());
+  ASSERT_TRUE(r.alarm.has_value());
+  EXPECT_NE(r.alarm->text.find("spindle 4"), std::string::npos) << r.alarm->text;
+  run_alarm("G00 X10\nS4=180\nM30\n", alarm::kNoSuchSpindle, 2, 1, one_spindle());
+  run_alarm("G00 X10\nM303 S180\nM30\n", alarm::kNoSuchSpindle, 2, 1, one_spindle());
+  run_alarm("G00 X10\nSP2\nM30\n", alarm::kNoSuchSpindle, 2, 1, one_spindle());
+  run_alarm("G00 X10\nM103\nM30\n", alarm::kNoSuchSpindle, 2, 1, one_spindle());
+  InterpreterConfig none = lathe();
+  none.spindles = 0;
+  run_alarm("G00 X10\nS180 P1\nM30\n", alarm::kNoSuchSpindle, 2, 6, none);
+}
+
+TEST(InterpSpindles, SpindlesTheChannelHasAndOthersChannels) {
+  InterpreterConfig two = lathe();
+  two.spindles = 2;
+  RunResult r = run_ok("M03 S500 P1\nM103 S2=800\nS180 P2\nSP2\nS300 P24\nM30\n", two);
+  const auto s = r.of(Op::spindle);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[2].spindle, 2);
+  EXPECT_NEAR(s[2].rpm, 180, 1e-9);
+  EXPECT_EQ(s[3].channel, 2);  // another channel's spindle 4: that channel's to check
+  EXPECT_EQ(s[3].spindle, 4);
+  // Without a spindle count (`mcnc interp` without `spindles`) every number 1-9 is taken.
+  run_ok("S180 P4\nM30\n");
+}
+
 }  // namespace
 }  // namespace mcnc::interp::test

@@ -10,6 +10,8 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   interp::InterpreterConfig c;
   c.channel = channel.id;
   c.spindles = static_cast<int>(channel.spindles.size());
+  c.power_on_feed_mode =
+      channel.feed_per_rev ? interp::FeedMode::per_rev : interp::FeedMode::per_min;
   c.channel_count = static_cast<int>(machine.channels.size());
   c.plc = machine.plc.present;
   c.program_dir = machine.program_dir;

@@ -186,7 +186,8 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion"});
+  const YamlMap map =
+      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   const YamlValue axes = map.required("axes");
@@ -210,6 +211,19 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   if (auto motion = map.optional("motion")) {
     channel.motion = parse_channel_motion(*motion);
+  }
+  if (auto feed_mode = map.optional("feed_mode")) {
+    const std::string text = feed_mode->string();
+    if (text != "per_min" && text != "per_rev") {
+      feed_mode->fail("feed_mode must be per_min (G98) or per_rev (G99), got '" + text + "'");
+    }
+    // Feed per revolution needs a spindle to measure the revolution by.
+    if (text == "per_rev" && channel.spindles.empty()) {
+      feed_mode->fail(
+          "feed_mode per_rev (G99 at power-on) needs a spindle in the channel's "
+          "spindles");
+    }
+    channel.feed_per_rev = text == "per_rev";
   }
   return channel;
 }

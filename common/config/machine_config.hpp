@@ -128,6 +128,9 @@ struct ChannelConfig {
   // position control: a slot after the exchange axes.
   std::vector<std::string> c_axes;
   ChannelMotionConfig motion;
+  // Param 2201.3 (`feed_mode`): the channel powers on in G99, feed per revolution of its first
+  // spindle; false: G98, feed per minute.
+  bool feed_per_rev = false;
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

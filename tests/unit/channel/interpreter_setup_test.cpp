@@ -1,18 +1,22 @@
-// A channel's interpreter parameters from the machine file: the spindles it has.
+// A channel's interpreter parameters from the machine file: its spindle count and its power-on
+// feed mode (param 2201.3, `feed_mode` of the channel).
 #include "channel/setup/interpreter_setup.hpp"
 #include "common/config/machine_config.hpp"
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace mcnc::channel {
 namespace {
 
-config::MachineConfig machine() {
+config::MachineConfig machine(const std::string& lathe_feed_mode) {
   return config::parse_machine_yaml(R"(
 machine: {name: m, cycle_us: 4000}
 buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
 channels:
-  - {name: LATHE, axes: [X1, Z1], spindles: [S1]}
+  - {name: LATHE, axes: [X1, Z1], spindles: [S1])" +
+                                    lathe_feed_mode + R"(}
   - {name: LOADER, axes: [X2]}
 axes:
   - {name: X1, address: X, diameter: true, bus: b, node_id: 1}
@@ -22,8 +26,19 @@ axes:
 )");
 }
 
+TEST(InterpreterSetup, PowerOnFeedModeIsTheChannels) {
+  const config::MachineConfig g99 = machine(", feed_mode: per_rev");
+  EXPECT_EQ(interpreter_config_for(g99, g99.channels[0]).power_on_feed_mode,
+            interp::FeedMode::per_rev);
+  EXPECT_EQ(interpreter_config_for(g99, g99.channels[1]).power_on_feed_mode,
+            interp::FeedMode::per_min);
+  const config::MachineConfig g98 = machine("");
+  EXPECT_EQ(interpreter_config_for(g98, g98.channels[0]).power_on_feed_mode,
+            interp::FeedMode::per_min);
+}
+
 TEST(InterpreterSetup, SpindlesAreCounted) {
-  const config::MachineConfig m = machine();
+  const config::MachineConfig m = machine("");
   EXPECT_EQ(interpreter_config_for(m, m.channels[0]).spindles, 1);
   EXPECT_EQ(interpreter_config_for(m, m.channels[1]).spindles, 0);  // known: none
 }

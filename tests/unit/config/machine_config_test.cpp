@@ -244,14 +244,17 @@ TEST(MachineConfig, SyncOffsetIsHalfTheCycleUnlessGivenAndStaysInsideIt) {
             "buses[0].sync_offset_us");
 }
 
-TEST(MachineConfig, SpindlesBelongToAChannelAndWeighMoreOnTheBus) {
-  const std::string base = R"(
+// An axis and a spindle on one bus; the tests add the channel.
+constexpr const char* kAxisAndSpindle = R"(
 machine: {name: m}
 buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
 axes:
   - {name: X, address: X, bus: b, node_id: 1}
   - {name: S1, type: spindle, bus: b, node_id: 2, counts_per_unit: 1000}
 )";
+
+TEST(MachineConfig, SpindlesBelongToAChannelAndWeighMoreOnTheBus) {
+  const std::string base = kAxisAndSpindle;
   const MachineConfig config =
       parse_machine_yaml(base + "channels: [{name: C, axes: [X], spindles: [S1]}]\n");
   ASSERT_EQ(config.channels[0].spindles, std::vector<std::string>{"S1"});
@@ -276,6 +279,36 @@ axes:
 channels: [{name: C, axes: [X], spindles: [S1]}]
 )"),
             "axes[1].address");
+}
+
+// Param 2201.3: a channel powers on in G98 (feed per minute) unless `feed_mode: per_rev` (G99),
+// which needs a spindle of the channel to count revolutions of.
+TEST(MachineConfig, PowerOnFeedModeOfAChannel) {
+  const std::string base = kAxisAndSpindle;
+  EXPECT_FALSE(parse_machine_yaml(base + "channels: [{name: C, axes: [X], spindles: [S1]}]\n")
+                   .channels[0]
+                   .feed_per_rev);
+  EXPECT_TRUE(parse_machine_yaml(
+                  base + "channels: [{name: C, axes: [X], spindles: [S1], feed_mode: per_rev}]\n")
+                  .channels[0]
+                  .feed_per_rev);
+  EXPECT_FALSE(parse_machine_yaml(
+                   base + "channels: [{name: C, axes: [X], spindles: [S1], feed_mode: per_min}]\n")
+                   .channels[0]
+                   .feed_per_rev);
+  std::string what;
+  EXPECT_EQ(rejection_path(base + "channels: [{name: C, axes: [X], spindles: [S1], feed_mode: "
+                                  "G99}]\n"),
+            "channels[0].feed_mode");
+  EXPECT_EQ(rejection_path(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+axes: [{name: X, address: X, bus: b, node_id: 1}]
+channels: [{name: C, axes: [X], feed_mode: per_rev}]
+)",
+                           &what),
+            "channels[0].feed_mode");
+  EXPECT_NE(what.find("needs a spindle"), std::string::npos) << what;
 }
 
 TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {

@@ -41,7 +41,7 @@ inline constexpr int kReleasedAxis = 1123;          // an axis released by G140 
 inline constexpr int kStatementLimit = 1125;        // endless macro loop without a command
 inline constexpr int kSyncForm = 1126;              // G04.1 Q forms
 inline constexpr int kMustBeAlone = 1128;           // a code that needs its own block
-inline constexpr int kUserAlarmRange = 1129;        // #3000 = n with n outside 0-99
+inline constexpr int kUserAlarmRange = 1129;        // #3000 = n with n outside 0-200
 inline constexpr int kLoopControl = 1130;           // BREAK outside WHILE, END without WHILE ...
 inline constexpr int kNoPlaneAxis = 1131;           // arc in a plane whose axes are missing
 // C1 mode (M18/M17, GSK M14/M15): C moved under speed control, M03/M04/M19 under position
@@ -63,7 +63,9 @@ inline constexpr int kCompensationGeometry = 1150;   // the offset path cannot b
 inline constexpr int kCompensationStart = 1151;      // start-up or cancel on an arc, ...
 inline constexpr int kCycleWordMissing = 1152;       // G74 X without P, G75 Z without Q, ...
 
-// #3000 = n (text): alarm 3000 + n (n = 0-99), as FANUC numbers macro alarms.
+// #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
+// are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.
 inline constexpr int kUserAlarmBase = 3000;
+inline constexpr int kUserAlarmMaxN = 200;  // the largest n
 
 }  // namespace mcnc::interp::alarm

@@ -460,9 +460,11 @@ bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
     }
     std::int64_t n = 0;
     if (target == 3000) {
-      if (!whole(r.value.number(), n) || n < 0 || n > 99) {
-        return fail(alarm::kUserAlarmRange, "#3000 = n: n must be a whole number 0-99",
-                    a.target_column);
+      if (!whole(r.value.number(), n) || n < 0 || n > alarm::kUserAlarmMaxN) {
+        return fail(
+            alarm::kUserAlarmRange,
+            "#3000 = n: n must be a whole number 0-" + std::to_string(alarm::kUserAlarmMaxN),
+            a.target_column);
       }
       return fail(alarm::kUserAlarmBase + static_cast<int>(n),
                   line.message < 0 ? std::string("macro alarm") : message_of(line),

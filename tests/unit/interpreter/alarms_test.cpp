@@ -60,11 +60,14 @@ INSTANTIATE_TEST_SUITE_P(
                       AlarmCase{"T0170", alarm::kBadWordValue, 1},
                       AlarmCase{"G04.1 P1 Q23", alarm::kSyncForm, 0},
                       AlarmCase{"G04.1 Q12", alarm::kSyncForm, 0},
-                      AlarmCase{"#3000=100(X)", alarm::kUserAlarmRange, 0},
+                      AlarmCase{"#3000=201(X)", alarm::kUserAlarmRange, 0},
+                      AlarmCase{"#3000=-1(X)", alarm::kUserAlarmRange, 0},
                       AlarmCase{"BREAK", alarm::kLoopControl, 1},
                       AlarmCase{"G17 G02 X1 R5 F1", alarm::kNoPlaneAxis, 0},
                       AlarmCase{"#3000=7(SEVEN)", alarm::kUserAlarmBase + 7, 0},
                       AlarmCase{"#3000=0", alarm::kUserAlarmBase, 0},
+                      AlarmCase{"#3000=100(X)", alarm::kUserAlarmBase + 100, 0},
+                      AlarmCase{"#3000=200(FANUC 0I)", alarm::kUserAlarmBase + 200, 0},
                       AlarmCase{"CH3", alarm::kWrongChannel, 0}));
 
 // Column 0 in the table above means "not asserted"; these check the column of the blamed word.

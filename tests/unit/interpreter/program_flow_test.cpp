@@ -400,8 +400,12 @@ TEST(InterpFlow, UserAlarmNumberAndLine) {
   EXPECT_EQ(rapid_z(r), (std::vector<double>{1}));
 }
 
+// FANUC 0i: #3000 = n takes n = 0-200 (alarm 3000 + n); 201 is out of its range.
 TEST(InterpFlow, UserAlarmOutOfRange) {
-  run_alarm("G00 Z1\n#3000=100(X)\nM30\n", alarm::kUserAlarmRange, 2);
+  run_alarm("G00 Z1\n#3000=201(X)\nM30\n", alarm::kUserAlarmRange, 2);
+  RunResult r = run_alarm("G00 Z1\n#3000=150(CHECK TOOL)\nM30\n", alarm::kUserAlarmBase + 150, 2);
+  ASSERT_TRUE(r.alarm.has_value());
+  EXPECT_EQ(r.alarm->text, "CHECK TOOL");
 }
 
 TEST(InterpFlow, MainProgramM99Loops) {

@@ -248,7 +248,12 @@ class ProgramRun final : public macro::VariableProvider {
   BlockWord* word(char a, char b);
   BlockWord* comma_word(char letter);  // ,C ,R ,A
   int count_words(char letter) const;
+  // A word's value in the program's unit, a literal without a point counted in increments
+  // (`decimal_point: increment`) and a variable's value cut to the increment; `length`: the
+  // length increment of G20/G21, else the angle and time increment.
   double scaled(const BlockWord& w, bool length) const;
+  double length_increment() const;                              // in the program's unit (mm, inch)
+  double scaled_axis_word(int axis, const BlockWord& w) const;  // length or degrees by the axis
   double length_of(const BlockWord& w) const;  // a length word in mm (inch converted)
 
   InterpreterConfig config_;

@@ -160,12 +160,16 @@ int ProgramRun::count_words(char letter) const {
   return n;
 }
 
+double ProgramRun::length_increment() const {
+  // IS-B inputs 0.001 mm or 0.0001 inch: the inch increment is a tenth of the metric one's
+  // number, in every increment system.
+  return metric_ ? config_.least_increment : config_.least_increment / 10.0;
+}
+
 double ProgramRun::scaled(const BlockWord& w, bool length) const {
   double v = w.value;
-  if (!length) {
-    return v;
-  }
-  const double inc = config_.least_increment;
+  // Angles and times keep the metric increment's number in G20 (0.001 degree, 0.001 s).
+  const double inc = length ? length_increment() : config_.least_increment;
   if (w.literal) {
     if (!w.has_point && config_.decimal_point == DecimalPoint::increment) {
       v *= inc;
@@ -184,6 +188,10 @@ double ProgramRun::scaled(const BlockWord& w, bool length) const {
 
 double ProgramRun::length_of(const BlockWord& w) const {
   return scaled(w, true) * (metric_ ? 1.0 : 25.4);
+}
+
+double ProgramRun::scaled_axis_word(int axis, const BlockWord& w) const {
+  return scaled(w, !config_.axes[static_cast<std::size_t>(axis)].rotary);
 }
 
 bool ProgramRun::evaluate_words(const parse::Statement& s) {
@@ -1359,12 +1367,12 @@ bool ProgramRun::run_dwell(int column) {
   // GSK (D2-7): P wins over X, X over U.
   if (u != nullptr) {
     u->used = true;
-    seconds = scaled(*u, true);
+    seconds = scaled(*u, false);
     has_time = true;
   }
   if (x != nullptr) {
     x->used = true;
-    seconds = scaled(*x, true);
+    seconds = scaled(*x, false);
     has_time = true;
   }
   if (p != nullptr) {
@@ -1717,7 +1725,7 @@ bool ProgramRun::run_data_input(int column) {
     }
     return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
       double& slot = work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)];
-      const double v = to_physical(axis, scaled(w, true), false);
+      const double v = to_physical(axis, scaled_axis_word(axis, w), false);
       slot = incremental ? slot + v : v;
       return true;
     });

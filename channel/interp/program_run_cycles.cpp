@@ -39,7 +39,7 @@ bool ProgramRun::cycle_end_point(const char* code, std::array<int, 2>& axes, Axi
 double ProgramRun::cycle_amount(const BlockWord& w) const {
   const double inch = metric_ ? 1.0 : 25.4;
   if (w.literal && !w.has_point) {
-    return w.value * config_.least_increment * inch;
+    return w.value * length_increment() * inch;
   }
   return w.value * inch;
 }

@@ -144,7 +144,7 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
                   w.column);
     }
     given[i] = true;
-    const double v = scaled(w, true);
+    const double v = scaled_axis_word(axis, w);
     if (std::fabs(v) > kMaxCoordinate) {
       return fail(alarm::kValueOutOfRange,
                   std::string(1, w.address.first) + " beyond +-999999.999 (spec L116)", w.column);
@@ -473,7 +473,7 @@ bool ProgramRun::run_coordinate_set(int /*column*/) {
   const auto ws = static_cast<std::size_t>(work_system_);
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const auto i = static_cast<std::size_t>(axis);
-    const double v = to_physical(axis, scaled(w, true));
+    const double v = to_physical(axis, scaled_axis_word(axis, w));
     if (incremental) {
       shift_[i] -= v;  // G50 U: the position reads U more (L4219-4232)
       return true;
@@ -491,7 +491,7 @@ bool ProgramRun::run_local_system(int /*column*/) {
   const auto ws = static_cast<std::size_t>(work_system_);
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const auto i = static_cast<std::size_t>(axis);
-    const double v = to_physical(axis, scaled(w, true));
+    const double v = to_physical(axis, scaled_axis_word(axis, w));
     // U/W: relative to the current position in the work system (spec L4302-4386).
     local_[ws][i] =
         incremental ? machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(axis) + v

@@ -95,9 +95,18 @@ int type_one_variable(char letter) {
   }
 }
 
-// The P words of these codes are theirs, not the `S_ Paab` spindle address.
+// The P words of these codes are theirs, not the `S_ Paab` spindle address: an S beside them
+// is a speed of the channel's spindle (G71-G73 take F, S and T on their P block, spec dafeng
+// §2.5, syntax ②).
 bool takes_p(GFunction f) {
   switch (f) {
+    case GFunction::finishing_cycle:
+    case GFunction::rough_turning:
+    case GFunction::rough_facing:
+    case GFunction::pattern_repeat:
+    case GFunction::face_grooving:
+    case GFunction::od_grooving:
+    case GFunction::multiple_thread:
     case GFunction::dwell:
     case GFunction::channel_sync:
     case GFunction::data_input:
@@ -601,7 +610,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
 
   // Spindles, tool and the M codes that go out before the motion.
-  bool p_is_spindle_address = word('S') != nullptr;
+  // A hole-cycle block keeps P as its dwell (take_hole_words has it).
+  bool p_is_spindle_address = word('S') != nullptr && !hole_block;
   for (int i = 0; i < ng; ++i) {
     p_is_spindle_address =
         p_is_spindle_address && !takes_p(gs[static_cast<std::size_t>(i)].info.function);

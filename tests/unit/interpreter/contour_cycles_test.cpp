@@ -3,6 +3,8 @@
 // in tests/unit/cycles/.
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
+#include <cstdio>
+
 namespace mcnc::interp::test {
 namespace {
 
@@ -63,6 +65,54 @@ TEST(InterpContour, MacroStatementsInsideTheContourRun) {
   const auto lin = r.of(Op::linear);
   ASSERT_EQ(lin.size(), 1u);
   EXPECT_AT(lin[0], 20, 10);
+}
+
+// Spec dafeng §2.5 syntax ② of G71/G72/G73: F, S and T on the P block are the roughing's. The
+// cycle's P is its contour's first N, never the `S_ Paab` spindle address, whatever N it names
+// (read as an address, P10 was spindle 0, P12 spindle 2 and P100 channel 10).
+TEST(InterpContour, SpeedOnTheCycleBlockIsTheRoughingSpeed) {
+  struct Cycle {
+    const char* first;
+    const char* code;
+    const char* contour;  // its first and last N are filled in
+  };
+  const Cycle cycles[] = {
+      {"G71 U1 R0.5", "G71", "G00 X40\nG01 Z-20 F0.1\nN%d G01 X60\n"},
+      {"G72 W1 R0.5", "G72", "G00 Z-20\nG01 X60 F0.1\nN%d G01 Z0\n"},
+      {"G73 U2 W1 R2", "G73", "G00 X40\nG01 Z-20 F0.1\nN%d G01 X60\n"},
+  };
+  for (const Cycle& c : cycles) {
+    for (int n : {10, 11, 12, 100}) {
+      char contour[96];
+      std::snprintf(contour, sizeof contour, c.contour, n + 10);
+      const std::string program = "M03 S500\nG00 X100 Z10\n" + std::string(c.first) + "\n" +
+                                  c.code + " P" + std::to_string(n) + " Q" +
+                                  std::to_string(n + 10) + " U0.4 W0.1 F0.3 S1200\nN" +
+                                  std::to_string(n) + " " + contour + "M30\n";
+      RunResult r = run_ok(program);
+      const auto spindles = r.of(Op::spindle);
+      ASSERT_EQ(spindles.size(), 2u) << program;
+      EXPECT_EQ(spindles[1].spindle, 1) << program;
+      EXPECT_EQ(spindles[1].channel, 0) << program;
+      EXPECT_DOUBLE_EQ(spindles[1].rpm, 1200.0) << program;
+      EXPECT_EQ(spindles[1].line, 4) << program;
+      EXPECT_GT(r.at_line(4).size(), 2u) << program;  // the roughing ran
+    }
+  }
+}
+
+// An M code and a T word beside them on the P block, as CAM posts write it.
+TEST(InterpContour, SpindleCodeAndToolOnTheCycleBlock) {
+  RunResult r = run_ok(
+      "G00 X100 Z10\nG71 U1 R0.5\nG71 P12 Q22 U0.4 W0.1 F0.3 M03 S900 T0202\n"
+      "N12 G00 X40\nG01 Z-20 F0.1\nN22 G01 X60\nM30\n");
+  const auto spindles = r.of(Op::spindle);
+  ASSERT_EQ(spindles.size(), 1u);
+  EXPECT_EQ(spindles[0].spindle, 1);
+  EXPECT_EQ(spindles[0].spindle_direction, SpindleDirection::cw);
+  EXPECT_DOUBLE_EQ(spindles[0].rpm, 900.0);
+  EXPECT_EQ(spindles[0].line, 3);
+  EXPECT_EQ(r.of(Op::tool).size(), 1u);
 }
 
 }  // namespace

@@ -154,5 +154,22 @@ TEST(InterpCycles, GskSubprogramCallUnderCompensation) {
             alarm::kCompensationStart, 4, -1, c);
 }
 
+// A hole cycle keeps P as its dwell at the bottom when S stands beside it (not `S_ Paab`),
+// in the cycle's block and in the blocks that repeat it.
+TEST(InterpCycles, DwellOfAHoleCycleBesideASpeed) {
+  RunResult r =
+      run_ok("M03 S500\nG00 X0 Z5\nG83 Z-20 R2 P500 F0.1 S800\nZ-25 P700 S900\nG80\nM30\n");
+  const auto spindles = r.of(Op::spindle);
+  ASSERT_EQ(spindles.size(), 3u);
+  EXPECT_EQ(spindles[1].spindle, 1);
+  EXPECT_DOUBLE_EQ(spindles[1].rpm, 800.0);
+  EXPECT_EQ(spindles[2].spindle, 1);
+  EXPECT_DOUBLE_EQ(spindles[2].rpm, 900.0);
+  const auto dwells = r.of(Op::dwell);
+  ASSERT_EQ(dwells.size(), 2u);
+  EXPECT_DOUBLE_EQ(dwells[0].seconds, 0.5);
+  EXPECT_DOUBLE_EQ(dwells[1].seconds, 0.7);
+}
+
 }  // namespace
 }  // namespace mcnc::interp::test

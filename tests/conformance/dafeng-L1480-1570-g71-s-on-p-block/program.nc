@@ -1,0 +1,9 @@
+O0071 (G71 with F, S and T on its P block, as CAM posts write it)
+G99 M03 S500
+G00 X60 Z2
+G71 U5 R1
+G71 P12 Q22 U0 W0 F0.3 S1200 T0101
+N12 G00 X40
+G01 Z-20 F0.1
+N22 G01 X60
+M30

@@ -85,8 +85,9 @@ class LineParser {
         return;
       }
     }
-    if (!at_end() && peek() == 'O' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1])) {
-      return;  // the program-number line; the program splitter has checked it
+    if (!at_end() && (peek() == ':' ||
+                      (peek() == 'O' && pos_ + 1 < text_.size() && is_digit(text_[pos_ + 1])))) {
+      return;  // the program-number line (`O` or ISO's `:`); the program splitter has checked it
     }
     if (!at_end() && peek() == 'N' && pos_ + 1 < text_.size() && !is_letter(text_[pos_ + 1])) {
       if (!parse_sequence()) {

@@ -51,8 +51,8 @@ bool is_percent_line(std::string_view line) {
 }
 
 // What the splitter needs to know about one line: where its executable text starts and where an
-// `O` program-number word is, both as indices, ignoring comments (`( )`, `;`, `//`, spec L277)
-// and bracketed expressions (an O there belongs to a word such as OR or ROUND).
+// `O` (or `:`) program-number word is, both as indices, ignoring comments (`( )`, `;`, `//`, spec
+// L277) and bracketed expressions (an O there belongs to a word such as OR or ROUND).
 struct LineShape {
   std::optional<std::size_t> first_exec;
   std::optional<std::size_t> o_word;
@@ -84,6 +84,8 @@ LineShape shape_of(std::string_view line) {
       ++depth;
     } else if (c == ']' && depth > 0) {
       --depth;
+    } else if (c == ':' && depth == 0 && !shape.o_word) {
+      shape.o_word = i;  // ISO code's program number `:1234`, EIA's `O1234`
     } else if (to_upper(c) == 'O' && depth == 0 && !shape.o_word) {
       // A letter before it makes the O part of a keyword (GOTO, DO, XOR, POPEN).
       const bool after_letter = i > 0 && is_letter(line[i - 1]);
@@ -112,7 +114,7 @@ struct Header {
   std::string name;
 };
 
-// Parses an O line whose O word starts the block: `O<1-4 digits>`, then only comments.
+// Parses an O line whose O (or `:`) word starts the block: `O<1-4 digits>`, then only comments.
 std::optional<ProgramAlarm> parse_header(std::string_view line, std::size_t o_at, int line_no,
                                          const std::string& file, Header& out) {
   std::size_t i = o_at + 1;

@@ -408,6 +408,12 @@ TEST(InterpFlow, UserAlarmOutOfRange) {
   EXPECT_EQ(r.alarm->text, "CHECK TOOL");
 }
 
+// ISO code's `:1234` is the program number O1234: the program runs and M98 finds it.
+TEST(InterpFlow, IsoColonProgramNumbers) {
+  RunResult r = run_ok("%\n:0001 (MAIN)\nG00 Z1\nM98 P1234\nM30\n:1234\nG00 Z7\nM99\n%\n");
+  EXPECT_EQ(rapid_z(r), (std::vector<double>{1, 7}));
+}
+
 TEST(InterpFlow, MainProgramM99Loops) {
   RunResult r = run_ok("#100=#100+1\nG00 Z[#100]\nIF[#100 GE 4] GOTO 9\nM99\nN9 M30\n");
   EXPECT_EQ(rapid_z(r), (std::vector<double>{1, 2, 3, 4}));

@@ -131,6 +131,24 @@ TEST(SplitPrograms, Alarms) {
   expect_alarm("%\nG00 X1\nO0001\nM30\n%\n", alarm::kBlockOutsideProgram, 2, 1);
 }
 
+// ISO code writes the program number with `:` where EIA writes `O` (FANUC programs punched in
+// ISO code): the same number, the same rules.
+TEST(SplitPrograms, IsoColonIsTheProgramNumber) {
+  const SplitResult r = split_programs("%\n:1234 (NAME)\nM98 P2\nM30\n :0002\nM99\n%\n", "f.nc");
+  ASSERT_FALSE(r.alarm) << r.alarm->text;
+  ASSERT_EQ(r.programs.size(), 2u);
+  EXPECT_EQ(r.programs[0].number, 1234);
+  EXPECT_EQ(r.programs[0].name, "NAME");
+  EXPECT_EQ(line_numbers(r.programs[0]), (std::vector<int>{2, 3, 4}));
+  EXPECT_EQ(r.programs[1].number, 2);
+  EXPECT_EQ(r.programs[1].header_column, 2);
+  expect_alarm(":\nM30\n", alarm::kProgramNumberMissing, 1, 1);
+  expect_alarm(":12345\n", alarm::kProgramNumberTooLong, 1, 1);
+  expect_alarm(":#1\n", alarm::kProgramNumberFormat, 1, 1);
+  expect_alarm(":0001\nN10 :0002\n", alarm::kProgramNumberNotAtStart, 2, 5);
+  expect_alarm("O0001\nM99\n:1\nM99\n", alarm::kDuplicateProgramNumber, 3, 1);
+}
+
 TEST(SplitPrograms, UnclosedCommentOnTheOLineIsLeftToTheLexer) {
   // The O line is passed on; the block lexer raises its unclosed-comment alarm when read.
   const SplitResult r = split_programs("O0001 (name\nM30\n", "f.nc");

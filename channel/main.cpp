@@ -111,8 +111,9 @@ int main(int argc, char** argv) {
   setup.plc = machine.plc.present;
   setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
-  // feedback follows the channel's spindles'; G114.1 ends when they are in phase.
-  std::vector<const config::AxisConfig*> sync_slaves;
+  // feedback follows the channel's spindles' (their slots come last, as config::fed_axes has
+  // them); G114.1 ends when they are in phase.
+  std::size_t sync_slaves = 0;
   for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
     setup.spindle_may_follow =
         setup.spindle_may_follow ||
@@ -120,9 +121,8 @@ int main(int argc, char** argv) {
   }
   for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
     if (g.channel == ch->id) {
-      setup.spindle_groups.push_back(channel::SpindleGroupSetup{
-          g.group, axes.size() + ch->spindles.size() + sync_slaves.size()});
-      sync_slaves.push_back(&machine.axes[static_cast<std::size_t>(g.slave - 1)]);
+      setup.spindle_groups.push_back(
+          channel::SpindleGroupSetup{g.group, axes.size() + ch->spindles.size() + sync_slaves++});
     }
   }
 
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
       spindles.push_back(machine.find_axis(name));
     }
     const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
-    const std::vector<std::string> fed_nodes = config::node_partitions(machine, fed);
+    const std::vector<std::string> fed_nodes = config::node_partitions(fed);
     std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
@@ -224,12 +224,8 @@ int main(int argc, char** argv) {
             }
           });
         });
-    std::vector<std::string> channel_names;
-    for (const config::ChannelConfig& c : machine.channels) {
-      channel_names.push_back(c.name);
-    }
-    channel::ChannelOutputs outputs(node, tracer, *ch, channel_names, axes, spindles, program_name,
-                                    program_lines, shared_writes);
+    channel::ChannelOutputs outputs(node, tracer, *ch, config::channel_names(machine), axes,
+                                    spindles, program_name, program_lines, shared_writes);
     if (!interp_config.program_dir.empty()) {
       outputs.preload_program_dir(interp_config.program_dir.string());
     }

@@ -1,6 +1,7 @@
 #include "channel/wire/channel_outputs.hpp"
 
 #include "channel/wire/channel_mask.hpp"
+#include "common/config/cyclic_routes.hpp"
 #include "common/text/text_lines.hpp"
 
 #include <spdlog/spdlog.h>
@@ -42,13 +43,14 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       channel_names_(std::move(channel_names)) {
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
-    axis_setpoints_.push_back(i == c_slot_ ? nullptr
-                                           : std::make_unique<dds::Writer<AxisSetpoint>>(
-                                                 node.participant(), axes_[i]->name));
+    axis_setpoints_.push_back(i == c_slot_
+                                  ? nullptr
+                                  : std::make_unique<dds::Writer<AxisSetpoint>>(
+                                        node.participant(), config::node_partition(*axes_[i])));
   }
   for (const config::AxisConfig* spindle : spindles_) {
-    spindle_setpoints_.push_back(
-        std::make_unique<dds::Writer<AxisSetpoint>>(node.participant(), spindle->name));
+    spindle_setpoints_.push_back(std::make_unique<dds::Writer<AxisSetpoint>>(
+        node.participant(), config::node_partition(*spindle)));
   }
   set_program_now(program_name_);
 }

@@ -14,12 +14,8 @@ void add_once(std::vector<std::string>& names, std::string name) {
 
 }  // namespace
 
-std::string node_partition(const MachineConfig& machine, const AxisConfig& axis) {
-  if (!axis.spindle.empty()) {
-    const AxisConfig* spindle = machine.find_axis(axis.spindle);
-    return spindle != nullptr ? spindle->name : axis.spindle;
-  }
-  return axis.name;
+std::string node_partition(const AxisConfig& axis) {
+  return axis.spindle.empty() ? axis.name : axis.spindle;  // a C axis names its spindle
 }
 
 std::vector<const AxisConfig*> fed_axes(const MachineConfig& machine,
@@ -39,12 +35,11 @@ std::vector<const AxisConfig*> fed_axes(const MachineConfig& machine,
   return fed;
 }
 
-std::vector<std::string> node_partitions(const MachineConfig& machine,
-                                         const std::vector<const AxisConfig*>& axes) {
+std::vector<std::string> node_partitions(const std::vector<const AxisConfig*>& axes) {
   std::vector<std::string> names;
   for (const AxisConfig* a : axes) {
     if (a != nullptr) {
-      add_once(names, node_partition(machine, *a));
+      add_once(names, node_partition(*a));
     }
   }
   return names;
@@ -53,7 +48,7 @@ std::vector<std::string> node_partitions(const MachineConfig& machine,
 std::size_t channels_fed_by(const MachineConfig& machine, const std::string& node) {
   std::size_t count = 0;
   for (const ChannelConfig& c : machine.channels) {
-    const std::vector<std::string> nodes = node_partitions(machine, fed_axes(machine, c));
+    const std::vector<std::string> nodes = node_partitions(fed_axes(machine, c));
     count += std::find(nodes.begin(), nodes.end(), node) != nodes.end() ? 1 : 0;
   }
   return count;

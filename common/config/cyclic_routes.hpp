@@ -13,7 +13,7 @@ namespace mcnc::config {
 
 // The partition of an axis's setpoints and feedback: the name of the node that drives it (a C axis
 // travels on its spindle's node).
-[[nodiscard]] std::string node_partition(const MachineConfig& machine, const AxisConfig& axis);
+[[nodiscard]] std::string node_partition(const AxisConfig& axis);
 
 // The axes whose feedback a channel reads, in its slot order: the axes it programs, its spindles,
 // then the slaves of the G114.1 groups whose master it commands.
@@ -21,8 +21,7 @@ namespace mcnc::config {
                                                       const ChannelConfig& channel);
 
 // The partitions of `axes` (their nodes), each once.
-[[nodiscard]] std::vector<std::string> node_partitions(const MachineConfig& machine,
-                                                       const std::vector<const AxisConfig*>& axes);
+[[nodiscard]] std::vector<std::string> node_partitions(const std::vector<const AxisConfig*>& axes);
 
 // How many channels read the feedback of the node `node` (a node's name), for its discovery.
 [[nodiscard]] std::size_t channels_fed_by(const MachineConfig& machine, const std::string& node);

@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
   const config::BusConfig* bus = machine.find_bus(axis->bus);
   const config::ChannelConfig* owner = machine.find_channel(axis->channel);
   process::start_process(axis->name, shell);
+  process::require_roudi_or_exit(machine, axis->name);
 
   std::vector<std::uint8_t> other_nodes;
   for (const auto& other : machine.axes) {
@@ -105,7 +106,8 @@ int main(int argc, char** argv) {
 
   try {
     process::ProcessNode node(process::resolve_domain(machine), axis->name,
-                              process::cyclic_clock(shell));
+                              process::cyclic_clock(shell),
+                              process::resolve_middleware(machine, axis->name));
     trace::TraceWriter tracer(trace_path, axis->name);
     node.announce(PHASE_STARTING);
 

@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   }
 
   clock::prepare_realtime_process();
-  process::ProcessNode node(domain, channel.name);
+  process::ProcessNode node(domain, channel.name, dds::CyclicClock::realtime,
+                            process::resolve_middleware(machine, channel.name));
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
   dds::Reader<ProcessState> states(node.participant(),

@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   process::start_process(ch->name, shell);
+  process::require_roudi_or_exit(machine, ch->name);
 
   // The channel's axes, in program order: its own, those it may acquire (G141), then its
   // spindle's C axis (on the spindle's node).
@@ -169,7 +170,8 @@ int main(int argc, char** argv) {
 
   try {
     process::ProcessNode node(process::resolve_domain(machine), ch->name,
-                              process::cyclic_clock(shell));
+                              process::cyclic_clock(shell),
+                              process::resolve_middleware(machine, ch->name));
     trace::TraceWriter tracer(trace_path, ch->name);
     node.announce(PHASE_STARTING);
     process::Wakeup& wake = node.wakeup();

@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
     programs[arg.substr(0, eq)] = arg.substr(eq + 1);
   }
   process::start_process("hmi", shell);
+  process::require_roudi_or_exit(machine, "HMI");
 
   try {
     const bool generated = token.empty() && machine.hmi.operator_token.empty();

@@ -1,26 +1,20 @@
 #pragma once
-// The typed publish/subscribe layer over Fast DDS. One Participant per process; Writer<T> and
-// Reader<T> take their topic name and QoS profile from the topic catalogue (topics.hpp), and for a
-// routed topic the partition they write in or read.
-// Reader callbacks run on a Fast DDS thread: hand the data to your own thread, do not block.
+// The typed publish/subscribe layer, over Fast DDS or Cyclone DDS (docs/decisions.md 32): one
+// Participant per process, of the middleware it is told; Writer<T> and Reader<T> take their
+// topic name and QoS profile from the topic catalogue (topics.hpp), and for a routed topic the
+// partition they write in or read. Both middlewares speak the same wire (RTPS, the same IDL,
+// XCDR1), so processes on either meet.
+// Reader callbacks run on a middleware thread: hand the data to your own thread, do not block.
 #include "idl/topics.hpp"
 
 #include <array>
 #include <chrono>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
+#include <optional>
 #include <string>
-
-namespace eprosima::fastdds::dds {
-class DomainParticipant;
-class Publisher;
-class Subscriber;
-class Topic;
-class DataWriter;
-class DataReader;
-}  // namespace eprosima::fastdds::dds
+#include <string_view>
 
 namespace mcnc::dds {
 
@@ -30,94 +24,145 @@ using WriterId = std::array<std::uint8_t, 16>;
 // The QoS profiles file: MCNC_QOS_PROFILES if set, else the one in the source tree.
 std::string qos_profiles_path();
 
+enum class Middleware { fastdds, cyclonedds };
+// "fastdds" or "cyclonedds"; nullopt for anything else.
+std::optional<Middleware> parse_middleware(std::string_view name) noexcept;
+const char* middleware_name(Middleware middleware) noexcept;
+// The middleware a process runs on: MCNC_MIDDLEWARE (set by mcnc-launch from the machine
+// file's `middleware:`), else the default. Throws std::runtime_error naming a bad value.
+Middleware middleware_from_env();
+enum class LocalTransport { shared_memory, network };
+
+// The default when nothing chooses (docs/decisions.md 32).
+inline constexpr Middleware kDefaultMiddleware = Middleware::fastdds;
+
+// A Cyclone DDS process moves its cyclic samples through iceoryx shared memory, brokered by the
+// host's RouDi (iox-roudi). Without one, creating a participant would block for ever: the
+// Participant checks first and throws. True while a RouDi answers on its socket.
+inline constexpr const char* kRoudiSocket = "/tmp/roudi";
+bool roudi_answers() noexcept;
+
+namespace detail {
+// A wire type as each middleware knows it: `fastdds` is a new'd Fast DDS TopicDataType, owned by
+// whoever it is handed to; `cyclonedds` is idlc's descriptor of the same IDL type.
+struct TypeSupport {
+  void* fastdds = nullptr;
+  const struct dds_topic_descriptor* cyclonedds = nullptr;
+};
+
+using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
+using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
+struct ReaderCallbacks {
+  std::function<void*()> make_sample;  // a new T
+  std::function<void(void*)> free_sample;
+  SampleFn on_sample;
+  MatchFn on_match;
+};
+
+class WriterImpl {
+ public:
+  virtual ~WriterImpl() = default;
+  virtual bool write(const void* sample) noexcept = 0;
+  [[nodiscard]] virtual int matched_readers() const noexcept = 0;
+};
+
+// Once destroyed, its callbacks are never called again.
+class ReaderImpl {
+ public:
+  virtual ~ReaderImpl() = default;
+  [[nodiscard]] virtual int matched_writers() const noexcept = 0;
+};
+
+class ParticipantImpl {
+ public:
+  virtual ~ParticipantImpl() = default;
+  // An empty `partitions` is the default partition (the unrouted topics).
+  virtual std::unique_ptr<WriterImpl> writer(const char* topic, TypeSupport type, QosKind qos,
+                                             const Partitions& partitions) = 0;
+  virtual std::unique_ptr<ReaderImpl> reader(const char* topic, TypeSupport type, QosKind qos,
+                                             ReaderRole role, const Partitions& partitions,
+                                             ReaderCallbacks callbacks) = 0;
+  [[nodiscard]] virtual std::chrono::nanoseconds lease() const = 0;
+};
+
+// The key of a set of partitions, by which an implementation keeps one publisher or subscriber
+// per set: the names joined with '\n' ("" is the default partition).
+std::string partition_key(const Partitions& partitions);
+
+std::unique_ptr<ParticipantImpl> make_fastdds_participant(int domain, const std::string& name,
+                                                          CyclicClock clock);
+std::unique_ptr<ParticipantImpl> make_cyclonedds_participant(int domain, const std::string& name,
+                                                             CyclicClock clock, bool shared_memory);
+}  // namespace detail
+
 class Participant {
  public:
-  // Throws std::runtime_error when the participant cannot be created (start-up error).
-  Participant(int domain, const std::string& name, CyclicClock clock = CyclicClock::realtime);
+  // Throws std::runtime_error when the participant cannot be created (start-up error), among
+  // them a Cyclone DDS participant with shared memory and no RouDi to answer. `local` says
+  // how its samples meet the processes of its host on Cyclone DDS: a process on the machine's
+  // cyclic path uses shared memory; an onlooker (the launcher, `mcnc status`) uses the network,
+  // needs no RouDi, and is not among the processes RouDi ends when it stops. The first
+  // participant of a domain in a process decides for every other.
+  Participant(int domain, const std::string& name, CyclicClock clock = CyclicClock::realtime,
+              std::optional<Middleware> middleware = std::nullopt,
+              LocalTransport local = LocalTransport::shared_memory);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;
 
-  // The topic of that name, created (and its type registered) on first use. Takes ownership of
-  // `pubsub_type` (a new'd Fast DDS TopicDataType).
-  eprosima::fastdds::dds::Topic* topic(const std::string& name, void* pubsub_type);
-  // An empty `partitions` is the default partition (the unrouted topics).
-  eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic,
-                                                    QosKind qos, const Partitions& partitions);
-  void delete_writer(eprosima::fastdds::dds::DataWriter* writer) noexcept;
-  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic,
-                                                    QosKind qos, ReaderRole role, void* listener,
-                                                    const Partitions& partitions);
-  void delete_reader(eprosima::fastdds::dds::DataReader* reader) noexcept;
-
-  [[nodiscard]] eprosima::fastdds::dds::DomainParticipant* native() const noexcept {
-    return participant_;
-  }
+  [[nodiscard]] Middleware middleware() const noexcept { return middleware_; }
+  detail::ParticipantImpl& impl() noexcept { return *impl_; }
 
  private:
-  // The publisher or subscriber of those partitions, made by `create` on first use.
-  template <class Entity, class Create>
-  Entity* in_partitions(std::map<std::string, Entity*>& cache, const Partitions& partitions,
-                        Create create);
-
-  CyclicClock clock_;
-  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
-  struct Topics;  // also the publishers and subscribers, one per set of partitions
-  std::unique_ptr<Topics> topics_;
+  Middleware middleware_;
+  std::unique_ptr<detail::ParticipantImpl> impl_;
 };
 
 // How long peers wait before they declare this participant gone (from the QoS profile).
 std::chrono::nanoseconds participant_lease(const Participant& participant);
 
 namespace detail {
-// Type-erased writer/reader so that the Fast DDS headers stay in one translation unit.
 class WriterBase {
  public:
-  WriterBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-             const Partitions& partitions);
-  ~WriterBase();
-  WriterBase(const WriterBase&) = delete;
-  WriterBase& operator=(const WriterBase&) = delete;
-  bool write_raw(void* sample) noexcept;
-  [[nodiscard]] int matched_readers() const noexcept;
+  WriterBase(Participant& participant, const char* topic, TypeSupport type, QosKind qos,
+             const Partitions& partitions)
+      : impl_(participant.impl().writer(topic, type, qos, partitions)) {}
+  bool write_raw(const void* sample) noexcept { return impl_->write(sample); }
+  [[nodiscard]] int matched_readers() const noexcept { return impl_->matched_readers(); }
 
  private:
-  Participant& participant_;
-  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  std::unique_ptr<WriterImpl> impl_;
 };
 
 class ReaderBase {
  public:
-  using SampleFn = std::function<void(const void* sample, const WriterId& writer)>;
-  using MatchFn = std::function<void(const WriterId& writer, bool matched)>;
-  ReaderBase(Participant& participant, const char* topic, void* pubsub_type, QosKind qos,
-             ReaderRole role, const Partitions& partitions, std::function<void*()> make_sample,
-             std::function<void(void*)> free_sample, SampleFn on_sample, MatchFn on_match);
-  ~ReaderBase();
-  ReaderBase(const ReaderBase&) = delete;
-  ReaderBase& operator=(const ReaderBase&) = delete;
-  [[nodiscard]] int matched_writers() const noexcept;
-
-  struct Listener;
+  ReaderBase(Participant& participant, const char* topic, TypeSupport type, QosKind qos,
+             ReaderRole role, const Partitions& partitions, ReaderCallbacks callbacks)
+      : impl_(participant.impl().reader(topic, type, qos, role, partitions, std::move(callbacks))) {
+  }
+  [[nodiscard]] int matched_writers() const noexcept { return impl_->matched_writers(); }
 
  private:
-  Participant& participant_;
-  std::unique_ptr<Listener> listener_;
-  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  std::unique_ptr<ReaderImpl> impl_;
 };
+
+template <class T>
+TypeSupport type_support() {
+  return TypeSupport{new typename TopicTraits<T>::PubSubType(), TopicTraits<T>::cyclonedds()};
+}
 }  // namespace detail
 
 template <class T>
 class Writer {
  public:
   explicit Writer(Participant& participant) requires(!TopicTraits<T>::routed)
-      : base_(participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-              TopicTraits<T>::qos, Partitions{}) {}
+      : base_(participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos,
+              Partitions{}) {}
   // A routed topic's writer writes in the partition of its key (an axis's or channel's name).
   Writer(Participant& participant, const std::string& key) requires TopicTraits<T>::routed
-      : base_(participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-              TopicTraits<T>::qos, Partitions::of({key})) {}
-  bool write(const T& sample) noexcept { return base_.write_raw(const_cast<T*>(&sample)); }
+      : base_(participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos,
+              Partitions::of({key})) {}
+  bool write(const T& sample) noexcept { return base_.write_raw(&sample); }
   [[nodiscard]] int matched_readers() const noexcept { return base_.matched_readers(); }
 
  private:
@@ -128,7 +173,7 @@ template <class T>
 class Reader {
  public:
   using SampleFn = std::function<void(const T&, const WriterId&)>;
-  using MatchFn = detail::ReaderBase::MatchFn;
+  using MatchFn = detail::MatchFn;
   Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {},
          ReaderRole role = ReaderRole::consumer) requires(!TopicTraits<T>::routed)
       : Reader(participant, Partitions{}, std::move(on_sample), std::move(on_match), role, 0) {}
@@ -143,13 +188,14 @@ class Reader {
   Reader(Participant& participant, const Partitions& partitions, SampleFn on_sample,
          MatchFn on_match, ReaderRole role, int /*either*/)
       : base_(
-            participant, TopicTraits<T>::name, new typename TopicTraits<T>::PubSubType(),
-            TopicTraits<T>::qos, role, partitions, [] { return static_cast<void*>(new T()); },
-            [](void* p) { delete static_cast<T*>(p); },
-            [fn = std::move(on_sample)](const void* s, const WriterId& w) {
-              fn(*static_cast<const T*>(s), w);
-            },
-            std::move(on_match)) {}
+            participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos, role,
+            partitions,
+            detail::ReaderCallbacks{[] { return static_cast<void*>(new T()); },
+                                    [](void* p) { delete static_cast<T*>(p); },
+                                    [fn = std::move(on_sample)](const void* s, const WriterId& w) {
+                                      fn(*static_cast<const T*>(s), w);
+                                    },
+                                    std::move(on_match)}) {}
 
   detail::ReaderBase base_;
 };

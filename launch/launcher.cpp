@@ -77,7 +77,11 @@ LaunchResult Launcher::run(
     return part_paths.back();
   };
 
-  process::ProcessNode node(domain, "launch");
+  // An onlooker of the cyclic topics: off shared memory, so a RouDi it started and stops
+  // after the machine never counts it among the processes to end (HostRoudi).
+  process::ProcessNode node(domain, "launch", dds::CyclicClock::realtime,
+                            process::resolve_middleware(machine_, "launch"),
+                            dds::LocalTransport::network);
   trace::TraceWriter tracer(part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();

@@ -3,6 +3,7 @@
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/setup/interpreter_setup.hpp"
 #include "common/process/startup.hpp"
+#include "launch/host_roudi.hpp"
 #include "launch/launcher.hpp"
 #include "launch/self_path.hpp"
 #include "tools/report/run_report.hpp"
@@ -286,6 +287,17 @@ int execute_run(const RunArguments& args) {
     if (!std::filesystem::is_directory(dir)) {
       std::fprintf(stderr, "error: --trace %s: no such directory %s\n", options.trace_path.c_str(),
                    dir.c_str());
+      return 2;
+    }
+  }
+  // RouDi before any process, and stopped after the last (HostRoudi's destructor).
+  std::optional<HostRoudi> roudi;
+  const bool with_hmi = !options.hmi_listen.empty();
+  if (needs_roudi(machine, with_hmi)) {
+    try {
+      roudi.emplace(dds_process_names(machine, with_hmi).size(), machine.roudi_running);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s; nothing started\n", e.what());
       return 2;
     }
   }

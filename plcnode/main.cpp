@@ -48,10 +48,11 @@ int main(int argc, char** argv) {
     return 2;
   }
   process::start_process("PLC", shell);
+  process::require_roudi_or_exit(machine, "PLC");
 
   try {
-    process::ProcessNode node(process::resolve_domain(machine), "PLC",
-                              process::cyclic_clock(shell));
+    process::ProcessNode node(process::resolve_domain(machine), "PLC", process::cyclic_clock(shell),
+                              process::resolve_middleware(machine, "PLC"));
     trace::TraceWriter tracer(trace_path, "PLC");
     node.announce(PHASE_STARTING);
     process::Wakeup& wake = node.wakeup();

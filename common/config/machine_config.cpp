@@ -126,15 +126,36 @@ void check_uri(const YamlValue& value, const std::string& uri) {
   value.fail("a bus uri starts with udp: or socketcan:, got '" + uri + "'");
 }
 
+// `middleware`: the DDS implementation of a process (idl/dds_participant.hpp).
+void read_optional_middleware(const YamlMap& map, std::string& out) {
+  if (auto value = map.optional("middleware")) {
+    out = value->string();
+    if (out != "fastdds" && out != "cyclonedds") {
+      value->fail("middleware must be fastdds or cyclonedds, got '" + out + "'");
+    }
+  }
+}
+
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
   const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir",
-                                 "retained_file", "call_wait_timeout_ms"});
+                                 "retained_file", "call_wait_timeout_ms", "middleware", "roudi"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
   read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
   read_optional_int(map, "call_wait_timeout_ms", 0, 3600000, out.call_wait_timeout_ms);
   // 232 is the highest domain whose RTPS ports still fit in 16 bits.
   read_optional_int(map, "domain", 0, 232, out.domain);
+  read_optional_middleware(map, out.middleware);
+  if (auto roudi = map.optional("roudi")) {
+    const std::string text = roudi->string();
+    if (text != "start" && text != "running") {
+      roudi->fail(
+          "roudi must be start (mcnc-launch starts one when none runs) or running (the "
+          "host runs one, as a service), got '" +
+          text + "'");
+    }
+    out.roudi_running = text == "running";
+  }
   if (auto dir = map.optional("program_dir")) {
     out.program_dir = dir->string();
     if (out.program_dir.empty()) {
@@ -187,9 +208,10 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
   const YamlMap map =
-      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode"});
+      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
+  read_optional_middleware(map, channel.middleware);
   const YamlValue axes = map.required("axes");
   axis_refs = axes.list();
   if (axis_refs.empty()) {
@@ -292,9 +314,11 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "tpdo2",
                                  "exchange",
                                  "axis_sync",
-                                 "c_axis"});
+                                 "c_axis",
+                                 "middleware"});
   AxisConfig axis;
   axis.name = read_name(map.required("name"));
+  read_optional_middleware(map, axis.middleware);
 
   if (auto type = map.optional("type")) {
     const std::string text = type->string();
@@ -523,9 +547,11 @@ int spindle_id(const YamlValue& value, const MachineConfig& config) {
 }
 
 void parse_plc(const YamlValue& value, MachineConfig& config) {
-  const YamlMap map = value.map({"signals", "m_codes", "spindle_start", "tool_change_ms"});
+  const YamlMap map =
+      value.map({"signals", "m_codes", "spindle_start", "tool_change_ms", "middleware"});
   PlcConfig& plc = config.plc;
   plc.present = true;
+  read_optional_middleware(map, plc.middleware);
   if (auto signals = map.optional("signals")) {
     const std::vector<YamlValue> list = signals->list();
     if (list.size() > kMaxPlcSignals) {
@@ -626,7 +652,8 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
 }
 
 void parse_hmi(const YamlValue& value, HmiConfig& hmi) {
-  const YamlMap map = value.map({"listen", "operator_token", "viewer_token"});
+  const YamlMap map = value.map({"listen", "operator_token", "viewer_token", "middleware"});
+  read_optional_middleware(map, hmi.middleware);
   if (auto listen = map.optional("listen")) {
     hmi.listen = listen->string();
     const std::size_t colon = hmi.listen.rfind(':');
@@ -1009,6 +1036,20 @@ const ChannelConfig* MachineConfig::find_channel(const std::string& name) const 
     }
   }
   return nullptr;
+}
+
+std::string MachineConfig::middleware_of(const std::string& process) const {
+  std::string own;
+  if (const ChannelConfig* ch = find_channel(process)) {
+    own = ch->middleware;
+  } else if (const AxisConfig* axis = find_axis(process)) {
+    own = axis->middleware;
+  } else if (process == "PLC") {
+    own = plc.middleware;
+  } else if (process == "HMI") {
+    own = hmi.middleware;
+  }
+  return own.empty() ? middleware : own;
 }
 
 const BusConfig* MachineConfig::find_bus(const std::string& name) const noexcept {

@@ -48,9 +48,10 @@ struct DriveSimConfig {
 };
 
 struct AxisConfig {
-  std::string name;    // unique machine-wide, e.g. "X1"
-  int id = 0;          // 1-based position in `axes`
-  char address = 'X';  // program address in its channel: X, Z, Y, C, A, B
+  std::string name;        // unique machine-wide, e.g. "X1"
+  std::string middleware;  // its axis node's DDS implementation; empty: the machine's
+  int id = 0;              // 1-based position in `axes`
+  char address = 'X';      // program address in its channel: X, Z, Y, C, A, B
   AxisType type = AxisType::linear;
   bool diameter = false;  // programmed in diameter (X on a lathe); physical is radius
   std::string channel;    // home channel (owner at start)
@@ -117,6 +118,7 @@ inline constexpr std::size_t kMaxProgramAxes = 8;
 
 struct ChannelConfig {
   std::string name;                   // "CH1"
+  std::string middleware;             // its DDS implementation; empty: the machine's
   int id = 0;                         // 1-based position in `channels`
   std::vector<std::string> axes;      // axis names, in program order
   std::vector<std::string> spindles;  // spindle axis names: S1, S2, ... of the channel
@@ -151,6 +153,7 @@ struct HmiConfig {
   std::string listen = "127.0.0.1:8080";  // HOST:PORT
   std::string operator_token;             // empty: generated at start and printed once
   std::string viewer_token;               // empty: viewing needs no token
+  std::string middleware;                 // mcnc-hmi's DDS implementation; empty: the machine's
 };
 
 struct MachineConfig {
@@ -161,6 +164,12 @@ struct MachineConfig {
   // earlier call (or still starting) to become free; 0: as long as it takes.
   int call_wait_timeout_ms = 10000;
   int domain = 0;  // DDS domain; MCNC_DOMAIN overrides (applied by the caller)
+  // The DDS implementation of every process ("fastdds" or "cyclonedds"), unless its own entry
+  // names one; empty: MCNC_MIDDLEWARE, else the built-in default (docs/decisions.md 32).
+  std::string middleware;
+  // A Cyclone DDS process needs the host's RouDi. false: mcnc-launch starts one when none
+  // answers (and stops it at the end); true (`roudi: running`): one must already run.
+  bool roudi_running = false;
   // Where M98, G65, G144 find programs by number (O<number>.nc, or any .nc file that holds
   // O<number>); relative to the machine file's directory. Empty: none.
   std::string program_dir;
@@ -179,6 +188,10 @@ struct MachineConfig {
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;
   [[nodiscard]] const BusConfig* find_bus(const std::string& name) const noexcept;
+  // The DDS implementation the machine file names for a process (a channel, an axis node, PLC,
+  // HMI; anything else, the launcher and `mcnc status` among them, gets the machine's); empty
+  // when it names none.
+  [[nodiscard]] std::string middleware_of(const std::string& process) const;
   [[nodiscard]] double cycle_s() const noexcept { return cycle_us * 1e-6; }
   // Cycles that take at least `ms` milliseconds (a time from the machine file as a count).
   [[nodiscard]] std::uint64_t cycles_of(int ms) const noexcept;

@@ -48,6 +48,7 @@ struct PlcSpindleStart {
 
 struct PlcConfig {
   bool present = false;
+  std::string middleware;  // the PLC node's DDS implementation; empty: the machine's
   std::vector<PlcSignal> signals;
   std::vector<PlcMCode> m_codes;
   std::vector<PlcSpindleStart> spindle_start;

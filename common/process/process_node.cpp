@@ -29,9 +29,19 @@ int resolve_domain(const config::MachineConfig& machine) {
   return static_cast<int>(value);
 }
 
-ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock)
+dds::Middleware resolve_middleware(const config::MachineConfig& machine,
+                                   const std::string& process) {
+  const std::string named = machine.middleware_of(process);
+  if (named.empty()) {
+    return dds::middleware_from_env();
+  }
+  return dds::parse_middleware(named).value_or(dds::kDefaultMiddleware);
+}
+
+ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
+                         std::optional<dds::Middleware> middleware, dds::LocalTransport local)
     : name_(std::move(name)),
-      participant_(domain, name_, clock),
+      participant_(domain, name_, clock, middleware, local),
       state_writer_(participant_),
       alarm_writer_(participant_),
       run_control_reader_(participant_,

@@ -25,6 +25,10 @@ namespace mcnc::process {
 
 // The DDS domain: MCNC_DOMAIN when set, else the machine file's.
 int resolve_domain(const config::MachineConfig& machine);
+// A process's DDS implementation: what the machine file names for it (its own entry, else the
+// machine's `middleware`), else MCNC_MIDDLEWARE, else the built-in default.
+dds::Middleware resolve_middleware(const config::MachineConfig& machine,
+                                   const std::string& process);
 
 // The latest run control, readable without locks from the cyclic loop.
 struct RunControlView {
@@ -37,8 +41,11 @@ struct RunControlView {
 
 class ProcessNode {
  public:
-  // `clock` chooses the cyclic writers' heartbeat (dds::CyclicClock).
-  ProcessNode(int domain, std::string name, dds::CyclicClock clock = dds::CyclicClock::realtime);
+  // `clock` chooses the cyclic writers' heartbeat (dds::CyclicClock); no `middleware`:
+  // MCNC_MIDDLEWARE, else the default.
+  ProcessNode(int domain, std::string name, dds::CyclicClock clock = dds::CyclicClock::realtime,
+              std::optional<dds::Middleware> middleware = std::nullopt,
+              dds::LocalTransport local = dds::LocalTransport::shared_memory);
   ProcessNode(const ProcessNode&) = delete;
   ProcessNode& operator=(const ProcessNode&) = delete;
 

@@ -2,6 +2,8 @@
 
 #include "common/clock/cycle_clock.hpp"
 #include "common/log/logging.hpp"
+#include "common/process/process_node.hpp"
+#include "idl/dds_participant.hpp"
 #include "idl/topics.hpp"
 
 #include <spdlog/spdlog.h>
@@ -26,6 +28,17 @@ void add_shell_options(CLI::App& app, ShellOptions& options) {
 
 dds::CyclicClock cyclic_clock(const ShellOptions& options) {
   return options.clock == "lockstep" ? dds::CyclicClock::lockstep : dds::CyclicClock::realtime;
+}
+
+void require_roudi_or_exit(const config::MachineConfig& machine, const std::string& process) {
+  if (resolve_middleware(machine, process) == dds::Middleware::cyclonedds &&
+      !dds::roudi_answers()) {
+    std::fprintf(stderr,
+                 "error: %s runs on Cyclone DDS and no iceoryx RouDi answers at %s (start "
+                 "iox-roudi, or run the machine with mcnc-launch, which starts one)\n",
+                 process.c_str(), dds::kRoudiSocket);
+    std::exit(2);
+  }
 }
 
 void start_process(const std::string& process_name, const ShellOptions& options) {

@@ -33,6 +33,11 @@ void start_process(const std::string& process_name, const ShellOptions& options)
 // stderr and exits with code 2 (bad input: nothing is started).
 config::MachineConfig load_machine_or_exit(const std::string& path);
 
+// A process on Cyclone DDS moves its cyclic samples through its host's RouDi, and its
+// participant would wait for ever for one: when none answers, prints why to stderr and exits
+// with code 2 (nothing is started). `process` as the machine file names it (CH1, X1, PLC, HMI).
+void require_roudi_or_exit(const config::MachineConfig& machine, const std::string& process);
+
 // SIGINT/SIGTERM set this flag (installed by install_stop_signals()). When MCNC_DIE_WITH_PARENT
 // is set (mcnc-launch sets it for its children), the process also gets SIGTERM when its parent
 // dies, so a killed launcher leaves nothing running.

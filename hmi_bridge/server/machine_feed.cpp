@@ -1,6 +1,7 @@
 #include "hmi_bridge/server/machine_feed.hpp"
 
 #include "channel/interp/command.hpp"
+#include "common/process/process_node.hpp"
 #include "common/text/file_name.hpp"
 #include "common/text/text_lines.hpp"
 #include "hmi_bridge/core/hmi_messages.hpp"
@@ -16,7 +17,8 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
     : machine_(machine),
       main_programs_(std::move(programs)),
       program_dir_(std::move(program_dir)),
-      participant_(domain, "hmi"),
+      participant_(domain, "hmi", dds::CyclicClock::realtime,
+                   process::resolve_middleware(machine, "HMI")),
       commands_(participant_),
       // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
       channels_(participant_, dds::Partitions::all(),

@@ -283,4 +283,22 @@ std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const s
   return read_trace(trace_file);
 }
 
+std::vector<nlohmann::json> trace_until_end(const std::vector<nlohmann::json>& trace) {
+  std::uint64_t end_cycle = 0;
+  for (const auto& e : events(trace, "end")) {
+    end_cycle = std::max(end_cycle, e["cycle"].get<std::uint64_t>());
+  }
+  std::vector<nlohmann::json> kept;
+  for (const auto& e : trace) {
+    if (e["ev"] == "summary") {
+      nlohmann::json summary = e;
+      summary.erase("cycle");  // stamped when the stop finished: after the end
+      kept.push_back(summary);
+    } else if (e["cycle"].get<std::uint64_t>() <= end_cycle) {
+      kept.push_back(e);
+    }
+  }
+  return kept;
+}
+
 }  // namespace mcnc::test

@@ -77,6 +77,11 @@ std::vector<nlohmann::json> read_trace(const std::string& path);
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,
                                    const std::string& src = {});
 
+// A lockstep trace up to its program end, and its summary without the stop's cycle: what two
+// runs of one machine and programs must have alike. Events after the last channel's end depend
+// on how long the stop took and are left out.
+std::vector<nlohmann::json> trace_until_end(const std::vector<nlohmann::json>& trace);
+
 // Runs `program` (source tree path) on CH1 of `machine` with `mcnc run` and a trace, expects a
 // clean end (exit 0); the trace.
 std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,

@@ -163,24 +163,9 @@ TEST(Run, LockstepIsDeterministic) {
     ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
     runs.push_back(read_trace(trace));
   }
-  // Same events at the same cycles with the same positions, and the same summary. Events after
-  // the program end depend on how long the stop took and are left out.
-  auto until_end = [](const std::vector<nlohmann::json>& trace) {
-    std::vector<nlohmann::json> kept;
-    std::uint64_t end_cycle = events(trace, "end").at(0)["cycle"];
-    for (const auto& e : trace) {
-      if (e["ev"] == "summary") {
-        nlohmann::json summary = e;
-        summary.erase("cycle");  // stamped when the stop finished: after the end
-        kept.push_back(summary);
-      } else if (e["cycle"].get<std::uint64_t>() <= end_cycle) {
-        kept.push_back(e);
-      }
-    }
-    return kept;
-  };
-  const auto a = until_end(runs[0]);
-  const auto b = until_end(runs[1]);
+  // Same events at the same cycles with the same positions, and the same summary.
+  const auto a = trace_until_end(runs[0]);
+  const auto b = trace_until_end(runs[1]);
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i], b[i]) << "event " << i;

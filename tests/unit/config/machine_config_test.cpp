@@ -1023,6 +1023,31 @@ axes:
             "axes[3].axis_sync");
 }
 
+// Each process's DDS implementation: its own entry's, else the machine's, else none named.
+TEST(MachineConfig, MiddlewareOfEachProcess) {
+  EXPECT_EQ(parse_machine_yaml(kBase).middleware_of("CH1"), "");
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["machine"]["middleware"] = "cyclonedds";
+    r["channels"][1]["middleware"] = "fastdds";
+    r["axes"][2]["middleware"] = "fastdds";
+    r["machine"]["roudi"] = "running";
+  }));
+  EXPECT_EQ(config.middleware_of("CH1"), "cyclonedds");
+  EXPECT_EQ(config.middleware_of("CH2"), "fastdds");
+  EXPECT_EQ(config.middleware_of("X1"), "cyclonedds");
+  EXPECT_EQ(config.middleware_of("X2"), "fastdds");
+  EXPECT_EQ(config.middleware_of("launch"), "cyclonedds");
+  EXPECT_TRUE(config.roudi_running);
+  EXPECT_FALSE(parse_machine_yaml(kBase).roudi_running);
+  std::string what;
+  EXPECT_EQ(
+      rejection_path(mutated([](YAML::Node& r) { r["axes"][1]["middleware"] = "opendds"; }), &what),
+      "axes[1].middleware");
+  EXPECT_NE(what.find("fastdds or cyclonedds"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["machine"]["roudi"] = "maybe"; })),
+            "machine.roudi");
+}
+
 }  // namespace
 }  // namespace mcnc::config
 

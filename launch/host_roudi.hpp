@@ -1,0 +1,47 @@
+#pragma once
+// The host's iceoryx RouDi, for a machine with processes on Cyclone DDS: their cyclic samples
+// travel through its shared memory, and without it their participants could not start. RouDi is
+// one per host, shared by every machine and domain on it (each domain has its own iceoryx
+// service name, idl/cyclonedds_participant.cpp).
+#include "launch/child_process.hpp"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mcnc::config {
+struct MachineConfig;
+}
+
+namespace mcnc::launch {
+
+// The processes of a machine that speak DDS ("launch" and "status" among them), by name.
+std::vector<std::string> dds_process_names(const config::MachineConfig& machine, bool with_hmi);
+// True when any of them but the launcher runs on Cyclone DDS (and so needs RouDi).
+bool needs_roudi(const config::MachineConfig& machine, bool with_hmi);
+
+// iceoryx's RouDi configuration (TOML) for `processes` DDS processes: one segment whose pools
+// hold every cyclic sample of their histories and queues, with room to spare.
+std::string roudi_config(std::size_t processes);
+
+class HostRoudi {
+ public:
+  // Uses the RouDi that answers. Else, unless `must_be_running`, starts iox-roudi with a
+  // configuration sized for `processes` and waits until it answers. Throws std::runtime_error
+  // saying why when none answers: nothing of the machine may start then.
+  HostRoudi(std::size_t processes, bool must_be_running);
+  // Stops the RouDi it started (SIGTERM, SIGKILL after 5 s): call it after the machine's
+  // processes are gone, since RouDi ends the processes still registered with it.
+  ~HostRoudi();
+  HostRoudi(const HostRoudi&) = delete;
+  HostRoudi& operator=(const HostRoudi&) = delete;
+
+  [[nodiscard]] bool started() const noexcept { return child_.has_value(); }
+
+ private:
+  std::optional<ChildProcess> child_;
+  std::string config_path_;
+};
+
+}  // namespace mcnc::launch

@@ -1,0 +1,110 @@
+// Fast DDS and Cyclone DDS as one machine's wire (issue 21): the machine file chooses each
+// process's middleware, the twin-turret part transfer (CT-G1141-01) gives the same lockstep
+// trace on either and with channels on one and axis nodes on the other, and a machine on Cyclone
+// DDS without a RouDi is refused before anything starts.
+#include "harness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+using namespace mcnc::test;
+using namespace std::chrono_literals;
+
+namespace {
+
+const std::string kG1141 = "tests/integration/programs/g1141/";
+
+// In a mount namespace of its own, the host's RouDi socket (if any) covered by /dev/null: there,
+// as on a host without one, no RouDi answers.
+constexpr const char* kWithoutRoudi =
+    "{ [ ! -e /tmp/roudi ] || mount --bind /dev/null /tmp/roudi; } && ";
+
+// The twin turret with `machine_wide` for every process, and `channels` for the channels when
+// not empty.
+TestMachine twin_turret_on(int domain, const std::string& machine_wide,
+                           const std::string& channels = "") {
+  TestMachine machine("twin_turret.yaml", domain);
+  std::ifstream in(machine.path());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = std::regex_replace(text.str(), std::regex("\nmachine:\n"),
+                                        "\nmachine:\n  middleware: " + machine_wide + "\n");
+  if (!channels.empty()) {
+    yaml = std::regex_replace(yaml, std::regex("\n  - name: (CH[0-9]+)\n"),
+                              "\n  - name: $1\n    middleware: " + channels + "\n");
+  }
+  std::ofstream(machine.path()) << yaml;
+  return machine;
+}
+
+std::vector<nlohmann::json> part_transfer(const TestMachine& machine) {
+  const std::string trace = machine.file("trace.jsonl");
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--trace", trace, "--program",
+           "CH1=" + source(kG1141 + "ch1.nc"), "--program", "CH2=" + source(kG1141 + "ch2.nc")},
+          -1, 300s);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  return trace_until_end(read_trace(trace));
+}
+
+void expect_same_trace(const std::vector<nlohmann::json>& a, const std::vector<nlohmann::json>& b,
+                       const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size() && differ < 5; ++i) {
+    if (a[i] != b[i]) {
+      ++differ;
+      ADD_FAILURE() << what << ": event " << i << "\n" << a[i].dump() << "\n" << b[i].dump();
+    }
+  }
+}
+
+}  // namespace
+
+TEST(Middleware, ThePartTransferGivesOneTraceOnEitherMiddlewareAndOnBothMixed) {
+  const auto fast = part_transfer(twin_turret_on(150, "fastdds"));
+  const auto cyclone = part_transfer(twin_turret_on(151, "cyclonedds"));
+  // Channels on Cyclone DDS, axis nodes, the PLC and the launcher on Fast DDS.
+  const auto mixed = part_transfer(twin_turret_on(152, "fastdds", "cyclonedds"));
+  ASSERT_GT(fast.size(), 1000U);
+  EXPECT_EQ(fast.back()["ev"], "summary");
+  expect_same_trace(fast, cyclone, "Fast DDS against Cyclone DDS");
+  expect_same_trace(fast, mixed, "Fast DDS against mixed");
+}
+
+TEST(Middleware, AMachineOnCycloneDdsWithoutItsRoudiIsRefusedBeforeAnythingStarts) {
+  TestMachine machine = twin_turret_on(153, "cyclonedds");
+  {
+    // `roudi: running`: the host is to run one.
+    std::ifstream in(machine.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::ofstream(machine.path()) << std::regex_replace(text.str(), std::regex("\nmachine:\n"),
+                                                        "\nmachine:\n  roudi: running\n");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r =
+      run({"/usr/bin/unshare", "--mount", "--", "/bin/sh", "-c",
+           std::string(kWithoutRoudi) + "exec \"$0\" run \"$1\"", bin("mcnc"), machine.path()},
+          -1, 60s);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("no iceoryx RouDi answers"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("nothing started"), std::string::npos) << r.err;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 20s) << "at once, never a wait";
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "nothing may be started";
+}
+
+TEST(Middleware, ACycloneDdsProcessWithoutARoudiExits2WithTheError) {
+  TestMachine machine = twin_turret_on(154, "cyclonedds");
+  const RunResult r =
+      run({"/usr/bin/unshare", "--mount", "--", "/bin/sh", "-c",
+           std::string(kWithoutRoudi) + "exec \"$0\" --machine \"$1\" --channel CH1",
+           bin("mcnc-channel"), machine.path()},
+          -1, 60s);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("no iceoryx RouDi answers"), std::string::npos) << r.out << r.err;
+}

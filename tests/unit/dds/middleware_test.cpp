@@ -1,0 +1,180 @@
+// Fast DDS and Cyclone DDS on one wire: a sample written by a participant of either is read by a
+// participant of the other with every field as written, routed topics stay in their partitions
+// (Cyclone DDS 0.10's shared memory ignores them: the reader does not), and a Cyclone DDS
+// participant without a RouDi is an error, never a hang. Needs the host's RouDi (the ctest
+// fixture `roudi` starts one).
+#include "idl/dds_participant.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using mcnc::dds::Middleware;
+using mcnc::dds::Participant;
+using mcnc::dds::Partitions;
+
+constexpr int kDomain = 229;
+constexpr auto kWait = std::chrono::seconds(20);
+
+template <class T>
+struct Inbox {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<T> samples;
+
+  void put(const T& sample) {
+    std::lock_guard<std::mutex> lock(mutex);
+    samples.push_back(sample);
+    changed.notify_all();
+  }
+  bool wait_for(std::size_t count) {
+    std::unique_lock<std::mutex> lock(mutex);
+    return changed.wait_for(lock, kWait, [&] { return samples.size() >= count; });
+  }
+  std::size_t size() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return samples.size();
+  }
+};
+
+template <class W, class R>
+bool wait_matched(const W& writer, const R& reader) {
+  const auto deadline = std::chrono::steady_clock::now() + kWait;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (writer.matched_readers() > 0 && reader.matched_writers() > 0) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+mcnc::AxisSetpoint setpoint(std::uint64_t cycle) {
+  mcnc::AxisSetpoint sp;
+  sp.axis(3);
+  sp.channel(2);
+  sp.cycle(cycle);
+  sp.event_seq(77);
+  sp.pos(-12.345678901234);
+  sp.vel(1.5e3);
+  sp.acc(-2.25);
+  sp.valid(true);
+  sp.mode(mcnc::SP_VELOCITY);
+  return sp;
+}
+
+void expect_same(const mcnc::AxisSetpoint& got, const mcnc::AxisSetpoint& sent) {
+  EXPECT_EQ(got.axis(), sent.axis());
+  EXPECT_EQ(got.channel(), sent.channel());
+  EXPECT_EQ(got.cycle(), sent.cycle());
+  EXPECT_EQ(got.event_seq(), sent.event_seq());
+  EXPECT_EQ(got.pos(), sent.pos());
+  EXPECT_EQ(got.vel(), sent.vel());
+  EXPECT_EQ(got.acc(), sent.acc());
+  EXPECT_EQ(got.valid(), sent.valid());
+  EXPECT_EQ(got.mode(), sent.mode());
+}
+
+class Middlewares : public ::testing::TestWithParam<std::pair<Middleware, Middleware>> {};
+
+TEST_P(Middlewares, ACyclicSampleCrossesWithEveryField) {
+  const auto [from, to] = GetParam();
+  Participant writing(kDomain, "writing", mcnc::dds::CyclicClock::lockstep, from);
+  Participant reading(kDomain, "reading", mcnc::dds::CyclicClock::lockstep, to);
+  Inbox<mcnc::AxisSetpoint> inbox;
+  mcnc::dds::Reader<mcnc::AxisSetpoint> reader(
+      reading, Partitions::of({"X1"}),
+      [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { inbox.put(sp); });
+  mcnc::dds::Writer<mcnc::AxisSetpoint> writer(writing, "X1");
+  ASSERT_TRUE(wait_matched(writer, reader));
+  for (std::uint64_t cycle = 1; cycle <= 5; ++cycle) {
+    ASSERT_TRUE(writer.write(setpoint(cycle)));
+    ASSERT_TRUE(inbox.wait_for(cycle));
+  }
+  for (std::uint64_t cycle = 1; cycle <= 5; ++cycle) {
+    expect_same(inbox.samples[cycle - 1], setpoint(cycle));
+  }
+}
+
+TEST_P(Middlewares, AnEventWithTextCrossesWithEveryField) {
+  const auto [from, to] = GetParam();
+  Participant writing(kDomain + 1, "writing", mcnc::dds::CyclicClock::lockstep, from);
+  Participant reading(kDomain + 1, "reading", mcnc::dds::CyclicClock::lockstep, to);
+  Inbox<mcnc::Alarm> inbox;
+  mcnc::dds::Reader<mcnc::Alarm> reader(
+      reading, [&](const mcnc::Alarm& a, const mcnc::dds::WriterId&) { inbox.put(a); });
+  mcnc::dds::Writer<mcnc::Alarm> writer(writing);
+  ASSERT_TRUE(wait_matched(writer, reader));
+  mcnc::Alarm alarm;
+  alarm.src("CH1");
+  alarm.seq(9);
+  alarm.number(2006);
+  alarm.text(std::string(150, 'x') + " CH1 N120: the feedback of X1 is late");
+  alarm.cycle(123456789012ULL);
+  ASSERT_TRUE(writer.write(alarm));
+  ASSERT_TRUE(inbox.wait_for(1));
+  EXPECT_EQ(inbox.samples[0].src(), "CH1");
+  EXPECT_EQ(inbox.samples[0].seq(), 9U);
+  EXPECT_EQ(inbox.samples[0].number(), 2006U);
+  EXPECT_EQ(inbox.samples[0].text(), alarm.text());
+  EXPECT_EQ(inbox.samples[0].cycle(), 123456789012ULL);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothWays, Middlewares,
+                         ::testing::Values(std::pair{Middleware::cyclonedds,
+                                                     Middleware::cyclonedds},
+                                           std::pair{Middleware::cyclonedds, Middleware::fastdds},
+                                           std::pair{Middleware::fastdds, Middleware::cyclonedds}),
+                         [](const auto& info) {
+                           return std::string(mcnc::dds::middleware_name(info.param.first)) +
+                                  "_to_" + mcnc::dds::middleware_name(info.param.second);
+                         });
+
+// Over shared memory Cyclone DDS 0.10 hands every reader of a topic every writer's chunk; the
+// reader keeps only those of the writers it matched, as it does over RTPS.
+TEST(CycloneDds, ARoutedReaderNeverHearsAnotherPartition) {
+  Participant writing(kDomain + 2, "writing", mcnc::dds::CyclicClock::lockstep,
+                      Middleware::cyclonedds);
+  Participant reading(kDomain + 2, "reading", mcnc::dds::CyclicClock::lockstep,
+                      Middleware::cyclonedds);
+  Inbox<mcnc::AxisSetpoint> x1;
+  Inbox<mcnc::AxisSetpoint> z1;
+  mcnc::dds::Reader<mcnc::AxisSetpoint> x1_reader(
+      reading, Partitions::of({"X1"}),
+      [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { x1.put(sp); });
+  mcnc::dds::Reader<mcnc::AxisSetpoint> z1_reader(
+      reading, Partitions::of({"Z1"}),
+      [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { z1.put(sp); });
+  mcnc::dds::Writer<mcnc::AxisSetpoint> to_x1(writing, "X1");
+  mcnc::dds::Writer<mcnc::AxisSetpoint> to_z1(writing, "Z1");
+  ASSERT_TRUE(wait_matched(to_x1, x1_reader));
+  ASSERT_TRUE(wait_matched(to_z1, z1_reader));
+  EXPECT_EQ(to_x1.matched_readers(), 1);
+  // One sample a cycle, each awaited, as a lockstep consumer takes them.
+  for (std::uint64_t cycle = 1; cycle <= 20; ++cycle) {
+    ASSERT_TRUE(to_x1.write(setpoint(cycle)));
+    ASSERT_TRUE(x1.wait_for(cycle));
+  }
+  ASSERT_TRUE(to_z1.write(setpoint(1000)));
+  ASSERT_TRUE(z1.wait_for(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(x1.size(), 20U);
+  ASSERT_EQ(z1.size(), 1U);
+  EXPECT_EQ(z1.samples[0].cycle(), 1000U);
+}
+
+TEST(CycloneDds, TheMiddlewareIsNamedByMcncMiddleware) {
+  EXPECT_EQ(mcnc::dds::parse_middleware("cyclonedds"), Middleware::cyclonedds);
+  EXPECT_EQ(mcnc::dds::parse_middleware("fastdds"), Middleware::fastdds);
+  EXPECT_FALSE(mcnc::dds::parse_middleware("opendds").has_value());
+  EXPECT_FALSE(mcnc::dds::parse_middleware("").has_value());
+}
+
+}  // namespace

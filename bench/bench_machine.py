@@ -5,7 +5,8 @@ nothing else. The axes are those of the example lathes."""
 AXES_PER_BUS = 4
 
 
-def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cycles=50):
+def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cycles=50,
+                 middleware=None):
     addresses = ["X", "Z"][:axes_per_channel]
     axes = [(f"{a}{c}", a, f"CH{c}") for c in range(1, channels + 1) for a in addresses]
     buses = (len(axes) + AXES_PER_BUS - 1) // AXES_PER_BUS
@@ -14,6 +15,10 @@ def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cy
         f"  name: {name}",
         f"  cycle_us: {cycle_us}",
         f"  deadline_cycles: {deadline_cycles}",
+    ]
+    if middleware:
+        lines.append(f"  middleware: {middleware}")
+    lines += [
         "buses:",
     ]
     for b in range(buses):

@@ -7,9 +7,13 @@ two moves, about 3 600 cycles. For each N it runs the machine with `mcnc run`:
     of the whole run, start-up included) per machine cycle and per channel;
   - in realtime at the same cycle: whether the run ends without alarm, the share of one core
     it took, and its alarms (a deadline missed ends in a quick stop, alarm 2006).
+Each N runs on every middleware named (`machine.middleware`), one after the other, so that
+their rows are side by side in one go. On Cyclone DDS the launcher starts the host's RouDi
+unless one answers (its start is in the whole run, not in the run phase).
 Figures, not a test: bench/README.md has them with this command.
 
-Usage: bench/scale.py [--build DIR] [--no-realtime] [N ...]   (default N: 1 2 4 8 16)
+Usage: bench/scale.py [--build DIR] [--no-realtime] [--middleware fastdds,cyclonedds] [N ...]
+       (default N: 1 2 4 8 16)
 """
 import argparse
 import os
@@ -37,12 +41,12 @@ M30
 """
 
 
-def run(build, channels, clock, domain):
+def run(build, channels, clock, domain, middleware):
     with tempfile.TemporaryDirectory() as tmp:
         machine = os.path.join(tmp, "m.yaml")
         with open(machine, "w") as f:
             f.write(machine_yaml(f"scale_{channels}", channels, 2, CYCLE_US, domain,
-                                 deadline_cycles=10))
+                                 deadline_cycles=10, middleware=middleware))
         prog = os.path.join(tmp, "p.nc")
         with open(prog, "w") as f:
             f.write(PROGRAM)
@@ -82,29 +86,32 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(HERE, "..", "build"))
     ap.add_argument("--no-realtime", action="store_true")
+    ap.add_argument("--middleware", default="fastdds,cyclonedds")
     ap.add_argument("channels", type=int, nargs="*", default=[1, 2, 4, 8, 16])
     args = ap.parse_args()
-    print("| N channels | cycles | lockstep: times real time (whole run / run phase) "
+    print("| N channels | middleware | cycles | lockstep: times real time (whole run / run phase) "
           "| CPU per machine cycle | per channel | realtime 2 ms |")
-    print("|---|---|---|---|---|---|")
-    for i, n in enumerate(args.channels):
-        lock = run(args.build, n, "lockstep", 60 + 2 * i)
+    print("|---|---|---|---|---|---|---|")
+    for i, (n, mw) in enumerate((n, mw) for n in args.channels
+                                for mw in args.middleware.split(",")):
+        lock = run(args.build, n, "lockstep", 60 + 2 * i, mw)
         if lock["code"] != 0 or lock["cycles"] == 0:
-            print(f"| {n} | the lockstep run failed (exit {lock['code']}) | | | | |", flush=True)
+            print(f"| {n} | {mw} | the lockstep run failed (exit {lock['code']}) | | | | |",
+                  flush=True)
             print(lock["tail"], file=sys.stderr)
             continue
         machine_s = lock["cycles"] * CYCLE_US / 1e6
         per_cycle = lock["cpu"] / lock["cycles"] * 1e6
         realtime = "not run"
         if not args.no_realtime:
-            rt = run(args.build, n, "realtime", 61 + 2 * i)
+            rt = run(args.build, n, "realtime", 61 + 2 * i, mw)
             share = 100 * rt["cpu"] / rt["wall"]
             if rt["code"] == 0:
                 realtime = f"runs, {share:.0f} % of one core"
             else:
                 realtime = (f"fails after {rt['cycles']} cycles (alarms {', '.join(rt['alarms'])}),"
                             f" {share:.0f} % of one core")
-        print(f"| {n} | {lock['cycles']} | {machine_s / lock['wall']:.2f} × / "
+        print(f"| {n} | {mw} | {lock['cycles']} | {machine_s / lock['wall']:.2f} × / "
               f"{machine_s / lock['run']:.2f} × | {per_cycle:.0f} µs | {per_cycle / n:.0f} µs "
               f"| {realtime} |", flush=True)
 

@@ -370,23 +370,29 @@ class CycloneReader final : public detail::ReaderImpl {
     static_cast<CycloneReader*>(arg)->take_all(reader);
   }
 
-  static void on_subscription_matched(dds_entity_t /*reader*/,
+  static void on_subscription_matched(dds_entity_t reader,
                                       const dds_subscription_matched_status_t status, void* arg) {
     auto* self = static_cast<CycloneReader*>(arg);
     if (status.current_count_change == 0) {
       return;
     }
-    {
-      std::lock_guard<std::mutex> lock(self->mutex_);
-      if (status.current_count_change > 0) {
-        self->matched_.insert(status.last_publication_handle);
-      } else {
-        self->matched_.erase(status.last_publication_handle);
-      }
-    }
+    self->refresh_matched(reader);
     if (self->callbacks_.on_match) {
       self->callbacks_.on_match(to_writer_id(status.last_publication_handle),
                                 status.current_count_change > 0);
+    }
+  }
+
+  // The writers matched now, from the reader itself: a status can stand for several changes.
+  // Here, at a match, and not at each sample of a writer it does not know (every sample of
+  // another partition is one, below).
+  void refresh_matched(dds_entity_t reader) {
+    std::array<dds_instance_handle_t, 256> handles{};
+    const dds_return_t n = dds_get_matched_publications(reader, handles.data(), handles.size());
+    std::lock_guard<std::mutex> lock(mutex_);
+    matched_.clear();
+    for (dds_return_t i = 0; i < std::min<dds_return_t>(n, handles.size()); ++i) {
+      matched_.insert(handles[static_cast<std::size_t>(i)]);
     }
   }
 
@@ -394,14 +400,6 @@ class CycloneReader final : public detail::ReaderImpl {
   // writer's partition: only the samples of a matched writer are this reader's.
   bool from_matched(dds_instance_handle_t writer) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (matched_.count(writer) != 0) {
-      return true;
-    }
-    std::array<dds_instance_handle_t, 256> handles{};
-    const dds_return_t n = dds_get_matched_publications(reader_, handles.data(), handles.size());
-    for (dds_return_t i = 0; i < std::min<dds_return_t>(n, handles.size()); ++i) {
-      matched_.insert(handles[static_cast<std::size_t>(i)]);
-    }
     return matched_.count(writer) != 0;
   }
 

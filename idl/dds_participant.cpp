@@ -59,7 +59,7 @@ Participant::Participant(int domain, const std::string& name, CyclicClock clock,
 Participant::~Participant() = default;
 
 std::chrono::nanoseconds participant_lease(const Participant& participant) {
-  return const_cast<Participant&>(participant).impl().lease();
+  return participant.impl().lease();
 }
 
 }  // namespace mcnc::dds

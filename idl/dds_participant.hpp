@@ -112,6 +112,7 @@ class Participant {
 
   [[nodiscard]] Middleware middleware() const noexcept { return middleware_; }
   detail::ParticipantImpl& impl() noexcept { return *impl_; }
+  [[nodiscard]] const detail::ParticipantImpl& impl() const noexcept { return *impl_; }
 
  private:
   Middleware middleware_;

@@ -8,7 +8,6 @@
 
 #include <fstream>
 #include <regex>
-#include <sstream>
 #include <string>
 
 using namespace mcnc::test;
@@ -28,10 +27,7 @@ constexpr const char* kWithoutRoudi =
 TestMachine twin_turret_on(int domain, const std::string& machine_wide,
                            const std::string& channels = "") {
   TestMachine machine("twin_turret.yaml", domain);
-  std::ifstream in(machine.path());
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = std::regex_replace(text.str(), std::regex("\nmachine:\n"),
+  std::string yaml = std::regex_replace(slurp(machine.path()), std::regex("\nmachine:\n"),
                                         "\nmachine:\n  middleware: " + machine_wide + "\n");
   if (!channels.empty()) {
     yaml = std::regex_replace(yaml, std::regex("\n  - name: (CH[0-9]+)\n"),
@@ -78,14 +74,10 @@ TEST(Middleware, ThePartTransferGivesOneTraceOnEitherMiddlewareAndOnBothMixed) {
 
 TEST(Middleware, AMachineOnCycloneDdsWithoutItsRoudiIsRefusedBeforeAnythingStarts) {
   TestMachine machine = twin_turret_on(153, "cyclonedds");
-  {
-    // `roudi: running`: the host is to run one.
-    std::ifstream in(machine.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    std::ofstream(machine.path()) << std::regex_replace(text.str(), std::regex("\nmachine:\n"),
-                                                        "\nmachine:\n  roudi: running\n");
-  }
+  // `roudi: running`: the host is to run one.
+  const std::string yaml = std::regex_replace(slurp(machine.path()), std::regex("\nmachine:\n"),
+                                              "\nmachine:\n  roudi: running\n");
+  std::ofstream(machine.path()) << yaml;
   const auto start = std::chrono::steady_clock::now();
   const RunResult r =
       run({"/usr/bin/unshare", "--mount", "--", "/bin/sh", "-c",

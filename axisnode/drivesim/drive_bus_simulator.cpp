@@ -33,7 +33,8 @@ DriveBusSimulator::DriveBusSimulator(const std::vector<DriveParams>& drives, dou
   for (SimulatedDrive& drive : drives_) {
     sdo_.emplace_back(drive.node_id(), drive.objects());
   }
-  fed_.assign(drives_.size(), false);
+  rpdos_got_.assign(drives_.size(), 0);
+  rpdos_awaited_.assign(drives_.size(), 0);
 }
 
 bool DriveBusSimulator::schedule_fault(std::uint8_t node, DriveFault fault,
@@ -113,6 +114,12 @@ std::size_t DriveBusSimulator::handle_nmt(const CanFrame& in, std::span<CanFrame
       return;  // not powered yet: no CANopen stack running
     }
     drive.on_nmt(nmt->command);
+    if (drive.nmt_state() != NmtState::operational) {
+      // Its RPDOs are ignored now: not awaited until it is fed again.
+      const auto i = static_cast<std::size_t>(&drive - drives_.data());
+      rpdos_got_[i] = 0;
+      rpdos_awaited_[i] = 0;
+    }
     if (resets && written < out.size()) {
       out[written++] = canopen::encode_heartbeat(drive.node_id(), NmtState::bootup);
     }
@@ -135,7 +142,8 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
   std::size_t written = 0;
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     SimulatedDrive& drive = drives_[i];
-    fed_[i] = drive.rpdo_since_sync();
+    rpdos_awaited_[i] = rpdos_got_[i];
+    rpdos_got_[i] = 0;
     if (drive.nmt_state() != NmtState::operational) {
       continue;
     }
@@ -160,8 +168,8 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
 
 bool DriveBusSimulator::rpdos_complete() const noexcept {
   for (std::size_t i = 0; i < drives_.size(); ++i) {
-    if (fed_[i] && drives_[i].nmt_state() == NmtState::operational &&
-        !drives_[i].rpdo_since_sync()) {
+    if (drives_[i].nmt_state() == NmtState::operational &&
+        (rpdos_got_[i] & rpdos_awaited_[i]) != rpdos_awaited_[i]) {
       return false;
     }
   }
@@ -170,9 +178,7 @@ bool DriveBusSimulator::rpdos_complete() const noexcept {
 
 void DriveBusSimulator::stop_awaiting_silent_drives() noexcept {
   for (std::size_t i = 0; i < drives_.size(); ++i) {
-    if (!drives_[i].rpdo_since_sync()) {
-      fed_[i] = false;
-    }
+    rpdos_awaited_[i] &= rpdos_got_[i];
   }
 }
 
@@ -188,6 +194,8 @@ void DriveBusSimulator::handle_rpdo(const CanFrame& in, std::uint8_t node, std::
   }
   if (drive->nmt_state() == NmtState::operational) {
     drive->on_rpdo(values);
+    rpdos_got_[static_cast<std::size_t>(index_by_node_[node])] |=
+        static_cast<std::uint8_t>(1U << n);
   }
 }
 

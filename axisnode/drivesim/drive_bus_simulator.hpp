@@ -47,9 +47,11 @@ class DriveBusSimulator {
   // Lockstep over UDP: a real bus shows a frame to every node at once, UDP multicast on
   // loopback hands it to one socket after another, so a SYNC may overtake an RPDO that the
   // SYNC producer has already seen. The shell holds a SYNC until every drive that is being fed
-  // (has received an RPDO since the last SYNC before) has its RPDO for this cycle.
+  // has each RPDO for this cycle that it received in the cycle before (a spindle's RPDO1 and
+  // RPDO2: the one may be in while the other is overtaken).
   [[nodiscard]] bool rpdos_complete() const noexcept;
-  // A node that stopped sending (gone, or stopped) is no longer waited for until it sends again.
+  // An RPDO that stopped coming (its node gone, or stopped) is no longer waited for until it
+  // comes again.
   void stop_awaiting_silent_drives() noexcept;
   [[nodiscard]] unsigned long malformed_count() const noexcept;
   [[nodiscard]] std::size_t size() const noexcept { return drives_.size(); }
@@ -67,7 +69,10 @@ class DriveBusSimulator {
   std::vector<canopen::SdoServer> sdo_;            // one per drive, in the same order
   std::array<std::int16_t, 128> index_by_node_{};  // node id -> position in drives_
   unsigned long malformed_ = 0;
-  std::vector<bool> fed_;  // per drive: sent an RPDO in the previous cycle (awaited now)
+  // Per drive, a bit per RPDO (bit n: RPDO n+1): those received since the last SYNC, and
+  // those received in the cycle before it (awaited in this one).
+  std::vector<std::uint8_t> rpdos_got_;
+  std::vector<std::uint8_t> rpdos_awaited_;
 };
 
 }  // namespace mcnc::drivesim

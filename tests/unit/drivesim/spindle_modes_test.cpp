@@ -169,6 +169,50 @@ TEST(SpindleModes, AnRpdoOfTheWrongLengthIsNotProcessed) {
   EXPECT_FALSE(bus.drive().rpdo_since_sync());
 }
 
+// Lockstep over UDP: a SYNC may overtake one of a spindle's two RPDOs. The SYNC waits for
+// each RPDO the drive got in the cycle before, not just for one of them, or the drive would
+// step with last cycle's target.
+TEST(SpindleModes, ASyncWaitsForBothRpdosOfAFedSpindle) {
+  SpindleBus bus;
+  canopen::RxPdoSpindle pdo{0x000F, 1000, 8, 0};
+  bus.cycle(pdo);  // fed with both RPDOs: both awaited from now on
+  EXPECT_FALSE(bus.sim().rpdos_complete());
+  std::array<CanFrame, 8> out{};
+  pdo.target_position = 2000;
+  bus.sim().handle(canopen::encode_rpdo2_spindle(kNode, pdo), out);
+  EXPECT_FALSE(bus.sim().rpdos_complete());  // RPDO1 is still on its way
+  bus.sim().handle(canopen::encode_rpdo1_spindle(kNode, pdo), out);
+  EXPECT_TRUE(bus.sim().rpdos_complete());
+  bus.sim().handle(canopen::encode_sync(2), out);
+
+  // RPDO1 alone in a cycle: only RPDO1 is awaited in the next.
+  bus.sim().handle(canopen::encode_rpdo1_spindle(kNode, pdo), out);
+  bus.sim().handle(canopen::encode_sync(3), out);
+  EXPECT_FALSE(bus.sim().rpdos_complete());
+  bus.sim().handle(canopen::encode_rpdo1_spindle(kNode, pdo), out);
+  EXPECT_TRUE(bus.sim().rpdos_complete());
+  bus.sim().handle(canopen::encode_sync(4), out);
+
+  // A node that stops sending RPDO1 is no longer waited for once the shell gives up on it.
+  bus.sim().handle(canopen::encode_sync(5), out);
+  bus.sim().handle(canopen::encode_rpdo2_spindle(kNode, pdo), out);
+  EXPECT_TRUE(bus.sim().rpdos_complete());  // nothing came in the cycle before
+  bus.sim().handle(canopen::encode_sync(6), out);
+  EXPECT_FALSE(bus.sim().rpdos_complete());  // RPDO2 is awaited now
+  bus.sim().stop_awaiting_silent_drives();
+  EXPECT_TRUE(bus.sim().rpdos_complete());
+
+  // A drive NMT-stopped is not awaited.
+  bus.sim().handle(canopen::encode_rpdo2_spindle(kNode, pdo), out);
+  bus.sim().handle(canopen::encode_rpdo1_spindle(kNode, pdo), out);
+  bus.sim().handle(canopen::encode_sync(7), out);
+  EXPECT_FALSE(bus.sim().rpdos_complete());
+  bus.sim().handle(canopen::encode_nmt(canopen::NmtCommand::stop, kNode), out);
+  EXPECT_TRUE(bus.sim().rpdos_complete());
+  bus.sim().handle(canopen::encode_nmt(canopen::NmtCommand::start, kNode), out);
+  EXPECT_TRUE(bus.sim().rpdos_complete());
+}
+
 // The axis node's core and the drive in closed loop through the spindle's PDOs.
 TEST(SpindleModes, TheNodeSwitchesCsvToCspAndBackWithoutAJump) {
   SpindleBus bus;

@@ -8,6 +8,7 @@
 #include "common/process/startup.hpp"
 #include "common/trace/trace_merge.hpp"
 #include "common/trace/trace_writer.hpp"
+#include "idl/dds_participant.hpp"
 #include "launch/child_end.hpp"
 #include "launch/child_process.hpp"
 
@@ -269,6 +270,9 @@ LaunchResult Launcher::run(
     return nullptr;
   };
 
+  const auto roudi_lost = [&] { return options_.watch_roudi && !dds::roudi_answers(); };
+  const char* const kRoudiLost = "the host's iceoryx RouDi stopped answering";
+
   std::string failure;
   bool killed_child = false;
   bool sent_kill = false;  // children that had not left after the run were killed
@@ -280,6 +284,10 @@ LaunchResult Launcher::run(
   for (;;) {
     if (ChildProcess* dead = find_exited()) {
       failure = dead->name() + " " + dead->exit_description() + " during start-up";
+      break;
+    }
+    if (roudi_lost()) {
+      failure = std::string(kRoudiLost) + " during start-up";
       break;
     }
     std::string not_ready;  // the processes still starting, for the operator
@@ -342,6 +350,10 @@ LaunchResult Launcher::run(
       if (ChildProcess* dead = find_exited()) {
         failure = dead->name() + " " + dead->exit_description();
         killed_child = dead->exit_code() < 0;
+        break;
+      }
+      if (roudi_lost()) {
+        failure = kRoudiLost;
         break;
       }
       if (process::g_stop_signal != 0) {

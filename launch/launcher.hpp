@@ -46,6 +46,10 @@ struct LaunchOptions {
   // not part of the run: it starts with it and stops at its end, and its exit stops nothing.
   std::string hmi_listen;
   bool manual_start = false;  // the channels wait for CYCLE START
+  // The host's iceoryx RouDi serves the machine's shared memory: when it stops answering (killed,
+  // or stopped under the machine), the machine is E-stopped like after a lost process, since
+  // nothing would then clean up after a process that dies.
+  bool watch_roudi = false;
 };
 
 struct ChannelProgress {

@@ -301,6 +301,7 @@ int execute_run(const RunArguments& args) {
       return 2;
     }
   }
+  options.watch_roudi = roudi.has_value();
   process::install_stop_signals();
   Launcher launcher(machine, options);
   std::map<std::string, std::string> last_line;

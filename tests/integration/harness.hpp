@@ -100,6 +100,19 @@ bool eventually(Pred pred, std::chrono::milliseconds timeout) {
   return pred();
 }
 
+// Gives this test process, and every process it starts after, a host of its own as iceoryx sees
+// it: a mount namespace where /dev/shm is empty and /tmp shows what the host's does, except
+// iceoryx's socket and lock files. A RouDi started there is the only one its processes reach,
+// and the host's RouDi (the suite's, shared by the tests in parallel) never sees them, so the
+// test may kill it. A test machine made after the call lies in the private /tmp. Throws
+// std::runtime_error (which fails the test) when the namespace cannot be made (it needs root).
+void isolate_iceoryx_host();
+
+// The machine file of `machine` with `machine.middleware: machine_wide`, and with `channels` as
+// each channel's own middleware when not empty.
+void use_middleware(const TestMachine& machine, const std::string& machine_wide,
+                    const std::string& channels = "");
+
 // pids of processes whose command line contains `needle`.
 std::vector<pid_t> pids_with_arg(const std::string& needle);
 

@@ -1,14 +1,19 @@
 // Fast DDS and Cyclone DDS as one machine's wire (issue 21): the machine file chooses each
 // process's middleware, the twin-turret part transfer (CT-G1141-01) gives the same lockstep
-// trace on either and with channels on one and axis nodes on the other, and a machine on Cyclone
-// DDS without a RouDi is refused before anything starts.
+// trace on either and with channels on one and axis nodes on the other, three times in a row on
+// shared memory (once beside a CPU hog), and a machine on Cyclone DDS without a RouDi is refused
+// before anything starts.
 #include "harness.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <memory>
 #include <regex>
 #include <string>
+#include <thread>
+#include <vector>
 
 using namespace mcnc::test;
 using namespace std::chrono_literals;
@@ -27,13 +32,7 @@ constexpr const char* kWithoutRoudi =
 TestMachine twin_turret_on(int domain, const std::string& machine_wide,
                            const std::string& channels = "") {
   TestMachine machine("twin_turret.yaml", domain);
-  std::string yaml = std::regex_replace(slurp(machine.path()), std::regex("\nmachine:\n"),
-                                        "\nmachine:\n  middleware: " + machine_wide + "\n");
-  if (!channels.empty()) {
-    yaml = std::regex_replace(yaml, std::regex("\n  - name: (CH[0-9]+)\n"),
-                              "\n  - name: $1\n    middleware: " + channels + "\n");
-  }
-  std::ofstream(machine.path()) << yaml;
+  use_middleware(machine, machine_wide, channels);
   return machine;
 }
 
@@ -70,6 +69,26 @@ TEST(Middleware, ThePartTransferGivesOneTraceOnEitherMiddlewareAndOnBothMixed) {
   EXPECT_EQ(fast.back()["ev"], "summary");
   expect_same_trace(fast, cyclone, "Fast DDS against Cyclone DDS");
   expect_same_trace(fast, mixed, "Fast DDS against mixed");
+}
+
+// Lockstep determinism on the shared-memory path: three runs in a row give one trace, the
+// last beside a CPU hog on every core (the lockstep clock waits for inputs, never for time).
+TEST(Middleware, OnSharedMemoryThePartTransferGivesOneTraceThreeTimesOnceBesideACpuHog) {
+  const auto first = part_transfer(twin_turret_on(155, "cyclonedds"));
+  const auto second = part_transfer(twin_turret_on(156, "cyclonedds"));
+  TestMachine hogged = twin_turret_on(157, "cyclonedds");
+  std::vector<std::unique_ptr<Background>> hogs;
+  for (unsigned i = 0; i < std::max(2U, std::thread::hardware_concurrency()); ++i) {
+    hogs.push_back(std::make_unique<Background>(
+        std::vector<std::string>{"/bin/sh", "-c", "while :; do :; done"}, -1,
+        hogged.file("hog" + std::to_string(i) + ".log")));
+  }
+  const auto third = part_transfer(hogged);
+  hogs.clear();
+  ASSERT_GT(first.size(), 1000U);
+  EXPECT_EQ(first.back()["ev"], "summary");
+  expect_same_trace(first, second, "first against second");
+  expect_same_trace(first, third, "first against the run beside the hog");
 }
 
 TEST(Middleware, AMachineOnCycloneDdsWithoutItsRoudiIsRefusedBeforeAnythingStarts) {

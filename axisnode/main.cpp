@@ -11,9 +11,9 @@
 #include "axisnode/ownership/axis_ownership.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/cyclic_routes.hpp"
-#include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/cycle/pending_events.hpp"
+#include "common/cycle/tracked_input.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -137,13 +137,9 @@ int main(int argc, char** argv) {
       }
       return -1;
     };
-    struct Candidate {
-      cycle::CycleBuffer<AxisSetpoint, 8> setpoints;
-      dds::WriterId writer{};
-      bool writer_known = false;
-      bool lost = false;  // its writer left
-    };
-    std::vector<Candidate> from(candidates.size());
+    // Per candidate, its setpoints (lost: its writer left).
+    std::vector<cycle::TrackedInput<AxisSetpoint>> from =
+        cycle::tracked_inputs<AxisSetpoint>(0, candidates.size());
     // G114.1: a slave spindle follows its master (param 1420) once the master's channel says so;
     // in lockstep it runs cycle N with that channel's status N-1 (and its events) and the
     // master's feedback N-1 too. The coupling is this node's state: reset does not end it.
@@ -159,12 +155,8 @@ int main(int argc, char** argv) {
       coupling::SpindleCouplingCommand command;
     };
     cycle::PendingEvents<SpindleSyncRequest, 16> pending_sync;
-    cycle::CycleBuffer<AxisFeedback, 8> master_feedback;
-    dds::WriterId master_writer{};
-    dds::WriterId sync_channel_writer{};
-    bool master_writer_known = false;
-    bool sync_channel_writer_known = false;
-    bool master_lost = false;
+    cycle::TrackedInput<AxisFeedback> master_feedback(master_input);
+    cycle::TrackedInput<ChannelStatus> sync_channel_status(sync_input);
     // G51.4: a slave copies its master's increments once its channel says so (or from power-on,
     // param 5600.3). In lockstep it runs cycle N with its master's commanded position N-1,
     // from the master's feedback; the master is any axis of its kind that is no slave itself.
@@ -196,13 +188,7 @@ int main(int argc, char** argv) {
     };
     ownership::AxisOwnership ownership(home_id);
     // G140/G141/G142 requests as they arrive, applied from the cycle after they were sent.
-    struct PendingRequest {
-      ownership::OwnershipRequest request;
-    };
-    constexpr std::size_t kPending = 256;
-    std::array<PendingRequest, kPending> pending{};
-    std::size_t pending_head = 0;
-    std::size_t pending_count = 0;
+    cycle::PendingEvents<ownership::OwnershipRequest, 256> pending;
     std::uint64_t pending_dropped = 0;
     std::uint32_t owner_now = home_id;  // the owner as the last decision left it
     bool owner_lost = false;            // the current owner's writer left
@@ -215,21 +201,15 @@ int main(int argc, char** argv) {
             return;
           }
           wake.update([&] {
-            Candidate& c = from[static_cast<std::size_t>(k)];
-            c.setpoints.put(sp.cycle(), sp);
-            c.writer = writer;
-            c.writer_known = true;
-            gate.on_sample(static_cast<std::size_t>(k), sp.cycle(),
-                           watches_events ? sp.event_seq() : 0);
+            from[static_cast<std::size_t>(k)].on_sample(
+                sp, sp.cycle(), watches_events ? sp.event_seq() : 0, writer, gate);
           });
         },
         [&](const dds::WriterId& writer, bool matched) {
           if (!matched) {
             wake.update([&] {
               for (std::size_t k = 0; k < from.size(); ++k) {
-                if (from[k].writer_known && writer == from[k].writer) {
-                  from[k].lost = true;
-                  gate.set_expected(k, false);
+                if (from[k].on_unmatched(writer, gate)) {
                   owner_lost = owner_lost || candidates[k] == owner_now;
                 }
               }
@@ -279,18 +259,16 @@ int main(int argc, char** argv) {
           [&, sync_channel](const ChannelStatus& s, const dds::WriterId& writer) {
             if (s.channel() == sync_channel) {
               wake.update([&] {
-                gate.on_sample(sync_input, s.cycle(), s.event_seq());
-                sync_channel_writer = writer;
-                sync_channel_writer_known = true;
+                sync_channel_status.on_sample(s, s.cycle(), s.event_seq(), writer, gate);
               });
             }
           },
           [&](const dds::WriterId& writer, bool matched) {
-            wake.update([&] {
-              if (!matched && sync_channel_writer_known && writer == sync_channel_writer) {
-                gate.set_expected(sync_input, false);  // the coupling stays as it is
-              }
-            });
+            if (!matched) {
+              wake.update([&] {
+                sync_channel_status.on_unmatched(writer, gate);  // the coupling stays as it is
+              });
+            }
           });
       master_reader.emplace(
           node.participant(),
@@ -298,21 +276,13 @@ int main(int argc, char** argv) {
               {machine.axes[static_cast<std::size_t>(sync_group->master - 1)].name}),
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (static_cast<int>(fb.axis()) == sync_group->master) {
-              wake.update([&] {
-                master_feedback.put(fb.cycle(), fb);
-                gate.on_sample(master_input, fb.cycle(), 0);
-                master_writer = writer;
-                master_writer_known = true;
-              });
+              wake.update([&] { master_feedback.on_sample(fb, fb.cycle(), 0, writer, gate); });
             }
           },
           [&](const dds::WriterId& writer, bool matched) {
-            wake.update([&] {
-              if (!matched && master_writer_known && writer == master_writer) {
-                master_lost = true;
-                gate.set_expected(master_input, false);
-              }
-            });
+            if (!matched) {
+              wake.update([&] { master_feedback.on_unmatched(writer, gate); });
+            }
           });
     }
     if (watches_events || sync_group != nullptr) {
@@ -326,7 +296,7 @@ int main(int argc, char** argv) {
         }
         wake.update([&] {
           if (k >= 0 && watches_events) {
-            gate.on_event(static_cast<std::size_t>(k), e.seq());
+            from[static_cast<std::size_t>(k)].on_event(e.seq(), gate);
           }
           if (may_follow && e.kind() == COORD_AXIS_SYNC && e.axis() == axis_id &&
               e.channel() == home_id) {
@@ -334,7 +304,7 @@ int main(int argc, char** argv) {
                 AxisSyncRequest{e.sync_on(), e.sync_on() ? e.sync_master() : 0}, e.cycle());
           }
           if (from_sync_channel) {
-            gate.on_event(sync_input, e.seq());
+            sync_channel_status.on_event(e.seq(), gate);
             if (e.kind() == COORD_SPINDLE_SYNC &&
                 (e.sync_group() == sync_group->group || (!e.sync_on() && e.sync_group() == 0))) {
               (void)pending_sync.push(
@@ -349,13 +319,11 @@ int main(int argc, char** argv) {
               (e.axis() != axis_id && e.axis() != 0)) {
             return;
           }
-          if (pending_count == kPending) {
+          if (!pending.push(ownership::OwnershipRequest{to_core(e.axis_request()), e.channel(),
+                                                        e.force(), e.cycle()},
+                            e.cycle())) {
             ++pending_dropped;
-            return;
           }
-          pending[(pending_head + pending_count++) % kPending] =
-              PendingRequest{ownership::OwnershipRequest{to_core(e.axis_request()), e.channel(),
-                                                         e.force(), e.cycle()}};
         });
       });
     }
@@ -505,31 +473,25 @@ int main(int argc, char** argv) {
             if (k < 0 || cycle == 0) {
               return nullptr;
             }
-            const Candidate& c = from[static_cast<std::size_t>(k)];
-            if (const AxisSetpoint* s = c.setpoints.at(cycle - 1)) {
+            const cycle::TrackedInput<AxisSetpoint>& c = from[static_cast<std::size_t>(k)];
+            if (const AxisSetpoint* s = c.for_cycle(cycle, true)) {
               return s;
             }
-            const AxisSetpoint* latest = c.setpoints.latest();
+            // Realtime: the latest only while it is no older than the last cycle's.
+            const AxisSetpoint* latest = c.latest();
             return !lockstep && latest != nullptr && latest->cycle() >= cycle - 1 ? latest
                                                                                   : nullptr;
           };
           if (exchangeable) {
             // Every request sent before this cycle, whatever order they arrived in (the core
             // puts them in decision order).
-            std::size_t kept = 0;
-            for (std::size_t i = 0; i < pending_count; ++i) {
-              const PendingRequest& p = pending[(pending_head + i) % kPending];
-              if (p.request.sent_cycle < cycle) {
-                if (!ownership.request(p.request)) {
-                  ++pending_dropped;
-                }
-              } else {
-                pending[(pending_head + kept++) % kPending] = p;
+            pending.take_due(cycle, [&](const ownership::OwnershipRequest& r) {
+              if (!ownership.request(r)) {
+                ++pending_dropped;
               }
-            }
-            pending_count = kept;
+            });
             for (std::size_t k = 0; k < from.size(); ++k) {
-              if (from[k].lost) {
+              if (from[k].lost()) {
                 ownership.channel_gone(candidates[k]);
               }
             }
@@ -537,7 +499,7 @@ int main(int argc, char** argv) {
             // G141 or a G142 waits for the owner's move to end). An owner that is gone is not
             // at rest: its axis is stopped by the node's safety and nobody takes it over.
             const int owner_k = candidate_of(ownership.owner());
-            const bool owner_gone = owner_k >= 0 && from[static_cast<std::size_t>(owner_k)].lost;
+            const bool owner_gone = owner_k >= 0 && from[static_cast<std::size_t>(owner_k)].lost();
             const AxisSetpoint* current = setpoint_of(ownership.owner());
             const axisnode::AxisNodeOutput& last = controller.output();
             const bool at_rest = !owner_gone &&
@@ -547,7 +509,7 @@ int main(int argc, char** argv) {
             change = ownership.decide(at_rest);
             owner_now = ownership.owner();
             const int k = candidate_of(owner_now);
-            owner_lost = k >= 0 && from[static_cast<std::size_t>(k)].lost;
+            owner_lost = k >= 0 && from[static_cast<std::size_t>(k)].lost();
           }
           if (owner_now == 0) {
             have = true;  // released: nobody commands the axis, it holds where it is
@@ -583,11 +545,8 @@ int main(int argc, char** argv) {
                           axis->name.c_str());
             }
           });
-          const AxisFeedback* m = cycle > 0 ? master_feedback.at(cycle - 1) : nullptr;
-          if (m == nullptr && !lockstep) {
-            m = master_feedback.latest();
-          }
-          if (m != nullptr && !master_lost) {
+          const AxisFeedback* m = master_feedback.for_cycle(cycle, lockstep);
+          if (m != nullptr && !master_feedback.lost()) {
             master = *m;
             have_master = true;
           }

@@ -11,8 +11,8 @@
 #include "channel/wire/plc_link.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/cyclic_routes.hpp"
-#include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
+#include "common/cycle/tracked_input.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -186,7 +186,8 @@ int main(int argc, char** argv) {
     }
     const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
     const std::vector<std::string> fed_nodes = config::node_partitions(fed);
-    std::vector<cycle::CycleBuffer<AxisFeedback, 8>> feedback(fed.size());
+    std::vector<cycle::TrackedInput<AxisFeedback>> feedback =
+        cycle::tracked_inputs<AxisFeedback>(0, fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
     channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
@@ -194,37 +195,26 @@ int main(int argc, char** argv) {
     if (machine.plc.present) {
       plc.emplace(node, gate, plc_input, static_cast<std::uint32_t>(ch->id));
     }
-    std::vector<dds::WriterId> axis_writer(fed.size());
-    std::vector<bool> axis_writer_known(fed.size(), false);
-    std::vector<bool> axis_lost(fed.size(), false);
     // A spindle's feedback is also its C axis's.
     dds::Reader<AxisFeedback> feedback_reader(
         node.participant(), dds::Partitions::of(fed_nodes),
         [&](const AxisFeedback& fb, const dds::WriterId& writer) {
           wake.update([&] {
             for (std::size_t slot = 0; slot < fed.size(); ++slot) {
-              if (static_cast<std::uint32_t>(fed[slot]->id) != fb.axis()) {
-                continue;
+              if (static_cast<std::uint32_t>(fed[slot]->id) == fb.axis()) {
+                feedback[slot].on_sample(fb, fb.cycle(), fb.event_seq(), writer, gate);
               }
-              feedback[slot].put(fb.cycle(), fb);
-              gate.on_sample(slot, fb.cycle(), fb.event_seq());
-              axis_writer[slot] = writer;
-              axis_writer_known[slot] = true;
             }
           });
         },
         [&](const dds::WriterId& writer, bool matched) {
-          if (matched) {
-            return;
-          }
-          wake.update([&] {
-            for (std::size_t i = 0; i < fed.size(); ++i) {
-              if (axis_writer_known[i] && axis_writer[i] == writer) {
-                axis_lost[i] = true;
-                gate.set_expected(i, false);
+          if (!matched) {
+            wake.update([&] {
+              for (auto& input : feedback) {
+                input.on_unmatched(writer, gate);
               }
-            }
-          });
+            });
+          }
         });
     channel::ChannelOutputs outputs(node, tracer, *ch, config::channel_names(machine), axes,
                                     spindles, program_name, program_lines, shared_writes);
@@ -255,13 +245,13 @@ int main(int argc, char** argv) {
     }
 
     std::vector<channel::AxisFeedbackView> views(fed.size());  // axes, then spindles
-    std::vector<bool> reported_lost(fed.size(), false);
     bool estop_seen = false;
     // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
     for (std::uint64_t cycle = 0; loop.next(
              cycle, [&](std::uint64_t c) { return gate.may_run(c); },
              [&] {
-               return std::find(axis_lost.begin(), axis_lost.end(), true) != axis_lost.end();
+               return std::any_of(feedback.begin(), feedback.end(),
+                                  [](const auto& input) { return input.lost(); });
              });
          ++cycle) {
       if (loop.emergency_stop() && !estop_seen) {
@@ -336,9 +326,9 @@ int main(int argc, char** argv) {
           if (!lockstep && latest != nullptr &&
               controller.state() != channel::ChannelState::reset &&
               latest->cycle() + static_cast<std::uint64_t>(machine.deadline_cycles) < cycle) {
-            axis_lost[i] = true;
+            feedback[i].lose(gate);
           }
-          newly_lost = newly_lost || (axis_lost[i] && !reported_lost[i]);
+          newly_lost = newly_lost || feedback[i].loss_pending();
         }
       });
       if (newly_lost && node.stop_arrives_within(300ms)) {
@@ -346,17 +336,13 @@ int main(int argc, char** argv) {
       }
       wake.update([&] {
         for (std::size_t i = 0; i < fed.size(); ++i) {
-          const AxisFeedback* fb = cycle > 0 ? feedback[i].at(cycle - 1) : nullptr;
-          if (fb == nullptr && !lockstep) {
-            fb = feedback[i].latest();
-          }
+          const AxisFeedback* fb = feedback[i].for_cycle(cycle, lockstep);
           if (fb != nullptr) {
             views[i] = channel::AxisFeedbackView{
                 fb->cmd(),   fb->act(),         fb->enabled(),    fb->alarm(),          true,
                 fb->owner(), fb->released_by(), fb->coupled_to(), fb->coupling_locked()};
           }
-          if (axis_lost[i] && !reported_lost[i]) {
-            reported_lost[i] = true;
+          if (feedback[i].take_loss()) {
             controller.axis_lost(i);
           }
         }

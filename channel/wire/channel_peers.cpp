@@ -3,15 +3,20 @@
 #include "channel/wire/channel_mask.hpp"
 #include "common/config/cyclic_routes.hpp"
 
+#include <limits>
+
 namespace mcnc::channel {
 
 std::vector<ChannelPeers::Peer> ChannelPeers::peers_of(const config::MachineConfig& machine,
-                                                       const config::ChannelConfig& self) {
+                                                       const config::ChannelConfig& self,
+                                                       std::size_t first_input) {
   std::vector<Peer> peers(machine.channels.size() - 1);
   std::size_t k = 0;
   for (const config::ChannelConfig& c : machine.channels) {
     if (c.id != self.id) {
-      peers[k++].id = static_cast<std::uint32_t>(c.id);
+      peers[k].id = static_cast<std::uint32_t>(c.id);
+      peers[k].status = cycle::TrackedInput<::mcnc::ChannelStatus>(first_input + k);
+      ++k;
     }
   }
   return peers;
@@ -22,10 +27,9 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
                            std::size_t first_input, interp::macro::VariableStore& shared_variables)
     : node_(node),
       gate_(gate),
-      first_input_(first_input),
       self_(static_cast<std::uint32_t>(self.id)),
       shared_(shared_variables),
-      peers_(peers_of(machine, self)),
+      peers_(peers_of(machine, self, first_input)),
       status_reader_(
           node.participant(), dds::Partitions::of(config::other_channels(machine, self)),
           [this](const ::mcnc::ChannelStatus& status, const dds::WriterId& writer) {
@@ -34,11 +38,7 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
               return;
             }
             node_.wakeup().update([&] {
-              peer->status.put(status.cycle(), status);
-              peer->status_writer = writer;
-              peer->status_writer_known = true;
-              gate_.on_sample(first_input_ + static_cast<std::size_t>(peer - peers_.data()),
-                              status.cycle(), status.event_seq());
+              peer->status.on_sample(status, status.cycle(), status.event_seq(), writer, gate_);
             });
           },
           [this](const dds::WriterId& writer, bool matched) {
@@ -46,11 +46,8 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
               return;
             }
             node_.wakeup().update([&] {
-              for (std::size_t i = 0; i < peers_.size(); ++i) {
-                if (peers_[i].status_writer_known && peers_[i].status_writer == writer) {
-                  peers_[i].lost = true;
-                  gate_.set_expected(first_input_ + i, false);
-                }
+              for (Peer& peer : peers_) {
+                peer.status.on_unmatched(writer, gate_);
               }
             });
           }),
@@ -79,38 +76,28 @@ void ChannelPeers::on_event(const ::mcnc::CoordinationEvent& event) {
     return;
   }
   node_.wakeup().update([&] {
-    if (peer->count == kQueue) {
+    if (!peer->events.push(event, event.cycle())) {
       ++dropped_;  // counted as received, so lockstep goes on to the alarm
-    } else {
-      peer->queue[(peer->head + peer->count) % kQueue] = event;
-      ++peer->count;
     }
-    gate_.on_event(first_input_ + static_cast<std::size_t>(peer - peers_.data()), event.seq());
+    peer->status.on_event(event.seq(), gate_);
   });
 }
 
 void ChannelPeers::apply(std::uint64_t cycle, bool lockstep, ChannelController& controller) {
   node_.wakeup().with_lock([&] {
     for (Peer& peer : peers_) {
-      while (peer.count > 0 && peer.queue[peer.head].cycle() < cycle) {
-        deliver(peer.queue[peer.head], controller);
-        peer.head = (peer.head + 1) % kQueue;
-        --peer.count;
-      }
-      const ::mcnc::ChannelStatus* status = cycle > 0 ? peer.status.at(cycle - 1) : nullptr;
-      if (status == nullptr && !lockstep) {
-        status = peer.status.latest();
-      }
+      peer.events.take_due(
+          cycle, [&](const ::mcnc::CoordinationEvent& event) { deliver(event, controller); });
+      const ::mcnc::ChannelStatus* status = peer.status.for_cycle(cycle, lockstep);
       PartnerStatus p;
-      if (status != nullptr && !peer.lost) {
+      if (status != nullptr && !peer.status.lost()) {
         p.known = true;
         p.state = static_cast<ChannelState>(static_cast<int>(status->state()));
         p.call_id = status->call_id();
         p.call_caller = status->call_caller();
       }
       controller.set_partner(peer.id, p);
-      if (peer.lost && !peer.lost_told) {
-        peer.lost_told = true;
+      if (peer.status.take_loss()) {
         controller.partner_lost(peer.id);
       }
     }
@@ -124,12 +111,12 @@ void ChannelPeers::apply(std::uint64_t cycle, bool lockstep, ChannelController& 
 void ChannelPeers::apply_remaining_writes() {
   node_.wakeup().with_lock([&] {
     for (Peer& peer : peers_) {
-      for (; peer.count > 0; --peer.count, peer.head = (peer.head + 1) % kQueue) {
-        const ::mcnc::CoordinationEvent& e = peer.queue[peer.head];
-        if (e.kind() == COORD_VAR_WRITE) {
-          apply_write(e);
-        }
-      }
+      peer.events.take_due(std::numeric_limits<std::uint64_t>::max(),
+                           [&](const ::mcnc::CoordinationEvent& e) {
+                             if (e.kind() == COORD_VAR_WRITE) {
+                               apply_write(e);
+                             }
+                           });
     }
   });
 }

@@ -9,11 +9,11 @@
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/macro/variable_store.hpp"
 #include "common/config/machine_config.hpp"
-#include "common/cycle/cycle_buffer.hpp"
 #include "common/cycle/lockstep_gate.hpp"
+#include "common/cycle/pending_events.hpp"
+#include "common/cycle/tracked_input.hpp"
 #include "common/process/process_node.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -48,17 +48,11 @@ class ChannelPeers {
   static constexpr std::size_t kQueue = 1024;  // cycles of a peer's events, also in bursts
   struct Peer {
     std::uint32_t id = 0;
-    cycle::CycleBuffer<::mcnc::ChannelStatus, 8> status;
-    std::array<::mcnc::CoordinationEvent, kQueue> queue{};
-    std::size_t head = 0;
-    std::size_t count = 0;
-    dds::WriterId status_writer{};
-    bool status_writer_known = false;
-    bool lost = false;
-    bool lost_told = false;
+    cycle::TrackedInput<::mcnc::ChannelStatus> status;
+    cycle::PendingEvents<::mcnc::CoordinationEvent, kQueue> events;
   };
   static std::vector<Peer> peers_of(const config::MachineConfig& machine,
-                                    const config::ChannelConfig& self);
+                                    const config::ChannelConfig& self, std::size_t first_input);
   [[nodiscard]] Peer* find(std::uint32_t channel) noexcept;
   void on_event(const ::mcnc::CoordinationEvent& event);
   // One event to the controller: arrivals from all, calls to this channel, releases of its
@@ -68,7 +62,6 @@ class ChannelPeers {
 
   process::ProcessNode& node_;
   cycle::LockstepGate& gate_;
-  std::size_t first_input_;
   std::uint32_t self_;
   interp::macro::VariableStore& shared_;  // the machine-wide variables: others' writes go here
   std::vector<Peer> peers_;

@@ -8,33 +8,25 @@ PlcLink::PlcLink(process::ProcessNode& node, cycle::LockstepGate& gate, std::siz
                  std::uint32_t self)
     : node_(node),
       gate_(gate),
-      input_(input),
       self_(self),
+      status_(input),
       status_reader_(
           node.participant(),
           [this](const ::mcnc::PlcStatus& status, const dds::WriterId& writer) {
             node_.wakeup().update([&] {
-              gate_.on_sample(input_, status.cycle(), status.event_seq());
-              writer_ = writer;
-              writer_known_ = true;
+              status_.on_sample(status, status.cycle(), status.event_seq(), writer, gate_);
             });
           },
           [this](const dds::WriterId& writer, bool matched) {
-            if (matched) {
-              return;
+            if (!matched) {
+              node_.wakeup().update([&] { status_.on_unmatched(writer, gate_); });
             }
-            node_.wakeup().update([&] {
-              if (writer_known_ && writer == writer_) {
-                lost_ = true;
-                gate_.set_expected(input_, false);
-              }
-            });
           }),
       ack_reader_(node.participant(), [this](const ::mcnc::AuxAck& ack, const dds::WriterId&) {
         node_.wakeup().update([&] {
-          gate_.on_event(input_, ack.seq());
-          if (ack.channel() == self_ && count_ < kQueue) {
-            queue_[count_++] = ack;  // one request at a time: never more than a few
+          status_.on_event(ack.seq(), gate_);
+          if (ack.channel() == self_) {
+            (void)answers_.push(ack, ack.cycle());
           }
         });
       }) {}
@@ -45,22 +37,14 @@ bool PlcLink::discovered() const noexcept {
 
 void PlcLink::apply(std::uint64_t cycle, ChannelController& controller) {
   node_.wakeup().with_lock([&] {
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < count_; ++i) {
-      const ::mcnc::AuxAck& ack = queue_[i];
-      if (ack.cycle() >= cycle) {
-        queue_[kept++] = ack;
-        continue;
-      }
+    answers_.take_due(cycle, [&](const ::mcnc::AuxAck& ack) {
       AuxAnswer answer;
       answer.id = ack.aux_id();
       answer.outcome = static_cast<AuxOutcome>(static_cast<int>(ack.outcome()));
       std::snprintf(answer.reason.data(), answer.reason.size(), "%s", ack.reason().c_str());
       controller.on_aux_answer(answer);
-    }
-    count_ = kept;
-    if (lost_ && !lost_told_) {
-      lost_told_ = true;
+    });
+    if (status_.take_loss()) {
       controller.plc_lost();
     }
   });

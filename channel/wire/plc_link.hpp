@@ -5,9 +5,10 @@
 // adapter between DDS and ChannelController.
 #include "channel/control/channel_controller.hpp"
 #include "common/cycle/lockstep_gate.hpp"
+#include "common/cycle/pending_events.hpp"
+#include "common/cycle/tracked_input.hpp"
 #include "common/process/process_node.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -27,17 +28,12 @@ class PlcLink {
   void apply(std::uint64_t cycle, ChannelController& controller);
 
  private:
-  static constexpr std::size_t kQueue = 64;  // one request at a time: a few answers at most
   process::ProcessNode& node_;
   cycle::LockstepGate& gate_;
-  std::size_t input_;
   std::uint32_t self_;
-  std::array<::mcnc::AuxAck, kQueue> queue_{};
-  std::size_t count_ = 0;
-  dds::WriterId writer_{};
-  bool writer_known_ = false;
-  bool lost_ = false;
-  bool lost_told_ = false;
+  cycle::TrackedInput<::mcnc::PlcStatus> status_;
+  // One request at a time: a few answers at most.
+  cycle::PendingEvents<::mcnc::AuxAck, 64> answers_;
   dds::Reader<::mcnc::PlcStatus> status_reader_;
   dds::Reader<::mcnc::AuxAck> ack_reader_;
 };

@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
     bool owner_lost = false;            // the current owner's writer left
     process::Wakeup& wake = node.wakeup();
     dds::Reader<AxisSetpoint> setpoint_reader(
-        node.participant(), dds::Partitions::of({axis->name}),
+        node.participant(), dds::Keys::of({axis->name}),
         [&](const AxisSetpoint& sp, const dds::WriterId& writer) {
           const int k = sp.axis() == axis_id ? candidate_of(sp.channel()) : -1;
           if (k < 0) {
@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
         leader_names.push_back(machine.axes[id - 1].name);
       }
       leader_reader.emplace(
-          node.participant(), dds::Partitions::of(leader_names),
+          node.participant(), dds::Keys::of(leader_names),
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (master_history.may_lead(fb.axis())) {
               wake.update([&] {
@@ -255,7 +255,7 @@ int main(int argc, char** argv) {
       const auto sync_channel = static_cast<std::uint32_t>(sync_group->channel);
       sync_status_reader.emplace(
           node.participant(),
-          dds::Partitions::of({machine.channels[static_cast<std::size_t>(sync_channel - 1)].name}),
+          dds::Keys::of({machine.channels[static_cast<std::size_t>(sync_channel - 1)].name}),
           [&, sync_channel](const ChannelStatus& s, const dds::WriterId& writer) {
             if (s.channel() == sync_channel) {
               wake.update([&] {
@@ -272,8 +272,7 @@ int main(int argc, char** argv) {
           });
       master_reader.emplace(
           node.participant(),
-          dds::Partitions::of(
-              {machine.axes[static_cast<std::size_t>(sync_group->master - 1)].name}),
+          dds::Keys::of({machine.axes[static_cast<std::size_t>(sync_group->master - 1)].name}),
           [&](const AxisFeedback& fb, const dds::WriterId& writer) {
             if (static_cast<int>(fb.axis()) == sync_group->master) {
               wake.update([&] { master_feedback.on_sample(fb, fb.cycle(), 0, writer, gate); });

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   for (const auto& name : channel.axes) {
     setpoints.push_back(std::make_unique<dds::Writer<AxisSetpoint>>(node.participant(), name));
   }
-  dds::Reader<AxisFeedback> feedback(node.participant(), dds::Partitions::of(channel.axes),
+  dds::Reader<AxisFeedback> feedback(node.participant(), dds::Keys::of(channel.axes),
                                      [](const AxisFeedback&, const dds::WriterId&) {});
   dds::Writer<RunControl> control(node.participant());
 

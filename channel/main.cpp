@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
       spindles.push_back(machine.find_axis(name));
     }
     const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
-    const std::vector<std::string> fed_nodes = config::node_partitions(fed);
+    const std::vector<std::string> fed_nodes = config::node_keys(fed);
     std::vector<cycle::TrackedInput<AxisFeedback>> feedback =
         cycle::tracked_inputs<AxisFeedback>(0, fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     }
     // A spindle's feedback is also its C axis's.
     dds::Reader<AxisFeedback> feedback_reader(
-        node.participant(), dds::Partitions::of(fed_nodes),
+        node.participant(), dds::Keys::of(fed_nodes),
         [&](const AxisFeedback& fb, const dds::WriterId& writer) {
           wake.update([&] {
             for (std::size_t slot = 0; slot < fed.size(); ++slot) {

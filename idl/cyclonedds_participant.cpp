@@ -122,8 +122,8 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
     case QosKind::cyclic:
       // Over shared memory a reader's iceoryx queue is as deep as its history, and it drops
       // its oldest when full. Cyclone DDS 0.10 queues every writer's chunk of the topic for
-      // every reader (partitions are applied after, from_matched): in lockstep all of them
-      // come at once, so the queue must hold one cycle of the whole machine's writers.
+      // every reader of it (it ignores partitions; the project's topics are per key, decision
+      // 35): in lockstep they come in bursts, and a queue of 8 once dropped samples.
       if (role == ReaderRole::observer) {
         keep(qos, false, false, kSharedMemoryQueue, 4096, 256);
       } else {
@@ -384,8 +384,7 @@ class CycloneReader final : public detail::ReaderImpl {
   }
 
   // The writers matched now, from the reader itself: a status can stand for several changes.
-  // Here, at a match, and not at each sample of a writer it does not know (every sample of
-  // another partition is one, below).
+  // Here, at a match, and not at each sample of a writer it does not know.
   void refresh_matched(dds_entity_t reader) {
     std::array<dds_instance_handle_t, 256> handles{};
     const dds_return_t n = dds_get_matched_publications(reader, handles.data(), handles.size());
@@ -397,7 +396,8 @@ class CycloneReader final : public detail::ReaderImpl {
   }
 
   // Cyclone DDS 0.10 hands a reader every shared-memory sample of its topic, whatever the
-  // writer's partition: only the samples of a matched writer are this reader's.
+  // writer's partition: only the samples of a matched writer are this reader's (a guard: the
+  // project's routed topics are per key, decision 35).
   bool from_matched(dds_instance_handle_t writer) {
     std::lock_guard<std::mutex> lock(mutex_);
     return matched_.count(writer) != 0;

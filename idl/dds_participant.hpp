@@ -125,9 +125,8 @@ std::chrono::nanoseconds participant_lease(const Participant& participant);
 namespace detail {
 class WriterBase {
  public:
-  WriterBase(Participant& participant, const char* topic, TypeSupport type, QosKind qos,
-             const Partitions& partitions)
-      : impl_(participant.impl().writer(topic, type, qos, partitions)) {}
+  WriterBase(Participant& participant, const std::string& topic, TypeSupport type, QosKind qos)
+      : impl_(participant.impl().writer(topic.c_str(), type, qos, Partitions{})) {}
   bool write_raw(const void* sample) noexcept { return impl_->write(sample); }
   [[nodiscard]] int matched_readers() const noexcept { return impl_->matched_readers(); }
 
@@ -135,21 +134,43 @@ class WriterBase {
   std::unique_ptr<WriterImpl> impl_;
 };
 
+// One reader of the topics `topics` (one topic, or a routed topic's keys), all calling the same
+// callbacks.
 class ReaderBase {
  public:
-  ReaderBase(Participant& participant, const char* topic, TypeSupport type, QosKind qos,
-             ReaderRole role, const Partitions& partitions, ReaderCallbacks callbacks)
-      : impl_(participant.impl().reader(topic, type, qos, role, partitions, std::move(callbacks))) {
+  ReaderBase(Participant& participant, const std::vector<std::string>& topics,
+             TypeSupport (*type)(), QosKind qos, ReaderRole role,
+             const ReaderCallbacks& callbacks) {
+    for (const std::string& topic : topics) {
+      impls_.push_back(
+          participant.impl().reader(topic.c_str(), type(), qos, role, Partitions{}, callbacks));
+    }
   }
-  [[nodiscard]] int matched_writers() const noexcept { return impl_->matched_writers(); }
+  // Over all its topics.
+  [[nodiscard]] int matched_writers() const noexcept {
+    int n = 0;
+    for (const auto& impl : impls_) {
+      n += impl->matched_writers();
+    }
+    return n;
+  }
 
  private:
-  std::unique_ptr<ReaderImpl> impl_;
+  std::vector<std::unique_ptr<ReaderImpl>> impls_;
 };
 
 template <class T>
 TypeSupport type_support() {
   return TypeSupport{new typename TopicTraits<T>::PubSubType(), TopicTraits<T>::cyclonedds()};
+}
+
+inline std::vector<std::string> keyed_topics(const char* topic, const Keys& keys) {
+  std::vector<std::string> topics;
+  topics.reserve(keys.names.size());
+  for (const std::string& key : keys.names) {
+    topics.push_back(keyed_topic(topic, key));
+  }
+  return topics;
 }
 }  // namespace detail
 
@@ -157,12 +178,11 @@ template <class T>
 class Writer {
  public:
   explicit Writer(Participant& participant) requires(!TopicTraits<T>::routed)
-      : base_(participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos,
-              Partitions{}) {}
-  // A routed topic's writer writes in the partition of its key (an axis's or channel's name).
+      : base_(participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos) {}
+  // A routed topic's writer writes on the topic of its key (an axis node's or channel's name).
   Writer(Participant& participant, const std::string& key) requires TopicTraits<T>::routed
-      : base_(participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos,
-              Partitions::of({key})) {}
+      : base_(participant, keyed_topic(TopicTraits<T>::name, key), detail::type_support<T>(),
+              TopicTraits<T>::qos) {}
   bool write(const T& sample) noexcept { return base_.write_raw(&sample); }
   [[nodiscard]] int matched_readers() const noexcept { return base_.matched_readers(); }
 
@@ -177,20 +197,20 @@ class Reader {
   using MatchFn = detail::MatchFn;
   Reader(Participant& participant, SampleFn on_sample, MatchFn on_match = {},
          ReaderRole role = ReaderRole::consumer) requires(!TopicTraits<T>::routed)
-      : Reader(participant, Partitions{}, std::move(on_sample), std::move(on_match), role, 0) {}
-  // A routed topic's reader hears the writers of the partitions it names, and only them.
-  Reader(Participant& participant, Partitions partitions, SampleFn on_sample, MatchFn on_match = {},
-         ReaderRole role = ReaderRole::consumer) requires TopicTraits<T>::routed
-      : Reader(participant, std::move(partitions), std::move(on_sample), std::move(on_match), role,
+      : Reader(participant, {TopicTraits<T>::name}, std::move(on_sample), std::move(on_match), role,
                0) {}
+  // A routed topic's reader hears the writers of the keys it names, and only them.
+  Reader(Participant& participant, const Keys& keys, SampleFn on_sample, MatchFn on_match = {},
+         ReaderRole role = ReaderRole::consumer) requires TopicTraits<T>::routed
+      : Reader(participant, detail::keyed_topics(TopicTraits<T>::name, keys), std::move(on_sample),
+               std::move(on_match), role, 0) {}
   [[nodiscard]] int matched_writers() const noexcept { return base_.matched_writers(); }
 
  private:
-  Reader(Participant& participant, const Partitions& partitions, SampleFn on_sample,
+  Reader(Participant& participant, const std::vector<std::string>& topics, SampleFn on_sample,
          MatchFn on_match, ReaderRole role, int /*either*/)
       : base_(
-            participant, TopicTraits<T>::name, detail::type_support<T>(), TopicTraits<T>::qos, role,
-            partitions,
+            participant, topics, &detail::type_support<T>, TopicTraits<T>::qos, role,
             detail::ReaderCallbacks{[] { return static_cast<void*>(new T()); },
                                     [](void* p) { delete static_cast<T*>(p); },
                                     [fn = std::move(on_sample)](const void* s, const WriterId& w) {

@@ -2,6 +2,7 @@
 
 #include "channel/control/channel_controller.hpp"
 #include "common/clock/cycle_clock.hpp"
+#include "common/config/cyclic_routes.hpp"
 #include "common/process/exit_deadline.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
@@ -94,7 +95,7 @@ LaunchResult Launcher::run(
   // channel's status carries its run's start and end cycles), so both cyclic readers are
   // observers: no writer waits for the launcher or repeats samples for it.
   dds::Reader<::mcnc::ChannelStatus> status_reader(
-      node.participant(), dds::Partitions::all(),
+      node.participant(), dds::Keys::of(config::channel_names(machine_)),
       [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
         auto& slot = seen.status[s.channel()];
@@ -104,7 +105,7 @@ LaunchResult Launcher::run(
       },
       {}, dds::ReaderRole::observer);
   dds::Reader<AxisFeedback> feedback_reader(
-      node.participant(), dds::Partitions::all(),
+      node.participant(), dds::Keys::of(config::node_keys(machine_)),
       [&](const AxisFeedback& f, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
         seen.feedback[f.axis()] = f;

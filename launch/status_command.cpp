@@ -1,5 +1,6 @@
 #include "launch/status_command.hpp"
 
+#include "common/config/cyclic_routes.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
 #include "idl/dds_participant.hpp"
@@ -36,12 +37,12 @@ int execute_status(const StatusArguments& args) {
   std::mutex mutex;
   status::StatusSnapshot snapshot;
   dds::Reader<::mcnc::ChannelStatus> channels(
-      participant, dds::Partitions::all(),
+      participant, dds::Keys::of(config::channel_names(machine)),
       [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(mutex);
         snapshot.channels[s.channel()] = status::view_of(s);
       });
-  dds::Reader<AxisFeedback> axes(participant, dds::Partitions::all(),
+  dds::Reader<AxisFeedback> axes(participant, dds::Keys::of(config::node_keys(machine)),
                                  [&](const AxisFeedback& f, const dds::WriterId&) {
                                    std::lock_guard<std::mutex> lock(mutex);
                                    snapshot.axes[f.axis()] = status::view_of(f);

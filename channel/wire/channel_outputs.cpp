@@ -43,14 +43,13 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
       channel_names_(std::move(channel_names)) {
   for (std::size_t i = 0; i < axes_.size(); ++i) {
     c_slot_ = axes_[i]->spindle.empty() ? c_slot_ : i;
-    axis_setpoints_.push_back(i == c_slot_
-                                  ? nullptr
-                                  : std::make_unique<dds::Writer<AxisSetpoint>>(
-                                        node.participant(), config::node_partition(*axes_[i])));
+    axis_setpoints_.push_back(i == c_slot_ ? nullptr
+                                           : std::make_unique<dds::Writer<AxisSetpoint>>(
+                                                 node.participant(), config::node_key(*axes_[i])));
   }
   for (const config::AxisConfig* spindle : spindles_) {
     spindle_setpoints_.push_back(std::make_unique<dds::Writer<AxisSetpoint>>(
-        node.participant(), config::node_partition(*spindle)));
+        node.participant(), config::node_key(*spindle)));
   }
   set_program_now(program_name_);
 }

@@ -31,7 +31,7 @@ ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConf
       shared_(shared_variables),
       peers_(peers_of(machine, self, first_input)),
       status_reader_(
-          node.participant(), dds::Partitions::of(config::other_channels(machine, self)),
+          node.participant(), dds::Keys::of(config::other_channels(machine, self)),
           [this](const ::mcnc::ChannelStatus& status, const dds::WriterId& writer) {
             Peer* peer = find(status.channel());
             if (peer == nullptr) {

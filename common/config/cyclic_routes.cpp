@@ -14,7 +14,7 @@ void add_once(std::vector<std::string>& names, std::string name) {
 
 }  // namespace
 
-std::string node_partition(const AxisConfig& axis) {
+std::string node_key(const AxisConfig& axis) {
   return axis.spindle.empty() ? axis.name : axis.spindle;  // a C axis names its spindle
 }
 
@@ -35,20 +35,28 @@ std::vector<const AxisConfig*> fed_axes(const MachineConfig& machine,
   return fed;
 }
 
-std::vector<std::string> node_partitions(const std::vector<const AxisConfig*>& axes) {
+std::vector<std::string> node_keys(const std::vector<const AxisConfig*>& axes) {
   std::vector<std::string> names;
   for (const AxisConfig* a : axes) {
     if (a != nullptr) {
-      add_once(names, node_partition(*a));
+      add_once(names, node_key(*a));
     }
   }
   return names;
 }
 
+std::vector<std::string> node_keys(const MachineConfig& machine) {
+  std::vector<const AxisConfig*> axes;
+  for (const AxisConfig& a : machine.axes) {
+    axes.push_back(&a);
+  }
+  return node_keys(axes);
+}
+
 std::size_t channels_fed_by(const MachineConfig& machine, const std::string& node) {
   std::size_t count = 0;
   for (const ChannelConfig& c : machine.channels) {
-    const std::vector<std::string> nodes = node_partitions(fed_axes(machine, c));
+    const std::vector<std::string> nodes = node_keys(fed_axes(machine, c));
     count += std::find(nodes.begin(), nodes.end(), node) != nodes.end() ? 1 : 0;
   }
   return count;

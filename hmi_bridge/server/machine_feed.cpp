@@ -1,6 +1,7 @@
 #include "hmi_bridge/server/machine_feed.hpp"
 
 #include "channel/interp/command.hpp"
+#include "common/config/cyclic_routes.hpp"
 #include "common/process/process_node.hpp"
 #include "common/text/file_name.hpp"
 #include "common/text/text_lines.hpp"
@@ -21,7 +22,7 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
                    process::resolve_middleware(machine, "HMI")),
       commands_(participant_),
       // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
-      channels_(participant_, dds::Partitions::all(),
+      channels_(participant_, dds::Keys::of(config::channel_names(machine)),
                 [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
                   std::lock_guard<std::mutex> lock(mutex_);
                   snapshot_.channels[s.channel()] = status::view_of(s);
@@ -29,7 +30,7 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
       // An observer: the axes' feedback changes every cycle, and an HMI behind the machine
       // must not add to its work.
       axes_(
-          participant_, dds::Partitions::all(),
+          participant_, dds::Keys::of(config::node_keys(machine)),
           [this](const ::mcnc::AxisFeedback& f, const dds::WriterId&) {
             std::lock_guard<std::mutex> lock(mutex_);
             snapshot_.axes[f.axis()] = status::view_of(f);

@@ -51,7 +51,7 @@ PlcInputs::PlcInputs(process::ProcessNode& node, const config::MachineConfig& ma
       status_(cycle::tracked_inputs<::mcnc::ChannelStatus>(0, channels_)),
       feedback_(cycle::tracked_inputs<::mcnc::AxisFeedback>(channels_, spindles_.size())),
       status_reader_(
-          node.participant(), dds::Partitions::of(config::channel_names(machine)),
+          node.participant(), dds::Keys::of(config::channel_names(machine)),
           [this](const ::mcnc::ChannelStatus& s, const dds::WriterId& writer) {
             if (s.channel() >= 1 && s.channel() <= channels_) {
               node_.wakeup().update([&] {
@@ -92,7 +92,7 @@ PlcInputs::PlcInputs(process::ProcessNode& node, const config::MachineConfig& ma
                       });
                     }),
       feedback_reader_(
-          node.participant(), dds::Partitions::of(axis_names(machine, spindles_)),
+          node.participant(), dds::Keys::of(axis_names(machine, spindles_)),
           [this](const ::mcnc::AxisFeedback& fb, const dds::WriterId& writer) {
             for (std::size_t k = 0; k < spindles_.size(); ++k) {
               if (static_cast<int>(fb.axis()) == spindles_[k]) {

@@ -56,7 +56,7 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
                                      std::lock_guard<std::mutex> lock(mutex);
                                      phases[s.name()] = s.phase();
                                    });
-  dds::Reader<AxisSetpoint> setpoints(control.participant(), dds::Partitions::all(),
+  dds::Reader<AxisSetpoint> setpoints(control.participant(), dds::Keys::of({"X1", "Z1"}),
                                       [&](const AxisSetpoint& sp, const dds::WriterId&) {
                                         std::lock_guard<std::mutex> lock(mutex);
                                         if (sp.axis() == 2) {

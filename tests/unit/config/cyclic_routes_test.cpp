@@ -20,11 +20,11 @@ class TwinTurretRoutes : public ::testing::Test {
 
 TEST_F(TwinTurretRoutes, AChannelReadsTheNodesOfItsAxesSpindlesAndSyncSlavesOnce) {
   // C1 travels on S1's node: S1 is named once.
-  EXPECT_EQ(node_partitions(fed_axes(machine, ch("CH1"))),
+  EXPECT_EQ(node_keys(fed_axes(machine, ch("CH1"))),
             (std::vector<std::string>{"X1", "Z1", "A1", "S1", "S2"}));
-  EXPECT_EQ(node_partitions(fed_axes(machine, ch("CH2"))),
+  EXPECT_EQ(node_keys(fed_axes(machine, ch("CH2"))),
             (std::vector<std::string>{"X2", "Z2", "A1", "S2"}));
-  EXPECT_EQ(node_partitions(fed_axes(machine, ch("CH3"))), (std::vector<std::string>{"X3", "Z3"}));
+  EXPECT_EQ(node_keys(fed_axes(machine, ch("CH3"))), (std::vector<std::string>{"X3", "Z3"}));
 }
 
 TEST_F(TwinTurretRoutes, FedAxesKeepTheChannelsSlotOrder) {
@@ -36,8 +36,8 @@ TEST_F(TwinTurretRoutes, FedAxesKeepTheChannelsSlotOrder) {
 }
 
 TEST_F(TwinTurretRoutes, ACAxisTravelsInItsSpindlesPartition) {
-  EXPECT_EQ(node_partition(*machine.find_axis("C1")), "S1");
-  EXPECT_EQ(node_partition(*machine.find_axis("X1")), "X1");
+  EXPECT_EQ(node_key(*machine.find_axis("C1")), "S1");
+  EXPECT_EQ(node_key(*machine.find_axis("X1")), "X1");
 }
 
 TEST_F(TwinTurretRoutes, EachNodeCountsTheChannelsThatReadIt) {

@@ -16,9 +16,9 @@
 
 namespace {
 
+using mcnc::dds::Keys;
 using mcnc::dds::Middleware;
 using mcnc::dds::Participant;
-using mcnc::dds::Partitions;
 
 constexpr int kDomain = 229;
 constexpr auto kWait = std::chrono::seconds(20);
@@ -90,7 +90,7 @@ TEST_P(Middlewares, ACyclicSampleCrossesWithEveryField) {
   Participant reading(kDomain, "reading", mcnc::dds::CyclicClock::lockstep, to);
   Inbox<mcnc::AxisSetpoint> inbox;
   mcnc::dds::Reader<mcnc::AxisSetpoint> reader(
-      reading, Partitions::of({"X1"}),
+      reading, Keys::of({"X1"}),
       [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { inbox.put(sp); });
   mcnc::dds::Writer<mcnc::AxisSetpoint> writer(writing, "X1");
   ASSERT_TRUE(wait_matched(writer, reader));
@@ -137,9 +137,10 @@ INSTANTIATE_TEST_SUITE_P(BothWays, Middlewares,
                                   "_to_" + mcnc::dds::middleware_name(info.param.second);
                          });
 
-// Over shared memory Cyclone DDS 0.10 hands every reader of a topic every writer's chunk; the
-// reader keeps only those of the writers it matched, as it does over RTPS.
-TEST(CycloneDds, ARoutedReaderNeverHearsAnotherPartition) {
+// Over shared memory Cyclone DDS 0.10 matches by topic: with a topic per key, a reader of X1's
+// setpoints never receives Z1's (and, were a chunk of another writer ever handed to it, the
+// reader keeps only the samples of the writers it matched, as over RTPS).
+TEST(CycloneDds, ARoutedReaderNeverHearsAnotherKey) {
   Participant writing(kDomain + 2, "writing", mcnc::dds::CyclicClock::lockstep,
                       Middleware::cyclonedds);
   Participant reading(kDomain + 2, "reading", mcnc::dds::CyclicClock::lockstep,
@@ -147,10 +148,10 @@ TEST(CycloneDds, ARoutedReaderNeverHearsAnotherPartition) {
   Inbox<mcnc::AxisSetpoint> x1;
   Inbox<mcnc::AxisSetpoint> z1;
   mcnc::dds::Reader<mcnc::AxisSetpoint> x1_reader(
-      reading, Partitions::of({"X1"}),
+      reading, Keys::of({"X1"}),
       [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { x1.put(sp); });
   mcnc::dds::Reader<mcnc::AxisSetpoint> z1_reader(
-      reading, Partitions::of({"Z1"}),
+      reading, Keys::of({"Z1"}),
       [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { z1.put(sp); });
   mcnc::dds::Writer<mcnc::AxisSetpoint> to_x1(writing, "X1");
   mcnc::dds::Writer<mcnc::AxisSetpoint> to_z1(writing, "Z1");

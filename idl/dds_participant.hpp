@@ -33,8 +33,9 @@ const char* middleware_name(Middleware middleware) noexcept;
 Middleware middleware_from_env();
 enum class LocalTransport { shared_memory, network };
 
-// The default when nothing chooses (docs/decisions.md 32).
-inline constexpr Middleware kDefaultMiddleware = Middleware::fastdds;
+// The default when nothing chooses: the one the figures show to be better (docs/decisions.md
+// 36).
+inline constexpr Middleware kDefaultMiddleware = Middleware::cyclonedds;
 
 // A Cyclone DDS process moves its cyclic samples through iceoryx shared memory, brokered by the
 // host's RouDi (iox-roudi). Without one, creating a participant would block for ever: the

@@ -1,16 +1,15 @@
 #include "harness.hpp"
 
 #include "common/process/shm_cleanup.hpp"
+#include "roudi/iceoryx_tmp.hpp"
 
 #include <gtest/gtest.h>
 
-#include <dirent.h>
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mount.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -263,62 +262,18 @@ std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, con
 
 void isolate_iceoryx_host() {
   const auto fail = [](const std::string& what) {
-    throw std::runtime_error("isolate_iceoryx_host: " + what + ": " + std::strerror(errno));
-  };
-  // iceoryx 2.0 keeps RouDi's socket and locks, and each runtime's socket, in /tmp.
-  const auto iceoryx_owns = [](const std::string& name, const struct stat& st) {
-    return S_ISSOCK(st.st_mode) || name.rfind("iox-", 0) == 0 || name.rfind("roudi", 0) == 0 ||
-           name.rfind("iceoryx_", 0) == 0;
+    throw std::runtime_error("isolate_iceoryx_host: " + what);
   };
   if (::unshare(CLONE_NEWNS) != 0 ||
       ::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) {
-    fail("mount namespace");
-  }
-  // Opened in the new namespace: a bind mount's source must be one of its own mounts.
-  const int host_tmp = ::open("/tmp", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (host_tmp < 0) {
-    fail("open /tmp");
+    fail(std::string("mount namespace: ") + std::strerror(errno));
   }
   if (::mount("tmpfs", "/dev/shm", "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0) {
-    fail("tmpfs on /dev/shm");
+    fail(std::string("tmpfs on /dev/shm: ") + std::strerror(errno));
   }
-  std::vector<std::pair<std::string, mode_t>> kept;
-  DIR* dir = ::fdopendir(::dup(host_tmp));
-  if (dir == nullptr) {
-    fail("read /tmp");
+  if (const std::string why = cover_iceoryx_files("/tmp"); !why.empty()) {
+    fail(why);
   }
-  while (const dirent* e = ::readdir(dir)) {
-    const std::string name = e->d_name;
-    struct stat st {};
-    if (name == "." || name == ".." ||
-        ::fstatat(host_tmp, e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0 || iceoryx_owns(name, st)) {
-      continue;
-    }
-    if (S_ISDIR(st.st_mode) || S_ISREG(st.st_mode)) {
-      kept.emplace_back(name, st.st_mode);
-    }
-  }
-  ::closedir(dir);
-  if (::mount("tmpfs", "/tmp", "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0) {
-    fail("tmpfs on /tmp");
-  }
-  // The host's files and folders, bound back through the descriptor of the covered /tmp.
-  for (const auto& [name, mode] : kept) {
-    const std::string at = "/tmp/" + name;
-    const bool made = S_ISDIR(mode) ? ::mkdir(at.c_str(), 0700) == 0
-                                    : ::close(::open(at.c_str(), O_CREAT | O_WRONLY, 0600)) == 0;
-    const std::string from = "/proc/self/fd/" + std::to_string(host_tmp) + "/" + name;
-    if (!made) {
-      fail("make " + at);
-    }
-    if (::mount(from.c_str(), at.c_str(), nullptr, MS_BIND | MS_REC, nullptr) != 0) {
-      if (errno != ENOENT) {
-        fail("bind " + at);
-      }
-      ::remove(at.c_str());  // gone from the host's /tmp since it was listed
-    }
-  }
-  ::close(host_tmp);
 }
 
 void use_middleware(const TestMachine& machine, const std::string& machine_wide,

@@ -4,13 +4,16 @@
 //   2. mounts the host's root (9p, tag "hostroot") and makes it the root, with the guest's own
 //      proc, sys, dev and a tmpfs on /dev/shm and /run, so no shared memory or temporary file
 //      the command leaves outlives the guest: its TMPDIR is /run/tmp (/tmp stays the host's,
-//      since a build tree may be there),
+//      since a build tree may be there, but without the host's iceoryx files: the guest's
+//      RouDi keeps its own there, and a socket over 9p does not connect),
 //   3. brings up lo and the vcan interfaces named by `mcnc.can=` (default vcan0),
 //   4. runs `/bin/bash <mcnc.work>/command` on the console, writes its exit code to
 //      <mcnc.work>/status, and powers the guest off.
 // Every step says on the console what failed and why; a failed step powers off without a
 // status, which the runner reports as "kernel CAN could not be had". Static, so that it needs
 // nothing of the host's root before that root is mounted.
+#include "roudi/iceoryx_tmp.hpp"
+
 #include <fcntl.h>
 #include <sys/mount.h>
 #include <sys/reboot.h>
@@ -204,6 +207,9 @@ int main() {
   // Temporary files in the guest's memory: a candump record written over 9p lost frames.
   mkdir((root + "/run/tmp").c_str(), 01777);
   chmod((root + "/run/tmp").c_str(), 01777);  // past the umask
+  if (const std::string why = mcnc::test::cover_iceoryx_files(root + "/tmp"); !why.empty()) {
+    fail(why);
+  }
   if (chroot(kNewRoot) != 0 || chdir("/") != 0) {
     fail("chroot to the host's root: " + errno_text());
   }

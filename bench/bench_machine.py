@@ -6,10 +6,10 @@ AXES_PER_BUS = 4
 
 
 def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cycles=50,
-                 middleware=None):
-    addresses = ["X", "Z"][:axes_per_channel]
+                 middleware=None, axes_per_bus=AXES_PER_BUS):
+    addresses = ["X", "Z", "Y", "A"][:axes_per_channel]  # a linear A: four per channel
     axes = [(f"{a}{c}", a, f"CH{c}") for c in range(1, channels + 1) for a in addresses]
-    buses = (len(axes) + AXES_PER_BUS - 1) // AXES_PER_BUS
+    buses = (len(axes) + axes_per_bus - 1) // axes_per_bus
     lines = [
         "machine:",
         f"  name: {name}",
@@ -26,7 +26,7 @@ def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cy
             f"  - name: can{b}",
             f"    uri: udp:239.255.{domain}.{b + 1}:{24000 + domain + 300 * b}",
             "    bitrate: 1000000",
-            f"    sync_producer: {axes[b * AXES_PER_BUS][0]}",
+            f"    sync_producer: {axes[b * axes_per_bus][0]}",
         ]
     lines.append("channels:")
     for c in range(1, channels + 1):
@@ -38,8 +38,8 @@ def machine_yaml(name, channels, axes_per_channel, cycle_us, domain, deadline_cy
             f"  - name: {axis}",
             f"    address: {address}",
             "    type: linear",
-            f"    bus: can{i // AXES_PER_BUS}",
-            f"    node_id: {i % AXES_PER_BUS + 1}",
+            f"    bus: can{i // axes_per_bus}",
+            f"    node_id: {i % axes_per_bus + 1}",
             "    counts_per_unit: 10000",
             "    rapid_rate: 8000",
             "    max_feed: 5000",

@@ -1,18 +1,24 @@
 #!/usr/bin/env python3
 """How the machine scales with its channels: N channels of two axes (X, Z) each, four axes per
-CAN bus, a 2 ms cycle. Every channel runs the same program, two all-channel G04.1 marks and
-two moves, about 3 600 cycles. For each N it runs the machine with `mcnc run`:
+CAN bus, a 2 ms cycle (--axes 4 adds Y and a linear A to each channel, --cycle-us changes the
+cycle, --axes-per-bus the axes on a bus: at 1 ms a 1 Mbit/s bus carries two, the machine
+file's 70 % load limit). Every channel runs the same program, two all-channel G04.1 marks and two moves of X
+and Z, about 3 600 cycles at 2 ms. For each N it runs the machine with `mcnc run`:
   - in lockstep: cycles, wall time of the whole run and of its run phase (from the launcher's
     "starting the run" to its verdict), times real time over each, and CPU (user plus system
     of the whole run, start-up included) per machine cycle and per channel;
   - in realtime at the same cycle: whether the run ends without alarm, the share of one core
-    it took, and its alarms (a deadline missed ends in a quick stop, alarm 2006).
+    it took, and its alarms (a deadline missed ends in a quick stop, alarm 2006). The realtime
+    program dwells after its moves so that the run lasts --realtime-s seconds (default 60);
+    every axis still gets its setpoint every cycle while it dwells.
 Each N runs on every middleware named (`machine.middleware`), one after the other, so that
 their rows are side by side in one go. On Cyclone DDS the launcher starts the host's RouDi
 unless one answers (its start is in the whole run, not in the run phase).
 Figures, not a test: bench/README.md has them with this command.
 
-Usage: bench/scale.py [--build DIR] [--no-realtime] [--middleware fastdds,cyclonedds] [N ...]
+Usage: bench/scale.py [--build DIR] [--no-realtime] [--middleware fastdds,cyclonedds]
+                      [--axes 2|4] [--cycle-us US] [--axes-per-bus K] [--realtime-s S]
+                      [N ...]
        (default N: 1 2 4 8 16)
 """
 import argparse
@@ -27,8 +33,6 @@ import time
 from bench_machine import machine_yaml
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-CYCLE_US = 2000
-
 # Two moves of 42 mm at 12 mm/s, each after a mark every channel meets: about 3 600 cycles.
 PROGRAM = """%
 O0001 (scale bench)
@@ -36,20 +40,21 @@ G04.1 P1
 G01 X30. Z-30. F720
 G04.1 P2
 G01 X0 Z0 F720
-M30
+{dwell}M30
 %
 """
 
 
-def run(build, channels, clock, domain, middleware):
+def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwell_s):
     with tempfile.TemporaryDirectory() as tmp:
         machine = os.path.join(tmp, "m.yaml")
         with open(machine, "w") as f:
-            f.write(machine_yaml(f"scale_{channels}", channels, 2, CYCLE_US, domain,
-                                 deadline_cycles=10, middleware=middleware))
+            f.write(machine_yaml(f"scale_{channels}", channels, axes, cycle_us, domain,
+                                 deadline_cycles=10, middleware=middleware,
+                                 axes_per_bus=per_bus))
         prog = os.path.join(tmp, "p.nc")
         with open(prog, "w") as f:
-            f.write(PROGRAM)
+            f.write(PROGRAM.format(dwell=f"G04 X{dwell_s:.1f}\n" if dwell_s > 0 else ""))
         trace = os.path.join(tmp, "t.jsonl")
         argv = [os.path.join(build, "bin", "mcnc"), "run", machine, "--clock", clock,
                 "--trace", trace, "--trace-pos-every", "1000", "--timeout", "600"]
@@ -87,24 +92,34 @@ def main():
     ap.add_argument("--build", default=os.path.join(HERE, "..", "build"))
     ap.add_argument("--no-realtime", action="store_true")
     ap.add_argument("--middleware", default="fastdds,cyclonedds")
+    ap.add_argument("--axes", type=int, choices=[2, 4], default=2)
+    ap.add_argument("--cycle-us", type=int, default=2000)
+    ap.add_argument("--axes-per-bus", type=int, default=4)
+    ap.add_argument("--realtime-s", type=float, default=60.0)
     ap.add_argument("channels", type=int, nargs="*", default=[1, 2, 4, 8, 16])
     args = ap.parse_args()
-    print("| N channels | middleware | cycles | lockstep: times real time (whole run / run phase) "
-          "| CPU per machine cycle | per channel | realtime 2 ms |")
+    cycle_us = args.cycle_us
+    # The moves take about 7.2 s; the dwell makes up the rest of the realtime run.
+    dwell_s = max(0.0, args.realtime_s - 7.2)
+    print(f"| N channels × {args.axes} axes | middleware | cycles | lockstep: times real time "
+          f"(whole run / run phase) | CPU per machine cycle | per channel "
+          f"| realtime {cycle_us / 1000:g} ms, {args.realtime_s:g} s |")
     print("|---|---|---|---|---|---|---|")
     for i, (n, mw) in enumerate((n, mw) for n in args.channels
                                 for mw in args.middleware.split(",")):
-        lock = run(args.build, n, "lockstep", 60 + 2 * i, mw)
+        lock = run(args.build, n, "lockstep", 60 + 2 * i, mw, args.axes, cycle_us,
+                   args.axes_per_bus, 0.0)
         if lock["code"] != 0 or lock["cycles"] == 0:
             print(f"| {n} | {mw} | the lockstep run failed (exit {lock['code']}) | | | | |",
                   flush=True)
             print(lock["tail"], file=sys.stderr)
             continue
-        machine_s = lock["cycles"] * CYCLE_US / 1e6
+        machine_s = lock["cycles"] * cycle_us / 1e6
         per_cycle = lock["cpu"] / lock["cycles"] * 1e6
         realtime = "not run"
         if not args.no_realtime:
-            rt = run(args.build, n, "realtime", 61 + 2 * i, mw)
+            rt = run(args.build, n, "realtime", 61 + 2 * i, mw, args.axes, cycle_us,
+                     args.axes_per_bus, dwell_s)
             share = 100 * rt["cpu"] / rt["wall"]
             if rt["code"] == 0:
                 realtime = f"runs, {share:.0f} % of one core"

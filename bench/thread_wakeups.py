@@ -4,7 +4,12 @@ program, how many processes, their voluntary context switches per second (each o
 ended: a wake-up) and their CPU share of one core. Run it beside a machine run; divide by the
 machine's cycles per second for the figures per cycle.
 
-Usage: bench/thread_wakeups.py [SECONDS]   (default 5)
+With --threads, one row per program and thread name (the cycle thread is the process's main
+thread, named after the program; the middleware's threads carry their own names), so that the
+wake-ups can be told apart: the cycle's own, the middleware's receive and delivery threads,
+the CAN bus's.
+
+Usage: bench/thread_wakeups.py [--threads] [SECONDS]   (default 5)
 """
 import collections
 import os
@@ -14,7 +19,7 @@ import time
 TICKS = os.sysconf("SC_CLK_TCK")
 
 
-def snapshot():
+def snapshot(by_thread):
     threads = {}
     for pid in filter(str.isdigit, os.listdir("/proc")):
         try:
@@ -29,17 +34,24 @@ def snapshot():
                     fields = f.read().rsplit(")", 1)[1].split()
                 switches = int(status.split("voluntary_ctxt_switches:")[1].split()[0])
                 cpu_ticks = int(fields[11]) + int(fields[12])  # utime + stime
-                threads[(program, pid, tid)] = (switches, cpu_ticks)
+                name = program
+                if by_thread:
+                    with open(f"/proc/{pid}/task/{tid}/comm") as f:
+                        name = f"{program} / {f.read().strip()}"
+                threads[(name, pid, tid)] = (switches, cpu_ticks)
         except (FileNotFoundError, ProcessLookupError, IndexError):
             continue  # a thread that ended meanwhile
     return threads
 
 
 def main():
-    seconds = float(sys.argv[1]) if len(sys.argv) > 1 else 5.0
-    before = snapshot()
+    args = sys.argv[1:]
+    by_thread = "--threads" in args
+    args = [a for a in args if a != "--threads"]
+    seconds = float(args[0]) if args else 5.0
+    before = snapshot(by_thread)
     time.sleep(seconds)
-    after = snapshot()
+    after = snapshot(by_thread)
     totals = collections.defaultdict(lambda: [0, 0, set()])
     for key, (switches, ticks) in after.items():
         if key in before:
@@ -47,7 +59,8 @@ def main():
             t[0] += switches - before[key][0]
             t[1] += ticks - before[key][1]
             t[2].add(key[1])
-    print("| program | processes | wake-ups per second | CPU, % of one core |")
+    print(f"| {'program / thread' if by_thread else 'program'} | processes "
+          "| wake-ups per second | CPU, % of one core |")
     print("|---|---|---|---|")
     for program, (switches, ticks, pids) in sorted(totals.items(), key=lambda kv: -kv[1][1]):
         print(f"| {program} | {len(pids)} | {switches / seconds:.0f} "

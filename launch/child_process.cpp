@@ -1,5 +1,6 @@
 #include "launch/child_process.hpp"
 
+#include <sched.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -39,7 +40,7 @@ ChildProcess::~ChildProcess() {
   }
 }
 
-void ChildProcess::start(const std::vector<std::string>& env_overrides) {
+bool ChildProcess::start(const std::vector<std::string>& env_overrides, int fifo_priority) {
   std::vector<std::string> env_strings;
   for (char** e = environ; *e != nullptr; ++e) {
     const std::string entry(*e);
@@ -64,10 +65,26 @@ void ChildProcess::start(const std::vector<std::string>& env_overrides) {
     args.push_back(a.data());
   }
   args.push_back(nullptr);
-  const int rc = posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), env.data());
+  int rc = EPERM;
+  if (fifo_priority > 0) {
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sched_param param{};
+    param.sched_priority = fifo_priority;
+    posix_spawnattr_setschedpolicy(&attr, SCHED_FIFO);
+    posix_spawnattr_setschedparam(&attr, &param);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSCHEDULER);
+    rc = posix_spawn(&pid_, args[0], nullptr, &attr, args.data(), env.data());
+    posix_spawnattr_destroy(&attr);
+  }
+  const bool scheduled = rc == 0;
+  if (rc == EPERM) {  // not asked for, or not permitted
+    rc = posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), env.data());
+  }
   if (rc != 0) {
     throw std::runtime_error("cannot start " + argv_[0] + ": " + std::strerror(rc));
   }
+  return scheduled || fifo_priority <= 0;
 }
 
 bool ChildProcess::poll_exited() noexcept {

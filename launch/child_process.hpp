@@ -16,9 +16,11 @@ class ChildProcess {
   ChildProcess& operator=(ChildProcess&&) = delete;
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
-  // Starts it with `env_overrides` ("KEY=VALUE") added to this process's environment.
-  // Throws std::runtime_error when the executable cannot be started.
-  void start(const std::vector<std::string>& env_overrides);
+  // Starts it with `env_overrides` ("KEY=VALUE") added to this process's environment, and with
+  // `fifo_priority` > 0 at SCHED_FIFO of that priority from its first instruction, so every
+  // thread it makes inherits it. Returns false when that priority was not permitted: it then
+  // runs as an ordinary process. Throws std::runtime_error when the executable cannot be started.
+  bool start(const std::vector<std::string>& env_overrides, int fifo_priority = 0);
   // True once it has exited (reaps it); exit_status() then says how.
   bool poll_exited() noexcept;
   void signal(int sig) noexcept;

@@ -4,6 +4,7 @@
 #include "common/process/process_node.hpp"
 #include "idl/dds_participant.hpp"
 
+#include <sched.h>
 #include <unistd.h>
 
 #include <spdlog/spdlog.h>
@@ -39,6 +40,22 @@ std::string find_roudi() {
 }
 
 }  // namespace
+
+pid_t running_roudi_pid() {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos) {
+      continue;
+    }
+    std::string comm;
+    std::getline(std::ifstream(entry.path() / "comm"), comm);
+    if (comm == "iox-roudi") {
+      return static_cast<pid_t>(std::stol(name));
+    }
+  }
+  return -1;
+}
 
 std::vector<std::string> dds_process_names(const config::MachineConfig& machine, bool with_hmi) {
   std::vector<std::string> names{"launch"};
@@ -84,6 +101,15 @@ std::string roudi_config(std::size_t processes) {
 HostRoudi::HostRoudi(std::size_t processes, bool must_be_running) {
   if (dds::roudi_answers()) {
     spdlog::info("using the iceoryx RouDi that runs on this host");
+    const pid_t pid = running_roudi_pid();
+    sched_param param{};
+    if (pid > 0 && (::sched_getscheduler(pid) != SCHED_FIFO || ::sched_getparam(pid, &param) != 0 ||
+                    param.sched_priority < kRoudiPriority)) {
+      spdlog::warn(
+          "the host's iceoryx RouDi (pid {}) runs below SCHED_FIFO {}: under load it may fall "
+          "behind and remove processes that still run (start it with chrt -f {})",
+          pid, kRoudiPriority, kRoudiPriority);
+    }
     return;
   }
   if (must_be_running) {
@@ -102,7 +128,12 @@ HostRoudi::HostRoudi(std::size_t processes, bool must_be_running) {
   std::ofstream(config_path_) << roudi_config(processes);
   child_.emplace("roudi",
                  std::vector<std::string>{binary, "-c", config_path_, "-l", "warning", "-k", "1"});
-  child_->start({});
+  if (!child_->start({}, kRoudiPriority)) {
+    spdlog::warn(
+        "the iceoryx RouDi could not have SCHED_FIFO {}: under load it may fall behind and "
+        "remove processes that still run",
+        kRoudiPriority);
+  }
   const auto deadline = std::chrono::steady_clock::now() + kAnswerTimeout;
   while (!dds::roudi_answers()) {
     if (child_->poll_exited() || std::chrono::steady_clock::now() > deadline) {

@@ -3,6 +3,7 @@
 // travel through its shared memory, and without it their participants could not start. RouDi is
 // one per host, shared by every machine and domain on it (each domain has its own iceoryx
 // service name, idl/cyclonedds_participant.cpp).
+#include "common/clock/cycle_clock.hpp"
 #include "launch/child_process.hpp"
 
 #include <cstddef>
@@ -25,9 +26,20 @@ bool needs_roudi(const config::MachineConfig& machine, bool with_hmi);
 // hold every cyclic sample of their histories and queues, with room to spare.
 std::string roudi_config(std::size_t processes);
 
+// RouDi removes a process whose keep-alive it has not handled for 1.5 s. Its work is small and
+// bounded (registrations and port requests at start-up, keep-alives), so it runs above
+// everything of the host's: above ordinary load, which starved it at a lockstep machine's
+// start beside a CPU hog, and above a realtime machine's processes
+// (clock::kRealtimePriority).
+inline constexpr int kRoudiPriority = clock::kRealtimePriority + 1;
+
+// The pid of a running iox-roudi, from /proc; -1 when none runs.
+pid_t running_roudi_pid();
+
 class HostRoudi {
  public:
-  // Uses the RouDi that answers. Else, unless `must_be_running`, starts iox-roudi with a
+  // Uses the RouDi that answers, and warns when it runs below SCHED_FIFO kRoudiPriority. Else,
+  // unless `must_be_running`, starts iox-roudi at that priority (where permitted) with a
   // configuration sized for `processes` and waits until it answers. Throws std::runtime_error
   // saying why when none answers: nothing of the machine may start then.
   HostRoudi(std::size_t processes, bool must_be_running);

@@ -38,7 +38,7 @@ const char* prepare_realtime_process() noexcept {
   // The default 50 us timer slack would add to every wake-up.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   sched_param param{};
-  param.sched_priority = 40;
+  param.sched_priority = kRealtimePriority;
   const bool fifo = sched_setscheduler(0, SCHED_FIFO, &param) == 0;
   const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
   if (fifo && locked) {

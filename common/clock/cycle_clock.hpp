@@ -14,6 +14,8 @@ void sleep_until_ns(std::int64_t t_ns) noexcept;
 // run back to back (a burst would starve the bus of time between SYNCs).
 std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std::uint64_t cycle,
                              bool skip_missed) noexcept;
+// The SCHED_FIFO priority of a realtime process, every thread of it.
+inline constexpr int kRealtimePriority = 40;
 // Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted.
 // Call it first thing in main(), before any thread starts: threads inherit the policy, and the
 // DDS and CAN receive threads must not wait behind ordinary work. Returns a short description

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include <algorithm>
 #include <cmath>
 #include <csignal>
@@ -68,11 +70,12 @@ RoudiHoldings roudi_holdings() {
   return ::testing::AssertionFailure() << "RouDi holds " << now.text << "; before, " << before.text;
 }
 
-// The host's RouDi, as a service of the host would run it.
+// The host's RouDi, as a service of the host would run it (above the machine, as
+// docs/operations.md asks).
 std::unique_ptr<Background> start_host_roudi(const TestMachine& machine) {
   auto roudi = std::make_unique<Background>(
-      std::vector<std::string>{"/usr/bin/iox-roudi", "-c", source("tests/roudi/roudi_config.toml"),
-                               "-l", "warning"},
+      std::vector<std::string>{"/usr/bin/chrt", "-f", "41", "/usr/bin/iox-roudi", "-c",
+                               source("tests/roudi/roudi_config.toml"), "-l", "warning"},
       -1, machine.file("roudi.log"));
   EXPECT_TRUE(eventually([] { return roudi_holdings().chunks_in_use >= 0; }, 20s))
       << slurp(machine.file("roudi.log"));
@@ -204,4 +207,40 @@ TEST(SharedMemory, AKilledRoudiEStopsTheMachineAndTheNextRunStartsItsOwn) {
   // of its own, and the run is the first one's.
   EXPECT_EQ(clean_run(machine), first);
   EXPECT_EQ(roudi_holdings().chunks_in_use, -1) << "the launcher stops the RouDi it started";
+}
+
+// RouDi removes a process whose keep-alive it has not handled for 1.5 s. The threads of a
+// realtime machine run at SCHED_FIFO, above every ordinary process: the RouDi the launcher
+// starts runs above them, so that no load of the host starves it into removing processes that
+// still run (docs/decisions.md 37).
+TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcesses) {
+  isolate_iceoryx_host();
+  const TestMachine machine = small_lathe_on_shared_memory(172);
+  Background launch({bin("mcnc"), "run", machine.path(), "--clock", "realtime", "--program",
+                     "CH1=" + source("launch/programs/long_feed.nc")},
+                    -1, machine.file("launch"));
+  const std::string roudi_config = "mcnc-roudi-" + std::to_string(launch.pid()) + ".toml";
+  pid_t roudi = 0;
+  pid_t axis = 0;
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto roudis = pids_with_arg(roudi_config);
+        roudi = roudis.size() == 1 ? roudis[0] : 0;
+        axis = pid_of(machine, "X1");
+        return roudi != 0 && axis != 0;
+      },
+      60s))
+      << slurp(machine.file("launch"));
+  const auto fifo_priority = [](pid_t pid) {
+    sched_param param{};
+    return ::sched_getscheduler(pid) == SCHED_FIFO && ::sched_getparam(pid, &param) == 0
+               ? param.sched_priority
+               : 0;
+  };
+  // The axis node sets its own priority first thing in its main().
+  EXPECT_TRUE(eventually([&] { return fifo_priority(axis) == 40; }, 10s));
+  EXPECT_EQ(fifo_priority(roudi), 41);
+  launch.kill(SIGTERM);
+  EXPECT_NE(launch.wait(60s), -1000) << "launch did not exit";
+  EXPECT_TRUE(pids_with_arg(roudi_config).empty()) << "the launcher stops the RouDi it started";
 }

@@ -4,10 +4,10 @@ program, how many processes, their voluntary context switches per second (each o
 ended: a wake-up) and their CPU share of one core. Run it beside a machine run; divide by the
 machine's cycles per second for the figures per cycle.
 
-With --threads, one row per program and thread name (the cycle thread is the process's main
-thread, named after the program; the middleware's threads carry their own names), so that the
-wake-ups can be told apart: the cycle's own, the middleware's receive and delivery threads,
-the CAN bus's.
+With --threads, one row per program and thread: the main thread (the cycle's), ours by their
+names (can-rx, can-sync, alarms, trace, program-loader), the middleware's by theirs (Cyclone
+DDS: recv, recvUC, tev, dq.builtins, gc; iceoryx: KeepAlive) and a library's unnamed ones
+(Cyclone DDS's shared-memory listener), so that the wake-ups can be told apart.
 
 Usage: bench/thread_wakeups.py [--threads] [SECONDS]   (default 5)
 """
@@ -37,7 +37,14 @@ def snapshot(by_thread):
                 name = program
                 if by_thread:
                     with open(f"/proc/{pid}/task/{tid}/comm") as f:
-                        name = f"{program} / {f.read().strip()}"
+                        thread = f.read().strip()
+                    # Our threads carry names (common/process/thread_name.hpp); a thread that
+                    # kept the program's name and is not the main one is a library's.
+                    if tid == pid:
+                        thread = "main (the cycle)"
+                    elif thread == program:
+                        thread = "unnamed (a library's)"
+                    name = f"{program} / {thread}"
                 threads[(name, pid, tid)] = (switches, cpu_ticks)
         except (FileNotFoundError, ProcessLookupError, IndexError):
             continue  # a thread that ended meanwhile

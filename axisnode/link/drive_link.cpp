@@ -1,4 +1,5 @@
 #include "axisnode/link/drive_link.hpp"
+#include "common/process/thread_name.hpp"
 
 #include "axisnode/canopen/bus_filters.hpp"
 #include "common/clock/cycle_clock.hpp"
@@ -23,7 +24,10 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
   if (!bus_->set_filters(std::span(filters.data(), n))) {
     spdlog::warn("node {}: the bus refused the receive filter; receiving every frame", node_id_);
   }
-  thread_ = std::thread([this] { receive_loop(); });
+  thread_ = std::thread([this] {
+    process::name_this_thread("can-rx");
+    receive_loop();
+  });
 }
 
 DriveLink::~DriveLink() {
@@ -38,6 +42,7 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
   sync_late_ns_.assign(kLatenessRecords, 0);
   sync_late_count_ = 0;
   sync_thread_ = std::thread([this, schedule] {
+    process::name_this_thread("can-sync");
     std::uint64_t next = 0;
     while (!sync_stop_) {
       // Wake at the due time, or within 50 ms to notice a stop.

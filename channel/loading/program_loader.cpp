@@ -1,4 +1,5 @@
 #include "channel/loading/program_loader.hpp"
+#include "common/process/thread_name.hpp"
 
 #include "channel/interp/program/program_format_alarms.hpp"
 #include "common/text/file_name.hpp"
@@ -64,6 +65,7 @@ void ProgramLoader::run() {
   // inherits from the process (--clock realtime).
   sched_param normal{};
   (void)pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
+  process::name_this_thread("program-loader");
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return stop_ || requested_; });

@@ -1,4 +1,5 @@
 #include "common/process/process_node.hpp"
+#include "common/process/thread_name.hpp"
 
 #include "common/config/machine_config.hpp"
 #include "common/process/exit_deadline.hpp"
@@ -76,7 +77,10 @@ ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
           }
         });
       }) {
-  alarm_thread_ = std::thread([this] { publish_alarms(); });
+  alarm_thread_ = std::thread([this] {
+    name_this_thread("alarms");
+    publish_alarms();
+  });
 }
 
 void ProcessNode::announce(ProcessPhase phase, std::uint64_t cycle, const std::string& detail) {

@@ -1,4 +1,5 @@
 #include "common/trace/trace_writer.hpp"
+#include "common/process/thread_name.hpp"
 
 #include <cstdarg>
 #include <cstring>
@@ -54,7 +55,10 @@ TraceWriter::TraceWriter(const std::string& path, std::string src) : src_(std::m
     throw std::runtime_error("cannot write trace file " + path);
   }
   slots_.resize(kSlotSize * kSlots);
-  thread_ = std::thread([this] { run(); });
+  thread_ = std::thread([this] {
+    process::name_this_thread("trace");
+    run();
+  });
 }
 
 TraceWriter::~TraceWriter() {

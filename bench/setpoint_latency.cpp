@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
       const auto cls = canopen::classify(frame);
       if (cls.kind == canopen::FrameKind::rpdo1 && cls.node == axis.node_id) {
         if (auto pdo = canopen::decode_rpdo_csp(frame)) {
-          const std::int64_t k = pdo->target_position - 1'000'000;  // offset: see below
+          const std::int64_t k = pdo->target_position;  // see below
           if (k >= 0 && k < static_cast<std::int64_t>(received.size()) &&
               received[static_cast<std::size_t>(k)] == 0) {
             received[static_cast<std::size_t>(k)] = now;
@@ -128,7 +128,9 @@ int main(int argc, char** argv) {
   rc.start_ns(start_ns);
   control.write(rc);
 
-  // Setpoint k carries position (1'000'000 + k) counts, so the RPDO target identifies it.
+  // Setpoint k carries position k counts, so the RPDO target identifies it: a creep of one
+  // count a cycle from where the axis stands, which its following-error limit allows (a jump
+  // to a far position, as this bench once sent, ends in alarm 2009 and a quick stop).
   const double counts = axis.counts_per_unit;
   const auto total = static_cast<std::uint64_t>(cycles + warmup);
   for (std::uint64_t cycle = 0; cycle < total; ++cycle) {
@@ -140,7 +142,7 @@ int main(int argc, char** argv) {
       sp.channel(static_cast<std::uint32_t>(channel.id));
       sp.cycle(cycle);
       sp.valid(true);
-      sp.pos(a.id == axis.id ? (1'000'000.0 + static_cast<double>(cycle)) / counts : 0.0);
+      sp.pos(a.id == axis.id ? static_cast<double>(cycle) / counts : 0.0);
       if (a.id == axis.id) {
         published[cycle] = clock::monotonic_ns();
       }

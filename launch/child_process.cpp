@@ -65,26 +65,26 @@ bool ChildProcess::start(const std::vector<std::string>& env_overrides, int fifo
     args.push_back(a.data());
   }
   args.push_back(nullptr);
-  int rc = EPERM;
-  if (fifo_priority > 0) {
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
+  const bool fifo = fifo_priority > 0;
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  if (fifo) {
     sched_param param{};
     param.sched_priority = fifo_priority;
     posix_spawnattr_setschedpolicy(&attr, SCHED_FIFO);
     posix_spawnattr_setschedparam(&attr, &param);
     posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSCHEDULER);
-    rc = posix_spawn(&pid_, args[0], nullptr, &attr, args.data(), env.data());
-    posix_spawnattr_destroy(&attr);
   }
-  const bool scheduled = rc == 0;
-  if (rc == EPERM) {  // not asked for, or not permitted
+  int rc = posix_spawn(&pid_, args[0], nullptr, &attr, args.data(), env.data());
+  posix_spawnattr_destroy(&attr);
+  const bool refused = fifo && rc == EPERM;  // the priority was not permitted
+  if (refused) {
     rc = posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), env.data());
   }
   if (rc != 0) {
     throw std::runtime_error("cannot start " + argv_[0] + ": " + std::strerror(rc));
   }
-  return scheduled || fifo_priority <= 0;
+  return !refused;
 }
 
 bool ChildProcess::poll_exited() noexcept {

@@ -39,8 +39,7 @@ std::string find_roudi() {
   return {};
 }
 
-}  // namespace
-
+// The pid of a running iox-roudi, from /proc; -1 when none runs.
 pid_t running_roudi_pid() {
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
@@ -56,6 +55,8 @@ pid_t running_roudi_pid() {
   }
   return -1;
 }
+
+}  // namespace
 
 std::vector<std::string> dds_process_names(const config::MachineConfig& machine, bool with_hmi) {
   std::vector<std::string> names{"launch"};

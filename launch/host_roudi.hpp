@@ -33,9 +33,6 @@ std::string roudi_config(std::size_t processes);
 // (clock::kRealtimePriority).
 inline constexpr int kRoudiPriority = clock::kRealtimePriority + 1;
 
-// The pid of a running iox-roudi, from /proc; -1 when none runs.
-pid_t running_roudi_pid();
-
 class HostRoudi {
  public:
   // Uses the RouDi that answers, and warns when it runs below SCHED_FIFO kRoudiPriority. Else,

@@ -1,8 +1,8 @@
 #include "axisnode/link/drive_link.hpp"
-#include "common/process/thread_name.hpp"
 
 #include "axisnode/canopen/bus_filters.hpp"
 #include "common/clock/cycle_clock.hpp"
+#include "common/process/thread_name.hpp"
 
 #include <spdlog/spdlog.h>
 

@@ -1,7 +1,7 @@
 #include "channel/loading/program_loader.hpp"
-#include "common/process/thread_name.hpp"
 
 #include "channel/interp/program/program_format_alarms.hpp"
+#include "common/process/thread_name.hpp"
 #include "common/text/file_name.hpp"
 #include "common/text/text_lines.hpp"
 

@@ -1,9 +1,9 @@
 #include "common/process/process_node.hpp"
-#include "common/process/thread_name.hpp"
 
 #include "common/config/machine_config.hpp"
 #include "common/process/exit_deadline.hpp"
 #include "common/process/startup.hpp"
+#include "common/process/thread_name.hpp"
 
 #include <unistd.h>
 

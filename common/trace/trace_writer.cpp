@@ -1,4 +1,5 @@
 #include "common/trace/trace_writer.hpp"
+
 #include "common/process/thread_name.hpp"
 
 #include <cstdarg>

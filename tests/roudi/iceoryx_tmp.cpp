@@ -51,14 +51,13 @@ std::string cover_iceoryx_files(const std::string& tmp) {
     }
   }
   ::closedir(dir);
-  std::string why;
   if (::mount("tmpfs", tmp.c_str(), "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0) {
-    why = failed("tmpfs on " + tmp);
+    const std::string why = failed("tmpfs on " + tmp);
+    ::close(covered);
+    return why;
   }
+  std::string why;
   for (const auto& [name, mode] : kept) {
-    if (!why.empty()) {
-      break;
-    }
     const std::string at = tmp + "/" + name;
     const bool made = S_ISDIR(mode) ? ::mkdir(at.c_str(), 0700) == 0
                                     : ::close(::open(at.c_str(), O_CREAT | O_WRONLY, 0600)) == 0;

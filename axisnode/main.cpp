@@ -328,7 +328,8 @@ int main(int argc, char** argv) {
     }
     dds::Writer<AxisFeedback> feedback_writer(node.participant(), axis->name);
 
-    axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, other_nodes, wake);
+    axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, sync_producer, other_nodes,
+                             wake);
     const bool spindle = axis->type == config::AxisType::spindle;
     canopen::NodeStartupConfig startup;
     startup.node = node_id;
@@ -708,7 +709,7 @@ int main(int argc, char** argv) {
       // 4. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
       link.exchange(axisnode::DriveCommand{out.controlword, out.target_counts,
                                            out.target_velocity_counts, out.mode},
-                    sync_producer, lockstep && !degraded, tpdo.count, abandon_bus_wait,
+                    lockstep && !degraded, tpdo.count, abandon_bus_wait,
                     std::chrono::milliseconds(stall_ms));
     }
 

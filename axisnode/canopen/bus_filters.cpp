@@ -22,17 +22,20 @@ class FilterList {
 
 }  // namespace
 
-std::size_t master_filters(std::uint8_t node, std::span<const std::uint8_t> other_nodes,
+std::size_t master_filters(std::uint8_t node, bool sync_producer,
+                           std::span<const std::uint8_t> other_nodes,
                            std::span<can::CanFilter> out) noexcept {
   FilterList list(out);
-  list.add(0x080);          // SYNC
   list.add(0x080U + node);  // EMCY
   list.add(0x180U + node);  // TPDO1
   list.add(0x280U + node);  // TPDO2
   list.add(0x580U + node);  // SDO responses
   list.add(0x700U + node);  // heartbeat, boot-up
-  for (const std::uint8_t other : other_nodes) {
-    list.add(0x200U + other);  // the others' RPDO1
+  if (sync_producer) {
+    list.add(0x080);  // SYNC
+    for (const std::uint8_t other : other_nodes) {
+      list.add(0x200U + other);  // the others' RPDO1
+    }
   }
   return list.result();
 }

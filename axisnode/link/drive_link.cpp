@@ -12,15 +12,16 @@ namespace mcnc::axisnode {
 
 using namespace std::chrono_literals;
 
-DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
+DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, bool sync_producer,
                      std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup)
     : bus_(std::move(bus)),
       node_id_(node_id),
+      sync_producer_(sync_producer),
       other_nodes_(std::move(other_nodes)),
       wakeup_(wakeup) {
   // Only what this node's master needs reaches it (in the kernel on SocketCAN).
   std::array<can::CanFilter, can::kMaxFilters> filters{};
-  const std::size_t n = canopen::master_filters(node_id_, other_nodes_, filters);
+  const std::size_t n = canopen::master_filters(node_id_, sync_producer_, other_nodes_, filters);
   if (!bus_->set_filters(std::span(filters.data(), n))) {
     spdlog::warn("node {}: the bus refused the receive filter; receiving every frame", node_id_);
   }
@@ -281,9 +282,8 @@ void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {
   bus_->send(canopen::encode_nmt(command, node_id_));
 }
 
-void DriveLink::exchange(const DriveCommand& command, bool sync_producer, bool lockstep,
-                         std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
-                         std::chrono::milliseconds slow) {
+void DriveLink::exchange(const DriveCommand& command, bool lockstep, std::uint64_t tpdos_seen,
+                         const std::function<bool()>& abandon, std::chrono::milliseconds slow) {
   const auto wait = [&](auto&& arrived, const char* what) {
     const auto since = std::chrono::steady_clock::now();
     bool warned = false;
@@ -297,21 +297,20 @@ void DriveLink::exchange(const DriveCommand& command, bool sync_producer, bool l
       }
     }
   };
-  const std::uint64_t syncs_before = syncs_.load();
   send_rpdo(command);
-  if (sync_producer && !lockstep && !sync_timer_running()) {
+  if (sync_producer_ && !lockstep && !sync_timer_running()) {
     send_sync();
   }
   if (!lockstep) {
     return;
   }
-  if (sync_producer) {
+  if (sync_producer_) {
     wait([&](auto t) { return wait_other_rpdos(t); }, "the RPDOs of the other nodes");
     send_sync();
-  } else {
-    wait([&](auto t) { return wait_sync_after(syncs_before, t); }, "SYNC");
   }
-  wait([&](auto t) { return wait_tpdo_after(tpdos_seen, t); }, "the drive's TPDO");
+  // The drive answers the producer's SYNC: every node awaits that answer alone (a node that
+  // does not produce the SYNC does not even receive it, bus_filters.hpp).
+  wait([&](auto t) { return wait_tpdo_after(tpdos_seen, t); }, "the drive's answer to the SYNC");
 }
 
 bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
@@ -325,10 +324,6 @@ bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
         return true;
       },
       timeout);
-}
-
-bool DriveLink::wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout) {
-  return wakeup_.wait_for([&] { return syncs_.load() > syncs_seen; }, timeout);
 }
 
 bool DriveLink::wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout) {

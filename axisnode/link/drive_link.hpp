@@ -42,7 +42,9 @@ struct DriveCommand {
 
 class DriveLink {
  public:
-  DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id,
+  // `sync_producer`: this node sends the bus's SYNC, in lockstep once the RPDO1 of each of
+  // `other_nodes` (the bus's other nodes) is seen.
+  DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, bool sync_producer,
             std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup);
   ~DriveLink();
   DriveLink(const DriveLink&) = delete;
@@ -86,13 +88,12 @@ class DriveLink {
   // One cycle on the bus. Realtime (`lockstep` false): the RPDO goes out, applied by the drive
   // at the next SYNC; the producer sends that SYNC here only when no SYNC timer runs (a lockstep
   // run winding down in real time). Lockstep:
-  // RPDO; the producer sends SYNC once every node's RPDO of the cycle is seen; then wait for the
-  // drive's answer to it (TPDO count past `tpdos_seen`). A lockstep wait never gives up on its
-  // own, which would make results depend on load: it ends when `abandon()` says so (stop,
-  // E-stop, owner gone), and logs when it has waited longer than `slow`.
-  void exchange(const DriveCommand& command, bool sync_producer, bool lockstep,
-                std::uint64_t tpdos_seen, const std::function<bool()>& abandon,
-                std::chrono::milliseconds slow);
+  // RPDO; the producer sends SYNC once every node's RPDO of the cycle is seen; then every node
+  // waits for its drive's answer to that SYNC (TPDO count past `tpdos_seen`). A lockstep wait never
+  // gives up on its own, which would make results depend on load: it ends when `abandon()` says so
+  // (stop, E-stop, owner gone), and logs when it has waited longer than `slow`.
+  void exchange(const DriveCommand& command, bool lockstep, std::uint64_t tpdos_seen,
+                const std::function<bool()>& abandon, std::chrono::milliseconds slow);
 
   [[nodiscard]] TpdoSample tpdo() noexcept;
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
@@ -108,11 +109,11 @@ class DriveLink {
   void receive_loop();
   // Lockstep waits (false on timeout).
   bool wait_other_rpdos(std::chrono::milliseconds timeout);
-  bool wait_sync_after(std::uint64_t syncs_seen, std::chrono::milliseconds timeout);
   bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
 
   std::unique_ptr<can::CanBus> bus_;
   std::uint8_t node_id_;
+  bool sync_producer_;
   std::vector<std::uint8_t> other_nodes_;
   process::Wakeup& wakeup_;
   std::atomic<bool> stop_{false};

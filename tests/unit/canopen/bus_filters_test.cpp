@@ -1,4 +1,4 @@
-// What each end of a bus lets in: the master of node 1 (with node 2 on the bus) and the drives.
+// What each end of a bus lets in: the masters of nodes 1 (the SYNC producer) and 2, and the drives.
 #include "axisnode/canopen/bus_filters.hpp"
 
 #include <gtest/gtest.h>
@@ -15,10 +15,10 @@ can::CanFrame with_id(std::uint32_t id) {
   return f;
 }
 
-TEST(BusFilters, TheMasterOfANodeHearsItsNodeSyncAndTheOthersRpdos) {
+TEST(BusFilters, TheSyncProducersMasterHearsItsNodeSyncAndTheOthersRpdos) {
   std::array<can::CanFilter, can::kMaxFilters> filters{};
   const std::vector<std::uint8_t> others{2};
-  const std::size_t n = master_filters(1, others, filters);
+  const std::size_t n = master_filters(1, true, others, filters);
   ASSERT_GT(n, 0U);
   can::CanFilterSet set;
   ASSERT_TRUE(set.assign(std::span(filters.data(), n)));
@@ -29,6 +29,23 @@ TEST(BusFilters, TheMasterOfANodeHearsItsNodeSyncAndTheOthersRpdos) {
     EXPECT_FALSE(set.passes(with_id(id))) << std::hex << id;
   }
   EXPECT_TRUE(set.passes(with_id(can::kErrFlag | 0x40U)));  // error frames always
+}
+
+// Any other node awaits only its drive's answer to the SYNC: neither the SYNC nor the others'
+// RPDOs would do more than wake it.
+TEST(BusFilters, AnotherNodesMasterHearsItsNodeAlone) {
+  std::array<can::CanFilter, can::kMaxFilters> filters{};
+  const std::vector<std::uint8_t> others{1};
+  const std::size_t n = master_filters(2, false, others, filters);
+  ASSERT_GT(n, 0U);
+  can::CanFilterSet set;
+  ASSERT_TRUE(set.assign(std::span(filters.data(), n)));
+  for (const std::uint32_t id : {0x082U, 0x182U, 0x282U, 0x582U, 0x702U}) {
+    EXPECT_TRUE(set.passes(with_id(id))) << std::hex << id;
+  }
+  for (const std::uint32_t id : {0x080U, 0x201U, 0x202U, 0x181U, 0x701U}) {
+    EXPECT_FALSE(set.passes(with_id(id))) << std::hex << id;
+  }
 }
 
 TEST(BusFilters, TheDrivesHearNmtSyncAndWhatIsAddressedToThem) {

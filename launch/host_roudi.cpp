@@ -3,6 +3,7 @@
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
 #include "idl/dds_participant.hpp"
+#include "launch/self_path.hpp"
 
 #include <sched.h>
 #include <unistd.h>
@@ -24,6 +25,9 @@ namespace {
 
 constexpr auto kAnswerTimeout = std::chrono::seconds(10);
 constexpr auto kStopTimeout = std::chrono::seconds(5);
+// A RouDi that serves registers a process in milliseconds; mcnc-roudi-check runs above the
+// host's load, as RouDi does.
+constexpr auto kRegisterTimeout = std::chrono::seconds(5);
 
 // iox-roudi on PATH (posix_spawn takes a path).
 std::string find_roudi() {
@@ -54,6 +58,24 @@ pid_t running_roudi_pid() {
     }
   }
   return -1;
+}
+
+// Empty when the RouDi that answers registers a process (mcnc-roudi-check) within
+// kRegisterTimeout; else what it did instead.
+std::string registration_failure() {
+  ChildProcess check("roudi-check", {executable_dir() + "/mcnc-roudi-check"});
+  check.start({}, kRoudiPriority);
+  const auto deadline = std::chrono::steady_clock::now() + kRegisterTimeout;
+  while (!check.poll_exited()) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      return "did not register a process within " + std::to_string(kRegisterTimeout.count()) +
+             " s";  // the check is ended with its handle
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return check.exit_code() == 0
+             ? std::string()
+             : "refused a process's registration (" + check.exit_description() + ")";
 }
 
 }  // namespace
@@ -101,8 +123,15 @@ std::string roudi_config(std::size_t processes) {
 
 HostRoudi::HostRoudi(std::size_t processes, bool must_be_running) {
   if (dds::roudi_answers()) {
-    spdlog::info("using the iceoryx RouDi that runs on this host");
     const pid_t pid = running_roudi_pid();
+    if (const std::string why = registration_failure(); !why.empty()) {
+      throw std::runtime_error(
+          "the host's iceoryx RouDi (pid " + std::to_string(pid) + ") answers at " +
+          dds::kRoudiSocket + " but " + why +
+          ": it is stuck (iceoryx 2.0 can hang for good cleaning up after a process killed "
+          "with SIGKILL); restart it");
+    }
+    spdlog::info("using the iceoryx RouDi that runs on this host");
     sched_param param{};
     if (pid > 0 && (::sched_getscheduler(pid) != SCHED_FIFO || ::sched_getparam(pid, &param) != 0 ||
                     param.sched_priority < kRoudiPriority)) {

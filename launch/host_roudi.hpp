@@ -35,10 +35,12 @@ inline constexpr int kRoudiPriority = clock::kRealtimePriority + 1;
 
 class HostRoudi {
  public:
-  // Uses the RouDi that answers, and warns when it runs below SCHED_FIFO kRoudiPriority. Else,
-  // unless `must_be_running`, starts iox-roudi at that priority (where permitted) with a
-  // configuration sized for `processes` and waits until it answers. Throws std::runtime_error
-  // saying why when none answers: nothing of the machine may start then.
+  // Uses the RouDi that answers, once it has registered a process (mcnc-roudi-check, 5 s at
+  // most), and warns when it runs below SCHED_FIFO kRoudiPriority. Else, unless
+  // `must_be_running`, starts iox-roudi at that priority (where permitted) with a configuration
+  // sized for `processes` and waits until it answers. Throws std::runtime_error saying why when
+  // none answers, or the one that answers registers no process: nothing of the machine may
+  // start then.
   HostRoudi(std::size_t processes, bool must_be_running);
   // Stops the RouDi it started (SIGTERM, SIGKILL after 5 s): call it after the machine's
   // processes are gone, since RouDi ends the processes still registered with it.

@@ -276,6 +276,18 @@ void isolate_iceoryx_host() {
   }
 }
 
+std::unique_ptr<Background> start_host_roudi(const std::string& log_path) {
+  auto roudi = std::make_unique<Background>(
+      std::vector<std::string>{"/usr/bin/chrt", "-f", "41", "/usr/bin/iox-roudi", "-c",
+                               source("tests/roudi/roudi_config.toml"), "-l", "warning"},
+      -1, log_path);
+  EXPECT_TRUE(eventually(
+      [] { return run({bin("mcnc-roudi-check")}, -1, std::chrono::seconds(10)).exit_code == 0; },
+      std::chrono::seconds(20)))
+      << slurp(log_path + ".out") << slurp(log_path + ".err");
+  return roudi;
+}
+
 void use_middleware(const TestMachine& machine, const std::string& machine_wide,
                     const std::string& channels) {
   std::string yaml = std::regex_replace(slurp(machine.path()), std::regex("\nmachine:\n"),

@@ -5,6 +5,7 @@
 
 #include <sys/types.h>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -107,6 +108,14 @@ bool eventually(Pred pred, std::chrono::milliseconds timeout) {
 // test may kill it. A test machine made after the call lies in the private /tmp. Throws
 // std::runtime_error (which fails the test) when the namespace cannot be made (it needs root).
 void isolate_iceoryx_host();
+
+// A RouDi of the test's own host (after isolate_iceoryx_host), as mcnc-launch starts one: at
+// SCHED_FIFO 41 with the suite's configuration, its output in `log_path`. Returns once it
+// registers a process (mcnc-roudi-check); fails the test when it does not within 20 s.
+// A test that kills a process on Cyclone DDS runs on such a host: iceoryx 2.0's RouDi can hang
+// for good cleaning up after a process killed with SIGKILL, and the suite's RouDi serves every
+// test after it.
+std::unique_ptr<Background> start_host_roudi(const std::string& log_path);
 
 // The machine file of `machine` with `machine.middleware: machine_wide`, and with `channels` as
 // each channel's own middleware when not empty.

@@ -1,13 +1,14 @@
 // Fast DDS and Cyclone DDS as one machine's wire (issue 21): the machine file chooses each
 // process's middleware, the twin-turret part transfer (CT-G1141-01) gives the same lockstep
 // trace on either and with channels on one and axis nodes on the other, three times in a row on
-// shared memory (once beside a CPU hog), and a machine on Cyclone DDS without a RouDi is refused
-// before anything starts.
+// shared memory (once beside a CPU hog), and a machine on Cyclone DDS without a RouDi, or with
+// one that registers no process, is refused before anything starts.
 #include "harness.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <fstream>
 #include <memory>
 #include <regex>
@@ -106,6 +107,26 @@ TEST(Middleware, AMachineOnCycloneDdsWithoutItsRoudiIsRefusedBeforeAnythingStart
   EXPECT_NE(r.err.find("no iceoryx RouDi answers"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("nothing started"), std::string::npos) << r.err;
   EXPECT_LT(std::chrono::steady_clock::now() - start, 20s) << "at once, never a wait";
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "nothing may be started";
+}
+
+// A RouDi that is stuck (iceoryx 2.0 can hang for good cleaning up after a process killed with
+// SIGKILL) still has its socket bound, so it answers a connect; here a stopped one stands for
+// it. The launcher tries a registration (mcnc-roudi-check) before anything starts.
+TEST(Middleware, AMachineWhoseRoudiRegistersNoProcessIsRefusedBeforeAnythingStarts) {
+  isolate_iceoryx_host();
+  TestMachine machine = twin_turret_on(158, "cyclonedds");
+  const auto roudi = start_host_roudi(machine.file("roudi"));
+  roudi->kill(SIGSTOP);
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult r = run({bin("mcnc"), "run", machine.path()}, -1, 60s);
+  const auto took = std::chrono::steady_clock::now() - start;
+  roudi->kill(SIGCONT);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("did not register a process within 5 s"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("restart it"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("nothing started"), std::string::npos) << r.err;
+  EXPECT_LT(took, 20s);
   EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "nothing may be started";
 }
 

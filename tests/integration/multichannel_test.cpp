@@ -490,6 +490,7 @@ TEST(MultiChannel, SharedVariablesWrittenBeforeAMarkAreSeenAfterItAndRetained) {
 // Faults (issue 7): a channel killed while its partner waits for it at a mark. The partner
 // does not wait for ever, nothing moves without its owner, and the machine stops safely.
 TEST(MultiChannel, AChannelKilledWhileItsPartnerWaitsStopsTheMachineSafely) {
+  isolate_iceoryx_host();  // it kills a channel (start_host_roudi)
   TestMachine machine("three_channel.yaml", 61);
   const std::string trace = machine.file("trace.jsonl");
   Background run(
@@ -864,6 +865,7 @@ TEST(MultiChannel, MovingAnAxisGivenAwayIsAnAlarmBeforeItMoves) {
 // Fault: the channel that owns an exchanged axis dies while it moves it. The axis node stops
 // the axis (its owner is gone), nobody else's setpoints move it, the machine stops safely.
 TEST(MultiChannel, AChannelKilledWhileItOwnsAnExchangedAxisStopsIt) {
+  isolate_iceoryx_host();  // it kills a channel (start_host_roudi)
   TestMachine machine("twin_turret.yaml", 70);
   const std::string trace = machine.file("trace.jsonl");
   Background run(
@@ -1156,6 +1158,7 @@ TEST(MultiChannel, ASpindleSyncSurvivesAResetAndItsSlaveIsNotTheChannelsToTurn) 
 // stopped with the machine, the partner waiting at a mark for the dead channel raises an alarm
 // instead of waiting for ever, and the machine stops.
 TEST(MultiChannel, AChannelKilledWhileItsSpindleLeadsASpindleSyncStopsBothSpindles) {
+  isolate_iceoryx_host();  // it kills a channel (start_host_roudi)
   TestMachine machine("twin_turret.yaml", 80);
   const std::string trace = machine.file("trace.jsonl");
   Background run(

@@ -31,7 +31,9 @@ double last_cmd(const std::string& part, const std::string& axis) {
 // Starts the processes of small_lathe one by one (no mcnc-launch), runs them with the given
 // clock, kills the channel while Z moves, and checks what the Z axis node did.
 void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expected_alarm) {
+  isolate_iceoryx_host();  // it kills a process on Cyclone DDS (start_host_roudi)
   TestMachine machine("small_lathe.yaml", domain, clock == REALTIME_CLOCK ? 50 : 0);
+  const auto roudi = start_host_roudi(machine.file("roudi"));
   const std::string m = machine.path();
   const std::string clock_name = clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime";
   Background sim({bin("mcnc-drivesim"), "--machine", m, "--bus", "can0", "--clock", clock_name},
@@ -145,6 +147,7 @@ TEST(Safety, KilledChannelMakesAxisNodeQuickStopLockstep) {
 }
 
 TEST(Safety, CrashedChildMakesLaunchStopEverythingAndExitNonZero) {
+  isolate_iceoryx_host();  // it kills a process on Cyclone DDS: the launcher starts a RouDi
   TestMachine machine("small_lathe.yaml", 23);
   const std::string trace = machine.file("trace.jsonl");
   Background launch({bin("mcnc-launch"), machine.path(), "--program",

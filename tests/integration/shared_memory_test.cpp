@@ -72,16 +72,6 @@ RoudiHoldings roudi_holdings() {
 
 // The host's RouDi, as a service of the host would run it (above the machine, as
 // docs/operations.md asks).
-std::unique_ptr<Background> start_host_roudi(const TestMachine& machine) {
-  auto roudi = std::make_unique<Background>(
-      std::vector<std::string>{"/usr/bin/chrt", "-f", "41", "/usr/bin/iox-roudi", "-c",
-                               source("tests/roudi/roudi_config.toml"), "-l", "warning"},
-      -1, machine.file("roudi.log"));
-  EXPECT_TRUE(eventually([] { return roudi_holdings().chunks_in_use >= 0; }, 20s))
-      << slurp(machine.file("roudi.log"));
-  return roudi;
-}
-
 TestMachine small_lathe_on_shared_memory(int domain) {
   TestMachine machine("small_lathe.yaml", domain);
   use_middleware(machine, "cyclonedds");
@@ -156,7 +146,7 @@ void expect_launch_alarm(const std::vector<nlohmann::json>& trace, const std::st
 TEST(SharedMemory, AKilledChannelOrAxisNodeLeavesRoudiHoldingNothingAndTheNextRunRunsAsTheFirst) {
   isolate_iceoryx_host();
   const TestMachine machine = small_lathe_on_shared_memory(170);
-  const auto roudi = start_host_roudi(machine);
+  const auto roudi = start_host_roudi(machine.file("roudi"));
   const RoudiHoldings idle = roudi_holdings();
   ASSERT_EQ(idle.chunks_in_use, 0) << idle.text;
   const auto first = clean_run(machine);
@@ -192,7 +182,7 @@ TEST(SharedMemory, AKilledChannelOrAxisNodeLeavesRoudiHoldingNothingAndTheNextRu
 TEST(SharedMemory, AKilledRoudiEStopsTheMachineAndTheNextRunStartsItsOwn) {
   isolate_iceoryx_host();
   const TestMachine machine = small_lathe_on_shared_memory(171);
-  auto roudi = start_host_roudi(machine);
+  auto roudi = start_host_roudi(machine.file("roudi"));
   const auto first = clean_run(machine);
 
   const auto [code, trace] = kill_while_feeding(machine, [&] { roudi->kill(SIGKILL); });

@@ -145,7 +145,7 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 std::string domain_config(int domain, bool shared_memory) {
   std::string config =
       "<CycloneDDS><Domain id=\"any\">"
-      "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>500ms</SPDPInterval>"
+      "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>1s</SPDPInterval>"
       "</Discovery>"
       "<SharedMemory><Enable>" +
       std::string(shared_memory ? "true" : "false") + "</Enable><Prefix>mcnc_d" +

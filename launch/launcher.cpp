@@ -13,6 +13,8 @@
 #include "launch/child_end.hpp"
 #include "launch/child_process.hpp"
 
+#include <pthread.h>
+#include <sched.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -331,7 +333,21 @@ LaunchResult Launcher::run(
       operator_writer.write(cmd);
     }
     const bool any_program = !options_.programs.empty();
+    const bool realtime = options_.clock == REALTIME_CLOCK;
+    if (realtime) {
+      // Every child is started: none inherits this priority.
+      sched_param param{};
+      param.sched_priority = kSupervisorPriority;
+      if (::pthread_setschedparam(::pthread_self(), SCHED_FIFO, &param) != 0) {
+        spdlog::warn(
+            "the launcher could not run at SCHED_FIFO {}: a machine that overloads the host "
+            "would also keep it from stopping the machine",
+            kSupervisorPriority);
+      }
+    }
     const auto run_start = std::chrono::steady_clock::now();
+    std::uint64_t heard_cycle = 0;  // the newest cycle any channel reported
+    auto heard_at = run_start;
     auto last_progress = std::chrono::steady_clock::now() - 1s;
     std::optional<std::chrono::steady_clock::time_point> alarm_since;
     std::uint64_t alarm_cycle = 0;
@@ -359,6 +375,15 @@ LaunchResult Launcher::run(
       }
       if (process::g_stop_signal != 0) {
         failure = "interrupted";
+        break;
+      }
+      if (last_cycle > heard_cycle) {
+        heard_cycle = last_cycle;
+        heard_at = std::chrono::steady_clock::now();
+      }
+      if (realtime && std::chrono::steady_clock::now() - heard_at > kMachineSilentLimit) {
+        failure = "no channel heard for " + std::to_string(kMachineSilentLimit.count()) +
+                  " s: this host does not keep up with the machine in realtime";
         break;
       }
       if (options_.run_timeout_s > 0 && std::chrono::steady_clock::now() - run_start >

@@ -3,9 +3,11 @@
 // all are discovered, start the run (lockstep or realtime), supervise, stop. A child that exits
 // unexpectedly E-stops the machine: channels reset, drives quick stop, then a clean shutdown
 // and a non-zero result.
+#include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 #include "idl/topics.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -13,6 +15,14 @@
 #include <vector>
 
 namespace mcnc::launch {
+
+// A realtime machine whose processes need more CPU than the host has starves every ordinary
+// process, the launcher's own middleware threads among them. So in realtime the launcher's
+// supervising thread runs above the machine and its RouDi (common/clock, host_roudi.hpp), and
+// when no channel has been heard for kMachineSilentLimit it E-stops the machine: its run
+// timeout, an interrupt and the stop that follows still work on such a host.
+inline constexpr int kSupervisorPriority = clock::kRealtimePriority + 2;
+inline constexpr std::chrono::seconds kMachineSilentLimit{5};
 
 // An operator command the launcher sends at a given cycle (`mcnc run --operator`): a scripted
 // operator, deterministic in lockstep.

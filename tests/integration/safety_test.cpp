@@ -1,5 +1,6 @@
 // Safety behaviour with real processes: a killed channel makes its axis nodes quick stop with
-// an alarm; a crashed child makes mcnc-launch E-stop the machine and exit non-zero.
+// an alarm; a crashed child makes mcnc-launch E-stop the machine and exit non-zero; a realtime
+// machine the host cannot keep up with is E-stopped by a launcher that runs above it.
 #include "harness.hpp"
 
 #include "common/clock/cycle_clock.hpp"
@@ -7,9 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include <csignal>
 #include <iostream>
+#include <memory>
 #include <mutex>
+#include <vector>
 
 using namespace mcnc;
 using namespace mcnc::test;
@@ -186,4 +191,47 @@ TEST(Safety, CrashedChildMakesLaunchStopEverythingAndExitNonZero) {
   EXPECT_EQ(x_states.back()["state"], "quick_stop_active");
   const auto ch_states = events(t, "state", "CH1");
   EXPECT_EQ(ch_states.back()["state"], "reset");
+}
+
+// A realtime machine that needs more CPU than the host has starves every ordinary process, the
+// launcher's middleware threads among them. Here two busy loops at the machine's own priority
+// (SCHED_FIFO 40), one a core, stand for such a machine for 8 s: the machine's processes cannot
+// run beside them, and no channel is heard. The launcher's supervising thread runs above them
+// and E-stops the machine after 5 s of silence; the stop goes through once the loops end.
+TEST(Safety, ARealtimeMachineTheHostCannotKeepUpWithIsStoppedByItsLauncher) {
+  isolate_iceoryx_host();  // the launcher's own RouDi: the loops keep the processes from it
+  TestMachine machine("small_lathe.yaml", 24, 50);
+  const std::string trace = machine.file("trace.jsonl");
+  Background launch({bin("mcnc"), "run", machine.path(), "--clock", "realtime", "--program",
+                     "CH1=" + source("launch/programs/long_feed.nc"), "--trace", trace},
+                    -1, machine.file("launch"));
+  ASSERT_TRUE(eventually([&] { return last_cmd(trace + ".parts/Z1.jsonl", "Z1") < -1.0; }, 60s))
+      << slurp(machine.file("launch.err"));
+  // Its supervising thread (the main one, whose id is the process's) runs above the machine.
+  sched_param param{};
+  EXPECT_EQ(::sched_getscheduler(launch.pid()), SCHED_FIFO);
+  ASSERT_EQ(::sched_getparam(launch.pid(), &param), 0);
+  EXPECT_EQ(param.sched_priority, mcnc::clock::kRealtimePriority + 2);
+  std::vector<std::unique_ptr<Background>> loops;
+  for (int core = 0; core < 2; ++core) {
+    // Each ends by its own clock: nothing of lower priority could end it.
+    loops.push_back(std::make_unique<Background>(
+        std::vector<std::string>{"/usr/bin/chrt", "-f", "40", "/usr/bin/python3", "-c",
+                                 "import time\nend = time.monotonic() + 8\n"
+                                 "while time.monotonic() < end: pass\n"},
+        -1, machine.file("loop" + std::to_string(core))));
+  }
+  const int code = launch.wait(120s);
+  for (auto& loop : loops) {
+    EXPECT_EQ(loop->wait(30s), 0);
+  }
+  EXPECT_EQ(code, 1) << slurp(machine.file("launch.out")) << slurp(machine.file("launch.err"));
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "children left running";
+  const auto launch_alarms = events(read_trace(trace), "alarm", "launch");
+  ASSERT_FALSE(launch_alarms.empty());
+  EXPECT_NE(
+      launch_alarms[0]["text"].get<std::string>().find(
+          "no channel heard for 5 s: this host does not keep up with the machine in realtime"),
+      std::string::npos)
+      << launch_alarms[0];
 }

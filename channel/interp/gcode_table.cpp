@@ -92,6 +92,14 @@ GCodeInfo common_code(int code10) {
       return {GFunction::turret_mirror_on, 4};
     case 690:
       return {GFunction::turret_mirror_off, 4};
+    case 681:
+      return {GFunction::rotation_on, 17};
+    case 691:
+      return {GFunction::rotation_off, 17};
+    case 511:
+      return {GFunction::mirror_on, 22};
+    case 501:
+      return {GFunction::mirror_off, 22};
     case 700:
       return {GFunction::finishing_cycle, 0};
     case 710:
@@ -163,14 +171,10 @@ GCodeInfo common_code(int code10) {
     case 401:
     case 411:
     case 421:
-    case 501:
-    case 511:
     case 502:
     case 512:
     case 508:
     case 518:
-    case 681:
-    case 691:
     case 801:
     case 804:
     case 811:

@@ -41,6 +41,10 @@ enum class GFunction : std::uint8_t {
   modal_call_cancel,  // G67
   turret_mirror_on,   // G68
   turret_mirror_off,  // G69
+  rotation_on,        // G68.1 (group 17)
+  rotation_off,       // G69.1
+  mirror_on,          // G51.1 (group 22)
+  mirror_off,         // G50.1
   drill_cancel,       // G80
   css_on,             // G96
   css_off,            // G97

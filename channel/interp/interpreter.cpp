@@ -34,7 +34,7 @@ macro::VariableStore& Interpreter::variables() {
   return run_->variables();
 }
 
-const AxisVector& Interpreter::machine_position() const {
+AxisVector Interpreter::machine_position() const {
   return run_->machine();
 }
 

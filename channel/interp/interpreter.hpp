@@ -61,7 +61,7 @@ class Interpreter {
 
   macro::VariableStore& variables();
   // Physical machine position of each channel axis after the last pulled command.
-  const AxisVector& machine_position() const;
+  AxisVector machine_position() const;
   // The axes stand at `at` now (an exchanged axis came with its machine position): the next
   // command starts from there. Only between commands that stop read-ahead.
   void set_machine_position(const AxisVector& at);

@@ -2,12 +2,16 @@
 // The state of one interpreter run and its execution, behind Interpreter (interpreter.hpp).
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
 // program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
-// single cycles; system_variables.cpp: #2000-#19999.
+// single cycles; program_run_frame.cpp: the G68.1 rotation and the G51.1 mirror;
+// system_variables.cpp: #2000-#19999.
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
+#include "channel/interp/transform/axis_mirror.hpp"
+#include "channel/interp/transform/plane_rotation.hpp"
+#include "channel/interp/transform/transform_chain.hpp"
 
 #include <array>
 #include <map>
@@ -46,8 +50,9 @@ class ProgramRun final : public macro::VariableProvider {
   std::optional<InterpResult> next();
 
   macro::VariableStore& variables() { return vars_; }
-  const AxisVector& machine() const { return machine_; }
-  void set_machine(const AxisVector& at) { machine_ = at; }
+  // The machine position (machine_ turned and mirrored by the frame).
+  AxisVector machine() const;
+  void set_machine(const AxisVector& at);
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;
@@ -177,6 +182,18 @@ class ProgramRun final : public macro::VariableProvider {
   // the block); with R the direction picks the side. Marks the words used.
   bool arc_center(bool ccw, const std::array<int, 2>& axes, const AxisVector& target,
                   std::array<double, 2>& center, int column);
+
+  // ---- the G68.1 rotation and the G51.1 mirror (program_run_frame.cpp)
+  bool run_rotation(GFunction f, int column);  // G68.1 / G69.1
+  bool run_mirror(GFunction f, int column);    // G51.1 / G50.1
+  bool frame_active() const { return rotated_ || program_mirror_.active(); }
+  // False after alarm 1153 when `f` may not run while the frame is turned or mirrored.
+  bool frame_allows(GFunction f, int code10, int column);
+  // Builds frame_ from the rotation, the mirror and the offsets in force, the machine staying
+  // where it is; the commands made so far go out under the frame they were made in.
+  void rebuild_frame();
+  // The block's commands not yet mapped: positions and centres from the frame to the machine.
+  void map_to_machine();
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
@@ -371,8 +388,15 @@ class ProgramRun final : public macro::VariableProvider {
   std::array<ToolOffsetValues, kMaxToolOffsets + 1> geometry_{};
   std::array<ToolOffsetValues, kMaxToolOffsets + 1> wear_{};
 
-  // Coordinates (physical, per channel axis)
+  // Coordinates (physical, per channel axis). machine_ is the position in the frame: the
+  // programmed point plus the offsets, before the G68.1 rotation and the G51.1 mirror, which
+  // frame_ applies to every command on its way out (identity when neither is active).
   AxisVector machine_{};
+  bool rotated_ = false;
+  transform::PlaneRotation rotation_;     // physical program coordinates
+  transform::AxisMirror program_mirror_;  // physical work coordinates
+  transform::TransformChain frame_;
+  std::size_t framed_commands_ = 0;  // out_ commands frame_ has mapped already
   std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
   std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
   std::array<double, kMaxChannelAxes> shift_{};             // G50 shift

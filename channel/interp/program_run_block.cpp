@@ -349,6 +349,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   block_barrier_ = false;
   block_moved_ = false;
   block_exact_stop_ = false;
+  if (frame_active()) {
+    rebuild_frame();  // offsets written since the last block (G10, #2001, #5221 ...)
+  }
 
   // G codes of the block.
   std::array<BlockG, 8> gs{};
@@ -433,6 +436,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   GFunction primary = GFunction::unknown;  // the one-shot code that takes the words
   int primary_code = 0;
   int primary_column = 0;
+  bool frame_primary = false;  // the primary is G68.1/G69.1/G51.1/G50.1
   for (int i = 0; i < ng; ++i) {
     const BlockG& g = gs[static_cast<std::size_t>(i)];
     if (g.info.group == 1) {
@@ -443,7 +447,16 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       block_exact_stop_ = true;
       continue;
     }
-    if (g.info.group == 0) {
+    const bool frame_code =
+        g.info.function == GFunction::rotation_on || g.info.function == GFunction::rotation_off ||
+        g.info.function == GFunction::mirror_on || g.info.function == GFunction::mirror_off;
+    if (g.info.group == 0 || frame_code) {
+      if (primary != GFunction::unknown && (frame_code || frame_primary)) {
+        // G68.1 and G51.1 take the axis words as their centre: no other code may want them.
+        return fail(alarm::kGroupConflict,
+                    g_name(primary_code) + " and " + g_name(g.code10) + " in one block", g.column);
+      }
+      frame_primary = frame_primary || frame_code;
       primary = g.info.function;
       primary_code = g.code10;
       primary_column = g.column;
@@ -548,7 +561,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (contour_mode_ == ContourMode::capture && g.info.group == 2) {
       continue;  // G96/G97 in a G71-G73 contour are the finishing pass's (spec L1527)
     }
-    if (g.info.group != 0 && g.info.group != 1 &&
+    if (g.info.group != 0 && g.info.group != 1 && g.info.function != primary &&
         !apply_modal(g.info.function, g.code10, g.column)) {
       return false;
     }
@@ -721,6 +734,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
 
 bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
   const double value = static_cast<double>(code10) / 10.0;
+  if (!frame_allows(f, code10, column)) {
+    return false;
+  }
   switch (f) {
     case GFunction::plane_xy:
       plane_ = Plane::xy;
@@ -1308,7 +1324,16 @@ bool ProgramRun::run_m_codes(bool after_motion) {
 // One-shot codes
 
 bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
+  if (!frame_allows(f, code10, column)) {
+    return false;
+  }
   switch (f) {
+    case GFunction::rotation_on:
+    case GFunction::rotation_off:
+      return run_rotation(f, column);
+    case GFunction::mirror_on:
+    case GFunction::mirror_off:
+      return run_mirror(f, column);
     case GFunction::dwell:
       return run_dwell(column);
     case GFunction::channel_sync:

@@ -80,6 +80,9 @@ void ProgramRun::apply_tool_offset(int offset) {
   // No motion: the displayed position changes and the next move goes to the offset position
   // (spec dafeng L3574-3619). Incremental moves are measured from the displayed position.
   offset_ = offset;
+  if (frame_active()) {
+    rebuild_frame();
+  }
 }
 
 double ProgramRun::program_position(int axis) const {
@@ -126,7 +129,7 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
                                    bool machine_coordinates) {
   target = machine_;
   given.fill(false);
-  return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+  const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const auto i = static_cast<std::size_t>(axis);
     const int spindle = config_.axes[i].spindle;
     if (spindle > 0 && spindle < 10 && !position_control_[static_cast<std::size_t>(spindle)]) {
@@ -153,6 +156,13 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
       if (machine_coordinates) {
         return fail(alarm::kWordNotAllowed, "G53 takes absolute machine positions only", w.column);
       }
+      if (program_mirror_.mirrored[i]) {
+        return fail(alarm::kFrameRestriction,
+                    std::string("a mirrored axis is programmed in absolute coordinates under "
+                                "G51.1 (spec L4233-4278): ") +
+                        config_.axes[i].name + " instead of " + w.address.first,
+                    w.column);
+      }
       target[i] = machine_[i] + to_physical(axis, v);
     } else if (machine_coordinates) {
       target[i] = to_physical(axis, v, false);
@@ -161,6 +171,16 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
     }
     return true;
   });
+  if (ok && machine_coordinates && frame_active()) {
+    // G53 is neither turned nor mirrored (spec L4387-4421): the named axes go to machine
+    // positions, the others stay where they are on the machine.
+    AxisVector on_machine = machine();
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      on_machine[i] = given[i] ? target[i] : on_machine[i];
+    }
+    target = transform::to_vector(frame_.to_program(transform::to_point(on_machine)));
+  }
+  return ok;
 }
 
 bool ProgramRun::check_feed(int column) {

@@ -143,7 +143,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
         return value(program_position(axis));
       case 1: {  // #5021: machine position, in programmed units (X as a diameter)
         const AxisConfig& a = config_.axes[i];
-        double v = machine_[i] * (a.diameter ? 2.0 : 1.0);
+        double v = machine()[i] * (a.diameter ? 2.0 : 1.0);
         return value(!a.rotary && !metric_ ? v / 25.4 : v);
       }
       case 3:  // #5061: skip position (G31 is not implemented: null)

@@ -29,6 +29,10 @@ GCodeInfo common_code(int code10) {
       return {GFunction::exact_stop, 0};
     case 100:
       return {GFunction::data_input, 0};
+    case 121:
+      return {GFunction::polar_on, 21};
+    case 131:
+      return {GFunction::polar_off, 21};
     case 170:
       return {GFunction::plane_xy, 16};
     case 180:
@@ -160,8 +164,6 @@ GCodeInfo common_code(int code10) {
     case 71:
     case 1070:
     case 109:
-    case 121:
-    case 131:
     case 150:
     case 160:
     case 220:

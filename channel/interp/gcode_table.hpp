@@ -45,6 +45,8 @@ enum class GFunction : std::uint8_t {
   rotation_off,       // G69.1
   mirror_on,          // G51.1 (group 22)
   mirror_off,         // G50.1
+  polar_on,           // G12.1 (group 21)
+  polar_off,          // G13.1
   drill_cancel,       // G80
   css_on,             // G96
   css_off,            // G97

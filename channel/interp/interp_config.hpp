@@ -109,6 +109,12 @@ struct InterpreterConfig {
   bool chamfer_is_length = false;
   // Blocks in a row without a move that G41/G42 tolerates (0: the dialect's, Dafeng 4, GSK 7).
   int compensation_idle_blocks = 0;
+  // Polar interpolation G12.1 (params 5530/5531): the linear axis (the polar plane's first) and
+  // the rotary axis that becomes its virtual second axis, by name (0: none); the largest
+  // distance of the tool tip from the programmed contour, mm.
+  char polar_linear = 0;
+  char polar_rotary = 0;
+  double polar_tolerance = 0.001;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

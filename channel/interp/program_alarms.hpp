@@ -63,8 +63,10 @@ inline constexpr int kCompensationGeometry = 1150;   // the offset path cannot b
 inline constexpr int kCompensationStart = 1151;      // start-up or cancel on an arc, ...
 inline constexpr int kCycleWordMissing = 1152;       // G74 X without P, G75 Z without Q, ...
 // Coordinate transformations (issue 24).
-inline constexpr int kFrameRestriction =
-    1153;  // G28, G52, G5x, a plane change ... under G68.1/G51.1
+// G28, G52, G5x, a plane change ... under G68.1/G51.1; an increment of a mirrored axis.
+inline constexpr int kFrameRestriction = 1153;
+// G00, G50, T ... in polar interpolation (G12.1); G12.1 under G42, G68.1 ...
+inline constexpr int kPolarRestriction = 1154;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

@@ -66,7 +66,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   spindle_direction_.fill(SpindleDirection::stop);
   position_control_.fill(false);
   // #4001-#4030 at power-on (spec dafeng §2.1): G00, G97, G69, G98/G99, G21, G40, G80, G67, G54,
-  // G64, G18, G69.1, G50.1; system B adds G90 and G98 (return level).
+  // G64, G18, G69.1, G13.1, G50.1; system B adds G90 and G98 (return level).
   const bool b = config_.system == GCodeSystem::b;
   modal_codes_[1] = 0;
   modal_codes_[2] = 97;
@@ -82,6 +82,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   modal_codes_[15] = 64;
   modal_codes_[16] = 18;
   modal_codes_[17] = 69.1;
+  modal_codes_[21] = 13.1;
   modal_codes_[22] = 50.1;
   timer_ms_base_ = environment_->milliseconds();
 }
@@ -660,7 +661,9 @@ void ProgramRun::end_program(int code) {
   c.code = code;
   c.barrier = true;
   ended_ = true;
-  // The end resets what a reset cancels: the rotation (spec L4552) and the mirror.
+  // The end resets what a reset cancels: polar interpolation, the rotation (spec L4552) and the
+  // mirror.
+  end_polar();
   rotated_ = false;
   program_mirror_ = transform::AxisMirror{};
   modal_codes_[17] = 69.1;

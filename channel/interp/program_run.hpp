@@ -3,6 +3,7 @@
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
 // program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
 // single cycles; program_run_frame.cpp: the G68.1 rotation and the G51.1 mirror;
+// program_run_polar.cpp: G12.1 polar interpolation;
 // system_variables.cpp: #2000-#19999.
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
@@ -11,6 +12,7 @@
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
 #include "channel/interp/transform/plane_rotation.hpp"
+#include "channel/interp/transform/polar_interpolation.hpp"
 #include "channel/interp/transform/transform_chain.hpp"
 
 #include <array>
@@ -187,6 +189,8 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_rotation(GFunction f, int column);  // G68.1 / G69.1
   bool run_mirror(GFunction f, int column);    // G51.1 / G50.1
   bool frame_active() const { return rotated_ || program_mirror_.active(); }
+  // The rotary axis that polar interpolation makes a virtual linear axis (a length, not degrees).
+  bool polar_virtual(int axis) const { return polar_ && axis == polar_axes_[1]; }
   // False after alarm 1153 when `f` may not run while the frame is turned or mirrored.
   bool frame_allows(GFunction f, int code10, int column);
   // Builds frame_ from the rotation, the mirror and the offsets in force, the machine staying
@@ -194,6 +198,16 @@ class ProgramRun final : public macro::VariableProvider {
   void rebuild_frame();
   // The block's commands not yet mapped: positions and centres from the frame to the machine.
   void map_to_machine();
+
+  // ---- G12.1 / G13.1 polar interpolation (program_run_polar.cpp)
+  bool run_polar(GFunction f, int column);
+  // G13.1 and the program end: the machine's position back on the linear and rotary axes.
+  void end_polar();
+  // False after alarm 1154 (or 1122) when the code may not run in polar interpolation.
+  bool polar_allows(GFunction f, int code10, int column);
+  // The block's commands not yet mapped, from the polar plane to the machine: every line and
+  // arc becomes the machine lines that keep the tool tip on it.
+  void expand_polar();
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
@@ -397,6 +411,13 @@ class ProgramRun final : public macro::VariableProvider {
   transform::AxisMirror program_mirror_;  // physical work coordinates
   transform::TransformChain frame_;
   std::size_t framed_commands_ = 0;  // out_ commands frame_ has mapped already
+  // G12.1: machine_ holds the polar plane's point (plus the offsets) on the linear and rotary
+  // axes; the commands leave through expand_polar().
+  bool polar_ = false;
+  std::array<int, 2> polar_axes_{-1, -1};  // linear, rotary
+  double polar_zero_ = 0.0;                // the rotary axis's angle where the virtual axis is 0
+  transform::PolarPoint polar_at_;         // the machine's radius and angle now
+  AxisVector polar_from_{};                // where the next expanded move starts (as machine_)
   std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
   std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
   std::array<double, kMaxChannelAxes> shift_{};             // G50 shift

@@ -386,6 +386,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (info.function == GFunction::not_in_this_version) {
       return fail(alarm::kNotInThisVersion, g_name(c) + ": " + info.topic, w.column);
     }
+    if (!polar_allows(info.function, c, w.column)) {
+      return false;
+    }
     for (int i = 0; i < ng; ++i) {
       BlockG& other = gs[static_cast<std::size_t>(i)];
       if (other.info.group == info.group) {
@@ -449,7 +452,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
     const bool frame_code =
         g.info.function == GFunction::rotation_on || g.info.function == GFunction::rotation_off ||
-        g.info.function == GFunction::mirror_on || g.info.function == GFunction::mirror_off;
+        g.info.function == GFunction::mirror_on || g.info.function == GFunction::mirror_off ||
+        g.info.function == GFunction::polar_on || g.info.function == GFunction::polar_off;
     if (g.info.group == 0 || frame_code) {
       if (primary != GFunction::unknown && (frame_code || frame_primary)) {
         // G68.1 and G51.1 take the axis words as their centre: no other code may want them.
@@ -648,6 +652,11 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (spindle_words && !run_spindle_words(p_is_spindle_address)) {
     return false;
   }
+  if (BlockWord* t = word('T'); polar_ && t != nullptr) {
+    return fail(alarm::kPolarRestriction,
+                "the tool and its offset do not change in polar interpolation (spec L711-849)",
+                t->column);
+  }
   if (!capture && !run_tool_word()) {
     return false;
   }
@@ -670,6 +679,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
           motion != GFunction::linear) {
         return fail(alarm::kWordNotAllowed, "G53 moves with G00 or G01 only", primary_column);
       }
+    }
+    if (hole_block && polar_) {
+      return fail(alarm::kPolarRestriction, "no hole cycle in polar interpolation: G80 first", 0);
     }
     if (hole_block && !g53) {
       if (!run_hole_cycle(0)) {
@@ -1328,6 +1340,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     return false;
   }
   switch (f) {
+    case GFunction::polar_on:
+    case GFunction::polar_off:
+      return run_polar(f, column);
     case GFunction::rotation_on:
     case GFunction::rotation_off:
       return run_rotation(f, column);

@@ -37,11 +37,28 @@ const char* frame_code_name(GFunction f, GCodeSystem system) {
 }  // namespace
 
 AxisVector ProgramRun::machine() const {
-  return transform::to_vector(frame_.to_machine(transform::to_point(machine_)));
+  AxisVector m = transform::to_vector(frame_.to_machine(transform::to_point(machine_)));
+  if (polar_) {
+    const auto lin = static_cast<std::size_t>(polar_axes_[0]);
+    m[lin] = polar_at_.radius + offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
+    m[static_cast<std::size_t>(polar_axes_[1])] = polar_at_.degrees;
+  }
+  return m;
 }
 
 void ProgramRun::set_machine(const AxisVector& at) {
   machine_ = transform::to_vector(frame_.to_program(transform::to_point(at)));
+  if (polar_) {
+    // In polar interpolation the two axes stand for a point of the polar plane.
+    const auto lin = static_cast<std::size_t>(polar_axes_[0]);
+    const auto rot = static_cast<std::size_t>(polar_axes_[1]);
+    const double t_lin = offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
+    polar_at_ = transform::PolarPoint{at[lin] - t_lin, at[rot]};
+    const std::array<double, 2> p = transform::PolarInterpolation(polar_zero_).to_plane(polar_at_);
+    machine_[lin] = p[0] + t_lin;
+    machine_[rot] = p[1] + offset_sum(polar_axes_[1]) + tool_offset(polar_axes_[1]);
+    polar_from_ = machine_;
+  }
 }
 
 bool ProgramRun::frame_allows(GFunction f, int code10, int column) {
@@ -215,7 +232,9 @@ void ProgramRun::rebuild_frame() {
 
 void ProgramRun::map_to_machine() {
   framed_commands_ = std::min(framed_commands_, out_.size());
-  if (!frame_.identity()) {
+  if (polar_) {
+    expand_polar();
+  } else if (!frame_.identity()) {
     const std::array<int, 2> plane = plane_axis_indices();
     for (std::size_t k = framed_commands_; k < out_.size(); ++k) {
       Command& c = out_[k];

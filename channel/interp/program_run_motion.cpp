@@ -24,7 +24,7 @@ std::string format_mm(double v) {
 double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = programmed;
-  if (!a.rotary && !metric_) {
+  if ((!a.rotary || polar_virtual(axis)) && !metric_) {
     v *= 25.4;
   }
   if (a.diameter) {
@@ -45,7 +45,7 @@ double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
   if (a.diameter) {
     v *= 2.0;
   }
-  if (!a.rotary && !metric_) {
+  if ((!a.rotary || polar_virtual(axis)) && !metric_) {
     v /= 25.4;
   }
   return v;
@@ -214,6 +214,17 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   }
   const bool cutting =
       motion == GFunction::linear || motion == GFunction::arc_cw || motion == GFunction::arc_ccw;
+  if (polar_ && !cutting) {
+    return fail(alarm::kPolarRestriction,
+                "polar interpolation moves with G01, G02 or G03 only (spec L711-849)", column);
+  }
+  if (polar_ &&
+      (comma_word('C') != nullptr || comma_word('R') != nullptr || comma_word('A') != nullptr)) {
+    return fail(alarm::kNotInThisVersion,
+                ",C ,R and ,A in polar interpolation come with its compensation, in a later "
+                "release",
+                column);
+  }
   if (cutting && !machine_coordinates && !take_corner_request()) {
     return false;
   }
@@ -282,6 +293,9 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
 }
 
 std::array<int, 2> ProgramRun::plane_axis_indices() const {
+  if (polar_) {
+    return polar_axes_;  // the polar plane (spec L711-849: params 5530/5531, not G17-G19)
+  }
   const char first = plane_ == Plane::xy ? 'X' : plane_ == Plane::zx ? 'Z' : 'Y';
   const char second = plane_ == Plane::xy ? 'Y' : plane_ == Plane::zx ? 'X' : 'Z';
   std::array<int, 2> axes{-1, -1};
@@ -307,8 +321,9 @@ bool ProgramRun::require_plane_axes(std::array<int, 2>& axes, int column) {
 bool ProgramRun::arc_center(bool ccw, const std::array<int, 2>& axes, const AxisVector& target,
                             std::array<double, 2>& center, int column) {
   // The centre words of the plane: I/J (G17), K/I (G18), J/K (G19), first axis first.
-  const char ca = plane_ == Plane::xy ? 'I' : plane_ == Plane::zx ? 'K' : 'J';
-  const char cb = plane_ == Plane::xy ? 'J' : plane_ == Plane::zx ? 'I' : 'K';
+  const Plane words = polar_ ? Plane::xy : plane_;  // the polar plane takes I and J
+  const char ca = words == Plane::xy ? 'I' : words == Plane::zx ? 'K' : 'J';
+  const char cb = words == Plane::xy ? 'J' : words == Plane::zx ? 'I' : 'K';
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
   const double sa = machine_[a];

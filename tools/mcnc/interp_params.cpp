@@ -198,6 +198,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "thread_chamfer_leads",
              "chamfer_is_length",
              "compensation_idle_blocks",
+             "polar",
              "cycles",
              "block_skip",
              "max_tool",
@@ -269,6 +270,19 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
   }
   if (root["arc_tolerance"]) {
     c.arc_tolerance = get<double>(root["arc_tolerance"], "arc_tolerance");
+  }
+  if (root["polar"]) {
+    // Polar interpolation G12.1 (params 5530/5531); the axes are checked when G12.1 runs.
+    const YAML::Node& p = root["polar"];
+    only_keys(p, "polar", {"linear", "rotary", "tolerance"});
+    c.polar_linear = axis_letter(get<std::string>(p["linear"], "polar.linear"), "polar.linear");
+    c.polar_rotary = axis_letter(get<std::string>(p["rotary"], "polar.rotary"), "polar.rotary");
+    if (p["tolerance"]) {
+      c.polar_tolerance = get<double>(p["tolerance"], "polar.tolerance");
+      if (!(c.polar_tolerance >= 1e-6 && c.polar_tolerance <= 1.0)) {
+        bad("polar.tolerance", "0.000001 to 1 mm");
+      }
+    }
   }
   if (root["thread_chamfer_leads"]) {
     c.thread_chamfer_leads = get<double>(root["thread_chamfer_leads"], "thread_chamfer_leads");

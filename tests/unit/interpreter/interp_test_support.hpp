@@ -119,6 +119,22 @@ inline RunResult run_alarm(const std::string& text, int number, int line, int co
   return r;
 }
 
+// A program that must end in alarm `number` at `line` (and `column` when >= 0).
+struct ExpectedAlarm {
+  const char* program;
+  int number;
+  int line;
+  int column = -1;
+};
+
+template <std::size_t N>
+void expect_alarms(const ExpectedAlarm (&cases)[N], const InterpreterConfig& config = lathe()) {
+  for (const ExpectedAlarm& a : cases) {
+    SCOPED_TRACE(a.program);
+    run_alarm(a.program, a.number, a.line, a.column, config);
+  }
+}
+
 // Expects a motion command's end point (physical: X as a radius).
 #define EXPECT_AT(cmd, ...)                                                                  \
   do {                                                                                       \

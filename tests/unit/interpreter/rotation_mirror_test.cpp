@@ -148,15 +148,8 @@ TEST(InterpRotation, ModalGroup17ReadsTheRotation) {
 }
 
 // Misuse of G68.1 and G51.1, and what their modes forbid (alarms 1103, 1121, 1152, 1153).
-struct Misuse {
-  const char* program;
-  int number;
-  int line;
-  int column;
-};
-
 TEST(InterpFrame, MisuseIsAnAlarm) {
-  const Misuse cases[] = {
+  const ExpectedAlarm cases[] = {
       {"G51.1 X0\nG00 X20 Z0\nG00 W-5\nG00 U10\nM30\n", alarm::kFrameRestriction, 4, 5},
       {"G00 X0\nG51.1\nM30\n", alarm::kCycleWordMissing, 2, -1},
       {"G51.1 X0\nG52 X10\nM30\n", alarm::kFrameRestriction, 2, -1},
@@ -173,10 +166,7 @@ TEST(InterpFrame, MisuseIsAnAlarm) {
       {"G68.1 U10 R5\nM30\n", alarm::kWordNotAllowed, 1, 7},
       {"G68.1 X0 Z0 R10 G04 P100\nM30\n", alarm::kGroupConflict, 1, -1},
   };
-  for (const Misuse& m : cases) {
-    SCOPED_TRACE(m.program);
-    run_alarm(m.program, m.number, m.line, m.column);
-  }
+  expect_alarms(cases);
   // The plane it was given in, G18 again, and the spindle clamp G50 S are allowed.
   run_ok("G68.1 X0 Z0 R10\nG18\nG50 S2000\nM30\n");
 }

@@ -1,0 +1,198 @@
+// G12.1 / G13.1 polar interpolation, format 1 (spec dafeng L711-849): the program moves the tool
+// tip in the plane of the linear axis and a virtual axis at right angles to it; the machine
+// turns the work on the rotary axis (transform/polar_interpolation.hpp).
+#include "channel/interp/program_alarms.hpp"
+#include "channel/interp/program_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mcnc::interp {
+
+namespace {
+
+constexpr std::size_t kMaxPolarSteps = 200000;  // machine lines of one programmed move
+
+}  // namespace
+
+bool ProgramRun::polar_allows(GFunction f, int code10, int column) {
+  if (!polar_) {
+    return true;
+  }
+  switch (f) {
+    // The codes the spec allows in polar interpolation (L711-849, detail 8).
+    case GFunction::linear:
+    case GFunction::arc_cw:
+    case GFunction::arc_ccw:
+    case GFunction::dwell:
+    case GFunction::tnrc_cancel:
+    case GFunction::macro_call:
+    case GFunction::absolute:
+    case GFunction::incremental:
+    case GFunction::feed_per_min:
+    case GFunction::feed_per_rev:
+    case GFunction::polar_off:
+      return true;
+    case GFunction::tnrc_left:
+    case GFunction::tnrc_right:
+      return fail(alarm::kNotInThisVersion,
+                  "tool-nose compensation in polar interpolation needs the compensation on the "
+                  "polar plane, of a later release",
+                  column);
+    default:
+      return fail(alarm::kPolarRestriction,
+                  "G" + std::to_string(code10 / 10) +
+                      (code10 % 10 != 0 ? "." + std::to_string(code10 % 10) : "") +
+                      " is not allowed in polar interpolation (spec L711-849): cancel it with "
+                      "G13.1 first",
+                  column);
+  }
+}
+
+bool ProgramRun::run_polar(GFunction f, int column) {
+  const bool on = f == GFunction::polar_on;
+  const std::string code = on ? "G12.1" : "G13.1";
+  for (const BlockWord& w : words_) {
+    if (w.column != column) {
+      return fail(alarm::kMustBeAlone, code + " stands alone in its block (spec L711-849)",
+                  w.column);
+    }
+  }
+  if (contour_mode_ != ContourMode::none) {
+    return contour_forbids(on ? "G12.1" : "G13.1", column);
+  }
+  if (compensation_ != Command::Compensation::off) {
+    return fail(alarm::kPolarRestriction,
+                code + " is switched under G40 only (spec L711-849): cancel G41/G42 first", column);
+  }
+  if (!on) {
+    end_polar();
+    return true;
+  }
+  if (polar_) {
+    return fail(alarm::kPolarRestriction, "G12.1 while polar interpolation is on", column);
+  }
+  if (frame_active() || turret_mirror_) {
+    return fail(alarm::kPolarRestriction,
+                "G12.1 is not allowed under G68.1, G51.1 or G68 (spec L4502-4652): cancel them "
+                "first",
+                column);
+  }
+  std::array<int, 2> axes{-1, -1};
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    axes[0] = config_.axes[i].name == config_.polar_linear ? static_cast<int>(i) : axes[0];
+    axes[1] = config_.axes[i].name == config_.polar_rotary ? static_cast<int>(i) : axes[1];
+  }
+  if (axes[0] < 0 || axes[1] < 0 || config_.axes[static_cast<std::size_t>(axes[0])].rotary ||
+      !config_.axes[static_cast<std::size_t>(axes[1])].rotary) {
+    return fail(alarm::kPolarRestriction,
+                "G12.1 needs a linear and a rotary axis of this channel for polar interpolation "
+                "(parameters 5530/5531: `polar` of the parameter file)",
+                column);
+  }
+  const auto lin = static_cast<std::size_t>(axes[0]);
+  const auto rot = static_cast<std::size_t>(axes[1]);
+  const double x = machine_[lin] - offset_sum(axes[0]) - tool_offset(axes[0]);
+  if (x < 0.0) {
+    return fail(alarm::kPolarRestriction,
+                "G12.1 with the tool below the turning centre (a negative radius): position "
+                "the linear axis at 0 or above first",
+                column);
+  }
+  map_to_machine();
+  polar_axes_ = axes;
+  polar_zero_ = machine_[rot];
+  polar_at_ = transform::PolarPoint{x, polar_zero_};
+  // The virtual axis starts at 0, wherever the rotary axis stands (spec L711-849, detail 10).
+  machine_[rot] = offset_sum(axes[1]) + tool_offset(axes[1]);
+  polar_from_ = machine_;
+  polar_ = true;
+  modal_codes_[21] = 12.1;
+  return true;
+}
+
+void ProgramRun::end_polar() {
+  modal_codes_[21] = 13.1;
+  if (!polar_) {
+    return;
+  }
+  map_to_machine();  // the moves so far leave in polar interpolation
+  const auto lin = static_cast<std::size_t>(polar_axes_[0]);
+  const auto rot = static_cast<std::size_t>(polar_axes_[1]);
+  machine_[lin] = polar_at_.radius + offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
+  machine_[rot] = polar_at_.degrees;
+  polar_ = false;
+}
+
+void ProgramRun::expand_polar() {
+  const auto lin = static_cast<std::size_t>(polar_axes_[0]);
+  const auto rot = static_cast<std::size_t>(polar_axes_[1]);
+  const double t_lin = offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
+  const double t_rot = offset_sum(polar_axes_[1]) + tool_offset(polar_axes_[1]);
+  const transform::PolarInterpolation polar(polar_zero_);
+  auto on_machine = [&](const transform::PolarPoint& m, AxisVector v) {
+    v[lin] = m.radius + t_lin;
+    v[rot] = m.degrees;
+    return v;
+  };
+  const auto first = static_cast<std::ptrdiff_t>(framed_commands_);
+  const std::vector<Command> made(out_.begin() + first, out_.end());
+  out_.erase(out_.begin() + first, out_.end());
+  for (const Command& c : made) {
+    if (c.op != Op::linear && c.op != Op::arc) {
+      Command& kept = out_.emplace_back(c);
+      kept.to = on_machine(polar_at_, c.to);
+      continue;
+    }
+    transform::PlanePiece piece;
+    piece.from = {polar_from_[lin] - t_lin, polar_from_[rot] - t_rot};
+    piece.to = {c.to[lin] - t_lin, c.to[rot] - t_rot};
+    if (c.op == Op::arc) {
+      piece.arc = true;
+      piece.centre = {c.center[0] - t_lin, c.center[1] - t_rot};
+      piece.ccw = c.direction == ArcDirection::ccw;
+      piece.turns = c.turns;
+    }
+    std::vector<transform::PolarStep> steps;
+    if (!polar.steps(piece, polar_at_.degrees, config_.polar_tolerance, steps, kMaxPolarSteps)) {
+      fail(alarm::kPolarRestriction,
+           "the move needs more than " + std::to_string(kMaxPolarSteps) +
+               " machine lines to stay on the contour in polar interpolation",
+           0);
+      return;
+    }
+    const double total = piece.length();
+    double covered = 0.0;
+    AxisVector at = on_machine(polar_at_, polar_from_);
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const transform::PolarStep& s = steps[k];
+      const bool last = k + 1 == steps.size();
+      covered += s.plane_length;
+      // The axes outside the polar plane move in proportion to the contour's length.
+      const double f = last || total <= 0.0 ? 1.0 : covered / total;
+      AxisVector others{};
+      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+        others[i] = polar_from_[i] + f * (c.to[i] - polar_from_[i]);
+      }
+      Command& step = out_.emplace_back(c);
+      step.op = Op::linear;
+      step.to = on_machine(s.machine, others);
+      step.exact_stop = c.exact_stop && last;
+      // F is the speed along the contour: the machine line of this step is longer (angles
+      // count as lengths for the planner) or shorter than the piece of contour it covers.
+      double machine_length = 0.0;
+      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+        machine_length += (step.to[i] - at[i]) * (step.to[i] - at[i]);
+      }
+      if (machine_length > 0.0) {
+        step.feed =
+            c.feed * std::sqrt(machine_length) / std::max(s.plane_length, config_.polar_tolerance);
+      }
+      at = step.to;
+      polar_at_ = s.machine;
+    }
+    polar_from_ = c.to;
+  }
+}
+
+}  // namespace mcnc::interp

@@ -1,0 +1,108 @@
+// G12.1 / G13.1 polar interpolation (spec dafeng L711-849) in the interpreter: the moves of the
+// polar plane leave as machine lines of the linear and rotary axes, at the tangential feed.
+#include "tests/unit/interpreter/interp_test_support.hpp"
+
+#include <cmath>
+
+namespace mcnc::interp::test {
+namespace {
+
+constexpr std::size_t kX = 0;
+constexpr std::size_t kZ = 1;
+constexpr std::size_t kA = 2;
+
+InterpreterConfig polar_lathe() {
+  InterpreterConfig c;
+  c.axes = {AxisConfig{'X', true}, AxisConfig{'Z', false}, AxisConfig{'A', false, true}};
+  c.polar_linear = 'X';
+  c.polar_rotary = 'A';
+  return c;
+}
+
+// The spec's contour (L804-849) without its nose compensation.
+const char* const kSquare =
+    "G00 X120 A30 Z0\nG12.1\nG01 A0 X40 F500\nG01 A10\nG03 X20 A20 R10\nG01 X-40\nG01 A-10\n"
+    "G03 X-20 A-20 I10 J0\nG01 X40\nG01 A0\nG01 X120\nG13.1\nG00 A0\nM30\n";
+
+// The plane point of a machine position: radius X, angle A from where the virtual axis is 0.
+std::array<double, 2> plane_point(const AxisVector& to, double zero_degrees) {
+  const double a = (to[kA] - zero_degrees) * M_PI / 180.0;
+  return {to[kX] * std::cos(a), to[kX] * std::sin(a)};
+}
+
+TEST(InterpPolar, EveryBlockEndsOnItsProgrammedPoint) {
+  RunResult r = run_ok(kSquare, polar_lathe());
+  // The virtual axis starts at 0 where A stands (A30), X40 is the radius 20.
+  const std::pair<int, std::array<double, 2>> ends[] = {
+      {3, {20, 0}},    {4, {20, 10}},  {5, {10, 20}}, {6, {-20, 20}}, {7, {-20, -10}},
+      {8, {-10, -20}}, {9, {20, -20}}, {10, {20, 0}}, {11, {60, 0}},
+  };
+  for (const auto& [line, want] : ends) {
+    const std::vector<Command> moves = r.at_line(line);
+    ASSERT_FALSE(moves.empty()) << line;
+    const std::array<double, 2> p = plane_point(moves.back().to, 30.0);
+    EXPECT_NEAR(p[0], want[0], 1e-9) << line;
+    EXPECT_NEAR(p[1], want[1], 1e-9) << line;
+    for (const Command& m : moves) {
+      EXPECT_EQ(m.op, Op::linear);
+      EXPECT_NEAR(m.to[kZ], 0.0, 1e-12);
+    }
+  }
+  EXPECT_GT(r.at_line(5).size(), 10u);                    // the arc needs many machine lines
+  EXPECT_NEAR(r.at_line(11).back().to[kA], 390.0, 1e-9);  // once around from A30
+  // G13.1 gives A back as an angle.
+  EXPECT_AT(r.of(Op::rapid).back(), 60, 0, 0);
+}
+
+// F is the speed along the contour: the machine lines take as long as the contour at F.
+TEST(InterpPolar, TheFeedIsTheTangentialSpeed) {
+  RunResult r = run_ok(kSquare, polar_lathe());
+  double minutes = 0.0;
+  AxisVector at = r.of(Op::rapid).front().to;
+  for (const Command& c : r.commands) {
+    if (c.op != Op::linear) {
+      continue;
+    }
+    double length = 0.0;
+    for (const std::size_t i : {kX, kZ, kA}) {
+      length += (c.to[i] - at[i]) * (c.to[i] - at[i]);
+    }
+    minutes += std::sqrt(length) / c.feed;
+    at = c.to;
+  }
+  // 40 from X120 to X40, the square's sides and rounded corners, 40 back out.
+  const double contour = 40 + 10 + M_PI * 5 + 30 + 30 + M_PI * 5 + 30 + 20 + 40;
+  EXPECT_NEAR(minutes, contour / 500.0, 1e-9);
+}
+
+TEST(InterpPolar, ModalGroup21ReadsIt) {
+  run_ok(
+      "IF[#4021 NE 13.1] #3000=1 (off)\nG12.1\nIF[#4021 NE 12.1] #3000=2 (on)\nG13.1\n"
+      "IF[#4021 NE 13.1] #3000=3 (off)\nM30\n",
+      polar_lathe());
+}
+
+TEST(InterpPolar, MisuseIsAnAlarm) {
+  const ExpectedAlarm cases[] = {
+      {"G00 X40\nG12.1 X10\nM30\n", alarm::kMustBeAlone, 2},
+      {"G00 X40\nG12.1 G01\nM30\n", alarm::kMustBeAlone, 2},
+      {"G00 X40\nG42 G01 X40 F100\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG00 X20\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nX20\nM30\n", alarm::kPolarRestriction, 3},  // G00 still modal
+      {"G00 X40\nG12.1\nT0202\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG50 X0\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG18\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG68.1 X0 Z0 R10\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG12.1\nG41 G01 X20 F100\nM30\n", alarm::kNotInThisVersion, 3},
+      {"G00 X40\nG12.1\nG01 X20 F100 ,C2\nG01 A10\nM30\n", alarm::kNotInThisVersion, 3},
+      {"G00 X40\nG68.1 X0 Z0 R10\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X-40\nG12.1\nM30\n", alarm::kPolarRestriction, 2},
+  };
+  expect_alarms(cases, polar_lathe());
+  // Without the polar axes in the parameters.
+  run_alarm("G00 X40\nG12.1\nM30\n", alarm::kPolarRestriction, 2);
+}
+
+}  // namespace
+}  // namespace mcnc::interp::test

@@ -29,6 +29,9 @@ GCodeInfo common_code(int code10) {
       return {GFunction::exact_stop, 0};
     case 100:
       return {GFunction::data_input, 0};
+    case 71:
+    case 1070:
+      return {GFunction::cylindrical, 0};
     case 121:
       return {GFunction::polar_on, 21};
     case 131:
@@ -161,8 +164,6 @@ GCodeInfo common_code(int code10) {
     case 1450:
       return {GFunction::channel_release, 0};
     case 50:
-    case 71:
-    case 1070:
     case 109:
     case 150:
     case 160:

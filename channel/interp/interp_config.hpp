@@ -115,6 +115,10 @@ struct InterpreterConfig {
   char polar_linear = 0;
   char polar_rotary = 0;
   double polar_tolerance = 0.001;
+  // Cylindrical interpolation G07.1 (param 0016): the linear axis the rotary axis is parallel
+  // to, whose place it takes in the plane (the spec's example: A parallel to Y, G19 = A-Z). Its
+  // arcs become chords within polar_tolerance.
+  char cylindrical_parallel = 'Y';
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

@@ -65,8 +65,8 @@ inline constexpr int kCycleWordMissing = 1152;       // G74 X without P, G75 Z w
 // Coordinate transformations (issue 24).
 // G28, G52, G5x, a plane change ... under G68.1/G51.1; an increment of a mirrored axis.
 inline constexpr int kFrameRestriction = 1153;
-// G00, G50, T ... in polar interpolation (G12.1); G12.1 under G42, G68.1 ...
-inline constexpr int kPolarRestriction = 1154;
+// G00, G50, T ... in polar (G12.1) or cylindrical (G07.1) interpolation; G12.1 under G42 ...
+inline constexpr int kInterpolationModeRestriction = 1154;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

@@ -664,6 +664,7 @@ void ProgramRun::end_program(int code) {
   // The end resets what a reset cancels: polar interpolation, the rotation (spec L4552) and the
   // mirror.
   end_polar();
+  end_cylindrical();
   rotated_ = false;
   program_mirror_ = transform::AxisMirror{};
   modal_codes_[17] = 69.1;

@@ -3,7 +3,7 @@
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
 // program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
 // single cycles; program_run_frame.cpp: the G68.1 rotation and the G51.1 mirror;
-// program_run_polar.cpp: G12.1 polar interpolation;
+// program_run_polar.cpp: G12.1 polar interpolation; program_run_cylinder.cpp: G07.1;
 // system_variables.cpp: #2000-#19999.
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
@@ -11,6 +11,7 @@
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
+#include "channel/interp/transform/cylindrical_interpolation.hpp"
 #include "channel/interp/transform/plane_rotation.hpp"
 #include "channel/interp/transform/polar_interpolation.hpp"
 #include "channel/interp/transform/transform_chain.hpp"
@@ -191,6 +192,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool frame_active() const { return rotated_ || program_mirror_.active(); }
   // The rotary axis that polar interpolation makes a virtual linear axis (a length, not degrees).
   bool polar_virtual(int axis) const { return polar_ && axis == polar_axes_[1]; }
+  bool cylinder_axis(int axis) const { return cylindrical_ && axis == cylinder_axis_; }
   // False after alarm 1153 when `f` may not run while the frame is turned or mirrored.
   bool frame_allows(GFunction f, int code10, int column);
   // Builds frame_ from the rotation, the mirror and the offsets in force, the machine staying
@@ -198,6 +200,8 @@ class ProgramRun final : public macro::VariableProvider {
   void rebuild_frame();
   // The block's commands not yet mapped: positions and centres from the frame to the machine.
   void map_to_machine();
+  // The block's commands not yet mapped, taken out of out_ (the modes map them back in).
+  std::vector<Command> take_unmapped();
 
   // ---- G12.1 / G13.1 polar interpolation (program_run_polar.cpp)
   bool run_polar(GFunction f, int column);
@@ -208,6 +212,24 @@ class ProgramRun final : public macro::VariableProvider {
   // The block's commands not yet mapped, from the polar plane to the machine: every line and
   // arc becomes the machine lines that keep the tool tip on it.
   void expand_polar();
+
+  // ---- G07.1 cylindrical interpolation (program_run_cylinder.cpp)
+  bool run_cylindrical(int column);
+  void end_cylindrical();  // G07.1 C0 and the program end: the rotary axis in degrees again
+  void expand_cylindrical();
+  // Polar or cylindrical interpolation: the program's plane is not the machine's.
+  bool interpolation_mode() const { return polar_ || cylindrical_; }
+  // Shared by both: the machine lines of programmed move `c` from `from` (as machine_) and the
+  // machine position `start`; each step gives the machine values of `axes` and the length of
+  // contour it covers. The other axes move in proportion; F is scaled to the contour.
+  struct ModeStep {
+    double first = 0.0;
+    double second = 0.0;
+    double length = 0.0;
+  };
+  void emit_mode_steps(const Command& c, const AxisVector& from, const AxisVector& start,
+                       const std::array<int, 2>& axes, const std::vector<ModeStep>& steps,
+                       double total);
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
@@ -418,6 +440,11 @@ class ProgramRun final : public macro::VariableProvider {
   double polar_zero_ = 0.0;                // the rotary axis's angle where the virtual axis is 0
   transform::PolarPoint polar_at_;         // the machine's radius and angle now
   AxisVector polar_from_{};                // where the next expanded move starts (as machine_)
+  // G07.1: machine_ holds the rotary axis as the length around the cylinder.
+  bool cylindrical_ = false;
+  int cylinder_axis_ = -1;
+  double cylinder_radius_ = 0.0;
+  AxisVector cylinder_from_{};  // where the next expanded move starts (as machine_)
   std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
   std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
   std::array<double, kMaxChannelAxes> shift_{};             // G50 shift

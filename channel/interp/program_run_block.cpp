@@ -652,9 +652,10 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (spindle_words && !run_spindle_words(p_is_spindle_address)) {
     return false;
   }
-  if (BlockWord* t = word('T'); polar_ && t != nullptr) {
-    return fail(alarm::kPolarRestriction,
-                "the tool and its offset do not change in polar interpolation (spec L711-849)",
+  if (BlockWord* t = word('T'); interpolation_mode() && t != nullptr) {
+    return fail(alarm::kInterpolationModeRestriction,
+                "the tool and its offset do not change in polar or cylindrical interpolation "
+                "(spec L711-849)",
                 t->column);
   }
   if (!capture && !run_tool_word()) {
@@ -680,8 +681,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
         return fail(alarm::kWordNotAllowed, "G53 moves with G00 or G01 only", primary_column);
       }
     }
-    if (hole_block && polar_) {
-      return fail(alarm::kPolarRestriction, "no hole cycle in polar interpolation: G80 first", 0);
+    if (hole_block && interpolation_mode()) {
+      return fail(alarm::kInterpolationModeRestriction,
+                  "no hole cycle in polar or cylindrical interpolation: G80 first", 0);
     }
     if (hole_block && !g53) {
       if (!run_hole_cycle(0)) {
@@ -1343,6 +1345,8 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::polar_on:
     case GFunction::polar_off:
       return run_polar(f, column);
+    case GFunction::cylindrical:
+      return run_cylindrical(column);
     case GFunction::rotation_on:
     case GFunction::rotation_off:
       return run_rotation(f, column);

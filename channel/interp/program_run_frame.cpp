@@ -43,6 +43,10 @@ AxisVector ProgramRun::machine() const {
     m[lin] = polar_at_.radius + offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
     m[static_cast<std::size_t>(polar_axes_[1])] = polar_at_.degrees;
   }
+  if (cylindrical_) {
+    const auto rot = static_cast<std::size_t>(cylinder_axis_);
+    m[rot] = transform::CylindricalInterpolation(cylinder_radius_).to_degrees(m[rot]);
+  }
   return m;
 }
 
@@ -58,6 +62,11 @@ void ProgramRun::set_machine(const AxisVector& at) {
     machine_[lin] = p[0] + t_lin;
     machine_[rot] = p[1] + offset_sum(polar_axes_[1]) + tool_offset(polar_axes_[1]);
     polar_from_ = machine_;
+  }
+  if (cylindrical_) {
+    const auto rot = static_cast<std::size_t>(cylinder_axis_);
+    machine_[rot] = transform::CylindricalInterpolation(cylinder_radius_).to_length(at[rot]);
+    cylinder_from_ = machine_;
   }
 }
 
@@ -234,6 +243,8 @@ void ProgramRun::map_to_machine() {
   framed_commands_ = std::min(framed_commands_, out_.size());
   if (polar_) {
     expand_polar();
+  } else if (cylindrical_) {
+    expand_cylindrical();
   } else if (!frame_.identity()) {
     const std::array<int, 2> plane = plane_axis_indices();
     for (std::size_t k = framed_commands_; k < out_.size(); ++k) {
@@ -262,6 +273,13 @@ void ProgramRun::map_to_machine() {
     }
   }
   framed_commands_ = out_.size();
+}
+
+std::vector<Command> ProgramRun::take_unmapped() {
+  const auto first = out_.begin() + static_cast<std::ptrdiff_t>(framed_commands_);
+  std::vector<Command> made(first, out_.end());
+  out_.erase(first, out_.end());
+  return made;
 }
 
 }  // namespace mcnc::interp

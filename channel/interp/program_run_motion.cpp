@@ -22,6 +22,10 @@ std::string format_mm(double v) {
 }  // namespace
 
 double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
+  if (cylinder_axis(axis)) {
+    // Degrees on the cylinder: the length around it (spec L612-710, detail 10).
+    return transform::CylindricalInterpolation(cylinder_radius_).to_length(programmed);
+  }
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = programmed;
   if ((!a.rotary || polar_virtual(axis)) && !metric_) {
@@ -37,6 +41,9 @@ double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
 }
 
 double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
+  if (cylinder_axis(axis)) {
+    return transform::CylindricalInterpolation(cylinder_radius_).to_degrees(physical);
+  }
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = physical;
   if (mirror && turret_mirror_ && a.name == 'X') {
@@ -214,15 +221,17 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   }
   const bool cutting =
       motion == GFunction::linear || motion == GFunction::arc_cw || motion == GFunction::arc_ccw;
-  if (polar_ && !cutting) {
-    return fail(alarm::kPolarRestriction,
-                "polar interpolation moves with G01, G02 or G03 only (spec L711-849)", column);
+  if (interpolation_mode() && !cutting) {
+    return fail(alarm::kInterpolationModeRestriction,
+                "polar and cylindrical interpolation move with G01, G02 or G03 only (spec "
+                "L612-849)",
+                column);
   }
-  if (polar_ &&
+  if (interpolation_mode() &&
       (comma_word('C') != nullptr || comma_word('R') != nullptr || comma_word('A') != nullptr)) {
     return fail(alarm::kNotInThisVersion,
-                ",C ,R and ,A in polar interpolation come with its compensation, in a later "
-                "release",
+                ",C ,R and ,A in polar and cylindrical interpolation come with their "
+                "compensation, in a later release",
                 column);
   }
   if (cutting && !machine_coordinates && !take_corner_request()) {
@@ -302,6 +311,11 @@ std::array<int, 2> ProgramRun::plane_axis_indices() const {
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
     axes[0] = config_.axes[i].name == first ? static_cast<int>(i) : axes[0];
     axes[1] = config_.axes[i].name == second ? static_cast<int>(i) : axes[1];
+  }
+  if (cylindrical_) {
+    // The rotary axis takes the place of the linear axis it is parallel to (param 0016).
+    axes[0] = first == config_.cylindrical_parallel ? cylinder_axis_ : axes[0];
+    axes[1] = second == config_.cylindrical_parallel ? cylinder_axis_ : axes[1];
   }
   return axes;
 }

@@ -16,7 +16,7 @@ constexpr std::size_t kMaxPolarSteps = 200000;  // machine lines of one programm
 }  // namespace
 
 bool ProgramRun::polar_allows(GFunction f, int code10, int column) {
-  if (!polar_) {
+  if (!interpolation_mode()) {
     return true;
   }
   switch (f) {
@@ -33,18 +33,22 @@ bool ProgramRun::polar_allows(GFunction f, int code10, int column) {
     case GFunction::feed_per_rev:
     case GFunction::polar_off:
       return true;
+    case GFunction::cylindrical:
+      return cylindrical_ ||
+             fail(alarm::kInterpolationModeRestriction,
+                  "G07.1 is not allowed in polar interpolation: G13.1 first", column);
     case GFunction::tnrc_left:
     case GFunction::tnrc_right:
       return fail(alarm::kNotInThisVersion,
-                  "tool-nose compensation in polar interpolation needs the compensation on the "
-                  "polar plane, of a later release",
+                  "tool-nose compensation in polar and cylindrical interpolation needs the "
+                  "compensation on their plane, of a later release",
                   column);
     default:
-      return fail(alarm::kPolarRestriction,
+      return fail(alarm::kInterpolationModeRestriction,
                   "G" + std::to_string(code10 / 10) +
                       (code10 % 10 != 0 ? "." + std::to_string(code10 % 10) : "") +
-                      " is not allowed in polar interpolation (spec L711-849): cancel it with "
-                      "G13.1 first",
+                      " is not allowed in polar or cylindrical interpolation (spec L711-849): "
+                      "cancel the mode first",
                   column);
   }
 }
@@ -62,7 +66,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
     return contour_forbids(on ? "G12.1" : "G13.1", column);
   }
   if (compensation_ != Command::Compensation::off) {
-    return fail(alarm::kPolarRestriction,
+    return fail(alarm::kInterpolationModeRestriction,
                 code + " is switched under G40 only (spec L711-849): cancel G41/G42 first", column);
   }
   if (!on) {
@@ -70,10 +74,11 @@ bool ProgramRun::run_polar(GFunction f, int column) {
     return true;
   }
   if (polar_) {
-    return fail(alarm::kPolarRestriction, "G12.1 while polar interpolation is on", column);
+    return fail(alarm::kInterpolationModeRestriction, "G12.1 while polar interpolation is on",
+                column);
   }
   if (frame_active() || turret_mirror_) {
-    return fail(alarm::kPolarRestriction,
+    return fail(alarm::kInterpolationModeRestriction,
                 "G12.1 is not allowed under G68.1, G51.1 or G68 (spec L4502-4652): cancel them "
                 "first",
                 column);
@@ -85,7 +90,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
   }
   if (axes[0] < 0 || axes[1] < 0 || config_.axes[static_cast<std::size_t>(axes[0])].rotary ||
       !config_.axes[static_cast<std::size_t>(axes[1])].rotary) {
-    return fail(alarm::kPolarRestriction,
+    return fail(alarm::kInterpolationModeRestriction,
                 "G12.1 needs a linear and a rotary axis of this channel for polar interpolation "
                 "(parameters 5530/5531: `polar` of the parameter file)",
                 column);
@@ -94,7 +99,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
   const auto rot = static_cast<std::size_t>(axes[1]);
   const double x = machine_[lin] - offset_sum(axes[0]) - tool_offset(axes[0]);
   if (x < 0.0) {
-    return fail(alarm::kPolarRestriction,
+    return fail(alarm::kInterpolationModeRestriction,
                 "G12.1 with the tool below the turning centre (a negative radius): position "
                 "the linear axis at 0 or above first",
                 column);
@@ -135,10 +140,7 @@ void ProgramRun::expand_polar() {
     v[rot] = m.degrees;
     return v;
   };
-  const auto first = static_cast<std::ptrdiff_t>(framed_commands_);
-  const std::vector<Command> made(out_.begin() + first, out_.end());
-  out_.erase(out_.begin() + first, out_.end());
-  for (const Command& c : made) {
+  for (const Command& c : take_unmapped()) {
     if (c.op != Op::linear && c.op != Op::arc) {
       Command& kept = out_.emplace_back(c);
       kept.to = on_machine(polar_at_, c.to);
@@ -155,43 +157,54 @@ void ProgramRun::expand_polar() {
     }
     std::vector<transform::PolarStep> steps;
     if (!polar.steps(piece, polar_at_.degrees, config_.polar_tolerance, steps, kMaxPolarSteps)) {
-      fail(alarm::kPolarRestriction,
+      fail(alarm::kInterpolationModeRestriction,
            "the move needs more than " + std::to_string(kMaxPolarSteps) +
                " machine lines to stay on the contour in polar interpolation",
            0);
       return;
     }
-    const double total = piece.length();
-    double covered = 0.0;
-    AxisVector at = on_machine(polar_at_, polar_from_);
-    for (std::size_t k = 0; k < steps.size(); ++k) {
-      const transform::PolarStep& s = steps[k];
-      const bool last = k + 1 == steps.size();
-      covered += s.plane_length;
-      // The axes outside the polar plane move in proportion to the contour's length.
-      const double f = last || total <= 0.0 ? 1.0 : covered / total;
-      AxisVector others{};
-      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-        others[i] = polar_from_[i] + f * (c.to[i] - polar_from_[i]);
-      }
-      Command& step = out_.emplace_back(c);
-      step.op = Op::linear;
-      step.to = on_machine(s.machine, others);
-      step.exact_stop = c.exact_stop && last;
-      // F is the speed along the contour: the machine line of this step is longer (angles
-      // count as lengths for the planner) or shorter than the piece of contour it covers.
-      double machine_length = 0.0;
-      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
-        machine_length += (step.to[i] - at[i]) * (step.to[i] - at[i]);
-      }
-      if (machine_length > 0.0) {
-        step.feed =
-            c.feed * std::sqrt(machine_length) / std::max(s.plane_length, config_.polar_tolerance);
-      }
-      at = step.to;
-      polar_at_ = s.machine;
+    std::vector<ModeStep> machine_steps;
+    machine_steps.reserve(steps.size());
+    for (const transform::PolarStep& s : steps) {
+      machine_steps.push_back(
+          ModeStep{s.machine.radius + t_lin, s.machine.degrees, s.plane_length});
     }
+    emit_mode_steps(c, polar_from_, on_machine(polar_at_, polar_from_), polar_axes_, machine_steps,
+                    piece.length());
+    polar_at_ = steps.back().machine;
     polar_from_ = c.to;
+  }
+}
+
+void ProgramRun::emit_mode_steps(const Command& c, const AxisVector& from, const AxisVector& start,
+                                 const std::array<int, 2>& axes, const std::vector<ModeStep>& steps,
+                                 double total) {
+  double covered = 0.0;
+  AxisVector at = start;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const ModeStep& s = steps[k];
+    const bool last = k + 1 == steps.size();
+    covered += s.length;
+    // The axes outside the mode's plane move in proportion to the contour's length.
+    const double f = last || total <= 0.0 ? 1.0 : covered / total;
+    Command& step = out_.emplace_back(c);
+    step.op = Op::linear;
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      step.to[i] = from[i] + f * (c.to[i] - from[i]);
+    }
+    step.to[static_cast<std::size_t>(axes[0])] = s.first;
+    step.to[static_cast<std::size_t>(axes[1])] = s.second;
+    step.exact_stop = c.exact_stop && last;
+    // F is the speed along the contour: the machine line of this step is longer (angles count
+    // as lengths for the planner) or shorter than the piece of contour it covers.
+    double machine_length = 0.0;
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      machine_length += (step.to[i] - at[i]) * (step.to[i] - at[i]);
+    }
+    if (machine_length > 0.0) {
+      step.feed = c.feed * std::sqrt(machine_length) / std::max(s.length, config_.polar_tolerance);
+    }
+    at = step.to;
   }
 }
 

@@ -199,6 +199,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "chamfer_is_length",
              "compensation_idle_blocks",
              "polar",
+             "cylindrical_parallel",
              "cycles",
              "block_skip",
              "max_tool",
@@ -283,6 +284,12 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
         bad("polar.tolerance", "0.000001 to 1 mm");
       }
     }
+  }
+  if (root["cylindrical_parallel"]) {
+    // G07.1 (param 0016): the linear axis whose place the rotary axis takes in the plane.
+    c.cylindrical_parallel =
+        axis_letter(get<std::string>(root["cylindrical_parallel"], "cylindrical_parallel"),
+                    "cylindrical_parallel");
   }
   if (root["thread_chamfer_leads"]) {
     c.thread_chamfer_leads = get<double>(root["thread_chamfer_leads"], "thread_chamfer_leads");

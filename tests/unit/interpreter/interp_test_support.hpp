@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -133,6 +134,24 @@ void expect_alarms(const ExpectedAlarm (&cases)[N], const InterpreterConfig& con
     SCOPED_TRACE(a.program);
     run_alarm(a.program, a.number, a.line, a.column, config);
   }
+}
+
+// How long the linear commands take at their feeds (minutes), from `from`: a line's length is
+// the Euclidean length over the first `axes` axes, as the planner measures it.
+inline double minutes_at_feed(const RunResult& r, AxisVector from, std::size_t axes) {
+  double minutes = 0.0;
+  for (const Command& c : r.commands) {
+    if (c.op != Op::linear) {
+      continue;
+    }
+    double length = 0.0;
+    for (std::size_t i = 0; i < axes; ++i) {
+      length += (c.to[i] - from[i]) * (c.to[i] - from[i]);
+    }
+    minutes += std::sqrt(length) / c.feed;
+    from = c.to;
+  }
+  return minutes;
 }
 
 // Expects a motion command's end point (physical: X as a radius).

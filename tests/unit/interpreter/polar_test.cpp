@@ -57,19 +57,7 @@ TEST(InterpPolar, EveryBlockEndsOnItsProgrammedPoint) {
 // F is the speed along the contour: the machine lines take as long as the contour at F.
 TEST(InterpPolar, TheFeedIsTheTangentialSpeed) {
   RunResult r = run_ok(kSquare, polar_lathe());
-  double minutes = 0.0;
-  AxisVector at = r.of(Op::rapid).front().to;
-  for (const Command& c : r.commands) {
-    if (c.op != Op::linear) {
-      continue;
-    }
-    double length = 0.0;
-    for (const std::size_t i : {kX, kZ, kA}) {
-      length += (c.to[i] - at[i]) * (c.to[i] - at[i]);
-    }
-    minutes += std::sqrt(length) / c.feed;
-    at = c.to;
-  }
+  const double minutes = minutes_at_feed(r, r.of(Op::rapid).front().to, 3);
   // 40 from X120 to X40, the square's sides and rounded corners, 40 back out.
   const double contour = 40 + 10 + M_PI * 5 + 30 + 30 + M_PI * 5 + 30 + 20 + 40;
   EXPECT_NEAR(minutes, contour / 500.0, 1e-9);
@@ -86,22 +74,22 @@ TEST(InterpPolar, MisuseIsAnAlarm) {
   const ExpectedAlarm cases[] = {
       {"G00 X40\nG12.1 X10\nM30\n", alarm::kMustBeAlone, 2},
       {"G00 X40\nG12.1 G01\nM30\n", alarm::kMustBeAlone, 2},
-      {"G00 X40\nG42 G01 X40 F100\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nG00 X20\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nX20\nM30\n", alarm::kPolarRestriction, 3},  // G00 still modal
-      {"G00 X40\nG12.1\nT0202\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nG50 X0\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nG18\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nG68.1 X0 Z0 R10\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X40\nG12.1\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
+      {"G00 X40\nG42 G01 X40 F100\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nG00 X20\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nX20\nM30\n", alarm::kInterpolationModeRestriction, 3},  // G00 still modal
+      {"G00 X40\nG12.1\nT0202\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nG50 X0\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nG18\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nG68.1 X0 Z0 R10\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG12.1\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G00 X40\nG12.1\nG41 G01 X20 F100\nM30\n", alarm::kNotInThisVersion, 3},
       {"G00 X40\nG12.1\nG01 X20 F100 ,C2\nG01 A10\nM30\n", alarm::kNotInThisVersion, 3},
-      {"G00 X40\nG68.1 X0 Z0 R10\nG12.1\nM30\n", alarm::kPolarRestriction, 3},
-      {"G00 X-40\nG12.1\nM30\n", alarm::kPolarRestriction, 2},
+      {"G00 X40\nG68.1 X0 Z0 R10\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X-40\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 2},
   };
   expect_alarms(cases, polar_lathe());
   // Without the polar axes in the parameters.
-  run_alarm("G00 X40\nG12.1\nM30\n", alarm::kPolarRestriction, 2);
+  run_alarm("G00 X40\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 2);
 }
 
 }  // namespace

@@ -253,6 +253,16 @@ std::optional<InterpResult> ProgramRun::next() {
 void ProgramRun::release_block() {
   map_to_machine();
   framed_commands_ = 0;  // out_ is emptied below
+  const std::size_t from = ready_.size();
+  release_through_lookahead();
+  expand_modes(ready_, from);
+  if (ended_) {
+    end_polar();  // the end resets the modes, after their last moves went out
+    end_cylindrical();
+  }
+}
+
+void ProgramRun::release_through_lookahead() {
   bool needed = lookahead_.holding();
   for (const Command& c : out_) {
     needed =
@@ -661,10 +671,8 @@ void ProgramRun::end_program(int code) {
   c.code = code;
   c.barrier = true;
   ended_ = true;
-  // The end resets what a reset cancels: polar interpolation, the rotation (spec L4552) and the
-  // mirror.
-  end_polar();
-  end_cylindrical();
+  // The end resets what a reset cancels: the rotation (spec L4552) and the mirror (polar and
+  // cylindrical interpolation in release_block, after their last moves).
   rotated_ = false;
   program_mirror_ = transform::AxisMirror{};
   modal_codes_[17] = 69.1;

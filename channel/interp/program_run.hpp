@@ -200,8 +200,6 @@ class ProgramRun final : public macro::VariableProvider {
   void rebuild_frame();
   // The block's commands not yet mapped: positions and centres from the frame to the machine.
   void map_to_machine();
-  // The block's commands not yet mapped, taken out of out_ (the modes map them back in).
-  std::vector<Command> take_unmapped();
 
   // ---- G12.1 / G13.1 polar interpolation (program_run_polar.cpp)
   bool run_polar(GFunction f, int column);
@@ -209,14 +207,16 @@ class ProgramRun final : public macro::VariableProvider {
   void end_polar();
   // False after alarm 1154 (or 1122) when the code may not run in polar interpolation.
   bool polar_allows(GFunction f, int code10, int column);
-  // The block's commands not yet mapped, from the polar plane to the machine: every line and
-  // arc becomes the machine lines that keep the tool tip on it.
-  void expand_polar();
+  // The commands list[from..] from the mode's plane to the machine, after the look-ahead (the
+  // corners and the compensation work in the mode's plane): every line and arc becomes the
+  // machine lines that keep the tool tip on it.
+  void expand_modes(std::vector<Command>& list, std::size_t from);
+  void expand_polar(std::vector<Command>& list, std::size_t from);
 
   // ---- G07.1 cylindrical interpolation (program_run_cylinder.cpp)
   bool run_cylindrical(int column);
   void end_cylindrical();  // G07.1 C0 and the program end: the rotary axis in degrees again
-  void expand_cylindrical();
+  void expand_cylindrical(std::vector<Command>& list, std::size_t from);
   // Polar or cylindrical interpolation: the program's plane is not the machine's.
   bool interpolation_mode() const { return polar_ || cylindrical_; }
   // Shared by both: the machine lines of programmed move `c` from `from` (as machine_) and the
@@ -227,9 +227,9 @@ class ProgramRun final : public macro::VariableProvider {
     double second = 0.0;
     double length = 0.0;
   };
-  void emit_mode_steps(const Command& c, const AxisVector& from, const AxisVector& start,
-                       const std::array<int, 2>& axes, const std::vector<ModeStep>& steps,
-                       double total);
+  void emit_mode_steps(std::vector<Command>& into, const Command& c, const AxisVector& from,
+                       const AxisVector& start, const std::array<int, 2>& axes,
+                       const std::vector<ModeStep>& steps, double total);
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
@@ -293,8 +293,10 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- output and alarms
   Command& emit(Op op);
-  // Moves the executed block's commands through the look-ahead (corners, nose compensation).
+  // Moves the executed block's commands through the look-ahead (corners, nose compensation)
+  // and the polar or cylindrical interpolation.
   void release_block();
+  void release_through_lookahead();
   bool fail(int number, std::string text, int column);
   bool fail_macro(const macro::MacroAlarm& a);
   BlockWord* word(char letter);
@@ -434,7 +436,7 @@ class ProgramRun final : public macro::VariableProvider {
   transform::TransformChain frame_;
   std::size_t framed_commands_ = 0;  // out_ commands frame_ has mapped already
   // G12.1: machine_ holds the polar plane's point (plus the offsets) on the linear and rotary
-  // axes; the commands leave through expand_polar().
+  // axes; the commands leave through expand_polar() after the look-ahead.
   bool polar_ = false;
   std::array<int, 2> polar_axes_{-1, -1};  // linear, rotary
   double polar_zero_ = 0.0;                // the rotary axis's angle where the virtual axis is 0

@@ -47,9 +47,9 @@ bool ProgramRun::run_cylindrical(int column) {
   if (contour_mode_ != ContourMode::none) {
     return contour_forbids("G07.1", column);
   }
-  if (compensation_ != Command::Compensation::off) {
+  if (compensation_ != Command::Compensation::off || lookahead_.holding()) {
     return fail(alarm::kInterpolationModeRestriction,
-                "G07.1 is switched under G40 only: cancel G41/G42 first", column);
+                "G07.1 is switched under G40 only: cancel G41/G42 with a move first", column);
   }
   if (radius == 0.0) {
     end_cylindrical();
@@ -86,13 +86,12 @@ bool ProgramRun::run_cylindrical(int column) {
                     "L612-710)",
                 column);
   }
-  cylindrical_ = false;
-  map_to_machine();  // what the block made before goes out as it is
   cylinder_radius_ = radius;
   cylindrical_ = true;
   const auto rot = static_cast<std::size_t>(axis);
   machine_[rot] = transform::CylindricalInterpolation(radius).to_length(machine_[rot]);
   cylinder_from_ = machine_;
+  lookahead_.passed(machine_);
   return true;
 }
 
@@ -100,13 +99,13 @@ void ProgramRun::end_cylindrical() {
   if (!cylindrical_) {
     return;
   }
-  map_to_machine();  // the moves so far leave in cylindrical interpolation
   const auto rot = static_cast<std::size_t>(cylinder_axis_);
   machine_[rot] = transform::CylindricalInterpolation(cylinder_radius_).to_degrees(machine_[rot]);
   cylindrical_ = false;
+  lookahead_.passed(machine_);
 }
 
-void ProgramRun::expand_cylindrical() {
+void ProgramRun::expand_cylindrical(std::vector<Command>& list, std::size_t from) {
   const transform::CylindricalInterpolation cylinder(cylinder_radius_);
   const auto rot = static_cast<std::size_t>(cylinder_axis_);
   const std::array<int, 2> axes = plane_axis_indices();
@@ -114,9 +113,12 @@ void ProgramRun::expand_cylindrical() {
     v[rot] = cylinder.to_degrees(v[rot]);
     return v;
   };
-  for (const Command& c : take_unmapped()) {
+  const auto first = list.begin() + static_cast<std::ptrdiff_t>(from);
+  const std::vector<Command> made(first, list.end());
+  list.erase(first, list.end());
+  for (const Command& c : made) {
     if (c.op != Op::linear && c.op != Op::arc) {
-      out_.emplace_back(c).to = on_machine(c.to);
+      list.emplace_back(c).to = on_machine(c.to);
       continue;
     }
     const auto a = static_cast<std::size_t>(axes[0]);
@@ -140,7 +142,7 @@ void ProgramRun::expand_cylindrical() {
                                b == rot ? cylinder.to_degrees(p[1]) : p[1], (f - before) * total});
       before = f;
     }
-    emit_mode_steps(c, cylinder_from_, on_machine(cylinder_from_), axes, steps, total);
+    emit_mode_steps(list, c, cylinder_from_, on_machine(cylinder_from_), axes, steps, total);
     cylinder_from_ = c.to;
   }
 }

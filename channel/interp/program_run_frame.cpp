@@ -241,11 +241,7 @@ void ProgramRun::rebuild_frame() {
 
 void ProgramRun::map_to_machine() {
   framed_commands_ = std::min(framed_commands_, out_.size());
-  if (polar_) {
-    expand_polar();
-  } else if (cylindrical_) {
-    expand_cylindrical();
-  } else if (!frame_.identity()) {
+  if (!frame_.identity()) {
     const std::array<int, 2> plane = plane_axis_indices();
     for (std::size_t k = framed_commands_; k < out_.size(); ++k) {
       Command& c = out_[k];
@@ -273,13 +269,6 @@ void ProgramRun::map_to_machine() {
     }
   }
   framed_commands_ = out_.size();
-}
-
-std::vector<Command> ProgramRun::take_unmapped() {
-  const auto first = out_.begin() + static_cast<std::ptrdiff_t>(framed_commands_);
-  std::vector<Command> made(first, out_.end());
-  out_.erase(first, out_.end());
-  return made;
 }
 
 }  // namespace mcnc::interp

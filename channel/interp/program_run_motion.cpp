@@ -227,13 +227,6 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
                 "L612-849)",
                 column);
   }
-  if (interpolation_mode() &&
-      (comma_word('C') != nullptr || comma_word('R') != nullptr || comma_word('A') != nullptr)) {
-    return fail(alarm::kNotInThisVersion,
-                ",C ,R and ,A in polar and cylindrical interpolation come with their "
-                "compensation, in a later release",
-                column);
-  }
   if (cutting && !machine_coordinates && !take_corner_request()) {
     return false;
   }

@@ -39,10 +39,7 @@ bool ProgramRun::polar_allows(GFunction f, int code10, int column) {
                   "G07.1 is not allowed in polar interpolation: G13.1 first", column);
     case GFunction::tnrc_left:
     case GFunction::tnrc_right:
-      return fail(alarm::kNotInThisVersion,
-                  "tool-nose compensation in polar and cylindrical interpolation needs the "
-                  "compensation on their plane, of a later release",
-                  column);
+      return true;
     default:
       return fail(alarm::kInterpolationModeRestriction,
                   "G" + std::to_string(code10 / 10) +
@@ -65,9 +62,12 @@ bool ProgramRun::run_polar(GFunction f, int column) {
   if (contour_mode_ != ContourMode::none) {
     return contour_forbids(on ? "G12.1" : "G13.1", column);
   }
-  if (compensation_ != Command::Compensation::off) {
+  if (compensation_ != Command::Compensation::off || lookahead_.holding()) {
     return fail(alarm::kInterpolationModeRestriction,
-                code + " is switched under G40 only (spec L711-849): cancel G41/G42 first", column);
+                code +
+                    " is switched under G40 only (spec L711-849): cancel G41/G42 with a move "
+                    "first",
+                column);
   }
   if (!on) {
     end_polar();
@@ -104,13 +104,13 @@ bool ProgramRun::run_polar(GFunction f, int column) {
                 "the linear axis at 0 or above first",
                 column);
   }
-  map_to_machine();
   polar_axes_ = axes;
   polar_zero_ = machine_[rot];
   polar_at_ = transform::PolarPoint{x, polar_zero_};
   // The virtual axis starts at 0, wherever the rotary axis stands (spec L711-849, detail 10).
   machine_[rot] = offset_sum(axes[1]) + tool_offset(axes[1]);
   polar_from_ = machine_;
+  lookahead_.passed(machine_);
   polar_ = true;
   modal_codes_[21] = 12.1;
   return true;
@@ -121,15 +121,23 @@ void ProgramRun::end_polar() {
   if (!polar_) {
     return;
   }
-  map_to_machine();  // the moves so far leave in polar interpolation
   const auto lin = static_cast<std::size_t>(polar_axes_[0]);
   const auto rot = static_cast<std::size_t>(polar_axes_[1]);
   machine_[lin] = polar_at_.radius + offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
   machine_[rot] = polar_at_.degrees;
   polar_ = false;
+  lookahead_.passed(machine_);
 }
 
-void ProgramRun::expand_polar() {
+void ProgramRun::expand_modes(std::vector<Command>& list, std::size_t from) {
+  if (polar_) {
+    expand_polar(list, from);
+  } else if (cylindrical_) {
+    expand_cylindrical(list, from);
+  }
+}
+
+void ProgramRun::expand_polar(std::vector<Command>& list, std::size_t from) {
   const auto lin = static_cast<std::size_t>(polar_axes_[0]);
   const auto rot = static_cast<std::size_t>(polar_axes_[1]);
   const double t_lin = offset_sum(polar_axes_[0]) + tool_offset(polar_axes_[0]);
@@ -140,9 +148,12 @@ void ProgramRun::expand_polar() {
     v[rot] = m.degrees;
     return v;
   };
-  for (const Command& c : take_unmapped()) {
+  const auto first = list.begin() + static_cast<std::ptrdiff_t>(from);
+  const std::vector<Command> made(first, list.end());
+  list.erase(first, list.end());
+  for (const Command& c : made) {
     if (c.op != Op::linear && c.op != Op::arc) {
-      Command& kept = out_.emplace_back(c);
+      Command& kept = list.emplace_back(c);
       kept.to = on_machine(polar_at_, c.to);
       continue;
     }
@@ -169,14 +180,15 @@ void ProgramRun::expand_polar() {
       machine_steps.push_back(
           ModeStep{s.machine.radius + t_lin, s.machine.degrees, s.plane_length});
     }
-    emit_mode_steps(c, polar_from_, on_machine(polar_at_, polar_from_), polar_axes_, machine_steps,
-                    piece.length());
+    emit_mode_steps(list, c, polar_from_, on_machine(polar_at_, polar_from_), polar_axes_,
+                    machine_steps, piece.length());
     polar_at_ = steps.back().machine;
     polar_from_ = c.to;
   }
 }
 
-void ProgramRun::emit_mode_steps(const Command& c, const AxisVector& from, const AxisVector& start,
+void ProgramRun::emit_mode_steps(std::vector<Command>& into, const Command& c,
+                                 const AxisVector& from, const AxisVector& start,
                                  const std::array<int, 2>& axes, const std::vector<ModeStep>& steps,
                                  double total) {
   double covered = 0.0;
@@ -187,7 +199,7 @@ void ProgramRun::emit_mode_steps(const Command& c, const AxisVector& from, const
     covered += s.length;
     // The axes outside the mode's plane move in proportion to the contour's length.
     const double f = last || total <= 0.0 ? 1.0 : covered / total;
-    Command& step = out_.emplace_back(c);
+    Command& step = into.emplace_back(c);
     step.op = Op::linear;
     for (std::size_t i = 0; i < config_.axes.size(); ++i) {
       step.to[i] = from[i] + f * (c.to[i] - from[i]);

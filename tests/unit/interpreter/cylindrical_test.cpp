@@ -55,6 +55,18 @@ TEST(InterpCylindrical, TheFeedIsTheSpeedOnTheSurface) {
   EXPECT_NEAR(minutes, contour / 300.0, 1e-9);
 }
 
+// G42 works on the unrolled surface: a cutter of radius 2 along +C runs 2 below the line, and
+// down -Z 2 before C30 (the inside corner: lengths around the cylinder, 2 mm of C60).
+TEST(InterpCylindrical, CompensationWorksOnTheUnrolledSurface) {
+  RunResult r = run_ok(
+      "T0101\nG00 X120 Z100 C0\nG19\nG07.1 C60\nG42 G01 Z120 F300\nG01 C30\nG01 Z100\n"
+      "G40 C40\nG07.1 C0\nM30\n",
+      with_nose_radius(cylinder_lathe(), 2.0));
+  ASSERT_EQ(r.at_line(6).size(), 1u);
+  EXPECT_AT(r.at_line(6)[0], 60, 118, 30 - 2.0 * 180.0 / (M_PI * 60.0));
+  EXPECT_AT(r.at_line(7).back(), 60, 100, 30 - 2.0 * 180.0 / (M_PI * 60.0));
+}
+
 TEST(InterpCylindrical, MisuseIsAnAlarm) {
   const ExpectedAlarm cases[] = {
       {"G19\nG07.1 C60 Z10\nM30\n", alarm::kMustBeAlone, 2, 11},
@@ -64,7 +76,8 @@ TEST(InterpCylindrical, MisuseIsAnAlarm) {
       {"G68.1 X0 Z0 R10\nG07.1 C60\nM30\n", alarm::kInterpolationModeRestriction, 2},
       {"G07.1 C60\nM30\n", alarm::kInterpolationModeRestriction, 1},  // G18: no C in the plane
       {"G19\nG07.1 C60\nG00 Z10\nM30\n", alarm::kInterpolationModeRestriction, 3},
-      {"G19\nG07.1 C60\nG41 G01 Z10 F100\nM30\n", alarm::kNotInThisVersion, 3},
+      {"G19\nG07.1 C60\nG41 G01 Z10 F100\nG07.1 C0\nM30\n", alarm::kInterpolationModeRestriction,
+       4},  // G07.1 C0 under G41
       {"G19\nG07.1 C60\nG07.1 C50\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G19\nG07.1 C60\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G19\nG52 H10\nG07.1 C60\nM30\n", alarm::kInterpolationModeRestriction, 3},

@@ -136,6 +136,12 @@ void expect_alarms(const ExpectedAlarm (&cases)[N], const InterpreterConfig& con
   }
 }
 
+// `config` with the nose (cutter) radius of tool offset 1.
+inline InterpreterConfig with_nose_radius(InterpreterConfig config, double radius) {
+  config.tool_geometry[1].radius = radius;
+  return config;
+}
+
 // How long the linear commands take at their feeds (minutes), from `from`: a line's length is
 // the Euclidean length over the first `axes` axes, as the planner measures it.
 inline double minutes_at_feed(const RunResult& r, AxisVector from, std::size_t axes) {

@@ -30,20 +30,34 @@ std::array<double, 2> plane_point(const AxisVector& to, double zero_degrees) {
   return {to[kX] * std::cos(a), to[kX] * std::sin(a)};
 }
 
-TEST(InterpPolar, EveryBlockEndsOnItsProgrammedPoint) {
-  RunResult r = run_ok(kSquare, polar_lathe());
-  // The virtual axis starts at 0 where A stands (A30), X40 is the radius 20.
-  const std::pair<int, std::array<double, 2>> ends[] = {
-      {3, {20, 0}},    {4, {20, 10}},  {5, {10, 20}}, {6, {-20, 20}}, {7, {-20, -10}},
-      {8, {-10, -20}}, {9, {20, -20}}, {10, {20, 0}}, {11, {60, 0}},
-  };
+// The last machine line of each block (line, plane point) ends on its point.
+using PlaneEnd = std::pair<int, std::array<double, 2>>;
+void expect_ends(const RunResult& r, const std::vector<PlaneEnd>& ends, double zero_degrees) {
   for (const auto& [line, want] : ends) {
     const std::vector<Command> moves = r.at_line(line);
     ASSERT_FALSE(moves.empty()) << line;
-    const std::array<double, 2> p = plane_point(moves.back().to, 30.0);
+    const std::array<double, 2> p = plane_point(moves.back().to, zero_degrees);
     EXPECT_NEAR(p[0], want[0], 1e-9) << line;
     EXPECT_NEAR(p[1], want[1], 1e-9) << line;
-    for (const Command& m : moves) {
+  }
+}
+
+TEST(InterpPolar, EveryBlockEndsOnItsProgrammedPoint) {
+  RunResult r = run_ok(kSquare, polar_lathe());
+  // The virtual axis starts at 0 where A stands (A30), X40 is the radius 20.
+  expect_ends(r,
+              {{3, {20, 0}},
+               {4, {20, 10}},
+               {5, {10, 20}},
+               {6, {-20, 20}},
+               {7, {-20, -10}},
+               {8, {-10, -20}},
+               {9, {20, -20}},
+               {10, {20, 0}},
+               {11, {60, 0}}},
+              30.0);
+  for (int line = 3; line <= 11; ++line) {
+    for (const Command& m : r.at_line(line)) {
       EXPECT_EQ(m.op, Op::linear);
       EXPECT_NEAR(m.to[kZ], 0.0, 1e-12);
     }
@@ -61,6 +75,25 @@ TEST(InterpPolar, TheFeedIsTheTangentialSpeed) {
   // 40 from X120 to X40, the square's sides and rounded corners, 40 back out.
   const double contour = 40 + 10 + M_PI * 5 + 30 + 30 + M_PI * 5 + 30 + 20 + 40;
   EXPECT_NEAR(minutes, contour / 500.0, 1e-9);
+}
+
+// The spec's example with its G42 (L804-849), a cutter of radius 2: the compensation works in
+// the polar plane, so the tool's centre runs 2 outside the square.
+TEST(InterpPolar, CompensationWorksInThePolarPlane) {
+  RunResult r = run_ok(
+      "T0101\nG00 X120 A0 Z0\nG12.1\nG42 G01 A0 X40 F500\nG01 A10\nG03 X20 A20 R10\n"
+      "G01 X-40\nG01 A-10\nG03 X-20 A-20 I10 J0\nG01 X40\nG01 A0\nG40 X120\nG13.1\nM30\n",
+      with_nose_radius(polar_lathe(), 2.0));
+  expect_ends(r,
+              {{5, {22, 10}},
+               {6, {10, 22}},
+               {7, {-22, 20}},
+               {8, {-22, -10}},
+               {9, {-10, -22}},
+               {10, {22, -20}},
+               {11, {22, 0}},
+               {12, {60, 0}}},
+              0.0);
 }
 
 TEST(InterpPolar, ModalGroup21ReadsIt) {
@@ -82,8 +115,8 @@ TEST(InterpPolar, MisuseIsAnAlarm) {
       {"G00 X40\nG12.1\nG18\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G00 X40\nG12.1\nG68.1 X0 Z0 R10\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G00 X40\nG12.1\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
-      {"G00 X40\nG12.1\nG41 G01 X20 F100\nM30\n", alarm::kNotInThisVersion, 3},
-      {"G00 X40\nG12.1\nG01 X20 F100 ,C2\nG01 A10\nM30\n", alarm::kNotInThisVersion, 3},
+      {"G00 X40\nG12.1\nG42 G01 X20 F100\nG13.1\nM30\n", alarm::kInterpolationModeRestriction,
+       4},  // G13.1 under G42
       {"G00 X40\nG68.1 X0 Z0 R10\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G00 X-40\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 2},
   };

@@ -349,8 +349,10 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   block_barrier_ = false;
   block_moved_ = false;
   block_exact_stop_ = false;
-  if (frame_active()) {
-    rebuild_frame();  // offsets written since the last block (G10, #2001, #5221 ...)
+  if (frame_active() && contour_mode_ == ContourMode::none) {
+    // Offsets written since the last block (G10, #2001, #5221 ...); not inside a G70-G73
+    // contour, whose moves are read back in the frame before they go out.
+    rebuild_frame();
   }
 
   // G codes of the block.

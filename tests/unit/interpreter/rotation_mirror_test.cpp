@@ -116,6 +116,22 @@ TEST(InterpRotation, ArcsKeepTheirSenseAndTurnTheirCentre) {
   EXPECT_NEAR(arcs[0].center[1], -10.0, 1e-9);  // X
 }
 
+// A cycle in the turned frame is the unturned cycle turned: G71's contour is read in the frame.
+TEST(InterpRotation, CyclesRunInTheTurnedFrame) {
+  const std::string cycle =
+      "G00 X100 Z10\nG71 U2 R1\nG71 P10 Q20 U0.5 W0.2 F100\nN10 G00 X40\nG01 Z-20\nX60 Z-30\n"
+      "N20 X100\nM30\n";
+  RunResult plain = run_ok(cycle);
+  RunResult turned = run_ok("G68.1 X0 Z0 R90\n" + cycle);
+  ASSERT_EQ(plain.commands.size(), turned.commands.size());
+  ASSERT_GT(plain.commands.size(), 5u);
+  for (std::size_t k = 0; k < plain.commands.size(); ++k) {
+    // 90 degrees counter-clockwise in the Z-X plane: (z, x) -> (-x, z).
+    EXPECT_NEAR(turned.commands[k].to[0], plain.commands[k].to[1], 1e-9) << k;
+    EXPECT_NEAR(turned.commands[k].to[1], -plain.commands[k].to[0], 1e-9) << k;
+  }
+}
+
 TEST(InterpRotation, G53IsNotTurned) {
   RunResult r = run_ok("G00 X0 Z0\nG68.1 X0 Z0 R30\nG53 X100 Z50\nG00 Z0\nM30\n");
   const std::vector<Command> rapids = r.of(Op::rapid);

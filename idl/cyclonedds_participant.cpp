@@ -160,42 +160,79 @@ std::string domain_config(int domain, bool shared_memory) {
   return config;
 }
 
-// A domain is configured once per process, before its first participant (which decides
-// whether the process uses shared memory).
-void configure_domain_once(int domain, bool shared_memory) {
-  static std::mutex mutex;
-  static std::set<int> configured;
-  std::lock_guard<std::mutex> lock(mutex);
-  if (configured.count(domain) != 0) {
-    return;
+// A domain is configured before its first participant (which decides whether the process uses
+// shared memory) and deleted after its last: the domain made with a configuration lives until it
+// is deleted, and with it the listener thread that waits in iceoryx's shared memory. Left to the
+// process's exit, that thread could still wait there when iceoryx's own exit unmapped the
+// memory: a channel ended by a segmentation fault in sem_wait after its run (seen twice in a day
+// of runs).
+class DomainUse {
+ public:
+  static void enter(int domain, bool shared_memory) {
+    std::lock_guard<std::mutex> lock(mutex());
+    Entry& entry = entries()[domain];
+    if (entry.participants++ > 0) {
+      return;
+    }
+    const dds_entity_t created = dds_create_domain(static_cast<dds_domainid_t>(domain),
+                                                   domain_config(domain, shared_memory).c_str());
+    if (created < 0 && created != DDS_RETCODE_PRECONDITION_NOT_MET) {
+      entries().erase(domain);
+      throw std::runtime_error("cannot configure Cyclone DDS domain " + std::to_string(domain) +
+                               ": " + error_text(created));
+    }
+    entry.handle = created > 0 ? created : 0;  // 0: made elsewhere, not ours to delete
   }
-  const dds_entity_t created = dds_create_domain(static_cast<dds_domainid_t>(domain),
-                                                 domain_config(domain, shared_memory).c_str());
-  if (created < 0 && created != DDS_RETCODE_PRECONDITION_NOT_MET) {
-    throw std::runtime_error("cannot configure Cyclone DDS domain " + std::to_string(domain) +
-                             ": " + error_text(created));
+
+  static void leave(int domain) noexcept {
+    std::lock_guard<std::mutex> lock(mutex());
+    const auto it = entries().find(domain);
+    if (it == entries().end() || --it->second.participants > 0) {
+      return;
+    }
+    if (it->second.handle > 0) {
+      dds_delete(it->second.handle);  // stops its threads, the shared-memory listener's among them
+    }
+    entries().erase(it);
   }
-  configured.insert(domain);
-}
+
+ private:
+  struct Entry {
+    int participants = 0;
+    dds_entity_t handle = 0;
+  };
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static std::map<int, Entry>& entries() {
+    static std::map<int, Entry> e;
+    return e;
+  }
+};
 
 class CycloneParticipant final : public detail::ParticipantImpl {
  public:
-  CycloneParticipant(int domain, const std::string& name, bool shared_memory) {
+  CycloneParticipant(int domain, const std::string& name, bool shared_memory) : domain_(domain) {
     if (shared_memory && !roudi_answers()) {
       throw std::runtime_error(std::string("no iceoryx RouDi answers at ") + kRoudiSocket +
                                ": a Cyclone DDS process needs one running on its host (iox-roudi;"
                                " mcnc-launch starts it)");
     }
-    configure_domain_once(domain, shared_memory);
+    DomainUse::enter(domain, shared_memory);
     QosOf qos;
     dds_qset_entity_name(qos.qos, name.c_str());
     participant_ = dds_create_participant(static_cast<dds_domainid_t>(domain), qos.qos, nullptr);
     if (participant_ < 0) {
+      DomainUse::leave(domain);
       throw std::runtime_error("cannot create Cyclone DDS participant on domain " +
                                std::to_string(domain) + ": " + error_text(participant_));
     }
   }
-  ~CycloneParticipant() override { dds_delete(participant_); }
+  ~CycloneParticipant() override {
+    dds_delete(participant_);
+    DomainUse::leave(domain_);
+  }
   CycloneParticipant(const CycloneParticipant&) = delete;
   CycloneParticipant& operator=(const CycloneParticipant&) = delete;
 
@@ -249,6 +286,7 @@ class CycloneParticipant final : public detail::ParticipantImpl {
   }
 
  private:
+  int domain_;
   dds_entity_t participant_ = 0;
   std::mutex mutex_;
   std::map<std::string, dds_entity_t> topics_;

@@ -328,8 +328,8 @@ int main(int argc, char** argv) {
     }
     dds::Writer<AxisFeedback> feedback_writer(node.participant(), axis->name);
 
-    axisnode::DriveLink link(can::open_can_bus(bus->uri), can::open_can_bus(bus->uri), node_id,
-                             sync_producer, other_nodes, wake);
+    axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, sync_producer, other_nodes,
+                             wake);
     const bool spindle = axis->type == config::AxisType::spindle;
     canopen::NodeStartupConfig startup;
     startup.node = node_id;

@@ -102,7 +102,7 @@ void round_trip(const std::string& uri, int cycles) {
 // after its due time (start + n cycles + offset) each SYNC went out.
 void sync_timing(const config::MachineConfig& machine, const std::string& uri, double seconds) {
   process::Wakeup wake;
-  axisnode::DriveLink link(can::open_can_bus(uri), can::open_can_bus(uri), 1, true, {}, wake);
+  axisnode::DriveLink link(can::open_can_bus(uri), 1, true, {}, wake);
   const std::int64_t period = static_cast<std::int64_t>(machine.cycle_us) * 1000;
   const std::int64_t offset =
       static_cast<std::int64_t>(machine.buses.front().sync_offset_us) * 1000;

@@ -27,6 +27,8 @@ std::size_t master_filters(std::uint8_t node, bool sync_producer,
                            std::span<can::CanFilter> out) noexcept {
   FilterList list(out);
   list.add(0x080U + node);  // EMCY
+  list.add(0x180U + node);  // TPDO1
+  list.add(0x280U + node);  // TPDO2
   list.add(0x580U + node);  // SDO responses
   list.add(0x700U + node);  // heartbeat, boot-up
   if (sync_producer) {
@@ -35,13 +37,6 @@ std::size_t master_filters(std::uint8_t node, bool sync_producer,
       list.add(0x200U + other);  // the others' RPDO1
     }
   }
-  return list.result();
-}
-
-std::size_t answer_filters(std::uint8_t node, std::span<can::CanFilter> out) noexcept {
-  FilterList list(out);
-  list.add(0x180U + node);  // TPDO1
-  list.add(0x280U + node);  // TPDO2
   return list.result();
 }
 

@@ -9,18 +9,14 @@
 
 namespace mcnc::canopen {
 
-// The master of one node (an axis node), but for its drive's answers: the node's EMCY, SDO
-// responses and heartbeat; the bus's SYNC producer also SYNC and the RPDO1 of every other node
-// of the bus (its lockstep SYNC waits for them). Any other node awaits only its own drive's
-// answer to the SYNC, so those frames would only wake it. Returns how many filters it wrote; 0
-// when `out` is too small (then: no filter).
+// The master of one node (an axis node): the node's EMCY, TPDO1, TPDO2, SDO responses and
+// heartbeat; the bus's SYNC producer also SYNC and the RPDO1 of every other node of the bus (its
+// lockstep SYNC waits for them). Any other node awaits only its own drive's answer to the SYNC,
+// so those frames would only wake it. Returns how many filters it wrote; 0 when `out` is too
+// small (then: no filter).
 std::size_t master_filters(std::uint8_t node, bool sync_producer,
                            std::span<const std::uint8_t> other_nodes,
                            std::span<can::CanFilter> out) noexcept;
-
-// The drive's answers to the SYNC (TPDO1, TPDO2 of `node`), which the master's cycle reads
-// itself.
-std::size_t answer_filters(std::uint8_t node, std::span<can::CanFilter> out) noexcept;
 
 // The drives of a bus (the simulator): NMT, SYNC, and for each drive its RPDO1, RPDO2 and SDO
 // requests. 0 when `out` is too small.

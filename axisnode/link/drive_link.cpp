@@ -12,11 +12,9 @@ namespace mcnc::axisnode {
 
 using namespace std::chrono_literals;
 
-DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::unique_ptr<can::CanBus> answers,
-                     std::uint8_t node_id, bool sync_producer,
+DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, bool sync_producer,
                      std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup)
     : bus_(std::move(bus)),
-      answers_(std::move(answers)),
       node_id_(node_id),
       sync_producer_(sync_producer),
       other_nodes_(std::move(other_nodes)),
@@ -26,11 +24,6 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::unique_ptr<can::CanB
   const std::size_t n = canopen::master_filters(node_id_, sync_producer_, other_nodes_, filters);
   if (!bus_->set_filters(std::span(filters.data(), n))) {
     spdlog::warn("node {}: the bus refused the receive filter; receiving every frame", node_id_);
-  }
-  const std::size_t m = canopen::answer_filters(node_id_, filters);
-  if (!answers_->set_filters(std::span(filters.data(), m))) {
-    spdlog::warn("node {}: the bus refused the answers' filter; the cycle reads every frame",
-                 node_id_);
   }
   thread_ = std::thread([this] {
     process::name_this_thread("can-rx");
@@ -116,6 +109,53 @@ void DriveLink::receive_loop() {
           wakeup_.update([&] { rpdo_seen_.set(cls.node); });
         }
         break;
+      case canopen::FrameKind::tpdo1:
+        if (cls.node == node_id_) {
+          if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
+            const bool paired = tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_;
+            wakeup_.update([&] {
+              tpdo_statusword_ = pdo->statusword;
+              tpdo_position_ = pdo->position_actual;
+              tpdo_mode_display_ = pdo->mode_display;
+              ++tpdo1_count_;
+              // An answer is complete with both of its TPDOs, in whichever order they came.
+              tpdo_count_ = paired ? std::min(tpdo1_count_, tpdo2_count_) : tpdo1_count_;
+            });
+          } else {
+            ++malformed_;
+          }
+        }
+        break;
+      case canopen::FrameKind::tpdo2:
+        if (cls.node == node_id_ && (tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_)) {
+          const std::size_t want = (tpdo2_velocity_ ? 4U : 0U) +
+                                   (tpdo2_following_error_ ? 4U : 0U) + (tpdo2_torque_ ? 2U : 0U);
+          if (frame.dlc != want) {
+            ++malformed_;
+            break;
+          }
+          const auto i32 = [&](std::size_t at) {
+            return static_cast<std::int32_t>(static_cast<std::uint32_t>(frame.data[at]) |
+                                             static_cast<std::uint32_t>(frame.data[at + 1]) << 8 |
+                                             static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
+                                             static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
+          };
+          // In the order the start-up mapped them: velocity, following error, torque.
+          const std::size_t torque_at = want - 2U;
+          wakeup_.update([&] {
+            tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
+            tpdo2_following_error_value_ =
+                tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
+            tpdo2_torque_value_ =
+                tpdo2_torque_ ? static_cast<std::int16_t>(
+                                    static_cast<std::uint16_t>(frame.data[torque_at]) |
+                                    static_cast<std::uint16_t>(frame.data[torque_at + 1] << 8))
+                              : std::int16_t{0};
+            ++tpdo2_count_;
+            tpdo_count_ = std::min(tpdo1_count_, tpdo2_count_);
+          });
+        }
+        break;
       case canopen::FrameKind::heartbeat:
         if (cls.node == node_id_) {
           auto state = canopen::decode_heartbeat(frame);
@@ -156,81 +196,6 @@ void DriveLink::receive_loop() {
         break;
     }
   }
-}
-
-void DriveLink::on_answer(const canopen::CanFrame& frame) noexcept {
-  const canopen::FrameClass cls = canopen::classify(frame);
-  if (cls.node != node_id_) {
-    return;
-  }
-  if (cls.kind == canopen::FrameKind::tpdo1) {
-    const auto pdo = canopen::decode_tpdo_csp(frame, with_mode_);
-    if (!pdo) {
-      ++malformed_;
-      return;
-    }
-    const bool paired = tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_;
-    wakeup_.with_lock([&] {
-      tpdo_statusword_ = pdo->statusword;
-      tpdo_position_ = pdo->position_actual;
-      tpdo_mode_display_ = pdo->mode_display;
-      ++tpdo1_count_;
-      // An answer is complete with both of its TPDOs, in whichever order they came.
-      tpdo_count_ = paired ? std::min(tpdo1_count_, tpdo2_count_) : tpdo1_count_;
-    });
-    return;
-  }
-  if (cls.kind != canopen::FrameKind::tpdo2 ||
-      !(tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_)) {
-    return;
-  }
-  const std::size_t want =
-      (tpdo2_velocity_ ? 4U : 0U) + (tpdo2_following_error_ ? 4U : 0U) + (tpdo2_torque_ ? 2U : 0U);
-  if (frame.dlc != want) {
-    ++malformed_;
-    return;
-  }
-  const auto i32 = [&](std::size_t at) {
-    return static_cast<std::int32_t>(static_cast<std::uint32_t>(frame.data[at]) |
-                                     static_cast<std::uint32_t>(frame.data[at + 1]) << 8 |
-                                     static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
-                                     static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
-  };
-  // In the order the start-up mapped them: velocity, following error, torque.
-  const std::size_t torque_at = want - 2U;
-  wakeup_.with_lock([&] {
-    tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
-    tpdo2_following_error_value_ = tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
-    tpdo2_torque_value_ =
-        tpdo2_torque_
-            ? static_cast<std::int16_t>(static_cast<std::uint16_t>(frame.data[torque_at]) |
-                                        static_cast<std::uint16_t>(frame.data[torque_at + 1] << 8))
-            : std::int16_t{0};
-    ++tpdo2_count_;
-    tpdo_count_ = std::min(tpdo1_count_, tpdo2_count_);
-  });
-}
-
-bool DriveLink::take_answers(std::chrono::microseconds timeout, std::uint64_t until) noexcept {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  canopen::CanFrame frame;
-  while (tpdo_count_.load() <= until) {
-    const auto now = std::chrono::steady_clock::now();
-    const auto left = std::chrono::duration_cast<std::chrono::microseconds>(deadline - now);
-    const can::BusResult result =
-        answers_->receive(frame, std::max(left, std::chrono::microseconds(0)));
-    if (result == can::BusResult::timeout) {
-      return false;
-    }
-    if (result == can::BusResult::ok) {
-      on_answer(frame);
-    } else if (now >= deadline) {
-      // Error frames and a bus off reach the receive thread's endpoint too, which reports them;
-      // a malformed datagram is counted by the bus.
-      return tpdo_count_.load() > until;
-    }
-  }
-  return true;
 }
 
 std::optional<std::string> DriveLink::bring_up(const canopen::NodeStartupConfig& config,
@@ -362,13 +327,10 @@ bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
 }
 
 bool DriveLink::wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout) {
-  return take_answers(timeout, tpdos_seen);
+  return wakeup_.wait_for([&] { return tpdo_count_.load() > tpdos_seen; }, timeout);
 }
 
 TpdoSample DriveLink::tpdo() noexcept {
-  // Every answer that has come, none awaited.
-  while (take_answers(std::chrono::microseconds(0), tpdo_count_.load())) {
-  }
   TpdoSample sample;
   // Under the lock the receive thread writes with: statusword, position and count of one frame.
   wakeup_.with_lock([&] {
@@ -385,7 +347,7 @@ TpdoSample DriveLink::tpdo() noexcept {
 }
 
 std::uint64_t DriveLink::malformed_count() const noexcept {
-  return malformed_.load() + bus_->malformed_count() + answers_->malformed_count();
+  return malformed_.load() + bus_->malformed_count();
 }
 
 }  // namespace mcnc::axisnode

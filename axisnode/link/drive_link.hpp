@@ -1,11 +1,8 @@
 #pragma once
 // The axis node's CAN side: one CiA 402 drive behind a CanBus. A receive thread keeps what the
-// bus said (boot-up, heartbeats, EMCY, SDO answers; for the SYNC producer the SYNC count and
-// which other nodes sent their RPDO since the last SYNC) and wakes the cyclic loop. The drive's
-// answers to the SYNC (TPDO1, TPDO2) come on an endpoint of their own that the cyclic loop
-// reads itself: in lockstep it waits there for them, with no thread between. In lockstep the
-// SYNC producer sends SYNC only after every node of the bus has sent its RPDO for the cycle,
-// so the drives step in step.
+// bus said (boot-up, SYNC count, this node's TPDO, which other nodes sent their RPDO since the
+// last SYNC) and wakes the cyclic loop. In lockstep the SYNC producer sends SYNC only after
+// every node of the bus has sent its RPDO for the cycle, so the drives step in step.
 #include "axisnode/canopen/node_startup.hpp"
 #include "axisnode/canopen/sync_schedule.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
@@ -45,13 +42,10 @@ struct DriveCommand {
 
 class DriveLink {
  public:
-  // `bus` and `answers` are two endpoints of the node's bus: the first for all but the drive's
-  // TPDOs, the second for those alone (the cyclic loop's). `sync_producer`: this node sends the
-  // bus's SYNC, in lockstep once the RPDO1 of each of `other_nodes` (the bus's other nodes) is
-  // seen.
-  DriveLink(std::unique_ptr<can::CanBus> bus, std::unique_ptr<can::CanBus> answers,
-            std::uint8_t node_id, bool sync_producer, std::vector<std::uint8_t> other_nodes,
-            process::Wakeup& wakeup);
+  // `sync_producer`: this node sends the bus's SYNC, in lockstep once the RPDO1 of each of
+  // `other_nodes` (the bus's other nodes) is seen.
+  DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, bool sync_producer,
+            std::vector<std::uint8_t> other_nodes, process::Wakeup& wakeup);
   ~DriveLink();
   DriveLink(const DriveLink&) = delete;
   DriveLink& operator=(const DriveLink&) = delete;
@@ -101,8 +95,6 @@ class DriveLink {
   void exchange(const DriveCommand& command, bool lockstep, std::uint64_t tpdos_seen,
                 const std::function<bool()>& abandon, std::chrono::milliseconds slow);
 
-  // The drive's last answer, after taking every answer that has come (the cyclic loop's
-  // thread only, as exchange()).
   [[nodiscard]] TpdoSample tpdo() noexcept;
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
@@ -115,16 +107,11 @@ class DriveLink {
 
  private:
   void receive_loop();
-  // The answers (TPDO1, TPDO2) that arrive within `timeout` (zero: those waiting), until the
-  // answer count passes `until`. True when it has.
-  bool take_answers(std::chrono::microseconds timeout, std::uint64_t until) noexcept;
-  void on_answer(const canopen::CanFrame& frame) noexcept;
   // Lockstep waits (false on timeout).
   bool wait_other_rpdos(std::chrono::milliseconds timeout);
   bool wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout);
 
   std::unique_ptr<can::CanBus> bus_;
-  std::unique_ptr<can::CanBus> answers_;
   std::uint8_t node_id_;
   bool sync_producer_;
   std::vector<std::uint8_t> other_nodes_;

@@ -4,6 +4,7 @@
 #include "harness.hpp"
 
 #include "common/clock/cycle_clock.hpp"
+#include "common/process/exit_deadline.hpp"
 #include "common/process/process_node.hpp"
 
 #include <gtest/gtest.h>
@@ -107,8 +108,14 @@ void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expect
       30s));
   std::this_thread::sleep_for(300ms);  // at rest: a few pos events with the same act
   send(RUN_STOP, 2);
-  EXPECT_EQ(x.wait(20s), 0);
-  EXPECT_EQ(z.wait(20s), 0);
+  // Both nodes leave. iceoryx 2.0's RouDi may hang for good cleaning up after the killed
+  // channel (docs/decisions.md 38); a node's DDS teardown then waits on it, and the node leaves
+  // by its exit deadline instead, its work done and its alarms raised
+  // (process::kExitTeardownHungAfterAlarms).
+  for (Background* node : {&x, &z}) {
+    const int code = node->wait(20s);
+    EXPECT_TRUE(code == 0 || code == process::kExitTeardownHungAfterAlarms) << code;
+  }
   sim.kill(SIGTERM);
   EXPECT_EQ(sim.wait(10s), 0);
 

@@ -99,10 +99,7 @@ void DriveLink::receive_loop() {
     const canopen::FrameClass cls = canopen::classify(frame);
     switch (cls.kind) {
       case canopen::FrameKind::sync:
-        wakeup_.update([&] {
-          rpdo_seen_.reset();
-          ++syncs_;
-        });
+        wakeup_.update([&] { rpdo_seen_.reset(); });  // another SYNC source on the bus
         break;
       case canopen::FrameKind::rpdo1:
         if (cls.node != node_id_ && cls.node < 128) {
@@ -259,21 +256,16 @@ void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
 
 void DriveLink::send_sync(bool timed) noexcept {
   sync_counter_ = static_cast<std::uint8_t>(sync_counter_ % 240 + 1);
-  // Our own frames are not received back: count our SYNC here. In lockstep the RPDOs seen are
-  // forgotten before the SYNC goes out: an answer to it may come back at once. The timer
-  // (realtime, no RPDO bookkeeping) sends first: the lock is shared with non-realtime threads,
-  // and the SYNC's time on the bus is what must not wait.
-  const auto count = [&] {
-    wakeup_.update([&] {
-      rpdo_seen_.reset();
-      ++syncs_;
-    });
-  };
+  // Our own frames are not received back: the RPDOs seen are forgotten here, in lockstep before
+  // the SYNC goes out (the next cycle's RPDOs may come back at once). The timer (realtime, no
+  // RPDO bookkeeping) sends first: the lock is shared with non-realtime threads, and the SYNC's
+  // time on the bus is what must not wait.
+  const auto forget_rpdos = [&] { wakeup_.update([&] { rpdo_seen_.reset(); }); };
   if (timed) {
     bus_->send(canopen::encode_sync(sync_counter_));
-    count();
+    forget_rpdos();
   } else {
-    count();
+    forget_rpdos();
     bus_->send(canopen::encode_sync(sync_counter_));
   }
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The axis node's CAN side: one CiA 402 drive behind a CanBus. A receive thread keeps what the
-// bus said (boot-up, SYNC count, this node's TPDO, which other nodes sent their RPDO since the
-// last SYNC) and wakes the cyclic loop. In lockstep the SYNC producer sends SYNC only after
-// every node of the bus has sent its RPDO for the cycle, so the drives step in step.
+// bus said (boot-up, heartbeats, EMCY, this node's TPDO; for the SYNC producer, which other
+// nodes sent their RPDO since the last SYNC) and wakes the cyclic loop. In lockstep the SYNC
+// producer sends SYNC only after every node of the bus has sent its RPDO for the cycle, so the
+// drives step in step.
 #include "axisnode/canopen/node_startup.hpp"
 #include "axisnode/canopen/sync_schedule.hpp"
 #include "axisnode/cia402/canopen_frames.hpp"
@@ -117,7 +118,6 @@ class DriveLink {
   std::vector<std::uint8_t> other_nodes_;
   process::Wakeup& wakeup_;
   std::atomic<bool> stop_{false};
-  std::atomic<std::uint64_t> syncs_{0};
   std::atomic<std::uint64_t> bootups_{0};
   std::atomic<std::uint64_t> heartbeats_{0};
   std::atomic<bool> bus_off_{false};

@@ -230,6 +230,11 @@ class ProgramRun final : public macro::VariableProvider {
   void emit_mode_steps(std::vector<Command>& into, const Command& c, const AxisVector& from,
                        const AxisVector& start, const std::array<int, 2>& axes,
                        const std::vector<ModeStep>& steps, double total);
+  // Shared by both: programmed line or arc `c` from `from` as a piece of the mode's plane on
+  // `axes`, every coordinate less `shift` (polar interpolation's offsets; none on the cylinder).
+  static transform::PlanePiece plane_piece(const Command& c, const AxisVector& from,
+                                           const std::array<int, 2>& axes,
+                                           const std::array<double, 2>& shift);
 
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);

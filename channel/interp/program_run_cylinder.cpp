@@ -123,15 +123,7 @@ void ProgramRun::expand_cylindrical(std::vector<Command>& list, std::size_t from
     }
     const auto a = static_cast<std::size_t>(axes[0]);
     const auto b = static_cast<std::size_t>(axes[1]);
-    transform::PlanePiece piece;
-    piece.from = {cylinder_from_[a], cylinder_from_[b]};
-    piece.to = {c.to[a], c.to[b]};
-    if (c.op == Op::arc) {
-      piece.arc = true;
-      piece.centre = c.center;
-      piece.ccw = c.direction == ArcDirection::ccw;
-      piece.turns = c.turns;
-    }
+    const transform::PlanePiece piece = plane_piece(c, cylinder_from_, axes, {0.0, 0.0});
     const double total = piece.length();
     std::vector<ModeStep> steps;
     double before = 0.0;

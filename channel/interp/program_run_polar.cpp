@@ -157,15 +157,7 @@ void ProgramRun::expand_polar(std::vector<Command>& list, std::size_t from) {
       kept.to = on_machine(polar_at_, c.to);
       continue;
     }
-    transform::PlanePiece piece;
-    piece.from = {polar_from_[lin] - t_lin, polar_from_[rot] - t_rot};
-    piece.to = {c.to[lin] - t_lin, c.to[rot] - t_rot};
-    if (c.op == Op::arc) {
-      piece.arc = true;
-      piece.centre = {c.center[0] - t_lin, c.center[1] - t_rot};
-      piece.ccw = c.direction == ArcDirection::ccw;
-      piece.turns = c.turns;
-    }
+    const transform::PlanePiece piece = plane_piece(c, polar_from_, polar_axes_, {t_lin, t_rot});
     std::vector<transform::PolarStep> steps;
     if (!polar.steps(piece, polar_at_.degrees, config_.polar_tolerance, steps, kMaxPolarSteps)) {
       fail(alarm::kInterpolationModeRestriction,
@@ -185,6 +177,23 @@ void ProgramRun::expand_polar(std::vector<Command>& list, std::size_t from) {
     polar_at_ = steps.back().machine;
     polar_from_ = c.to;
   }
+}
+
+transform::PlanePiece ProgramRun::plane_piece(const Command& c, const AxisVector& from,
+                                              const std::array<int, 2>& axes,
+                                              const std::array<double, 2>& shift) {
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  transform::PlanePiece piece;
+  piece.from = {from[a] - shift[0], from[b] - shift[1]};
+  piece.to = {c.to[a] - shift[0], c.to[b] - shift[1]};
+  if (c.op == Op::arc) {
+    piece.arc = true;
+    piece.centre = {c.center[0] - shift[0], c.center[1] - shift[1]};
+    piece.ccw = c.direction == ArcDirection::ccw;
+    piece.turns = c.turns;
+  }
+  return piece;
 }
 
 void ProgramRun::emit_mode_steps(std::vector<Command>& into, const Command& c,

@@ -1,0 +1,346 @@
+#include "axisnode/node/axis_node.hpp"
+
+#include <cmath>
+
+namespace mcnc::axisnode {
+
+namespace {
+
+// The gate's inputs: the candidates, then (G114.1) the coupling channel and the master spindle.
+std::size_t gate_inputs(const AxisNodeRoles& roles) {
+  return roles.candidates.size() + (roles.sync_master != 0 ? 2 : 0);
+}
+
+// Long enough for a master that runs ahead of its slave's channel (a minute at 1 ms).
+constexpr std::size_t kLeaderHistory = std::size_t{1} << 16;
+
+}  // namespace
+
+AxisNode::AxisNode(const AxisNodeRoles& roles)
+    : roles_(roles),
+      watches_events_(roles.exchangeable || roles.may_follow),
+      gate_(gate_inputs(roles)),
+      from_(cycle::tracked_inputs<SetpointSample>(0, roles.candidates.size())),
+      sync_channel_(roles.candidates.size()),
+      master_feedback_(roles.candidates.size() + 1),
+      master_history_(roles.leaders, roles.may_follow ? kLeaderHistory : 1),
+      ownership_(roles.home),
+      spindle_coupling_(roles.spindle_coupling),
+      axis_coupling_(roles.cycle_s),
+      controller_(roles.controller),
+      owner_now_(roles.home),
+      following_(0) {
+  leader_writers_.reserve(roles.leaders.size());
+  if (roles.power_on_master != 0) {
+    axis_coupling_.couple(roles.power_on_master);  // a gantry from power-on
+  }
+}
+
+int AxisNode::candidate_of(std::uint32_t channel) const noexcept {
+  for (std::size_t k = 0; k < roles_.candidates.size(); ++k) {
+    if (roles_.candidates[k] == channel) {
+      return static_cast<int>(k);
+    }
+  }
+  return -1;
+}
+
+void AxisNode::on_setpoint(std::uint32_t channel, std::uint32_t axis, const SetpointSample& sample,
+                           std::uint64_t announced_event_seq, const WriterId& writer) noexcept {
+  const int k = axis == roles_.axis ? candidate_of(channel) : -1;
+  if (k < 0) {
+    return;
+  }
+  from_[static_cast<std::size_t>(k)].on_sample(
+      sample, sample.cycle, watches_events_ ? announced_event_seq : 0, writer, gate_);
+}
+
+void AxisNode::on_setpoint_writer_gone(const WriterId& writer) noexcept {
+  for (std::size_t k = 0; k < from_.size(); ++k) {
+    if (from_[k].on_unmatched(writer, gate_)) {
+      owner_lost_ = owner_lost_ || roles_.candidates[k] == owner_now_;
+    }
+  }
+}
+
+void AxisNode::on_event(const AxisNodeEvent& e) noexcept {
+  const int k = candidate_of(e.channel);
+  const bool from_sync_channel = coupled_spindle() && e.channel == roles_.sync_channel;
+  if (k < 0 && !from_sync_channel) {
+    return;
+  }
+  if (k >= 0 && watches_events_) {
+    from_[static_cast<std::size_t>(k)].on_event(e.seq, gate_);
+  }
+  if (roles_.may_follow && e.kind == AxisNodeEvent::Kind::axis_sync && e.axis == roles_.axis &&
+      e.channel == roles_.home) {
+    (void)axis_syncs_.push(AxisSyncRequest{e.sync_on, e.sync_on ? e.sync_master : 0}, e.cycle);
+  }
+  if (from_sync_channel) {
+    sync_channel_.on_event(e.seq, gate_);
+    if (e.kind == AxisNodeEvent::Kind::spindle_sync &&
+        (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0))) {
+      (void)spindle_syncs_.push(SpindleSyncRequest{e.sync_on, e.spindle}, e.cycle);
+    }
+  }
+  if (k < 0 || !roles_.exchangeable || e.kind != AxisNodeEvent::Kind::axis_request ||
+      (e.axis != roles_.axis && e.axis != 0)) {
+    return;
+  }
+  if (!requests_.push(ownership::OwnershipRequest{e.request, e.channel, e.force, e.cycle},
+                      e.cycle)) {
+    ++requests_dropped_;
+  }
+}
+
+void AxisNode::on_sync_channel_status(std::uint32_t channel, std::uint64_t cycle,
+                                      std::uint64_t announced_event_seq,
+                                      const WriterId& writer) noexcept {
+  if (coupled_spindle() && channel == roles_.sync_channel) {
+    sync_channel_.on_sample(cycle, cycle, announced_event_seq, writer, gate_);
+  }
+}
+
+void AxisNode::on_sync_channel_gone(const WriterId& writer) noexcept {
+  (void)sync_channel_.on_unmatched(writer, gate_);  // the coupling stays as it is
+}
+
+void AxisNode::on_master_feedback(std::uint32_t axis, std::uint64_t cycle, double act, double vel,
+                                  const WriterId& writer) noexcept {
+  if (coupled_spindle() && axis == roles_.sync_master) {
+    master_feedback_.on_sample(MasterSample{act, vel}, cycle, 0, writer, gate_);
+  }
+}
+
+void AxisNode::on_master_gone(const WriterId& writer) noexcept {
+  (void)master_feedback_.on_unmatched(writer, gate_);
+}
+
+void AxisNode::on_leader_feedback(std::uint32_t axis, std::uint64_t cycle, double cmd,
+                                  bool operating, const WriterId& writer) noexcept {
+  if (!master_history_.may_lead(axis)) {
+    return;
+  }
+  master_history_.put(axis, cycle, cmd, operating);
+  for (const LeaderWriter& w : leader_writers_) {
+    if (w.axis == axis) {
+      return;
+    }
+  }
+  if (leader_writers_.size() < roles_.leaders.size()) {
+    leader_writers_.push_back(LeaderWriter{writer, axis});
+  }
+}
+
+void AxisNode::on_leader_gone(const WriterId& writer) noexcept {
+  for (const LeaderWriter& w : leader_writers_) {
+    if (w.writer == writer) {
+      master_history_.gone(w.axis);
+    }
+  }
+}
+
+std::uint32_t AxisNode::axis_master_at(std::uint64_t cycle) const noexcept {
+  std::uint32_t m = axis_coupling_.master();
+  axis_syncs_.peek_due(cycle, [&](const AxisSyncRequest& r) { m = r.on ? r.master : 0; });
+  return m;
+}
+
+bool AxisNode::ready(std::uint64_t cycle) const noexcept {
+  if (cycle == 0) {
+    return true;
+  }
+  if (!gate_.may_run(cycle)) {
+    return false;
+  }
+  const std::uint32_t m = roles_.may_follow ? axis_master_at(cycle) : 0;
+  return m == 0 ||
+         master_history_.at(m, cycle - 1).lookup != coupling::MasterHistory::Lookup::not_yet;
+}
+
+const SetpointSample* AxisNode::setpoint_of(std::uint32_t channel, std::uint64_t cycle,
+                                            bool lockstep) const noexcept {
+  const int k = candidate_of(channel);
+  if (k < 0 || cycle == 0) {
+    return nullptr;
+  }
+  const cycle::TrackedInput<SetpointSample>& c = from_[static_cast<std::size_t>(k)];
+  if (const SetpointSample* s = c.for_cycle(cycle, true)) {
+    return s;
+  }
+  // Realtime: the latest only while it is no older than the last cycle's.
+  const SetpointSample* latest = c.latest();
+  return !lockstep && latest != nullptr && latest->cycle >= cycle - 1 ? latest : nullptr;
+}
+
+void AxisNode::happened(const AxisNodeHappening& h) noexcept {
+  if (happened_count_ < happened_.size()) {
+    happened_[happened_count_++] = h;
+  }
+}
+
+ownership::OwnershipChange AxisNode::decide_owner(std::uint64_t cycle, bool lockstep) noexcept {
+  ownership::OwnershipChange change;
+  if (roles_.exchangeable) {
+    // Every request sent before this cycle, whatever order they arrived in (the core puts them
+    // in decision order).
+    requests_.take_due(cycle, [&](const ownership::OwnershipRequest& r) {
+      if (!ownership_.request(r)) {
+        ++requests_dropped_;
+      }
+    });
+    for (std::size_t k = 0; k < from_.size(); ++k) {
+      if (from_[k].lost()) {
+        ownership_.channel_gone(roles_.candidates[k]);
+      }
+    }
+    // At rest: the owner commands no motion and the axis stands in position (a forced G141 or a
+    // G142 waits for the owner's move to end). An owner that is gone is not at rest: its axis
+    // is stopped by the node's safety and nobody takes it over.
+    const int owner_k = candidate_of(ownership_.owner());
+    const bool owner_gone = owner_k >= 0 && from_[static_cast<std::size_t>(owner_k)].lost();
+    const SetpointSample* current = setpoint_of(ownership_.owner(), cycle, lockstep);
+    const AxisNodeOutput& last = controller_.output();
+    const bool at_rest =
+        !owner_gone &&
+        (current == nullptr || !current->valid || (current->vel == 0.0 && current->acc == 0.0)) &&
+        std::abs(last.cmd - last.act) <= roles_.in_position;
+    change = ownership_.decide(at_rest);
+    owner_now_ = ownership_.owner();
+    const int k = candidate_of(owner_now_);
+    owner_lost_ = k >= 0 && from_[static_cast<std::size_t>(k)].lost();
+  }
+  SetpointSample sp;
+  bool have = false;
+  if (owner_now_ == 0) {
+    have = true;  // released: nobody commands the axis, it holds where it is
+  } else if (const SetpointSample* s = setpoint_of(owner_now_, cycle, lockstep)) {
+    sp = *s;
+    have = true;
+  }
+  in_.have_setpoint = have;
+  in_.setpoint_pos = sp.pos;
+  in_.setpoint_vel = sp.vel;
+  // A new owner's setpoint from before it knew is not followed (it holds, too).
+  in_.setpoint_valid = sp.valid && !change.changed && owner_now_ != 0;
+  in_.setpoint_velocity = sp.velocity;
+  in_.owner_lost = owner_lost_;
+  return change;
+}
+
+void AxisNode::apply_spindle_sync(std::uint64_t cycle, bool lockstep) noexcept {
+  spindle_syncs_.take_due(cycle, [&](const SpindleSyncRequest& r) {
+    if (r.on) {
+      spindle_coupling_.couple(r.command, controller_.output().act, controller_.output().vel);
+      happened(AxisNodeHappening{AxisNodeHappening::Kind::spindle_coupled, 0, 0, false,
+                                 roles_.sync_master, r.command});
+    } else if (spindle_coupling_.active()) {
+      spindle_coupling_.decouple();
+      happened(AxisNodeHappening{
+          AxisNodeHappening::Kind::spindle_decoupled, 0, 0, false, roles_.sync_master, {}});
+    }
+  });
+  if (!spindle_coupling_.active()) {
+    return;
+  }
+  // While coupled, the slave follows its master whatever its owner sends; without its master
+  // it holds where it is.
+  const MasterSample* m = master_feedback_.for_cycle(cycle, lockstep);
+  const bool have_master = m != nullptr && !master_feedback_.lost();
+  in_.have_setpoint = true;
+  in_.setpoint_valid = have_master;
+  in_.setpoint_velocity = false;
+  if (have_master) {
+    // The master's position of this cycle, from its feedback of the last one.
+    const coupling::SlaveTarget t =
+        spindle_coupling_.step(m->act + m->vel * roles_.cycle_s, m->vel);
+    in_.setpoint_pos = t.pos;
+    in_.setpoint_vel = t.vel;
+  }
+}
+
+void AxisNode::apply_axis_sync(std::uint64_t cycle, bool lockstep) noexcept {
+  axis_syncs_.take_due(cycle, [&](const AxisSyncRequest& r) {
+    const std::uint32_t before = axis_coupling_.master();
+    const std::uint32_t after = r.on && master_history_.may_lead(r.master) ? r.master : 0;
+    if (after == before) {
+      return;
+    }
+    if (before != 0) {
+      axis_coupling_.decouple();
+      happened(AxisNodeHappening{AxisNodeHappening::Kind::axis_decoupled, 0, 0, false, before, {}});
+    }
+    if (after != 0) {
+      axis_coupling_.couple(after);
+      happened(AxisNodeHappening{AxisNodeHappening::Kind::axis_coupled, 0, 0, false, after, {}});
+    }
+  });
+  if (!axis_coupling_.active()) {
+    return;
+  }
+  // While coupled, the slave copies its master's increments while both are in operation;
+  // otherwise it holds, and starts again from where both stand.
+  const coupling::MasterHistory::Sample m =
+      master_history_.estimate(axis_coupling_.master(), cycle, lockstep);
+  in_.have_setpoint = true;
+  in_.setpoint_velocity = false;
+  in_.setpoint_valid = false;
+  if (m.lookup == coupling::MasterHistory::Lookup::found && m.operating &&
+      controller_.output().enabled) {
+    const coupling::AxisTarget t = axis_coupling_.step(m.cmd, controller_.output().cmd);
+    in_.setpoint_pos = t.pos;
+    in_.setpoint_vel = t.vel;
+    in_.setpoint_valid = true;
+  } else {
+    axis_coupling_.rebase();
+  }
+}
+
+void AxisNode::take_inputs(std::uint64_t cycle, bool lockstep) noexcept {
+  happened_count_ = 0;
+  in_ = AxisNodeInput{};
+  const ownership::OwnershipChange change = decide_owner(cycle, lockstep);
+  if (coupled_spindle()) {
+    apply_spindle_sync(cycle, lockstep);
+  }
+  if (roles_.may_follow) {
+    apply_axis_sync(cycle, lockstep);
+  }
+  // The owner's change is told after the couplings' (the order the trace has always had).
+  if (change.changed) {
+    happened(AxisNodeHappening{
+        AxisNodeHappening::Kind::owner, change.owner, change.previous, change.forced, 0, {}});
+  }
+  const std::uint32_t follows = in_.have_setpoint && in_.setpoint_valid ? owner_now_ : 0;
+  if (follows != following_) {
+    following_ = follows;
+    happened(AxisNodeHappening{AxisNodeHappening::Kind::follows, follows, 0, false, 0, {}});
+  }
+}
+
+std::uint32_t AxisNode::commanding_channel() const noexcept {
+  return owner_now_ != 0 ? owner_now_ : roles_.home;
+}
+
+const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& drive,
+                                     bool emergency_stop) noexcept {
+  in_.have_tpdo = drive.have_tpdo;
+  in_.statusword = drive.statusword;
+  in_.position_counts = drive.position_counts;
+  in_.mode_display = drive.mode_display;
+  in_.heartbeats = drive.heartbeats;
+  in_.bus_off = drive.bus_off;
+  in_.emergency_stop = emergency_stop;
+  return controller_.cycle(cycle, in_);
+}
+
+AxisNodeStanding AxisNode::standing() const noexcept {
+  AxisNodeStanding s;
+  s.owner = owner_now_;
+  s.released_by = ownership_.released_by();
+  s.coupled_to = spindle_coupling_.active() ? roles_.sync_master : axis_coupling_.master();
+  s.coupling_locked = spindle_coupling_.locked() || axis_coupling_.active();
+  return s;
+}
+
+}  // namespace mcnc::axisnode

@@ -1,0 +1,158 @@
+#include "axisnode/wire/axis_outputs.hpp"
+
+#include "axisnode/canopen/emcy_codes.hpp"
+#include "common/config/cyclic_routes.hpp"
+
+#include <cstdio>
+
+namespace mcnc::axisnode {
+
+namespace {
+
+DriveState to_wire(cia402::State state) {
+  static_assert(static_cast<int>(cia402::State::fault) == static_cast<int>(DRIVE_FAULT),
+                "core and wire drive states must be in the same order");
+  return static_cast<DriveState>(static_cast<int>(state));
+}
+
+}  // namespace
+
+AxisOutputs::AxisOutputs(process::ProcessNode& node, const config::MachineConfig& machine,
+                         const config::AxisConfig& axis, trace::TraceWriter& tracer,
+                         int trace_pos_every)
+    : node_(node),
+      machine_(machine),
+      axis_(axis),
+      tracer_(tracer),
+      trace_pos_every_(trace_pos_every),
+      fed_channels_(static_cast<int>(config::channels_fed_by(machine, axis.name))),
+      feedback_(node.participant(), axis.name) {}
+
+bool AxisOutputs::discovered() const {
+  return feedback_.matched_readers() >= fed_channels_;
+}
+
+const char* AxisOutputs::channel_name(std::uint32_t id) const noexcept {
+  return id >= 1 && id <= machine_.channels.size() ? machine_.channels[id - 1].name.c_str() : "";
+}
+
+const char* AxisOutputs::axis_name(std::uint32_t id) const noexcept {
+  return id >= 1 && id <= machine_.axes.size() ? machine_.axes[id - 1].name.c_str() : "";
+}
+
+void AxisOutputs::trace_start(const AxisNode& core) noexcept {
+  const AxisNodeRoles& roles = core.roles();
+  tracer_.emit(0, "owner", "\"axis\":\"%s\",\"owner\":\"%s\"", axis_.name.c_str(),
+               channel_name(roles.home));
+  if (roles.power_on_master != 0) {
+    tracer_.emit(0, "couple", "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",
+                 axis_name(roles.power_on_master), axis_.name.c_str());
+  }
+}
+
+void AxisOutputs::trace_decisions(std::uint64_t cycle, const AxisNode& core) noexcept {
+  const char* self = axis_.name.c_str();
+  for (std::size_t i = 0; i < core.happening_count(); ++i) {
+    const AxisNodeHappening& h = core.happenings()[i];
+    switch (h.kind) {
+      case AxisNodeHappening::Kind::spindle_coupled:
+        tracer_.emit(cycle, "couple",
+                     "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,\"q\":%d,"
+                     "\"r\":%.3f",
+                     axis_name(h.master), self, h.spindle.p, h.spindle.q, h.spindle.r);
+        break;
+      case AxisNodeHappening::Kind::spindle_decoupled:
+        tracer_.emit(cycle, "decouple", "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\"",
+                     axis_name(h.master), self);
+        break;
+      case AxisNodeHappening::Kind::axis_coupled:
+        tracer_.emit(cycle, "couple", "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",
+                     axis_name(h.master), self);
+        break;
+      case AxisNodeHappening::Kind::axis_decoupled:
+        tracer_.emit(cycle, "decouple", "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",
+                     axis_name(h.master), self);
+        break;
+      case AxisNodeHappening::Kind::owner:
+        if (h.channel == 0) {
+          tracer_.emit(cycle, "owner", "\"axis\":\"%s\",\"owner\":null,\"previous\":\"%s\"", self,
+                       channel_name(h.previous));
+        } else {
+          tracer_.emit(
+              cycle, "owner", "\"axis\":\"%s\",\"owner\":\"%s\",\"previous\":%s%s%s,\"forced\":%s",
+              self, channel_name(h.channel), h.previous == 0 ? "null" : "\"",
+              channel_name(h.previous), h.previous == 0 ? "" : "\"", h.forced ? "true" : "false");
+        }
+        break;
+      case AxisNodeHappening::Kind::follows:
+        if (h.channel == 0) {
+          tracer_.emit(cycle, "follow", "\"axis\":\"%s\",\"ch\":null", self);
+        } else {
+          tracer_.emit(cycle, "follow", "\"axis\":\"%s\",\"ch\":\"%s\"", self,
+                       channel_name(h.channel));
+        }
+        break;
+    }
+  }
+}
+
+void AxisOutputs::trace_reset(std::uint64_t cycle) noexcept {
+  tracer_.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"", axis_.name.c_str());
+}
+
+void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const TpdoSample& tpdo,
+                          std::uint16_t last_emcy) noexcept {
+  const AxisNodeOutput& out = core.output();
+  const AxisNodeStanding standing = core.standing();
+  AxisFeedback fb;
+  fb.axis(core.roles().axis);
+  fb.owner(standing.owner);
+  fb.released_by(standing.released_by);
+  fb.coupled_to(standing.coupled_to);
+  fb.coupling_locked(standing.coupling_locked);
+  fb.cycle(cycle);
+  fb.cmd(out.cmd);
+  fb.act(out.act);
+  // The drive's own velocity and following error when TPDO2 carries them.
+  fb.vel(axis_.tpdo2_velocity ? tpdo.velocity_actual / axis_.counts_per_unit : out.vel);
+  fb.statusword(tpdo.pdo.statusword);
+  fb.drive_state(to_wire(out.drive_state));
+  fb.enabled(out.enabled);
+  fb.following_error(axis_.tpdo2_following_error
+                         ? tpdo.following_error_actual / axis_.counts_per_unit
+                         : out.cmd - out.act);
+  fb.last_emcy(last_emcy);
+  fb.load_known(axis_.tpdo2_torque);
+  fb.load(axis_.tpdo2_torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
+  fb.mode_display(out.mode_display);
+  fb.alarm(out.alarm != AxisAlarm::none);
+  feedback_.write(fb);
+
+  const char* self = axis_.name.c_str();
+  if (out.mode_changed) {
+    tracer_.emit(cycle, "mode", "\"axis\":\"%s\",\"mode\":\"%s\"", self,
+                 mode_name(out.mode_display));
+  }
+  if (out.drive_state_changed) {
+    tracer_.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", self,
+                 cia402::to_string(out.drive_state));
+  }
+  if (out.new_alarm != AxisAlarm::none) {
+    const int number = kAlarmBase + static_cast<int>(out.new_alarm);
+    const char* text = to_text(out.new_alarm);
+    char with_emcy[160];
+    if (out.new_alarm == AxisAlarm::drive_fault && last_emcy != 0) {
+      std::snprintf(with_emcy, sizeof with_emcy, "drive fault: EMCY 0x%04X %s", last_emcy,
+                    canopen::emcy_text(last_emcy));
+      text = with_emcy;
+    }
+    tracer_.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"axis\":\"%s\"", number, text,
+                 self);
+    node_.raise_alarm(static_cast<std::uint32_t>(number), text, cycle, 0, axis_.id);
+  }
+  if (cycle % static_cast<std::uint64_t>(trace_pos_every_) == 0) {
+    tracer_.emit(cycle, "pos", "\"axis\":\"%s\",\"cmd\":%.6f,\"act\":%.6f", self, out.cmd, out.act);
+  }
+}
+
+}  // namespace mcnc::axisnode

@@ -1,0 +1,57 @@
+// An axis node's roles and drive start-up as the twin turret's machine file gives them.
+#include "axisnode/setup/axis_node_setup.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace mcnc;
+
+namespace {
+
+config::MachineConfig twin_turret() {
+  return config::load_machine_file(std::string(MCNC_SOURCE_DIR) +
+                                   "/launch/machines/twin_turret.yaml");
+}
+
+}  // namespace
+
+TEST(AxisNodeSetup, AnExchangeableAxisMayBeOwnedByItsHomeChannelAndTheOneThatMayAcquireIt) {
+  const config::MachineConfig m = twin_turret();
+  const config::AxisConfig& a1 = *m.find_axis("A1");
+  const axisnode::AxisNodeRoles r = axisnode::roles_of(m, a1, axisnode::drive_startup_of(a1));
+  EXPECT_EQ(r.axis, static_cast<std::uint32_t>(a1.id));
+  EXPECT_EQ(r.home, static_cast<std::uint32_t>(m.find_channel("CH1")->id));
+  ASSERT_EQ(r.candidates.size(), 2U);
+  EXPECT_EQ(r.candidates[0], r.home);
+  EXPECT_EQ(r.candidates[1], static_cast<std::uint32_t>(m.find_channel("CH2")->id));
+  EXPECT_TRUE(r.exchangeable);
+  EXPECT_EQ(r.sync_master, 0U);
+  EXPECT_DOUBLE_EQ(r.in_position, 0.001);
+  EXPECT_EQ(axisnode::other_nodes_on_bus(m, a1), (std::vector<std::uint8_t>{1, 2, 4}));
+}
+
+TEST(AxisNodeSetup, TheSubSpindleFollowsTheMainSpindleInTheChannelThatCouplesIt) {
+  const config::MachineConfig m = twin_turret();
+  const config::AxisConfig& s2 = *m.find_axis("S2");
+  const canopen::NodeStartupConfig startup = axisnode::drive_startup_of(s2);
+  const axisnode::AxisNodeRoles r = axisnode::roles_of(m, s2, startup);
+  EXPECT_EQ(r.sync_group, 1U);
+  EXPECT_EQ(r.sync_master, static_cast<std::uint32_t>(m.find_axis("S1")->id));
+  EXPECT_EQ(r.sync_channel, static_cast<std::uint32_t>(m.find_channel("CH1")->id));
+  EXPECT_FALSE(r.exchangeable);
+  EXPECT_TRUE(r.controller.spindle);
+  EXPECT_EQ(startup.mode, axisnode::kModeCsv);
+  // Heartbeat consumer time: 1.5 producer times, in cycles.
+  EXPECT_EQ(r.controller.heartbeat_cycles,
+            startup.heartbeat_ms == 0
+                ? 0
+                : static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / m.cycle_us));
+}
+
+TEST(AxisNodeSetup, TheSpindlesLoadIsMappedIntoItsSecondTpdo) {
+  const config::MachineConfig m = twin_turret();
+  const canopen::NodeStartupConfig s1 = axisnode::drive_startup_of(*m.find_axis("S1"));
+  const canopen::NodeStartupConfig s2 = axisnode::drive_startup_of(*m.find_axis("S2"));
+  ASSERT_EQ(s1.pdos.tpdo2.count, s2.pdos.tpdo2.count + 1);
+  EXPECT_EQ(s1.pdos.tpdo2.objects[s1.pdos.tpdo2.count - 1].index, 0x6077);
+  EXPECT_EQ(s1.pdos.tpdo2.objects[s1.pdos.tpdo2.count - 1].bits, 16);
+}

@@ -1,0 +1,273 @@
+// The axis node's core as the machine drives it, without DDS or a bus: candidates' setpoints and
+// events in, the lockstep rule, who owns the axis (G140-G142), which setpoint wins while a
+// coupling (G114.1, G51.4) holds, and what the trace is told, in order. The drive is the
+// simulator's, stepped once a cycle.
+#include "axisnode/node/axis_node.hpp"
+#include "axisnode/drivesim/simulated_drive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+using namespace mcnc;
+using axisnode::AxisNode;
+using axisnode::AxisNodeEvent;
+using axisnode::AxisNodeHappening;
+using axisnode::AxisNodeRoles;
+using axisnode::SetpointSample;
+using Happening = AxisNodeHappening::Kind;
+
+namespace {
+
+constexpr double kCycle = 0.001;
+
+AxisNode::WriterId writer(std::uint8_t n) {
+  AxisNode::WriterId w{};
+  w[0] = n;
+  return w;
+}
+
+// Axis 1 of channel 1, which channel 2 may acquire (G141).
+AxisNodeRoles exchanged_axis() {
+  AxisNodeRoles r;
+  r.axis = 1;
+  r.home = 1;
+  r.candidates = {1, 2};
+  r.exchangeable = true;
+  r.in_position = 0.01;
+  r.cycle_s = kCycle;
+  r.controller = axisnode::AxisNodeSetup{10000.0, kCycle, 5};
+  return r;
+}
+
+SetpointSample at(std::uint64_t cycle, double pos, bool valid = true) {
+  return SetpointSample{cycle, pos, 0.0, 0.0, valid, false};
+}
+
+AxisNodeEvent request(std::uint32_t channel, std::uint64_t seq, std::uint64_t cycle,
+                      ownership::OwnershipRequestKind kind, bool force = false) {
+  AxisNodeEvent e;
+  e.kind = AxisNodeEvent::Kind::axis_request;
+  e.channel = channel;
+  e.seq = seq;
+  e.cycle = cycle;
+  e.axis = 1;
+  e.request = kind;
+  e.force = force;
+  return e;
+}
+
+// The core with its drive: each cycle takes the inputs, steps the controller, sends the RPDO
+// and steps the drive; its TPDO comes back next cycle.
+struct Node {
+  AxisNode core;
+  drivesim::SimulatedDrive drive;
+  canopen::TxPdoCsp tpdo{};
+  bool have_tpdo = false;
+  std::vector<std::vector<AxisNodeHappening>> told;  // per cycle
+
+  explicit Node(const AxisNodeRoles& roles, double start = 5.0)
+      : core(roles), drive(drivesim::DriveParams{1, 10000.0, 0.004, 500.0, 5000.0, start}, kCycle) {
+    drive.power_on();
+    drive.on_nmt(canopen::NmtCommand::start);
+  }
+
+  const axisnode::AxisNodeOutput& run(std::uint64_t cycle) {
+    core.take_inputs(cycle, true);
+    told.emplace_back(core.happenings(), core.happenings() + core.happening_count());
+    axisnode::DriveReadings d;
+    d.have_tpdo = have_tpdo;
+    d.statusword = tpdo.statusword;
+    d.position_counts = tpdo.position_actual;
+    const auto& out = core.step(cycle, d, false);
+    drive.on_rpdo(canopen::RxPdoCsp{out.controlword, out.target_counts});
+    tpdo = drive.on_sync();
+    have_tpdo = true;
+    return out;
+  }
+};
+
+}  // namespace
+
+TEST(AxisNode, RunsACycleOnlyOnceEveryCandidatesSetpointAndAnnouncedEventsAreIn) {
+  AxisNode core(exchanged_axis());
+  EXPECT_TRUE(core.ready(0));
+  EXPECT_FALSE(core.ready(1));
+  core.on_setpoint(1, 1, at(0, 5.0), 0, writer(1));
+  EXPECT_FALSE(core.ready(1)) << "channel 2 may acquire the axis: its setpoint is waited for";
+  core.on_setpoint(2, 1, at(0, 0.0, false), 1, writer(2));  // announces its event 1
+  EXPECT_FALSE(core.ready(1)) << "the event channel 2 announced has not arrived";
+  core.on_event(request(2, 1, 0, ownership::OwnershipRequestKind::acquire));
+  EXPECT_TRUE(core.ready(1));
+  // A setpoint for another axis, or from a channel that may not own this one, counts for nothing.
+  core.on_setpoint(1, 2, at(1, 5.0), 0, writer(1));
+  core.on_setpoint(3, 1, at(1, 5.0), 0, writer(3));
+  EXPECT_FALSE(core.ready(2));
+  EXPECT_FALSE(core.hears_from(3));
+  EXPECT_TRUE(core.hears_from(2));
+}
+
+TEST(AxisNode, AReleaseActsFromTheCycleAfterItWasSentAndTheNewOwnerIsFollowedACycleLater) {
+  Node n(exchanged_axis());
+  std::uint64_t seq2 = 0;
+  std::uint64_t seq1 = 0;
+  for (std::uint64_t c = 0; c < 40; ++c) {
+    ASSERT_TRUE(n.core.ready(c)) << c;
+    n.run(c);
+    // Channel 1 holds the axis at 5; at cycle 20 it sends G140, and channel 2 asks (G141) at 21.
+    if (c == 20) {
+      n.core.on_event(request(1, ++seq1, c, ownership::OwnershipRequestKind::release));
+    }
+    if (c == 21) {
+      n.core.on_event(request(2, ++seq2, c, ownership::OwnershipRequestKind::acquire));
+    }
+    n.core.on_setpoint(1, 1, at(c, 5.0, c < 20), seq1, writer(1));
+    n.core.on_setpoint(2, 1, at(c, 6.0, c > 21), seq2, writer(2));
+  }
+  EXPECT_EQ(n.core.standing().owner, 2U);
+  EXPECT_EQ(n.core.standing().released_by, 1U);
+  // Who was told what, and when.
+  auto kinds_at = [&](std::size_t c) {
+    std::vector<std::pair<Happening, std::uint32_t>> k;
+    for (const AxisNodeHappening& h : n.told[c]) {
+      k.emplace_back(h.kind, h.channel);
+    }
+    return k;
+  };
+  using V = std::vector<std::pair<Happening, std::uint32_t>>;
+  EXPECT_EQ(kinds_at(1), (V{{Happening::follows, 1}})) << "channel 1's setpoint 0 at cycle 1";
+  EXPECT_EQ(kinds_at(20), V{}) << "cycle 20 runs on channel 1's last valid setpoint, of 19";
+  EXPECT_EQ(kinds_at(21), (V{{Happening::owner, 0}, {Happening::follows, 0}}))
+      << "released at the cycle after it was sent";
+  EXPECT_EQ(kinds_at(22), (V{{Happening::owner, 2}}));
+  EXPECT_EQ(kinds_at(23), (V{{Happening::follows, 2}}))
+      << "a new owner's setpoint from before it knew is not followed";
+  EXPECT_EQ(n.told[22][0].previous, 0U);
+  EXPECT_FALSE(n.told[22][0].forced);
+  EXPECT_NEAR(n.core.output().cmd, 6.0, 1e-9);
+  EXPECT_EQ(n.core.commanding_channel(), 2U);
+}
+
+TEST(AxisNode, AForcedAcquireWaitsUntilTheOwnersMoveEnds) {
+  Node n(exchanged_axis());
+  std::uint64_t seq2 = 0;
+  std::uint64_t taken = 0;
+  for (std::uint64_t c = 0; c < 200; ++c) {
+    n.run(c);
+    for (const AxisNodeHappening& h : n.told.back()) {
+      if (h.kind == Happening::owner && h.channel == 2) {
+        taken = c;
+        EXPECT_TRUE(h.forced);
+        EXPECT_EQ(h.previous, 1U);
+      }
+    }
+    if (c == 10) {
+      n.core.on_event(request(2, ++seq2, c, ownership::OwnershipRequestKind::acquire, true));
+    }
+    // Channel 1 moves from 5 to 5.1 over cycles 0-99 (0.001 a cycle), then stands.
+    const double pos = 5.0 + 0.001 * static_cast<double>(std::min<std::uint64_t>(c, 100));
+    SetpointSample sp{c, pos, c < 100 ? 1.0 : 0.0, 0.0, true, false};
+    n.core.on_setpoint(1, 1, sp, 0, writer(1));
+    n.core.on_setpoint(2, 1, at(c, 0.0, false), seq2, writer(2));
+  }
+  EXPECT_GT(taken, 100U) << "not in the middle of channel 1's move";
+  EXPECT_LT(taken, 110U) << "taken as soon as the axis stands in position";
+}
+
+TEST(AxisNode, TheOwnersWriterGoneIsOwnerLostAndNoLongerWaitedFor) {
+  AxisNode core(exchanged_axis());
+  core.on_setpoint(1, 1, at(0, 5.0), 0, writer(1));
+  core.on_setpoint(2, 1, at(0, 0.0, false), 0, writer(2));
+  core.take_inputs(1, true);
+  EXPECT_FALSE(core.owner_lost());
+  core.on_setpoint_writer_gone(writer(9));  // not one of its inputs' writers
+  EXPECT_FALSE(core.owner_lost());
+  core.on_setpoint(2, 1, at(1, 0.0, false), 0, writer(2));
+  EXPECT_FALSE(core.ready(2));
+  core.on_setpoint_writer_gone(writer(1));
+  EXPECT_TRUE(core.owner_lost());
+  EXPECT_TRUE(core.ready(2)) << "a lost input is not waited for";
+}
+
+TEST(AxisNode, RequestsBeyondWhatTheNodeKeepsAreCountedNeverSilent) {
+  AxisNode core(exchanged_axis());
+  for (std::uint64_t k = 1; k <= 300; ++k) {
+    core.on_event(request(2, k, 5, ownership::OwnershipRequestKind::acquire));
+  }
+  EXPECT_EQ(core.requests_dropped(), 300U - 256U);
+  // Events of channels that may not own the axis are not its requests.
+  AxisNode other(exchanged_axis());
+  other.on_event(request(3, 1, 5, ownership::OwnershipRequestKind::acquire));
+  other.take_inputs(6, true);
+  EXPECT_EQ(other.standing().owner, 1U);
+}
+
+TEST(AxisNode, AGantrySlaveWaitsForItsMastersSampleAndCopiesItsIncrements) {
+  AxisNodeRoles r = exchanged_axis();
+  r.axis = 2;
+  r.candidates = {1};
+  r.exchangeable = false;
+  r.may_follow = true;
+  r.leaders = {1};
+  r.power_on_master = 1;
+  Node n(r, 3.0);
+  EXPECT_EQ(n.core.standing().coupled_to, 1U);
+  for (std::uint64_t c = 0; c < 60; ++c) {
+    ASSERT_TRUE(n.core.ready(c)) << c;
+    n.run(c);
+    n.core.on_setpoint(1, 2, at(c, 0.0, false), 0, writer(1));
+    EXPECT_FALSE(n.core.ready(c + 1)) << "the master's sample of this cycle is waited for";
+    // The master stands at 10 until cycle 30, then moves 0.002 a cycle.
+    const double master = 10.0 + (c > 30 ? 0.002 * static_cast<double>(c - 30) : 0.0);
+    n.core.on_leader_feedback(1, c, master, true, writer(7));
+  }
+  // From where both stood, the slave moved as much as its master: at its cycle 59 the master
+  // stands at its sample of 58 plus one cycle at the speed between 57 and 58, 29 steps of 0.002.
+  EXPECT_NEAR(n.core.output().cmd - 3.0, 0.002 * 29, 1e-9);
+  EXPECT_TRUE(n.core.standing().coupling_locked);
+  // Its master's node gone: nothing of it is waited for any more.
+  n.core.on_setpoint(1, 2, at(60, 0.0, false), 0, writer(1));
+  EXPECT_FALSE(n.core.ready(61 + 1));
+  n.core.on_leader_gone(writer(7));
+  n.core.on_setpoint(1, 2, at(61, 0.0, false), 0, writer(1));
+  EXPECT_TRUE(n.core.ready(62));
+}
+
+TEST(AxisNode, ASlaveSpindleCouplesAtTheCycleAfterG1141ForItsOwnGroupOnly) {
+  AxisNodeRoles r = exchanged_axis();
+  r.axis = 4;
+  r.home = 2;
+  r.candidates = {2, 1};
+  r.sync_group = 1;
+  r.sync_master = 3;
+  r.sync_channel = 1;
+  r.spindle_coupling = coupling::SpindleCouplingSetup{kCycle, 3600.0, 0.05, 1.0};
+  AxisNode core(r);
+  core.on_setpoint(2, 4, at(0, 0.0), 0, writer(2));
+  core.on_setpoint(1, 4, at(0, 0.0, false), 0, writer(1));
+  EXPECT_FALSE(core.ready(1)) << "the coupling channel's status and the master are waited for";
+  core.on_sync_channel_status(1, 0, 1, writer(1));
+  core.on_master_feedback(3, 0, 90.0, 0.0, writer(3));
+  EXPECT_FALSE(core.ready(1)) << "the coupling channel announced an event";
+  AxisNodeEvent e;
+  e.kind = AxisNodeEvent::Kind::spindle_sync;
+  e.channel = 1;
+  e.seq = 1;
+  e.cycle = 0;
+  e.sync_on = true;
+  e.sync_group = 1;
+  e.spindle = coupling::SpindleCouplingCommand{1, -1, 30.0};
+  core.on_event(e);
+  e.sync_group = 2;  // another group's coupling is not this spindle's
+  core.on_event(e);
+  ASSERT_TRUE(core.ready(1));
+  core.take_inputs(1, true);
+  ASSERT_EQ(core.happening_count(), 2U);
+  EXPECT_EQ(core.happenings()[0].kind, Happening::spindle_coupled);
+  EXPECT_EQ(core.happenings()[1].kind, Happening::follows) << "the coupling is followed";
+  EXPECT_EQ(core.happenings()[1].channel, 2U);
+  EXPECT_EQ(core.happenings()[0].master, 3U);
+  EXPECT_EQ(core.happenings()[0].spindle.q, -1);
+  EXPECT_DOUBLE_EQ(core.happenings()[0].spindle.r, 30.0);
+  EXPECT_EQ(core.standing().coupled_to, 3U);
+}

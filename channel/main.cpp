@@ -4,15 +4,16 @@
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/loading/program_loader.hpp"
 #include "channel/motion/motion_planner.hpp"
+#include "channel/setup/controller_setup.hpp"
 #include "channel/setup/interpreter_setup.hpp"
 #include "channel/setup/motion_setup.hpp"
+#include "channel/wire/axis_feedback_inputs.hpp"
 #include "channel/wire/channel_outputs.hpp"
 #include "channel/wire/channel_peers.hpp"
+#include "channel/wire/operator_requests.hpp"
 #include "channel/wire/plc_link.hpp"
-#include "common/clock/cycle_clock.hpp"
 #include "common/config/cyclic_routes.hpp"
 #include "common/cycle/lockstep_gate.hpp"
-#include "common/cycle/tracked_input.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -23,7 +24,6 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -31,21 +31,6 @@
 
 using namespace std::chrono_literals;
 using namespace mcnc;
-
-namespace {
-
-// What the operator asked for, as the trace's `text` (escaped).
-struct EscapedText {
-  char text[2 * process::OperatorRequest::kTextSize + 8] = {};
-};
-
-EscapedText escaped(const char* text) noexcept {
-  EscapedText e;
-  trace::json_escape(text, e.text, sizeof e.text);
-  return e;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"mcnc channel: interpreter, planner and interpolator of one machining channel"};
@@ -81,51 +66,9 @@ int main(int argc, char** argv) {
   process::start_process(ch->name, shell);
   process::require_roudi_or_exit(machine, ch->name);
 
-  // The channel's axes, in program order: its own, those it may acquire (G141), then its
-  // spindle's C axis (on the spindle's node).
-  std::vector<const config::AxisConfig*> axes;
-  channel::ChannelSetup setup;
-  for (const std::string& name : ch->program_axes()) {
-    const config::AxisConfig* a = machine.find_axis(name);
-    if (!a->spindle.empty()) {
-      setup.spindle_c_slot = axes.size();
-    }
-    axes.push_back(a);
-    setup.in_position.push_back(a->in_position);
-    const bool exchange_slot = axes.size() > ch->axes.size() && a->spindle.empty();
-    setup.slots.push_back(channel::AxisSlot{
-        a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),
-        static_cast<std::uint32_t>(a->id), a->sync_slave,
-        static_cast<std::uint32_t>(a->sync_master), a->sync_at_power_on && !exchange_slot});
-  }
-  for (const config::AxisConfig& a : machine.axes) {
-    setup.machine_axes.push_back(channel::MachineAxis{
-        a.type == config::AxisType::spindle  ? channel::MachineAxisKind::spindle
-        : a.type == config::AxisType::rotary ? channel::MachineAxisKind::rotary
-                                             : channel::MachineAxisKind::linear,
-        a.sync_slave});
-  }
-  setup.axis_count = axes.size();
-  setup.spindle_count = ch->spindles.size();
-  setup.cycle_s = machine.cycle_s();
-  setup.channel_id = static_cast<std::uint32_t>(ch->id);
-  setup.plc = machine.plc.present;
-  setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
-  // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
-  // feedback follows the channel's spindles' (their slots come last, as config::fed_axes has
-  // them); G114.1 ends when they are in phase.
-  std::size_t sync_slaves = 0;
-  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
-    setup.spindle_may_follow =
-        setup.spindle_may_follow ||
-        (!ch->spindles.empty() && machine.find_axis(ch->spindles.front())->id == g.slave);
-  }
-  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
-    if (g.channel == ch->id) {
-      setup.spindle_groups.push_back(
-          channel::SpindleGroupSetup{g.group, axes.size() + ch->spindles.size() + sync_slaves++});
-    }
-  }
+  channel::ControllerLayout layout = channel::controller_layout_for(machine, *ch);
+  channel::ChannelSetup& setup = layout.setup;
+  const std::vector<const config::AxisConfig*>& axes = layout.axes;
 
   interp::InterpreterConfig interp_config = channel::interpreter_config_for(machine, *ch);
   // #500-#999 and #20000-#20999 are the machine's: this channel's copy, kept equal to the
@@ -162,8 +105,6 @@ int main(int argc, char** argv) {
   }
   // Programs the operator selects and MDI blocks are checked off the cycle.
   channel::ProgramLoader loader(interp_config);
-  std::optional<channel::LoadedProgram> loaded;  // checked, waiting for the channel to stand
-  std::uint64_t mdi_epoch = 0;  // the controller's run epoch when the MDI blocks were asked for
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   setup.shared_writes = &shared_writes;
   channel::ChannelController controller(setup, interpreter, planner);
@@ -174,50 +115,24 @@ int main(int argc, char** argv) {
                               process::resolve_middleware(machine, ch->name));
     trace::TraceWriter tracer(trace_path, ch->name);
     node.announce(PHASE_STARTING);
-    process::Wakeup& wake = node.wakeup();
 
-    // Feedback of the nodes the channel commands (its axes, then its spindles), by cycle, and
-    // the lockstep gate over them and the other channels: a node runs cycle N on the channel's
-    // setpoint N-1, so the channel must not run ahead of any of them; the channels decide their
-    // wait marks from each other's status and arrivals stamped N-1.
-    std::vector<const config::AxisConfig*> spindles;
-    for (const std::string& name : ch->spindles) {
-      spindles.push_back(machine.find_axis(name));
-    }
+    // The lockstep gate over the feedback of the nodes the channel commands, the other
+    // channels and the PLC: a node runs cycle N on the channel's setpoint N-1, so the channel
+    // must not run ahead of any of them; the channels decide their wait marks from each other's
+    // status and arrivals stamped N-1.
     const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
-    const std::vector<std::string> fed_nodes = config::node_keys(fed);
-    std::vector<cycle::TrackedInput<AxisFeedback>> feedback =
-        cycle::tracked_inputs<AxisFeedback>(0, fed.size());
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
+    channel::AxisFeedbackInputs feedback(node, fed, gate, machine.deadline_cycles);
     channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
     std::optional<channel::PlcLink> plc;
     if (machine.plc.present) {
       plc.emplace(node, gate, plc_input, static_cast<std::uint32_t>(ch->id));
     }
-    // A spindle's feedback is also its C axis's.
-    dds::Reader<AxisFeedback> feedback_reader(
-        node.participant(), dds::Keys::of(fed_nodes),
-        [&](const AxisFeedback& fb, const dds::WriterId& writer) {
-          wake.update([&] {
-            for (std::size_t slot = 0; slot < fed.size(); ++slot) {
-              if (static_cast<std::uint32_t>(fed[slot]->id) == fb.axis()) {
-                feedback[slot].on_sample(fb, fb.cycle(), fb.event_seq(), writer, gate);
-              }
-            }
-          });
-        },
-        [&](const dds::WriterId& writer, bool matched) {
-          if (!matched) {
-            wake.update([&] {
-              for (auto& input : feedback) {
-                input.on_unmatched(writer, gate);
-              }
-            });
-          }
-        });
     channel::ChannelOutputs outputs(node, tracer, *ch, config::channel_names(machine), axes,
-                                    spindles, program_name, program_lines, shared_writes);
+                                    layout.spindles, program_name, program_lines, shared_writes);
+    channel::OperatorRequests operator_requests(node, tracer, *ch, loader, controller, interpreter,
+                                                outputs);
     if (!interp_config.program_dir.empty()) {
       outputs.preload_program_dir(interp_config.program_dir.string());
     }
@@ -229,9 +144,8 @@ int main(int argc, char** argv) {
     process::CycleLoop loop(node, machine.cycle_us);
     if (!loop.start(
             [&] {
-              return feedback_reader.matched_writers() >= static_cast<int>(fed_nodes.size()) &&
-                     outputs.setpoints_discovered() && peers.discovered() &&
-                     (!plc || plc->discovered()) &&
+              return feedback.discovered() && outputs.setpoints_discovered() &&
+                     peers.discovered() && (!plc || plc->discovered()) &&
                      outputs.event_readers() >= static_cast<int>(peers.inputs());
             },
             shell.clock)) {
@@ -249,133 +163,23 @@ int main(int argc, char** argv) {
     // A channel runs cycle N once the feedback stamped N-1 of all its axes is in.
     for (std::uint64_t cycle = 0; loop.next(
              cycle, [&](std::uint64_t c) { return gate.may_run(c); },
-             [&] {
-               return std::any_of(feedback.begin(), feedback.end(),
-                                  [](const auto& input) { return input.lost(); });
-             });
+             [&] { return feedback.any_lost(); });
          ++cycle) {
       if (loop.emergency_stop() && !estop_seen) {
         estop_seen = true;
         controller.emergency_stop();
       }
-      while (const auto request = node.take_operator_request(cycle)) {
-        if (!request->concerns(static_cast<std::uint32_t>(ch->id))) {
-          continue;
-        }
-        using Kind = process::OperatorActionKind;
-        switch (request->action) {
-          case Kind::reset:
-            controller.request_reset();
-            break;
-          case Kind::cycle_start:
-            controller.request_start();
-            break;
-          case Kind::feed_hold:
-            controller.request_feed_hold();
-            break;
-          case Kind::feed_override:
-            controller.set_feed_override(request->value);
-            break;
-          case Kind::rapid_override:
-            controller.set_rapid_override(request->value);
-            break;
-          case Kind::spindle_override:
-            controller.set_spindle_override(request->value);
-            break;
-          case Kind::single_block:
-            controller.set_single_block(request->value != 0.0);
-            break;
-          case Kind::select_program:
-          case Kind::mdi: {
-            // Checked off the cycle; the channel takes the result once it stands in reset or
-            // idle (a cycle start waits for it).
-            const bool mdi = request->action == Kind::mdi;
-            const char* refused =
-                !controller.may_change_program()
-                    ? "programs are selected and MDI blocks run only in reset or idle"
-                : loaded || !loader.submit(mdi, request->text.data())
-                    ? "another program or MDI block is still being checked"
-                    : nullptr;
-            mdi_epoch = mdi && refused == nullptr ? controller.run_epoch() : mdi_epoch;
-            tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\",\"text\":\"%s\"%s%s%s",
-                        ch->name.c_str(), process::to_string(request->action),
-                        escaped(request->text.data()).text, refused ? ",\"refused\":\"" : "",
-                        refused ? refused : "", refused ? "\"" : "");
-            continue;
-          }
-          case Kind::alarm_ack:  // for the HMIs: which alarms an operator has seen
-          case Kind::none:
-            continue;
-        }
-        if (request->action == Kind::reset || request->action == Kind::cycle_start ||
-            request->action == Kind::feed_hold) {
-          tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\"", ch->name.c_str(),
-                      process::to_string(request->action));
-        } else {
-          tracer.emit(cycle, "operator", "\"ch\":\"%s\",\"action\":\"%s\",\"value\":%.3f",
-                      ch->name.c_str(), process::to_string(request->action), request->value);
-        }
-      }
+      operator_requests.apply(cycle);
 
       // An axis node leaving may be the end of the run, not a failure. In realtime, feedback
       // older than the deadline counts as the axis being gone (ARCHITECTURE.md §6).
-      bool newly_lost = false;
-      wake.update([&] {
-        for (std::size_t i = 0; i < fed.size(); ++i) {
-          const AxisFeedback* latest = feedback[i].latest();
-          if (!lockstep && latest != nullptr &&
-              controller.state() != channel::ChannelState::reset &&
-              latest->cycle() + static_cast<std::uint64_t>(machine.deadline_cycles) < cycle) {
-            feedback[i].lose(gate);
-          }
-          newly_lost = newly_lost || feedback[i].loss_pending();
-        }
-      });
-      if (newly_lost && node.stop_arrives_within(300ms)) {
+      if (feedback.check_losses(cycle, lockstep,
+                                controller.state() != channel::ChannelState::reset) &&
+          node.stop_arrives_within(300ms)) {
         break;
       }
-      wake.update([&] {
-        for (std::size_t i = 0; i < fed.size(); ++i) {
-          const AxisFeedback* fb = feedback[i].for_cycle(cycle, lockstep);
-          if (fb != nullptr) {
-            views[i] = channel::AxisFeedbackView{
-                fb->cmd(),   fb->act(),         fb->enabled(),    fb->alarm(),          true,
-                fb->owner(), fb->released_by(), fb->coupled_to(), fb->coupling_locked()};
-          }
-          if (feedback[i].take_loss()) {
-            controller.axis_lost(i);
-          }
-        }
-      });
-
-      if (!loaded) {
-        loaded = loader.take();
-      }
-      if (loaded && loaded->mdi && controller.run_epoch() != mdi_epoch) {
-        // A reset or another run came while the blocks were checked: they no longer run.
-        tracer.emit(cycle, "operator",
-                    "\"ch\":\"%s\",\"action\":\"mdi\",\"text\":\"%s\",\"refused\":\"a reset "
-                    "or another run came first\"",
-                    ch->name.c_str(), escaped(loaded->program.text.c_str()).text);
-        loaded.reset();
-      }
-      if (loaded && controller.may_change_program()) {
-        if (loaded->program.alarm) {
-          controller.report_alarm(*loaded->program.alarm);  // the program selected stays
-        } else if (loaded->mdi) {
-          outputs.set_mdi_lines(std::move(loaded->lines));
-          interpreter.prepare_mdi(std::move(loaded->program));
-          controller.request_mdi();
-        } else {
-          tracer.emit(cycle, "program", "\"ch\":\"%s\",\"prog\":\"%s\",\"blocks\":%zu",
-                      ch->name.c_str(), escaped(loaded->program.name.c_str()).text,
-                      loaded->program.block_count);
-          outputs.set_program(loaded->program.name, std::move(loaded->lines));
-          interpreter.adopt(std::move(loaded->program));
-        }
-        loaded.reset();
-      }
-      controller.set_program_pending(loaded.has_value() || loader.busy());
+      feedback.take(cycle, lockstep, views, controller);
+      operator_requests.take_loaded(cycle);
 
       peers.apply(cycle, lockstep, controller);
       if (plc) {

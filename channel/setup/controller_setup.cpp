@@ -1,0 +1,57 @@
+#include "channel/setup/controller_setup.hpp"
+
+namespace mcnc::channel {
+
+ControllerLayout controller_layout_for(const config::MachineConfig& machine,
+                                       const config::ChannelConfig& ch) {
+  ControllerLayout layout;
+  std::vector<const config::AxisConfig*>& axes = layout.axes;
+  ChannelSetup& setup = layout.setup;
+  for (const std::string& name : ch.program_axes()) {
+    const config::AxisConfig* a = machine.find_axis(name);
+    if (!a->spindle.empty()) {
+      setup.spindle_c_slot = axes.size();
+    }
+    axes.push_back(a);
+    setup.in_position.push_back(a->in_position);
+    const bool exchange_slot = axes.size() > ch.axes.size() && a->spindle.empty();
+    setup.slots.push_back(AxisSlot{
+        a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),
+        static_cast<std::uint32_t>(a->id), a->sync_slave,
+        static_cast<std::uint32_t>(a->sync_master), a->sync_at_power_on && !exchange_slot});
+  }
+  for (const config::AxisConfig& a : machine.axes) {
+    setup.machine_axes.push_back(
+        MachineAxis{a.type == config::AxisType::spindle  ? MachineAxisKind::spindle
+                    : a.type == config::AxisType::rotary ? MachineAxisKind::rotary
+                                                         : MachineAxisKind::linear,
+                    a.sync_slave});
+  }
+  for (const std::string& name : ch.spindles) {
+    layout.spindles.push_back(machine.find_axis(name));
+  }
+  setup.axis_count = axes.size();
+  setup.spindle_count = ch.spindles.size();
+  setup.cycle_s = machine.cycle_s();
+  setup.channel_id = static_cast<std::uint32_t>(ch.id);
+  setup.plc = machine.plc.present;
+  setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
+  // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
+  // feedback follows the channel's spindles' (their slots come last, as config::fed_axes has
+  // them); G114.1 ends when they are in phase.
+  std::size_t sync_slaves = 0;
+  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+    setup.spindle_may_follow =
+        setup.spindle_may_follow ||
+        (!ch.spindles.empty() && machine.find_axis(ch.spindles.front())->id == g.slave);
+  }
+  for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
+    if (g.channel == ch.id) {
+      setup.spindle_groups.push_back(
+          SpindleGroupSetup{g.group, axes.size() + ch.spindles.size() + sync_slaves++});
+    }
+  }
+  return layout;
+}
+
+}  // namespace mcnc::channel

@@ -137,10 +137,12 @@ void read_optional_middleware(const YamlMap& map, std::string& out) {
 }
 
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
-  const YamlMap map = value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir",
-                                 "retained_file", "call_wait_timeout_ms", "middleware", "roudi"});
+  const YamlMap map =
+      value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir", "retained_file",
+                 "call_wait_timeout_ms", "middleware", "roudi", "link_cycle_us"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
+  read_optional_int(map, "link_cycle_us", 100, 100000, out.link_cycle_us);
   read_optional_int(map, "deadline_cycles", 1, 1000, out.deadline_cycles);
   read_optional_int(map, "call_wait_timeout_ms", 0, 3600000, out.call_wait_timeout_ms);
   // 232 is the highest domain whose RTPS ports still fit in 16 bits.
@@ -676,13 +678,122 @@ void parse_hmi(const YamlValue& value, HmiConfig& hmi) {
   }
 }
 
+// `hosts:` (docs/configuration.md "Hosts"): every channel, axis, bus and the PLC on exactly one
+// host, each axis on its bus's host; the HMI on the first host unless one names it. A machine
+// whose channels command axes on other hosts runs at the link's cycle or slower: 2000 us unless
+// the file says otherwise.
+void parse_hosts(const YamlValue& value, MachineConfig& config, bool has_plc,
+                 const std::optional<YamlValue>& cycle_value) {
+  const std::vector<YamlValue> hosts = value.list();
+  if (hosts.empty()) {
+    value.fail("hosts: needs at least one host (without it the machine runs on one host)");
+  }
+  // What each name in `runs` may be.
+  std::map<std::string, std::string> kinds;
+  auto add_kind = [&](const std::string& name, const std::string& kind) {
+    const auto [it, inserted] = kinds.emplace(name, kind);
+    if (!inserted) {
+      value.fail("'" + name + "' names both a " + it->second + " and a " + kind +
+                 ": a machine on several hosts needs distinct names");
+    }
+  };
+  for (const ChannelConfig& c : config.channels) {
+    add_kind(c.name, "channel");
+  }
+  for (const AxisConfig& a : config.axes) {
+    add_kind(a.name, "axis");
+  }
+  for (const BusConfig& b : config.buses) {
+    add_kind(b.name, "bus");
+  }
+  if (has_plc) {
+    add_kind("plc", "PLC");
+  }
+  add_kind("hmi", "HMI");
+
+  std::map<std::string, std::size_t> host_index;
+  std::map<std::string, std::pair<std::size_t, YamlValue>> placed;  // name -> host, where
+  for (std::size_t h = 0; h < hosts.size(); ++h) {
+    const YamlMap map = hosts[h].map({"name", "address", "runs"});
+    HostConfig host;
+    host.name = read_name(map.required("name"));
+    check_unique(host_index, host.name, hosts[h], h, "hosts", "host");
+    if (auto address = map.optional("address")) {
+      host.address = address->string();
+      if (host.address.empty() || host.address.find_first_of(" \t/") != std::string::npos) {
+        address->fail("an address is an IPv4 address or a host name, got '" + host.address + "'");
+      }
+    }
+    for (const YamlValue& entry : map.required("runs").list()) {
+      const std::string name = entry.string();
+      if (kinds.find(name) == kinds.end()) {
+        const auto c_axis = std::find_if(config.c_axes.begin(), config.c_axes.end(),
+                                         [&](const AxisConfig& a) { return a.name == name; });
+        if (c_axis != config.c_axes.end()) {
+          entry.fail(name + " is spindle " + c_axis->spindle +
+                     "'s C axis: it runs where its spindle runs");
+        }
+        entry.fail("no channel, axis, bus" + std::string(has_plc ? ", plc" : "") +
+                   " or hmi of this machine is called '" + name + "'");
+      }
+      const auto [it, inserted] = placed.emplace(name, std::make_pair(h, entry));
+      if (!inserted) {
+        entry.fail(kinds.at(name) + " " + name + " already runs on host " +
+                   config.hosts[it->second.first].name);
+      }
+      host.runs.push_back(name);
+    }
+    config.hosts.push_back(std::move(host));
+  }
+  for (const auto& [name, kind] : kinds) {
+    if (kind != "HMI" && placed.find(name) == placed.end()) {
+      value.fail(kind + " " + name + " runs on no host");
+    }
+  }
+  if (placed.find("hmi") == placed.end()) {
+    config.hosts.front().runs.push_back("hmi");
+  }
+  for (const AxisConfig& a : config.axes) {
+    const std::size_t axis_host = placed.at(a.name).first;
+    const std::size_t bus_host = placed.at(a.bus).first;
+    if (axis_host != bus_host) {
+      placed.at(a.name).second.fail("axis " + a.name + " is on bus " + a.bus + ", which host " +
+                                    config.hosts[bus_host].name +
+                                    " runs: an axis node runs on the host its bus is wired to");
+    }
+  }
+  // A channel that commands an axis on another host: the axis's setpoints cross the link.
+  std::string crossing;
+  for (const ChannelConfig& c : config.channels) {
+    const std::size_t channel_host = placed.at(c.name).first;
+    for (const auto* list : {&c.axes, &c.exchange_axes, &c.spindles}) {
+      for (const std::string& a : *list) {
+        if (crossing.empty() && placed.at(a).first != channel_host) {
+          crossing = "channel " + c.name + " (host " + config.hosts[channel_host].name +
+                     ") commands " + a + " on host " + config.hosts[placed.at(a).first].name;
+        }
+      }
+    }
+  }
+  if (crossing.empty()) {
+    return;
+  }
+  if (!cycle_value) {
+    config.cycle_us = std::max(config.cycle_us, config.link_cycle_us);
+  } else if (config.cycle_us < config.link_cycle_us) {
+    cycle_value->fail(std::to_string(config.cycle_us) + " us is below the " +
+                      std::to_string(config.link_cycle_us) + " us the hosts' link allows, and " +
+                      crossing + " (link_cycle_us sets the link's cycle)");
+  }
+}
+
 MachineConfig parse_document(const YAML::Node& root) {
   const YamlValue top(root, "");
   if (!root.IsMap()) {
     top.fail("a machine file is a map with the keys machine, buses, channels and axes");
   }
   const YamlMap doc =
-      top.map({"machine", "buses", "channels", "axes", "plc", "spindle_sync", "hmi"});
+      top.map({"machine", "buses", "channels", "axes", "plc", "spindle_sync", "hmi", "hosts"});
   MachineConfig config;
   parse_machine_section(doc.required("machine"), config);
 
@@ -907,6 +1018,14 @@ MachineConfig parse_document(const YAML::Node& root) {
     }
   }
 
+  if (auto hosts = doc.optional("hosts")) {
+    std::optional<YamlValue> cycle_value;  // where the file sets the cycle, if it does
+    if (root["machine"]["cycle_us"]) {
+      cycle_value = doc.required("machine").child("cycle_us");
+    }
+    parse_hosts(*hosts, config, doc.optional("plc").has_value(), cycle_value);
+  }
+
   // Node ids per bus, and the axes each bus carries.
   std::map<std::string, std::map<int, std::string>> nodes;  // bus -> node id -> axis
   for (std::size_t i = 0; i < config.axes.size(); ++i) {
@@ -1033,6 +1152,15 @@ const ChannelConfig* MachineConfig::find_channel(const std::string& name) const 
   for (const ChannelConfig& channel : channels) {
     if (channel.name == name) {
       return &channel;
+    }
+  }
+  return nullptr;
+}
+
+const HostConfig* MachineConfig::host_of(const std::string& process) const noexcept {
+  for (const HostConfig& h : hosts) {
+    if (std::find(h.runs.begin(), h.runs.end(), process) != h.runs.end()) {
+      return &h;
     }
   }
   return nullptr;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include "common/config/host_config.hpp"
 #include "common/config/plc_config.hpp"
 
 #include <string>
@@ -184,6 +185,10 @@ struct MachineConfig {
   PlcConfig plc;  // plc.present: the machine has a PLC node
   std::vector<SpindleSyncGroup> spindle_sync;
   HmiConfig hmi;
+  // The hosts the machine spans; empty: one host runs everything.
+  std::vector<HostConfig> hosts;
+  // The shortest cycle the hosts' link carries (machine.link_cycle_us).
+  int link_cycle_us = kDefaultLinkCycleUs;
 
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;
@@ -193,6 +198,9 @@ struct MachineConfig {
   // when it names none.
   [[nodiscard]] std::string middleware_of(const std::string& process) const;
   [[nodiscard]] double cycle_s() const noexcept { return cycle_us * 1e-6; }
+  // The host that runs a process (a channel, an axis, a bus, "plc" or "hmi"); nullptr on a
+  // machine of one host (no `hosts:`), and for a name no host runs.
+  [[nodiscard]] const HostConfig* host_of(const std::string& process) const noexcept;
   // Cycles that take at least `ms` milliseconds (a time from the machine file as a count).
   [[nodiscard]] std::uint64_t cycles_of(int ms) const noexcept;
 };

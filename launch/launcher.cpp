@@ -12,6 +12,7 @@
 #include "idl/dds_participant.hpp"
 #include "launch/child_end.hpp"
 #include "launch/child_process.hpp"
+#include "launch/launch_plan.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -37,8 +38,6 @@ const char* to_string(::mcnc::ChannelState state) noexcept {
 }
 
 namespace {
-
-constexpr const char* kHmiName = "hmi";  // the operator station's child
 
 struct Observed {
   std::mutex mutex;
@@ -140,88 +139,15 @@ LaunchResult Launcher::run(
   };
 
   // Children: drive simulators first (they answer the nodes' NMT), then axis nodes, channels.
+  const LaunchPlan plan = launch_plan(machine_, options_, parts_dir);
   std::vector<ChildProcess> children;
-  std::vector<std::string> dds_processes;
-  const std::string bin = options_.bin_dir.empty() ? std::string(".") : options_.bin_dir;
-  auto common_args = [&](std::vector<std::string> args) {
-    args.emplace_back("--clock");
-    args.emplace_back(options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
-    if (!options_.log_level.empty()) {
-      args.emplace_back("--log-level");
-      args.push_back(options_.log_level);
-    }
-    return args;
-  };
-  std::vector<std::string> channel_parts;
-  std::vector<std::string> axis_parts;
-  for (const auto& bus : machine_.buses) {
-    std::vector<std::string> args{bin + "/mcnc-drivesim", "--machine", options_.machine_path,
-                                  "--bus", bus.name};
-    if (const auto extra = options_.drivesim_args.find(bus.name);
-        extra != options_.drivesim_args.end()) {
-      args.insert(args.end(), extra->second.begin(), extra->second.end());
-    }
-    children.emplace_back("drivesim-" + bus.name, common_args(args));
+  children.reserve(plan.children.size());
+  for (const ChildSpec& spec : plan.children) {
+    children.emplace_back(spec.name, spec.argv);
   }
-  for (const auto& axis : machine_.axes) {
-    std::vector<std::string> args{bin + "/mcnc-axisnode", "--machine", options_.machine_path,
-                                  "--axis", axis.name};
-    if (!parts_dir.empty()) {
-      args.insert(args.end(), {"--trace", parts_dir + "/" + axis.name + ".jsonl",
-                               "--trace-pos-every", std::to_string(options_.trace_pos_every)});
-      axis_parts.push_back(parts_dir + "/" + axis.name + ".jsonl");
-    }
-    children.emplace_back(axis.name, common_args(args));
-    dds_processes.push_back(axis.name);
-  }
-  for (const auto& ch : machine_.channels) {
-    std::vector<std::string> args{bin + "/mcnc-channel", "--machine", options_.machine_path,
-                                  "--channel", ch.name};
-    if (auto it = options_.programs.find(ch.name); it != options_.programs.end()) {
-      args.insert(args.end(), {"--program", it->second});
-    }
-    if (!options_.retained_file.empty()) {
-      args.insert(args.end(), {"--retained", options_.retained_file});
-    }
-    if (!options_.program_dir.empty()) {
-      args.insert(args.end(), {"--progdir", options_.program_dir});
-    }
-    if (options_.manual_start) {
-      args.emplace_back("--manual-start");
-    }
-    if (!parts_dir.empty()) {
-      args.insert(args.end(), {"--trace", parts_dir + "/" + ch.name + ".jsonl"});
-      channel_parts.push_back(parts_dir + "/" + ch.name + ".jsonl");
-    }
-    children.emplace_back(ch.name, common_args(args));
-    dds_processes.push_back(ch.name);
-  }
-  if (machine_.plc.present) {
-    std::vector<std::string> args{bin + "/mcnc-plcnode", "--machine", options_.machine_path};
-    if (!parts_dir.empty()) {
-      args.insert(args.end(), {"--trace", parts_dir + "/PLC.jsonl"});
-      axis_parts.push_back(parts_dir + "/PLC.jsonl");
-    }
-    children.emplace_back("PLC", common_args(args));
-    dds_processes.push_back("PLC");
-  }
-  if (!options_.hmi_listen.empty()) {
-    std::vector<std::string> args{bin + "/mcnc-hmi", "--machine", options_.machine_path, "--listen",
-                                  options_.hmi_listen};
-    for (const auto& [channel, file] : options_.programs) {
-      args.insert(args.end(), {"--program", channel + "=" + file});
-    }
-    if (!options_.program_dir.empty()) {
-      args.insert(args.end(), {"--progdir", options_.program_dir});
-    }
-    if (!options_.log_level.empty()) {
-      args.insert(args.end(), {"--log-level", options_.log_level});
-    }
-    children.emplace_back(kHmiName, args);
-  }
+  const std::vector<std::string>& dds_processes = plan.dds_processes;
   // Merge order inside a cycle: channels, axes, the PLC, launch.
-  std::vector<std::string> merge_order = channel_parts;
-  merge_order.insert(merge_order.end(), axis_parts.begin(), axis_parts.end());
+  std::vector<std::string> merge_order = plan.trace_parts;
   merge_order.insert(merge_order.end(), part_paths.begin(), part_paths.end());
 
   for (auto& child : children) {

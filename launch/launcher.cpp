@@ -60,6 +60,9 @@ LaunchResult Launcher::run(
     const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
   LaunchResult result;
   const int domain = process::resolve_domain(machine_);
+  // On a machine of several hosts, a launcher other than the first host's follows the run.
+  const bool follower = !options_.host.empty() && !machine_.hosts.empty() &&
+                        options_.host != machine_.hosts.front().name;
   // Children end with the launcher, even when it is killed (see process::die_with_parent()).
   const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain),
                                      "MCNC_DIE_WITH_PARENT=1"};
@@ -69,7 +72,9 @@ LaunchResult Launcher::run(
   std::vector<std::string> part_paths;
   if (!options_.trace_path.empty()) {
     parts_dir = options_.trace_path + ".parts";
-    fs::remove_all(parts_dir);
+    if (options_.host.empty()) {
+      fs::remove_all(parts_dir);  // across hosts the others may be writing theirs already
+    }
     fs::create_directories(parts_dir);
   }
   auto part_for = [&](const std::string& name) {
@@ -82,10 +87,11 @@ LaunchResult Launcher::run(
 
   // An onlooker of the cyclic topics: off shared memory, so a RouDi it started and stops
   // after the machine never counts it among the processes to end (HostRoudi).
-  process::ProcessNode node(domain, "launch", dds::CyclicClock::realtime,
+  const std::string self = follower ? "launch-" + options_.host : "launch";
+  process::ProcessNode node(domain, self, dds::CyclicClock::realtime,
                             process::resolve_middleware(machine_, "launch"),
                             dds::LocalTransport::network);
-  trace::TraceWriter tracer(part_for("launch"), "launch");
+  trace::TraceWriter tracer(follower ? std::string() : part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();
   dds::Reader<ProcessState> state_reader(node.participant(),
@@ -128,6 +134,9 @@ LaunchResult Launcher::run(
   }
   std::uint64_t generation = 0;
   auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
+    if (follower) {
+      return;  // the coordinator runs the machine
+    }
     RunControl rc;
     rc.generation(++generation);
     rc.command(command);
@@ -139,7 +148,7 @@ LaunchResult Launcher::run(
   };
 
   // Children: drive simulators first (they answer the nodes' NMT), then axis nodes, channels.
-  const LaunchPlan plan = launch_plan(machine_, options_, parts_dir);
+  const LaunchPlan plan = launch_plan(machine_, options_, parts_dir, options_.host);
   std::vector<ChildProcess> children;
   children.reserve(plan.children.size());
   for (const ChildSpec& spec : plan.children) {
@@ -147,7 +156,7 @@ LaunchResult Launcher::run(
   }
   const std::vector<std::string>& dds_processes = plan.dds_processes;
   // Merge order inside a cycle: channels, axes, the PLC, launch.
-  std::vector<std::string> merge_order = plan.trace_parts;
+  std::vector<std::string> merge_order = launch_plan(machine_, options_, parts_dir).trace_parts;
   merge_order.insert(merge_order.end(), part_paths.begin(), part_paths.end());
 
   for (auto& child : children) {
@@ -202,6 +211,25 @@ LaunchResult Launcher::run(
   const auto roudi_lost = [&] { return options_.watch_roudi && !dds::roudi_answers(); };
   const char* const kRoudiLost = "the host's iceoryx RouDi stopped answering";
 
+  // A follower's report of a process it lost (alarm 3001 from "launch-<host>"), for the
+  // coordinator: empty when there is none.
+  const auto host_failure = [&]() -> std::string {
+    if (follower || options_.host.empty()) {
+      return {};
+    }
+    std::lock_guard<std::mutex> lock(seen.mutex);
+    for (const auto& a : seen.alarms) {
+      if (a.number() == 3001 && a.src() != "launch") {
+        return a.src().substr(std::string("launch-").size()) + ": " + a.text();
+      }
+    }
+    return {};
+  };
+  const auto coordinator_ended = [&] {
+    const RunCommand cmd = node.run_control().command;
+    return follower && (cmd == RUN_STOP || cmd == RUN_ESTOP);
+  };
+
   std::string failure;
   bool killed_child = false;
   bool sent_kill = false;  // children that had not left after the run were killed
@@ -218,6 +246,13 @@ LaunchResult Launcher::run(
     if (roudi_lost()) {
       failure = std::string(kRoudiLost) + " during start-up";
       break;
+    }
+    if (const std::string lost = host_failure(); !lost.empty()) {
+      failure = "host " + lost + " during start-up";
+      break;
+    }
+    if (coordinator_ended()) {
+      break;  // the coordinator gave up the start: this host stops too
     }
     std::string not_ready;  // the processes still starting, for the operator
     wake.update([&] {
@@ -241,7 +276,29 @@ LaunchResult Launcher::run(
 
   // 2. Run.
   bool estopped = false;
-  if (failure.empty()) {
+  if (follower) {
+    // Until the coordinator stops the run: this host's processes, a lost one reported once.
+    bool reported = false;
+    std::optional<std::chrono::steady_clock::time_point> failed_at;
+    for (;;) {
+      if (!failure.empty() && !reported) {
+        reported = true;
+        failed_at = std::chrono::steady_clock::now();
+        spdlog::error("host {}: {}", options_.host, failure);
+        node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
+      }
+      if (node.run_control().command == RUN_STOP || process::g_stop_signal != 0 ||
+          (failed_at && std::chrono::steady_clock::now() - *failed_at > 30s)) {
+        break;
+      }
+      std::this_thread::sleep_for(20ms);
+      (void)progress();
+      if (ChildProcess* dead = find_exited(); dead != nullptr && failure.empty()) {
+        failure = dead->name() + " " + dead->exit_description();
+        killed_child = dead->exit_code() < 0;
+      }
+    }
+  } else if (failure.empty()) {
     spdlog::info("all {} processes ready; starting the run ({} clock)", dds_processes.size(),
                  options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
     // Realtime: cycle 0 a little in the future so every process starts on the same tick.
@@ -297,6 +354,10 @@ LaunchResult Launcher::run(
       }
       if (roudi_lost()) {
         failure = kRoudiLost;
+        break;
+      }
+      if (const std::string lost = host_failure(); !lost.empty()) {
+        failure = "host " + lost;
         break;
       }
       if (process::g_stop_signal != 0) {
@@ -504,7 +565,23 @@ LaunchResult Launcher::run(
   result.exit_code = ok ? 0 : 1;
 
   tracer.flush();
-  if (!options_.trace_path.empty()) {
+  if (!options_.host.empty() && !follower && !options_.trace_path.empty()) {
+    // The other hosts' processes write their parts until they stop: wait for each to say so
+    // (or to be gone) before the merge, at most 10 s.
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    for (bool all = false; !all && std::chrono::steady_clock::now() < deadline;) {
+      all = true;
+      wake.update([&] {
+        for (const auto& name : dds_processes) {
+          const auto it = seen.phases.find(name);
+          all = all && it != seen.phases.end() &&
+                (it->second == PHASE_STOPPED || it->second == PHASE_FAILED);
+        }
+      });
+      std::this_thread::sleep_for(20ms);
+    }
+  }
+  if (!options_.trace_path.empty() && !follower) {
     const std::uint64_t merged_last = trace::merge_parts(merge_order, options_.trace_path);
     if (!all_ended) {
       result.cycles = std::max(result.cycles, merged_last);  // the run's last cycle

@@ -60,6 +60,13 @@ struct LaunchOptions {
   // or stopped under the machine), the machine is E-stopped like after a lost process, since
   // nothing would then clean up after a process that dies.
   bool watch_roudi = false;
+  // A machine of several hosts (`hosts:`): the host whose processes this launcher starts ("":
+  // every process, here). The first host's launcher coordinates: it starts, E-stops and stops
+  // the run, and merges the trace from every host's parts (a directory the hosts share). Another
+  // host's launcher follows the run control the coordinator sends, supervises its own
+  // processes, and raises alarm 3001 for one that is lost, which makes the coordinator E-stop
+  // the machine.
+  std::string host;
 };
 
 struct ChannelProgress {

@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -174,6 +175,9 @@ void add_run_options(CLI::App& app, RunArguments& args) {
                  "(without a value: the machine file's hmi.listen, else 127.0.0.1:8080)")
       ->expected(0, 1)
       ->default_str("default");
+  app.add_option("--host", args.host,
+                 "a machine of several hosts (hosts:): start this host's processes only; the "
+                 "first host's launcher runs the machine, the others follow it");
   app.add_flag("--manual-start", args.manual_start,
                "the channels load their programs and wait for CYCLE START (from the HMI or "
                "--operator)");
@@ -195,6 +199,18 @@ int execute_run(const RunArguments& args) {
   }
   LaunchOptions options;
   options.machine_path = std::filesystem::absolute(args.machine_path).string();
+  if (!args.host.empty()) {
+    const bool known =
+        std::any_of(machine.hosts.begin(), machine.hosts.end(),
+                    [&](const config::HostConfig& h) { return h.name == args.host; });
+    if (!known) {
+      std::fprintf(stderr, "error: --host %s: %s names no such host%s\n", args.host.c_str(),
+                   args.machine_path.c_str(),
+                   machine.hosts.empty() ? " (it has no hosts: section)" : "");
+      return 2;
+    }
+    options.host = args.host;
+  }
   for (const auto& spec : args.programs) {
     const auto eq = spec.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {

@@ -29,6 +29,7 @@ struct RunArguments {
   std::string retained_file;                    // --retained: overrides machine.retained_file
   std::string hmi;            // --hmi: serve the operator HMI on this HOST:PORT ("" none)
   bool manual_start = false;  // --manual-start: the channels wait for CYCLE START
+  std::string host;           // --host: on a machine of several hosts, this launcher's host
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);

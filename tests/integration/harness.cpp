@@ -143,6 +143,36 @@ TestMachine::~TestMachine() {
   process::remove_stale_dds_shm_files();
 }
 
+SimulatedHosts::SimulatedHosts(std::string prefix, const std::string& hosts,
+                               const std::string& offsets_ms, const std::string& subnet)
+    : prefix_(std::move(prefix)) {
+  const RunResult r =
+      run({"/usr/bin/env", "python3", source("tests/hosts/hostnet.py"), "up", "--prefix", prefix_,
+           "--hosts", hosts, "--offset-ms", offsets_ms, "--subnet", subnet},
+          -1, std::chrono::seconds(60));
+  if (r.exit_code != 0) {
+    (void)run(
+        {"/usr/bin/env", "python3", source("tests/hosts/hostnet.py"), "down", "--prefix", prefix_},
+        -1, std::chrono::seconds(60));
+    throw std::runtime_error("simulated hosts " + hosts + " could not be made: " + r.err);
+  }
+}
+
+SimulatedHosts::~SimulatedHosts() {
+  (void)run(
+      {"/usr/bin/env", "python3", source("tests/hosts/hostnet.py"), "down", "--prefix", prefix_},
+      -1, std::chrono::seconds(60));
+}
+
+std::vector<std::string> SimulatedHosts::on(const std::string& host,
+                                            const std::vector<std::string>& argv) const {
+  std::vector<std::string> out{"/usr/bin/env", "python3",  source("tests/hosts/hostnet.py"),
+                               "exec",         "--prefix", prefix_,
+                               host,           "--"};
+  out.insert(out.end(), argv.begin(), argv.end());
+  return out;
+}
+
 RunResult run(const std::vector<std::string>& argv, int domain, std::chrono::seconds timeout) {
   char tmpl[] = "/tmp/mcnc-run-XXXXXX";
   const std::string dir = mkdtemp(tmpl);

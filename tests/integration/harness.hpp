@@ -122,6 +122,26 @@ std::unique_ptr<Background> start_host_roudi(const std::string& log_path);
 void use_middleware(const TestMachine& machine, const std::string& machine_wide,
                     const std::string& channels = "");
 
+// Controller hosts simulated on this machine (tests/hosts/hostnet.py): each a network, mount
+// and time namespace, on a bridge of their own. Made by the constructor (which fails the test
+// when it cannot), removed with everything still running in them by the destructor.
+class SimulatedHosts {
+ public:
+  // `prefix`: at most 8 letters and digits, unique to the test; `offsets_ms`: "a=3,b=-7";
+  // `subnet`: the first three bytes of the hosts' addresses ("10.77.5").
+  SimulatedHosts(std::string prefix, const std::string& hosts, const std::string& offsets_ms,
+                 const std::string& subnet);
+  ~SimulatedHosts();
+  SimulatedHosts(const SimulatedHosts&) = delete;
+  SimulatedHosts& operator=(const SimulatedHosts&) = delete;
+  // argv run inside `host`.
+  [[nodiscard]] std::vector<std::string> on(const std::string& host,
+                                            const std::vector<std::string>& argv) const;
+
+ private:
+  std::string prefix_;
+};
+
 // pids of processes whose command line contains `needle`.
 std::vector<pid_t> pids_with_arg(const std::string& needle);
 

@@ -2,12 +2,17 @@
 // the twin turret, its loader on a third host, Z3 a link axis) run on one host gives the twin
 // turret's traces event for event, in the part transfer of launch/programs (G144 in CH3,
 // G140/G141/G142 of A1, G04.1) and in CT-G1141-01 (G114.1 of S2 to S1): the file's hosts
-// change where processes run, never what the machine does.
+// change where processes run, never what the machine does. And the same cell on three simulated
+// hosts (tests/hosts/hostnet.py: network, mount and time namespaces, each host with its RouDi
+// and a clock of its own), a launcher on each, gives that trace too.
 #include "harness.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace mcnc::test;
@@ -63,4 +68,83 @@ TEST(Hosts, TheCellOfThreeHostsOnOneHostRunsAsTheTwinTurret) {
   expect_same_trace(run_programs("twin_turret.yaml", 162, g1141 + "ch1.nc", g1141 + "ch2.nc"),
                     coupled);
   EXPECT_EQ(count(coupled, "couple", "slave", "S2"), 1U) << "S2 on ncu2 follows S1 on ncu1";
+}
+
+// The cell on three simulated hosts with the part transfer: its machine file and trace in a
+// directory of the build tree (the hosts share the machine's files, not /tmp), a launcher per
+// host (ncu2's and ncu3's follow ncu1's, which coordinates).
+class CellOnThreeHosts {
+ public:
+  explicit CellOnThreeHosts(int domain)
+      : domain_(domain),
+        machine_("cell_3ncu.yaml", domain),
+        dir_(std::string(MCNC_BINARY_DIR) + "/hosts-test-" + std::to_string(domain)),
+        hosts_("mhc" + std::to_string(domain), "ncu1,ncu2,ncu3", "ncu2=3,ncu3=-7",
+               "10.77." + std::to_string(domain)) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ + "/cell_3ncu.yaml") << slurp(machine_.path());
+  }
+  ~CellOnThreeHosts() { std::filesystem::remove_all(dir_); }
+  CellOnThreeHosts(const CellOnThreeHosts&) = delete;
+  CellOnThreeHosts& operator=(const CellOnThreeHosts&) = delete;
+
+  [[nodiscard]] std::vector<std::string> launcher(const std::string& host) const {
+    return hosts_.on(host, {bin("mcnc"), "run", dir_ + "/cell_3ncu.yaml", "--program",
+                            "CH1=" + source(kCh1), "--program", "CH2=" + source(kCh2), "--trace",
+                            trace(), "--timeout", "120", "--host", host});
+  }
+  [[nodiscard]] std::string trace() const { return dir_ + "/trace.jsonl"; }
+  [[nodiscard]] std::string log(const std::string& host) const { return dir_ + "/" + host; }
+  [[nodiscard]] int domain() const { return domain_; }
+  [[nodiscard]] const SimulatedHosts& hosts() const { return hosts_; }
+
+  static constexpr const char* kCh1 = "launch/programs/part_transfer_ch1.nc";
+  static constexpr const char* kCh2 = "launch/programs/part_transfer_ch2.nc";
+
+ private:
+  int domain_;
+  TestMachine machine_;
+  std::string dir_;
+  SimulatedHosts hosts_;
+};
+
+TEST(Hosts, TheCellRunsAcrossThreeHostsWithALauncherOnEachAsOnOneHost) {
+  const auto one_host =
+      run_programs("cell_3ncu.yaml", 164, CellOnThreeHosts::kCh1, CellOnThreeHosts::kCh2);
+  const CellOnThreeHosts cell(165);
+  Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
+  const RunResult coordinator = run(cell.launcher("ncu1"), cell.domain(), 240s);
+  EXPECT_EQ(coordinator.exit_code, 0) << coordinator.out << coordinator.err;
+  EXPECT_EQ(ncu2.wait(60s), 0) << slurp(cell.log("ncu2") + ".err");
+  EXPECT_EQ(ncu3.wait(60s), 0) << slurp(cell.log("ncu3") + ".err");
+  expect_same_trace(one_host, trace_until_end(read_trace(cell.trace())));
+}
+
+// A process that dies on one host E-stops the machine on every host: its host's launcher
+// reports it (alarm 3001), the coordinator E-stops and stops the run, and every launcher ends.
+TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
+  const CellOnThreeHosts cell(166);
+  Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
+  Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
+  // Once the run is under way, X3 (the loader's axis, on ncu3) dies.
+  ASSERT_TRUE(eventually(
+      [&] {
+        return slurp(cell.log("ncu1") + ".err").find("starting the run") != std::string::npos;
+      },
+      60s))
+      << slurp(cell.log("ncu1") + ".err");
+  std::this_thread::sleep_for(2s);
+  const RunResult kill =
+      run(cell.hosts().on("ncu3", {"/usr/bin/pkill", "-KILL", "-f", "mcnc-axisnode .*--axis X3"}),
+          -1, 30s);
+  ASSERT_EQ(kill.exit_code, 0) << "X3's node was running on ncu3";
+  EXPECT_EQ(ncu1.wait(120s), 1) << "the coordinator E-stopped the run";
+  const std::string out = slurp(cell.log("ncu1") + ".out") + slurp(cell.log("ncu1") + ".err");
+  EXPECT_NE(out.find("host ncu3: emergency stop: X3"), std::string::npos) << out;
+  EXPECT_EQ(ncu3.wait(120s), 1) << "ncu3 lost a process";
+  EXPECT_GE(ncu2.wait(120s), 0) << "ncu2's launcher ends with the run";
+  EXPECT_FALSE(events(read_trace(cell.trace()), "alarm", "launch").empty());
 }

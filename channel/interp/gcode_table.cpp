@@ -191,9 +191,143 @@ GCodeInfo common_code(int code10) {
   }
 }
 
+// Seed 003's table (gsk B.1) and the runtime's multi-channel words, which a mill in a cell
+// needs as much as a lathe; every other code is not a G code of the mill (B.2 rule 4).
+GCodeInfo mill_code(int code10) {
+  switch (code10) {
+    case 270:
+      return {GFunction::reference_check, 0};
+    case 290:
+      return {GFunction::return_from_reference, 0};
+    case 430:
+      return {GFunction::length_plus, 8};
+    case 440:
+      return {GFunction::length_minus, 8};
+    case 490:
+      return {GFunction::length_cancel, 8};
+    case 600:
+      return {GFunction::single_direction, 0};
+    case 730:
+      return {GFunction::mill_peck_high_speed, 10};
+    case 740:
+      return {GFunction::mill_tap_left, 10};
+    case 760:
+      return {GFunction::mill_fine_bore, 10};
+    case 810:
+      return {GFunction::mill_drill, 10};
+    case 820:
+      return {GFunction::mill_drill_dwell, 10};
+    case 830:
+      return {GFunction::mill_peck_deep, 10};
+    case 840:
+      return {GFunction::mill_tap, 10};
+    case 850:
+      return {GFunction::mill_bore, 10};
+    case 860:
+      return {GFunction::mill_bore_stop, 10};
+    case 870:
+      return {GFunction::mill_back_bore, 10};
+    case 880:
+      return {GFunction::mill_bore_manual, 10};
+    case 890:
+      return {GFunction::mill_bore_dwell, 10};
+    case 900:
+      return {GFunction::absolute, 3};
+    case 910:
+      return {GFunction::incremental, 3};
+    case 920:
+      return {GFunction::coordinate_set, 0};
+    case 980:
+      return {GFunction::return_initial, 11};
+    case 990:
+      return {GFunction::return_r_level, 11};
+    case 0:
+    case 10:
+    case 20:
+    case 30:
+    case 40:
+    case 90:
+    case 170:
+    case 180:
+    case 190:
+    case 280:
+    case 300:
+    case 400:
+    case 410:
+    case 420:
+    case 520:
+    case 530:
+    case 540:
+    case 550:
+    case 560:
+    case 570:
+    case 580:
+    case 590:
+    case 610:
+    case 640:
+    case 650:
+    case 660:
+    case 670:
+    case 800:
+    // The runtime's multi-channel words (spec dafeng §3).
+    case 41:
+    case 504:
+    case 514:
+    case 1130:
+    case 1141:
+    case 1400:
+    case 1410:
+    case 1420:
+    case 1440:
+    case 1450:
+      return common_code(code10);
+    default:
+      return {};
+  }
+}
+
 }  // namespace
 
-GCodeInfo lookup_gcode(int code10, GCodeSystem system) {
+int mill_group(int slot) {
+  switch (slot) {
+    case 16:
+      return 2;
+    case 10:
+      return 9;
+    case 11:
+      return 10;
+    default:
+      return slot;
+  }
+}
+
+int mill_group_slot(int group) {
+  switch (group) {
+    case 1:
+    case 3:
+    case 5:
+    case 6:
+    case 7:
+    case 8:
+    case 12:
+    case 14:
+    case 15:
+      return group;
+    case 2:
+      return 16;
+    case 9:
+      return 10;
+    case 10:
+      return 11;
+    default:
+      return -1;
+  }
+}
+
+GCodeInfo lookup_gcode(int code10, GCodeSystem system, Dialect dialect) {
+  if (dialect == Dialect::fanuc_mill) {
+    return mill_code(code10);
+  }
   if (system == GCodeSystem::a) {
     switch (code10) {
       case 500:

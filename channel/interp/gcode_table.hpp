@@ -92,9 +92,28 @@ enum class GFunction : std::uint8_t {
   tap_side,    // G88, .5 .6
   bore_face,   // G85
   bore_side,   // G89
-  // Tool-nose radius compensation (group 07).
+  // Tool-nose radius compensation (group 07); the mill's cutter radius compensation.
   tnrc_left,   // G41
   tnrc_right,  // G42
+  // The mill (gsk Part B).
+  reference_check,        // G27
+  return_from_reference,  // G29
+  single_direction,       // G60
+  length_plus,            // G43 (group 08)
+  length_minus,           // G44
+  length_cancel,          // G49
+  mill_drill,             // G81 (group 09 of the mill, slot 10 here)
+  mill_drill_dwell,       // G82
+  mill_peck_deep,         // G83
+  mill_peck_high_speed,   // G73
+  mill_tap,               // G84
+  mill_tap_left,          // G74
+  mill_bore,              // G85: feed in, feed out
+  mill_bore_stop,         // G86: feed in, spindle stop, rapid out
+  mill_back_bore,         // G87
+  mill_bore_manual,       // G88
+  mill_bore_dwell,        // G89: feed in, dwell, feed out
+  mill_fine_bore,         // G76: feed in, orient, shift away, rapid out
 };
 
 struct GCodeInfo {
@@ -103,8 +122,16 @@ struct GCodeInfo {
   const char* topic = "";  // for not_in_this_version: what the code is
 };
 
-// `code10` = 10 x the G value (G01 -> 10, G54.1 -> 541).
-GCodeInfo lookup_gcode(int code10, GCodeSystem system);
+// `code10` = 10 x the G value (G01 -> 10, G54.1 -> 541). The mill dialect reads its own table
+// (seed 003, gsk B.1), whose groups take the lathe's slots of the same meaning (the plane 16,
+// the hole cycles 10, the return level 11; mill_group() gives the mill's own numbers).
+GCodeInfo lookup_gcode(int code10, GCodeSystem system, Dialect dialect);
+
+// The mill's number of the modal group in slot `slot` (plane 16 -> 02, hole cycles 10 -> 09,
+// return level 11 -> 10), and the slot of mill group `group` (-1: none). #4001-#4030 and the
+// alarms of the mill dialect use the mill's numbers (FANUC 0i-M).
+int mill_group(int slot);
+int mill_group_slot(int group);
 
 inline constexpr int kModalGroups = 30;  // #4001-#4030
 

@@ -14,8 +14,9 @@
 namespace mcnc::interp {
 
 enum class GCodeSystem : std::uint8_t { a, b };  // param 2200.1
-// Which manual decides where the two dialects differ (docs/dialect.md, "Dafeng and GSK").
-enum class Dialect : std::uint8_t { dafeng, gsk };
+// Which manual decides where the dialects differ (docs/dialect.md): the Dafeng and GSK lathes,
+// and the FANUC-style mill of seed 003 (gsk Part B). Named by config::kDialectNames, in order.
+enum class Dialect : std::uint8_t { dafeng, gsk, fanuc_mill };
 // Numbers without a decimal point: whole units (calculator type, spec D1) or least increments.
 enum class DecimalPoint : std::uint8_t { calculator, increment };
 
@@ -37,6 +38,10 @@ struct AxisConfig {
   // A spindle under position control (C1 mode: Dafeng M18, GSK M14): that spindle's number in
   // the channel (1-9); it moves only while the spindle is under position control. 0: an axis.
   int spindle = 0;
+  // G60 (the mill's single-direction positioning, FANUC param 5440): how far before its end
+  // point the axis turns to come in; its sign is the direction of that last move (+: from
+  // below). 0: G60 moves the axis as G00 does.
+  double approach = 0.0;
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.
@@ -81,6 +86,9 @@ struct CycleDefaults {
   double drill_full_retract = 0.0;  // G83.7: depth between full retracts (0: every peck)
   bool tap_high_speed = true;       // param 5200.1: G84 Q = G84.5 (true) or G84.6
   double tap_retract = 0.5;         // param 5211
+  // The mill's G76/G87 shift off the wall (FANUC param 5101 RD1/RD2): 0 along the plane's
+  // first axis (G17: +X), 1 its negative, 2 along the second axis (+Y), 3 its negative.
+  int bore_shift_direction = 0;
 };
 
 struct InterpreterConfig {

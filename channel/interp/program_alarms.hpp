@@ -67,6 +67,8 @@ inline constexpr int kCycleWordMissing = 1152;       // G74 X without P, G75 Z w
 inline constexpr int kFrameRestriction = 1153;
 // G00, G50, T ... in polar (G12.1) or cylindrical (G07.1) interpolation; G12.1 under G42 ...
 inline constexpr int kInterpolationModeRestriction = 1154;
+// G27: the point reached is not the reference point; G29 without a G28/G30 before it.
+inline constexpr int kReferencePoint = 1155;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

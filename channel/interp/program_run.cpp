@@ -57,7 +57,8 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
     machine_[i] = config_.axes[i].start;
   }
-  lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect == Dialect::gsk});
+  // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
+  lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   work_.resize(kWorkSystems + 1);
@@ -84,6 +85,13 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   modal_codes_[17] = 69.1;
   modal_codes_[21] = 13.1;
   modal_codes_[22] = 50.1;
+  if (config_.dialect == Dialect::fanuc_mill) {
+    // Seed 003's power-on states (gsk B.1): G17, G49, G98 beside those above; it has no G96/G97.
+    plane_ = Plane::xy;
+    modal_codes_[16] = 17;
+    modal_codes_[8] = 49;
+    modal_codes_[2] = 0;
+  }
   timer_ms_base_ = environment_->milliseconds();
 }
 
@@ -92,8 +100,8 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
 
 parse::StructureLimits ProgramRun::structure_limits() const {
   parse::StructureLimits limits;
-  if (config_.dialect == Dialect::gsk) {
-    limits.max_loop_label = 3;  // GSK DO1-DO3 (gsk D2-38)
+  if (config_.dialect != Dialect::dafeng) {
+    limits.max_loop_label = 3;  // GSK and FANUC: DO1-DO3 (gsk D2-38)
   }
   return limits;
 }
@@ -713,10 +721,11 @@ Command& ProgramRun::emit(Op op) {
   if (compensation_ != Command::Compensation::off && !cycle_output_ &&
       (op == Op::rapid || op == Op::linear || op == Op::arc)) {
     c.compensation = compensation_;
-    if (offset_ > 0) {
-      const auto o = static_cast<std::size_t>(offset_);
+    if (radius_offset() > 0) {
+      const auto o = static_cast<std::size_t>(radius_offset());
       c.nose_radius = geometry_[o].radius + wear_[o].radius;
-      c.nose_tip = geometry_[o].tip;
+      // A milling cutter is compensated about its centre (tip 0).
+      c.nose_tip = config_.dialect == Dialect::fanuc_mill ? 0 : geometry_[o].tip;
     }
   }
   c.line = line_ != nullptr ? line_->line : 0;

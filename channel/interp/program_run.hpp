@@ -120,6 +120,12 @@ class ProgramRun final : public macro::VariableProvider {
   [[nodiscard]] int control_code(std::int64_t m, int& spindle) const;
   [[nodiscard]] std::string position_code(int spindle, bool position) const;
   bool run_tool_word();
+  // The mill's T (a tool number), H (length offset) and D (radius offset) words
+  // (program_run_tool_length.cpp).
+  bool run_mill_tool_words();
+  bool run_length_compensation(GFunction f, double value);  // G43 / G44 / G49
+  // The offset number whose radius G41/G42 use: the mill's D, the lathe's T offset.
+  int radius_offset() const;
   bool run_m_codes(bool after_motion);
   bool run_one_shot(GFunction f, int code10, int column);
   bool run_dwell(int column);
@@ -169,6 +175,10 @@ class ProgramRun final : public macro::VariableProvider {
   bool apply_line_angle(AxisVector& target, std::array<bool, kMaxChannelAxes>& given,
                         bool& deferred, int column);
   bool run_reference_return(GFunction f, int column);
+  // The mill's G27, G29 and G60 (program_run_positioning.cpp).
+  bool run_reference_check(int column);
+  bool run_return_from_reference(int column);
+  bool run_single_direction(int column);
   bool run_coordinate_set(int column);
   bool run_local_system(int column);
   bool run_restore_origin(int column);
@@ -294,6 +304,9 @@ class ProgramRun final : public macro::VariableProvider {
   // words), the words of such a block, and the holes.
   bool hole_cycle_block(bool group10_in_block, bool motion_code_in_block) const;
   bool take_hole_words(int column);
+  // The plane's axes and the drilling axis: the lathe's Z (X for the side cycles), the mill's
+  // axis normal to the plane.
+  bool hole_axes(std::array<int, 2>& plane, int& drill, int column);
   bool run_hole_cycle(int column);
 
   // ---- output and alarms
@@ -386,6 +399,11 @@ class ProgramRun final : public macro::VariableProvider {
     double lead = 0.0;
     int clamp = 0;
     int repeat = 1;
+    // The mill: the initial level (where the drilling axis stood when the cycle began, G98's
+    // return level) and Q of G76/G87, the shift off the wall.
+    bool has_initial = false;
+    double initial = 0.0;
+    double shift = 0.0;
   };
   HoleMode hole_;
   int contour_motions_ = 0;                   // motion blocks of the contour so far
@@ -427,6 +445,11 @@ class ProgramRun final : public macro::VariableProvider {
   // Tool
   int tool_ = 0;
   int offset_ = 0;
+  // The mill: G43 (+1) / G44 (-1) / G49 (0) with the length of offset H on Z, and the radius
+  // of offset D for G41/G42.
+  int length_sign_ = 0;
+  int length_offset_ = 0;
+  int radius_offset_ = 0;
   double t_value_ = 0.0;
   std::array<ToolOffsetValues, kMaxToolOffsets + 1> geometry_{};
   std::array<ToolOffsetValues, kMaxToolOffsets + 1> wear_{};
@@ -456,6 +479,10 @@ class ProgramRun final : public macro::VariableProvider {
   std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
   std::array<double, kMaxChannelAxes> shift_{};             // G50 shift
   std::array<bool, kMaxChannelAxes> released_{};            // G140 without G142/G141 since
+  // The intermediate point of the last G28/G30 (machine), per axis it named: G29 goes back
+  // through it.
+  AxisVector reference_via_{};
+  std::array<bool, kMaxChannelAxes> reference_via_given_{};
   // M92 loops: passes left per (call depth, M92 line); -1 = endless.
   std::map<std::pair<std::size_t, const parse::Line*>, std::int64_t> loop_counters_;
 

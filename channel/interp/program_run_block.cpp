@@ -186,13 +186,14 @@ double ProgramRun::scaled(const BlockWord& w, bool length) const {
     return v;
   }
   // A variable value is cut to the least increment: truncated (Dafeng L6671-6676) or rounded
-  // (GSK). Values a hair below a multiple of the increment (0.3 / 0.001) count as on it.
+  // (GSK, the FANUC mill: gsk B.4 item 6). Values a hair below a multiple of the increment
+  // (0.3 / 0.001) count as on it.
   const double units = v / inc;
   const double nearest = std::round(units);
   if (std::fabs(units - nearest) < 1e-6) {
     return nearest * inc;
   }
-  return (config_.dialect == Dialect::gsk ? nearest : std::trunc(units)) * inc;
+  return (config_.dialect != Dialect::dafeng ? nearest : std::trunc(units)) * inc;
 }
 
 double ProgramRun::length_of(const BlockWord& w) const {
@@ -381,7 +382,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (program != 0) {
       return call_with_arguments(program, w.column, false);  // P is #16 here
     }
-    const GCodeInfo info = lookup_gcode(c, config_.system);
+    const GCodeInfo info = lookup_gcode(c, config_.system, config_.dialect);
     if (info.function == GFunction::unknown) {
       return fail(alarm::kUnsupportedG, g_name(c) + " is not a G code of this dialect", w.column);
     }
@@ -394,12 +395,14 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     for (int i = 0; i < ng; ++i) {
       BlockG& other = gs[static_cast<std::size_t>(i)];
       if (other.info.group == info.group) {
-        if (config_.dialect == Dialect::gsk && info.group != 0) {
-          other = BlockG{c, info, w.column};  // GSK: the last code of a group wins (A.1 item 10)
-          goto next_word;                     // NOLINT(cppcoreguidelines-avoid-goto)
+        if (config_.dialect != Dialect::dafeng && info.group != 0) {
+          // GSK and the mill: the last code of a group wins (gsk A.1 item 10, B.2 rule 5).
+          other = BlockG{c, info, w.column};
+          goto next_word;  // NOLINT(cppcoreguidelines-avoid-goto)
         }
         char group[8];
-        std::snprintf(group, sizeof group, "%02d", info.group);
+        std::snprintf(group, sizeof group, "%02d",
+                      config_.dialect == Dialect::fanuc_mill ? mill_group(info.group) : info.group);
         return fail(alarm::kGroupConflict,
                     "two G codes of group " + std::string(group) + " in one block (" +
                         g_name(other.code10) + ", " + g_name(c) + ")",
@@ -660,7 +663,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
                 "(spec L711-849)",
                 t->column);
   }
-  if (!capture && !run_tool_word()) {
+  if (!capture &&
+      !(config_.dialect == Dialect::fanuc_mill ? run_mill_tool_words() : run_tool_word())) {
     return false;
   }
   if (m_words && !run_m_codes(false)) {
@@ -829,6 +833,10 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::modal_call:
     case GFunction::modal_call_cancel:
       return true;
+    case GFunction::length_plus:
+    case GFunction::length_minus:
+    case GFunction::length_cancel:
+      return run_length_compensation(f, value);
     case GFunction::tnrc_left:
     case GFunction::tnrc_right:
       compensation_ =
@@ -841,6 +849,18 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::tap_side:
     case GFunction::bore_face:
     case GFunction::bore_side:
+    case GFunction::mill_drill:
+    case GFunction::mill_drill_dwell:
+    case GFunction::mill_peck_deep:
+    case GFunction::mill_peck_high_speed:
+    case GFunction::mill_tap:
+    case GFunction::mill_tap_left:
+    case GFunction::mill_bore:
+    case GFunction::mill_bore_stop:
+    case GFunction::mill_back_bore:
+    case GFunction::mill_bore_manual:
+    case GFunction::mill_bore_dwell:
+    case GFunction::mill_fine_bore:
       hole_.function = f;
       hole_.code10 = code10;
       modal_codes_[10] = value;
@@ -925,8 +945,8 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     bool clamp = false;
     for (const BlockWord& w : words_) {
       if (w.address.is('G')) {
-        const GCodeInfo info =
-            lookup_gcode(static_cast<int>(std::lround(w.value * 10)), config_.system);
+        const GCodeInfo info = lookup_gcode(static_cast<int>(std::lround(w.value * 10)),
+                                            config_.system, config_.dialect);
         clamp = clamp || info.function == GFunction::coordinate_set;
       }
     }
@@ -1124,6 +1144,9 @@ bool ProgramRun::own_spindle(int spindle, const std::string& what, int column) {
 int ProgramRun::control_code(std::int64_t m, int& spindle) const {
   int addressed = 1;
   int control = -1;
+  if (config_.dialect == Dialect::fanuc_mill) {
+    return -1;  // the mill's M18/M19 orient the spindle (gsk B.3), the PLC's
+  }
   if (config_.dialect == Dialect::gsk) {
     control = m == 14 ? 1 : m == 15 ? 0 : -1;
   } else if (m < 1000 && (m % 100 == 17 || m % 100 == 18)) {
@@ -1364,6 +1387,12 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);
+    case GFunction::reference_check:
+      return run_reference_check(column);
+    case GFunction::return_from_reference:
+      return run_return_from_reference(column);
+    case GFunction::single_direction:
+      return run_single_direction(column);
     case GFunction::coordinate_set:
       return run_coordinate_set(column);
     case GFunction::restore_origin:

@@ -1,6 +1,7 @@
 // The hole cycles G83/G87 (drilling), G84/G88 (tapping) and G85/G89 (boring) of spec dafeng
-// §2.5 L1844-2198 and gsk A.6.34-A.6.35: a modal group 10 cycle, repeated by every block that
-// gives positioning words until G80 or a group 01 code.
+// §2.5 L1844-2198 and gsk A.6.34-A.6.35, and the mill's G73-G89 (gsk B.1): a modal cycle
+// (the lathe's group 10, the mill's 09), repeated by every block that gives positioning words
+// until G80 or a group 01 code.
 #include "channel/interp/cycles/hole_cycles.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
@@ -19,13 +20,39 @@ cycles::HoleKind hole_kind(GFunction f) {
   switch (f) {
     case GFunction::tap_face:
     case GFunction::tap_side:
+    case GFunction::mill_tap:
+    case GFunction::mill_tap_left:
       return cycles::HoleKind::tap;
     case GFunction::bore_face:
     case GFunction::bore_side:
+    case GFunction::mill_bore:
+    case GFunction::mill_bore_dwell:
       return cycles::HoleKind::bore;
+    case GFunction::mill_bore_stop:
+      return cycles::HoleKind::bore_stop;
+    case GFunction::mill_fine_bore:
+      return cycles::HoleKind::fine_bore;
+    case GFunction::mill_back_bore:
+      return cycles::HoleKind::back_bore;
     default:
       return cycles::HoleKind::drill;
   }
+}
+
+// The mill's cycles that dwell P at the bottom (FANUC 0i-M; the seed names them only); the
+// others keep a P for the cycle that follows.
+bool mill_dwells(GFunction f) {
+  return f == GFunction::mill_drill_dwell || f == GFunction::mill_tap ||
+         f == GFunction::mill_tap_left || f == GFunction::mill_bore_dwell ||
+         f == GFunction::mill_fine_bore || f == GFunction::mill_back_bore;
+}
+
+// The mill's peck form: G73 backs off by the parameter's amount, G83 returns to R; G81 and the
+// others feed to the bottom in one go.
+cycles::PeckMode mill_peck_mode(GFunction f) {
+  return f == GFunction::mill_peck_high_speed ? cycles::PeckMode::high_speed
+         : f == GFunction::mill_peck_deep     ? cycles::PeckMode::deep
+                                              : cycles::PeckMode::none;
 }
 
 }  // namespace
@@ -37,11 +64,43 @@ bool ProgramRun::hole_cycle_block(bool group10_in_block, bool motion_code_in_blo
   return hole_.function != GFunction::unknown && !motion_code_in_block;
 }
 
+bool ProgramRun::hole_axes(std::array<int, 2>& plane, int& drill, int column) {
+  if (!require_plane_axes(plane, column)) {
+    return false;  // a plane (G17/G19) whose axes this channel lacks: no drilling axis
+  }
+  if (config_.dialect != Dialect::fanuc_mill) {
+    drill = side_cycle(hole_.function) ? plane[1] : plane[0];
+    return true;
+  }
+  const char normal = plane_ == Plane::xy ? 'Z' : plane_ == Plane::zx ? 'Y' : 'X';
+  drill = -1;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    drill = config_.axes[i].name == normal ? static_cast<int>(i) : drill;
+  }
+  if (drill < 0) {
+    return fail(alarm::kNoPlaneAxis,
+                std::string("the hole cycle drills along ") + normal +
+                    ", the axis normal to the plane, which this channel lacks",
+                column);
+  }
+  return true;
+}
+
 bool ProgramRun::take_hole_words(int column) {
   const bool gsk = config_.dialect == Dialect::gsk;
+  const bool mill = config_.dialect == Dialect::fanuc_mill;
   HoleMode& h = hole_;
   const bool tap = hole_kind(h.function) == cycles::HoleKind::tap;
-  if (BlockWord* m = word('M')) {
+  std::array<int, 2> plane{};
+  int drill = -1;
+  if (mill && !h.has_initial) {
+    if (!hole_axes(plane, drill, column)) {
+      return false;
+    }
+    h.initial = machine_[static_cast<std::size_t>(drill)];  // G98's level (FANUC)
+    h.has_initial = true;
+  }
+  if (BlockWord* m = word('M'); m != nullptr && !mill) {
     // Mxx: the clamp before each hole, Mxx+1 the unclamp after it (spec L1870-1873).
     std::int64_t code = 0;
     if (m->value < 0.0 || m->value > 9998.0 || m->value != std::floor(m->value)) {
@@ -57,18 +116,22 @@ bool ProgramRun::take_hole_words(int column) {
     if (gsk) {
       h.retract = std::fabs(length_of(*r));  // gsk: the back-off after each peck (gsk D2-30)
     } else {
-      h.has_r = true;  // Dafeng: the R point, an absolute coordinate of the drilling axis
-      std::array<int, 2> axes{};
-      if (!require_plane_axes(axes, r->column)) {
-        return false;  // a plane (G17/G19) whose axes this channel lacks: no drilling axis
+      // Dafeng and the mill: the R point, an absolute coordinate of the drilling axis; in the
+      // mill's G91 the distance from the initial level (FANUC).
+      h.has_r = true;
+      if (!hole_axes(plane, drill, r->column)) {
+        return false;
       }
-      const int drill = side_cycle(h.function) ? axes[1] : axes[0];
-      h.r_level = to_physical(drill, scaled(*r, true)) + offset_sum(drill) + tool_offset(drill);
+      h.r_level = mill && incremental_mode_ ? h.initial + length_of(*r)
+                                            : to_physical(drill, scaled(*r, true)) +
+                                                  offset_sum(drill) + tool_offset(drill);
     }
   }
   if (BlockWord* q = word('Q')) {
     q->used = true;
-    h.peck = gsk ? std::fabs(cycle_amount(*q)) : std::fabs(scaled(*q, true));
+    // The mill's Q, as GSK's: mm with a point, else least increments (`Q5000` = 5 mm).
+    h.peck = gsk || mill ? std::fabs(cycle_amount(*q)) : std::fabs(scaled(*q, true));
+    h.shift = h.peck;  // G76/G87 read it as the shift off the wall
   }
   if (BlockWord* p = word('P')) {
     p->used = true;
@@ -78,7 +141,7 @@ bool ProgramRun::take_hole_words(int column) {
     }
     h.dwell_s = p->value / 1000.0;
   }
-  if (BlockWord* j = word('J')) {
+  if (BlockWord* j = word('J'); j != nullptr && !mill) {
     if (gsk && !tap) {
       j->used = true;
       if (j->value != 0.0 && j->value != 1.0) {
@@ -92,7 +155,7 @@ bool ProgramRun::take_hole_words(int column) {
                   j->column);
     }
   }
-  if (tap) {
+  if (tap && !mill) {  // the mill's lead is F/S (run_hole_cycle)
     BlockWord* f = word('F');
     BlockWord* i = word('I');
     if (f != nullptr || i != nullptr) {
@@ -117,7 +180,15 @@ bool ProgramRun::take_hole_words(int column) {
                   column);
     }
   }
-  if (BlockWord* k = word('K')) {
+  BlockWord* k = word('K');
+  if (BlockWord* l = word('L'); l != nullptr && mill) {
+    // The mill's older spelling of the repeat count (FANUC 0-M), K's synonym.
+    if (k != nullptr) {
+      return fail(alarm::kWordNotAllowed, "K and L both repeat the hole: give one", l->column);
+    }
+    k = l;
+  }
+  if (k != nullptr) {
     k->used = true;
     if (k->value < 0.0 || k->value > 9999.0 || k->value != std::floor(k->value)) {
       return fail(alarm::kBadWordValue, "K (number of holes) must be a whole number 0-9999",
@@ -132,17 +203,32 @@ bool ProgramRun::take_hole_words(int column) {
 
 bool ProgramRun::run_hole_cycle(int column) {
   std::array<int, 2> axes{};
-  if (!require_plane_axes(axes, column)) {
+  int drill_axis = -1;
+  if (!hole_axes(axes, drill_axis, column)) {
     return false;
   }
   HoleMode& h = hole_;
-  const auto drill = static_cast<std::size_t>(side_cycle(h.function) ? axes[1] : axes[0]);
+  const bool mill = config_.dialect == Dialect::fanuc_mill;
+  if (h.function == GFunction::mill_bore_manual) {
+    return fail(alarm::kNotInThisVersion,
+                "G88: the tool leaves the hole by hand, which the runtime has no mode for", column);
+  }
+  const auto drill = static_cast<std::size_t>(drill_axis);
   const cycles::HoleKind kind = hole_kind(h.function);
-  if (kind != cycles::HoleKind::tap) {
+  if (kind != cycles::HoleKind::tap || mill) {
     BlockWord* fw = word('F');
     if (!check_feed(fw != nullptr ? fw->column : column)) {
       return false;
     }
+  }
+  if (mill && kind == cycles::HoleKind::tap) {
+    // G84/G74: F is the feed; the lead is F/S (FANUC 0i-M's rigid tapping in G94).
+    const double rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+    if (feed_mode_ == FeedMode::per_min && rpm <= 0.0) {
+      return fail(alarm::kThreadLead, "tapping needs the spindle speed S: the lead is F/S", column);
+    }
+    h.lead = (feed_mode_ == FeedMode::per_min ? feed_ / rpm : feed_) *
+             (h.function == GFunction::mill_tap_left ? -1.0 : 1.0);
   }
   bool first = true;
   // Reset on every way out: the alarms below return early, and an alarm ends the run anyway.
@@ -157,7 +243,10 @@ bool ProgramRun::run_hole_cycle(int column) {
       return false;
     }
     if (first && given[drill]) {
-      h.bottom = target[drill];
+      // The mill's G91: Z is the distance from R to the bottom (FANUC).
+      h.bottom = mill && incremental_mode_
+                     ? (h.has_r ? h.r_level : h.initial) + target[drill] - machine_[drill]
+                     : target[drill];
       h.has_bottom = true;
     }
     first = false;
@@ -174,20 +263,28 @@ bool ProgramRun::run_hole_cycle(int column) {
       machine_ = target;
       block_moved_ = true;
     }
+    const AxisVector centre = machine_;
     cycles::HoleCycle c;
     c.kind = kind;
     c.initial = machine_[drill];
+    c.has_initial_level = mill;
+    c.initial_level = h.initial;
     c.r_level = h.has_r ? h.r_level : machine_[drill];
     c.bottom = h.bottom;
     c.peck = h.peck;
-    c.dwell_s = h.dwell_s;
+    c.dwell_s = !mill || mill_dwells(h.function) ? h.dwell_s : 0.0;
+    c.shift = h.shift;
     c.feed = feed_;
     c.lead = h.lead;
     c.clamp_code = h.clamp;
     c.return_to_initial = config_.system == GCodeSystem::b && modal_codes_[11] == 98.0;
     const CycleDefaults& d = config_.cycles;
     const int variant = h.code10 % 10;  // G83.5 -> 5
-    if (kind == cycles::HoleKind::tap) {
+    if (mill) {
+      c.peck_mode = mill_peck_mode(h.function);
+      c.retract = d.drill_retract;
+      c.clearance = d.drill_clearance;
+    } else if (kind == cycles::HoleKind::tap) {
       c.retract = d.tap_retract;
       c.peck_mode = h.peck <= 0.0      ? cycles::PeckMode::none
                     : variant == 5     ? cycles::PeckMode::high_speed
@@ -242,6 +339,26 @@ bool ProgramRun::run_hole_cycle(int column) {
         case cycles::HoleStep::Kind::aux:
           emit(Op::aux).code = s.code;
           break;
+        case cycles::HoleStep::Kind::spindle_stop:
+        case cycles::HoleStep::Kind::orient: {
+          Command& cmd = emit(Op::spindle);
+          cmd.spindle = reference_spindle_;
+          cmd.rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+          cmd.spindle_direction = s.kind == cycles::HoleStep::Kind::orient
+                                      ? SpindleDirection::orient
+                                      : SpindleDirection::stop;
+          break;
+        }
+        case cycles::HoleStep::Kind::shift: {
+          // Off the hole's centre along the plane axis of param 5101 (its sign by the parameter).
+          const int dir = config_.cycles.bore_shift_direction;
+          const auto axis = static_cast<std::size_t>(axes[static_cast<std::size_t>(dir / 2)]);
+          to[drill] = machine_[drill];  // `to` of a shift is its amount, not a depth
+          to[axis] = centre[axis] + (dir % 2 == 0 ? s.to : -s.to);
+          emit(Op::rapid).to = to;
+          machine_ = to;
+          break;
+        }
         case cycles::HoleStep::Kind::reverse:
         case cycles::HoleStep::Kind::restore: {
           // Follow tapping (M28): the PLC reverses a turning spindle for the way out; a

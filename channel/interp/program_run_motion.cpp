@@ -65,10 +65,18 @@ double ProgramRun::offset_sum(int axis) const {
 }
 
 double ProgramRun::tool_offset(int axis) const {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  if (config_.dialect == Dialect::fanuc_mill) {
+    // G43/G44 H: the length along Z whatever the plane (FANUC's tool length compensation A).
+    if (length_sign_ == 0 || length_offset_ <= 0 || a.name != 'Z') {
+      return 0.0;
+    }
+    const auto h = static_cast<std::size_t>(length_offset_);
+    return length_sign_ * (geometry_[h].z + wear_[h].z);
+  }
   if (offset_ <= 0) {
     return 0.0;
   }
-  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   const ToolOffsetValues& g = geometry_[static_cast<std::size_t>(offset_)];
   const ToolOffsetValues& w = wear_[static_cast<std::size_t>(offset_)];
   switch (a.name) {
@@ -495,6 +503,12 @@ bool ProgramRun::run_reference_return(GFunction f, int column) {
   }
   emit(Op::rapid).to = via;  // the intermediate point first
   emit(Op::rapid).to = home;
+  for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+    if (given[i]) {  // G29's way back, per axis: an axis not named keeps its earlier point
+      reference_via_[i] = via[i];
+      reference_via_given_[i] = true;
+    }
+  }
   machine_ = home;
   block_moved_ = true;
   if (f == GFunction::reference_return) {

@@ -115,7 +115,11 @@ VariableRead ProgramRun::read(std::int64_t n) const {
   // #4001-#4030 look-ahead modal state and #4201-#4230 the executing block's: the same for a
   // pull-based interpreter, whose last pulled block is the one executing.
   if ((n >= 4001 && n <= 4030) || (n >= 4201 && n <= 4230)) {
-    return value(modal_codes_[static_cast<std::size_t>(n % 100)]);
+    // The mill numbers its groups as FANUC 0i-M does (#4002 the plane, #4009 the hole cycle).
+    const int slot = config_.dialect == Dialect::fanuc_mill
+                         ? mill_group_slot(static_cast<int>(n % 100))
+                         : static_cast<int>(n % 100);
+    return value(slot < 0 ? 0.0 : modal_codes_[static_cast<std::size_t>(slot)]);
   }
   if (n == 4109 || n == 4309) {
     return value(feed_ / (metric_ ? 1.0 : 25.4));

@@ -1,5 +1,7 @@
 #include "channel/setup/interpreter_setup.hpp"
 
+#include "channel/interp/dialect.hpp"
+
 namespace mcnc::channel {
 
 static_assert(config::kMaxProgramAxes == interp::kMaxChannelAxes,
@@ -8,6 +10,9 @@ static_assert(config::kMaxProgramAxes == interp::kMaxChannelAxes,
 interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& machine,
                                                  const config::ChannelConfig& channel) {
   interp::InterpreterConfig c;
+  // The machine file checked the name; the channel's axes below replace the mill's defaults.
+  interp::select_dialect(c,
+                         interp::dialect_named(channel.dialect).value_or(interp::Dialect::dafeng));
   c.channel = channel.id;
   c.spindles = static_cast<int>(channel.spindles.size());
   c.power_on_feed_mode =

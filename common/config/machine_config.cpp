@@ -1,5 +1,7 @@
 #include "common/config/machine_config.hpp"
 
+#include "common/config/dialect_names.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
@@ -209,8 +211,8 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map =
-      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware"});
+  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
+                                 "middleware", "dialect"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -248,6 +250,13 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
           "spindles");
     }
     channel.feed_per_rev = text == "per_rev";
+  }
+  if (auto dialect = map.optional("dialect")) {
+    channel.dialect = dialect->string();
+    if (std::find(kDialectNames.begin(), kDialectNames.end(), channel.dialect) ==
+        kDialectNames.end()) {
+      dialect->fail("dialect must be " + dialect_choices() + ", got '" + channel.dialect + "'");
+    }
   }
   return channel;
 }

@@ -134,6 +134,9 @@ struct ChannelConfig {
   // Param 2201.3 (`feed_mode`): the channel powers on in G99, feed per revolution of its first
   // spindle; false: G98, feed per minute.
   bool feed_per_rev = false;
+  // `dialect`: the interpreter's dialect by its name (config::kDialectNames), e.g. "fanuc-mill"
+  // for a milling channel; the default is the Dafeng lathe.
+  std::string dialect = "dafeng";
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

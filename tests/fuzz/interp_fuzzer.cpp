@@ -8,7 +8,8 @@
 // minus '0', so a seed file starts with a readable character: '0' defaults, '1' system B, '2'
 // gsk, '4' increment, '8' block skip, '@' axes and call tables, 'P' channel 2, 'p' per rev:
 //   bit 0  system B (else A)
-//   bit 1  dialect gsk, with the GSK macro ranges (#1-#33, #100-#199, GSK vacant ordering)
+//   bit 1  dialect gsk, with the GSK macro ranges (#1-#33, #100-#199, GSK vacant ordering);
+//          with bit 0 ('3'): the mill dialect fanuc-mill (its system B and axes X Y Z)
 //   bit 2  decimal_point increment (else calculator)
 //   bit 3  block skip levels 1 and 3 switched on
 //   bit 4  axes X Z C Y with exchange numbers, and the macro-call tables of
@@ -23,6 +24,7 @@
 // bounds the work per input (kMaxPulls * kStatementLimit = 10^6 steps, about 2 s under
 // ASan+UBSan for a loop that spends the whole statement limit on every pull; 4*10^7 steps took
 // 63 s, far beyond -timeout=10).
+#include "channel/interp/dialect.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/output/command_json.hpp"
 
@@ -50,11 +52,10 @@ InterpreterConfig make_config(std::uint8_t flags) {
   if (flags & 0x01) {
     c.system = GCodeSystem::b;
   }
-  if (flags & 0x02) {
-    c.dialect = Dialect::gsk;
-    c.macro.local_last = 33;
-    c.macro.common_last = 199;
-    c.macro.vacant_ordering = macro::VacantOrdering::kLiteralGskTable;
+  if ((flags & 0x03) == 0x03) {
+    select_dialect(c, Dialect::fanuc_mill);
+  } else if (flags & 0x02) {
+    select_dialect(c, Dialect::gsk);
   }
   if (flags & 0x04) {
     c.decimal_point = DecimalPoint::increment;

@@ -1,7 +1,9 @@
 #include "tools/mcnc/interp_command.hpp"
 
+#include "channel/interp/dialect.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/output/command_json.hpp"
+#include "common/config/dialect_names.hpp"
 #include "tools/mcnc/interp_params.hpp"
 
 #include <chrono>
@@ -9,6 +11,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace mcnc::tools {
@@ -59,23 +62,61 @@ void flush(std::string& buffer) {
 void add_interp_options(CLI::App& app, InterpArguments& args) {
   app.add_option("--system", args.system, "G-code system A (default) or B")
       ->check(CLI::IsMember({"A", "B"}));
+  std::string names;
+  for (const std::string_view n : config::kDialectNames) {
+    names += std::string(names.empty() ? "" : ", ") + std::string(n);
+  }
+  args.dialect_option =
+      app.add_option("--dialect", args.dialect,
+                     "dialect: " + names + " (default dafeng); without a name: list them")
+          ->expected(0, 1);
   app.add_option("--channel", args.channel, "channel number (default 1)")
       ->check(CLI::Range(1, 255));
   app.add_option("--param", args.param_file, "interpreter parameter file (YAML)")
       ->check(CLI::ExistingFile);
   app.add_option("--progdir", args.program_dir, "program directory searched by O number")
       ->check(CLI::ExistingDirectory);
-  app.add_option("FILE", args.file, "program file")->required()->check(CLI::ExistingFile);
+  app.add_option("FILE", args.file, "program file (required unless --dialect lists)")
+      ->check(CLI::ExistingFile);
 }
 
 int execute_interp(const InterpArguments& args) {
+  if (args.dialect_option != nullptr && args.dialect_option->count() > 0 && args.dialect.empty()) {
+    for (const std::string_view n : config::kDialectNames) {
+      std::printf("%.*s\n", static_cast<int>(n.size()), n.data());
+    }
+    return 0;
+  }
+  if (args.file.empty()) {
+    std::fprintf(stderr, "mcnc interp: FILE is required\n");
+    return 2;
+  }
   interp::InterpreterConfig config;
+  if (!args.dialect.empty()) {
+    // Before the parameter file, whose axes (and further settings) apply on top of it.
+    const std::optional<interp::Dialect> d = interp::dialect_named(args.dialect);
+    if (!d) {
+      std::fprintf(stderr, "mcnc interp: --dialect must be %s\n",
+                   config::dialect_choices().c_str());
+      return 2;
+    }
+    interp::select_dialect(config, *d);
+  }
   try {
     if (!args.param_file.empty()) {
       load_interp_params(args.param_file, config);
     }
   } catch (const ParamError& e) {
     std::fprintf(stderr, "mcnc interp: %s: %s\n", args.param_file.c_str(), e.what());
+    return 2;
+  }
+  if (!args.dialect.empty() && interp::dialect_name(config.dialect) != args.dialect) {
+    std::fprintf(stderr, "mcnc interp: %s: the parameter file's dialect is not --dialect %s\n",
+                 args.param_file.c_str(), args.dialect.c_str());
+    return 2;
+  }
+  if (args.system == "A" && config.dialect == interp::Dialect::fanuc_mill) {
+    std::fprintf(stderr, "mcnc interp: the mill dialect is G-code system B (G90/G91, G92)\n");
     return 2;
   }
   if (!args.system.empty()) {

@@ -10,7 +10,11 @@ namespace mcnc::tools {
 
 struct InterpArguments {
   std::string system;  // "A" or "B"; empty: the parameter file's or A
-  int channel = 0;     // 0: the parameter file's or 1
+  // A name of config::kDialectNames; empty: the parameter file's or dafeng. `--dialect` without
+  // a name lists the dialects (list_dialects).
+  std::string dialect;
+  const CLI::Option* dialect_option = nullptr;
+  int channel = 0;  // 0: the parameter file's or 1
   std::string param_file;
   std::string program_dir;
   std::string file;

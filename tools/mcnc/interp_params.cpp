@@ -1,8 +1,12 @@
 #include "tools/mcnc/interp_params.hpp"
 
+#include "channel/interp/dialect.hpp"
+#include "common/config/dialect_names.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <initializer_list>
+#include <optional>
 #include <set>
 
 namespace mcnc::tools {
@@ -41,11 +45,13 @@ T get(const YAML::Node& n, const std::string& key) {
 // The canned cycles' parameters (interp::CycleDefaults), lengths in mm (radius).
 void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
   only_keys(node, "cycles",
-            {"rough_depth", "rough_retract", "rough_retract_along_contour", "pattern_relief_x",
-             "pattern_relief_z", "pattern_passes", "groove_retract", "thread_finish_passes",
-             "thread_chamfer", "thread_angle", "thread_min_depth", "thread_allowance",
-             "thread_alternating", "drill_high_speed", "drill_retract", "drill_clearance",
-             "drill_full_retract", "tap_high_speed", "tap_retract"});
+            {"rough_depth",        "rough_retract",        "rough_retract_along_contour",
+             "pattern_relief_x",   "pattern_relief_z",     "pattern_passes",
+             "groove_retract",     "thread_finish_passes", "thread_chamfer",
+             "thread_angle",       "thread_min_depth",     "thread_allowance",
+             "thread_alternating", "drill_high_speed",     "drill_retract",
+             "drill_clearance",    "drill_full_retract",   "tap_high_speed",
+             "tap_retract",        "bore_shift_direction"});
   const auto length = [&](const char* k, double& v) {
     if (node[k]) {
       v = get<double>(node[k], std::string("cycles.") + k);
@@ -90,6 +96,7 @@ void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
   length("drill_full_retract", d.drill_full_retract);
   flag("tap_high_speed", d.tap_high_speed);
   length("tap_retract", d.tap_retract);
+  count("bore_shift_direction", d.bore_shift_direction, 0, 3);
 }
 
 char axis_letter(const std::string& s, const std::string& key) {
@@ -221,17 +228,14 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
   }
   if (root["dialect"]) {
     const auto s = get<std::string>(root["dialect"], "dialect");
-    if (s != "dafeng" && s != "gsk") {
-      bad("dialect", "dafeng or gsk");
+    const std::optional<interp::Dialect> d = interp::dialect_named(s);
+    if (!d) {
+      bad("dialect", config::dialect_choices());
     }
-    c.dialect = s == "dafeng" ? interp::Dialect::dafeng : interp::Dialect::gsk;
-    if (c.dialect == interp::Dialect::gsk) {
-      c.macro.local_last = 33;
-      c.macro.common_last = 199;
-      c.macro.extended_common = false;
-      c.macro.vacant_ordering = interp::macro::VacantOrdering::kLiteralGskTable;
-      c.macro.round_to_integer = true;
+    if (*d == interp::Dialect::fanuc_mill && c.system == interp::GCodeSystem::a && root["system"]) {
+      bad("system", "B in the mill dialect (G90/G91, G92 and G98/G99 as the mill spells them)");
     }
+    interp::select_dialect(c, *d);
   }
   if (root["channel"]) {
     c.channel = get<int>(root["channel"], "channel");
@@ -339,7 +343,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     int i = 0;
     for (const auto& a : root["axes"]) {
       const std::string k = "axes[" + std::to_string(i++) + "]";
-      only_keys(a, k, {"name", "diameter", "rotary", "start", "reference", "exchange"});
+      only_keys(a, k, {"name", "diameter", "rotary", "start", "reference", "exchange", "approach"});
       interp::AxisConfig ax;
       ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
       for (const auto& other : c.axes) {
@@ -364,6 +368,9 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       }
       if (a["exchange"]) {
         ax.exchange = get<int>(a["exchange"], k + ".exchange");
+      }
+      if (a["approach"]) {
+        ax.approach = get<double>(a["approach"], k + ".approach") / unit;
       }
       c.axes.push_back(ax);
     }

@@ -25,7 +25,11 @@ const char* cycle_name(HoleKind kind) {
     case HoleKind::tap:
       return "tapping cycle";
     case HoleKind::bore:
+    case HoleKind::bore_stop:
+    case HoleKind::fine_bore:
       return "boring cycle";
+    case HoleKind::back_bore:
+      return "back boring cycle";
     case HoleKind::drill:
       break;
   }
@@ -38,16 +42,25 @@ PathResult value_error(const HoleCycle& c, const std::string& text) {
 
 PathResult check_cycle(const HoleCycle& c) {
   if (c.peck < 0.0 || c.retract < 0.0 || c.clearance < 0.0 || c.dwell_s < 0.0 ||
-      c.full_retract_depth < 0.0) {
+      c.full_retract_depth < 0.0 || c.shift < 0.0) {
     return value_error(c, "amounts must not be negative: peck Q" + mm_text(c.peck) + ", retract " +
                               mm_text(c.retract) + ", clearance " + mm_text(c.clearance) +
                               ", dwell " + mm_text(c.dwell_s) + " s, full-retract depth " +
-                              mm_text(c.full_retract_depth));
+                              mm_text(c.full_retract_depth) + ", shift " + mm_text(c.shift));
   }
   if (std::fabs(c.bottom - c.r_level) <= kTolerance) {
     return value_error(c, "R-point " + mm_text(c.r_level) + " is at the bottom: no hole");
   }
   const double in = c.bottom > c.r_level ? 1.0 : -1.0;
+  if (c.kind == HoleKind::back_bore) {
+    // The tool enters from the far side: R, then the bottom, then the initial level.
+    const double top = c.has_initial_level ? c.initial_level : c.initial;
+    if (in * (top - c.bottom) < -kTolerance) {
+      return value_error(c, "the initial level " + mm_text(top) + " must lie beyond the bottom " +
+                                mm_text(c.bottom) + " seen from R " + mm_text(c.r_level));
+    }
+    return std::nullopt;
+  }
   if (in * (c.initial - c.r_level) > kTolerance) {
     if (in * (c.initial - c.bottom) >= 0.0) {
       return value_error(c, "R-point " + mm_text(c.r_level) + " lies beyond the bottom " +
@@ -80,6 +93,16 @@ class HoleSteps {
     }
   }
   void signal(Kind kind, int code = 0) { out_.push_back(HoleStep{.kind = kind, .code = code}); }
+  void shift(double amount) { out_.push_back(HoleStep{.kind = Kind::shift, .to = amount}); }
+  // G76/G87: the spindle stops oriented and the tool leaves the wall; then `then`; then back.
+  template <typename F>
+  void clear_of_wall(double amount, F&& then) {
+    signal(Kind::orient);
+    shift(amount);
+    then();
+    shift(0.0);
+    signal(Kind::restore);
+  }
 
   // Out of the hole to `to`: a tap backs out with the spindle reversed, a drill at rapid.
   void back_out(bool tapping, double to) {
@@ -98,7 +121,7 @@ class HoleSteps {
 };
 
 PeckMode effective_peck_mode(const HoleCycle& c) {
-  if (c.kind == HoleKind::bore || c.peck <= 0.0 ||
+  if ((c.kind != HoleKind::drill && c.kind != HoleKind::tap) || c.peck <= 0.0 ||
       (c.peck_mode == PeckMode::high_speed && c.retract <= 0.0)) {
     return PeckMode::none;
   }
@@ -110,6 +133,15 @@ PeckMode effective_peck_mode(const HoleCycle& c) {
 path::PathResult expand_hole(const HoleCycle& cycle, std::vector<HoleStep>& out) {
   if (PathResult e = check_cycle(cycle)) {
     return e;
+  }
+  const double top = cycle.has_initial_level ? cycle.initial_level : cycle.initial;
+  if (cycle.kind == HoleKind::back_bore) {
+    HoleSteps s(cycle.initial, out);
+    s.clear_of_wall(cycle.shift, [&] { s.move(Kind::rapid, cycle.r_level); });
+    s.move(Kind::feed, cycle.bottom);
+    s.dwell(cycle.dwell_s);
+    s.clear_of_wall(cycle.shift, [&] { s.move(Kind::rapid, top); });
+    return std::nullopt;
   }
   const PeckMode mode = effective_peck_mode(cycle);
   const double in = cycle.bottom > cycle.r_level ? 1.0 : -1.0;
@@ -154,11 +186,18 @@ path::PathResult expand_hole(const HoleCycle& cycle, std::vector<HoleStep>& out)
     }
   }
   s.dwell(cycle.dwell_s);
-  const double exit = cycle.return_to_initial ? cycle.initial : cycle.r_level;
+  const double exit = cycle.return_to_initial ? top : cycle.r_level;
   if (cycle.kind == HoleKind::bore) {
     s.move(Kind::feed, cycle.r_level);
   } else if (tapping) {
     s.back_out(true, cycle.r_level);
+  }
+  if (cycle.kind == HoleKind::fine_bore) {
+    s.clear_of_wall(cycle.shift, [&] { s.move(Kind::rapid, exit); });
+  } else if (cycle.kind == HoleKind::bore_stop) {
+    s.signal(Kind::spindle_stop);
+    s.move(Kind::rapid, exit);
+    s.signal(Kind::restore);
   }
   s.move(Kind::rapid, exit);
   if (cycle.clamp_code != 0) {

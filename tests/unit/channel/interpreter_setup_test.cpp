@@ -1,5 +1,5 @@
-// A channel's interpreter parameters from the machine file: its spindle count and its power-on
-// feed mode (param 2201.3, `feed_mode` of the channel).
+// A channel's interpreter parameters from the machine file: its spindle count, its power-on
+// feed mode (param 2201.3, `feed_mode` of the channel) and its dialect.
 #include "channel/setup/interpreter_setup.hpp"
 #include "common/config/machine_config.hpp"
 
@@ -41,6 +41,19 @@ TEST(InterpreterSetup, SpindlesAreCounted) {
   const config::MachineConfig m = machine("");
   EXPECT_EQ(interpreter_config_for(m, m.channels[0]).spindles, 1);
   EXPECT_EQ(interpreter_config_for(m, m.channels[1]).spindles, 0);  // known: none
+}
+
+// `dialect: fanuc-mill` makes the channel a mill (system B's spelling, FANUC macro ranges) on
+// the axes the machine file gives it; the other channels stay Dafeng lathes.
+TEST(InterpreterSetup, DialectIsTheChannels) {
+  const config::MachineConfig m = machine(", dialect: fanuc-mill");
+  const interp::InterpreterConfig mill = interpreter_config_for(m, m.channels[0]);
+  EXPECT_EQ(mill.dialect, interp::Dialect::fanuc_mill);
+  EXPECT_EQ(mill.system, interp::GCodeSystem::b);
+  EXPECT_EQ(mill.macro.local_last, 33);
+  ASSERT_EQ(mill.axes.size(), 2u);  // the channel's X1 and Z1, not the dialect's X Y Z
+  EXPECT_EQ(mill.axes[1].name, 'Z');
+  EXPECT_EQ(interpreter_config_for(m, m.channels[1]).dialect, interp::Dialect::dafeng);
 }
 
 }  // namespace

@@ -311,6 +311,25 @@ channels: [{name: C, axes: [X], feed_mode: per_rev}]
   EXPECT_NE(what.find("needs a spindle"), std::string::npos) << what;
 }
 
+// A channel's interpreter dialect by name (common/config/dialect_names.hpp); Dafeng by default.
+TEST(MachineConfig, DialectOfAChannel) {
+  const std::string base = kAxisAndSpindle;
+  EXPECT_EQ(parse_machine_yaml(base + "channels: [{name: C, axes: [X], spindles: [S1]}]\n")
+                .channels[0]
+                .dialect,
+            "dafeng");
+  EXPECT_EQ(parse_machine_yaml(
+                base + "channels: [{name: C, axes: [X], spindles: [S1], dialect: fanuc-mill}]\n")
+                .channels[0]
+                .dialect,
+            "fanuc-mill");
+  std::string what;
+  EXPECT_EQ(rejection_path(
+                base + "channels: [{name: C, axes: [X], spindles: [S1], dialect: fanuc}]\n", &what),
+            "channels[0].dialect");
+  EXPECT_NE(what.find("dafeng, gsk or fanuc-mill"), std::string::npos) << what;
+}
+
 TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["axes"][0]["homing"]["method"] = 37;

@@ -1,0 +1,8 @@
+(gsk B.1 L36, L42: G84 and G74 tapping; F is the feed, the lead is F/S = 1.5 mm)
+G90 G00 X0 Y0 Z20 S500 M03
+G84 X10 Y10 Z-15 R3 F750 P200
+G80 M05
+M04
+G74 X20 Z-15 R3 F750
+G80
+M30

@@ -1,0 +1,16 @@
+(gsk B.5.5 / D3-4: the horn, 91 full circles under G41 D01)
+M03 S500
+M06 T01
+#1=0
+#2=0
+G0 Z15 X150 Y0
+N11 #2=30*SIN[#1]
+#3=30+30*[1-COS[#1]]
+G01 Z-#2 F40
+G41 X#3 D01
+G03 I-#3
+G40 G01 X150 Y0
+#1=#1+1
+IF [#1 LE 90] GOTO 11
+G0 Z30
+M30

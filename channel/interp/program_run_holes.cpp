@@ -6,6 +6,7 @@
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mcnc::interp {
@@ -236,7 +237,8 @@ bool ProgramRun::run_hole_cycle(int column) {
     bool& flag;
     ~CycleOutput() { flag = false; }
   } cycle_output{cycle_output_ = true};
-  for (int k = 0; k < h.repeat; ++k) {
+  // K0 reads the block's words (the bottom, modal) and makes no hole (FANUC: data only).
+  for (int k = 0; k < std::max(h.repeat, 1); ++k) {
     AxisVector target{};
     std::array<bool, kMaxChannelAxes> given{};
     if (!read_axis_targets(target, given, false)) {
@@ -255,6 +257,9 @@ bool ProgramRun::run_hole_cycle(int column) {
           alarm::kCycleWordMissing,
           "the hole cycle needs the hole bottom (" + std::string(1, config_.axes[drill].name) + ")",
           column);
+    }
+    if (h.repeat == 0) {
+      break;
     }
     // Position on the hole at rapid, the drilling axis staying at the initial level.
     target[drill] = machine_[drill];

@@ -5,6 +5,8 @@
 #include "channel/interp/macro/macro_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <span>
+
 namespace mcnc::interp {
 
 namespace {
@@ -22,15 +24,26 @@ struct ToolVariable {
   int offset = 0;
 };
 
-// #2001-#2964 (64 offsets; Y only 49) and the extended #10001-#19064 (spec L6520-6656).
-ToolVariable tool_variable(std::int64_t n) {
-  struct Range {
-    std::int64_t first;
-    int count;
-    bool geometry;
-    ToolField field;
-  };
-  static constexpr Range kRanges[] = {
+struct ToolRange {
+  std::int64_t first;
+  int count;
+  bool geometry;
+  ToolField field;
+};
+
+// The mill's H and D values (FANUC 0i-M, tool compensation memory C): #10001+ H wear, #11001+
+// H geometry, #12001+ D wear, #13001+ D geometry; H is the table's Z, D its radius.
+constexpr ToolRange kMillRanges[] = {
+    {10001, 64, false, ToolField::z},
+    {11001, 64, true, ToolField::z},
+    {12001, 64, false, ToolField::radius},
+    {13001, 64, true, ToolField::radius},
+};
+
+// #2001-#2964 (64 offsets; Y only 49) and the extended #10001-#19064 (spec L6520-6656); the
+// mill's kMillRanges.
+ToolVariable tool_variable(std::int64_t n, Dialect dialect) {
+  static constexpr ToolRange kRanges[] = {
       {2001, 64, false, ToolField::x},      {2101, 64, false, ToolField::z},
       {2201, 64, false, ToolField::radius}, {2301, 64, true, ToolField::tip},
       {2401, 49, false, ToolField::y},      {2451, 49, true, ToolField::y},
@@ -41,7 +54,8 @@ ToolVariable tool_variable(std::int64_t n) {
       {15001, 64, true, ToolField::x},      {16001, 64, true, ToolField::z},
       {17001, 64, true, ToolField::radius}, {19001, 64, true, ToolField::y},
   };
-  for (const Range& r : kRanges) {
+  for (const ToolRange& r : dialect == Dialect::fanuc_mill ? std::span<const ToolRange>(kMillRanges)
+                                                           : std::span<const ToolRange>(kRanges)) {
     if (n >= r.first && n < r.first + r.count) {
       return ToolVariable{true, r.geometry, r.field, static_cast<int>(n - r.first) + 1};
     }
@@ -80,7 +94,7 @@ VariableRead undefined(std::int64_t n) {
 
 VariableRead ProgramRun::read(std::int64_t n) const {
   const int axes = static_cast<int>(config_.axes.size());
-  if (const ToolVariable tv = tool_variable(n); tv.found) {
+  if (const ToolVariable tv = tool_variable(n, config_.dialect); tv.found) {
     const auto k = static_cast<std::size_t>(tv.offset);
     const ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
     if (tv.field == ToolField::tip) {
@@ -182,7 +196,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
 
 MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
   const double x = v.number();
-  if (const ToolVariable tv = tool_variable(n); tv.found) {
+  if (const ToolVariable tv = tool_variable(n, config_.dialect); tv.found) {
     const auto k = static_cast<std::size_t>(tv.offset);
     ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
     if (tv.field == ToolField::tip) {

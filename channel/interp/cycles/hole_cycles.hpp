@@ -48,12 +48,12 @@ struct HoleCycle {
   double lead = 0.0;               // tap: F/I, mm/rev, < 0 for a left-hand tap
   int clamp_code = 0;              // Mxx before each hole, Mxx+1 after (0: none)
   bool return_to_initial = false;  // system B G98: back to `initial` instead of `r_level`
+  double full_retract_depth = 0.0;  // .7: depth drilled between full retracts, >= 0
+  double shift = 0.0;               // G76/G87: Q, how far the tool leaves the wall, >= 0
   // The mill: G98's level is where the cycle began, which the tool may have left (a G99 hole
   // before this one ends at R): the way back and G87 go to it instead of `initial`.
   bool has_initial_level = false;
   double initial_level = 0.0;
-  double full_retract_depth = 0.0;  // .7: depth drilled between full retracts, >= 0
-  double shift = 0.0;               // G76/G87: Q, how far the tool leaves the wall, >= 0
 };
 
 struct HoleStep {

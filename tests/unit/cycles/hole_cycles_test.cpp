@@ -30,6 +30,7 @@ void expect_steps(const std::vector<HoleStep>& got, std::initializer_list<Expect
       case Kind::rapid:
       case Kind::feed:
       case Kind::tap:
+      case Kind::shift:
         EXPECT_NEAR(g.to, w.value, 1e-9);
         break;
       case Kind::dwell:
@@ -40,6 +41,8 @@ void expect_steps(const std::vector<HoleStep>& got, std::initializer_list<Expect
         break;
       case Kind::reverse:
       case Kind::restore:
+      case Kind::spindle_stop:
+      case Kind::orient:
         break;
     }
   }
@@ -395,6 +398,11 @@ TEST(HoleCycles, PropertiesOfGeneratedHoles) {
         case Kind::aux:
           ADD_FAILURE() << "aux inside the hole";
           break;
+        case Kind::spindle_stop:
+        case Kind::orient:
+        case Kind::shift:
+          ADD_FAILURE() << "a step of the mill's G86/G76/G87 in a drill, tap or bore";
+          break;
       }
       if (motion) {
         EXPECT_GT(std::fabs(s.to - at), 1e-9) << "a step that does not move";
@@ -424,6 +432,90 @@ TEST_P(HoleCycleAlarm, RefusesWithoutSteps) {
   EXPECT_TRUE(out.empty());
 }
 
+// The mill's G86 (gsk B.1 L44): feed in, dwell, spindle stop, rapid out (G98: to the initial
+// level), spindle restarted.
+TEST(HoleCycles, MillBoreWithSpindleStop) {
+  std::vector<HoleStep> out;
+  ASSERT_FALSE(expand_hole({.kind = HoleKind::bore_stop,
+                            .initial = 50,
+                            .r_level = 2,
+                            .bottom = -10,
+                            .dwell_s = 0.2,
+                            .return_to_initial = true},
+                           out));
+  expect_steps(out, {{Kind::rapid, 2},
+                     {Kind::feed, -10},
+                     {Kind::dwell, 0.2},
+                     {Kind::spindle_stop},
+                     {Kind::rapid, 50},
+                     {Kind::restore}});
+}
+
+// G76 (L37): the tool leaves the wall oriented and shifted before the rapid out, and comes
+// back to the centre before the spindle turns again. G99: out to R.
+TEST(HoleCycles, MillFineBoring) {
+  std::vector<HoleStep> out;
+  ASSERT_FALSE(expand_hole(
+      {.kind = HoleKind::fine_bore, .initial = 50, .r_level = 2, .bottom = -10, .shift = 0.3},
+      out));
+  expect_steps(out, {{Kind::rapid, 2},
+                     {Kind::feed, -10},
+                     {Kind::orient},
+                     {Kind::shift, 0.3},
+                     {Kind::rapid, 2},
+                     {Kind::shift, 0},
+                     {Kind::restore}});
+}
+
+// G87 (L45): in through the hole to R shifted, cut back to the bottom, out to the initial
+// level, which a G99 hole before it may have left (initial_level).
+TEST(HoleCycles, MillBackBoring) {
+  std::vector<HoleStep> out;
+  ASSERT_FALSE(expand_hole({.kind = HoleKind::back_bore,
+                            .initial = 2,
+                            .r_level = -25,
+                            .bottom = -5,
+                            .dwell_s = 0.1,
+                            .shift = 0.5,
+                            .has_initial_level = true,
+                            .initial_level = 50},
+                           out));
+  expect_steps(out, {{Kind::orient},
+                     {Kind::shift, 0.5},
+                     {Kind::rapid, -25},
+                     {Kind::shift, 0},
+                     {Kind::restore},
+                     {Kind::feed, -5},
+                     {Kind::dwell, 0.1},
+                     {Kind::orient},
+                     {Kind::shift, 0.5},
+                     {Kind::rapid, 50},
+                     {Kind::shift, 0},
+                     {Kind::restore}});
+  // The initial level must lie beyond the bottom seen from R: else the way out crosses the cut.
+  out.clear();
+  const path::PathResult e =
+      expand_hole({.kind = HoleKind::back_bore, .initial = -10, .r_level = -25, .bottom = -5}, out);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->alarm, alarm::kCycleValue);
+  EXPECT_TRUE(out.empty());
+}
+
+// The mill's G98 after G99 holes: the tool stands at R, the way out goes to the level where the
+// cycle began.
+TEST(HoleCycles, MillReturnsToTheCyclesInitialLevel) {
+  std::vector<HoleStep> out;
+  ASSERT_FALSE(expand_hole({.kind = HoleKind::drill,
+                            .initial = 2,
+                            .r_level = 2,
+                            .bottom = -10,
+                            .return_to_initial = true,
+                            .has_initial_level = true,
+                            .initial_level = 50},
+                           out));
+  expect_steps(out, {{Kind::feed, -10}, {Kind::rapid, 50}});
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Values, HoleCycleAlarm,
     ::testing::Values(
@@ -434,6 +526,7 @@ INSTANTIATE_TEST_SUITE_P(
         AlarmCase{"negative dwell", {.initial = 5, .r_level = 1, .bottom = -10, .dwell_s = -1}},
         AlarmCase{"negative full-retract depth",
                   {.initial = 5, .r_level = 1, .bottom = -10, .full_retract_depth = -1}},
+        AlarmCase{"negative shift", {.initial = 5, .r_level = 1, .bottom = -10, .shift = -1}},
         AlarmCase{"R at the bottom", {.initial = 5, .r_level = -10, .bottom = -10}},
         AlarmCase{"R beyond the bottom", {.initial = 5, .r_level = -12, .bottom = -10}},
         AlarmCase{"initial inside the hole", {.initial = -2, .r_level = 1, .bottom = -10}},

@@ -129,6 +129,32 @@ TEST(MillDialect, IncrementalHoleCycle) {
   EXPECT_AT(r.commands[r.commands.size() - 2], 30, 0, 2);  // G99: at R
 }
 
+// The offsets as FANUC 0i-M's memory C numbers them: #11001+ H geometry, #10001+ H wear,
+// #13001+ D geometry, #12001+ D wear.
+TEST(MillDialect, OffsetsAsSystemVariables) {
+  InterpreterConfig c = mill();
+  c.tool_geometry[2].z = 80.0;
+  RunResult r = run_ok(
+      "IF [#11002 NE 80] #3000=1\n#10002=-0.5\n#13002=6\n#12002=0.1\n"
+      "G43 H2 Z0\nIF [#12002 NE 0.1] #3000=2\nM30\n",
+      c);
+  ASSERT_EQ(r.of(Op::rapid).size(), 1u);
+  EXPECT_AT(r.of(Op::rapid)[0], 0, 0, 79.5);
+  RunResult d =
+      run_ok("#13001=6\n#12001=-1\nG00 X-20 Y0\nG41 D1 G01 X0 F100\nY50\nG40 X-20\nM30\n", mill());
+  ASSERT_FALSE(d.at_line(5).empty());
+  EXPECT_NEAR(d.at_line(5).front().to[0], -5.0, 1e-9);  // radius 6 worn by 1
+}
+
+// K0 keeps the block's data and makes no hole; the next positioning block drills with it.
+TEST(MillDialect, K0StoresTheHoleData) {
+  RunResult r = run_ok("G00 Z10\nG81 Z-5 R2 F100 K0\nX5\nM30\n", mill());
+  EXPECT_TRUE(r.at_line(2).empty());
+  const auto feeds = r.of(Op::linear);
+  ASSERT_EQ(feeds.size(), 1u);
+  EXPECT_AT(feeds[0], 5, 0, -5);
+}
+
 TEST(MillDialect, TappingNeedsTheSpindleSpeed) {
   run_alarm("G00 Z10\nG84 X0 Y0 Z-10 R2 F100\nM30\n", alarm::kThreadLead, 2, -1, mill());
   RunResult r = run_ok("G00 Z10 S400 M03\nG84 X0 Y0 Z-10 R2 F500\nM30\n", mill());

@@ -199,16 +199,19 @@ class Generator:
 
     def compensation(self):
         # A rectangle around (cx, cy), entered along its first side (where rs274's entry and
-        # FANUC's agree) to its lower left corner.
+        # FANUC's agree) to its lower left corner. The exit goes to a point outside it.
         cx, cy = self.r(-20, 20), self.r(-20, 20)
         w, h = self.r(15, 40), self.r(15, 40)
         side = self.rnd.choice(["G41", "G42"])
         d = self.rnd.choice([1, 2])
         x0, y0 = cx - w / 2, cy - h / 2
+        # Clockwise (up first) or counter-clockwise (right first): G41 clockwise and G42
+        # counter-clockwise cut outside (arcs at the corners), the others inside.
+        clockwise = self.rnd.random() < 0.5
         corners = [(x0, y0 + h), (x0 + w, y0 + h), (x0 + w, y0), (x0, y0)]
-        if side == "G42":
+        if not clockwise:
             corners = [(x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h), (x0, y0)]
-        start = (x0, y0 - 20) if side == "G41" else (x0 - 20, y0)
+        start = (x0, y0 - 20) if clockwise else (x0 - 20, y0)
         self.block(f"G0 X{fmt(start[0])} Y{fmt(start[1])}")
         self.block(f"{side} D{d} G1 X{fmt(x0)} Y{fmt(y0)} F{self.rnd.randint(100, 800)}")
         for x, y in corners:

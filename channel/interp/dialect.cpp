@@ -8,8 +8,9 @@ static_assert(config::kDialectNames.size() == static_cast<std::size_t>(Dialect::
               "one name per dialect, in the order of Dialect");
 
 std::optional<Dialect> dialect_named(std::string_view name) {
+  const std::string_view canonical = config::canonical_dialect_name(name);
   for (std::size_t i = 0; i < config::kDialectNames.size(); ++i) {
-    if (config::kDialectNames[i] == name) {
+    if (!canonical.empty() && config::kDialectNames[i] == canonical) {
       return static_cast<Dialect>(i);
     }
   }

@@ -8,6 +8,7 @@
 
 namespace mcnc::interp {
 
+// By its name or an alias (config::kDialectAliases: `fanuc-lathe` is the Dafeng dialect).
 std::optional<Dialect> dialect_named(std::string_view name);
 std::string_view dialect_name(Dialect d);
 

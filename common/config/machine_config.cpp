@@ -252,10 +252,10 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     channel.feed_per_rev = text == "per_rev";
   }
   if (auto dialect = map.optional("dialect")) {
-    channel.dialect = dialect->string();
-    if (std::find(kDialectNames.begin(), kDialectNames.end(), channel.dialect) ==
-        kDialectNames.end()) {
-      dialect->fail("dialect must be " + dialect_choices() + ", got '" + channel.dialect + "'");
+    const std::string text = dialect->string();
+    channel.dialect = std::string(canonical_dialect_name(text));
+    if (channel.dialect.empty()) {
+      dialect->fail("dialect must be " + dialect_choices() + ", got '" + text + "'");
     }
   }
   return channel;

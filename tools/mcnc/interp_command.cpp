@@ -62,14 +62,10 @@ void flush(std::string& buffer) {
 void add_interp_options(CLI::App& app, InterpArguments& args) {
   app.add_option("--system", args.system, "G-code system A (default) or B")
       ->check(CLI::IsMember({"A", "B"}));
-  std::string names;
-  for (const std::string_view n : config::kDialectNames) {
-    names += std::string(names.empty() ? "" : ", ") + std::string(n);
-  }
-  args.dialect_option =
-      app.add_option("--dialect", args.dialect,
-                     "dialect: " + names + " (default dafeng); without a name: list them")
-          ->expected(0, 1);
+  args.dialect_option = app.add_option("--dialect", args.dialect,
+                                       "dialect: " + config::dialect_choices() +
+                                           "; default dafeng; without a name: list them")
+                            ->expected(0, 1);
   app.add_option("--channel", args.channel, "channel number (default 1)")
       ->check(CLI::Range(1, 255));
   app.add_option("--param", args.param_file, "interpreter parameter file (YAML)")
@@ -84,6 +80,10 @@ int execute_interp(const InterpArguments& args) {
   if (args.dialect_option != nullptr && args.dialect_option->count() > 0 && args.dialect.empty()) {
     for (const std::string_view n : config::kDialectNames) {
       std::printf("%.*s\n", static_cast<int>(n.size()), n.data());
+    }
+    for (const config::DialectAlias& a : config::kDialectAliases) {
+      std::printf("%.*s (%.*s)\n", static_cast<int>(a.alias.size()), a.alias.data(),
+                  static_cast<int>(a.name.size()), a.name.data());
     }
     return 0;
   }
@@ -110,7 +110,8 @@ int execute_interp(const InterpArguments& args) {
     std::fprintf(stderr, "mcnc interp: %s: %s\n", args.param_file.c_str(), e.what());
     return 2;
   }
-  if (!args.dialect.empty() && interp::dialect_name(config.dialect) != args.dialect) {
+  if (!args.dialect.empty() &&
+      interp::dialect_name(config.dialect) != config::canonical_dialect_name(args.dialect)) {
     std::fprintf(stderr, "mcnc interp: %s: the parameter file's dialect is not --dialect %s\n",
                  args.param_file.c_str(), args.dialect.c_str());
     return 2;

@@ -323,6 +323,11 @@ TEST(MachineConfig, DialectOfAChannel) {
                 .channels[0]
                 .dialect,
             "fanuc-mill");
+  EXPECT_EQ(parse_machine_yaml(
+                base + "channels: [{name: C, axes: [X], spindles: [S1], dialect: fanuc-lathe}]\n")
+                .channels[0]
+                .dialect,
+            "dafeng");  // the alias is read as the dialect's name
   std::string what;
   EXPECT_EQ(rejection_path(
                 base + "channels: [{name: C, axes: [X], spindles: [S1], dialect: fanuc}]\n", &what),

@@ -16,7 +16,8 @@ InterpreterConfig mill() {
 TEST(MillDialect, NamesAndWhatTheDialectSets) {
   EXPECT_EQ(dialect_named("fanuc-mill"), Dialect::fanuc_mill);
   EXPECT_EQ(dialect_named("gsk"), Dialect::gsk);
-  EXPECT_FALSE(dialect_named("fanuc-lathe").has_value());
+  EXPECT_EQ(dialect_named("fanuc-lathe"), Dialect::dafeng);  // ARCHITECTURE.md's name
+  EXPECT_FALSE(dialect_named("fanuc").has_value());
   EXPECT_EQ(dialect_name(Dialect::fanuc_mill), "fanuc-mill");
   const InterpreterConfig c = mill();
   EXPECT_EQ(c.system, GCodeSystem::b);

@@ -119,6 +119,16 @@ TEST(MillDialect, HoleCyclesDrillAlongTheNormalOfThePlane) {
   EXPECT_AT(r.commands[r.commands.size() - 2], 50, 5, 5);  // G98: back to X50
 }
 
+// The drilling axis is the plane's normal: a channel without it cannot drill in that plane.
+TEST(MillDialect, HoleCycleNeedsTheNormalAxis) {
+  InterpreterConfig xy = mill();
+  xy.axes.pop_back();  // X and Y only
+  run_alarm("G00 X0 Y0\nG81 X5 Y5 R2 F100\nM30\n", alarm::kNoPlaneAxis, 2, -1, xy);
+  InterpreterConfig xz = mill();
+  xz.axes.erase(xz.axes.begin() + 1);  // X and Z: G18 drills along the missing Y
+  run_alarm("G00 X0 Z0\nG18 G81 X5 Z5 R2 F100\nM30\n", alarm::kNoPlaneAxis, 2, -1, xz);
+}
+
 TEST(MillDialect, IncrementalHoleCycle) {
   // G91: R from the initial level, Z from R (FANUC); K3 holes 10 apart.
   RunResult r = run_ok("G00 X0 Y0 Z20\nG91 G99 G83 X10 Z-15 R-18 Q5. K3 F100\nM30\n", mill());

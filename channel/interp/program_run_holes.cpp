@@ -285,7 +285,14 @@ bool ProgramRun::run_hole_cycle(int column) {
     c.return_to_initial = config_.system == GCodeSystem::b && modal_codes_[11] == 98.0;
     const CycleDefaults& d = config_.cycles;
     const int variant = h.code10 % 10;  // G83.5 -> 5
-    if (mill) {
+    if (mill && kind == cycles::HoleKind::tap) {
+      // Peck tapping with Q (FANUC 0i-M, param 5200.5): high-speed backs off `tap_retract`,
+      // the other form returns to R, as the lathe's G84.5/G84.6.
+      c.retract = d.tap_retract;
+      c.peck_mode = h.peck <= 0.0      ? cycles::PeckMode::none
+                    : d.tap_high_speed ? cycles::PeckMode::high_speed
+                                       : cycles::PeckMode::deep;
+    } else if (mill) {
       c.peck_mode = mill_peck_mode(h.function);
       c.retract = d.drill_retract;
       c.clearance = d.drill_clearance;

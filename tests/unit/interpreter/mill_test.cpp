@@ -174,6 +174,27 @@ TEST(MillDialect, TappingNeedsTheSpindleSpeed) {
   EXPECT_DOUBLE_EQ(taps[0].lead, 1.25);  // F/S
 }
 
+// G84 with Q: peck tapping, each peck backing off tap_retract (high-speed, the default) inside
+// the thread; no rapid inside the tapped hole.
+TEST(MillDialect, PeckTapping) {
+  RunResult r = run_ok("G00 Z10 S500 M03\nG84 X0 Y0 Z-10 R2 Q5. F500\nM30\n", mill());
+  std::vector<double> ends;
+  for (const Command& c : r.at_line(2)) {
+    if (c.op == Op::thread) {
+      ends.push_back(c.to[2]);
+    }
+    if (c.op == Op::rapid) {
+      EXPECT_GE(c.to[2], 2.0 - 1e-9) << "a rapid inside the thread";
+    }
+  }
+  // In to -3, back 0.5, in to -8, back 0.5, in to -10, out to R.
+  const std::vector<double> want{-3, -2.5, -8, -7.5, -10, 2};
+  ASSERT_EQ(ends.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_NEAR(ends[i], want[i], 1e-9) << i;
+  }
+}
+
 TEST(MillDialect, ReferenceCheckAndReturn) {
   InterpreterConfig c = mill();
   c.axes[0].reference[0] = 100.0;

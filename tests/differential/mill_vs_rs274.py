@@ -5,8 +5,8 @@ mill programs.
 LinuxCNC's native dialect is a mill dialect. Each seeded program mixes rapid and feed moves
 (absolute and G91), arcs in the three planes (I/J/K and R, some helical), tool length
 compensation (G43/G49 with H), cutter radius compensation (G41/G42 with D around a rectangle)
-and the drilling cycles G81, G82, G83, G73, G85, G89 with R, Q, P, G98/G99 and, in G91, L
-repeats. Both interpreters run it; their motions (rapid, feed and arc end points in machine
+the drilling cycles G81, G82, G83, G73, G85, G89 with R, Q, P, G98/G99 and, in G91, L
+repeats, and G92 or G52 coordinate settings. Both interpreters run it; their motions (rapid, feed and arc end points in machine
 coordinates, arc centres and directions, feeds, dwells) must agree command by command within
 1e-4 mm (rs274 prints 4 decimals).
 
@@ -29,6 +29,9 @@ Intentional differences, kept out of the programs or out of the comparison:
 - The cutter compensation's entry move: rs274 ends it where its own offset line meets the next
   element's, FANUC (ours) at the next element's offset start. The two agree when the entry
   runs along the first side, as generated.
+- rs274 keeps G92 and G52 in one offset (a G52 replaces a G92's, G52 X0 Y0 Z0 clears both),
+  FANUC two (G92 shifts the work systems, G52 is local to them): a program uses one of them,
+  and G92 only without G43 (rs274 counts the tool length in the current point).
 - Moves that do not move (ours positions the hole even when already above it) are dropped on
   both sides before comparing.
 
@@ -98,6 +101,9 @@ class Generator:
         self.rnd = random.Random(seed)
         self.pos = {"X": 0.0, "Y": 0.0, "Z": 50.0}
         self.blocks: list[tuple[str, str]] = []  # ours, LinuxCNC's
+        self.length_on = False  # G43 in force
+        self.offset_code = ""  # "G92" or "G52" once one is used (a program uses only one)
+        self.local = {"X": 0.0, "Y": 0.0, "Z": 0.0}  # the G52 shift in force
 
     def r(self, lo: float, hi: float) -> float:
         return round(self.rnd.uniform(lo, hi), 3)
@@ -158,6 +164,25 @@ class Generator:
         words = f"{code} H{h} G0 Z{fmt(z)}" if code == "G43" else f"G49 G0 Z{fmt(z)}"
         self.block(words)
         self.pos["Z"] = z
+        self.length_on = code == "G43"
+
+    def coordinates(self):
+        # rs274 keeps G92 and G52 in one offset (G52 replaces a G92's, G52 X0 clears both);
+        # FANUC keeps them apart: a program uses one of them. rs274's G92 under G43 counts the
+        # tool length differently: only without it.
+        if self.length_on:
+            return
+        self.offset_code = self.offset_code or self.rnd.choice(["G92", "G52"])
+        value = {a: self.r(-20, 20) for a in "XYZ"}
+        if self.rnd.random() < 0.2:
+            value = {a: 0.0 for a in "XYZ"}
+        self.block(f"{self.offset_code} " + " ".join(f"{a}{fmt(value[a])}" for a in "XYZ"))
+        for a in "XYZ":
+            if self.offset_code == "G92":
+                self.pos[a] = value[a]  # the current point reads the values
+            else:
+                self.pos[a] = round(self.pos[a] + self.local[a] - value[a], 3)
+                self.local[a] = value[a]
 
     def cycle(self):
         if self.pos["Z"] < 10:
@@ -222,13 +247,13 @@ class Generator:
     def program(self) -> tuple[str, str]:
         self.block("G0 X0 Y0 Z50.")
         steps = [self.moves, self.arc, self.arc, self.length, self.cycle, self.cycle,
-                 self.compensation]
+                 self.compensation, self.coordinates]
         for _ in range(self.rnd.randint(4, 9)):
             self.rnd.choice(steps)()
         ours = "\n".join(b[0] for b in self.blocks)
         lcnc = "\n".join(b[1] for b in self.blocks)
         ours = "G17 G90 G40 G49 G80 G54 S1000 M03\n" + ours + "\nM30\n"
-        lcnc = "G21 G17 G90 G94 G40 G49 G80 G54 S1000 M03\n" + lcnc + "\nM2\n"
+        lcnc = "G21 G17 G90 G94 G40 G49 G80 G54 G92.1 S1000 M03\n" + lcnc + "\nM2\n"
         return ours, lcnc
 
 
@@ -239,6 +264,7 @@ def floats(args: str):
 def parse_rs274(stdout: str) -> list[Motion]:
     motions: list[Motion] = []
     feed, plane, tool_z = 0.0, "CANON_PLANE_XY", 0.0
+    shift = {"X": 0.0, "Y": 0.0, "Z": 0.0}  # rs274 prints program positions: G92/G52 added
     for line in stdout.splitlines():
         call = CANON_CALL.match(line)
         if not call:
@@ -251,9 +277,13 @@ def parse_rs274(stdout: str) -> list[Motion]:
             plane = args.strip()
         elif name == "USE_TOOL_LENGTH_OFFSET":
             tool_z = floats(args)[2]
+        elif name == "SET_G92_OFFSET":
+            shift = dict(zip("XYZ", floats(args)[:3]))
+        elif name == "SET_G5X_OFFSET" and any(floats(args)[1:4]):
+            raise RuntimeError(f"a work offset the test does not set: {origin}")
         elif name in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED"):
             v = floats(args)
-            to = {"X": v[0], "Y": v[1], "Z": v[2] + tool_z}
+            to = {"X": v[0] + shift["X"], "Y": v[1] + shift["Y"], "Z": v[2] + tool_z + shift["Z"]}
             motions.append(Motion("rapid" if name == "STRAIGHT_TRAVERSE" else "linear", to,
                                   feed=feed if name == "STRAIGHT_FEED" else 0.0, origin=origin))
         elif name == "ARC_FEED":
@@ -262,8 +292,8 @@ def parse_rs274(stdout: str) -> list[Motion]:
             to = {first: v[0], second: v[1], normal: v[5]}
             centre = {first: v[2], second: v[3]}
             for d in (to, centre):
-                if "Z" in d:
-                    d["Z"] += tool_z
+                for a in d:
+                    d[a] += shift[a] + (tool_z if a == "Z" else 0.0)
             motions.append(Motion("arc", to, centre, "cw" if v[4] < 0 else "ccw", feed,
                                   origin=origin))
         elif name == "DWELL":

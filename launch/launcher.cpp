@@ -41,7 +41,10 @@ namespace {
 
 struct Observed {
   std::mutex mutex;
-  std::map<std::string, ProcessPhase> phases;
+  std::map<std::string, ProcessPhase> phases;  // under the wake-up lock, as the two below
+  // Across hosts: the other hosts' launchers by their writer, and those whose writer left.
+  std::map<dds::WriterId, std::string> launchers;
+  std::vector<std::string> launchers_gone;
   std::map<std::uint32_t, ::mcnc::ChannelStatus> status;
   std::map<std::uint32_t, AxisFeedback> feedback;
   std::vector<Alarm> alarms;
@@ -94,10 +97,25 @@ LaunchResult Launcher::run(
   trace::TraceWriter tracer(follower ? std::string() : part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();
-  dds::Reader<ProcessState> state_reader(node.participant(),
-                                         [&](const ProcessState& s, const dds::WriterId&) {
-                                           wake.update([&] { seen.phases[s.name()] = s.phase(); });
-                                         });
+  dds::Reader<ProcessState> state_reader(
+      node.participant(),
+      [&](const ProcessState& s, const dds::WriterId& writer) {
+        wake.update([&] {
+          seen.phases[s.name()] = s.phase();
+          if (s.name().rfind("launch-", 0) == 0) {
+            seen.launchers[writer] = s.name();
+          }
+        });
+      },
+      [&](const dds::WriterId& writer, bool matched) {
+        if (!matched) {
+          wake.update([&] {
+            if (const auto it = seen.launchers.find(writer); it != seen.launchers.end()) {
+              seen.launchers_gone.push_back(it->second);
+            }
+          });
+        }
+      });
   // The run's progress, end and alarms need only each channel's and axis's latest sample (a
   // channel's status carries its run's start and end cycles), so both cyclic readers are
   // observers: no writer waits for the launcher or repeats samples for it.
@@ -163,6 +181,9 @@ LaunchResult Launcher::run(
     child.start(env);
     spdlog::debug("started {} (pid {})", child.name(), child.pid());
   }
+  if (follower) {
+    node.announce(PHASE_RUNNING);  // the coordinator watches this host by it
+  }
 
   std::uint64_t last_cycle = 0;
   auto progress = [&] {
@@ -217,6 +238,17 @@ LaunchResult Launcher::run(
     if (follower || options_.host.empty()) {
       return {};
     }
+    // A host whose launcher left (its DDS lease ran out: the host is down or cut off).
+    std::string gone;
+    wake.update([&] {
+      if (!seen.launchers_gone.empty()) {
+        gone = seen.launchers_gone.front().substr(std::string("launch-").size()) +
+               ": its launcher is gone (the host is down or cut off)";
+      }
+    });
+    if (!gone.empty()) {
+      return gone;
+    }
     std::lock_guard<std::mutex> lock(seen.mutex);
     for (const auto& a : seen.alarms) {
       if (a.number() == 3001 && a.src() != "launch") {
@@ -269,6 +301,21 @@ LaunchResult Launcher::run(
     if (std::chrono::steady_clock::now() > start_deadline || process::g_stop_signal != 0) {
       failure = process::g_stop_signal != 0 ? "interrupted during start-up"
                                             : "start-up timed out (not ready: " + not_ready + ")";
+      // Across hosts, the hosts whose launcher never announced itself come first.
+      std::string silent;
+      for (std::size_t h = 1; !follower && !options_.host.empty() && h < machine_.hosts.size();
+           ++h) {
+        const std::string name = "launch-" + machine_.hosts[h].name;
+        wake.update([&] {
+          if (seen.phases.find(name) == seen.phases.end()) {
+            silent += (silent.empty() ? "" : ", ") + machine_.hosts[h].name;
+          }
+        });
+      }
+      if (!silent.empty()) {
+        failure = "start-up timed out: no launcher answers on host " + silent +
+                  " (not ready: " + not_ready + ")";
+      }
       break;
     }
     std::this_thread::sleep_for(5ms);
@@ -434,6 +481,18 @@ LaunchResult Launcher::run(
         if (all_done) {
           break;
         }
+      }
+    }
+    if (failure.empty() && alarm_since && !options_.host.empty()) {
+      // Across hosts, a host that went down is often heard first through its peers' alarms
+      // (an owner or partner lost); its launcher's lease runs out within 3 s. Wait that long
+      // for it, so that a lost host ends the run in an E-stop, not a stop.
+      const auto lease_end = std::chrono::steady_clock::now() + 4s;
+      while (failure.empty() && std::chrono::steady_clock::now() < lease_end) {
+        if (const std::string lost = host_failure(); !lost.empty()) {
+          failure = "host " + lost;
+        }
+        std::this_thread::sleep_for(20ms);
       }
     }
     if (!failure.empty()) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -138,7 +139,10 @@ TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
       << slurp(cell.log("ncu1") + ".err");
   std::this_thread::sleep_for(2s);
   const RunResult kill =
-      run(cell.hosts().on("ncu3", {"/usr/bin/pkill", "-KILL", "-f", "mcnc-axisnode .*--axis X3"}),
+      // Only on ncu3 (its mount namespace): pkill sees every process of the machine.
+      run(cell.hosts().on("ncu3", {"/bin/sh", "-c",
+                                   "exec /usr/bin/pkill -KILL --nslist mnt --ns $$ -f "
+                                   "'mcnc-axisnode .*--axis X3'"}),
           -1, 30s);
   ASSERT_EQ(kill.exit_code, 0) << "X3's node was running on ncu3";
   EXPECT_EQ(ncu1.wait(120s), 1) << "the coordinator E-stopped the run";
@@ -147,4 +151,42 @@ TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
   EXPECT_EQ(ncu3.wait(120s), 1) << "ncu3 lost a process";
   EXPECT_GE(ncu2.wait(120s), 0) << "ncu2's launcher ends with the run";
   EXPECT_FALSE(events(read_trace(cell.trace()), "alarm", "launch").empty());
+}
+
+// A host that goes down during the run (its launcher killed, and its processes with it):
+// the coordinator notices its launcher gone when its DDS lease runs out, and E-stops the rest.
+TEST(Hosts, AHostThatGoesDownDuringTheRunEStopsTheRest) {
+  const CellOnThreeHosts cell(167);
+  Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
+  Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
+  ASSERT_TRUE(eventually(
+      [&] {
+        return slurp(cell.log("ncu1") + ".err").find("starting the run") != std::string::npos;
+      },
+      60s))
+      << slurp(cell.log("ncu1") + ".err");
+  std::this_thread::sleep_for(2s);
+  ncu3.kill(SIGKILL);
+  EXPECT_EQ(ncu3.wait(30s), -SIGKILL);
+  EXPECT_EQ(ncu1.wait(120s), 1) << "the coordinator E-stopped the run";
+  const std::string out = slurp(cell.log("ncu1") + ".out") + slurp(cell.log("ncu1") + ".err");
+  EXPECT_NE(out.find("host ncu3: its launcher is gone"), std::string::npos) << out;
+  EXPECT_GE(ncu2.wait(120s), 0) << "ncu2's launcher ends with the run";
+}
+
+// A host whose launcher never answers: the coordinator names it when its start-up time runs
+// out, and the run never starts.
+TEST(Hosts, AHostThatDoesNotAnswerIsNamedAndNothingMoves) {
+  const CellOnThreeHosts cell(168);
+  Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  const RunResult coordinator = run(cell.launcher("ncu1"), cell.domain(), 180s);
+  EXPECT_EQ(coordinator.exit_code, 1) << coordinator.out << coordinator.err;
+  const std::string out = coordinator.out + coordinator.err;
+  EXPECT_NE(out.find("no launcher answers on host ncu3"), std::string::npos) << out;
+  EXPECT_EQ(out.find("starting the run"), std::string::npos) << "the run never started";
+  for (const nlohmann::json& e : read_trace(cell.trace())) {
+    EXPECT_NE(e["ev"], "block_start") << e.dump();
+  }
+  EXPECT_GE(ncu2.wait(60s), 0) << "ncu2's launcher ends with the coordinator's stop";
 }

@@ -98,6 +98,14 @@ class CellOnThreeHosts {
   [[nodiscard]] std::string trace() const { return dir_ + "/trace.jsonl"; }
   [[nodiscard]] std::string log(const std::string& host) const { return dir_ + "/" + host; }
   [[nodiscard]] int domain() const { return domain_; }
+  // The coordinator (ncu1) started the run, and two seconds of it went by.
+  [[nodiscard]] bool run_under_way() const {
+    const bool started = eventually(
+        [&] { return slurp(log("ncu1") + ".err").find("starting the run") != std::string::npos; },
+        60s);
+    std::this_thread::sleep_for(2s);
+    return started;
+  }
   [[nodiscard]] const SimulatedHosts& hosts() const { return hosts_; }
 
   static constexpr const char* kCh1 = "launch/programs/part_transfer_ch1.nc";
@@ -131,13 +139,7 @@ TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
   Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
   Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
   // Once the run is under way, X3 (the loader's axis, on ncu3) dies.
-  ASSERT_TRUE(eventually(
-      [&] {
-        return slurp(cell.log("ncu1") + ".err").find("starting the run") != std::string::npos;
-      },
-      60s))
-      << slurp(cell.log("ncu1") + ".err");
-  std::this_thread::sleep_for(2s);
+  ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
   const RunResult kill =
       // Only on ncu3 (its mount namespace): pkill sees every process of the machine.
       run(cell.hosts().on("ncu3", {"/bin/sh", "-c",
@@ -160,13 +162,7 @@ TEST(Hosts, AHostThatGoesDownDuringTheRunEStopsTheRest) {
   Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
   Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
   Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
-  ASSERT_TRUE(eventually(
-      [&] {
-        return slurp(cell.log("ncu1") + ".err").find("starting the run") != std::string::npos;
-      },
-      60s))
-      << slurp(cell.log("ncu1") + ".err");
-  std::this_thread::sleep_for(2s);
+  ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
   ncu3.kill(SIGKILL);
   EXPECT_EQ(ncu3.wait(30s), -SIGKILL);
   EXPECT_EQ(ncu1.wait(120s), 1) << "the coordinator E-stopped the run";

@@ -267,9 +267,12 @@ LaunchResult Launcher::run(
   bool sent_kill = false;  // children that had not left after the run were killed
 
   // 1. Wait until every DDS process is ready (discovery done, drive answered).
+  // A follower waits 30 s longer than its coordinator: the coordinator, which may have been
+  // started later, is the one to give up and say which host does not answer.
   const auto start_deadline =
       std::chrono::steady_clock::now() +
-      std::chrono::milliseconds(static_cast<long>(options_.start_timeout_s * 1000));
+      std::chrono::milliseconds(static_cast<long>(options_.start_timeout_s * 1000)) +
+      (follower ? 30s : 0s);
   for (;;) {
     if (ChildProcess* dead = find_exited()) {
       failure = dead->name() + " " + dead->exit_description() + " during start-up";

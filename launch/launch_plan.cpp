@@ -2,6 +2,10 @@
 
 namespace mcnc::launch {
 
+std::string trace_part(const std::string& parts_dir, const std::string& name) {
+  return parts_dir + "/" + name + ".jsonl";
+}
+
 LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions& options,
                        const std::string& parts_dir, const std::string& host) {
   LaunchPlan plan;
@@ -23,7 +27,7 @@ LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions
     }
     return args;
   };
-  auto part = [&](const std::string& name) { return parts_dir + "/" + name + ".jsonl"; };
+  auto part = [&](const std::string& name) { return trace_part(parts_dir, name); };
   std::vector<std::string> channel_parts;
   std::vector<std::string> other_parts;
 

@@ -28,6 +28,9 @@ struct LaunchPlan {
   std::vector<std::string> trace_parts;
 };
 
+// The trace part of process `name` in `parts_dir`.
+std::string trace_part(const std::string& parts_dir, const std::string& name);
+
 // `parts_dir`: where the processes write their trace parts ("": no trace). `host`: the host
 // whose processes to start ("": every process, a machine of one host).
 LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions& options,

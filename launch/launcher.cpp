@@ -84,7 +84,7 @@ LaunchResult Launcher::run(
     if (parts_dir.empty()) {
       return std::string();
     }
-    part_paths.push_back(parts_dir + "/" + name + ".jsonl");
+    part_paths.push_back(trace_part(parts_dir, name));
     return part_paths.back();
   };
 

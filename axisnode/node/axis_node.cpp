@@ -64,11 +64,11 @@ void AxisNode::on_setpoint_writer_gone(const WriterId& writer) noexcept {
 }
 
 void AxisNode::on_event(const AxisNodeEvent& e) noexcept {
-  const int k = candidate_of(e.channel);
-  const bool from_sync_channel = coupled_spindle() && e.channel == roles_.sync_channel;
-  if (k < 0 && !from_sync_channel) {
+  if (!hears_from(e.channel)) {
     return;
   }
+  const int k = candidate_of(e.channel);
+  const bool from_sync_channel = coupled_spindle() && e.channel == roles_.sync_channel;
   if (k >= 0 && watches_events_) {
     from_[static_cast<std::size_t>(k)].on_event(e.seq, gate_);
   }

@@ -126,6 +126,9 @@ int main(int argc, char** argv) {
         lost_now = core.owner_lost();
       });
       outputs.trace_decisions(cycle, core);
+      if (!lockstep && !loop.degraded()) {
+        outputs.trace_tick(cycle, loop.due_ns(), loop.woke_ns());
+      }
       if (lost_now && !owner_loss_checked) {
         owner_loss_checked = true;
         if (node.stop_arrives_within(300ms)) {  // the owner left because the run ends

@@ -22,6 +22,9 @@ MCNC_CYCLONE_DESCRIPTOR(OperatorCommand)
 MCNC_CYCLONE_DESCRIPTOR(CoordinationEvent)
 MCNC_CYCLONE_DESCRIPTOR(PlcStatus)
 MCNC_CYCLONE_DESCRIPTOR(AuxAck)
+MCNC_CYCLONE_DESCRIPTOR(ClockProbe)
+MCNC_CYCLONE_DESCRIPTOR(ClockEcho)
+MCNC_CYCLONE_DESCRIPTOR(HostClock)
 #undef MCNC_CYCLONE_DESCRIPTOR
 }
 
@@ -96,6 +99,9 @@ MCNC_TOPIC(OperatorCommand, event, false)
 MCNC_TOPIC(CoordinationEvent, event, false)
 MCNC_TOPIC(PlcStatus, cyclic, false)  // one writer, read by every channel: nothing to route
 MCNC_TOPIC(AuxAck, event, false)
+MCNC_TOPIC(ClockProbe, state, false)
+MCNC_TOPIC(ClockEcho, state, false)
+MCNC_TOPIC(HostClock, state, false)
 
 #undef MCNC_TOPIC
 

@@ -13,6 +13,7 @@
 #include "launch/child_end.hpp"
 #include "launch/child_process.hpp"
 #include "launch/launch_plan.hpp"
+#include "launch/machine_clock.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -45,6 +46,9 @@ struct Observed {
   // Across hosts: the other hosts' launchers by their writer, and those whose writer left.
   std::map<dds::WriterId, std::string> launchers;
   std::vector<std::string> launchers_gone;
+  // A follower's coordinator (the writer of "launch"), and whether its lease ran out.
+  std::optional<dds::WriterId> coordinator;
+  bool coordinator_gone = false;
   std::map<std::uint32_t, ::mcnc::ChannelStatus> status;
   std::map<std::uint32_t, AxisFeedback> feedback;
   std::vector<Alarm> alarms;
@@ -67,8 +71,10 @@ LaunchResult Launcher::run(
   const bool follower = !options_.host.empty() && !machine_.hosts.empty() &&
                         options_.host != machine_.hosts.front().name;
   // Children end with the launcher, even when it is killed (see process::die_with_parent()).
-  const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain),
-                                     "MCNC_DIE_WITH_PARENT=1"};
+  std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain), "MCNC_DIE_WITH_PARENT=1"};
+  if (!options_.host.empty()) {
+    env.push_back("MCNC_HOST=" + options_.host);  // its processes keep machine time
+  }
 
   // Trace parts: one per process, merged at the end.
   std::string parts_dir;
@@ -104,6 +110,8 @@ LaunchResult Launcher::run(
           seen.phases[s.name()] = s.phase();
           if (s.name().rfind("launch-", 0) == 0) {
             seen.launchers[writer] = s.name();
+          } else if (s.name() == "launch") {
+            seen.coordinator = writer;
           }
         });
       },
@@ -113,6 +121,7 @@ LaunchResult Launcher::run(
             if (const auto it = seen.launchers.find(writer); it != seen.launchers.end()) {
               seen.launchers_gone.push_back(it->second);
             }
+            seen.coordinator_gone = seen.coordinator_gone || seen.coordinator == writer;
           });
         }
       });
@@ -140,6 +149,19 @@ LaunchResult Launcher::run(
     std::lock_guard<std::mutex> lock(seen.mutex);
     seen.alarms.push_back(a);
   });
+  // The machine clock across hosts: the coordinator's CLOCK_MONOTONIC, which every other host
+  // estimates its offset against; the run starts once every host has announced its offset.
+  std::optional<MachineClockReference> clock_reference;
+  std::optional<HostClockEstimator> clock_estimator;
+  std::optional<HostClocks> host_clocks;
+  if (!options_.host.empty()) {
+    if (follower) {
+      clock_estimator.emplace(node.participant(), options_.host);
+    } else {
+      host_clocks.emplace(node.participant());
+      clock_reference.emplace(node.participant(), options_.host);
+    }
+  }
   dds::Writer<RunControl> control_writer(node.participant());
   dds::Writer<OperatorCommand> operator_writer(node.participant());
   std::uint64_t script_end = 0;    // the last scripted command's cycle
@@ -151,15 +173,20 @@ LaunchResult Launcher::run(
     }
   }
   std::uint64_t generation = 0;
+  // A follower whose coordinator is gone E-stops and stops its own host's processes.
+  bool host_alone = false;
   auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
-    if (follower) {
+    if (follower && !host_alone) {
       return;  // the coordinator runs the machine
     }
     RunControl rc;
+    generation = std::max(generation, node.run_control().generation);
     rc.generation(++generation);
     rc.command(command);
     rc.clock(options_.clock);
-    rc.start_ns(start_ns);
+    // This launcher keeps no host clock offset: the start it read is machine time, as it was
+    // sent, and stays the start of the run it ends.
+    rc.start_ns(follower ? node.run_control().start_ns : start_ns);
     rc.pace(options_.pace);
     rc.reason(reason);
     control_writer.write(rc);
@@ -181,8 +208,9 @@ LaunchResult Launcher::run(
     child.start(env);
     spdlog::debug("started {} (pid {})", child.name(), child.pid());
   }
-  if (follower) {
-    node.announce(PHASE_RUNNING);  // the coordinator watches this host by it
+  if (!options_.host.empty()) {
+    // The coordinator watches the other hosts by it, and they watch the coordinator.
+    node.announce(PHASE_RUNNING);
   }
 
   std::uint64_t last_cycle = 0;
@@ -261,6 +289,31 @@ LaunchResult Launcher::run(
     const RunCommand cmd = node.run_control().command;
     return follower && (cmd == RUN_STOP || cmd == RUN_ESTOP);
   };
+  // A follower's coordinator whose DDS lease ran out: its host is down or cut off from this one.
+  const auto coordinator_lost = [&]() -> std::string {
+    bool gone = false;
+    wake.update([&] { gone = follower && seen.coordinator_gone; });
+    return gone ? "the coordinator on host " + machine_.hosts.front().name +
+                      " is gone (its launcher's lease ran out: the host is down or cut off)"
+                : std::string();
+  };
+  // After an E-stop: until every drive this launcher sees is at rest, at most 5 s.
+  const auto wait_drives_at_rest = [&] {
+    const auto deadline = std::chrono::steady_clock::now() + 5s;
+    while (std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(20ms);
+      find_exited();
+      bool rest = true;
+      std::lock_guard<std::mutex> lock(seen.mutex);
+      for (const auto& axis : machine_.axes) {
+        auto it = seen.feedback.find(static_cast<std::uint32_t>(axis.id));
+        rest = rest && (it == seen.feedback.end() || drive_at_rest(it->second));
+      }
+      if (rest) {
+        break;
+      }
+    }
+  };
 
   std::string failure;
   bool killed_child = false;
@@ -289,6 +342,10 @@ LaunchResult Launcher::run(
     if (coordinator_ended()) {
       break;  // the coordinator gave up the start: this host stops too
     }
+    if (const std::string lost = coordinator_lost(); !lost.empty()) {
+      failure = lost + " during start-up";
+      break;
+    }
     std::string not_ready;  // the processes still starting, for the operator
     wake.update([&] {
       for (const auto& name : dds_processes) {
@@ -298,6 +355,11 @@ LaunchResult Launcher::run(
         }
       }
     });
+    for (std::size_t h = 0; host_clocks && h < machine_.hosts.size(); ++h) {
+      if (!host_clocks->of(machine_.hosts[h].name)) {
+        not_ready += (not_ready.empty() ? "" : ", ") + machine_.hosts[h].name + "'s clock";
+      }
+    }
     if (not_ready.empty()) {
       break;
     }
@@ -341,6 +403,22 @@ LaunchResult Launcher::run(
           (failed_at && std::chrono::steady_clock::now() - *failed_at > 30s)) {
         break;
       }
+      if (const std::string lost = coordinator_lost(); !lost.empty()) {
+        // Nobody else will stop this host's processes: E-stop them here (drives quick stop,
+        // channels reset), and stop them once the drives are at rest.
+        if (failure.empty()) {
+          failure = lost;
+        } else {
+          spdlog::error("host {}: {}", options_.host, lost);
+        }
+        spdlog::error("host {}: E-stop: {}", options_.host, failure);
+        node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
+        host_alone = true;
+        estopped = true;
+        send_control(RUN_ESTOP, 0, failure);
+        wait_drives_at_rest();
+        break;
+      }
       std::this_thread::sleep_for(20ms);
       (void)progress();
       if (ChildProcess* dead = find_exited(); dead != nullptr && failure.empty()) {
@@ -351,6 +429,15 @@ LaunchResult Launcher::run(
   } else if (failure.empty()) {
     spdlog::info("all {} processes ready; starting the run ({} clock)", dds_processes.size(),
                  options_.clock == LOCKSTEP_CLOCK ? "lockstep" : "realtime");
+    // Each host's clock as the run starts with it (docs/trace.md `clock`).
+    for (std::size_t h = 0; host_clocks && h < machine_.hosts.size(); ++h) {
+      const HostClock hc = *host_clocks->of(machine_.hosts[h].name);
+      spdlog::info("host {}: clock offset {} us (+-{} us, {} exchanges)", hc.host(),
+                   hc.offset_ns() / 1000, hc.error_ns() / 1000, hc.samples());
+      tracer.emit(0, "clock", "\"host\":\"%s\",\"offset_ns\":%lld,\"error_ns\":%lld,\"samples\":%u",
+                  hc.host().c_str(), static_cast<long long>(hc.offset_ns()),
+                  static_cast<long long>(hc.error_ns()), hc.samples());
+    }
     // Realtime: cycle 0 a little in the future so every process starts on the same tick.
     send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
     std::uint64_t operator_seq = 0;
@@ -506,20 +593,7 @@ LaunchResult Launcher::run(
                   failure.c_str());
       node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
       send_control(RUN_ESTOP, 0, failure);
-      const auto deadline = std::chrono::steady_clock::now() + 5s;
-      while (std::chrono::steady_clock::now() < deadline) {
-        std::this_thread::sleep_for(20ms);
-        find_exited();
-        bool rest = true;
-        std::lock_guard<std::mutex> lock(seen.mutex);
-        for (const auto& axis : machine_.axes) {
-          auto it = seen.feedback.find(static_cast<std::uint32_t>(axis.id));
-          rest = rest && (it == seen.feedback.end() || drive_at_rest(it->second));
-        }
-        if (rest) {
-          break;
-        }
-      }
+      wait_drives_at_rest();
     }
   }
 

@@ -27,6 +27,9 @@ class AxisOutputs {
   // What take_inputs() decided: couplings, the owner, whom the node follows.
   void trace_decisions(std::uint64_t cycle, const AxisNode& core) noexcept;
   void trace_reset(std::uint64_t cycle) noexcept;
+  // Realtime, every K cycles: when the cycle was due on this host's clock, the host's offset
+  // against machine time, and how late the wake-up came (the hosts' alignment, from the trace).
+  void trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns) noexcept;
   // The cycle's feedback (with the drive's own values where TPDO2 carries them), then its mode
   // and state changes, a new alarm (raised to the machine too) and every K cycles its position.
   void publish(std::uint64_t cycle, const AxisNode& core, const TpdoSample& tpdo,

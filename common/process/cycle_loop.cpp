@@ -15,10 +15,22 @@ bool CycleLoop::start(const std::function<bool()>& discovered, const std::string
   node_.wakeup().wait_for(
       [&] { return node_.run_control().command != RUN_NONE || g_stop_signal != 0; },
       std::chrono::hours(24));
-  const RunControlView rc = node_.run_control();
-  if (rc.command != RUN_START || g_stop_signal != 0) {
+  if (node_.run_control().command != RUN_START || g_stop_signal != 0) {
     return false;
   }
+  // Across hosts the start is in machine time: this host's offset must be known first. The
+  // coordinator starts a run only once every host has announced its clock, so this wait is
+  // short unless the host's launcher is gone.
+  if (!node_.wakeup().wait_for([&] { return node_.machine_clock_known() || g_stop_signal != 0; },
+                               kMachineClockWait) ||
+      g_stop_signal != 0) {
+    const std::string why = "no machine clock from host " + node_.host() + "'s launcher within " +
+                            std::to_string(kMachineClockWait.count()) + " s";
+    spdlog::error("{}", why);
+    node_.announce(PHASE_FAILED, 0, why);
+    return false;
+  }
+  const RunControlView rc = node_.run_control();
   lockstep_ = rc.clock == LOCKSTEP_CLOCK;
   pace_ = rc.pace;
   origin_ns_ = rc.start_ns;

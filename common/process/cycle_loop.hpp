@@ -18,6 +18,9 @@ namespace mcnc::process {
 
 class CycleLoop {
  public:
+  // How long a process on a host of several waits, once the run starts, for its host's clock.
+  static constexpr std::chrono::seconds kMachineClockWait{5};
+
   CycleLoop(ProcessNode& node, int cycle_us)
       : node_(node), period_ns_(std::int64_t{cycle_us} * 1000) {}
 
@@ -51,8 +54,13 @@ class CycleLoop {
       degraded_ = true;
       origin_ns_ = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * period_ns_;
     }
+    if (!lockstep_ && !degraded_) {
+      origin_ns_ = rc.start_ns;  // follows the host's clock offset as its launcher refines it
+    }
     if (!lockstep_ || degraded_ || pace_) {
       cycle = clock::wait_for_cycle(origin_ns_, period_ns_, cycle, !lockstep_ || degraded_);
+      woke_ns_ = clock::monotonic_ns();
+      due_ns_ = origin_ns_ + static_cast<std::int64_t>(cycle) * period_ns_;
     }
     return true;
   }
@@ -62,6 +70,10 @@ class CycleLoop {
   [[nodiscard]] bool degraded() const noexcept { return degraded_; }
   // The machine is E-stopped (as of the last next()).
   [[nodiscard]] bool emergency_stop() const noexcept { return estop_; }
+  // Realtime: when the current cycle was due and when its wake-up came, on this host's
+  // CLOCK_MONOTONIC.
+  [[nodiscard]] std::int64_t due_ns() const noexcept { return due_ns_; }
+  [[nodiscard]] std::int64_t woke_ns() const noexcept { return woke_ns_; }
 
  private:
   ProcessNode& node_;
@@ -71,6 +83,8 @@ class CycleLoop {
   bool pace_ = false;
   bool degraded_ = false;
   bool estop_ = false;
+  std::int64_t due_ns_ = 0;
+  std::int64_t woke_ns_ = 0;
 };
 
 }  // namespace mcnc::process

@@ -39,6 +39,11 @@ dds::Middleware resolve_middleware(const config::MachineConfig& machine,
   return dds::parse_middleware(named).value_or(dds::kDefaultMiddleware);
 }
 
+std::string resolve_host() {
+  const char* env = std::getenv("MCNC_HOST");
+  return env == nullptr ? std::string() : std::string(env);
+}
+
 ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
                          std::optional<dds::Middleware> middleware, dds::LocalTransport local)
     : name_(std::move(name)),
@@ -55,28 +60,45 @@ ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
                               rc_generation_.store(rc.generation());
                             });
                           }),
-      operator_reader_(participant_, [this](const OperatorCommand& c, const dds::WriterId&) {
-        OperatorRequest r;
-        r.seq = c.seq();
-        r.generation = c.generation();
-        r.cycle = c.cycle();
-        r.channel = c.channel();
-        r.value = c.value();
-        // The wire's actions and the inbox's kinds are in the same order.
-        static_assert(static_cast<int>(OperatorActionKind::alarm_ack) == OP_ALARM_ACK);
-        if (c.action() <= OP_NONE || c.action() > OP_ALARM_ACK ||
-            c.text().size() >= r.text.size()) {
-          operator_dropped_.fetch_add(1);  // an action this build does not know, a text too long
-          return;
-        }
-        r.action = static_cast<OperatorActionKind>(c.action());
-        std::copy(c.text().begin(), c.text().end(), r.text.begin());
-        wakeup_.update([&] {
-          if (!operator_inbox_.put(r)) {
-            operator_dropped_.fetch_add(1);
-          }
-        });
-      }) {
+      operator_reader_(
+          participant_,
+          [this](const OperatorCommand& c, const dds::WriterId&) {
+            OperatorRequest r;
+            r.seq = c.seq();
+            r.generation = c.generation();
+            r.cycle = c.cycle();
+            r.channel = c.channel();
+            r.value = c.value();
+            // The wire's actions and the inbox's kinds are in the same order.
+            static_assert(static_cast<int>(OperatorActionKind::alarm_ack) == OP_ALARM_ACK);
+            if (c.action() <= OP_NONE || c.action() > OP_ALARM_ACK ||
+                c.text().size() >= r.text.size()) {
+              operator_dropped_.fetch_add(
+                  1);  // an action this build does not know, a text too long
+              return;
+            }
+            r.action = static_cast<OperatorActionKind>(c.action());
+            std::copy(c.text().begin(), c.text().end(), r.text.begin());
+            wakeup_.update([&] {
+              if (!operator_inbox_.put(r)) {
+                operator_dropped_.fetch_add(1);
+              }
+            });
+          }),
+      host_(resolve_host()) {
+  if (host_.empty()) {
+    clock_known_.store(true);
+  } else {
+    host_clock_reader_.emplace(participant_, [this](const HostClock& hc, const dds::WriterId&) {
+      if (hc.host() != host_) {
+        return;
+      }
+      clock_offset_ns_.store(hc.offset_ns());
+      if (!clock_known_.load()) {
+        wakeup_.update([&] { clock_known_.store(true); });
+      }
+    });
+  }
   alarm_thread_ = std::thread([this] {
     name_this_thread("alarms");
     publish_alarms();
@@ -107,7 +129,7 @@ RunControlView ProcessNode::run_control() const noexcept {
   view.generation = rc_generation_.load();
   view.command = static_cast<RunCommand>(rc_command_.load());
   view.clock = static_cast<ClockKind>(rc_clock_.load());
-  view.start_ns = rc_start_ns_.load();
+  view.start_ns = rc_start_ns_.load() + clock_offset_ns_.load();
   view.pace = rc_pace_.load();
   return view;
 }

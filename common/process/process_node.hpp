@@ -35,9 +35,15 @@ struct RunControlView {
   std::uint64_t generation = 0;
   RunCommand command = RUN_NONE;
   ClockKind clock = LOCKSTEP_CLOCK;
+  // Cycle 0 on this process's CLOCK_MONOTONIC: the run's start in machine time plus its host's
+  // clock offset (0 on one host).
   std::int64_t start_ns = 0;
   bool pace = false;
 };
+
+// The host a launcher started this process on (MCNC_HOST), empty when the machine runs on one
+// host. Such a process keeps machine time by its host's HostClock (launch/machine_clock.hpp).
+std::string resolve_host();
 
 class ProcessNode {
  public:
@@ -59,6 +65,12 @@ class ProcessNode {
   // its exit code says whether this process had raised alarms.
   void announce_stopped();
   [[nodiscard]] RunControlView run_control() const noexcept;
+  // The machine clock: true once this process's host has announced its offset against machine
+  // time, or at once when the machine runs on one host (resolve_host() empty).
+  [[nodiscard]] bool machine_clock_known() const noexcept { return clock_known_.load(); }
+  // This host's CLOCK_MONOTONIC minus machine time, as last announced.
+  [[nodiscard]] std::int64_t clock_offset_ns() const noexcept { return clock_offset_ns_.load(); }
+  [[nodiscard]] const std::string& host() const noexcept { return host_; }
   // A peer that leaves may be leaving because the run ends: its STOP and ours were sent
   // together but may arrive in either order. True when STOP (or a stop signal) arrives within
   // `grace`; the caller then ends instead of raising an alarm.
@@ -94,6 +106,10 @@ class ProcessNode {
   OperatorInbox operator_inbox_;  // under wakeup_'s lock
   std::atomic<std::uint64_t> operator_dropped_{0};
   dds::Reader<OperatorCommand> operator_reader_;
+  std::string host_;
+  std::atomic<bool> clock_known_{false};
+  std::atomic<std::int64_t> clock_offset_ns_{0};
+  std::optional<dds::Reader<HostClock>> host_clock_reader_;
 
   struct AlarmRecord {
     std::uint32_t number = 0;

@@ -11,9 +11,12 @@ as it is made, so that `down` removes it all, also after a failure half-way.
   hostnet.py up   --prefix P --hosts a,b[,...] [--offset-ms a=3,b=-7] [--subnet 10.77.0]
   hostnet.py exec --prefix P HOST -- CMD [ARG...]
   hostnet.py addr --prefix P HOST          (the host's address on the bridge)
+  hostnet.py cut  --prefix P HOST          (HOST and the others no longer hear each other)
+  hostnet.py loss --prefix P PERCENT       (every host drops that share of what others send it)
+  hostnet.py heal --prefix P               (no cut, no loss)
   hostnet.py down --prefix P
 
-Needs root, iproute2 and util-linux (nsenter). Only addresses of the namespaces made here
+Needs root, iproute2, iptables and util-linux (nsenter). Only addresses of the namespaces made here
 carry traffic: the switch has no link to the machine's own network.
 """
 import argparse
@@ -157,6 +160,43 @@ def addr(args):
     print(load_state(args.prefix)["addresses"][args.host])
 
 
+def filter_input(prefix, host, rule):
+    """Appends an iptables rule to the INPUT chain of `host`'s network namespace."""
+    run("ip", "netns", "exec", prefix + "-" + host, "iptables", "-w", "-A", "INPUT", *rule)
+
+
+def cut(args):
+    # By source address, on input: a host's own multicast comes back to it on its interface
+    # (the simulated CAN buses), and must go on arriving; what a host sends out still reaches
+    # the switch, where nobody takes it.
+    addresses = load_state(args.prefix)["addresses"]
+    if args.host not in addresses:
+        raise SystemExit("hostnet: no host %s in %s" % (args.host, args.prefix))
+    for host, address in addresses.items():
+        if host == args.host:
+            for other, other_address in addresses.items():
+                if other != host:
+                    filter_input(args.prefix, host, ["-s", other_address, "-j", "DROP"])
+        else:
+            filter_input(args.prefix, host, ["-s", addresses[args.host], "-j", "DROP"])
+
+
+def loss(args):
+    addresses = load_state(args.prefix)["addresses"]
+    probability = "%.6f" % (float(args.percent) / 100)
+    for host in addresses:
+        for other, other_address in addresses.items():
+            if other != host:
+                filter_input(args.prefix, host, ["-s", other_address, "-m", "statistic",
+                                                 "--mode", "random", "--probability",
+                                                 probability, "-j", "DROP"])
+
+
+def heal(args):
+    for host in load_state(args.prefix)["addresses"]:
+        run("ip", "netns", "exec", args.prefix + "-" + host, "iptables", "-w", "-F", "INPUT")
+
+
 def down(args):
     state = load_state(args.prefix)
     failed = False
@@ -205,12 +245,21 @@ def main():
     p_addr = sub.add_parser("addr")
     p_addr.add_argument("--prefix", required=True)
     p_addr.add_argument("host")
+    p_cut = sub.add_parser("cut")
+    p_cut.add_argument("--prefix", required=True)
+    p_cut.add_argument("host")
+    p_loss = sub.add_parser("loss")
+    p_loss.add_argument("--prefix", required=True)
+    p_loss.add_argument("percent")
+    p_heal = sub.add_parser("heal")
+    p_heal.add_argument("--prefix", required=True)
     p_down = sub.add_parser("down")
     p_down.add_argument("--prefix", required=True)
     args = parser.parse_args()
     if len(args.prefix) > 8 or not args.prefix.replace("-", "").isalnum():
         raise SystemExit("hostnet: a prefix has at most 8 letters and digits")
-    {"up": up, "exec": exec_, "addr": addr, "down": down}[args.verb](args)
+    {"up": up, "exec": exec_, "addr": addr, "cut": cut, "loss": loss, "heal": heal,
+     "down": down}[args.verb](args)
 
 
 if __name__ == "__main__":

@@ -349,8 +349,11 @@ LaunchResult Launcher::run(
     std::string not_ready;  // the processes still starting, for the operator
     wake.update([&] {
       for (const auto& name : dds_processes) {
+        // Running counts too: a follower may hear a process's READY only together with the
+        // RUNNING that replaced it (a lost sample is repaired with the next), once the
+        // coordinator has started the run.
         auto it = seen.phases.find(name);
-        if (it == seen.phases.end() || it->second != PHASE_READY) {
+        if (it == seen.phases.end() || (it->second != PHASE_READY && it->second != PHASE_RUNNING)) {
           not_ready += (not_ready.empty() ? "" : ", ") + name;
         }
       }

@@ -9,11 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -355,4 +358,80 @@ TEST(Hosts, APartitionThatCutsOffTheCoordinatorStopsEveryHost) {
   ASSERT_EQ(hostnet(cell, {"cut", "ncu1"}).exit_code, 0);
   expect_partition_stops_both_sides(cell, "ncu1", ncu1, ncu2, ncu3);
   expect_axes_at_rest_at_the_end(read_trace(cell.trace()), {"X1", "Z1", "A1", "S1"});
+}
+
+// Loss on every link between the hosts (10 % of the packets each host receives from the others,
+// iptables' statistic match), from before the start until the run has gone on for 8 s: in
+// lockstep the machine runs on, only slower (a lost sample waits for its repair, about a
+// heartbeat), and its trace is the one-host trace, event for event.
+TEST(Hosts, TenPercentLossInLockstepOnlySlowsTheMachine) {
+  const auto one_host =
+      run_programs("cell_3ncu.yaml", 172, CellOnThreeHosts::kCh1, CellOnThreeHosts::kCh2);
+  const CellOnThreeHosts cell(173);
+  ASSERT_EQ(hostnet(cell, {"loss", "10"}).exit_code, 0);
+  Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
+  Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
+  ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
+  std::this_thread::sleep_for(6s);
+  ASSERT_EQ(hostnet(cell, {"heal"}).exit_code, 0);
+  EXPECT_EQ(ncu1.wait(240s), 0) << slurp(cell.log("ncu1") + ".out")
+                                << slurp(cell.log("ncu1") + ".err");
+  EXPECT_EQ(ncu2.wait(60s), 0) << slurp(cell.log("ncu2") + ".err");
+  EXPECT_EQ(ncu3.wait(60s), 0) << slurp(cell.log("ncu3") + ".err");
+  expect_same_trace(one_host, trace_until_end(read_trace(cell.trace())));
+}
+
+// 10 % loss in realtime: setpoints that do not come within `deadline_cycles` quick-stop their
+// axes (alarm 2001), or the run goes on; either way no axis ever moves where the program does
+// not take it. Every axis node's commanded positions stay inside what the same programs
+// command in lockstep on one host, and no step between two of them is faster than the axis's
+// rapid rate. Whether the run ends or stops depends on the host's load, and is not asserted.
+TEST(Hosts, UnderTenPercentLossInRealtimeNoAxisMovesWhereTheProgramDoesNotTakeIt) {
+  const auto reference =
+      run_programs("cell_3ncu.yaml", 174, CellOnThreeHosts::kCh1, CellOnThreeHosts::kCh2);
+  const CellOnThreeHosts cell(175);
+  ASSERT_EQ(hostnet(cell, {"loss", "10"}).exit_code, 0);
+  const std::vector<std::string> realtime{"--clock", "realtime"};
+  Background ncu2(cell.launcher("ncu2", realtime), cell.domain(), cell.log("ncu2"));
+  Background ncu3(cell.launcher("ncu3", realtime), cell.domain(), cell.log("ncu3"));
+  const RunResult coordinator = run(cell.launcher("ncu1", realtime), cell.domain(), 300s);
+  ncu2.wait(60s);
+  ncu3.wait(60s);
+  ASSERT_NE(coordinator.err.find("starting the run"), std::string::npos)
+      << coordinator.out << coordinator.err;
+  const std::vector<nlohmann::json> trace = read_trace(cell.trace());
+
+  // Rapid rates (launch/machines/cell_3ncu.yaml), in units per cycle of 2 ms; a pos line every
+  // 10 cycles. Spindles turn by their speed, not along the path: not checked.
+  const std::map<std::string, double> rapid_per_min{{"X1", 8000}, {"Z1", 8000}, {"A1", 7200},
+                                                    {"X2", 8000}, {"Z2", 8000}, {"X3", 12000},
+                                                    {"Z3", 12000}};
+  std::size_t checked = 0;
+  for (const auto& [axis, rapid] : rapid_per_min) {
+    double low = 1e300;
+    double high = -1e300;
+    for (const nlohmann::json& e : events(reference, "pos", axis)) {
+      low = std::min(low, e["cmd"].get<double>());
+      high = std::max(high, e["cmd"].get<double>());
+    }
+    // X1 and X2 are diameter axes: their positions are diameters, twice the radial move.
+    const double scale = axis == "X1" || axis == "X2" ? 2.0 : 1.0;
+    const double max_step = scale * rapid / 60.0 * 0.002 * 10 * 1.05 + 1e-6;
+    std::optional<nlohmann::json> previous;
+    for (const nlohmann::json& e : events(trace, "pos", axis)) {
+      const double cmd = e["cmd"].get<double>();
+      EXPECT_GE(cmd, low - 1e-6) << e.dump();
+      EXPECT_LE(cmd, high + 1e-6) << e.dump();
+      if (previous) {
+        const double cycles = e["cycle"].get<double>() - (*previous)["cycle"].get<double>();
+        EXPECT_LE(std::fabs(cmd - (*previous)["cmd"].get<double>()),
+                  max_step * std::max(1.0, cycles / 10))
+            << axis << " jumped: " << previous->dump() << " then " << e.dump();
+      }
+      previous = e;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100U);
 }

@@ -435,3 +435,42 @@ TEST(Hosts, UnderTenPercentLossInRealtimeNoAxisMovesWhereTheProgramDoesNotTakeIt
   }
   EXPECT_GT(checked, 100U);
 }
+
+// The cell on two hosts: the lower turret and the loader together on ncu2, so that CH3's X3
+// and its link axis Z3 are both there. CT-G1141-01 (S2 on ncu2 follows S1 on ncu1, G114.1
+// across hosts) gives the one-host trace, event for event.
+TEST(Hosts, TheCellOnTwoHostsCouplesTheSpindlesAcrossThemAsOnOneHost) {
+  const std::string g1141 = "tests/integration/programs/g1141/";
+  const auto one_host = run_programs("cell_3ncu.yaml", 176, g1141 + "ch1.nc", g1141 + "ch2.nc");
+  const int domain = 177;
+  const TestMachine machine("cell_3ncu.yaml", domain);
+  const std::string dir = std::string(MCNC_BINARY_DIR) + "/hosts-test-" + std::to_string(domain);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::string text = slurp(machine.path());
+  const std::size_t hosts_at = text.find("\nhosts:");
+  ASSERT_NE(hosts_at, std::string::npos);
+  text = text.substr(0, hosts_at) +
+         "\nhosts:\n"
+         "  - {name: ncu1, runs: [CH1, X1, Z1, A1, S1, can0, plc, hmi]}\n"
+         "  - {name: ncu2, runs: [CH2, X2, Z2, S2, Z3, can1, CH3, X3, can2]}\n";
+  std::ofstream(dir + "/cell_2ncu.yaml") << text;
+  {
+    const SimulatedHosts hosts("mhc" + std::to_string(domain), "ncu1,ncu2", "ncu2=-4",
+                               "10.77." + std::to_string(domain));
+    const auto launcher = [&](const std::string& host) {
+      return hosts.on(
+          host, {bin("mcnc"), "run", dir + "/cell_2ncu.yaml", "--program",
+                 "CH1=" + source(g1141 + "ch1.nc"), "--program", "CH2=" + source(g1141 + "ch2.nc"),
+                 "--trace", dir + "/trace.jsonl", "--timeout", "120", "--host", host});
+    };
+    Background ncu2(launcher("ncu2"), domain, dir + "/ncu2");
+    const RunResult coordinator = run(launcher("ncu1"), domain, 240s);
+    EXPECT_EQ(coordinator.exit_code, 0) << coordinator.out << coordinator.err;
+    EXPECT_EQ(ncu2.wait(60s), 0) << slurp(dir + "/ncu2.err");
+  }
+  const auto two_hosts = trace_until_end(read_trace(dir + "/trace.jsonl"));
+  std::filesystem::remove_all(dir);
+  expect_same_trace(one_host, two_hosts);
+  EXPECT_EQ(count(two_hosts, "couple", "slave", "S2"), 1U) << "S2 on ncu2 follows S1 on ncu1";
+}

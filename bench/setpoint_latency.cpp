@@ -13,6 +13,9 @@
 #include "launch/child_process.hpp"
 #include "launch/self_path.hpp"
 
+#include <fcntl.h>
+#include <sched.h>
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -23,6 +26,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -35,6 +39,16 @@ int main(int argc, char** argv) {
   int cycles = 10000;
   app.add_option("machine", machine_path, "machine file")->required();
   app.add_option("--cycles", cycles, "cycles to measure");
+  // Across hosts (bench/hosts_setpoint_latency.py): the drive simulator and axis nodes start on
+  // another host, and the bus is listened to from inside that host's network namespace, so
+  // that both times stay on this process's clock.
+  std::string nodes_prefix;
+  std::string bus_netns;
+  app.add_option("--nodes-prefix", nodes_prefix,
+                 "a command (words separated by spaces) that the drive simulator's and the axis "
+                 "nodes' command lines are run under, e.g. one that enters another host");
+  app.add_option("--bus-netns", bus_netns,
+                 "the network namespace (a path) whose CAN bus the RPDOs are listened for on");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = config::load_machine_file(machine_path);
@@ -44,14 +58,25 @@ int main(int argc, char** argv) {
   const int domain = process::resolve_domain(machine);
   const std::string bin = launch::executable_dir();
 
+  std::vector<std::string> prefix;
+  {
+    std::istringstream words(nodes_prefix);
+    for (std::string w; words >> w;) {
+      prefix.push_back(w);
+    }
+  }
+  const auto under_prefix = [&](std::vector<std::string> argv) {
+    argv.insert(argv.begin(), prefix.begin(), prefix.end());
+    return argv;
+  };
   std::vector<launch::ChildProcess> children;
   children.emplace_back(
-      "sim", std::vector<std::string>{bin + "/mcnc-drivesim", "--machine", machine_path, "--bus",
-                                      bus.name, "--clock", "realtime", "--log-level", "warn"});
+      "sim", under_prefix({bin + "/mcnc-drivesim", "--machine", machine_path, "--bus", bus.name,
+                           "--clock", "realtime", "--log-level", "warn"}));
   for (const auto& a : machine.axes) {
-    children.emplace_back(a.name, std::vector<std::string>{
-                                      bin + "/mcnc-axisnode", "--machine", machine_path, "--axis",
-                                      a.name, "--clock", "realtime", "--log-level", "warn"});
+    children.emplace_back(
+        a.name, under_prefix({bin + "/mcnc-axisnode", "--machine", machine_path, "--axis", a.name,
+                              "--clock", "realtime", "--log-level", "warn"}));
   }
   const std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain)};
   for (auto& c : children) {
@@ -83,8 +108,19 @@ int main(int argc, char** argv) {
   std::vector<std::int64_t> published(static_cast<std::size_t>(cycles + warmup + 10), 0);
   std::vector<std::int64_t> received(published.size(), 0);
   std::atomic<bool> stop{false};
-  auto can = can::open_can_bus(bus.uri);
+  std::unique_ptr<can::CanBus> can;
+  std::atomic<bool> listening{false};
   std::thread listener([&] {
+    if (!bus_netns.empty()) {
+      const int fd = ::open(bus_netns.c_str(), O_RDONLY | O_CLOEXEC);
+      if (fd < 0 || ::setns(fd, CLONE_NEWNET) != 0) {
+        std::fprintf(stderr, "cannot enter the network namespace %s\n", bus_netns.c_str());
+        std::exit(1);
+      }
+      ::close(fd);
+    }
+    can = can::open_can_bus(bus.uri);
+    listening = true;
     canopen::CanFrame frame;
     while (!stop) {
       if (can->receive(frame, 50ms) != can::BusResult::ok) {
@@ -104,6 +140,9 @@ int main(int argc, char** argv) {
     }
   });
 
+  while (!listening) {
+    std::this_thread::sleep_for(1ms);
+  }
   const auto ready = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     for (const auto& a : machine.axes) {

@@ -20,6 +20,10 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.channel_count = static_cast<int>(machine.channels.size());
   c.plc = machine.plc.present;
   c.program_dir = machine.program_dir;
+  c.polar_linear = channel.polar_linear;
+  c.polar_rotary = channel.polar_rotary;
+  c.polar_tolerance = channel.polar_tolerance;
+  c.cylindrical_parallel = channel.cylindrical_parallel;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);

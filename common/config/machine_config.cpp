@@ -209,10 +209,23 @@ ChannelMotionConfig parse_channel_motion(const YamlValue& value) {
   return motion;
 }
 
+// An axis address of one of `letters` ("XYZ": linear, "ABC": rotary), as the program writes it.
+char read_address(const YamlValue& value, std::string_view letters) {
+  const std::string text = value.string();
+  if (text.size() != 1 || letters.find(text[0]) == std::string_view::npos) {
+    std::string choices;
+    for (const char c : letters) {
+      choices += choices.empty() ? std::string(1, c) : std::string(", ") + c;
+    }
+    value.fail("an axis address of " + choices + ", got '" + text + "'");
+  }
+  return text[0];
+}
+
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
   const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
-                                 "middleware", "dialect"});
+                                 "middleware", "dialect", "polar", "cylindrical_parallel"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -257,6 +270,21 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     if (channel.dialect.empty()) {
       dialect->fail("dialect must be " + dialect_choices() + ", got '" + text + "'");
     }
+  }
+  if (auto polar = map.optional("polar")) {
+    // Which axes they are is checked with the channel's program axes (check_interpolation_axes).
+    const YamlMap p = polar->map({"linear", "rotary", "tolerance"});
+    channel.polar_linear = read_address(p.required("linear"), "XYZ");
+    channel.polar_rotary = read_address(p.required("rotary"), "ABC");
+    if (auto tolerance = p.optional("tolerance")) {
+      channel.polar_tolerance = tolerance->positive_number();
+      if (channel.polar_tolerance < 1e-6 || channel.polar_tolerance > 1.0) {
+        tolerance->fail("tolerance must be 0.000001 to 1 mm");
+      }
+    }
+  }
+  if (auto parallel = map.optional("cylindrical_parallel")) {
+    channel.cylindrical_parallel = read_address(*parallel, "XYZ");
   }
   return channel;
 }
@@ -796,6 +824,32 @@ void parse_hosts(const YamlValue& value, MachineConfig& config, bool has_plc,
   }
 }
 
+// `polar` names a linear and a rotary axis the channel programs (its axes, exchange_axes or its
+// spindle's C axis): G12.1 turns the work on the one while the tool moves on the other.
+void check_polar_axes(const MachineConfig& config, const ChannelConfig& channel,
+                      const YamlValue& value) {
+  if (channel.polar_linear == 0) {
+    return;
+  }
+  const auto check = [&](const char* key, char address, AxisType type, const char* kind) {
+    for (const std::string& name : channel.program_axes()) {
+      const AxisConfig* axis = config.find_axis(name);
+      if (axis->address == address) {
+        if (axis->type != type) {
+          value.child("polar").child(key).fail("axis " + axis->name + " (address " +
+                                               std::string(1, address) + ") is not " + kind);
+        }
+        return;
+      }
+    }
+    value.child("polar").child(key).fail("channel " + channel.name + " programs no axis " +
+                                         std::string(1, address) +
+                                         " (its axes, exchange_axes and its spindle's c_axis)");
+  };
+  check("linear", channel.polar_linear, AxisType::linear, "linear");
+  check("rotary", channel.polar_rotary, AxisType::rotary, "rotary");
+}
+
 MachineConfig parse_document(const YAML::Node& root) {
   const YamlValue top(root, "");
   if (!root.IsMap()) {
@@ -1025,6 +1079,7 @@ MachineConfig parse_document(const YAML::Node& root) {
       channels[i].fail("a channel programs at most " + std::to_string(kMaxProgramAxes) +
                        " axes (its axes, exchange_axes and its spindle's c_axis)");
     }
+    check_polar_axes(config, config.channels[i], channels[i]);
   }
 
   if (auto hosts = doc.optional("hosts")) {

@@ -137,6 +137,15 @@ struct ChannelConfig {
   // `dialect`: the interpreter's dialect by its name (config::kDialectNames), e.g. "fanuc-mill"
   // for a milling channel; the default is the Dafeng lathe.
   std::string dialect = "dafeng";
+  // Polar interpolation G12.1 (params 5530/5531, `polar`): the addresses of the linear axis and
+  // of the rotary axis that becomes its virtual second axis (0: none, G12.1 is an alarm), and
+  // how far the tool tip may leave the programmed contour, mm.
+  char polar_linear = 0;
+  char polar_rotary = 0;
+  double polar_tolerance = 0.001;
+  // Cylindrical interpolation G07.1 (param 0016, `cylindrical_parallel`): the linear axis whose
+  // place the rotary axis takes in the plane.
+  char cylindrical_parallel = 'Y';
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

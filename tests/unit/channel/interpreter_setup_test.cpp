@@ -56,5 +56,31 @@ TEST(InterpreterSetup, DialectIsTheChannels) {
   EXPECT_EQ(interpreter_config_for(m, m.channels[1]).dialect, interp::Dialect::dafeng);
 }
 
+// G12.1 and G07.1 in `mcnc run`: the channel's `polar` and `cylindrical_parallel` are its
+// interpreter's parameters 5530/5531 and 0016.
+TEST(InterpreterSetup, PolarAndCylindricalAxesAreTheChannels) {
+  const config::MachineConfig m = config::parse_machine_yaml(R"(
+machine: {name: m, cycle_us: 4000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+channels:
+  - {name: LATHE, axes: [X1, Z1, C1], polar: {linear: X, rotary: C, tolerance: 0.0005},
+     cylindrical_parallel: Z}
+  - {name: LOADER, axes: [X2]}
+axes:
+  - {name: X1, address: X, diameter: true, bus: b, node_id: 1}
+  - {name: Z1, address: Z, bus: b, node_id: 2}
+  - {name: C1, address: C, type: rotary, bus: b, node_id: 3}
+  - {name: X2, address: X, bus: b, node_id: 4}
+)");
+  const interp::InterpreterConfig lathe = interpreter_config_for(m, m.channels[0]);
+  EXPECT_EQ(lathe.polar_linear, 'X');
+  EXPECT_EQ(lathe.polar_rotary, 'C');
+  EXPECT_DOUBLE_EQ(lathe.polar_tolerance, 0.0005);
+  EXPECT_EQ(lathe.cylindrical_parallel, 'Z');
+  const interp::InterpreterConfig loader = interpreter_config_for(m, m.channels[1]);
+  EXPECT_EQ(loader.polar_linear, 0);
+  EXPECT_EQ(loader.cylindrical_parallel, 'Y');
+}
+
 }  // namespace
 }  // namespace mcnc::channel

@@ -335,6 +335,105 @@ TEST(MachineConfig, DialectOfAChannel) {
   EXPECT_NE(what.find("dafeng, gsk or fanuc-mill"), std::string::npos) << what;
 }
 
+// Polar interpolation's axes (params 5530/5531) and the axis G07.1's rotary axis is parallel to
+// (param 0016), per channel: the linear and the rotary axis of `polar` are axes the channel
+// programs, its own, its exchange axes or its spindle's C axis.
+constexpr const char* kMillTurn = R"(
+machine: {name: m, cycle_us: 2000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+axes:
+  - {name: X1, address: X, diameter: true, bus: b, node_id: 1}
+  - {name: Z1, address: Z, bus: b, node_id: 2}
+  - {name: C1, address: C, type: rotary, exchange: 15, bus: b, node_id: 3}
+  - {name: X2, address: X, bus: b, node_id: 4}
+  - {name: S2, type: spindle, bus: b, node_id: 5, c_axis: {name: C2, address: B}}
+)";
+
+TEST(MachineConfig, PolarAndCylindricalAxesOfAChannel) {
+  const std::string base = kMillTurn;
+  const MachineConfig plain = parse_machine_yaml(
+      base + "channels: [{name: A, axes: [X1, Z1, C1]}, {name: B, axes: [X2], spindles: [S2]}]\n");
+  EXPECT_EQ(plain.channels[0].polar_linear, 0);  // none: G12.1 is an alarm
+  EXPECT_EQ(plain.channels[0].cylindrical_parallel, 'Y');
+  EXPECT_DOUBLE_EQ(plain.channels[0].polar_tolerance, 0.001);
+
+  const MachineConfig set = parse_machine_yaml(
+      base +
+      "channels:\n"
+      "  - {name: A, axes: [X1, Z1, C1], polar: {linear: X, rotary: C, tolerance: 0.002},\n"
+      "     cylindrical_parallel: Z}\n"
+      "  - {name: B, axes: [X2], spindles: [S2], exchange_axes: [C1], polar: {linear: X, "
+      "rotary: C}}\n");
+  EXPECT_EQ(set.channels[0].polar_linear, 'X');
+  EXPECT_EQ(set.channels[0].polar_rotary, 'C');
+  EXPECT_DOUBLE_EQ(set.channels[0].polar_tolerance, 0.002);
+  EXPECT_EQ(set.channels[0].cylindrical_parallel, 'Z');
+  EXPECT_EQ(set.channels[1].polar_rotary, 'C');  // C1, which B may take with G141
+  EXPECT_EQ(
+      parse_machine_yaml(base + "channels: [{name: A, axes: [X1, Z1, C1]}, {name: B, axes: [X2], "
+                                "spindles: [S2], polar: {linear: X, rotary: B}}]\n")
+          .channels[1]
+          .polar_rotary,
+      'B');  // its spindle's C axis
+
+  const std::string two = "  - {name: B, axes: [X2], spindles: [S2]}\n";
+  std::string what;
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], polar: {linear: "
+                           "X}}\n" +
+                           two),
+            "channels[0].polar.rotary");
+  EXPECT_EQ(rejection_path(base +
+                               "channels:\n  - {name: A, axes: [X1, Z1, C1], polar: {linear: "
+                               "C, rotary: C}}\n" +
+                               two,
+                           &what),
+            "channels[0].polar.linear");
+  EXPECT_NE(what.find("an axis address of X, Y, Z, got 'C'"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(base +
+                               "channels:\n  - {name: A, axes: [X1, Z1, C1], polar: {linear: "
+                               "Y, rotary: C}}\n" +
+                               two,
+                           &what),
+            "channels[0].polar.linear");
+  EXPECT_NE(what.find("channel A programs no axis Y"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(base + "channels:\n  - {name: A, axes: [X1, Z1], polar: {linear: "
+                                  "X, rotary: C}}\n  - {name: B, axes: [X2, C1], spindles: "
+                                  "[S2]}\n"),
+            "channels[0].polar.rotary");
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], polar: {linear: "
+                           "X, rotary: C, tolerance: 2}}\n" +
+                           two),
+            "channels[0].polar.tolerance");
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], polar: {linear: "
+                           "X, rotary: C, angle: 0}}\n" +
+                           two),
+            "channels[0].polar.angle");
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], "
+                           "cylindrical_parallel: C}\n" +
+                           two),
+            "channels[0].cylindrical_parallel");
+}
+
+// A linear axis under a rotary address (a lathe's linear B) is no polar rotary axis.
+TEST(MachineConfig, PolarRotaryAxisMustBeRotary) {
+  std::string what;
+  EXPECT_EQ(rejection_path(R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+axes:
+  - {name: X, address: X, bus: b, node_id: 1}
+  - {name: B, address: B, bus: b, node_id: 2}
+channels: [{name: C, axes: [X, B], polar: {linear: X, rotary: B}}]
+)",
+                           &what),
+            "channels[0].polar.rotary");
+  EXPECT_NE(what.find("axis B (address B) is not rotary"), std::string::npos) << what;
+}
+
 TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["axes"][0]["homing"]["method"] = 37;

@@ -200,3 +200,116 @@ TEST(MillTurn, PolarAndCylindricalMillingWithTheCAxisLentBetween) {
   EXPECT_NEAR(farthest_u, u90 + 10.0, kOnContour);
   EXPECT_LE(to_end, kOnContour);
 }
+
+namespace {
+
+// Distance from p to the arc from `a` to `b` about `centre`, clockwise.
+double to_clockwise_arc(Point p, Point a, Point b, Point centre) {
+  const auto angle = [&](Point q) { return std::atan2(q.y - centre.y, q.x - centre.x); };
+  // Clockwise from a: how far p and b lie, in [0, 2 pi).
+  const auto sweep = [&](Point q) {
+    const double s = angle(a) - angle(q);
+    return s < 0.0 ? s + 2.0 * std::numbers::pi : s;
+  };
+  if (sweep(p) <= sweep(b)) {
+    return std::abs(distance(p, centre) - distance(a, centre));
+  }
+  return std::min(distance(p, a), distance(p, b));
+}
+
+}  // namespace
+
+// launch/machines/mill_cell.yaml: the cell's three-axis mill (fanuc-mill) cuts round a contour
+// with G41 D1 (radius 5) under G43 H1 (length 100), then drills two holes by G81 in G99 and one
+// by G83 in G98 with pecks of 4, while the lathe beside it turns; both meet at the end.
+TEST(MillCell, ContourUnderCutterAndLengthCompensationThenDrillingCycles) {
+  TestMachine machine("mill_cell.yaml", 201);
+  const Trace t = run_to_m30(machine, {{"CH1", "launch/programs/mill_cell_lathe.nc"},
+                                       {"CH2", "launch/programs/mill_cell_mill.nc"}});
+  ASSERT_FALSE(HasFailure());
+  const auto at = commanded(t);
+
+  // The contour (lines 10-14): the cutter's centre keeps 5 mm outside the square with its
+  // corner rounded by the G02 of radius 10, at Z-3 + H1's 100.
+  const auto to_contour = [](Point p) {
+    return std::min({to_polyline(p, {{0, 0}, {0, 40}, {30, 40}}),
+                     to_clockwise_arc(p, {30, 40}, {40, 30}, {30, 30}),
+                     to_polyline(p, {{40, 30}, {40, 0}, {0, 0}})});
+  };
+  std::size_t samples = 0;
+  std::size_t inside = 0;  // G41 on a clockwise contour: the cutter stays outside
+  double worst = 0.0;
+  double top = -INFINITY;
+  double right = -INFINITY;
+  for (auto it = at.lower_bound(block_start(t, "CH2", 10));
+       it != at.end() && it->first < block_start(t, "CH2", 15); ++it) {
+    const Point centre{it->second.at("X2"), it->second.at("Y2")};
+    // The start-up move (to the first side's offset start) and the G40 move out blend into the
+    // contour at its ends.
+    worst = std::max(worst, std::min({std::abs(to_contour(centre) - 5.0),
+                                      to_segment(centre, {-20, -20}, {-5, 0}),
+                                      to_segment(centre, {0, -5}, {-20, -20})}));
+    inside += centre.x >= 0.0 && centre.x <= 40.0 && centre.y >= 0.0 && centre.y <= 40.0 ? 1 : 0;
+    EXPECT_NEAR(it->second.at("Z2"), 97.0, 1e-6);
+    top = std::max(top, centre.y);
+    right = std::max(right, centre.x);
+    ++samples;
+  }
+  EXPECT_GT(samples, 200u);
+  EXPECT_LE(worst, kOnContour);
+  EXPECT_EQ(inside, 0u);
+  EXPECT_NEAR(top, 45.0, 1e-6);    // the side Y40 and the corner arcs round (0, 40)
+  EXPECT_NEAR(right, 45.0, 1e-6);  // the G02's offset arc and the side X40
+
+  // The holes (lines 17-19): below R (Z2, 102 with H1) the tool is only ever on a hole's centre.
+  const double r_level = 102.0;
+  const double initial = 110.0;
+  const std::vector<Point> holes{{10, 10}, {30, 10}, {20, 20}};
+  std::vector<double> deepest(holes.size(), INFINITY);
+  std::vector<double> peck_bottoms;  // the G83 hole's local lowest points
+  double previous_z = initial;
+  bool going_down = true;
+  double between_holes_highest = -INFINITY;  // G99: the moves from hole to hole
+  for (auto it = at.lower_bound(block_start(t, "CH2", 17));
+       it != at.end() && it->first < block_start(t, "CH2", 21); ++it) {
+    const Point xy{it->second.at("X2"), it->second.at("Y2")};
+    const double z = it->second.at("Z2");
+    std::size_t hole = holes.size();
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      hole = distance(xy, holes[i]) < 1e-6 ? i : hole;
+    }
+    if (z < r_level - 1e-6) {
+      ASSERT_LT(hole, holes.size()) << "below R at " << xy.x << " " << xy.y;
+      deepest[hole] = std::min(deepest[hole], z);
+    }
+    if (hole == holes.size() && xy.x > 10.0 + 1e-6) {  // travelling between the holes
+      between_holes_highest = std::max(between_holes_highest, z);
+    }
+    if (hole == 2) {
+      if (going_down && z > previous_z) {
+        peck_bottoms.push_back(previous_z);
+      }
+      going_down = z < previous_z || (going_down && z == previous_z);
+    }
+    previous_z = z;
+  }
+  EXPECT_NEAR(deepest[0], 95.0, 1e-6);  // G81 Z-5
+  EXPECT_NEAR(deepest[1], 95.0, 1e-6);
+  EXPECT_NEAR(deepest[2], 88.0, 1e-6);                // G83 Z-12
+  EXPECT_NEAR(between_holes_highest, r_level, 1e-6);  // G99: from hole to hole at R
+  ASSERT_EQ(peck_bottoms.size(), 4u);                 // Q4 from R2 down to Z-12
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(peck_bottoms[i], 98.0 - 4.0 * static_cast<double>(i), 1e-6);
+  }
+  EXPECT_NEAR(peck_bottoms[3], 88.0, 1e-6);
+  // G98: after the G83 hole back to the initial level (Z10), where G80 leaves the tool.
+  EXPECT_NEAR(std::prev(at.lower_bound(block_start(t, "CH2", 21)))->second.at("Z2"), initial, 1e-6);
+
+  // The lathe turned beside it (X50 is the radius 25), and both ended at the mark.
+  bool turned = false;
+  for (const auto& [cycle, axes] : at) {
+    turned = turned || (axes.contains("X1") && axes.contains("Z1") &&
+                        std::abs(axes.at("X1") - 25.0) < 1e-6 && axes.at("Z1") < -19.999);
+  }
+  EXPECT_TRUE(turned);
+}

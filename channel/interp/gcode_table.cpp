@@ -36,6 +36,10 @@ GCodeInfo common_code(int code10) {
       return {GFunction::polar_on, 21};
     case 131:
       return {GFunction::polar_off, 21};
+    case 150:
+      return {GFunction::polar_coords_off, 18};
+    case 160:
+      return {GFunction::polar_coords_on, 18};
     case 170:
       return {GFunction::plane_xy, 16};
     case 180:
@@ -165,8 +169,6 @@ GCodeInfo common_code(int code10) {
       return {GFunction::channel_release, 0};
     case 50:
     case 109:
-    case 150:
-    case 160:
     case 220:
     case 230:
     case 310:

@@ -47,6 +47,8 @@ enum class GFunction : std::uint8_t {
   mirror_off,         // G50.1
   polar_on,           // G12.1 (group 21)
   polar_off,          // G13.1
+  polar_coords_on,    // G16 (group 18): polar coordinates in G12.1 (format 2)
+  polar_coords_off,   // G15
   cylindrical,        // G07.1 / G107 (one-shot group, a mode until G07.1 C0)
   drill_cancel,       // G80
   css_on,             // G96

@@ -83,6 +83,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   modal_codes_[15] = 64;
   modal_codes_[16] = 18;
   modal_codes_[17] = 69.1;
+  modal_codes_[18] = 15;
   modal_codes_[21] = 13.1;
   modal_codes_[22] = 50.1;
   if (config_.dialect == Dialect::fanuc_mill) {
@@ -683,7 +684,9 @@ void ProgramRun::end_program(int code) {
   // cylindrical interpolation in release_block, after their last moves).
   rotated_ = false;
   program_mirror_ = transform::AxisMirror{};
+  polar_coords_ = false;
   modal_codes_[17] = 69.1;
+  modal_codes_[18] = 15;
   modal_codes_[22] = 50.1;
   rebuild_frame();
   save_retained();

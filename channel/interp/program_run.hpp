@@ -215,6 +215,9 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_polar(GFunction f, int column);
   // G13.1 and the program end: the machine's position back on the linear and rotary axes.
   void end_polar();
+  // G16 in G12.1: the polar plane's target of the block's radius and angle words (given the
+  // linear and rotary axis); false after an alarm.
+  bool polar_coordinate_target(AxisVector& target, std::array<bool, kMaxChannelAxes>& given);
   // False after alarm 1154 (or 1122) when the code may not run in polar interpolation.
   bool polar_allows(GFunction f, int code10, int column);
   // The commands list[from..] from the mode's plane to the machine, after the look-ahead (the
@@ -470,6 +473,10 @@ class ProgramRun final : public macro::VariableProvider {
   double polar_zero_ = 0.0;                // the rotary axis's angle where the virtual axis is 0
   transform::PolarPoint polar_at_;         // the machine's radius and angle now
   AxisVector polar_from_{};                // where the next expanded move starts (as machine_)
+  // G16 (format 2): the polar plane's point is programmed as radius and angle; the last one
+  // programmed so (a negative radius and the turns stay as written), none after other moves.
+  bool polar_coords_ = false;
+  std::optional<std::array<double, 2>> polar_command_;
   // G07.1: machine_ holds the rotary axis as the length around the cylinder.
   bool cylindrical_ = false;
   int cylinder_axis_ = -1;

@@ -830,6 +830,18 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::return_r_level:
       modal_codes_[11] = value;
       return true;
+    case GFunction::polar_coords_on:
+    case GFunction::polar_coords_off:
+      for (const BlockWord& w : words_) {
+        if (config_.dialect == Dialect::gsk && w.column != column) {
+          return fail(alarm::kMustBeAlone,
+                      g_name(code10) + " stands alone in its block (gsk rule 12, L393)", w.column);
+        }
+      }
+      polar_coords_ = f == GFunction::polar_coords_on;
+      polar_command_.reset();
+      modal_codes_[18] = value;
+      return true;
     case GFunction::modal_call:
     case GFunction::modal_call_cancel:
       return true;

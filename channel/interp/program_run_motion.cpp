@@ -186,6 +186,9 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
     }
     return true;
   });
+  if (ok && polar_coords_ && !machine_coordinates && !polar_coordinate_target(target, given)) {
+    return false;
+  }
   if (ok && machine_coordinates && frame_active()) {
     // G53 is neither turned nor mirrored (spec L4387-4421): the named axes go to machine
     // positions, the others stay where they are on the machine.
@@ -275,6 +278,12 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   if (motion == GFunction::arc_cw || motion == GFunction::arc_ccw) {
     const bool arc_words = word('R') != nullptr || word('I') != nullptr || word('J') != nullptr ||
                            word('K') != nullptr;
+    if (polar_coords_ && word('R') == nullptr && arc_words) {
+      return fail(alarm::kInterpolationModeRestriction,
+                  "under G16 an arc is given by its radius R, not by I/J (its centre in polar "
+                  "coordinates would be ambiguous)",
+                  column != 0 ? column : first_column);
+    }
     if (!any && !arc_words) {
       return true;
     }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace mcnc::interp {
 
@@ -37,6 +38,14 @@ bool ProgramRun::polar_allows(GFunction f, int code10, int column) {
       return cylindrical_ ||
              fail(alarm::kInterpolationModeRestriction,
                   "G07.1 is not allowed in polar interpolation: G13.1 first", column);
+    case GFunction::polar_coords_on:
+    case GFunction::polar_coords_off:
+      return polar_ ||
+             fail(alarm::kInterpolationModeRestriction,
+                  "G15/G16 are not allowed in cylindrical interpolation: G07.1 " +
+                      std::string(1, config_.axes[static_cast<std::size_t>(cylinder_axis_)].name) +
+                      "0 first",
+                  column);
     case GFunction::tnrc_left:
     case GFunction::tnrc_right:
       return true;
@@ -110,9 +119,66 @@ bool ProgramRun::run_polar(GFunction f, int column) {
   // The virtual axis starts at 0, wherever the rotary axis stands (spec L711-849, detail 10).
   machine_[rot] = offset_sum(axes[1]) + tool_offset(axes[1]);
   polar_from_ = machine_;
+  polar_command_.reset();
   lookahead_.passed(machine_);
   polar_ = true;
   modal_codes_[21] = 12.1;
+  return true;
+}
+
+bool ProgramRun::polar_coordinate_target(AxisVector& target,
+                                         std::array<bool, kMaxChannelAxes>& given) {
+  if (!polar_) {
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      const AxisWords aw = given[i] ? axis_words(static_cast<int>(i)) : AxisWords{};
+      if (aw.word != nullptr) {
+        return fail(alarm::kInterpolationModeRestriction,
+                    "under G16 the axis words are polar coordinates of G12.1's plane (spec "
+                    "L711-849, format 2): G12.1 first, or G15",
+                    aw.word->column);
+      }
+    }
+    return true;
+  }
+  if (BlockWord* a = comma_word('A'); a != nullptr && config_.dialect != Dialect::gsk) {
+    return fail(alarm::kInterpolationModeRestriction,
+                "no ,A under G16: the end point is given by its radius and angle already",
+                a->column);
+  }
+  const int lin = polar_axes_[0];
+  const int rot = polar_axes_[1];
+  const AxisWords radius = axis_words(lin);
+  const AxisWords angle = axis_words(rot);
+  if (radius.word == nullptr && angle.word == nullptr) {
+    return true;
+  }
+  const auto l = static_cast<std::size_t>(lin);
+  const auto r = static_cast<std::size_t>(rot);
+  const double shift_l = offset_sum(lin) + tool_offset(lin);
+  const double shift_r = offset_sum(rot) + tool_offset(rot);
+  std::array<double, 2> polar{};
+  if (polar_command_) {
+    polar = *polar_command_;
+  } else {
+    // From the plane's point where G16 finds the tool (G12.1 starts at the angle 0).
+    const double x = machine_[l] - shift_l;
+    const double y = machine_[r] - shift_r;
+    polar = {std::hypot(x, y), std::atan2(y, x) * 180.0 / std::numbers::pi};
+  }
+  if (radius.word != nullptr) {
+    const double v = to_physical(lin, scaled_axis_word(lin, *radius.word));
+    polar[0] = radius.incremental ? polar[0] + v : v;
+  }
+  if (angle.word != nullptr) {
+    const double v = scaled_axis_word(rot, *angle.word);  // degrees, also in G20
+    polar[1] = angle.incremental ? polar[1] + v : v;
+  }
+  const double a = polar[1] * std::numbers::pi / 180.0;
+  target[l] = polar[0] * std::cos(a) + shift_l;
+  target[r] = polar[0] * std::sin(a) + shift_r;
+  given[l] = true;
+  given[r] = true;
+  polar_command_ = polar;
   return true;
 }
 

@@ -80,6 +80,7 @@ TEST(InterpCylindrical, MisuseIsAnAlarm) {
        4},  // G07.1 C0 under G41
       {"G19\nG07.1 C60\nG07.1 C50\nM30\n", alarm::kInterpolationModeRestriction, 3},
       {"G19\nG07.1 C60\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G19\nG07.1 C60\nG16\nM30\n", alarm::kInterpolationModeRestriction, 3},  // G12.1's only
       {"G19\nG52 H10\nG07.1 C60\nM30\n", alarm::kInterpolationModeRestriction, 3},
   };
   expect_alarms(cases, cylinder_lathe());

@@ -1,5 +1,6 @@
 // G12.1 / G13.1 polar interpolation (spec dafeng L711-849) in the interpreter: the moves of the
 // polar plane leave as machine lines of the linear and rotary axes, at the tangential feed.
+#include "channel/interp/dialect.hpp"
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
 #include <cmath>
@@ -123,6 +124,77 @@ TEST(InterpPolar, MisuseIsAnAlarm) {
   expect_alarms(cases, polar_lathe());
   // Without the polar axes in the parameters.
   run_alarm("G00 X40\nG12.1\nM30\n", alarm::kInterpolationModeRestriction, 2);
+}
+
+// G16 (format 2, spec L711-849 detail 5): in G12.1 the linear axis gives the radius (X a
+// diameter) and the rotary axis the angle in degrees from where G12.1 found it; the moves stay
+// lines and arcs of the polar plane. Incremental words add to the radius and the angle as
+// programmed, so a negative radius and whole turns keep their meaning.
+TEST(InterpPolar, PolarCoordinatesUnderG16) {
+  RunResult r = run_ok(
+      "G00 X120 A30 Z0\nG16\nG12.1\nG01 X40 A0 F500\nA60\nA120\nX-40 A-45\nU-10\n"
+      "G03 X40 A270 R25\nG01 UA-90\nG15\nG01 X10 A5\nG16\nUA30\nG13.1\nG15\nM30\n",
+      polar_lathe());
+  const auto at = [](double radius, double degrees) {
+    const double a = degrees * M_PI / 180.0;
+    return std::array<double, 2>{radius * std::cos(a), radius * std::sin(a)};
+  };
+  expect_ends(r,
+              {{4, at(20, 0)},
+               {5, at(20, 60)},
+               {6, at(20, 120)},
+               {7, at(-20, -45)},  // the opposite side
+               {8, at(-25, -45)},  // U-10: the radius 5 more negative
+               {9, at(20, 270)},
+               {10, at(20, 180)},                      // H-90 from the programmed 270
+               {12, {5.0, 5.0}},                       // G15: the plane's coordinates again
+               {14, at(std::hypot(5.0, 5.0), 75.0)}},  // G16 again: from where the tool is
+              30.0);
+  // Between the points the tool moves on straight lines of the polar plane (not on circles of
+  // its radius): the line from (20, 0) to the angle 60 passes the centre at 10 * sqrt(3).
+  double nearest = 1e9;
+  for (const Command& m : r.at_line(5)) {
+    const std::array<double, 2> p = plane_point(m.to, 30.0);
+    nearest = std::min(nearest, std::hypot(p[0], p[1]));
+  }
+  EXPECT_NEAR(nearest, 10.0 * std::sqrt(3.0), 1e-3);
+  // The arc of line 9 keeps its radius R25 about a centre of the polar plane.
+  const std::array<double, 2> from = at(-25, -45);
+  const std::array<double, 2> to = at(20, 270);
+  for (const Command& m : r.at_line(9)) {
+    const std::array<double, 2> p = plane_point(m.to, 30.0);
+    EXPECT_LE(std::hypot(p[0] - from[0], p[1] - from[1]), 50.0 + 1e-9);
+    EXPECT_LE(std::hypot(p[0] - to[0], p[1] - to[1]), 50.0 + 1e-9);
+  }
+}
+
+TEST(InterpPolar, ModalGroup18ReadsG15AndG16) {
+  run_ok(
+      "IF[#4018 NE 15] #3000=1 (off)\nG16\nIF[#4018 NE 16] #3000=2 (on)\nG01\nG12.1\nG15\n"
+      "IF[#4018 NE 15] #3000=3 (off)\nG13.1\nM30\n",
+      polar_lathe());
+}
+
+TEST(InterpPolar, G16MisuseIsAnAlarm) {
+  const ExpectedAlarm cases[] = {
+      // Polar coordinates only where G12.1 gives them a plane.
+      {"G00 X40\nG16\nG01 X20 F100\nM30\n", alarm::kInterpolationModeRestriction, 3},
+      {"G00 X40\nG16\nG12.1\nG13.1\nG00 X60\nM30\n", alarm::kInterpolationModeRestriction, 5},
+      {"G00 X40\nG01 F100\nG12.1\nG16\nX40 A30 ,A45\nM30\n", alarm::kInterpolationModeRestriction,
+       5},
+      // An arc by its centre: I/J in polar coordinates would be ambiguous.
+      {"G00 X40\nG01 F100\nG12.1\nG16\nG03 X20 A90 I-10 J0\nM30\n",
+       alarm::kInterpolationModeRestriction, 5},
+  };
+  expect_alarms(cases, polar_lathe());
+}
+
+// GSK (gsk A.6.8): G16 and G15 stand alone in their block; the Dafeng spec does not ask it.
+TEST(InterpPolar, GskG16StandsAlone) {
+  InterpreterConfig gsk = polar_lathe();
+  select_dialect(gsk, Dialect::gsk);
+  run_alarm("G00 X40\nG01 F100\nG12.1\nG16 X20 A90\nM30\n", alarm::kMustBeAlone, 4, -1, gsk);
+  run_ok("G00 X40\nG01 F100\nG12.1\nG16 X20 A90\nG15\nG13.1\nM30\n", polar_lathe());
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-O2400 (mill-turn, upper turret CH1: a square on the face by G12.1, the part lent to the lower turret, a slot on the diameter by G07.1)
+O2400 (mill-turn, upper turret CH1: a square and a hexagon on the face by G12.1, the part lent to the lower turret, a slot on the diameter by G07.1)
 CH1
 M03 S2000 (the driven tool)
 G00 X40 Z2 C0
@@ -11,6 +11,16 @@ C-8
 X16
 C0
 X40
+G16 (format 2: a hexagon by radius and angle, C in degrees from where G12.1 began)
+X24 C0
+C60
+C120
+C180
+C240
+C300
+C360
+G15
+X40 C0
 G13.1
 G00 Z5
 G140 C15 (lend the part's C to the lower turret)

@@ -108,9 +108,10 @@ constexpr double kOnContour = 0.0025;
 
 }  // namespace
 
-// launch/machines/mill_turn.yaml: the upper turret mills a square on the face in polar
-// interpolation (G12.1), lends the part's C to the lower turret (G140/G141), takes it back and
-// mills a slot with a half circle on the diameter in cylindrical interpolation (G07.1).
+// launch/machines/mill_turn.yaml: the upper turret mills a square and a hexagon on the face in
+// polar interpolation (G12.1, the hexagon by polar coordinates under G16), lends the part's C to
+// the lower turret (G140/G141), takes it back and mills a slot with a half circle on the diameter
+// in cylindrical interpolation (G07.1).
 TEST(MillTurn, PolarAndCylindricalMillingWithTheCAxisLentBetween) {
   TestMachine machine("mill_turn.yaml", 200);
   const Trace t = run_to_m30(machine, {{"CH1", "launch/programs/mill_turn_ch1.nc"},
@@ -122,33 +123,38 @@ TEST(MillTurn, PolarAndCylindricalMillingWithTheCAxisLentBetween) {
   ASSERT_FALSE(events(t, "spindle", "CH1").empty());
   EXPECT_DOUBLE_EQ(events(t, "spindle", "CH1").front()["rpm"].get<double>(), 2000.0);
 
-  // G12.1 (lines 7-13): the tip at radius X1 and angle C1 (0 where G12.1 found C) goes around
-  // the square of side 16 from (20, 0) and back, Z1 at the depth.
-  const std::vector<Point> square{{20, 0},  {8, 0},  {8, 8}, {-8, 8},
-                                  {-8, -8}, {8, -8}, {8, 0}, {20, 0}};
-  std::vector<double> nearest(square.size(), INFINITY);
+  // G12.1 (lines 7-23): the tip at radius X1 and angle C1 (0 where G12.1 found C) goes around
+  // the square of side 16 from (20, 0) and back (format 1), then under G16 (format 2) around
+  // the hexagon of radius 12 given by radius and angle, and back; Z1 at the depth.
+  std::vector<Point> path{{20, 0}, {8, 0}, {8, 8}, {-8, 8}, {-8, -8}, {8, -8}, {8, 0}, {20, 0}};
+  for (int k = 0; k <= 6; ++k) {
+    path.push_back({12.0 * std::cos(60.0 * k * kDegree), 12.0 * std::sin(60.0 * k * kDegree)});
+  }
+  path.push_back({20, 0});
+  std::vector<double> nearest(path.size(), INFINITY);
   std::size_t samples = 0;
   double worst = 0.0;
   for (auto it = at.lower_bound(block_start(t, "CH1", 7));
-       it != at.end() && it->first < block_start(t, "CH1", 15); ++it) {
+       it != at.end() && it->first < block_start(t, "CH1", 25); ++it) {
     const auto& axes = it->second;
     ASSERT_TRUE(axes.contains("X1") && axes.contains("C1") && axes.contains("Z1"));
     const Point tip{axes.at("X1") * std::cos(axes.at("C1") * kDegree),
                     axes.at("X1") * std::sin(axes.at("C1") * kDegree)};
-    worst = std::max(worst, to_polyline(tip, square));
+    worst = std::max(worst, to_polyline(tip, path));
     EXPECT_NEAR(axes.at("Z1"), -2.0, 1e-6);
-    for (std::size_t i = 0; i < square.size(); ++i) {
-      nearest[i] = std::min(nearest[i], distance(tip, square[i]));
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      nearest[i] = std::min(nearest[i], distance(tip, path[i]));
     }
     ++samples;
   }
   EXPECT_GT(samples, 200u);
   EXPECT_LE(worst, kOnContour);
-  for (std::size_t i = 0; i < square.size(); ++i) {
+  for (std::size_t i = 0; i < path.size(); ++i) {
     EXPECT_LE(nearest[i], 0.005) << "corner " << i;
   }
-  // C1: CH1's, released, CH2's, released, CH1's again. The square went once round
-  // counter-clockwise, so CH1 lends C at 360; CH2 turns it to 135, where CH1 takes it back.
+  // C1: CH1's, released, CH2's, released, CH1's again. The square and the hexagon went once
+  // round each, counter-clockwise, so CH1 lends C at 720; CH2 turns it to 135, where CH1 takes
+  // it back.
   const auto owners = owner_changes(t, "C1");
   std::vector<std::string> sequence;
   for (const auto& [cycle, owner] : owners) {
@@ -159,14 +165,14 @@ TEST(MillTurn, PolarAndCylindricalMillingWithTheCAxisLentBetween) {
   const std::uint64_t to_ch2 = owners[2].first;
   const std::uint64_t let_go = owners[3].first;
   const std::uint64_t back = owners[4].first;
-  EXPECT_NEAR(at.at(lent).at("C1"), 360.0, 1e-6);
-  EXPECT_NEAR(at.at(to_ch2).at("C1"), 360.0, 1e-6);
+  EXPECT_NEAR(at.at(lent).at("C1"), 720.0, 1e-6);
+  EXPECT_NEAR(at.at(to_ch2).at("C1"), 720.0, 1e-6);
   EXPECT_NEAR(at.at(let_go).at("C1"), 135.0, 1e-6);
   EXPECT_NEAR(at.at(back).at("C1"), 135.0, 1e-6);
   EXPECT_GT(to_ch2, lent);
-  EXPECT_GT(block_start(t, "CH1", 20), back);  // G00 C0 after the take-over
+  EXPECT_GT(block_start(t, "CH1", 30), back);  // G00 C0 after the take-over
 
-  // G07.1 C20 (lines 25-27): on the cylinder of radius 20 unrolled (u = C x 20 in mm, Z), the
+  // G07.1 C20 (lines 35-37): on the cylinder of radius 20 unrolled (u = C x 20 in mm, Z), the
   // tip goes along Z-5 to C90, on a half circle of radius 10 through u(90) + 10 (G02 in the
   // plane C-Z) to Z-25, and back to C0, at the slot's depth (X1 the radius 18). The plunge
   // before (X1 from 22) and the retract after blend into it: the path is checked in (u, Z, X1).
@@ -176,8 +182,8 @@ TEST(MillTurn, PolarAndCylindricalMillingWithTheCAxisLentBetween) {
   double worst_cylinder = 0.0;
   double farthest_u = -INFINITY;
   double to_end = INFINITY;
-  for (auto it = at.lower_bound(block_start(t, "CH1", 25));
-       it != at.end() && it->first < block_start(t, "CH1", 30); ++it) {
+  for (auto it = at.lower_bound(block_start(t, "CH1", 35));
+       it != at.end() && it->first < block_start(t, "CH1", 40); ++it) {
     const auto& axes = it->second;
     const Point tip{axes.at("C1") * kDegree * 20.0, axes.at("Z1")};
     const double depth = axes.at("X1") - 18.0;

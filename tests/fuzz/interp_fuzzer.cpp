@@ -12,7 +12,8 @@
 //          with bit 0 ('3'): the mill dialect fanuc-mill (its system B and axes X Y Z)
 //   bit 2  decimal_point increment (else calculator)
 //   bit 3  block skip levels 1 and 3 switched on
-//   bit 4  axes X Z C Y with exchange numbers, and the macro-call tables of
+//   bit 4  axes X Z C Y with exchange numbers, X and C as the polar interpolation's axes (G12.1,
+//          G16), and the macro-call tables of
 //          docs/canonical-commands.md (T -> O9010, G120 -> O9010, M60 -> O9001, M78 -> O9030,
 //          G200-G298 -> O9200-, M500-M598 -> O9500-, M800-M898 -> O9800-)
 //   bit 5  channel 2 (else 1)
@@ -30,8 +31,8 @@
 
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <utility>
@@ -77,6 +78,8 @@ InterpreterConfig make_config(std::uint8_t flags) {
     cax.exchange = 14;
     AxisConfig y{'Y', false};
     c.axes = {x, z, cax, y};
+    c.polar_linear = 'X';
+    c.polar_rotary = 'C';
     c.calls.t_program = 9010;
     c.calls.g_macro = {{1200, 9010}};
     c.calls.g_range_count = 99;
@@ -123,7 +126,8 @@ void check_finite(const Command& c) {
     ok = ok && std::isfinite(a.second);
   }
   if (!ok) {
-    std::fprintf(stderr, "interp_fuzzer: command %llu (line %d) carries a value that is not finite\n",
+    std::fprintf(stderr,
+                 "interp_fuzzer: command %llu (line %d) carries a value that is not finite\n",
                  static_cast<unsigned long long>(c.n), c.line);
     std::abort();
   }

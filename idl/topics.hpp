@@ -25,6 +25,10 @@ MCNC_CYCLONE_DESCRIPTOR(AuxAck)
 MCNC_CYCLONE_DESCRIPTOR(ClockProbe)
 MCNC_CYCLONE_DESCRIPTOR(ClockEcho)
 MCNC_CYCLONE_DESCRIPTOR(HostClock)
+MCNC_CYCLONE_DESCRIPTOR(RunRequest)
+MCNC_CYCLONE_DESCRIPTOR(RunOutcome)
+MCNC_CYCLONE_DESCRIPTOR(TraceChunk)
+MCNC_CYCLONE_DESCRIPTOR(TraceReceipt)
 #undef MCNC_CYCLONE_DESCRIPTOR
 }
 
@@ -102,6 +106,10 @@ MCNC_TOPIC(AuxAck, event, false)
 MCNC_TOPIC(ClockProbe, state, false)
 MCNC_TOPIC(ClockEcho, state, false)
 MCNC_TOPIC(HostClock, state, false)
+MCNC_TOPIC(RunRequest, event, false)
+MCNC_TOPIC(RunOutcome, event, false)
+MCNC_TOPIC(TraceChunk, event, false)
+MCNC_TOPIC(TraceReceipt, event, false)
 
 #undef MCNC_TOPIC
 

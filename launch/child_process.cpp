@@ -1,9 +1,11 @@
 #include "launch/child_process.hpp"
 
+#include <fcntl.h>
 #include <sched.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -75,12 +77,23 @@ bool ChildProcess::start(const std::vector<std::string>& env_overrides, int fifo
     posix_spawnattr_setschedparam(&attr, &param);
     posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSCHEDULER);
   }
-  int rc = posix_spawn(&pid_, args[0], nullptr, &attr, args.data(), env.data());
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (!directory_.empty()) {
+    posix_spawn_file_actions_addchdir_np(&actions, directory_.c_str());
+  }
+  if (!output_.empty()) {
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output_.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  }
+  int rc = posix_spawn(&pid_, args[0], &actions, &attr, args.data(), env.data());
   posix_spawnattr_destroy(&attr);
   const bool refused = fifo && rc == EPERM;  // the priority was not permitted
   if (refused) {
-    rc = posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), env.data());
+    rc = posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), env.data());
   }
+  posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) {
     throw std::runtime_error("cannot start " + argv_[0] + ": " + std::strerror(rc));
   }

@@ -21,6 +21,10 @@ class ChildProcess {
   // thread it makes inherits it. Returns false when that priority was not permitted: it then
   // runs as an ordinary process. Throws std::runtime_error when the executable cannot be started.
   bool start(const std::vector<std::string>& env_overrides, int fifo_priority = 0);
+  // Before start(): the child's working directory, and a file its standard output and error go
+  // to (created or truncated). Unset, it shares this process's.
+  void set_directory(std::string directory) { directory_ = std::move(directory); }
+  void set_output(std::string path) { output_ = std::move(path); }
   // True once it has exited (reaps it); exit_status() then says how.
   bool poll_exited() noexcept;
   void signal(int sig) noexcept;
@@ -33,6 +37,8 @@ class ChildProcess {
  private:
   std::string name_;
   std::vector<std::string> argv_;
+  std::string directory_;
+  std::string output_;
   pid_t pid_ = -1;
   bool exited_ = false;
   int status_ = 0;

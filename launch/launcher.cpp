@@ -14,6 +14,7 @@
 #include "launch/child_process.hpp"
 #include "launch/launch_plan.hpp"
 #include "launch/machine_clock.hpp"
+#include "launch/trace_shipping.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -39,6 +40,10 @@ const char* to_string(::mcnc::ChannelState state) noexcept {
 }
 
 namespace {
+
+// How long a follower's trace parts may take to reach the coordinator, and the coordinator
+// waits for them.
+constexpr std::chrono::seconds kTraceShippingWait{20};
 
 struct Observed {
   std::mutex mutex;
@@ -161,6 +166,10 @@ LaunchResult Launcher::run(
       host_clocks.emplace(node.participant());
       clock_reference.emplace(node.participant(), options_.host);
     }
+  }
+  std::optional<TracePartReceiver> trace_receiver;
+  if (!follower && !options_.host.empty() && !parts_dir.empty()) {
+    trace_receiver.emplace(node.participant(), parts_dir);
   }
   dds::Writer<RunControl> control_writer(node.participant());
   dds::Writer<OperatorCommand> operator_writer(node.participant());
@@ -670,6 +679,16 @@ LaunchResult Launcher::run(
     process::remove_stale_dds_shm_files();
   }
 
+  // Across hosts, a follower sends its host's trace parts to the coordinator (unless it lost
+  // it): the hosts need not share the trace's directory.
+  if (follower && !options_.trace_path.empty() && !host_alone) {
+    TracePartSender sender(node.participant(), options_.host);
+    if (!sender.send(plan.trace_parts, kTraceShippingWait)) {
+      spdlog::warn("host {}: the coordinator did not confirm this host's trace parts",
+                   options_.host);
+    }
+  }
+
   // 4. Result and trace.
   const auto final_list = progress();
   {
@@ -718,6 +737,28 @@ LaunchResult Launcher::run(
         }
       });
       std::this_thread::sleep_for(20ms);
+    }
+  }
+  if (trace_receiver) {
+    // The other hosts' parts, from every host whose launcher came and is still there.
+    std::vector<std::string> senders;
+    wake.update([&] {
+      for (std::size_t h = 1; h < machine_.hosts.size(); ++h) {
+        const std::string name = "launch-" + machine_.hosts[h].name;
+        const bool came = std::any_of(seen.launchers.begin(), seen.launchers.end(),
+                                      [&](const auto& l) { return l.second == name; });
+        const bool gone = std::find(seen.launchers_gone.begin(), seen.launchers_gone.end(), name) !=
+                          seen.launchers_gone.end();
+        if (came && !gone) {
+          senders.push_back(machine_.hosts[h].name);
+        }
+      }
+    });
+    for (const std::string& host : trace_receiver->wait_for(senders, kTraceShippingWait)) {
+      spdlog::warn(
+          "host {}: its trace parts did not all come; the trace has what its "
+          "processes wrote here",
+          host);
     }
   }
   if (!options_.trace_path.empty() && !follower) {

@@ -4,6 +4,7 @@
 #include "channel/setup/interpreter_setup.hpp"
 #include "common/process/startup.hpp"
 #include "launch/host_roudi.hpp"
+#include "launch/host_service.hpp"
 #include "launch/launcher.hpp"
 #include "launch/self_path.hpp"
 #include "tools/report/run_report.hpp"
@@ -178,6 +179,12 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--host", args.host,
                  "a machine of several hosts (hosts:): start this host's processes only; the "
                  "first host's launcher runs the machine, the others follow it");
+  app.add_flag("--serve", args.serve,
+               "with --host: stay up as that host's launcher service, and run each run that "
+               "`mcnc run --services` asks for from any host");
+  app.add_flag("--services", args.services,
+               "a machine of several hosts: ask every host's launcher service (--serve) to run "
+               "it; print the coordinator's output and end with its exit code");
   app.add_flag("--manual-start", args.manual_start,
                "the channels load their programs and wait for CYCLE START (from the HMI or "
                "--operator)");
@@ -187,7 +194,53 @@ void add_run_options(CLI::App& app, RunArguments& args) {
                  "for one channel or (without CHANNEL) the whole machine (repeatable)");
 }
 
+std::vector<std::string> run_argv(const RunArguments& args) {
+  std::vector<std::string> argv;
+  const auto option = [&](const char* name, const std::string& value) {
+    if (!value.empty()) {
+      argv.insert(argv.end(), {name, value});
+    }
+  };
+  const auto each = [&](const char* name, const std::vector<std::string>& values) {
+    for (const auto& v : values) {
+      argv.insert(argv.end(), {name, v});
+    }
+  };
+  each("--program", args.programs);
+  option("--clock", args.clock);
+  if (args.pace) {
+    argv.emplace_back("--pace");
+  }
+  option("--trace", args.trace_path);
+  option("--trace-pos-every", std::to_string(args.trace_pos_every));
+  option("--report", args.report_dir);
+  option("--log-level", args.log_level);
+  if (args.timeout_s > 0) {
+    option("--timeout", std::to_string(args.timeout_s));
+  }
+  each("--drive-fault", args.drive_faults);
+  each("--drive-refuse-sdo", args.drive_sdo_refusals);
+  each("--operator", args.operator_script);
+  option("--progdir", args.program_dir);
+  option("--retained", args.retained_file);
+  if (args.hmi == "default") {
+    argv.emplace_back("--hmi");  // the machine file's address
+  } else {
+    option("--hmi", args.hmi);
+  }
+  if (args.manual_start) {
+    argv.emplace_back("--manual-start");
+  }
+  return argv;
+}
+
 int execute_run(const RunArguments& args) {
+  if (args.serve) {
+    return serve_host(args);
+  }
+  if (args.services) {
+    return request_run(args);
+  }
   config::MachineConfig machine = process::load_machine_or_exit(args.machine_path);
   if (!args.program_dir.empty()) {
     std::error_code ec;

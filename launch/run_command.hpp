@@ -30,9 +30,15 @@ struct RunArguments {
   std::string hmi;            // --hmi: serve the operator HMI on this HOST:PORT ("" none)
   bool manual_start = false;  // --manual-start: the channels wait for CYCLE START
   std::string host;           // --host: on a machine of several hosts, this launcher's host
+  bool serve = false;         // --serve: be --host's launcher service (launch/host_service.hpp)
+  bool services = false;      // --services: ask every host's service for the run
 };
 
 void add_run_options(CLI::App& app, RunArguments& args);
+// The options of `args` as a command line that add_run_options() reads back into the same
+// arguments, without the machine, --host, --serve and --services: what a host's service is
+// asked to run.
+std::vector<std::string> run_argv(const RunArguments& args);
 // Returns the process exit code: 0 every program ended without alarm, 1 alarm or failure,
 // 2 bad input.
 int execute_run(const RunArguments& args);

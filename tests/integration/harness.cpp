@@ -271,9 +271,16 @@ void Background::kill(int sig) {
 std::vector<nlohmann::json> read_trace(const std::string& path) {
   std::vector<nlohmann::json> lines;
   std::ifstream in(path);
+  std::size_t number = 0;
   for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) {
+    ++number;
+    if (line.empty()) {
+      continue;
+    }
+    try {
       lines.push_back(nlohmann::json::parse(line));
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": " + e.what() + ": " + line);
     }
   }
   return lines;

@@ -474,3 +474,87 @@ TEST(Hosts, TheCellOnTwoHostsCouplesTheSpindlesAcrossThemAsOnOneHost) {
   expect_same_trace(one_host, two_hosts);
   EXPECT_EQ(count(two_hosts, "couple", "slave", "S2"), 1U) << "S2 on ncu2 follows S1 on ncu1";
 }
+
+// Launchers as services: each host's `mcnc-launch … --host NAME --serve` stays up between
+// runs, and `mcnc run … --services` on any host (ncu2 here, not the coordinator's) brings the
+// whole machine up, runs it and stops it, twice on the same services: each run's trace is the
+// one-host trace, and the asker ends with the coordinator's exit code and summary.
+TEST(Hosts, LauncherServicesRunTheMachineForAnAskerOnAnyHost) {
+  const auto one_host =
+      run_programs("cell_3ncu.yaml", 178, CellOnThreeHosts::kCh1, CellOnThreeHosts::kCh2);
+  const CellOnThreeHosts cell(179);
+  const std::string machine = std::string(MCNC_BINARY_DIR) + "/hosts-test-179/cell_3ncu.yaml";
+  std::map<std::string, std::unique_ptr<Background>> services;
+  for (const std::string host : {"ncu1", "ncu2", "ncu3"}) {
+    services[host] = std::make_unique<Background>(
+        cell.hosts().on(host, {bin("mcnc-launch"), machine, "--host", host, "--serve"}),
+        cell.domain(), cell.log("service-" + host));
+  }
+  for (int run_no = 1; run_no <= 2; ++run_no) {
+    std::filesystem::remove(cell.trace());
+    const RunResult asker =
+        run(cell.hosts().on("ncu2", {bin("mcnc"), "run", machine, "--program",
+                                     "CH1=" + source(CellOnThreeHosts::kCh1), "--program",
+                                     "CH2=" + source(CellOnThreeHosts::kCh2), "--trace",
+                                     cell.trace(), "--timeout", "120", "--services"}),
+            cell.domain(), 300s);
+    EXPECT_EQ(asker.exit_code, 0) << "run " << run_no << "\n" << asker.out << asker.err;
+    EXPECT_NE(asker.out.find("CH1: program end M30"), std::string::npos)
+        << "the coordinator's summary, run " << run_no << "\n"
+        << asker.out;
+    expect_same_trace(one_host, trace_until_end(read_trace(cell.trace())));
+  }
+  for (auto& [host, service] : services) {
+    service->kill(SIGTERM);
+    EXPECT_EQ(service->wait(30s), 0) << host << "\n" << slurp(cell.log("service-" + host) + ".err");
+  }
+}
+
+// An asker whose machine has a host without a service names it, and nothing runs.
+TEST(Hosts, AnAskerNamesTheHostsWithoutAService) {
+  const CellOnThreeHosts cell(180);
+  const std::string machine = std::string(MCNC_BINARY_DIR) + "/hosts-test-180/cell_3ncu.yaml";
+  Background ncu1(
+      cell.hosts().on("ncu1", {bin("mcnc-launch"), machine, "--host", "ncu1", "--serve"}),
+      cell.domain(), cell.log("service-ncu1"));
+  const RunResult asker =
+      run(cell.hosts().on("ncu1", {bin("mcnc"), "run", machine, "--program",
+                                   "CH1=" + source(CellOnThreeHosts::kCh1), "--services"}),
+          cell.domain(), 200s);
+  EXPECT_EQ(asker.exit_code, 1) << asker.out << asker.err;
+  EXPECT_NE(asker.err.find("no launcher service ready on host ncu2, ncu3"), std::string::npos)
+      << asker.err;
+  ncu1.kill(SIGTERM);
+  EXPECT_EQ(ncu1.wait(30s), 0);
+  EXPECT_EQ(slurp(cell.log("service-ncu1") + ".err").find("asked"), std::string::npos)
+      << "no run was asked of the service";
+}
+
+// Hosts that share no directory: each launcher's --trace is in its host's own /tmp (private
+// to each simulated host). The followers send their parts to the coordinator, whose merged
+// trace is the one-host trace.
+TEST(Hosts, TheTraceIsWholeWhenTheHostsShareNoDirectory) {
+  const auto one_host =
+      run_programs("cell_3ncu.yaml", 181, CellOnThreeHosts::kCh1, CellOnThreeHosts::kCh2);
+  const CellOnThreeHosts cell(182);
+  const std::string machine = std::string(MCNC_BINARY_DIR) + "/hosts-test-182/cell_3ncu.yaml";
+  const std::string trace = "/tmp/mcnc-cell-trace.jsonl";  // one per host
+  const auto launcher = [&](const std::string& host) {
+    return cell.hosts().on(
+        host, {bin("mcnc"), "run", machine, "--program", "CH1=" + source(CellOnThreeHosts::kCh1),
+               "--program", "CH2=" + source(CellOnThreeHosts::kCh2), "--trace", trace, "--timeout",
+               "120", "--host", host});
+  };
+  Background ncu2(launcher("ncu2"), cell.domain(), cell.log("ncu2"));
+  Background ncu3(launcher("ncu3"), cell.domain(), cell.log("ncu3"));
+  const RunResult coordinator = run(launcher("ncu1"), cell.domain(), 240s);
+  EXPECT_EQ(coordinator.exit_code, 0) << coordinator.out << coordinator.err;
+  EXPECT_EQ(ncu2.wait(60s), 0) << slurp(cell.log("ncu2") + ".err");
+  EXPECT_EQ(ncu3.wait(60s), 0) << slurp(cell.log("ncu3") + ".err");
+  const std::string merged = cell.log("merged.jsonl");
+  ASSERT_EQ(
+      run(cell.hosts().on("ncu1", {"/bin/sh", "-c", "cat " + trace + " > " + merged}), -1, 30s)
+          .exit_code,
+      0);
+  expect_same_trace(one_host, trace_until_end(read_trace(merged)));
+}

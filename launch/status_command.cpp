@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
@@ -47,13 +48,25 @@ int execute_status(const StatusArguments& args) {
                                    std::lock_guard<std::mutex> lock(mutex);
                                    snapshot.axes[f.axis()] = status::view_of(f);
                                  });
+  dds::Reader<HostClock> host_clocks(participant, [&](const HostClock& hc, const dds::WriterId&) {
+    std::lock_guard<std::mutex> lock(mutex);
+    snapshot.host_clocks[hc.host()] =
+        status::HostClockView{hc.offset_ns(), hc.error_ns(), hc.samples()};
+  });
   const auto copy = [&] {
     std::lock_guard<std::mutex> lock(mutex);
     return snapshot;
   };
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(args.wait_ms);
-  while (!status::missing(machine, copy()).empty() && std::chrono::steady_clock::now() < deadline &&
-         process::g_stop_signal == 0) {
+  // Each host's clock too, when the machine has hosts: the launchers are discovered apart
+  // from the channels and axes, and one may be heard later.
+  const auto clocks_missing = [&] {
+    const status::StatusSnapshot now = copy();
+    return std::any_of(machine.hosts.begin(), machine.hosts.end(),
+                       [&](const auto& h) { return now.host_clocks.count(h.name) == 0; });
+  };
+  while ((!status::missing(machine, copy()).empty() || clocks_missing()) &&
+         std::chrono::steady_clock::now() < deadline && process::g_stop_signal == 0) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   for (;;) {

@@ -106,6 +106,21 @@ std::vector<std::string> status_lines(const config::MachineConfig& machine,
                     (it == snapshot.axes.end() ? std::string("no feedback")
                                                : axis_line(machine, a, it->second)));
   }
+  for (const config::HostConfig& h : machine.hosts) {
+    const auto it = snapshot.host_clocks.find(h.name);
+    char text[128];
+    if (it == snapshot.host_clocks.end()) {
+      std::snprintf(text, sizeof text, "host %s  no clock announced", h.name.c_str());
+    } else if (it->second.samples == 0) {
+      std::snprintf(text, sizeof text, "host %s  clock: machine time (coordinator)",
+                    h.name.c_str());
+    } else {
+      std::snprintf(text, sizeof text, "host %s  clock %+.1f us +- %.1f us (%u exchanges)",
+                    h.name.c_str(), static_cast<double>(it->second.offset_ns) / 1000.0,
+                    static_cast<double>(it->second.error_ns) / 1000.0, it->second.samples);
+    }
+    lines.emplace_back(text);
+  }
   return lines;
 }
 

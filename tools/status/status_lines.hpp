@@ -74,14 +74,23 @@ struct RunView {
   std::string reason;  // why it stopped (an E-stop's cause)
 };
 
+// A host's clock against machine time, as its launcher announces it (HostClock).
+struct HostClockView {
+  std::int64_t offset_ns = 0;
+  std::int64_t error_ns = 0;
+  std::uint32_t samples = 0;  // 0: the coordinating host, whose clock is machine time
+};
+
 struct StatusSnapshot {
   std::map<std::uint32_t, ChannelView> channels;
   std::map<std::uint32_t, AxisView> axes;
   RunView run;
+  std::map<std::string, HostClockView> host_clocks;  // by host name
 };
 
 // One line per channel, then one per axis and spindle, in the machine file's order; a channel
-// or axis not heard from says so.
+// or axis not heard from says so. A machine of several hosts then has a line per host with its
+// clock's offset against machine time and the offset's error.
 std::vector<std::string> status_lines(const config::MachineConfig& machine,
                                       const StatusSnapshot& snapshot);
 

@@ -94,5 +94,19 @@ TEST(StatusLines, ADisabledAxisAnAlarmAndAFollowingSpindleShow) {
   EXPECT_EQ(missing(m, s), (std::vector<std::string>{"CH1", "CH2", "A1"}));
 }
 
+TEST(StatusLines, AMachineOfSeveralHostsHasEachHostsClock) {
+  config::MachineConfig m = two_channels();
+  m.hosts = {config::HostConfig{"ncu1", "", {"CH1", "X1", "A1", "S1", "b"}},
+             config::HostConfig{"ncu2", "", {"CH2", "X2"}}, config::HostConfig{"ncu3", "", {}}};
+  StatusSnapshot s;
+  s.host_clocks["ncu1"] = HostClockView{0, 0, 0};
+  s.host_clocks["ncu2"] = HostClockView{3'022'800, 65'700, 9};
+  const std::vector<std::string> lines = status_lines(m, s);
+  ASSERT_EQ(lines.size(), 9U);
+  EXPECT_EQ(lines[6], "host ncu1  clock: machine time (coordinator)");
+  EXPECT_EQ(lines[7], "host ncu2  clock +3022.8 us +- 65.7 us (9 exchanges)");
+  EXPECT_EQ(lines[8], "host ncu3  no clock announced");
+}
+
 }  // namespace
 }  // namespace mcnc::status

@@ -15,12 +15,8 @@ bool ClockOffsetFilter::add(const ClockExchange& e) noexcept {
   if (count_ < kWindow) {
     ++count_;
   }
-  return true;
-}
-
-std::optional<ClockOffset> ClockOffsetFilter::estimate() const noexcept {
   if (count_ < kMinSamples) {
-    return std::nullopt;
+    return true;
   }
   const Entry* best = &window_[0];
   for (std::uint32_t i = 1; i < count_; ++i) {
@@ -28,7 +24,16 @@ std::optional<ClockOffset> ClockOffsetFilter::estimate() const noexcept {
       best = &window_[i];
     }
   }
-  return ClockOffset{best->offset_ns, (best->round_trip_ns + 1) / 2, count_};
+  const ClockOffset candidate{best->offset_ns, (best->round_trip_ns + 1) / 2, count_};
+  const std::int64_t allowance =
+      held_ ? held_->error_ns + (e.t4_ns - held_at_ns_) / 1'000'000 * kDriftPpm : 0;
+  if (!held_ || candidate.error_ns <= allowance) {
+    held_ = candidate;
+    held_at_ns_ = e.t4_ns;
+  } else {
+    held_->samples = count_;
+  }
+  return true;
 }
 
 }  // namespace mcnc::clock

@@ -29,8 +29,14 @@ struct ClockOffset {
   std::uint32_t samples = 0;   // exchanges in the window
 };
 
+// The estimate it gives is held: a window whose best exchange bounds the offset less tightly
+// than the held estimate, allowing for the clocks' drift since (kDriftPpm), does not replace it.
+// A host whose launcher is starved for a while (a realtime machine on its cores) then keeps
+// the good estimate it had instead of taking one off by half a long round trip.
 class ClockOffsetFilter {
  public:
+  // The drift allowed between two hosts' clocks: crystals are within 50 ppm each.
+  static constexpr std::int64_t kDriftPpm = 100;
   // The window: the latest kWindow exchanges. Short, so that a host clock's drift against the
   // reference (a few ppm between crystals) moves the estimate within seconds.
   static constexpr std::size_t kWindow = 16;
@@ -40,9 +46,10 @@ class ClockOffsetFilter {
   // Adds an exchange; false (and ignored) when its times cannot be: an answer before its
   // probe, or a reference that answered before it received.
   bool add(const ClockExchange& exchange) noexcept;
-  // The offset by the exchange of the window with the shortest round trip; none before
-  // kMinSamples exchanges.
-  [[nodiscard]] std::optional<ClockOffset> estimate() const noexcept;
+  // The held estimate: from the exchange of the window with the shortest round trip, once
+  // kMinSamples exchanges are in, kept until a window bounds the offset at least as tightly
+  // (with the drift allowance since); none before.
+  [[nodiscard]] std::optional<ClockOffset> estimate() const noexcept { return held_; }
 
  private:
   struct Entry {
@@ -52,6 +59,8 @@ class ClockOffsetFilter {
   std::array<Entry, kWindow> window_{};
   std::size_t next_ = 0;
   std::uint32_t count_ = 0;
+  std::optional<ClockOffset> held_;
+  std::int64_t held_at_ns_ = 0;  // the host's clock when the held estimate was taken
 };
 
 }  // namespace mcnc::clock

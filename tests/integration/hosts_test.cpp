@@ -7,6 +7,8 @@
 // and a clock of its own), a launcher on each, gives that trace too.
 #include "harness.hpp"
 
+#include "common/config/machine_config.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -239,10 +241,9 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
   }
   ASSERT_EQ(estimated.size(), 3U) << "every host's clock is in the trace";
 
-  // The axis nodes by host (launch/machines/cell_3ncu.yaml).
-  const std::map<std::string, std::string> host_of{{"X1", "ncu1"}, {"Z1", "ncu1"}, {"A1", "ncu1"},
-                                                   {"S1", "ncu1"}, {"X2", "ncu2"}, {"Z2", "ncu2"},
-                                                   {"S2", "ncu2"}, {"Z3", "ncu2"}, {"X3", "ncu3"}};
+  // The axis nodes' hosts, as the machine file says.
+  const mcnc::config::MachineConfig machine =
+      mcnc::config::load_machine_file(source("launch/machines/cell_3ncu.yaml"));
   std::map<std::uint64_t, std::pair<std::int64_t, std::int64_t>> due_range;  // by cycle
   std::set<std::string> hosts_seen;
   std::size_t ticks = 0;
@@ -250,7 +251,9 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
     if (e["ev"] != "tick") {
       continue;
     }
-    const std::string& host = host_of.at(e["axis"]);
+    const mcnc::config::HostConfig* on = machine.host_of(e["axis"].get<std::string>());
+    ASSERT_NE(on, nullptr) << e.dump();
+    const std::string host = on->name;
     // The launcher refines its estimate during the run; the node follows it.
     EXPECT_LE(std::llabs(e["offset_ns"].get<std::int64_t>() - true_offset.at(host)), 500'000)
         << e.dump();

@@ -37,7 +37,7 @@ def run_seconds(log):
         t = (int(m[1]) * 3600 + int(m[2]) * 60 + int(m[3])) + int(m[4]) / 1000
         if "starting the run" in line:
             start = t
-        elif start is not None:
+        elif start is not None and "clock offset" not in line:  # the hosts' clocks, at the start
             end = t
             break
     if start is None or end is None:

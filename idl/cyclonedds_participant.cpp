@@ -141,10 +141,14 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 
 // Domain configuration: the lease and announcements of the Fast DDS profile, and shared memory
 // under a service name of the domain's own, so that two machines on two domains of one host
-// share a RouDi and never each other's samples. CYCLONEDDS_URI, when set, is read after it.
+// share a RouDi and never each other's samples. Multicast only for discovery, as Fast DDS does:
+// a sample sent to a multicast group reaches every participant of the domain on every host,
+// each of which wakes to drop what it does not read; sent to each matched reader it wakes only
+// those (decision 54). CYCLONEDDS_URI, when set, is read after it.
 std::string domain_config(int domain, bool shared_memory) {
   std::string config =
       "<CycloneDDS><Domain id=\"any\">"
+      "<General><AllowMulticast>spdp</AllowMulticast></General>"
       "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>1s</SPDPInterval>"
       "</Discovery>"
       "<SharedMemory><Enable>" +

@@ -44,6 +44,10 @@ namespace {
 // How long a follower's trace parts may take to reach the coordinator, and the coordinator
 // waits for them.
 constexpr std::chrono::seconds kTraceShippingWait{20};
+// After an E-stop, how long the launcher waits for the drives to come to rest, and for each axis
+// node's first feedback sample (a node not heard by then is gone).
+constexpr std::chrono::seconds kDrivesAtRestWait{5};
+constexpr std::chrono::seconds kDriveHeardWait{2};
 
 struct Observed {
   std::mutex mutex;
@@ -130,24 +134,30 @@ LaunchResult Launcher::run(
           });
         }
       });
-  // The run's progress, end and alarms need only each channel's and axis's latest sample (a
-  // channel's status carries its run's start and end cycles), so both cyclic readers are
-  // observers: no writer waits for the launcher or repeats samples for it.
+  // The processes a launcher answers for: a follower its own host's, the coordinator (or the
+  // launcher of a machine on one host) every one.
+  const auto answers_for = [&](const std::string& process) {
+    const config::HostConfig* host = machine_.host_of(process);
+    return !follower || (host != nullptr && host->name == options_.host);
+  };
+  // The run's progress, end and alarms need only each channel's latest sample (a channel's
+  // status carries its run's start and end cycles), so the reader is an observer: no writer
+  // waits for the launcher or repeats samples for it. Still, each is a sample a cycle, over the
+  // network across hosts, so a follower reads only its own host's channels.
+  std::vector<std::string> status_keys;
+  for (const auto& ch : machine_.channels) {
+    if (answers_for(ch.name)) {
+      status_keys.push_back(ch.name);
+    }
+  }
   dds::Reader<::mcnc::ChannelStatus> status_reader(
-      node.participant(), dds::Keys::of(config::channel_names(machine_)),
+      node.participant(), dds::Keys::of(status_keys),
       [&](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
         std::lock_guard<std::mutex> lock(seen.mutex);
         auto& slot = seen.status[s.channel()];
         if (s.cycle() >= slot.cycle()) {
           slot = s;
         }
-      },
-      {}, dds::ReaderRole::observer);
-  dds::Reader<AxisFeedback> feedback_reader(
-      node.participant(), dds::Keys::of(config::node_keys(machine_)),
-      [&](const AxisFeedback& f, const dds::WriterId&) {
-        std::lock_guard<std::mutex> lock(seen.mutex);
-        seen.feedback[f.axis()] = f;
       },
       {}, dds::ReaderRole::observer);
   dds::Reader<Alarm> alarm_reader(node.participant(), [&](const Alarm& a, const dds::WriterId&) {
@@ -227,6 +237,9 @@ LaunchResult Launcher::run(
     std::vector<ChannelProgress> list;
     std::lock_guard<std::mutex> lock(seen.mutex);
     for (const auto& ch : machine_.channels) {
+      if (!answers_for(ch.name)) {
+        continue;  // a follower's result is its host's part of the run
+      }
       ChannelProgress p;
       p.name = ch.name;
       p.has_program = options_.programs.count(ch.name) != 0;
@@ -306,19 +319,39 @@ LaunchResult Launcher::run(
                       " is gone (its launcher's lease ran out: the host is down or cut off)"
                 : std::string();
   };
-  // After an E-stop: until every drive this launcher sees is at rest, at most 5 s.
+  // After an E-stop: until every drive this launcher answers for is at rest, at most 5 s. Their
+  // feedback is read only now: all through the run it would cost a sample a cycle from every
+  // axis node, over the network across hosts (decision 54). A node not heard within
+  // kDriveHeardWait (its process or host is gone) does not hold the stop up.
   const auto wait_drives_at_rest = [&] {
-    const auto deadline = std::chrono::steady_clock::now() + 5s;
-    while (std::chrono::steady_clock::now() < deadline) {
+    std::vector<std::string> keys;
+    std::vector<std::uint32_t> ids;
+    for (const auto& axis : machine_.axes) {
+      if (answers_for(config::node_key(axis))) {
+        keys.push_back(config::node_key(axis));
+        ids.push_back(static_cast<std::uint32_t>(axis.id));
+      }
+    }
+    dds::Reader<AxisFeedback> feedback_reader(
+        node.participant(), dds::Keys::of(keys),
+        [&](const AxisFeedback& f, const dds::WriterId&) {
+          std::lock_guard<std::mutex> lock(seen.mutex);
+          seen.feedback[f.axis()] = f;
+        },
+        {}, dds::ReaderRole::observer);
+    const auto begin = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() < begin + kDrivesAtRestWait) {
       std::this_thread::sleep_for(20ms);
       find_exited();
       bool rest = true;
+      bool heard = true;
       std::lock_guard<std::mutex> lock(seen.mutex);
-      for (const auto& axis : machine_.axes) {
-        auto it = seen.feedback.find(static_cast<std::uint32_t>(axis.id));
+      for (const std::uint32_t id : ids) {
+        auto it = seen.feedback.find(id);
+        heard = heard && it != seen.feedback.end();
         rest = rest && (it == seen.feedback.end() || drive_at_rest(it->second));
       }
-      if (rest) {
+      if (rest && (heard || std::chrono::steady_clock::now() >= begin + kDriveHeardWait)) {
         break;
       }
     }

@@ -79,6 +79,9 @@ bool ChildProcess::start(const std::vector<std::string>& env_overrides, int fifo
   }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  // Only the standard streams: DDS implementations open their sockets without close-on-exec,
+  // and a child that held the launcher's would keep its ports bound after the launcher left.
+  posix_spawn_file_actions_addclosefrom_np(&actions, STDERR_FILENO + 1);
   if (!directory_.empty()) {
     posix_spawn_file_actions_addchdir_np(&actions, directory_.c_str());
   }

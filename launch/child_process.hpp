@@ -19,7 +19,8 @@ class ChildProcess {
   // Starts it with `env_overrides` ("KEY=VALUE") added to this process's environment, and with
   // `fifo_priority` > 0 at SCHED_FIFO of that priority from its first instruction, so every
   // thread it makes inherits it. Returns false when that priority was not permitted: it then
-  // runs as an ordinary process. Throws std::runtime_error when the executable cannot be started.
+  // runs as an ordinary process. It inherits the standard streams and no other descriptor.
+  // Throws std::runtime_error when the executable cannot be started.
   bool start(const std::vector<std::string>& env_overrides, int fifo_priority = 0);
   // Before start(): the child's working directory, and a file its standard output and error go
   // to (created or truncated). Unset, it shares this process's.

@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
 
     // Discovery: the writers of every channel that may command the node, and the feedback
     // reader of every channel that reads it.
-    process::CycleLoop loop(node, machine.cycle_us);
+    process::CycleLoop loop(node, machine.cycle_us, clock::kAxisCyclePriority);
     spdlog::info("node {} on {}{}", node_id, bus->uri, sync_producer ? " (SYNC producer)" : "");
     if (!loop.start([&] { return inputs.discovered() && outputs.discovered(); }, shell.clock)) {
       return 0;

@@ -29,9 +29,9 @@ std::string roudi_config(std::size_t processes);
 // RouDi removes a process whose keep-alive it has not handled for 1.5 s. Its work is small and
 // bounded (registrations and port requests at start-up, keep-alives), so it runs above
 // everything of the host's: above ordinary load, which starved it at a lockstep machine's
-// start beside a CPU hog, and above a realtime machine's processes
-// (clock::kRealtimePriority).
-inline constexpr int kRoudiPriority = clock::kRealtimePriority + 1;
+// start beside a CPU hog, and above a realtime machine's processes and their cycle threads
+// (clock::kAxisCyclePriority).
+inline constexpr int kRoudiPriority = clock::kAxisCyclePriority + 1;
 
 class HostRoudi {
  public:

@@ -21,7 +21,7 @@ namespace mcnc::launch {
 // supervising thread runs above the machine and its RouDi (common/clock, host_roudi.hpp), and
 // when no channel has been heard for kMachineSilentLimit it E-stops the machine: its run
 // timeout, an interrupt and the stop that follows still work on such a host.
-inline constexpr int kSupervisorPriority = clock::kRealtimePriority + 2;
+inline constexpr int kSupervisorPriority = clock::kAxisCyclePriority + 2;
 inline constexpr std::chrono::seconds kMachineSilentLimit{5};
 
 // An operator command the launcher sends at a given cycle (`mcnc run --operator`): a scripted

@@ -111,6 +111,11 @@ int main(int argc, char** argv) {
 
   process::start_process("drivesim-" + bus_name, shell);
   const bool lockstep = shell.clock == "lockstep";
+  if (!lockstep) {
+    // The simulator stands for the drives' own hardware, which no host's load delays: its frame
+    // loop runs with the axis nodes' cycles, above the machine's other threads (decision 55).
+    (void)clock::raise_realtime_thread(clock::kAxisCyclePriority);
+  }
 
   try {
     drivesim::DriveBusSimulator simulator(drives, machine.cycle_s());

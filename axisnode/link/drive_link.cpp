@@ -27,6 +27,8 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, boo
   }
   thread_ = std::thread([this] {
     process::name_this_thread("can-rx");
+    // The drive's answers close its loop: in realtime, at the cycle thread's priority.
+    (void)clock::raise_realtime_thread(clock::kAxisCyclePriority);
     receive_loop();
   });
 }
@@ -44,6 +46,7 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
   sync_late_count_ = 0;
   sync_thread_ = std::thread([this, schedule] {
     process::name_this_thread("can-sync");
+    (void)clock::raise_realtime_thread(clock::kAxisCyclePriority);
     std::uint64_t next = 0;
     while (!sync_stop_) {
       // Wake at the due time, or within 50 ms to notice a stop.

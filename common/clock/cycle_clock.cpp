@@ -1,5 +1,6 @@
 #include "common/clock/cycle_clock.hpp"
 
+#include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -41,13 +42,24 @@ const char* prepare_realtime_process() noexcept {
   param.sched_priority = kRealtimePriority;
   const bool fifo = sched_setscheduler(0, SCHED_FIFO, &param) == 0;
   const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
+  static_assert(kRealtimePriority == 38, "the descriptions below name it");
   if (fifo && locked) {
-    return "timer slack 1 ns, SCHED_FIFO 40, memory locked";
+    return "timer slack 1 ns, SCHED_FIFO 38, memory locked";
   }
   if (fifo) {
-    return "timer slack 1 ns, SCHED_FIFO 40 (mlockall not permitted)";
+    return "timer slack 1 ns, SCHED_FIFO 38 (mlockall not permitted)";
   }
   return "timer slack 1 ns (SCHED_FIFO not permitted)";
+}
+
+bool raise_realtime_thread(int priority) noexcept {
+  int policy = 0;
+  sched_param param{};
+  if (pthread_getschedparam(pthread_self(), &policy, &param) != 0 || policy != SCHED_FIFO) {
+    return false;
+  }
+  param.sched_priority = priority;
+  return pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
 }
 
 }  // namespace mcnc::clock

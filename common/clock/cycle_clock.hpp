@@ -14,12 +14,23 @@ void sleep_until_ns(std::int64_t t_ns) noexcept;
 // run back to back (a burst would starve the bus of time between SYNCs).
 std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std::uint64_t cycle,
                              bool skip_missed) noexcept;
-// The SCHED_FIFO priority of a realtime process, every thread of it.
-inline constexpr int kRealtimePriority = 40;
+// SCHED_FIFO priorities of a realtime machine, lowest first (decision 55): every thread of a
+// realtime process, its middleware's receive threads among them; the cycle thread of a channel
+// or the PLC; the cycle thread of an axis node and its CAN threads (the drive's answers, the
+// SYNC timer), which close the drive's loop at the tick. A
+// burst of samples or of discovery then never delays a tick. The host's RouDi and the
+// launcher's supervision run above all of them (launch/).
+inline constexpr int kRealtimePriority = 38;
+inline constexpr int kCyclePriority = 39;
+inline constexpr int kAxisCyclePriority = 40;
 // Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted.
 // Call it first thing in main(), before any thread starts: threads inherit the policy, and the
 // DDS and CAN receive threads must not wait behind ordinary work. Returns a short description
 // of what was applied (for the log).
 const char* prepare_realtime_process() noexcept;
+// Raises the calling thread (a cycle thread, or an axis node's CAN threads) to `priority` when
+// it runs at SCHED_FIFO (prepare_realtime_process() was permitted). False when it does not, or
+// may not.
+bool raise_realtime_thread(int priority) noexcept;
 
 }  // namespace mcnc::clock

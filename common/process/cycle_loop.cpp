@@ -38,6 +38,9 @@ bool CycleLoop::start(const std::function<bool()>& discovered, const std::string
     spdlog::warn("the run uses the {} clock; this process was started for {}",
                  lockstep_ ? "lockstep" : "realtime", clock_name);
   }
+  if (!lockstep_) {
+    (void)clock::raise_realtime_thread(cycle_priority_);  // not at SCHED_FIFO: nothing to raise
+  }
   node_.announce(PHASE_RUNNING);
   return true;
 }

@@ -21,11 +21,15 @@ class CycleLoop {
   // How long a process on a host of several waits, once the run starts, for its host's clock.
   static constexpr std::chrono::seconds kMachineClockWait{5};
 
-  CycleLoop(ProcessNode& node, int cycle_us)
-      : node_(node), period_ns_(std::int64_t{cycle_us} * 1000) {}
+  // `cycle_priority`: the SCHED_FIFO priority of the thread that runs the cycles, in realtime
+  // (clock::kCyclePriority, or clock::kAxisCyclePriority for an axis node).
+  CycleLoop(ProcessNode& node, int cycle_us, int cycle_priority = clock::kCyclePriority)
+      : node_(node), period_ns_(std::int64_t{cycle_us} * 1000), cycle_priority_(cycle_priority) {}
 
   // Polls `discovered` until it holds, announces ready and waits for the run start. False when
   // the process is told to stop first. `clock_name` is the clock the process was started for.
+  // Call it on the thread that runs the cycles: in realtime it raises that thread above the
+  // process's other threads.
   bool start(const std::function<bool()>& discovered, const std::string& clock_name);
 
   // Waits until `cycle` may run and updates it (realtime may skip ticks). `ready(cycle)` says
@@ -78,6 +82,7 @@ class CycleLoop {
  private:
   ProcessNode& node_;
   std::int64_t period_ns_;
+  int cycle_priority_;
   std::int64_t origin_ns_ = 0;
   bool lockstep_ = true;
   bool pace_ = false;

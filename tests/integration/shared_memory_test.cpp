@@ -247,7 +247,8 @@ TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcesses) {
                ? param.sched_priority
                : 0;
   };
-  // The axis node sets its own priority first thing in its main().
+  // The axis node's main thread runs its cycles, at the machine's highest priority once the run
+  // has started (its other threads run below it, decision 55).
   EXPECT_TRUE(eventually([&] { return fifo_priority(axis) == 40; }, 10s));
   EXPECT_EQ(fifo_priority(roudi), 41);
   launch.kill(SIGTERM);

@@ -123,7 +123,8 @@ int main(int argc, char** argv) {
     const std::vector<const config::AxisConfig*> fed = config::fed_axes(machine, *ch);
     const std::size_t plc_input = fed.size() + machine.channels.size() - 1;
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
-    channel::AxisFeedbackInputs feedback(node, fed, gate, machine.deadline_cycles);
+    channel::AxisFeedbackInputs feedback(node, fed, gate, machine.deadline_cycles,
+                                         static_cast<std::uint32_t>(ch->id));
     channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
     std::optional<channel::PlcLink> plc;
     if (machine.plc.present) {

@@ -340,6 +340,8 @@ AxisNodeStanding AxisNode::standing() const noexcept {
   s.released_by = ownership_.released_by();
   s.coupled_to = spindle_coupling_.active() ? roles_.sync_master : axis_coupling_.master();
   s.coupling_locked = spindle_coupling_.locked() || axis_coupling_.active();
+  s.refused_channels = ownership_.refused_channels();
+  s.full_channels = ownership_.full_channels();
   return s;
 }
 

@@ -111,6 +111,10 @@ struct AxisNodeStanding {
   std::uint32_t released_by = 0;
   std::uint32_t coupled_to = 0;  // the master axis while coupled
   bool coupling_locked = false;
+  // The channels whose latest G140-G142 request the node refused, or could not keep (bit c-1
+  // for channel c): each asker alarms instead of waiting (AxisOwnership).
+  std::uint64_t refused_channels = 0;
+  std::uint64_t full_channels = 0;
 };
 
 class AxisNode {

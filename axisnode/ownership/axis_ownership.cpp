@@ -4,8 +4,20 @@
 
 namespace mcnc::ownership {
 
+namespace {
+
+std::uint64_t channel_bit(std::uint32_t channel) noexcept {
+  return channel >= 1 && channel <= 64 ? std::uint64_t{1} << (channel - 1) : 0;
+}
+
+}  // namespace
+
 bool AxisOwnership::request(const OwnershipRequest& request) noexcept {
-  return cycle::insert_in_decision_order(incoming_, incoming_count_, request);
+  if (cycle::insert_in_decision_order(incoming_, incoming_count_, request)) {
+    return true;
+  }
+  full_pending_ |= channel_bit(request.channel);  // answered with the cycle's decision
+  return false;
 }
 
 bool AxisOwnership::waiting(std::uint32_t channel) const noexcept {
@@ -21,6 +33,11 @@ void AxisOwnership::answer(std::uint32_t channel, OwnershipRequestKind kind,
                            OwnershipAnswer a) noexcept {
   if (answer_count_ < answers_.size()) {
     answers_[answer_count_++] = Answer{channel, kind, a};
+  }
+  if (a == OwnershipAnswer::refused) {
+    refused_ |= channel_bit(channel);
+  } else if (a == OwnershipAnswer::full) {
+    full_ |= channel_bit(channel);
   }
 }
 
@@ -118,6 +135,14 @@ OwnershipChange AxisOwnership::decide(bool at_rest) noexcept {
     return true;
   };
 
+  // A channel's new request ends what its earlier one came to.
+  for (std::size_t i = 0; i < incoming_count_; ++i) {
+    refused_ &= ~channel_bit(incoming_[i].channel);
+    full_ &= ~channel_bit(incoming_[i].channel);
+  }
+  refused_ &= ~full_pending_;
+  full_ |= full_pending_;
+  full_pending_ = 0;
   // A withdraw (the channel was reset or stopped) goes before anything is granted: the waiting
   // line must not serve a channel that no longer waits.
   for (std::size_t i = 0; i < incoming_count_; ++i) {

@@ -61,8 +61,8 @@ class AxisOwnership {
 
   explicit AxisOwnership(std::uint32_t home) noexcept : home_(home), owner_(home) {}
 
-  // A request to decide in the next decide(). False (and answer `full` to the asker) when the
-  // queue is full.
+  // A request to decide in the next decide(). False when the cycle's queue is full: the asker
+  // is then answered `full` (full_channels()) by that decide().
   bool request(const OwnershipRequest& request) noexcept;
   // Decides this cycle's requests in order, then the waiting acquires; `at_rest`: the axis
   // stands (no motion commanded), so a forced acquire or a restore may take it now.
@@ -75,6 +75,13 @@ class AxisOwnership {
   };
   [[nodiscard]] const Answer* answers() const noexcept { return answers_.data(); }
   [[nodiscard]] std::size_t answer_count() const noexcept { return answer_count_; }
+  // The channels whose latest request was refused, and those whose latest did not fit in the
+  // queue (bit c-1 for channel c, 1-64; a channel above 64 is never refused for lack of a
+  // bit: it has none). The node sends both in its feedback, so the asker alarms instead of
+  // waiting for ever. A bit stays until the channel's next request is decided: a reader of the
+  // newest feedback alone (realtime) does not miss it.
+  [[nodiscard]] std::uint64_t refused_channels() const noexcept { return refused_; }
+  [[nodiscard]] std::uint64_t full_channels() const noexcept { return full_; }
 
   // The channel whose process is gone: its waiting requests are dropped.
   void channel_gone(std::uint32_t channel) noexcept;
@@ -102,6 +109,9 @@ class AxisOwnership {
   std::size_t waiting_count_ = 0;
   std::array<Answer, 2 * kMaxWaiting> answers_{};
   std::size_t answer_count_ = 0;
+  std::uint64_t refused_ = 0;
+  std::uint64_t full_ = 0;
+  std::uint64_t full_pending_ = 0;  // requests of this cycle that did not fit
   OwnershipChange change_{};
   bool granted_now_ = false;  // the axis got an owner in this decision: nobody takes it now
 };

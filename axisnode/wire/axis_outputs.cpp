@@ -110,6 +110,8 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const TpdoS
   fb.released_by(standing.released_by);
   fb.coupled_to(standing.coupled_to);
   fb.coupling_locked(standing.coupling_locked);
+  fb.refused_channels(standing.refused_channels);
+  fb.full_channels(standing.full_channels);
   fb.cycle(cycle);
   fb.cmd(out.cmd);
   fb.act(out.act);

@@ -1256,6 +1256,44 @@ std::optional<std::size_t> ChannelController::moves_foreign_slot(
   return std::nullopt;
 }
 
+bool ChannelController::away_on_own_account(std::size_t s) const noexcept {
+  const std::uint32_t self = setup_.channel_id;
+  const std::uint32_t home = setup_.slots[s].home;
+  const AxisFeedbackView& r = received_[s];
+  return home == self ? r.owner != self
+                      : r.owner == self || (r.released_by == self && r.owner != home);
+}
+
+bool ChannelController::exchange_refused(const ExchangeBlock& b) noexcept {
+  const char* code = b.op == interp::Op::axis_release   ? "G140"
+                     : b.op == interp::Op::axis_acquire ? "G141"
+                                                        : "G142";
+  for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
+    const AxisFeedbackView& r = received_[s];
+    if (b.op != interp::Op::axis_restore && s != b.slot) {
+      continue;
+    }
+    // G142 goes to every exchangeable axis: a node where the channel has no say refuses it, and
+    // only one whose axis is away on this channel's account matters.
+    const bool refused =
+        r.request_refused && (b.op != interp::Op::axis_restore || away_on_own_account(s));
+    if (!r.request_full && !refused) {
+      continue;
+    }
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  r.request_full
+                      ? "%s %c: the axis node could not keep the request (more channels wait for "
+                        "the axis than it holds)"
+                      : "%s %c: the axis node refused the request (the axis is not this "
+                        "channel's to release or restore; channel %u has it)",
+                  code, setup_.slots[s].address, r.owner);
+    raise(kAlarmRequestRefused, text, b.block.line, 0, static_cast<int>(s + 1));
+    return true;
+  }
+  return false;
+}
+
 void ChannelController::push_axis_request(AxisRequestKind kind, std::size_t slot,
                                           bool force) noexcept {
   if (out_.axis_request_count < ChannelOutput::kMaxAxisRequests) {
@@ -1312,6 +1350,9 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
     if (!answer_visible(b.sent_cycle, cycle)) {
       return;
     }
+    if (exchange_refused(b)) {
+      return;
+    }
     switch (b.op) {
       case interp::Op::axis_release:
         if (f.owner == self) {
@@ -1332,12 +1373,7 @@ void ChannelController::run_exchange(std::uint64_t cycle) noexcept {
         // decide 1): its own axes are back, none borrowed is still its, none it released is
         // still elsewhere.
         for (std::size_t s = 0; s < setup_.axis_count && s < received_.size(); ++s) {
-          const AxisFeedbackView& r = received_[s];
-          const std::uint32_t home = setup_.slots[s].home;
-          const bool away = home == self
-                                ? r.owner != self
-                                : r.owner == self || (r.released_by == self && r.owner != home);
-          if (away) {
+          if (away_on_own_account(s)) {
             return;
           }
         }

@@ -42,6 +42,9 @@ struct AxisFeedbackView {
   // slave axis's master.
   std::uint32_t coupled_to = 0;
   bool coupling_locked = false;
+  // G140-G142: the node refused this channel's latest request, or could not keep it.
+  bool request_refused = false;
+  bool request_full = false;
 };
 
 // G114.1 group K (param 1420) whose master is this channel's spindle: the slave's feedback is
@@ -275,6 +278,7 @@ inline constexpr int kAlarmCallCycle = 1223;         // G144: the target is this
 inline constexpr int kAlarmCallTimeout = 1224;       // G144: the target did not become free
 inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not this channel's
 inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
+inline constexpr int kAlarmRequestRefused = 1232;    // the axis node refused G140-G142 or is full
 inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or T code
 inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
 inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G114.1 slave
@@ -609,6 +613,12 @@ class ChannelController {
     std::uint64_t sent_cycle = 0;
   };
   std::optional<ExchangeBlock> exchange_block_;
+  // Slot `s`'s axis is away on this channel's account (G142 waits until none is): its own axis
+  // elsewhere, or one it borrowed or released not back home.
+  [[nodiscard]] bool away_on_own_account(std::size_t s) const noexcept;
+  // Alarm 1232 when an axis node refused the block's request or could not keep it (its
+  // feedback says so once the answer is visible): true when it raised it.
+  bool exchange_refused(const ExchangeBlock& b) noexcept;
   // A request an axis node answers in its feedback: sent at N, taken at N+1 (ARCHITECTURE.md
   // §4), seen in the feedback at N+2. Before that the feedback cannot show the answer.
   [[nodiscard]] static bool answer_visible(std::uint64_t sent_cycle, std::uint64_t cycle) noexcept {

@@ -9,12 +9,14 @@ namespace mcnc::channel {
 
 AxisFeedbackInputs::AxisFeedbackInputs(process::ProcessNode& node,
                                        std::vector<const config::AxisConfig*> fed,
-                                       cycle::LockstepGate& gate, int deadline_cycles)
+                                       cycle::LockstepGate& gate, int deadline_cycles,
+                                       std::uint32_t channel_id)
     : node_(node),
       gate_(gate),
       fed_(std::move(fed)),
       writers_(config::node_keys(fed_).size()),
       deadline_cycles_(static_cast<std::uint64_t>(deadline_cycles)),
+      self_bit_(channel_id >= 1 && channel_id <= 64 ? std::uint64_t{1} << (channel_id - 1) : 0),
       feedback_(cycle::tracked_inputs<::mcnc::AxisFeedback>(0, fed_.size())),
       reader_(
           node.participant(), dds::Keys::of(config::node_keys(fed_)),
@@ -66,9 +68,17 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
   node_.wakeup().update([&] {
     for (std::size_t i = 0; i < feedback_.size(); ++i) {
       if (const ::mcnc::AxisFeedback* fb = feedback_[i].for_cycle(cycle, lockstep)) {
-        views[i] = AxisFeedbackView{
-            fb->cmd(),   fb->act(),         fb->enabled(),    fb->alarm(),          true,
-            fb->owner(), fb->released_by(), fb->coupled_to(), fb->coupling_locked()};
+        views[i] = AxisFeedbackView{fb->cmd(),
+                                    fb->act(),
+                                    fb->enabled(),
+                                    fb->alarm(),
+                                    true,
+                                    fb->owner(),
+                                    fb->released_by(),
+                                    fb->coupled_to(),
+                                    fb->coupling_locked(),
+                                    (fb->refused_channels() & self_bit_) != 0,
+                                    (fb->full_channels() & self_bit_) != 0};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

@@ -19,9 +19,10 @@ namespace mcnc::channel {
 
 class AxisFeedbackInputs {
  public:
-  // The nodes take the gate's inputs 0 .. fed.size() - 1.
+  // The nodes take the gate's inputs 0 .. fed.size() - 1. `channel_id`: the channel's number,
+  // whose refused or unkept G140-G142 requests the views tell.
   AxisFeedbackInputs(process::ProcessNode& node, std::vector<const config::AxisConfig*> fed,
-                     cycle::LockstepGate& gate, int deadline_cycles);
+                     cycle::LockstepGate& gate, int deadline_cycles, std::uint32_t channel_id);
   AxisFeedbackInputs(const AxisFeedbackInputs&) = delete;
   AxisFeedbackInputs& operator=(const AxisFeedbackInputs&) = delete;
 
@@ -44,6 +45,7 @@ class AxisFeedbackInputs {
   std::vector<const config::AxisConfig*> fed_;
   std::size_t writers_;  // one per node (a spindle and its C axis share one)
   std::uint64_t deadline_cycles_;
+  std::uint64_t self_bit_;  // the channel's bit in a node's refused_channels and full_channels
   std::vector<cycle::TrackedInput<::mcnc::AxisFeedback>> feedback_;
   dds::Reader<::mcnc::AxisFeedback> reader_;
 };

@@ -70,13 +70,15 @@ class ExchangeRig : public ChannelRig {
         }
         switch (r.kind) {
           case AxisRequestKind::release:
+            refused_[a] = owner_[a] != kSelf;  // not its to release: refused, and said so
             if (owner_[a] == kSelf) {
               owner_[a] = 0;
               released_by_[a] = kSelf;
             }
             break;
           case AxisRequestKind::acquire:
-            waiting_[a] = true;
+            full_[a] = full_line;  // the node's waiting line has no room: said so
+            waiting_[a] = !full_line;
             force_[a] = r.force;
             break;
           case AxisRequestKind::restore:
@@ -106,6 +108,8 @@ class ExchangeRig : public ChannelRig {
     for (std::size_t a = 0; a < 2; ++a) {
       feedback_[a].owner = owner_[a];
       feedback_[a].released_by = released_by_[a];
+      feedback_[a].request_refused = refused_[a];
+      feedback_[a].request_full = full_[a];
       if (out.setpoints[a].valid) {
         if (seen[a] != kSelf) {
           ++foreign_setpoints;  // a valid setpoint for an axis it knew was not its own
@@ -118,6 +122,10 @@ class ExchangeRig : public ChannelRig {
   }
 
   void take_away_from_channel_1() { owner_[1] = 0; }  // channel 1's G140
+  void take_x_for(std::uint32_t channel) {  // channel's G141 P1 of X, seen by the node only
+    owner_[0] = channel;
+    released_by_[0] = kSelf;
+  }
   void give_x_to(std::uint32_t channel) {
     owner_[0] = channel;
     released_by_[0] = kSelf;
@@ -128,6 +136,7 @@ class ExchangeRig : public ChannelRig {
   std::vector<AxisRequestOut> requests;
   int foreign_setpoints = 0;
   int withdrawn = 0;
+  bool full_line = false;  // the nodes keep no more waiting requests
 
  private:
   std::vector<AxisFeedbackView> feedback_;
@@ -136,6 +145,8 @@ class ExchangeRig : public ChannelRig {
   std::array<std::uint32_t, 2> released_by_{};
   std::array<bool, 2> waiting_{};
   std::array<bool, 2> force_{};
+  std::array<bool, 2> refused_{};
+  std::array<bool, 2> full_{};
   std::uint64_t cycle_ = 0;
 };
 
@@ -215,6 +226,38 @@ TEST(AxisExchange, MovingAnOwnAxisAnotherChannelHasIsAnAlarmBeforeItMoves) {
   EXPECT_EQ(rig.ctl().last_alarm().line, 2);
   EXPECT_DOUBLE_EQ(rig.feedback()[0].cmd, 0.0);
   EXPECT_EQ(rig.foreign_setpoints, 0);
+}
+
+// The node answers in its feedback; a request it could not keep is an alarm in the asker, never
+// a wait for ever (it was before: the answer was decided and never sent).
+TEST(AxisExchange, AnAcquireTheNodeCannotKeepIsAnAlarmNotAWaitForEver) {
+  ExchangeRig rig;
+  rig.full_line = true;
+  rig.load("G141 A14\nG00 A10\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmRequestRefused}));
+  EXPECT_EQ(rig.ctl().last_alarm().line, 1);
+  EXPECT_EQ(rig.ctl().last_alarm().axis, 2);
+  EXPECT_NE(std::string(rig.ctl().last_alarm().text.data()).find("G141 A"), std::string::npos);
+  EXPECT_DOUBLE_EQ(rig.feedback()[1].cmd, 20.0);  // A stays where channel 1 left it
+  EXPECT_EQ(rig.foreign_setpoints, 0);
+}
+
+// Another channel takes X (G141 P1) in the cycle this channel's G140 X goes out: the node
+// refuses the release, and the channel says so instead of taking X as released.
+TEST(AxisExchange, AReleaseTheNodeRefusesIsAnAlarm) {
+  ExchangeRig rig;
+  rig.load("G140 X7\nM30\n");
+  rig.ctl().request_start();
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.axis_request_count > 0; }));
+  rig.take_x_for(3);
+  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmRequestRefused}));
+  EXPECT_NE(std::string(rig.ctl().last_alarm().text.data()).find("G140 X: the axis node refused"),
+            std::string::npos);
+  EXPECT_NE(std::string(rig.ctl().last_alarm().text.data()).find("channel 3 has it"),
+            std::string::npos);
 }
 
 }  // namespace

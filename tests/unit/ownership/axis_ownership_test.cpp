@@ -136,6 +136,69 @@ TEST(AxisOwnership, AChannelWithNoSayCannotRestoreAndAGoneChannelStopsWaiting) {
   EXPECT_EQ(a.decide(true).owner, 0U);  // nobody left to take it
 }
 
+// The asker hears a refusal from the node's feedback: the bit stays until its next request is
+// decided, so that a channel that reads only the newest feedback cannot miss it.
+TEST(AxisOwnership, ARefusalStaysForItsAskerUntilItsNextRequestIsDecided) {
+  AxisOwnership a(1);
+  a.request(req(Kind::release, 2));
+  a.decide(true);
+  EXPECT_EQ(a.refused_channels(), std::uint64_t{1} << 1);
+  EXPECT_EQ(a.full_channels(), 0U);
+  a.decide(true);
+  a.decide(true);
+  EXPECT_EQ(a.refused_channels(), std::uint64_t{1} << 1);  // nothing new from channel 2
+  a.request(req(Kind::release, 3));  // another channel's refusal adds its own bit
+  a.decide(true);
+  EXPECT_EQ(a.refused_channels(), (std::uint64_t{1} << 1) | (std::uint64_t{1} << 2));
+  a.request(req(Kind::acquire, 2));  // granted? no: 1 owns it, so 2 waits; not refused
+  a.decide(true);
+  EXPECT_TRUE(a.waiting(2));
+  EXPECT_EQ(a.refused_channels(), std::uint64_t{1} << 2);
+}
+
+// More requests in one cycle than the node takes: the one that does not fit is answered `full`
+// once the cycle is decided, even when an earlier request of the same channel was taken.
+TEST(AxisOwnership, ARequestThatDoesNotFitInACycleIsAnsweredFull) {
+  AxisOwnership a(1);
+  for (std::uint32_t c = 2; c <= 64; ++c) {
+    ASSERT_TRUE(a.request(req(Kind::acquire, c, false, 1)));
+  }
+  ASSERT_TRUE(a.request(req(Kind::restore, 2, false, 1)));
+  EXPECT_FALSE(a.request(req(Kind::restore, 3, false, 1)));  // the 65th of the cycle
+  a.decide(false);
+  EXPECT_EQ(a.full_channels(), std::uint64_t{1} << 2);
+  EXPECT_TRUE(a.waiting(3));  // its acquire was taken
+  a.request(req(Kind::withdraw, 3, false, 2));
+  a.decide(false);
+  EXPECT_EQ(a.full_channels(), 0U);
+}
+
+// The waiting line is full: a request that would wait is answered `full` instead.
+TEST(AxisOwnership, ARequestThatWouldWaitInAFullLineIsAnsweredFull) {
+  AxisOwnership a(1);
+  a.request(req(Kind::release, 1));
+  a.decide(true);
+  a.request(req(Kind::acquire, 2));
+  a.decide(true);
+  ASSERT_EQ(a.owner(), 2U);
+  std::uint64_t cycle = 10;
+  for (std::uint32_t c = 3; c <= 64; ++c) {  // 62 wait for channel 2's axis
+    a.request(req(Kind::acquire, c, false, ++cycle));
+  }
+  a.decide(false);
+  a.request(req(Kind::restore, 2, false, ++cycle));  // its owner: waits for the axis at rest
+  a.decide(false);
+  a.request(req(Kind::restore, 1, false, ++cycle));  // the home channel: waits as well
+  a.decide(false);
+  ASSERT_EQ(a.waiting_count(), AxisOwnership::kMaxWaiting);
+  EXPECT_EQ(a.full_channels(), 0U);
+  a.request(req(Kind::acquire, 1, false, ++cycle));
+  a.decide(false);
+  EXPECT_EQ(answer_of(a, 1), OwnershipAnswer::full);
+  EXPECT_EQ(a.full_channels(), std::uint64_t{1});
+  EXPECT_EQ(a.owner(), 2U);
+}
+
 TEST(AxisOwnership, AWithdrawEndsOnlyThatChannelsWait) {
   AxisOwnership a(1);
   a.request(req(Kind::acquire, 2));

@@ -1,11 +1,10 @@
 #pragma once
-// The interpreter behind the channel's CommandSource. It hands the channel the commands its
-// planner executes (rapid, linear and arc per minute, dwell in seconds, program end); any other
-// canonical command is a program alarm naming what the channel cannot execute yet, raised
-// before the program starts (feed per revolution, threads and dwells in revolutions need the
-// spindle's feedback, tool and M codes the PLC node, the multi-channel words other than G04.1
-// the coordination runtime). Its own first spindle's speed and direction it runs; G04.1 wait
-// marks it hands to the channel.
+// The interpreter behind the channel's CommandSource: the channel's own program, a program
+// another channel calls in it (G144) and the operator's MDI blocks, each checked before it
+// runs. The check is a dry run of the whole program, so that a bad block, or a command this
+// channel cannot execute (for_channel: a G04.1 or G144 naming a channel the machine lacks, a
+// G51.4 of an axis that may not follow, a spindle function the channel has no spindle for), is
+// an alarm before anything moves (docs/alarms.md).
 #include "channel/interp/command_source.hpp"
 #include "channel/interp/interpreter.hpp"
 

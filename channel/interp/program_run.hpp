@@ -1,10 +1,14 @@
 #pragma once
 // The state of one interpreter run and its execution, behind Interpreter (interpreter.hpp).
 // program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
-// program_run_motion.cpp: coordinates and motion; program_run_thread.cpp: threading and the
-// single cycles; program_run_frame.cpp: the G68.1 rotation and the G51.1 mirror;
-// program_run_polar.cpp: G12.1 polar interpolation; program_run_cylinder.cpp: G07.1;
-// system_variables.cpp: #2000-#19999.
+// program_run_motion.cpp: coordinates and motion; program_run_corners.cpp: chamfers and corner
+// rounds (,C ,R); program_run_thread.cpp: threading and the single cycles;
+// program_run_cycles.cpp: the multiple repetitive cycles G71-G76 and the hole cycles' words;
+// program_run_contour.cpp: the finishing contour of G70-G73; program_run_holes.cpp: the hole
+// cycles (lathe G83-G89, mill G73-G89); program_run_positioning.cpp: the mill's G27/G29/G60;
+// program_run_tool_length.cpp: the mill's T, H and D; program_run_frame.cpp: the G68.1 rotation
+// and the G51.1 mirror; program_run_polar.cpp: G12.1 polar interpolation;
+// program_run_cylinder.cpp: G07.1; system_variables.cpp: the system variables (#2000-#19999).
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"

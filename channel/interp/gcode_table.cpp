@@ -21,6 +21,8 @@ GCodeInfo common_code(int code10) {
       return {GFunction::arc_cw, 1};
     case 30:
       return {GFunction::arc_ccw, 1};
+    case 50:  // Dafeng lists G05 in its appendix only (L8086): taken as GSK's (gsk A.6.4)
+      return {GFunction::arc_three_point, 1};
     case 40:
       return {GFunction::dwell, 0};
     case 41:
@@ -29,6 +31,8 @@ GCodeInfo common_code(int code10) {
       return {GFunction::exact_stop, 0};
     case 100:
       return {GFunction::data_input, 0};
+    case 109:
+      return {GFunction::radius_switch, 0};
     case 71:
     case 1070:
       return {GFunction::cylindrical, 0};
@@ -167,8 +171,6 @@ GCodeInfo common_code(int code10) {
       return {GFunction::channel_call, 0};
     case 1450:
       return {GFunction::channel_release, 0};
-    case 50:
-    case 109:
     case 220:
     case 230:
     case 310:
@@ -329,6 +331,9 @@ int mill_group_slot(int group) {
 GCodeInfo lookup_gcode(int code10, GCodeSystem system, Dialect dialect) {
   if (dialect == Dialect::fanuc_mill) {
     return mill_code(code10);
+  }
+  if (dialect == Dialect::gsk && code10 == 51) {
+    return {GFunction::arc_three_point_absolute, 1};  // gsk A.6.4; Dafeng has no G05.1
   }
   if (system == GCodeSystem::a) {
     switch (code10) {

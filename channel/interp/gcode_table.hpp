@@ -16,10 +16,13 @@ enum class GFunction : std::uint8_t {
   linear,
   arc_cw,
   arc_ccw,
-  dwell,         // G04
-  channel_sync,  // G04.1
-  exact_stop,    // G09
-  data_input,    // G10
+  arc_three_point,           // G05: the middle point relative to the start (gsk A.6.4)
+  arc_three_point_absolute,  // G05.1 (GSK): the middle point absolute
+  dwell,                     // G04
+  channel_sync,              // G04.1
+  exact_stop,                // G09
+  data_input,                // G10
+  radius_switch,             // G10.9
   plane_xy,
   plane_zx,
   plane_yz,

@@ -56,6 +56,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   vars_.add_writable_provider(10001, 19999, *this);
   for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
     machine_[i] = config_.axes[i].start;
+    diameter_[i] = config_.axes[i].diameter;
   }
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
@@ -684,6 +685,9 @@ void ProgramRun::end_program(int code) {
   // cylindrical interpolation in release_block, after their last moves).
   rotated_ = false;
   program_mirror_ = transform::AxisMirror{};
+  for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
+    diameter_[i] = config_.axes[i].diameter;  // G10.9 ends with the program (L3981)
+  }
   polar_coords_ = false;
   modal_codes_[17] = 69.1;
   modal_codes_[18] = 15;

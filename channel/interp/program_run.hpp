@@ -171,6 +171,11 @@ class ProgramRun final : public macro::VariableProvider {
                          bool machine_coordinates);
   bool run_motion(GFunction motion, bool machine_coordinates, int column);
   bool run_arc(GFunction motion, const AxisVector& target, int column);
+  // The arc of a G02/G03/G05 block to `target` in the plane of `axes`, after its feed check.
+  bool emit_arc(const AxisVector& target, const std::array<int, 2>& axes, ArcDirection dir,
+                const std::array<double, 2>& center, int turns, int column);
+  // G05 / G05.1: the arc through the middle point of I/K (`any`: the block has axis words).
+  bool run_three_point_arc(GFunction motion, const AxisVector& target, bool any, int column);
   // ,C ,R and E (Dafeng) or L D (GSK) of a G01/G02/G03 block: the corner after its move.
   bool take_corner_request();
   void mark_corner(Command& c) const;
@@ -190,6 +195,11 @@ class ProgramRun final : public macro::VariableProvider {
   double tool_offset(int axis) const;  // physical
   double to_physical(int axis, double programmed, bool mirror = true) const;
   double to_programmed(int axis, double physical, bool mirror = true) const;
+  // A value of the axis's data (G53's positions, G10 L2 and #5201.. work offsets): as its
+  // parameter makes it a diameter or a radius, whatever G10.9 switched.
+  double data_to_physical(int axis, double value) const;
+  double physical_to_data(int axis, double physical) const;
+  bool run_radius_switch(int column);  // G10.9
   bool check_feed(int column);
   void apply_tool_offset(int offset);
   // The channel axes of the current plane's first and second axis (-1 when missing).
@@ -448,6 +458,10 @@ class ProgramRun final : public macro::VariableProvider {
   double surface_ = 0.0;
   double clamp_rpm_ = 0.0;
   int reference_spindle_ = 1;
+
+  // The axes programmed as a diameter now: param 0001.1 (AxisConfig::diameter) until G10.9
+  // switches one, again at the program's end (spec L3959-4023).
+  std::array<bool, kMaxChannelAxes> diameter_{};
 
   // Tool
   int tool_ = 0;

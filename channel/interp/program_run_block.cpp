@@ -1396,6 +1396,8 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
       return run_channel_sync(column);
     case GFunction::data_input:
       return run_data_input(column);
+    case GFunction::radius_switch:
+      return run_radius_switch(column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);
@@ -1822,7 +1824,7 @@ bool ProgramRun::run_data_input(int column) {
     }
     return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
       double& slot = work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)];
-      const double v = to_physical(axis, scaled_axis_word(axis, w), false);
+      const double v = data_to_physical(axis, scaled_axis_word(axis, w));
       slot = incremental ? slot + v : v;
       return true;
     });

@@ -1,9 +1,11 @@
 // Coordinates and motion: axis words to machine positions (spec dafeng §1.2, §1.4-§1.6, §2.9),
 // G00/G01/G02/G03, G28/G30, G50/G92, G50.3, G52.
 #include "channel/interp/axis_address.hpp"
+#include "channel/interp/path/plane_geometry.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -31,7 +33,7 @@ double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
   if ((!a.rotary || polar_virtual(axis)) && !metric_) {
     v *= 25.4;
   }
-  if (a.diameter) {
+  if (diameter_[static_cast<std::size_t>(axis)]) {
     v /= 2.0;
   }
   if (mirror && turret_mirror_ && a.name == 'X') {
@@ -49,13 +51,73 @@ double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
   if (mirror && turret_mirror_ && a.name == 'X') {
     v = -v;
   }
-  if (a.diameter) {
+  if (diameter_[static_cast<std::size_t>(axis)]) {
     v *= 2.0;
   }
   if ((!a.rotary || polar_virtual(axis)) && !metric_) {
     v /= 25.4;
   }
   return v;
+}
+
+double ProgramRun::data_to_physical(int axis, double value) const {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  double v = value;
+  if (!a.rotary && !metric_) {
+    v *= 25.4;
+  }
+  return a.diameter ? v / 2.0 : v;
+}
+
+double ProgramRun::physical_to_data(int axis, double physical) const {
+  const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+  const double v = a.diameter ? physical * 2.0 : physical;
+  return !a.rotary && !metric_ ? v / 25.4 : v;
+}
+
+bool ProgramRun::run_radius_switch(int column) {
+  bool any = false;
+  std::vector<int> axis_columns;
+  const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    axis_columns.push_back(w.column);
+    const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
+    if (incremental) {
+      return fail(alarm::kWordNotAllowed,
+                  std::string("G10.9 names the axis by its own address: ") + a.name +
+                      " instead of " + w.address.first,
+                  w.column);
+    }
+    if (a.rotary) {
+      return fail(
+          alarm::kBadWordValue,
+          std::string("G10.9: ") + a.name + " is a rotary axis, neither a diameter nor a radius",
+          w.column);
+    }
+    if (w.value != 0.0 && w.value != 1.0) {
+      return fail(alarm::kBadWordValue,
+                  std::string("G10.9 ") + a.name + " takes 0 (radius) or 1 (diameter)", w.column);
+    }
+    diameter_[static_cast<std::size_t>(axis)] = w.value == 1.0;
+    any = true;
+    return true;
+  });
+  if (!ok) {
+    return false;
+  }
+  for (const BlockWord& w : words_) {
+    const bool axis_word =
+        std::find(axis_columns.begin(), axis_columns.end(), w.column) != axis_columns.end();
+    if (w.column != column && !axis_word && !w.address.is('N')) {
+      return fail(alarm::kMustBeAlone,
+                  "G10.9 stands alone in its block with the axes it switches (spec L3959-4023)",
+                  w.column);
+    }
+  }
+  if (!any) {
+    return fail(alarm::kBadWordValue, "G10.9 needs an axis with 0 (radius) or 1 (diameter)",
+                column);
+  }
+  return true;
 }
 
 double ProgramRun::offset_sum(int axis) const {
@@ -180,7 +242,7 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
       }
       target[i] = machine_[i] + to_physical(axis, v);
     } else if (machine_coordinates) {
-      target[i] = to_physical(axis, v, false);
+      target[i] = data_to_physical(axis, v);  // G53 is not switched by G10.9 (L3959-4023)
     } else {
       target[i] = to_physical(axis, v) + offset_sum(axis) + tool_offset(axis);
     }
@@ -230,8 +292,10 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   if (!read_axis_targets(target, given, machine_coordinates)) {
     return false;
   }
-  const bool cutting =
-      motion == GFunction::linear || motion == GFunction::arc_cw || motion == GFunction::arc_ccw;
+  const bool three_point =
+      motion == GFunction::arc_three_point || motion == GFunction::arc_three_point_absolute;
+  const bool cutting = motion == GFunction::linear || motion == GFunction::arc_cw ||
+                       motion == GFunction::arc_ccw || three_point;
   if (interpolation_mode() && !cutting) {
     return fail(alarm::kInterpolationModeRestriction,
                 "polar and cylindrical interpolation move with G01, G02 or G03 only (spec "
@@ -288,6 +352,9 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
       return true;
     }
     return run_arc(motion, target, column != 0 ? column : first_column);
+  }
+  if (three_point) {
+    return run_three_point_arc(motion, target, any, column != 0 ? column : first_column);
   }
   if (!any) {
     return true;
@@ -461,6 +528,12 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
     }
     turns = static_cast<int>(std::lround(v)) - 1;
   }
+  return emit_arc(target, axes, dir, center, turns, column);
+}
+
+bool ProgramRun::emit_arc(const AxisVector& target, const std::array<int, 2>& axes,
+                          ArcDirection dir, const std::array<double, 2>& center, int turns,
+                          int column) {
   BlockWord* f = word('F');
   if (!check_feed(f != nullptr ? f->column : column)) {
     return false;
@@ -479,6 +552,72 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
   machine_ = target;
   block_moved_ = true;
   return true;
+}
+
+bool ProgramRun::run_three_point_arc(GFunction motion, const AxisVector& target, bool any,
+                                     int column) {
+  const bool absolute = motion == GFunction::arc_three_point_absolute;
+  const std::string code = absolute ? "G05.1" : "G05";
+  // The middle point's words are the plane's centre words: K/I in G18 (gsk A.6.4 rule 4).
+  const char ca = plane_ == Plane::xy ? 'I' : plane_ == Plane::zx ? 'K' : 'J';
+  const char cb = plane_ == Plane::xy ? 'J' : plane_ == Plane::zx ? 'I' : 'K';
+  BlockWord* wa = word(ca);
+  BlockWord* wb = word(cb);
+  if (!any && wa == nullptr && wb == nullptr) {
+    return true;  // a block of the mode without a move (F only)
+  }
+  std::array<int, 2> axes{};
+  if (!require_plane_axes(axes, column)) {
+    return false;
+  }
+  if (wa == nullptr && wb == nullptr) {
+    return fail(alarm::kArcGeometry,
+                code + " needs its middle point: " + ca + " and/or " + cb + " (gsk A.6.4 rule 3)",
+                column);
+  }
+  // An omitted word leaves the middle point on the start's coordinate: G05's increment 0, and
+  // for G05.1 the start's position as an omitted axis word keeps it (decision 60).
+  AxisVector middle = machine_;
+  const double inch = metric_ ? 1.0 : 25.4;
+  const std::array<BlockWord*, 2> mw{wa, wb};
+  for (std::size_t k = 0; k < 2; ++k) {
+    BlockWord* w = mw[k];
+    if (w == nullptr) {
+      continue;
+    }
+    w->used = true;
+    const int axis = axes[k];
+    const auto i = static_cast<std::size_t>(axis);
+    if (absolute) {
+      // In the axis's programming unit (X a diameter), as the end point.
+      middle[i] =
+          to_physical(axis, scaled_axis_word(axis, *w)) + offset_sum(axis) + tool_offset(axis);
+      continue;
+    }
+    double v = scaled(*w, true) * inch;  // a radius value, as G02/G03's I (gsk A.6.4)
+    if (turret_mirror_ && config_.axes[i].name == 'X') {
+      v = -v;
+    }
+    middle[i] = machine_[i] + v;
+  }
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  const path::Point2 start{machine_[a], machine_[b]};
+  const path::Point2 end{target[a], target[b]};
+  if (path::same_point(start, end)) {
+    return fail(alarm::kArcGeometry,
+                code + " cannot cut a full circle: its end point is its start (gsk A.6.4 rule 5)",
+                column);
+  }
+  const std::optional<path::ThreePointArc> arc =
+      path::arc_through(start, {middle[a], middle[b]}, end);
+  if (!arc) {
+    return fail(alarm::kArcGeometry,
+                code + ": the start, middle and end points lie on one line (gsk A.6.4 rule 2)",
+                column);
+  }
+  return emit_arc(target, axes, arc->ccw ? ArcDirection::ccw : ArcDirection::cw,
+                  {arc->center.a, arc->center.b}, 0, column);
 }
 
 bool ProgramRun::run_reference_return(GFunction f, int column) {

@@ -179,8 +179,8 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     if (axis >= axes) {
       return VariableRead{};
     }
-    return value(to_programmed(
-        axis, work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)], false));
+    return value(physical_to_data(
+        axis, work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)]));
   }
   if (n >= 7001 && n <= 7999) {
     const int set = static_cast<int>((n - 7001) / 20) + 1;  // G54.1 P1-P50
@@ -188,8 +188,8 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     if (axis >= axes) {
       return VariableRead{};
     }
-    return value(to_programmed(
-        axis, work_[static_cast<std::size_t>(6 + set)][static_cast<std::size_t>(axis)], false));
+    return value(physical_to_data(
+        axis, work_[static_cast<std::size_t>(6 + set)][static_cast<std::size_t>(axis)]));
   }
   return undefined(n);
 }
@@ -231,7 +231,7 @@ MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
                                static_cast<long long>(n), config_.channel, axis + 1);
     }
     work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)] =
-        to_physical(axis, x, false);
+        data_to_physical(axis, x);
     return {};
   }
   if (read(n).alarm) {

@@ -171,6 +171,21 @@ PointHits intersect_circles(Point2 c0, double r0, Point2 c1, double r1) {
   return hits;
 }
 
+std::optional<ThreePointArc> arc_through(Point2 start, Point2 middle, Point2 end) {
+  const Point2 u = middle - start;
+  const Point2 v = end - start;
+  const double turn = cross(u, v);
+  // Collinear within a relative 1e-12 of the chords' lengths (as intersect_lines decides).
+  if (std::fabs(turn) <= 1e-12 * std::max(1.0, length(u) * length(v))) {
+    return std::nullopt;
+  }
+  // The circumcentre relative to `start`: equidistant from 0, u and v.
+  const double uu = dot(u, u);
+  const double vv = dot(v, v);
+  const Point2 rel{(v.b * uu - u.b * vv) / (2.0 * turn), (u.a * vv - v.a * uu) / (2.0 * turn)};
+  return ThreePointArc{start + rel, turn > 0.0};
+}
+
 PointHits intersect(const LineOrCircle& e1, const LineOrCircle& e2) {
   if (e1.circle && e2.circle) {
     return intersect_circles(e1.point, e1.radius, e2.point, e2.radius);

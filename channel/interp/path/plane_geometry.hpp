@@ -4,6 +4,7 @@
 #include "channel/interp/path/plane_path.hpp"
 
 #include <array>
+#include <optional>
 
 namespace mcnc::interp::path {
 
@@ -53,5 +54,14 @@ struct LineOrCircle {
 PointHits intersect(const LineOrCircle& e1, const LineOrCircle& e2);
 LineHits intersect_line_circle(Point2 p, Point2 d, Point2 center, double radius);
 PointHits intersect_circles(Point2 c0, double r0, Point2 c1, double r1);
+
+// The arc from `start` through `middle` to `end` (G05, gsk A.6.4): its centre and sense. None
+// when the three points are collinear (two of them the same point included): no circle, or a
+// circle of no use, passes through them.
+struct ThreePointArc {
+  Point2 center;
+  bool ccw = false;
+};
+std::optional<ThreePointArc> arc_through(Point2 start, Point2 middle, Point2 end);
 
 }  // namespace mcnc::interp::path

@@ -278,5 +278,48 @@ TEST(IntersectCircles, RandomPairsHitBothCircles) {
   EXPECT_GT(checked, 200);
 }
 
+// G05 (gsk A.6.4): the circle through three points, and the sense the middle point gives.
+TEST(PlaneGeometry, ArcThroughThreePointsFindsTheCentreAndTheSense) {
+  const auto cw = arc_through({50, 9}, {38, 13}, {30, 29});
+  ASSERT_TRUE(cw.has_value());
+  EXPECT_NEAR(cw->center.a, 50, kTol);
+  EXPECT_NEAR(cw->center.b, 29, kTol);
+  EXPECT_FALSE(cw->ccw);
+  const auto ccw = arc_through({30, 29}, {38, 13}, {50, 9});
+  ASSERT_TRUE(ccw.has_value());
+  EXPECT_TRUE(ccw->ccw);
+  // The middle point beyond the end takes the long way round: the other sense.
+  const auto around = arc_through({50, 9}, {70, 29}, {30, 29});
+  ASSERT_TRUE(around.has_value());
+  EXPECT_TRUE(around->ccw);
+  EXPECT_NEAR(around->center.b, 29, kTol);
+}
+
+TEST(PlaneGeometry, ArcThroughCollinearOrRepeatedPointsIsNone) {
+  EXPECT_FALSE(arc_through({0, 0}, {1, 1}, {2, 2}).has_value());
+  EXPECT_FALSE(arc_through({0, 0}, {0, 0}, {2, 2}).has_value());
+  EXPECT_FALSE(arc_through({0, 0}, {3, 1}, {0, 0}).has_value());
+}
+
+TEST(PlaneGeometry, ArcThroughSeededPointsOfACircle) {
+  std::mt19937 rng(24);
+  std::uniform_real_distribution<double> coord(-500.0, 500.0);
+  std::uniform_real_distribution<double> radius(0.5, 300.0);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * kPi);
+  for (int i = 0; i < 500; ++i) {
+    const Point2 c{coord(rng), coord(rng)};
+    const double r = radius(rng);
+    const double t0 = angle(rng);
+    const double sweep = std::uniform_real_distribution<double>(0.05, 2.0 * kPi - 0.05)(rng);
+    const double dir = i % 2 == 0 ? 1.0 : -1.0;
+    auto at = [&](double t) { return Point2{c.a + r * std::cos(t), c.b + r * std::sin(t)}; };
+    const auto arc = arc_through(at(t0), at(t0 + dir * sweep / 3.0), at(t0 + dir * sweep));
+    ASSERT_TRUE(arc.has_value()) << i;
+    EXPECT_NEAR(arc->center.a, c.a, 1e-6 * (1.0 + r)) << i;
+    EXPECT_NEAR(arc->center.b, c.b, 1e-6 * (1.0 + r)) << i;
+    EXPECT_EQ(arc->ccw, dir > 0.0) << i;
+  }
+}
+
 }  // namespace
 }  // namespace mcnc::interp::path::test

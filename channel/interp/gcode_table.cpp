@@ -33,6 +33,10 @@ GCodeInfo common_code(int code10) {
       return {GFunction::data_input, 0};
     case 109:
       return {GFunction::radius_switch, 0};
+    case 220:
+      return {GFunction::stroke_check_on, 9};
+    case 230:
+      return {GFunction::stroke_check_off, 9};
     case 71:
     case 1070:
       return {GFunction::cylindrical, 0};
@@ -171,8 +175,6 @@ GCodeInfo common_code(int code10) {
       return {GFunction::channel_call, 0};
     case 1450:
       return {GFunction::channel_release, 0};
-    case 220:
-    case 230:
     case 310:
     case 318:
     case 401:

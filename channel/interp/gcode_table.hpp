@@ -23,6 +23,8 @@ enum class GFunction : std::uint8_t {
   exact_stop,                // G09
   data_input,                // G10
   radius_switch,             // G10.9
+  stroke_check_on,           // G22 (group 09 as FANUC 0i-TF numbers it; Dafeng lists none)
+  stroke_check_off,          // G23
   plane_xy,
   plane_zx,
   plane_yz,

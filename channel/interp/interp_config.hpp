@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct AxisConfig {
   // point the axis turns to come in; its sign is the direction of that last move (+: from
   // below). 0: G60 moves the axis as G00 does.
   double approach = 0.0;
+  // The stored stroke check 2's limits that G22 without words takes (Dafeng params 0512 and
+  // 0513, GSK №100 and №101): machine positions (physical); infinite: no limit.
+  double stroke_minus = -std::numeric_limits<double>::infinity();
+  double stroke_plus = std::numeric_limits<double>::infinity();
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.
@@ -115,6 +120,9 @@ struct InterpreterConfig {
   // GSK L (chamfer): the chamfer's own length (type I, status param 181.0 = 1) instead of the
   // distance from the corner (type II, as Dafeng ,C).
   bool chamfer_is_length = false;
+  // G22: the inside of its limits is forbidden (FANUC's default, GSK №172.2 = 0), or the
+  // outside (the limits as travel limits).
+  bool stroke_inside_forbidden = true;
   // Blocks in a row without a move that G41/G42 tolerates (0: the dialect's, Dafeng 4, GSK 7).
   int compensation_idle_blocks = 0;
   // Polar interpolation G12.1 (params 5530/5531): the linear axis (the polar plane's first) and

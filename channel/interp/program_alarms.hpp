@@ -69,6 +69,9 @@ inline constexpr int kFrameRestriction = 1153;
 inline constexpr int kInterpolationModeRestriction = 1154;
 // G27: the point reached is not the reference point; G29 without a G28/G30 before it.
 inline constexpr int kReferencePoint = 1155;
+// G22: a move would enter the forbidden area of the stored stroke check 2, or G22 is given
+// where the tool stands in it.
+inline constexpr int kStrokeLimit = 1156;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

@@ -61,6 +61,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
+  stroke_at_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
@@ -77,6 +78,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   modal_codes_[5] = feed_mode_ == FeedMode::per_min ? (b ? 94 : 98) : (b ? 95 : 99);
   modal_codes_[6] = 21;
   modal_codes_[7] = 40;
+  modal_codes_[9] = 23;
   modal_codes_[10] = 80;
   modal_codes_[11] = b ? 98 : 0;
   modal_codes_[12] = 67;
@@ -93,6 +95,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
     modal_codes_[16] = 17;
     modal_codes_[8] = 49;
     modal_codes_[2] = 0;
+    modal_codes_[9] = 0;  // no G22/G23 in its table
   }
   timer_ms_base_ = environment_->milliseconds();
 }
@@ -266,6 +269,7 @@ void ProgramRun::release_block() {
   const std::size_t from = ready_.size();
   release_through_lookahead();
   expand_modes(ready_, from);
+  check_stroke(from);
   if (ended_) {
     end_polar();  // the end resets the modes, after their last moves went out
     end_cylindrical();

@@ -12,6 +12,7 @@
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
+#include "channel/interp/limits/stroke_zone.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
@@ -200,6 +201,13 @@ class ProgramRun final : public macro::VariableProvider {
   double data_to_physical(int axis, double value) const;
   double physical_to_data(int axis, double physical) const;
   bool run_radius_switch(int column);  // G10.9
+
+  // ---- G22 / G23 stored stroke check 2 (program_run_stroke.cpp)
+  bool run_stroke_check(GFunction f, int column);
+  // The moves ready_[from..] against the forbidden area: alarm 1156 at the line of the first
+  // that would enter it, before it leaves.
+  void check_stroke(std::size_t from);
+  std::string stroke_limits_text() const;  // "X 10.000..50.000, Z ..." in the data's unit
   bool check_feed(int column);
   void apply_tool_offset(int offset);
   // The channel axes of the current plane's first and second axis (-1 when missing).
@@ -462,6 +470,12 @@ class ProgramRun final : public macro::VariableProvider {
   // The axes programmed as a diameter now: param 0001.1 (AxisConfig::diameter) until G10.9
   // switches one, again at the program's end (spec L3959-4023).
   std::array<bool, kMaxChannelAxes> diameter_{};
+
+  // G22: the limits stored (the last G22's, kept by G23) and whether the check is on; the
+  // machine position after the last move checked.
+  limits::StrokeZone stroke_zone_;
+  bool stroke_on_ = false;
+  AxisVector stroke_at_{};
 
   // Tool
   int tool_ = 0;

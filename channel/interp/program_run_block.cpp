@@ -117,6 +117,7 @@ bool takes_p(GFunction f) {
     case GFunction::axis_sync_off:
     case GFunction::axis_acquire:
     case GFunction::spindle_sync_on:
+    case GFunction::stroke_check_on:
       return true;
     default:
       return false;
@@ -444,7 +445,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   GFunction primary = GFunction::unknown;  // the one-shot code that takes the words
   int primary_code = 0;
   int primary_column = 0;
-  bool frame_primary = false;  // the primary is G68.1/G69.1/G51.1/G50.1
+  bool frame_primary = false;  // the primary is G68.1/G69.1/G51.1/G50.1/G12.1/G13.1/G22/G23
   for (int i = 0; i < ng; ++i) {
     const BlockG& g = gs[static_cast<std::size_t>(i)];
     if (g.info.group == 1) {
@@ -455,13 +456,16 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       block_exact_stop_ = true;
       continue;
     }
+    // Modal codes that take the block's axis words as their data, not as a move.
     const bool frame_code =
         g.info.function == GFunction::rotation_on || g.info.function == GFunction::rotation_off ||
         g.info.function == GFunction::mirror_on || g.info.function == GFunction::mirror_off ||
-        g.info.function == GFunction::polar_on || g.info.function == GFunction::polar_off;
+        g.info.function == GFunction::polar_on || g.info.function == GFunction::polar_off ||
+        g.info.function == GFunction::stroke_check_on ||
+        g.info.function == GFunction::stroke_check_off;
     if (g.info.group == 0 || frame_code) {
       if (primary != GFunction::unknown && (frame_code || frame_primary)) {
-        // G68.1 and G51.1 take the axis words as their centre: no other code may want them.
+        // G68.1, G51.1 and G22 take the axis words as their data: no other code may want them.
         return fail(alarm::kGroupConflict,
                     g_name(primary_code) + " and " + g_name(g.code10) + " in one block", g.column);
       }
@@ -1398,6 +1402,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
       return run_data_input(column);
     case GFunction::radius_switch:
       return run_radius_switch(column);
+    case GFunction::stroke_check_on:
+    case GFunction::stroke_check_off:
+      return run_stroke_check(f, column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);

@@ -205,6 +205,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "thread_chamfer_leads",
              "chamfer_is_length",
              "compensation_idle_blocks",
+             "stroke_inside_forbidden",
              "polar",
              "cylindrical_parallel",
              "cycles",
@@ -272,6 +273,10 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
   }
   if (root["arc_check"]) {
     c.arc_check = get<bool>(root["arc_check"], "arc_check");
+  }
+  if (root["stroke_inside_forbidden"]) {
+    c.stroke_inside_forbidden =
+        get<bool>(root["stroke_inside_forbidden"], "stroke_inside_forbidden");
   }
   if (root["arc_tolerance"]) {
     c.arc_tolerance = get<double>(root["arc_tolerance"], "arc_tolerance");
@@ -343,7 +348,9 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     int i = 0;
     for (const auto& a : root["axes"]) {
       const std::string k = "axes[" + std::to_string(i++) + "]";
-      only_keys(a, k, {"name", "diameter", "rotary", "start", "reference", "exchange", "approach"});
+      only_keys(
+          a, k,
+          {"name", "diameter", "rotary", "start", "reference", "exchange", "approach", "stroke"});
       interp::AxisConfig ax;
       ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
       for (const auto& other : c.axes) {
@@ -371,6 +378,18 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       }
       if (a["approach"]) {
         ax.approach = get<double>(a["approach"], k + ".approach") / unit;
+      }
+      if (a["stroke"]) {
+        // G22 without words (params 0512/0513): [- limit, + limit], machine positions.
+        const YAML::Node& st = a["stroke"];
+        if (!st.IsSequence() || st.size() != 2) {
+          bad(k + ".stroke", "[- limit, + limit]");
+        }
+        ax.stroke_minus = get<double>(st[0], k + ".stroke") / unit;
+        ax.stroke_plus = get<double>(st[1], k + ".stroke") / unit;
+        if (!(ax.stroke_minus < ax.stroke_plus)) {
+          bad(k + ".stroke", "the - limit below the + limit");
+        }
       }
       c.axes.push_back(ax);
     }

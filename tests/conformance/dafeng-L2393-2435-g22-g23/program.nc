@@ -1,0 +1,12 @@
+O0001 (G22 forbids X20-X100, Z-50-Z50; the moves go round it; G23 allows it again)
+G00 X150 Z100
+G22 X100 Z50 I20 K-50
+G00 Z60
+G01 X10 F200
+G01 Z-60
+G02 X60 Z-85 R25
+G00 X150
+G23
+G00 Z0
+G00 X0
+M30

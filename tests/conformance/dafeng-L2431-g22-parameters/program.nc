@@ -1,0 +1,8 @@
+O0001 (G22 without words takes params 0512/0513)
+G00 X150 Z100
+G22
+G00 Z60
+G00 X0
+G00 Z0
+G00 X60
+M30

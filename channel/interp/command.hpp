@@ -172,6 +172,13 @@ struct Command {
   Compensation compensation = Compensation::off;
   double nose_radius = 0.0;
   int nose_tip = 0;
+  // Chip breaking in force for this cutting move (G98.1/G99.1; not printed: the interpreter
+  // splits the move before it leaves): the path length of one spindle revolution (0: none),
+  // the revolutions of feed between breaks (Q) and the break (P: > 0 a dwell of P
+  // revolutions, < 0 back along the path for -P revolutions and forward again).
+  double chip_rev_length = 0.0;
+  double chip_every = 0.0;
+  double chip_break = 0.0;
 
   void set_channel(int c) { channels[static_cast<std::size_t>(c) / 64] |= 1ULL << (c % 64); }
   bool has_channel(int c) const {

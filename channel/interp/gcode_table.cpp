@@ -37,6 +37,10 @@ GCodeInfo common_code(int code10) {
       return {GFunction::stroke_check_on, 9};
     case 230:
       return {GFunction::stroke_check_off, 9};
+    case 981:
+      return {GFunction::chip_break_per_min, 0};
+    case 991:
+      return {GFunction::chip_break_per_rev, 0};
     case 71:
     case 1070:
       return {GFunction::cylindrical, 0};
@@ -188,8 +192,6 @@ GCodeInfo common_code(int code10) {
     case 804:
     case 811:
     case 814:
-    case 981:
-    case 991:
     case 1600:
       return not_yet(kOther);
     default:

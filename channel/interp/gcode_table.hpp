@@ -25,6 +25,8 @@ enum class GFunction : std::uint8_t {
   radius_switch,             // G10.9
   stroke_check_on,           // G22 (group 09 as FANUC 0i-TF numbers it; Dafeng lists none)
   stroke_check_off,          // G23
+  chip_break_per_min,        // G98.1: G98 with chip breaking (a mode, but one-shot here)
+  chip_break_per_rev,        // G99.1: G99 with chip breaking
   plane_xy,
   plane_zx,
   plane_yz,

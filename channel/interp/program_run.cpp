@@ -61,7 +61,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
-  stroke_at_ = machine_;
+  released_at_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
@@ -264,11 +264,15 @@ std::optional<InterpResult> ProgramRun::next() {
 }
 
 void ProgramRun::release_block() {
+  if (!mark_chip_breaking()) {
+    return;
+  }
   map_to_machine();
   framed_commands_ = 0;  // out_ is emptied below
   const std::size_t from = ready_.size();
   release_through_lookahead();
   expand_modes(ready_, from);
+  split_chip_breaking(from);
   check_stroke(from);
   if (ended_) {
     end_polar();  // the end resets the modes, after their last moves went out

@@ -202,6 +202,13 @@ class ProgramRun final : public macro::VariableProvider {
   double physical_to_data(int axis, double physical) const;
   bool run_radius_switch(int column);  // G10.9
 
+  // ---- G98.1 / G99.1 chip breaking (program_run_chip_breaking.cpp)
+  bool run_chip_breaking(GFunction f, int column);
+  // The block's cutting moves get the chip breaking in force (false after an alarm) ...
+  bool mark_chip_breaking();
+  // ... and leave split at the breaks: ready_[from..] from released_at_.
+  void split_chip_breaking(std::size_t from);
+
   // ---- G22 / G23 stored stroke check 2 (program_run_stroke.cpp)
   bool run_stroke_check(GFunction f, int column);
   // The moves ready_[from..] against the forbidden area: alarm 1156 at the line of the first
@@ -471,11 +478,20 @@ class ProgramRun final : public macro::VariableProvider {
   // switches one, again at the program's end (spec L3959-4023).
   std::array<bool, kMaxChannelAxes> diameter_{};
 
-  // G22: the limits stored (the last G22's, kept by G23) and whether the check is on; the
-  // machine position after the last move checked.
+  // G22: the limits stored (the last G22's, kept by G23) and whether the check is on.
   limits::StrokeZone stroke_zone_;
   bool stroke_on_ = false;
-  AxisVector stroke_at_{};
+  // The machine position after the last move released (ready_), where the next one starts.
+  AxisVector released_at_{};
+  // G98.1 / G99.1: Q (revolutions of feed between breaks) and P (the break) while on, and the
+  // revolutions of feed since the last break.
+  struct ChipBreaking {
+    bool active = false;
+    double every = 0.0;
+    double brk = 0.0;
+  };
+  ChipBreaking chip_;
+  double chip_revs_ = 0.0;
 
   // Tool
   int tool_ = 0;

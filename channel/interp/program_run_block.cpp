@@ -118,6 +118,8 @@ bool takes_p(GFunction f) {
     case GFunction::axis_acquire:
     case GFunction::spindle_sync_on:
     case GFunction::stroke_check_on:
+    case GFunction::chip_break_per_min:
+    case GFunction::chip_break_per_rev:
       return true;
     default:
       return false;
@@ -824,6 +826,8 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::feed_per_rev:
       feed_mode_ = f == GFunction::feed_per_min ? FeedMode::per_min : FeedMode::per_rev;
       modal_codes_[5] = value;
+      chip_ = ChipBreaking{};  // G98/G99 end chip breaking (spec L2568)
+      modal_codes_[13] = 0;
       return true;
     case GFunction::absolute:
     case GFunction::incremental:
@@ -1405,6 +1409,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::stroke_check_on:
     case GFunction::stroke_check_off:
       return run_stroke_check(f, column);
+    case GFunction::chip_break_per_min:
+    case GFunction::chip_break_per_rev:
+      return run_chip_breaking(f, column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);

@@ -51,7 +51,7 @@ AxisVector ProgramRun::machine() const {
 }
 
 void ProgramRun::set_machine(const AxisVector& at) {
-  stroke_at_ = at;
+  released_at_ = at;
   machine_ = transform::to_vector(frame_.to_program(transform::to_point(at)));
   if (polar_) {
     // In polar interpolation the two axes stand for a point of the polar plane.

@@ -140,7 +140,8 @@ void ProgramRun::check_stroke(std::size_t from) {
     if (!moves(c)) {
       continue;
     }
-    if (stroke_on_ && !alarm_ && limits::enters(stroke_zone_, stroke_at_, c, config_.axes.size())) {
+    if (stroke_on_ && !alarm_ &&
+        limits::enters(stroke_zone_, released_at_, c, config_.axes.size())) {
       // Before the move leaves: the block of the move is to blame, whatever block runs now.
       alarm_ = ProgramAlarm{alarm::kStrokeLimit,
                             "the move would enter the area G22 forbids (" + stroke_limits_text() +
@@ -150,7 +151,7 @@ void ProgramRun::check_stroke(std::size_t from) {
       save_retained();
       return;
     }
-    stroke_at_ = c.to;
+    released_at_ = c.to;
   }
 }
 

@@ -37,6 +37,12 @@ GCodeInfo common_code(int code10) {
       return {GFunction::stroke_check_on, 9};
     case 230:
       return {GFunction::stroke_check_off, 9};
+    case 401:
+      return {GFunction::normal_off, 19};
+    case 411:
+      return {GFunction::normal_left, 19};
+    case 421:
+      return {GFunction::normal_right, 19};
     case 981:
       return {GFunction::chip_break_per_min, 0};
     case 991:
@@ -181,9 +187,6 @@ GCodeInfo common_code(int code10) {
       return {GFunction::channel_release, 0};
     case 310:
     case 318:
-    case 401:
-    case 411:
-    case 421:
     case 502:
     case 512:
     case 508:

@@ -27,6 +27,9 @@ enum class GFunction : std::uint8_t {
   stroke_check_off,          // G23
   chip_break_per_min,        // G98.1: G98 with chip breaking (a mode, but one-shot here)
   chip_break_per_rev,        // G99.1: G99 with chip breaking
+  normal_off,                // G40.1 (a private group, 19 here)
+  normal_left,               // G41.1
+  normal_right,              // G42.1
   plane_xy,
   plane_zx,
   plane_yz,

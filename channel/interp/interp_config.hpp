@@ -135,6 +135,11 @@ struct InterpreterConfig {
   // to, whose place it takes in the plane (the spec's example: A parallel to Y, G19 = A-Z). Its
   // arcs become chords within polar_tolerance.
   char cylindrical_parallel = 'Y';
+  // G41.1/G42.1 normal direction control: the rotary axis kept normal to the path (param 5550;
+  // 0: none, the codes are an alarm) and the speed it turns at between blocks (param 5551,
+  // degrees per minute).
+  char normal_axis = 0;
+  double normal_feed = 3600.0;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

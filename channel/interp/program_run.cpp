@@ -57,11 +57,16 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
     machine_[i] = config_.axes[i].start;
     diameter_[i] = config_.axes[i].diameter;
+    if (config_.normal_axis != 0 && config_.axes[i].name == config_.normal_axis &&
+        config_.axes[i].rotary) {
+      normal_axis_ = static_cast<int>(i);
+    }
   }
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
   released_at_ = machine_;
+  normal_from_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
@@ -87,6 +92,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   modal_codes_[16] = 18;
   modal_codes_[17] = 69.1;
   modal_codes_[18] = 15;
+  modal_codes_[19] = 40.1;
   modal_codes_[21] = 13.1;
   modal_codes_[22] = 50.1;
   if (config_.dialect == Dialect::fanuc_mill) {
@@ -96,6 +102,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
     modal_codes_[8] = 49;
     modal_codes_[2] = 0;
     modal_codes_[9] = 0;  // no G22/G23 in its table
+    modal_codes_[19] = 0;
   }
   timer_ms_base_ = environment_->milliseconds();
 }
@@ -264,7 +271,7 @@ std::optional<InterpResult> ProgramRun::next() {
 }
 
 void ProgramRun::release_block() {
-  if (!mark_chip_breaking()) {
+  if (!apply_normal_direction() || !mark_chip_breaking()) {
     return;
   }
   map_to_machine();

@@ -209,6 +209,13 @@ class ProgramRun final : public macro::VariableProvider {
   // ... and leave split at the breaks: ready_[from..] from released_at_.
   void split_chip_breaking(std::size_t from);
 
+  // ---- G40.1 / G41.1 / G42.1 normal direction control (program_run_normal.cpp)
+  bool run_normal_direction(GFunction f, int column);
+  // The block's moves (out_) with the rotary axis turned normal to the path: a rotation of that
+  // axis alone before each cutting move that starts in another direction, an arc turning it as
+  // it goes (false after an alarm).
+  bool apply_normal_direction();
+
   // ---- G22 / G23 stored stroke check 2 (program_run_stroke.cpp)
   bool run_stroke_check(GFunction f, int column);
   // The moves ready_[from..] against the forbidden area: alarm 1156 at the line of the first
@@ -492,6 +499,10 @@ class ProgramRun final : public macro::VariableProvider {
   };
   ChipBreaking chip_;
   double chip_revs_ = 0.0;
+  // G41.1 (+1) / G42.1 (-1) / G40.1 (0), and the channel axis it turns (-1: none configured).
+  int normal_side_ = 0;
+  int normal_axis_ = -1;
+  AxisVector normal_from_{};  // where the next block's commands start (the frame's position)
 
   // Tool
   int tool_ = 0;

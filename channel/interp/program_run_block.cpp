@@ -464,7 +464,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
         g.info.function == GFunction::mirror_on || g.info.function == GFunction::mirror_off ||
         g.info.function == GFunction::polar_on || g.info.function == GFunction::polar_off ||
         g.info.function == GFunction::stroke_check_on ||
-        g.info.function == GFunction::stroke_check_off;
+        g.info.function == GFunction::stroke_check_off ||
+        g.info.function == GFunction::normal_off || g.info.function == GFunction::normal_left ||
+        g.info.function == GFunction::normal_right;
     if (g.info.group == 0 || frame_code) {
       if (primary != GFunction::unknown && (frame_code || frame_primary)) {
         // G68.1, G51.1 and G22 take the axis words as their data: no other code may want them.
@@ -1412,6 +1414,10 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
       return run_chip_breaking(f, column);
+    case GFunction::normal_off:
+    case GFunction::normal_left:
+    case GFunction::normal_right:
+      return run_normal_direction(f, column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);

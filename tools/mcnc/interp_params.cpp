@@ -208,6 +208,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "stroke_inside_forbidden",
              "polar",
              "cylindrical_parallel",
+             "normal",
              "cycles",
              "block_skip",
              "max_tool",
@@ -291,6 +292,19 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       c.polar_tolerance = get<double>(p["tolerance"], "polar.tolerance");
       if (!(c.polar_tolerance >= 1e-6 && c.polar_tolerance <= 1.0)) {
         bad("polar.tolerance", "0.000001 to 1 mm");
+      }
+    }
+  }
+  if (root["normal"]) {
+    // G41.1/G42.1 (params 5550/5551): the rotary axis and its speed between blocks (deg/min);
+    // the axis is checked when G41.1 runs.
+    const YAML::Node& n = root["normal"];
+    only_keys(n, "normal", {"axis", "feed"});
+    c.normal_axis = axis_letter(get<std::string>(n["axis"], "normal.axis"), "normal.axis");
+    if (n["feed"]) {
+      c.normal_feed = get<double>(n["feed"], "normal.feed");
+      if (!(c.normal_feed > 0.0)) {
+        bad("normal.feed", "more than 0 degrees per minute");
       }
     }
   }

@@ -352,9 +352,13 @@ GCodeInfo lookup_gcode(int code10, GCodeSystem system, Dialect dialect) {
         return {GFunction::turning_cycle, 1};
       case 920:
         return {GFunction::thread_cycle, 1};
-      case 921:  // GSK G92.1, the interpolated threading cycle (gsk A.6.29)
-      case 780:  // GSK G78, the extended multiple threading cycle (gsk A.6.33)
-        return not_yet(kOther);
+      // GSK's own: G92.1, the interpolated threading cycle (gsk A.6.29), and G78, the
+      // extended multiple threading cycle (gsk A.6.33). Dafeng's system A has neither.
+      case 921:
+        return dialect == Dialect::gsk ? GCodeInfo{GFunction::thread_cycle_interpolated, 1}
+                                       : GCodeInfo{};
+      case 780:
+        return dialect == Dialect::gsk ? GCodeInfo{GFunction::extended_thread, 0} : GCodeInfo{};
       case 940:
         return {GFunction::facing_cycle, 1};
       case 980:

@@ -88,6 +88,7 @@ enum class GFunction : std::uint8_t {
   // Single cycles (group 01): G90/G92/G94 in system A, G77/G78/G79 in B.
   turning_cycle,
   thread_cycle,
+  thread_cycle_interpolated,  // GSK G92.1: the spindle interpolated with the feed (gsk A.6.29)
   facing_cycle,
   // Multiple repetitive cycles (group 00).
   finishing_cycle,  // G70
@@ -97,6 +98,7 @@ enum class GFunction : std::uint8_t {
   face_grooving,    // G74
   od_grooving,      // G75
   multiple_thread,  // G76
+  extended_thread,  // GSK G78: G76 with the infeed and entry chosen (gsk A.6.33)
   // Hole cycles (group 10, cancelled by G80 and by a group 01 code).
   drill_face,  // G83, .5 .6 .7
   drill_side,  // G87, .5 .6 .7

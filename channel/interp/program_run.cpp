@@ -68,6 +68,10 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   released_at_ = machine_;
   normal_from_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
+  extended_thread_.angle = config_.cycles.thread_angle;
+  extended_thread_.min_depth = config_.cycles.thread_min_depth;
+  extended_thread_.allowance = config_.cycles.thread_allowance;
+  extended_thread_.finish_passes = config_.cycles.thread_finish_passes;
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
   feed_mode_ = config_.power_on_feed_mode;

@@ -10,6 +10,7 @@
 // and the G51.1 mirror; program_run_polar.cpp: G12.1 polar interpolation;
 // program_run_cylinder.cpp: G07.1; system_variables.cpp: the system variables (#2000-#19999).
 #include "channel/interp/block_lookahead.hpp"
+#include "channel/interp/cycles/multiple_thread.hpp"
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/limits/stroke_zone.hpp"
@@ -291,8 +292,10 @@ class ProgramRun final : public macro::VariableProvider {
   bool thread_lead(double& lead, int column);
   bool thread_start_angle(double& angle);
   bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);
-  // Emits the moves of a plane path from the current position; the other axes stay.
-  void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed);
+  // Emits the moves of a plane path from the current position; the other axes stay. Its
+  // threads are interpolated at `thread_rpm` when > 0 (G92.1).
+  void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed,
+                       double thread_rpm = 0.0);
   // A cycle's alarm; an error of a contour element names the contour block's line.
   bool fail_path(const path::PathError& e, int column);
 
@@ -336,6 +339,13 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_pattern_cycle(int column);              // G73
   bool run_groove_cycle(GFunction f, int column);  // G74, G75
   bool run_multiple_thread(int column);            // G76
+  bool run_extended_thread(int column);            // GSK G78
+  // G76/G78 P mmrraa of the first block: its three fields (false after an alarm).
+  bool packed_thread_word(const char* code, BlockWord& p, std::array<int, 3>& fields);
+  // G76/G78's second block: R(i) the taper, P(k) the height, Q(d) the first depth, F/I the lead.
+  bool thread_second_block(cycles::MultipleThread& t, int column);
+  bool emit_multiple_thread(const cycles::MultipleThread& t, const std::array<int, 2>& axes,
+                            int column);
   // Emits a contour cycle's moves; execution goes on after N(Q) when the contour follows.
   bool run_contour_cycle(const path::PlanePath& moves, const std::array<int, 2>& axes, int first,
                          int last);
@@ -423,6 +433,21 @@ class ProgramRun final : public macro::VariableProvider {
   int contour_last_ = 0;
   // The modal amounts of the cycles' first blocks (G71 U R, G73 U W R, G74 R, G76 P Q R).
   CycleDefaults cycle_memory_;
+  // GSK G78's first block (gsk A.6.33), kept for the blocks that follow: m (constant-distance
+  // infeed), r (entry: 0 centre, 1 left, 2 right, 3 alternating), a, Q, R, D, L and J/K (the
+  // run-out; < 0: param №19).
+  struct ExtendedThread {
+    bool constant_depth = false;
+    int entry = 0;
+    int angle = 60;
+    double min_depth = 0.1;
+    double allowance = 0.0;
+    int finish_passes = 1;
+    int starts = 1;
+    double runout_rise = -1.0;
+    double runout_length = -1.0;
+  };
+  ExtendedThread extended_thread_;
   // The modal hole cycle (group 10): its code and the amounts later blocks keep.
   struct HoleMode {
     GFunction function = GFunction::unknown;

@@ -107,6 +107,7 @@ bool takes_p(GFunction f) {
     case GFunction::face_grooving:
     case GFunction::od_grooving:
     case GFunction::multiple_thread:
+    case GFunction::extended_thread:
     case GFunction::dwell:
     case GFunction::channel_sync:
     case GFunction::data_input:
@@ -632,6 +633,12 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
   }
   if (BlockWord* f = word('F'); f != nullptr && !f->used) {
+    if (f->value < 0.0 && motion_ == GFunction::thread_cycle_interpolated) {
+      return fail(alarm::kNotInThisVersion,
+                  "G92.1 F < 0 (a left-hand thread) needs the spindle's direction in the thread "
+                  "command, not yet available",
+                  f->column);
+    }
     f->used = true;
     if (f->value < 0.0) {
       return fail(alarm::kNegativeFeed, "feed F must not be negative", f->column);
@@ -1458,6 +1465,8 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
       return run_groove_cycle(f, column);
     case GFunction::multiple_thread:
       return run_multiple_thread(column);
+    case GFunction::extended_thread:
+      return run_extended_thread(column);
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
   }

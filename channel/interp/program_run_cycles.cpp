@@ -260,6 +260,50 @@ bool ProgramRun::run_groove_cycle(GFunction f, int column) {
   return true;
 }
 
+bool ProgramRun::packed_thread_word(const char* code, BlockWord& p, std::array<int, 3>& fields) {
+  p.used = true;
+  const auto packed = static_cast<long>(std::lround(p.value));
+  if (packed < 0 || packed > 999999 || p.value != std::floor(p.value)) {
+    return fail(alarm::kCycleValue, std::string(code) + " P must be 6 digits mmrraa", p.column);
+  }
+  fields = {static_cast<int>(packed / 10000), static_cast<int>(packed / 100 % 100),
+            static_cast<int>(packed % 100)};
+  return true;
+}
+
+bool ProgramRun::thread_second_block(cycles::MultipleThread& t, int column) {
+  BlockWord* p = word('P');
+  BlockWord* q = word('Q');
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    t.taper = length_of(*r);
+  }
+  if (p == nullptr || q == nullptr) {
+    return fail(
+        alarm::kCycleWordMissing,
+        std::string(t.code) + " needs P (thread height) and Q (first depth) in its second block",
+        column);
+  }
+  p->used = true;
+  q->used = true;
+  t.height = std::fabs(cycle_amount(*p));
+  t.first_depth = std::fabs(cycle_amount(*q));
+  return thread_lead(t.lead, column);
+}
+
+bool ProgramRun::emit_multiple_thread(const cycles::MultipleThread& t,
+                                      const std::array<int, 2>& axes, int column) {
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  path::PlanePath moves;
+  if (const path::PathResult e =
+          cycles::expand_multiple_thread({machine_[a], machine_[b]}, t, moves)) {
+    return fail_path(*e, column);
+  }
+  emit_plane_path(moves, axes, feed_);
+  return true;
+}
+
 bool ProgramRun::run_multiple_thread(int column) {
   std::array<int, 2> axes{};
   AxisVector target{};
@@ -275,15 +319,13 @@ bool ProgramRun::run_multiple_thread(int column) {
   BlockWord* r = word('R');
   if (!second_block) {
     // First block: P mmrraa, Q the minimum depth, R the finishing allowance, J the infeed.
-    if (p != nullptr) {
-      p->used = true;
-      const auto packed = static_cast<long>(std::lround(p->value));
-      if (packed < 0 || packed > 999999 || p->value != std::floor(p->value)) {
-        return fail(alarm::kCycleValue, "G76 P must be 6 digits mmrraa", p->column);
+    if (std::array<int, 3> mra{}; p != nullptr) {
+      if (!packed_thread_word("G76", *p, mra)) {
+        return false;
       }
-      m.thread_finish_passes = static_cast<int>(packed / 10000);
-      m.thread_chamfer = static_cast<int>(packed / 100 % 100);
-      m.thread_angle = static_cast<int>(packed % 100);
+      m.thread_finish_passes = mra[0];
+      m.thread_chamfer = mra[1];
+      m.thread_angle = mra[2];
     }
     if (q != nullptr) {
       q->used = true;
@@ -314,19 +356,7 @@ bool ProgramRun::run_multiple_thread(int column) {
   t.finish_allowance = m.thread_allowance;
   t.infeed =
       m.thread_alternating ? cycles::ThreadInfeed::alternating : cycles::ThreadInfeed::single_flank;
-  if (r != nullptr) {
-    r->used = true;
-    t.taper = length_of(*r);
-  }
-  if (p == nullptr || q == nullptr) {
-    return fail(alarm::kCycleWordMissing,
-                "G76 needs P (thread height) and Q (first depth) in its second block", column);
-  }
-  p->used = true;
-  q->used = true;
-  t.height = std::fabs(cycle_amount(*p));
-  t.first_depth = std::fabs(cycle_amount(*q));
-  if (!thread_lead(t.lead, column)) {
+  if (!thread_second_block(t, column)) {
     return false;
   }
   t.chamfer = m.thread_chamfer * t.lead / 10.0;
@@ -344,13 +374,121 @@ bool ProgramRun::run_multiple_thread(int column) {
       t.starts = static_cast<int>(l->value);
     }
   }
-  path::PlanePath moves;
-  if (const path::PathResult e =
-          cycles::expand_multiple_thread({machine_[a], machine_[b]}, t, moves)) {
-    return fail_path(*e, column);
+  return emit_multiple_thread(t, axes, column);
+}
+
+bool ProgramRun::run_extended_thread(int column) {
+  std::array<int, 2> axes{};
+  AxisVector target{};
+  bool second_block = false;
+  if (!cycle_end_point("G78", axes, target, second_block, column)) {
+    return false;
   }
-  emit_plane_path(moves, axes, feed_);
-  return true;
+  const auto a = static_cast<std::size_t>(axes[0]);
+  const auto b = static_cast<std::size_t>(axes[1]);
+  ExtendedThread& m = extended_thread_;
+  BlockWord* p = word('P');
+  BlockWord* q = word('Q');
+  BlockWord* r = word('R');
+  if (!second_block) {
+    // First block (gsk A.6.33): P m r a, Q the minimum depth, R the finishing allowance, J/K
+    // the run-out, D the finishing passes, L the starts, E the screw-in.
+    if (std::array<int, 3> mra{}; p != nullptr) {
+      if (!packed_thread_word("G78", *p, mra)) {
+        return false;
+      }
+      if (mra[0] > 1 || mra[1] > 3) {
+        return fail(alarm::kCycleValue,
+                    "G78 P mmrraa: m is 0 (constant-distance infeed) or 1 (decreasing), r 0-3 "
+                    "(centre, left, right, alternating)",
+                    p->column);
+      }
+      m.constant_depth = mra[0] == 0;
+      m.entry = mra[1];
+      m.angle = mra[2];
+    }
+    if (q != nullptr) {
+      q->used = true;
+      m.min_depth = std::fabs(cycle_amount(*q));
+    }
+    if (r != nullptr) {
+      r->used = true;
+      m.allowance = std::fabs(length_of(*r));
+    }
+    if (BlockWord* e = word('E'); e != nullptr && e->value != 0.0) {
+      return fail(alarm::kNotInThisVersion,
+                  "G78 E (the screw-in along X) is not implemented: its path is a figure the "
+                  "manual does not give",
+                  e->column);
+    } else if (e != nullptr) {
+      e->used = true;
+    }
+    for (const char w : {'D', 'L'}) {
+      if (BlockWord* x = word(w)) {
+        x->used = true;
+        const double lo = w == 'D' ? 0.0 : 1.0;
+        if (x->value < lo || x->value > 99.0 || x->value != std::floor(x->value)) {
+          return fail(alarm::kCycleValue,
+                      std::string("G78 ") + w + " must be a whole number " +
+                          (w == 'D' ? "0-99 (finishing passes)" : "1-99 (starts)"),
+                      x->column);
+        }
+        (w == 'D' ? m.finish_passes : m.starts) = static_cast<int>(x->value);
+      }
+    }
+    BlockWord* j = word('J');
+    BlockWord* k = word('K');
+    if (j != nullptr || k != nullptr) {
+      // As G92's run-out (gsk A.6.28): J the rise along X (radius), K the length along Z.
+      m.runout_rise = j != nullptr ? std::fabs(length_of(*j)) : 0.0;
+      m.runout_length = k != nullptr ? std::fabs(length_of(*k)) : 0.0;
+      for (BlockWord* w : {j, k}) {
+        if (w != nullptr) {
+          w->used = true;
+        }
+      }
+    }
+    return true;
+  }
+  cycles::MultipleThread t;
+  t.code = "G78";
+  t.end = {target[a], target[b]};
+  t.finish_passes = m.finish_passes;
+  t.tool_angle = m.angle;
+  t.min_depth = m.min_depth;
+  t.finish_allowance = m.allowance;
+  t.starts = m.starts;
+  t.constant_depth = m.constant_depth;
+  // Left (r = 1) and right (r = 2) name the flank of the groove the tool goes in along, the
+  // one towards -Z and the one towards +Z as the ZX plane is drawn (decision 65): the flank
+  // behind the cut is the single-flank infeed's, the one ahead the leading flank's.
+  const bool towards_minus = t.end.a < machine_[a];
+  switch (m.entry) {
+    case 0:
+      t.infeed = cycles::ThreadInfeed::radial;
+      break;
+    case 1:
+      t.infeed =
+          towards_minus ? cycles::ThreadInfeed::leading_flank : cycles::ThreadInfeed::single_flank;
+      break;
+    case 2:
+      t.infeed =
+          towards_minus ? cycles::ThreadInfeed::single_flank : cycles::ThreadInfeed::leading_flank;
+      break;
+    default:
+      t.infeed = cycles::ThreadInfeed::alternating;
+      break;
+  }
+  if (!thread_second_block(t, column)) {
+    return false;
+  }
+  if (m.runout_length >= 0.0) {
+    t.chamfer = m.runout_length;
+    t.chamfer_rise = m.runout_rise;
+  } else {
+    t.chamfer = config_.thread_chamfer_leads * t.lead;  // param №19, at 45 degrees
+  }
+  return emit_multiple_thread(t, axes, column);
 }
 
 }  // namespace mcnc::interp

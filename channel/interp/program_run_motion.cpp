@@ -282,6 +282,7 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
       return run_flexible_tap(column);
     case GFunction::turning_cycle:
     case GFunction::thread_cycle:
+    case GFunction::thread_cycle_interpolated:
     case GFunction::facing_cycle:
       return run_single_cycle(motion, block_motion_code_, column);
     default:

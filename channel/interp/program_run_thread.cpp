@@ -287,7 +287,7 @@ bool ProgramRun::run_flexible_tap(int column) {
 }
 
 void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes,
-                                 double feed) {
+                                 double feed, double thread_rpm) {
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
   cycle_output_ = true;
@@ -322,6 +322,7 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
         c.start_angle = m.start_angle;
         c.spindle = reference_spindle_;
         c.continuous = after_thread;  // a chamfer-out continues its thread
+        c.rpm = thread_rpm;
         break;
       }
       case path::MoveKind::dwell: {
@@ -374,14 +375,39 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
                                           : cycles::SingleCycleKind::thread;
   c.end = {target[a], target[b]};
   c.taper = taper;
+  double rpm = 0.0;  // G92.1: the interpolated spindle's speed
+  if (f == GFunction::thread_cycle_interpolated) {
+    // S: the threading speed (gsk A.6.29); without it the speed in force.
+    BlockWord* s = word('S');
+    rpm = s != nullptr ? s->value : rpm_[static_cast<std::size_t>(reference_spindle_)];
+    if (s != nullptr) {
+      s->used = true;
+    }
+    if (!(rpm > 0.0)) {
+      return fail(alarm::kWordNotAllowed, "G92.1 needs the spindle speed S > 0",
+                  s != nullptr ? s->column : column);
+    }
+    for (const char w : {'J', 'K', 'Q'}) {
+      if (BlockWord* x = word(w)) {
+        // The spindle stops with the feed at the end (gsk A.6.29 step 2): no run-out; the
+        // spindle is positioned for each start, not told an angle.
+        return fail(alarm::kWordNotAllowed,
+                    std::string("G92.1 takes no ") + w + " (gsk A.6.29: X Z R F/I L S P)",
+                    x->column);
+      }
+    }
+  }
   if (c.kind == cycles::SingleCycleKind::thread) {
     if (!thread_lead(c.lead, column) || !thread_start_angle(c.start_angle)) {
       return false;
     }
     const bool gsk = config_.dialect == Dialect::gsk;
     if (BlockWord* p = word('P')) {
+      const std::string code = f == GFunction::thread_cycle_interpolated ? "G92.1" : "G92";
       return fail(alarm::kNotInThisVersion,
-                  gsk ? "G92 P (thread repair) needs a recorded repair position, not yet available"
+                  gsk ? code +
+                            " P (thread repair) needs a recorded repair position, not yet "
+                            "available"
                       : "G92 P (thread feed start height) is not implemented",
                   p->column);
     }
@@ -416,6 +442,10 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
         c.lead_change = k->value * (metric_ ? 1.0 : 25.4);
       }
     }
+    if (f == GFunction::thread_cycle_interpolated) {
+      c.chamfer_a = 0.0;  // the feed and the spindle stop together at the end (gsk A.6.29)
+      c.chamfer_b = 0.0;
+    }
   } else {
     BlockWord* fw = word('F');
     if (!check_feed(fw != nullptr ? fw->column : column)) {
@@ -428,7 +458,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
           cycles::expand_single_cycle({machine_[a], machine_[b]}, c, moves)) {
     return fail_path(*r, column);
   }
-  emit_plane_path(moves, axes, feed_);
+  emit_plane_path(moves, axes, feed_, rpm);
   return true;
 }
 

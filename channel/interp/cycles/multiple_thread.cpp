@@ -26,11 +26,12 @@ constexpr double kDegree = path::kPi / 180.0;
 // make millions of moves; real threads need tens.
 constexpr std::size_t kMaxPasses = 20000;
 
-PathResult value_error(const std::string& text) {
-  return PathError{alarm::kCycleValue, "G76 " + text, -1};
+PathResult value_error(const MultipleThread& c, const std::string& text) {
+  return PathError{alarm::kCycleValue, std::string(c.code) + " " + text, -1};
 }
 
 PathResult check_amounts(const MultipleThread& c) {
+  const auto value_error = [&c](const std::string& text) { return cycles::value_error(c, text); };
   if (!(c.height > 0.0)) {
     return value_error("thread height P" + mm_text(c.height) + " must be positive");
   }
@@ -80,13 +81,13 @@ struct ThreadLine {
   double at_depth(double a, double depth) const { return root(a) + outward * (height - depth); }
 };
 
-PathResult check_start_outside(const ThreadLine& t) {
+PathResult check_start_outside(const MultipleThread& c, const ThreadLine& t) {
   for (double a : {t.start.a, t.end.a}) {
     const double crest = t.at_depth(a, 0.0);
     if (t.outward * (t.start.b - crest) < -kTolerance) {
-      return value_error("start point X" + mm_text(t.start.b) +
-                         " (radius) lies inside the thread: crest X" + mm_text(crest) + " at Z" +
-                         mm_text(a));
+      return value_error(c, "start point X" + mm_text(t.start.b) +
+                                " (radius) lies inside the thread: crest X" + mm_text(crest) +
+                                " at Z" + mm_text(a));
     }
   }
   return std::nullopt;
@@ -102,6 +103,8 @@ double infeed_shift(const MultipleThread& c, double depth, std::size_t pass) {
       return 0.0;
     case ThreadInfeed::alternating:
       return pass % 2 == 0 ? depth * flank : (2.0 * c.height - depth) * flank;
+    case ThreadInfeed::leading_flank:
+      return (2.0 * c.height - depth) * flank;
     case ThreadInfeed::single_flank:
       break;
   }
@@ -122,14 +125,15 @@ double lead_after(const MultipleThread& c, double distance) {
 PathResult check_pass(const MultipleThread& c, const ThreadLine& t, const Pass& p) {
   const double chamfer_start = t.end.a - t.along * c.chamfer;
   if (t.along * (chamfer_start - p.start_a) <= kTolerance) {
-    return value_error("pass at depth " + mm_text(p.depth) + " starts at Z" + mm_text(p.start_a) +
-                       ", not before the end of its thread at Z" + mm_text(chamfer_start) +
-                       " (chamfer " + mm_text(c.chamfer) + ")");
+    return value_error(c, "pass at depth " + mm_text(p.depth) + " starts at Z" +
+                              mm_text(p.start_a) + ", not before the end of its thread at Z" +
+                              mm_text(chamfer_start) + " (chamfer " + mm_text(c.chamfer) + ")");
   }
   const double length = std::fabs(t.end.a - p.start_a);
   if (c.lead * c.lead + 2.0 * c.lead_change * length <= kTolerance) {
     return PathError{alarm::kThreadLead,
-                     "G76 lead F" + mm_text(c.lead) + " changing by K" + mm_text(c.lead_change) +
+                     std::string(c.code) + " lead F" + mm_text(c.lead) + " changing by K" +
+                         mm_text(c.lead_change) +
                          " per revolution reaches 0 within the thread of length " + mm_text(length),
                      -1};
   }
@@ -150,7 +154,8 @@ void emit_pass(const MultipleThread& c, const ThreadLine& t, const Pass& p, doub
   if (c.chamfer > 0.0) {
     // Out at 45 degrees: as far along b as along a.
     PlaneMove chamfer = thread;
-    chamfer.to = {t.end.a, thread.to.b + t.outward * c.chamfer};
+    chamfer.to = {t.end.a,
+                  thread.to.b + t.outward * (c.chamfer_rise >= 0.0 ? c.chamfer_rise : c.chamfer)};
     chamfer.lead = lead_after(c, std::fabs(chamfer_start - p.start_a));
     out.push_back(chamfer);
   }
@@ -170,7 +175,10 @@ std::vector<double> thread_pass_depths(const MultipleThread& cycle) {
   double depth = 0.0;
   // One pass beyond the bound tells the caller that there are too many.
   for (std::size_t n = 1; depth < last && depths.size() <= kMaxPasses; ++n) {
-    depth = std::max(cycle.first_depth * std::sqrt(static_cast<double>(n)), depth + min_step);
+    const double scheduled = cycle.constant_depth
+                                 ? cycle.first_depth * static_cast<double>(n)
+                                 : cycle.first_depth * std::sqrt(static_cast<double>(n));
+    depth = std::max(scheduled, depth + min_step);
     if (depth >= last - kTolerance) {
       depth = last;
     }
@@ -184,6 +192,9 @@ path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread
   if (PathResult e = check_amounts(cycle)) {
     return e;
   }
+  const auto value_error = [&cycle](const std::string& text) {
+    return cycles::value_error(cycle, text);
+  };
   if (std::fabs(cycle.end.a - start.a) <= kTolerance) {
     return value_error("thread has no length: end Z" + mm_text(cycle.end.a) +
                        " equals the start Z");
@@ -198,7 +209,7 @@ path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread
                         .height = cycle.height,
                         .along = cycle.end.a > start.a ? 1.0 : -1.0,
                         .outward = start.b > root_at_start ? 1.0 : -1.0};
-  if (PathResult e = check_start_outside(line)) {
+  if (PathResult e = check_start_outside(cycle, line)) {
     return e;
   }
 

@@ -13,9 +13,10 @@
 namespace mcnc::interp::cycles {
 
 enum class ThreadInfeed : std::uint8_t {
-  single_flank,  // every pass moves along one flank (J0, param 5035 = 0)
-  alternating,   // left and right flank by turns (J3)
-  radial,        // straight in along b (J1 read as "centre" when the dialect asks for it)
+  single_flank,   // every pass moves along one flank (J0, param 5035 = 0)
+  alternating,    // left and right flank by turns (J3)
+  radial,         // straight in along b (J1 read as "centre" when the dialect asks for it)
+  leading_flank,  // every pass along the other flank, the one ahead (GSK G78 entry 1 or 2)
 };
 
 struct MultipleThread {
@@ -32,6 +33,12 @@ struct MultipleThread {
   double lead_change = 0.0;       // K (dafeng): per revolution
   int starts = 1;                 // L (dafeng): start angles 360 / starts apart
   ThreadInfeed infeed = ThreadInfeed::single_flank;
+  // GSK G78 (gsk A.6.33): m = 0 makes every roughing pass first_depth deeper than the last
+  // (constant-distance infeed) instead of the sqrt(n) schedule; J/K give the chamfer-out its
+  // own rise along b (< 0: as far as `chamfer`, 45 degrees); `code` names the cycle in alarms.
+  bool constant_depth = false;
+  double chamfer_rise = -1.0;
+  const char* code = "G76";
 };
 
 // `start` is the tool position at the cycle (point A); b must be outside the thread's crest on

@@ -173,6 +173,51 @@ TEST(MultipleThread, AlternatingInfeedUsesBothFlanks) {
   }
 }
 
+// GSK G78 (gsk A.6.33): the leading flank on every pass, constant-distance infeed, and a
+// run-out with its own rise.
+TEST(MultipleThread, LeadingFlankInfeedStaysOnTheFlankAhead) {
+  MultipleThread c = dafeng_example();
+  c.infeed = ThreadInfeed::leading_flank;
+  PlanePath out;
+  ASSERT_FALSE(expand_multiple_thread({50.0, 34.0}, c, out));
+  ASSERT_EQ(out.size(), 20u);
+  const double t = flank_tan(60.0);
+  const double apex = 50.0 - 3.68 * t;
+  const double d[] = {1.8, 1.8 * std::sqrt(2.0), 1.8 * std::sqrt(3.0), 3.48, 3.68};
+  for (int p = 0; p < 5; ++p) {
+    EXPECT_NEAR(out[static_cast<std::size_t>(4 * p)].to.a, apex - (3.68 - d[p]) * t, 1e-9);
+  }
+}
+
+TEST(MultipleThread, ConstantDepthInfeedCutsEqualSteps) {
+  MultipleThread c = dafeng_example();
+  c.constant_depth = true;
+  c.infeed = ThreadInfeed::radial;
+  const std::vector<double> d = thread_pass_depths(c);
+  ASSERT_EQ(d.size(), 2u);  // 1.8, then 3.6 capped at 3.48
+  EXPECT_NEAR(d[0], 1.8, kEps);
+  EXPECT_NEAR(d[1], 3.48, kEps);
+  c.first_depth = 0.5;
+  const std::vector<double> e = thread_pass_depths(c);
+  ASSERT_EQ(e.size(), 7u);
+  for (std::size_t i = 0; i + 1 < e.size(); ++i) {
+    EXPECT_NEAR(e[i], 0.5 * static_cast<double>(i + 1), kEps);
+  }
+  EXPECT_NEAR(e.back(), 3.48, kEps);
+}
+
+TEST(MultipleThread, RunOutWithItsOwnRise) {
+  MultipleThread c = gsk_example();
+  c.infeed = ThreadInfeed::radial;
+  c.chamfer = 4.0;
+  c.chamfer_rise = 1.0;
+  PlanePath out;
+  ASSERT_FALSE(expand_multiple_thread({3.0, 16.0}, c, out));
+  // The chamfer-out ends 1 mm (radius) above where its thread move ends, over 4 mm of Z.
+  EXPECT_NEAR(out[2].to.b - out[1].to.b, 1.0, kEps);
+  EXPECT_NEAR(std::fabs(out[2].to.a - out[1].to.a), 4.0, kEps);
+}
+
 TEST(MultipleThread, LeadChangeGivesTheChamferTheLeadReached) {
   MultipleThread c = gsk_example();
   c.lead_change = 0.01;

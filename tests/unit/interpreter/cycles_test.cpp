@@ -59,6 +59,59 @@ TEST(InterpCycles, G76FirstBlockIsModal) {
   EXPECT_TRUE(gt.back().continuous);
 }
 
+// GSK G78 (gsk A.6.33): G76's cycle with the infeed (m) and the entry (r) chosen, D finishing
+// passes, L starts and the run-out J/K of G92.
+TEST(InterpCycles, GskG78ChoosesInfeedEntryPassesAndStarts) {
+  // m = 0 constant steps of Q400 (0.4 mm) to 1.1 (1.2 - R0.1): 0.4, 0.8, 1.1; then D2
+  // finishing passes; L2: every pass twice. Entry 0: straight in (every pass starts at Z3).
+  RunResult r =
+      run_ok("G00 X32 Z3\nG78 P000060 Q100 R0.1 D2 L2\nG78 X27.6 Z-30 P1200 Q400 F2\nM30\n", gsk());
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u * (3u + 2u));        // no run-out (param №19 is 0 here)
+  EXPECT_NEAR(t[0].to[0], 15.0 - 0.4, 1e-9);  // the crest at 15 (radius), first step 0.4
+  EXPECT_NEAR(t[2].to[0], 15.0 - 0.8, 1e-9);
+  EXPECT_NEAR(t[4].to[0], 15.0 - 1.1, 1e-9);
+  EXPECT_NEAR(t.back().to[0], 13.8, 1e-9);
+  EXPECT_DOUBLE_EQ(t[1].start_angle, 180.0);
+  for (const Command& c : r.of(Op::rapid)) {
+    if (c.to[0] < 16.0) {
+      EXPECT_NEAR(c.to[1], 3.0, 1e-9);  // each infeed point at Z3: entry 0, the centre
+    }
+  }
+}
+
+TEST(InterpCycles, GskG78EntryFlanksAndRunOut) {
+  // Cutting towards -Z: r = 1 (left) enters along the flank towards -Z, ahead of the cut; r = 2
+  // (right) along the one behind it, the G76 way. J1 K4: the run-out rises 1 mm over 4 mm.
+  const std::string second = "G78 X27.6 Z-30 P1200 Q400 F2\nM30\n";
+  RunResult left = run_ok("G00 X32 Z3\nG78 P010160 Q100 R0.1 J1 K4\n" + second, gsk());
+  RunResult right = run_ok("G00 X32 Z3\nG78 P010260 Q100 R0.1 J1 K4\n" + second, gsk());
+  RunResult g76 = run_ok(
+      "G00 X32 Z3\nG76 P010060 Q100 R0.1\n" + std::string("G76 X27.6 Z-30 P1200 Q400 F2\nM30\n"),
+      gsk());
+  const auto first_in = [](const RunResult& x) { return x.of(Op::rapid)[1].to[1]; };
+  const double t = std::tan(30.0 * 3.14159265358979323846 / 180.0);
+  EXPECT_NEAR(first_in(right), 3.0 - 0.4 * t, 1e-9);
+  EXPECT_NEAR(first_in(g76), first_in(right), 1e-9);
+  EXPECT_NEAR(first_in(left), 3.0 - (2 * 1.2 - 0.4) * t, 1e-9);
+  const auto lt = left.of(Op::thread);
+  ASSERT_GE(lt.size(), 2u);
+  EXPECT_NEAR(lt[1].to[0] - lt[0].to[0], 1.0, 1e-9);  // the rise J
+  EXPECT_NEAR(lt[0].to[1], -26.0, 1e-9);              // over the last K of Z
+}
+
+TEST(InterpCycles, GskG78Alarms) {
+  const ExpectedAlarm cases[] = {
+      {"G00 X32 Z3\nG78 P020060\nM30\n", alarm::kCycleValue, 2},  // m 2
+      {"G00 X32 Z3\nG78 P000460\nM30\n", alarm::kCycleValue, 2},  // r 4
+      {"G00 X32 Z3\nG78 P010060 L0\nM30\n", alarm::kCycleValue, 2},
+      {"G00 X32 Z3\nG78 P010060 E2\nM30\n", alarm::kNotInThisVersion, 2},
+      {"G00 X32 Z3\nG78 X27.6 Z-30 P1200 F2\nM30\n", alarm::kCycleWordMissing, 2},
+  };
+  expect_alarms(cases, gsk());
+  run_alarm("G00 X32 Z3\nG78 P010060\nM30\n", alarm::kUnsupportedG, 2);  // not Dafeng's
+}
+
 TEST(InterpCycles, G76NeedsHeightAndFirstDepth) {
   run_alarm("G00 X68 Z50\nG76 X60.4 Z25 P3.68 F6\nM30\n", alarm::kCycleWordMissing, 2);
   run_alarm("G00 X68 Z50\nG76 P1234567\nM30\n", alarm::kCycleValue, 2);

@@ -135,6 +135,36 @@ TEST(InterpSingleCycles, G92Alarms) {
   run_alarm("G00 X60 Z5\nG92 X48 Z-30\nM30\n", alarm::kThreadLead, 2);
 }
 
+// GSK G92.1 (gsk A.6.29): the G92 cycle with the spindle interpolated at S, no chamfer-out (the
+// feed and the spindle stop together), one pass per start; modal like G92.
+TEST(InterpSingleCycles, GskG92_1InterpolatesTheSpindle) {
+  InterpreterConfig c = gsk();
+  c.thread_chamfer_leads = 1.0;  // not G92.1's
+  RunResult r = run_ok("G00 X60 Z5\nG92.1 X48 Z-30 F2 L2 S300\nX47\nM30\n", c);
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 3u);  // two starts, then the modal block's one
+  for (const Command& th : t) {
+    EXPECT_NEAR(th.rpm, 300, 1e-12);
+    EXPECT_NEAR(th.lead, 2, 1e-12);
+    EXPECT_NEAR(th.to[1], -30, 1e-12);
+  }
+  EXPECT_AT(t[0], 24, -30);
+  EXPECT_DOUBLE_EQ(t[1].start_angle, 180.0);
+  EXPECT_AT(t[2], 23.5, -30);  // the modal block X47
+}
+
+TEST(InterpSingleCycles, GskG92_1Alarms) {
+  const ExpectedAlarm cases[] = {
+      {"G00 X60 Z5\nG92.1 X48 Z-30 F-2 S300\nM30\n", alarm::kNotInThisVersion, 2},
+      {"G00 X60 Z5\nG92.1 X48 Z-30 F2\nM30\n", alarm::kWordNotAllowed, 2},
+      {"G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 K3\nM30\n", alarm::kWordNotAllowed, 2},
+      {"G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 P1\nM30\n", alarm::kNotInThisVersion, 2},
+  };
+  expect_alarms(cases, gsk());
+  // The Dafeng manual has no G92.1 in system A (its G92.1 is system B's G50.3).
+  run_alarm("G00 X60 Z5\nG92.1 X48 Z-30 F2 S300\nM30\n", alarm::kUnsupportedG, 2);
+}
+
 // The four quadrants (spec L2230-2240): the signs of U/W/R relative to the start decide the
 // direction of each leg; the cycle ends at the start in every case.
 TEST(InterpSingleCycles, G90InAllFourQuadrants) {

@@ -180,6 +180,10 @@ struct Command {
   double chip_every = 0.0;
   double chip_break = 0.0;
 
+  // rapid, linear, arc or thread: the command moves the axes to `to`.
+  bool moves() const {
+    return op == Op::rapid || op == Op::linear || op == Op::arc || op == Op::thread;
+  }
   void set_channel(int c) { channels[static_cast<std::size_t>(c) / 64] |= 1ULL << (c % 64); }
   bool has_channel(int c) const {
     return (channels[static_cast<std::size_t>(c) / 64] >> (c % 64)) & 1ULL;

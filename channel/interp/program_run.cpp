@@ -66,7 +66,6 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
   released_at_ = machine_;
-  normal_from_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   extended_thread_.angle = config_.cycles.thread_angle;
   extended_thread_.min_depth = config_.cycles.thread_min_depth;

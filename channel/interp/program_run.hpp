@@ -527,7 +527,7 @@ class ProgramRun final : public macro::VariableProvider {
   // G41.1 (+1) / G42.1 (-1) / G40.1 (0), and the channel axis it turns (-1: none configured).
   int normal_side_ = 0;
   int normal_axis_ = -1;
-  AxisVector normal_from_{};  // where the next block's commands start (the frame's position)
+  AxisVector block_start_{};  // machine_ when the executing block began (its moves start there)
 
   // Tool
   int tool_ = 0;

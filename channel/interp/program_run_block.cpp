@@ -351,6 +351,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (words_.empty()) {
     return true;
   }
+  if (contour_mode_ == ContourMode::none) {
+    block_start_ = machine_;  // a G70-G73 contour's blocks belong to their cycle's block
+  }
   block_barrier_ = false;
   block_moved_ = false;
   block_exact_stop_ = false;

@@ -86,14 +86,12 @@ void ProgramRun::split_chip_breaking(std::size_t from) {
   AxisVector at = released_at_;
   for (std::size_t k = from; k < ready_.size(); ++k) {
     const Command& c = ready_[k];
-    const bool moves =
-        c.op == Op::rapid || c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
     if (c.chip_rev_length > 0.0) {
       cycles::split_for_chip_breaking(c, at, config_.axes.size(), chip_revs_, split);
     } else {
       split.push_back(c);
     }
-    at = moves ? c.to : at;
+    at = c.moves() ? c.to : at;
   }
   ready_.resize(from);
   ready_.insert(ready_.end(), split.begin(), split.end());

@@ -69,7 +69,6 @@ void ProgramRun::set_machine(const AxisVector& at) {
     machine_[rot] = transform::CylindricalInterpolation(cylinder_radius_).to_length(at[rot]);
     cylinder_from_ = machine_;
   }
-  normal_from_ = machine_;
 }
 
 bool ProgramRun::frame_allows(GFunction f, int code10, int column) {

@@ -74,11 +74,6 @@ bool ProgramRun::run_normal_direction(GFunction f, int column) {
 
 bool ProgramRun::apply_normal_direction() {
   if (normal_side_ == 0 || out_.empty()) {
-    for (const Command& c : out_) {
-      const bool motion =
-          c.op == Op::rapid || c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
-      normal_from_ = motion ? c.to : normal_from_;
-    }
     return true;
   }
   if (compensation_ != Command::Compensation::off || interpolation_mode()) {
@@ -95,15 +90,13 @@ bool ProgramRun::apply_normal_direction() {
   }
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
-  // The block's commands start where the last released one ended, the axis at its angle.
-  AxisVector at = normal_from_;
-  double angle = normal_from_[rot];
+  // The block's commands start where the block found the machine, the axis at its angle.
+  AxisVector at = block_start_;
+  double angle = block_start_[rot];
   std::vector<Command> turned;
   turned.reserve(out_.size() * 2);
   for (const Command& c : out_) {
-    const bool motion =
-        c.op == Op::rapid || c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
-    if (!motion) {
+    if (!c.moves()) {
       turned.push_back(c);
       continue;
     }
@@ -113,7 +106,7 @@ bool ProgramRun::apply_normal_direction() {
                   "available yet: the axis would have to turn inside the corner",
                   0);
     }
-    if (c.to[rot] != normal_from_[rot]) {
+    if (c.to[rot] != block_start_[rot]) {
       return fail(alarm::kWordNotAllowed,
                   std::string(1, config_.axes[rot].name) +
                       " is turned by normal direction control (G41.1/G42.1): G40.1 first",
@@ -156,7 +149,6 @@ bool ProgramRun::apply_normal_direction() {
   }
   out_.swap(turned);
   machine_[rot] = angle;
-  normal_from_ = at;
   return true;
 }
 

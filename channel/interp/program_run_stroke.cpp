@@ -30,10 +30,6 @@ std::string limit_text(double v) {
   return buf;
 }
 
-bool moves(const Command& c) {
-  return c.op == Op::rapid || c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
-}
-
 }  // namespace
 
 std::string ProgramRun::stroke_limits_text() const {
@@ -137,7 +133,7 @@ bool ProgramRun::run_stroke_check(GFunction f, int column) {
 void ProgramRun::check_stroke(std::size_t from) {
   for (std::size_t k = from; k < ready_.size(); ++k) {
     const Command& c = ready_[k];
-    if (!moves(c)) {
+    if (!c.moves()) {
       continue;
     }
     if (stroke_on_ && !alarm_ &&

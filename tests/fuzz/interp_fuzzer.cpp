@@ -13,7 +13,8 @@
 //   bit 2  decimal_point increment (else calculator)
 //   bit 3  block skip levels 1 and 3 switched on
 //   bit 4  axes X Z C Y with exchange numbers, X and C as the polar interpolation's axes (G12.1,
-//          G16), and the macro-call tables of
+//          G16), C the normal direction control's (G41.1), Z's G22 limits, and the macro-call
+//          tables of
 //          docs/canonical-commands.md (T -> O9010, G120 -> O9010, M60 -> O9001, M78 -> O9030,
 //          G200-G298 -> O9200-, M500-M598 -> O9500-, M800-M898 -> O9800-)
 //   bit 5  channel 2 (else 1)
@@ -80,6 +81,9 @@ InterpreterConfig make_config(std::uint8_t flags) {
     c.axes = {x, z, cax, y};
     c.polar_linear = 'X';
     c.polar_rotary = 'C';
+    c.normal_axis = 'C';  // G41.1/G42.1 turn C outside polar interpolation
+    c.axes[1].stroke_minus = -400.0;  // G22 without words: Z -400..-350
+    c.axes[1].stroke_plus = -350.0;
     c.calls.t_program = 9010;
     c.calls.g_macro = {{1200, 9010}};
     c.calls.g_range_count = 99;

@@ -1,0 +1,14 @@
+@
+%
+O0001 (issue 24: G41.1 on C, G22 from the parameters)
+G00 X0 Z0
+G41.1
+G01 Z10 F300
+G03 X20 Z20 R10
+G42.1
+G01 X40
+G40.1
+G22
+G00 Z-100
+M30
+%

@@ -24,6 +24,8 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.polar_rotary = channel.polar_rotary;
   c.polar_tolerance = channel.polar_tolerance;
   c.cylindrical_parallel = channel.cylindrical_parallel;
+  c.normal_axis = channel.normal_axis;
+  c.normal_feed = channel.normal_feed;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);

@@ -224,8 +224,9 @@ char read_address(const YamlValue& value, std::string_view letters) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
-                                 "middleware", "dialect", "polar", "cylindrical_parallel"});
+  const YamlMap map =
+      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
+                 "dialect", "polar", "cylindrical_parallel", "normal"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -285,6 +286,14 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   if (auto parallel = map.optional("cylindrical_parallel")) {
     channel.cylindrical_parallel = read_address(*parallel, "XYZ");
+  }
+  if (auto normal = map.optional("normal")) {
+    // That the channel programs the axis is checked with its program axes (check_program_axis).
+    const YamlMap n = normal->map({"axis", "feed"});
+    channel.normal_axis = read_address(n.required("axis"), "ABC");
+    if (auto feed = n.optional("feed")) {
+      channel.normal_feed = feed->positive_number();
+    }
   }
   return channel;
 }
@@ -824,30 +833,39 @@ void parse_hosts(const YamlValue& value, MachineConfig& config, bool has_plc,
   }
 }
 
-// `polar` names a linear and a rotary axis the channel programs (its axes, exchange_axes or its
-// spindle's C axis): G12.1 turns the work on the one while the tool moves on the other.
-void check_polar_axes(const MachineConfig& config, const ChannelConfig& channel,
-                      const YamlValue& value) {
-  if (channel.polar_linear == 0) {
-    return;
-  }
-  const auto check = [&](const char* key, char address, AxisType type, const char* kind) {
-    for (const std::string& name : channel.program_axes()) {
-      const AxisConfig* axis = config.find_axis(name);
-      if (axis->address == address) {
-        if (axis->type != type) {
-          value.child("polar").child(key).fail("axis " + axis->name + " (address " +
-                                               std::string(1, address) + ") is not " + kind);
-        }
-        return;
+// `address` (at `where` below the channel's `value`) names an axis the channel programs (its
+// axes, exchange_axes or its spindle's C axis) of `type`.
+void check_program_axis(const MachineConfig& config, const ChannelConfig& channel,
+                        const YamlValue& where, char address, AxisType type, const char* kind) {
+  for (const std::string& name : channel.program_axes()) {
+    const AxisConfig* axis = config.find_axis(name);
+    if (axis->address == address) {
+      if (axis->type != type) {
+        where.fail("axis " + axis->name + " (address " + std::string(1, address) + ") is not " +
+                   kind);
       }
+      return;
     }
-    value.child("polar").child(key).fail("channel " + channel.name + " programs no axis " +
-                                         std::string(1, address) +
-                                         " (its axes, exchange_axes and its spindle's c_axis)");
-  };
-  check("linear", channel.polar_linear, AxisType::linear, "linear");
-  check("rotary", channel.polar_rotary, AxisType::rotary, "rotary");
+  }
+  where.fail("channel " + channel.name + " programs no axis " + std::string(1, address) +
+             " (its axes, exchange_axes and its spindle's c_axis)");
+}
+
+// `polar` names a linear and a rotary axis the channel programs: G12.1 turns the work on the
+// one while the tool moves on the other. `normal` names a rotary axis it programs: G41.1 keeps
+// it normal to the path.
+void check_interpolation_axes(const MachineConfig& config, const ChannelConfig& channel,
+                              const YamlValue& value) {
+  if (channel.polar_linear != 0) {
+    check_program_axis(config, channel, value.child("polar").child("linear"), channel.polar_linear,
+                       AxisType::linear, "linear");
+    check_program_axis(config, channel, value.child("polar").child("rotary"), channel.polar_rotary,
+                       AxisType::rotary, "rotary");
+  }
+  if (channel.normal_axis != 0) {
+    check_program_axis(config, channel, value.child("normal").child("axis"), channel.normal_axis,
+                       AxisType::rotary, "rotary");
+  }
 }
 
 MachineConfig parse_document(const YAML::Node& root) {
@@ -1079,7 +1097,7 @@ MachineConfig parse_document(const YAML::Node& root) {
       channels[i].fail("a channel programs at most " + std::to_string(kMaxProgramAxes) +
                        " axes (its axes, exchange_axes and its spindle's c_axis)");
     }
-    check_polar_axes(config, config.channels[i], channels[i]);
+    check_interpolation_axes(config, config.channels[i], channels[i]);
   }
 
   if (auto hosts = doc.optional("hosts")) {

@@ -146,6 +146,11 @@ struct ChannelConfig {
   // Cylindrical interpolation G07.1 (param 0016, `cylindrical_parallel`): the linear axis whose
   // place the rotary axis takes in the plane.
   char cylindrical_parallel = 'Y';
+  // Normal direction control G41.1/G42.1 (params 5550/5551, `normal`): the address of the
+  // rotary axis kept normal to the path (0: none, G41.1 is an alarm) and its speed between
+  // blocks, degrees per minute.
+  char normal_axis = 0;
+  double normal_feed = 3600.0;
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

@@ -418,6 +418,35 @@ TEST(MachineConfig, PolarAndCylindricalAxesOfAChannel) {
             "channels[0].cylindrical_parallel");
 }
 
+// Normal direction control's rotary axis and speed (params 5550/5551), per channel.
+TEST(MachineConfig, NormalDirectionAxisOfAChannel) {
+  const std::string base = kMillTurn;
+  const std::string two = "  - {name: B, axes: [X2], spindles: [S2]}\n";
+  const MachineConfig plain =
+      parse_machine_yaml(base + "channels:\n  - {name: A, axes: [X1, Z1, C1]}\n" + two);
+  EXPECT_EQ(plain.channels[0].normal_axis, 0);  // none: G41.1 is an alarm
+  const MachineConfig set = parse_machine_yaml(
+      base + "channels:\n  - {name: A, axes: [X1, Z1, C1], normal: {axis: C, feed: 7200}}\n" + two);
+  EXPECT_EQ(set.channels[0].normal_axis, 'C');
+  EXPECT_DOUBLE_EQ(set.channels[0].normal_feed, 7200.0);
+  std::string what;
+  EXPECT_EQ(rejection_path(base + "channels:\n  - {name: A, axes: [X1, Z1], normal: {axis: C}}\n" +
+                               "  - {name: B, axes: [X2, C1], spindles: [S2]}\n",
+                           &what),
+            "channels[0].normal.axis");
+  EXPECT_NE(what.find("channel A programs no axis C"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], normal: {axis: "
+                           "X}}\n" +
+                           two),
+            "channels[0].normal.axis");
+  EXPECT_EQ(rejection_path(base +
+                           "channels:\n  - {name: A, axes: [X1, Z1, C1], normal: {axis: "
+                           "C, feed: 0}}\n" +
+                           two),
+            "channels[0].normal.feed");
+}
+
 // A linear axis under a rotary address (a lathe's linear B) is no polar rotary axis.
 TEST(MachineConfig, PolarRotaryAxisMustBeRotary) {
   std::string what;

@@ -4,9 +4,9 @@
 // test.
 // Also how punctually the realtime SYNC timer sends at its offset inside the cycle.
 //   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N] [--sync-seconds S]
-#include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "axisnode/link/drive_link.hpp"
+#include "canopen/frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"

@@ -2,8 +2,8 @@
 // The axis node's cyclic core: follows its owner channel's setpoints, brings its CiA 402 drive
 // to operation enabled, and goes to quick stop when the owner's setpoints stop (deadline), the
 // owner is gone, or the machine is E-stopped (ARCHITECTURE.md §6). Pure and deterministic.
-#include "axisnode/canopen/heartbeat.hpp"
-#include "axisnode/cia402/cia402_state.hpp"
+#include "canopen/cia402/cia402_state.hpp"
+#include "canopen/heartbeat.hpp"
 
 #include <array>
 #include <cstddef>

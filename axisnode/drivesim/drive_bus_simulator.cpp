@@ -1,7 +1,7 @@
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_client.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_client.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -2,10 +2,10 @@
 // Simulated CiA 402 drives of one CAN bus, driven only by the frames they receive: NMT,
 // RPDO1 (latched) and SYNC (applies the latched RPDO, steps each drive by one cycle, answers
 // with TPDO1). Deterministic: the same frames give the same positions, whatever the clock.
-#include "axisnode/canopen/sdo_server.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
-#include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/simulated_drive.hpp"
+#include "canopen/cia402/cia402_state.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sdo_server.hpp"
 
 #include <array>
 #include <cstddef>

@@ -1,6 +1,6 @@
 #include "axisnode/drivesim/drive_objects.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
+#include "canopen/sdo_abort.hpp"
 
 #include <algorithm>
 #include <cstring>

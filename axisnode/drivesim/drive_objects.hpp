@@ -7,7 +7,7 @@
 // follows CiA 301: a PDO's mapping changes only while the PDO is invalid (COB-ID bit 31) and
 // its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
 // object. Pure.
-#include "axisnode/canopen/object_access.hpp"
+#include "canopen/object_access.hpp"
 #include "common/can/can_frame.hpp"
 
 #include <array>

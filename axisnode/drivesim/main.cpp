@@ -1,9 +1,9 @@
 // mcnc-drivesim: the simulated CiA 402 drives of one CAN bus of a machine. Process shell only:
 // parse the command line, load the machine file, open the bus, pump frames through the
 // DriveBusSimulator until SIGTERM/SIGINT.
-#include "axisnode/canopen/bus_filters.hpp"
-#include "axisnode/canopen/sdo_abort.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "canopen/bus_filters.hpp"
+#include "canopen/sdo_abort.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"

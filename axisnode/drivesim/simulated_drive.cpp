@@ -1,6 +1,6 @@
 #include "axisnode/drivesim/simulated_drive.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
+#include "canopen/sdo_abort.hpp"
 
 #include <algorithm>
 #include <cmath>

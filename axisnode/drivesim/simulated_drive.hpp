@@ -1,10 +1,10 @@
 #pragma once
 // One simulated CiA 402 servo drive in cyclic synchronous position mode. Time advances only
 // through on_sync(), one cycle per call, so a run is a pure function of the frames received.
-#include "axisnode/canopen/heartbeat.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
-#include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/drive_objects.hpp"
+#include "canopen/cia402/cia402_state.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/heartbeat.hpp"
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "axisnode/link/drive_link.hpp"
 
-#include "axisnode/canopen/bus_filters.hpp"
+#include "canopen/bus_filters.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/process/thread_name.hpp"
 

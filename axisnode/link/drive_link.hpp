@@ -4,9 +4,9 @@
 // nodes sent their RPDO since the last SYNC) and wakes the cyclic loop. In lockstep the SYNC
 // producer sends SYNC only after every node of the bus has sent its RPDO for the cycle, so the
 // drives step in step.
-#include "axisnode/canopen/node_startup.hpp"
-#include "axisnode/canopen/sync_schedule.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/cia402/node_startup.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sync_schedule.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/process/process_node.hpp"
 

@@ -2,8 +2,8 @@
 // An axis node's set-up from the machine file: its roles (who may own it, what it may follow),
 // its controller's limits and its drive's start-up (PDO mapping, mode, homing). Pure: config in,
 // core types out.
-#include "axisnode/canopen/node_startup.hpp"
 #include "axisnode/node/axis_node.hpp"
+#include "canopen/cia402/node_startup.hpp"
 #include "common/config/machine_config.hpp"
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 #include "axisnode/wire/axis_outputs.hpp"
 
-#include "axisnode/canopen/emcy_codes.hpp"
+#include "canopen/emcy_codes.hpp"
 #include "common/config/cyclic_routes.hpp"
 
 #include <cstdio>

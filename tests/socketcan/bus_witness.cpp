@@ -28,9 +28,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "axisnode/canopen/sdo_client.hpp"
-#include "axisnode/canopen/sdo_frames.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sdo_client.hpp"
+#include "canopen/sdo_frames.hpp"
 #include "common/config/machine_config.hpp"
 
 namespace {

@@ -1,6 +1,6 @@
 #include "tools/status/status_lines.hpp"
 
-#include "axisnode/cia402/cia402_state.hpp"
+#include "canopen/cia402/cia402_state.hpp"
 
 #include <algorithm>
 #include <cstdio>

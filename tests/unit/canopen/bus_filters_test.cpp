@@ -1,5 +1,5 @@
 // What each end of a bus lets in: the masters of nodes 1 (the SYNC producer) and 2, and the drives.
-#include "axisnode/canopen/bus_filters.hpp"
+#include "canopen/bus_filters.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // Heartbeat, EMCY codes and PDO mapping, against what CiA 301 / CiA 402 specify.
-#include "axisnode/canopen/emcy_codes.hpp"
-#include "axisnode/canopen/heartbeat.hpp"
-#include "axisnode/canopen/pdo_mapping.hpp"
-#include "axisnode/canopen/sdo_client.hpp"
+#include "canopen/emcy_codes.hpp"
+#include "canopen/heartbeat.hpp"
+#include "canopen/pdo_mapping.hpp"
+#include "canopen/sdo_client.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // The master's start-up of one node against an SDO server: the order of what it writes, and a
 // clear error naming the object when the node refuses or stays silent.
-#include "axisnode/canopen/node_startup.hpp"
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_server.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/cia402/node_startup.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_server.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // SDO client and server against frame sequences written from CiA 301 §7.2.4 (command
 // specifiers, toggle bit, n and c bits, abort codes), and against each other.
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_client.hpp"
-#include "axisnode/canopen/sdo_frames.hpp"
-#include "axisnode/canopen/sdo_server.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_client.hpp"
+#include "canopen/sdo_frames.hpp"
+#include "canopen/sdo_server.hpp"
 
 #include <gtest/gtest.h>
 

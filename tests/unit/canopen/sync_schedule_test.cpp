@@ -1,5 +1,5 @@
 // SYNC at a fixed offset inside each cycle; a late producer skips instead of bursting.
-#include "axisnode/canopen/sync_schedule.hpp"
+#include "canopen/sync_schedule.hpp"
 
 #include <gtest/gtest.h>
 

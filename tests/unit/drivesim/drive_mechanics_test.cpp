@@ -2,8 +2,8 @@
 // torque-limited, driving J w' = T - B w. What a user of the simulator relies on: the target
 // is reached, the speed and torque limits hold, inertia and friction act as physics says, and a
 // quick stop ramps at the configured deceleration.
-#include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/simulated_drive.hpp"
+#include "canopen/cia402/cia402_state.hpp"
 
 #include <gtest/gtest.h>
 

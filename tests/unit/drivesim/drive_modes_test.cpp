@@ -1,7 +1,7 @@
 // The simulated drive's modes of operation beyond CSP: cyclic synchronous velocity and homing
 // by the current position (CiA 402 methods 35/37).
-#include "axisnode/cia402/cia402_state.hpp"
 #include "axisnode/drivesim/simulated_drive.hpp"
+#include "canopen/cia402/cia402_state.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // The simulated drive's object dictionary: the master's start-up against it over SDO, and the
 // CiA 301 rules of PDO mapping.
 #include "axisnode/drivesim/drive_objects.hpp"
-#include "axisnode/canopen/node_startup.hpp"
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_server.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/cia402/node_startup.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_server.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,10 +2,10 @@
 // PDOs by SDO (canopen::spindle_pdos), then the modes of operation travel in RPDO1 (0x6060) and
 // come back in TPDO1 (0x6061); the target velocity in RPDO2 (0x60FF). The simulator reads each
 // RPDO by its mapping; a frame of another length is not processed.
-#include "axisnode/canopen/pdo_mapping.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/pdo_mapping.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "axisnode/canopen/emcy_codes.hpp"
+#include "canopen/emcy_codes.hpp"
 
 namespace mcnc::canopen {
 

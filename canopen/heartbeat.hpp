@@ -3,7 +3,7 @@
 // consumer that hears nothing from a node for its consumer time reports it lost, once, until
 // the node is heard again. A boot-up (state 0) is told apart. Pure: frames and time in; time
 // in any monotonic unit (microseconds, or cycles in a lockstep run), the same for both.
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/frames.hpp"
 
 #include <cstdint>
 

@@ -1,7 +1,7 @@
-#include "axisnode/canopen/node_startup.hpp"
+#include "canopen/cia402/node_startup.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/frames.hpp"
+#include "canopen/sdo_abort.hpp"
 
 #include <cstdio>
 #include <cstring>

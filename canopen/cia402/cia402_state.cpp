@@ -1,4 +1,4 @@
-#include "axisnode/cia402/cia402_state.hpp"
+#include "canopen/cia402/cia402_state.hpp"
 
 namespace mcnc::cia402 {
 namespace {

@@ -1,4 +1,4 @@
-#include "axisnode/canopen/sdo_abort.hpp"
+#include "canopen/sdo_abort.hpp"
 
 namespace mcnc::canopen {
 

@@ -1,4 +1,4 @@
-#include "axisnode/canopen/bus_filters.hpp"
+#include "canopen/bus_filters.hpp"
 
 namespace mcnc::canopen {
 

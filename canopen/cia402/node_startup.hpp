@@ -4,8 +4,8 @@
 // heartbeat producer time, map its PDOs, set the mode of operation, NMT start. A refused or
 // unanswered SDO stops the start-up with a message naming the object and the reason. Pure:
 // frames and time in, frames out, no allocation.
-#include "axisnode/canopen/pdo_mapping.hpp"
-#include "axisnode/canopen/sdo_client.hpp"
+#include "canopen/pdo_mapping.hpp"
+#include "canopen/sdo_client.hpp"
 
 #include <array>
 #include <cstdint>

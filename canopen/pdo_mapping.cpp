@@ -1,4 +1,4 @@
-#include "axisnode/canopen/pdo_mapping.hpp"
+#include "canopen/pdo_mapping.hpp"
 
 namespace mcnc::canopen {
 

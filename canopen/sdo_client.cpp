@@ -1,7 +1,7 @@
-#include "axisnode/canopen/sdo_client.hpp"
+#include "canopen/sdo_client.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_frames.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_frames.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "axisnode/canopen/heartbeat.hpp"
+#include "canopen/heartbeat.hpp"
 
 namespace mcnc::canopen {
 

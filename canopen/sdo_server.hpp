@@ -2,7 +2,7 @@
 // The SDO server (CiA 301 §7.2.4) of a device: answers each request of its client with one
 // response from the device's object dictionary, expedited or segmented, and aborts with the
 // dictionary's abort code, on a toggle error or an out-of-sequence request. Pure.
-#include "axisnode/canopen/object_access.hpp"
+#include "canopen/object_access.hpp"
 #include "common/can/can_frame.hpp"
 
 #include <cstdint>

@@ -1,8 +1,8 @@
-#include "axisnode/canopen/sdo_server.hpp"
+#include "canopen/sdo_server.hpp"
 
-#include "axisnode/canopen/sdo_abort.hpp"
-#include "axisnode/canopen/sdo_client.hpp"
-#include "axisnode/canopen/sdo_frames.hpp"
+#include "canopen/sdo_abort.hpp"
+#include "canopen/sdo_client.hpp"
+#include "canopen/sdo_frames.hpp"
 
 #include <algorithm>
 

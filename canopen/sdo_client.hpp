@@ -3,7 +3,7 @@
 // expedited (up to 4 bytes in one frame) or segmented (7 bytes per segment, toggle bit
 // alternating from 0), aborts on a toggle error, an unknown command or a timeout, and reports
 // the server's abort code. Pure: frames and the time in, frames out; no allocation.
-#include "axisnode/canopen/object_access.hpp"
+#include "canopen/object_access.hpp"
 #include "common/can/can_frame.hpp"
 
 #include <cstdint>

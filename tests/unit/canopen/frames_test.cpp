@@ -1,4 +1,4 @@
-#include "axisnode/cia402/canopen_frames.hpp"
+#include "canopen/frames.hpp"
 
 #include <gtest/gtest.h>
 

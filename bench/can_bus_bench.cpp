@@ -6,6 +6,7 @@
 //   mcnc_bench_can MACHINE.yaml [--uri URI] [--cycles N] [--sync-seconds S]
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
 #include "axisnode/link/drive_link.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"

@@ -1,6 +1,7 @@
 // Cost of one cycle of the pure cores (no DDS, no CAN): what each process spends computing.
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"

@@ -4,6 +4,7 @@
 // channel whose position encodes the cycle number, and listens on the CAN bus for the axis
 // node's RPDOs. The latency of cycle k is (RPDO with target k received) - (setpoint k written).
 // It includes the designed one-cycle delay (a setpoint stamped N is applied at N+1).
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
 #include "common/can/can_bus.hpp"
 #include "common/clock/cycle_clock.hpp"

@@ -19,24 +19,8 @@ void put_u16(CanFrame& frame, std::size_t at, std::uint16_t value) noexcept {
   frame.data[at + 1] = static_cast<std::uint8_t>(value >> 8);
 }
 
-void put_i32(CanFrame& frame, std::size_t at, std::int32_t value) noexcept {
-  const auto bits = static_cast<std::uint32_t>(value);
-  for (std::size_t i = 0; i < 4; ++i) {
-    frame.data[at + i] = static_cast<std::uint8_t>((bits >> (8 * i)) & 0xFFU);
-  }
-}
-
 std::uint16_t get_u16(const CanFrame& frame, std::size_t at) noexcept {
   return static_cast<std::uint16_t>(frame.data[at] | (frame.data[at + 1] << 8));
-}
-
-std::int32_t get_i32(const CanFrame& frame, std::size_t at) noexcept {
-  std::uint32_t bits = 0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    bits |= static_cast<std::uint32_t>(frame.data[at + i]) << (8 * i);
-  }
-  // Two's complement conversion is well defined since C++20.
-  return static_cast<std::int32_t>(bits);
 }
 
 // Node-addressed COB-IDs are base + node with node 1..127. The flag bits (EFF/RTR/ERR) make the
@@ -100,37 +84,6 @@ CanFrame encode_emcy(std::uint8_t node, const Emcy& emcy) noexcept {
   return frame;
 }
 
-CanFrame encode_rpdo_csp(std::uint8_t node, const RxPdoCsp& pdo) noexcept {
-  CanFrame frame = make_frame(kRpdo1Base + node, 6);
-  put_u16(frame, 0, pdo.controlword);
-  put_i32(frame, 2, pdo.target_position);
-  return frame;
-}
-
-CanFrame encode_tpdo_csp(std::uint8_t node, const TxPdoCsp& pdo) noexcept {
-  CanFrame frame = make_frame(kTpdo1Base + node, pdo.has_mode_display ? 7 : 6);
-  put_u16(frame, 0, pdo.statusword);
-  put_i32(frame, 2, pdo.position_actual);
-  if (pdo.has_mode_display) {
-    frame.data[6] = static_cast<std::uint8_t>(pdo.mode_display);
-  }
-  return frame;
-}
-
-CanFrame encode_rpdo1_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept {
-  CanFrame frame = make_frame(kRpdo1Base + node, 7);
-  put_u16(frame, 0, pdo.controlword);
-  put_i32(frame, 2, pdo.target_position);
-  frame.data[6] = static_cast<std::uint8_t>(pdo.mode);
-  return frame;
-}
-
-CanFrame encode_rpdo2_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept {
-  CanFrame frame = make_frame(kRpdo2Base + node, 4);
-  put_i32(frame, 0, pdo.target_velocity);
-  return frame;
-}
-
 FrameClass classify(const CanFrame& frame) noexcept {
   const std::uint32_t id = frame.id;
   FrameClass result;
@@ -191,27 +144,6 @@ std::optional<Emcy> decode_emcy(const CanFrame& frame) noexcept {
     return std::nullopt;
   }
   return Emcy{get_u16(frame, 0), frame.data[2]};
-}
-
-std::optional<RxPdoCsp> decode_rpdo_csp(const CanFrame& frame) noexcept {
-  std::uint8_t node = 0;
-  if (!node_id_in(frame.id, kRpdo1Base, node) || frame.dlc != 6) {
-    return std::nullopt;
-  }
-  return RxPdoCsp{get_u16(frame, 0), get_i32(frame, 2)};
-}
-
-std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame, bool with_mode) noexcept {
-  std::uint8_t node = 0;
-  if (!node_id_in(frame.id, kTpdo1Base, node) || frame.dlc != (with_mode ? 7 : 6)) {
-    return std::nullopt;
-  }
-  TxPdoCsp pdo{get_u16(frame, 0), get_i32(frame, 2)};
-  if (with_mode) {
-    pdo.mode_display = static_cast<std::int8_t>(frame.data[6]);
-    pdo.has_mode_display = true;
-  }
-  return pdo;
 }
 
 }  // namespace mcnc::canopen

@@ -1,6 +1,7 @@
 #pragma once
-// CiA 301 frames used by the axis node and the drive simulator: NMT, SYNC, boot-up/heartbeat,
-// EMCY and the one RPDO / TPDO pair of cyclic synchronous position. Encoding and decoding only.
+// CiA 301 frames used by the axis node and the drive simulator: NMT, SYNC, boot-up/heartbeat and
+// EMCY, and what a frame is by its COB-ID. Encoding and decoding only; PDOs are packed by their
+// layout (pdo_layout.hpp).
 #include "common/can/can_frame.hpp"
 
 #include <cstdint>
@@ -34,27 +35,6 @@ inline constexpr std::uint32_t kTpdo2Base = 0x280;
 inline constexpr std::uint32_t kRpdo2Base = 0x300;
 inline constexpr std::uint32_t kHeartbeatBase = 0x700;
 
-// RPDO1 of an axis in CSP: controlword (0x6040) + target position (0x607A).
-struct RxPdoCsp {
-  std::uint16_t controlword = 0;
-  std::int32_t target_position = 0;
-};
-// TPDO1 of an axis in CSP: statusword (0x6041) + position actual value (0x6064); a spindle's
-// adds modes of operation display (0x6061, a 7th byte).
-struct TxPdoCsp {
-  std::uint16_t statusword = 0;
-  std::int32_t position_actual = 0;
-  std::int8_t mode_display = 0;
-  bool has_mode_display = false;
-};
-// A spindle's RPDO1: controlword + target position + modes of operation (0x6060), 7 bytes;
-// and its RPDO2: target velocity (0x60FF), 4 bytes.
-struct RxPdoSpindle {
-  std::uint16_t controlword = 0;
-  std::int32_t target_position = 0;
-  std::int8_t mode = 8;
-  std::int32_t target_velocity = 0;
-};
 struct Emcy {
   std::uint16_t error_code = 0;
   std::uint8_t error_register = 0;
@@ -65,10 +45,6 @@ CanFrame encode_nmt(NmtCommand command, std::uint8_t node) noexcept;
 CanFrame encode_sync(std::uint8_t counter) noexcept;  // counter 1..240, 0 = no counter byte
 CanFrame encode_heartbeat(std::uint8_t node, NmtState state) noexcept;
 CanFrame encode_emcy(std::uint8_t node, const Emcy& emcy) noexcept;
-CanFrame encode_rpdo_csp(std::uint8_t node, const RxPdoCsp& pdo) noexcept;
-CanFrame encode_tpdo_csp(std::uint8_t node, const TxPdoCsp& pdo) noexcept;  // 7 bytes with mode
-CanFrame encode_rpdo1_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept;
-CanFrame encode_rpdo2_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept;
 
 // What a frame is, by its COB-ID. Decoders return nullopt on a wrong id or a wrong length
 // (a malformed frame is dropped by the caller and counted).
@@ -87,8 +63,5 @@ std::optional<NmtFrame> decode_nmt(const CanFrame& frame) noexcept;
 std::optional<std::uint8_t> decode_sync(const CanFrame& frame) noexcept;  // the counter (0 if none)
 std::optional<NmtState> decode_heartbeat(const CanFrame& frame) noexcept;
 std::optional<Emcy> decode_emcy(const CanFrame& frame) noexcept;
-std::optional<RxPdoCsp> decode_rpdo_csp(const CanFrame& frame) noexcept;
-// 6 bytes; with_mode: 7, the last the modes of operation display (a spindle's mapping).
-std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame, bool with_mode = false) noexcept;
 
 }  // namespace mcnc::canopen

@@ -1,5 +1,6 @@
 #include "axisnode/drivesim/drive_objects.hpp"
 
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/sdo_abort.hpp"
 
 #include <algorithm>
@@ -67,44 +68,20 @@ void DriveObjects::reset_communication() noexcept {
 }
 
 bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept {
-  const Pdo& pdo = tpdo_[n];
-  if (!pdo.valid() || n >= tpdo_.size()) {
+  if (n >= tpdo_.size() || !tpdo_[n].valid()) {
     return false;
   }
-  out = can::CanFrame{};
-  out.id = pdo.cob_id & can::kSffMask;
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < pdo.count; ++i) {
-    const auto index = static_cast<std::uint16_t>(pdo.entries[i] >> 16);
-    const std::size_t bytes = (pdo.entries[i] & 0xFFU) / 8;
-    std::int64_t value = 0;
-    switch (index) {
-      case 0x6041:
-        value = live.statusword;
-        break;
-      case 0x6061:
-        value = mode_;  // NOLINT(bugprone-signed-char-misuse): INTEGER8 sign-extends
-        break;
-      case 0x6064:
-        value = live.position;
-        break;
-      case 0x606C:
-        value = live.velocity;
-        break;
-      case 0x60F4:
-        value = live.following_error;
-        break;
-      case 0x6077:
-        value = live.torque;
-        break;
-      default:
-        break;
-    }
-    for (std::size_t b = 0; b < bytes && at < 8; ++b) {
-      out.data[at++] = static_cast<std::uint8_t>(static_cast<std::uint64_t>(value) >> (8 * b));
-    }
+  canopen::DriveFeedback values;
+  values.statusword = live.statusword;
+  values.position_actual = live.position;
+  values.mode_display = mode_;
+  values.velocity_actual = live.velocity;
+  values.following_error = live.following_error;
+  values.torque_actual = live.torque;
+  if (!canopen::pack_feedback(mapping_of(tpdo_[n], false, n), node_, values, out)) {
+    return false;
   }
-  out.dlc = static_cast<std::uint8_t>(at);
+  out.id = tpdo_[n].cob_id & can::kSffMask;  // as the master set it
   return true;
 }
 
@@ -132,45 +109,41 @@ bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
   if (n >= rpdo_.size() || !rpdo_[n].valid()) {
     return false;
   }
-  const Pdo& pdo = rpdo_[n];
-  std::size_t bytes = 0;
-  for (std::size_t i = 0; i < pdo.count; ++i) {
-    bytes += (pdo.entries[i] & 0xFFU) / 8;
-  }
-  if (frame.dlc != bytes || bytes > 8) {
-    return false;
-  }
-  std::size_t at = 0;
-  for (std::size_t i = 0; i < pdo.count; ++i) {
-    const auto index = static_cast<std::uint16_t>(pdo.entries[i] >> 16);
-    const std::size_t size = (pdo.entries[i] & 0xFFU) / 8;
-    std::uint32_t raw = 0;
-    for (std::size_t b = 0; b < size; ++b) {
-      raw |= static_cast<std::uint32_t>(frame.data[at + b]) << (8 * b);
-    }
-    at += size;
+  const auto store = [&](std::uint16_t index, std::uint8_t, std::uint32_t raw, std::uint8_t bits) {
     switch (index) {
       case 0x6040:
         out.controlword = static_cast<std::uint16_t>(raw);
         out.has_controlword = true;
         break;
       case 0x607A:
-        out.target_position = static_cast<std::int32_t>(raw);
+        out.target_position = canopen::sign_extend(raw, bits);
         out.has_target_position = true;
         break;
       case 0x60FF:
-        out.target_velocity = static_cast<std::int32_t>(raw);
+        out.target_velocity = canopen::sign_extend(raw, bits);
         out.has_target_velocity = true;
         break;
       case 0x6060:
-        out.mode = static_cast<std::int8_t>(raw);
+        out.mode = static_cast<std::int8_t>(canopen::sign_extend(raw, bits));
         out.has_mode = true;
         break;
       default:
         break;
     }
+  };
+  return canopen::unpack(mapping_of(rpdo_[n], true, n), frame, store);
+}
+
+canopen::PdoMapping DriveObjects::mapping_of(const Pdo& pdo, bool receive, std::size_t n) noexcept {
+  canopen::PdoMapping mapping;
+  mapping.receive = receive;
+  mapping.number = static_cast<std::uint8_t>(n + 1);
+  mapping.transmission_type = pdo.transmission_type;
+  mapping.count = pdo.count;
+  for (std::size_t i = 0; i < pdo.count && i < mapping.objects.size(); ++i) {
+    mapping.objects[i] = canopen::PdoMapping::object_of(pdo.entries[i]);
   }
-  return true;
+  return mapping;
 }
 
 std::uint32_t DriveObjects::read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,

@@ -8,6 +8,7 @@
 // its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
 // object. Pure.
 #include "canopen/object_access.hpp"
+#include "canopen/pdo_layout.hpp"
 #include "common/can/can_frame.hpp"
 
 #include <array>
@@ -55,7 +56,8 @@ class DriveObjects final : public canopen::ObjectAccess {
 
   // NMT reset communication: the communication objects (0x1000-0x1FFF) back to their defaults.
   void reset_communication() noexcept;
-  // The TPDO `n` (0 or 1) as its mapping says, from the live values; false while it is invalid.
+  // The TPDO `n` (0 or 1) packed by its mapping (canopen::pack) from the live values; false
+  // while it is invalid.
   bool encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept;
   // RPDO `n` (0 or 1) read by its mapping; false (not processed) while it is invalid or when the
   // frame's length is not the mapped length (CiA 301: a PDO length error).
@@ -83,6 +85,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   DriveLiveValues live{};
 
  private:
+  // The PDO's mapping objects as the layout both ends pack and unpack by.
+  static canopen::PdoMapping mapping_of(const Pdo& pdo, bool receive, std::size_t n) noexcept;
   std::uint32_t read_pdo(const Pdo& pdo, bool mapping, std::uint8_t sub,
                          canopen::SdoValue& out) const noexcept;
   std::uint32_t write_pdo(Pdo& pdo, bool receive, bool mapping, std::uint8_t sub,

@@ -3,6 +3,7 @@
 // through on_sync(), one cycle per call, so a run is a pure function of the frames received.
 #include "axisnode/drivesim/drive_objects.hpp"
 #include "canopen/cia402/cia402_state.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
 #include "canopen/heartbeat.hpp"
 

@@ -4,6 +4,7 @@
 // nodes sent their RPDO since the last SYNC) and wakes the cyclic loop. In lockstep the SYNC
 // producer sends SYNC only after every node of the bus has sent its RPDO for the cycle, so the
 // drives step in step.
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/cia402/node_startup.hpp"
 #include "canopen/frames.hpp"
 #include "canopen/sync_schedule.hpp"

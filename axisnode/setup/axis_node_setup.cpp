@@ -22,7 +22,7 @@ canopen::NodeStartupConfig drive_startup_of(const config::AxisConfig& axis) {
   startup.heartbeat_ms = static_cast<std::uint16_t>(axis.heartbeat_ms);
   startup.quick_stop_deceleration =
       static_cast<std::uint32_t>(std::llround(axis.quick_stop_deceleration * axis.counts_per_unit));
-  canopen::PdoConfig& tpdo2 = startup.pdos.tpdo2;
+  canopen::PdoMapping& tpdo2 = startup.pdos.tpdo2;
   if (axis.tpdo2_velocity) {
     tpdo2.objects[tpdo2.count++] = canopen::MappedObject{0x606C, 0, 32};
   }

@@ -67,8 +67,18 @@ NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
     }
   };
   add(0x1017, 0, config.heartbeat_ms, 2);
-  for (const PdoConfig* pdo :
-       {&config.pdos.rpdo1, &config.pdos.rpdo2, &config.pdos.tpdo1, &config.pdos.tpdo2}) {
+  const struct {
+    const PdoMapping* pdo;
+    const char* name;
+  } pdos[] = {{&config.pdos.rpdo1, "RPDO1"},
+              {&config.pdos.rpdo2, "RPDO2"},
+              {&config.pdos.tpdo1, "TPDO1"},
+              {&config.pdos.tpdo2, "TPDO2"}};
+  for (const auto& [pdo, name] : pdos) {
+    if (const char* why = pdo_error(*pdo); why != nullptr && refused_pdo_ == nullptr) {
+      refused_pdo_ = name;
+      refused_why_ = why;
+    }
     SdoWriteList list;
     if (pdo->count > 0 && pdo_configuration(config.node, *pdo, list)) {
       for (std::size_t i = 0; i < list.count; ++i) {
@@ -86,7 +96,13 @@ NodeStartup::NodeStartup(const NodeStartupConfig& config) noexcept
   add(0x6060, 0, static_cast<std::uint8_t>(config.mode), 1);
 }
 
-void NodeStartup::begin(std::uint64_t now_us, can::CanFrame& out) noexcept {
+bool NodeStartup::begin(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  if (refused_pdo_ != nullptr) {
+    status_ = Status::failed;
+    std::snprintf(error_.data(), error_.size(), "node %u: %s cannot be mapped: %s", config_.node,
+                  refused_pdo_, refused_why_);
+    return false;
+  }
   status_ = Status::running;
   phase_ = Phase::bootup;
   attempts_ = 1;
@@ -96,6 +112,7 @@ void NodeStartup::begin(std::uint64_t now_us, can::CanFrame& out) noexcept {
   retry_pending_ = false;
   error_[0] = '\0';
   out = encode_nmt(NmtCommand::reset_communication, config_.node);
+  return true;
 }
 
 void NodeStartup::fail_sdo(const char* doing) noexcept {

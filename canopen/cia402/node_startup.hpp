@@ -4,7 +4,7 @@
 // heartbeat producer time, map its PDOs, set the mode of operation, NMT start. A refused or
 // unanswered SDO stops the start-up with a message naming the object and the reason. Pure:
 // frames and time in, frames out, no allocation.
-#include "canopen/pdo_mapping.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/sdo_client.hpp"
 
 #include <array>
@@ -16,7 +16,7 @@ struct NodeStartupConfig {
   std::uint8_t node = 1;
   std::uint32_t device_type = 0x00020192;  // CiA 402 servo drive; 0: not checked
   std::uint16_t heartbeat_ms = 100;        // the node's producer time (0x1017); 0: off
-  AxisPdos pdos = axis_pdos(false, false, false);
+  PdoLayout pdos = axis_pdos(false, false, false);
   std::int8_t mode = 8;                       // 0x6060: 8 CSP, 9 CSV, 6 homing
   std::int8_t homing_method = 0;              // 0x6098 written when not 0 (with 0x607C)
   std::int32_t home_offset = 0;               // 0x607C, counts
@@ -36,8 +36,10 @@ class NodeStartup {
 
   explicit NodeStartup(const NodeStartupConfig& config) noexcept;
 
-  // Starts over: `out` is the NMT reset communication to send.
-  void begin(std::uint64_t now_us, can::CanFrame& out) noexcept;
+  // Starts over: `out` is the NMT reset communication to send. False, and failed with nothing to
+  // send, when a PDO of the layout cannot be mapped (error() names it and says why, e.g. longer
+  // than a CAN frame's 8 bytes).
+  bool begin(std::uint64_t now_us, can::CanFrame& out) noexcept;
   // A frame from the bus; true when `out` must be sent.
   bool on_frame(const can::CanFrame& in, std::uint64_t now_us, can::CanFrame& out) noexcept;
   // Time passes; true when `out` must be sent (a repeated reset, an SDO abort).
@@ -67,6 +69,8 @@ class NodeStartup {
   int sdo_tries_ = 0;           // of the request under way
   bool retry_pending_ = false;  // the abort of a timed-out request went out; resend next
   std::array<char, 200> error_{};
+  const char* refused_pdo_ = nullptr;  // the first PDO of the layout that cannot be mapped
+  const char* refused_why_ = nullptr;
 };
 
 // The name of a communication or drive-profile object, for messages.

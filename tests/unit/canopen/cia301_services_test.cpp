@@ -1,7 +1,7 @@
 // Heartbeat, EMCY codes and PDO mapping, against what CiA 301 / CiA 402 specify.
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/emcy_codes.hpp"
 #include "canopen/heartbeat.hpp"
-#include "canopen/pdo_mapping.hpp"
 #include "canopen/sdo_client.hpp"
 
 #include <gtest/gtest.h>
@@ -64,7 +64,7 @@ TEST(Emcy, CodesInWords) {
 }
 
 TEST(PdoMapping, RpdoOfACspAxisInTheOrderTheStandardRequires) {
-  const AxisPdos pdos = axis_pdos(false, false, false);
+  const PdoLayout pdos = axis_pdos(false, false, false);
   SdoWriteList w;
   ASSERT_TRUE(pdo_configuration(3, pdos.rpdo1, w));
   const std::vector<std::tuple<int, int, std::uint32_t, int>> expected{
@@ -96,7 +96,7 @@ TEST(PdoMapping, RpdoOfACspAxisInTheOrderTheStandardRequires) {
 }
 
 TEST(PdoMapping, TpdosAndLimits) {
-  const AxisPdos csv = axis_pdos(true, true, true);
+  const PdoLayout csv = axis_pdos(true, true, true);
   EXPECT_EQ(csv.rpdo1.objects[1].index, 0x60FF);
   SdoWriteList w;
   ASSERT_TRUE(pdo_configuration(3, csv.tpdo2, w));
@@ -107,10 +107,10 @@ TEST(PdoMapping, TpdosAndLimits) {
   EXPECT_EQ(w.writes[4].value, 0x60F40020U);
   EXPECT_EQ(pdo_cob_id(csv.tpdo1, 3), 0x183U);
   // 16 + 32 + 32 bits do not fit in one PDO.
-  PdoConfig big = csv.tpdo1;
+  PdoMapping big = csv.tpdo1;
   big.objects[big.count++] = MappedObject{0x606C, 0, 32};
   EXPECT_FALSE(pdo_configuration(3, big, w));
-  PdoConfig empty;
+  PdoMapping empty;
   EXPECT_FALSE(pdo_configuration(3, empty, w));
   EXPECT_EQ(axis_pdos(false, false, false).tpdo2.count, 0U);  // no second TPDO unless asked
 }

@@ -1,4 +1,5 @@
 #include "canopen/frames.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // The simulated drive's object dictionary: the master's start-up against it over SDO, and the
 // CiA 301 rules of PDO mapping.
 #include "axisnode/drivesim/drive_objects.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/cia402/node_startup.hpp"
 #include "canopen/frames.hpp"
 #include "canopen/sdo_abort.hpp"
@@ -81,6 +82,56 @@ TEST(DriveObjects, TheTorqueGoesInTpdo2InPerMilleOfTheRatedTorque) {
   ASSERT_EQ(od.read(0x6076, 0, v), 0U);
   EXPECT_EQ(v.size, 4U);
   EXPECT_EQ(write_u(od, 0x6077, 0, 0, 2), abort::kReadOnly);
+}
+
+TEST(DriveObjects, TheLayoutTheMasterMapsIsTheOneBothEndsPackBy) {
+  // Not a layout of the project's: the objects in an order of their own, both TPDOs filled.
+  canopen::PdoLayout layout = canopen::spindle_pdos();
+  std::swap(layout.rpdo1.objects[0], layout.rpdo1.objects[2]);  // mode, target, controlword
+  layout.tpdo1.objects[0] = canopen::MappedObject{0x6064, 0, 32};
+  layout.tpdo1.objects[1] = canopen::MappedObject{0x6061, 0, 8};
+  layout.tpdo1.objects[2] = canopen::MappedObject{0x6041, 0, 16};
+  layout.tpdo2.objects[layout.tpdo2.count++] = canopen::MappedObject{0x6077, 0, 16};
+  layout.tpdo2.objects[layout.tpdo2.count++] = canopen::MappedObject{0x606C, 0, 32};
+  DriveObjects od(2);
+  canopen::NodeStartupConfig c{2};
+  c.pdos = layout;
+  c.mode = 9;
+  canopen::NodeStartup s(c);
+  ASSERT_EQ(start(od, s), canopen::NodeStartup::Status::done) << s.error();
+
+  // The master's command, as the drive reads it.
+  const canopen::DriveCommand command{0x000F, -4000000, -250000, 8};
+  RpdoValues got;
+  for (std::size_t n = 0; n < 2; ++n) {
+    can::CanFrame frame;
+    ASSERT_TRUE(canopen::pack_command(n == 0 ? layout.rpdo1 : layout.rpdo2, 2, command, frame));
+    RpdoValues values;
+    ASSERT_TRUE(od.decode_rpdo(n, frame, values)) << n;
+    got.merge(values);
+  }
+  EXPECT_EQ(got.controlword, 0x000F);
+  EXPECT_EQ(got.target_position, -4000000);
+  EXPECT_EQ(got.target_velocity, -250000);
+  EXPECT_EQ(got.mode, 8);
+
+  // The drive's answer, as the master reads it.
+  od.live.statusword = 0x1237;
+  od.live.position = -987654;
+  od.live.velocity = -31000;
+  od.live.torque = -12;
+  canopen::DriveFeedback feedback;
+  for (std::size_t n = 0; n < 2; ++n) {
+    can::CanFrame frame;
+    ASSERT_TRUE(od.encode_tpdo(n, frame)) << n;
+    ASSERT_TRUE(canopen::unpack_feedback(n == 0 ? layout.tpdo1 : layout.tpdo2, frame, feedback))
+        << n;
+  }
+  EXPECT_EQ(feedback.statusword, 0x1237);
+  EXPECT_EQ(feedback.position_actual, -987654);
+  EXPECT_EQ(feedback.mode_display, 9);
+  EXPECT_EQ(feedback.velocity_actual, -31000);
+  EXPECT_EQ(feedback.torque_actual, -12);
 }
 
 TEST(DriveObjects, AnInjectedRefusalStopsTheStartupNamingTheObject) {

@@ -4,8 +4,8 @@
 // RPDO by its mapping; a frame of another length is not processed.
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
-#include "canopen/pdo_mapping.hpp"
 
 #include <gtest/gtest.h>
 
@@ -60,7 +60,7 @@ TEST(SpindleFrames, RpdosAndTpdoCarryTheModes) {
 }
 
 TEST(SpindleFrames, TheMappingIsWrittenInTheStandardsOrder) {
-  const canopen::AxisPdos p = canopen::spindle_pdos();
+  const canopen::PdoLayout p = canopen::spindle_pdos();
   canopen::SdoWriteList w;
   ASSERT_TRUE(canopen::pdo_configuration(kNode, p.rpdo1, w));
   ASSERT_EQ(w.count, 8U);  // invalidate, type, count 0, 3 entries, count, validate
@@ -83,8 +83,8 @@ class SpindleBus {
   SpindleBus() : sim_({spindle_params()}, kCycle) {
     sim_.power_on(out_);
     DriveObjects& od = const_cast<SimulatedDrive&>(*sim_.find(kNode)).objects();
-    const canopen::AxisPdos p = canopen::spindle_pdos();
-    for (const canopen::PdoConfig* pdo : {&p.rpdo1, &p.rpdo2, &p.tpdo1}) {
+    const canopen::PdoLayout p = canopen::spindle_pdos();
+    for (const canopen::PdoMapping* pdo : {&p.rpdo1, &p.rpdo2, &p.tpdo1}) {
       canopen::SdoWriteList w;
       EXPECT_TRUE(canopen::pdo_configuration(kNode, *pdo, w));
       for (std::size_t i = 0; i < w.count; ++i) {

@@ -1,0 +1,90 @@
+#pragma once
+// The PDOs of a CiA 402 drive as this project maps them, and the drive-profile objects they
+// carry. The layouts are canopen::PdoLayouts: the start-up writes them to the drive and the
+// master packs and unpacks its cyclic frames by them (DriveCommand, DriveFeedback); the fixed
+// shapes below them (RxPdoCsp, TxPdoCsp, RxPdoSpindle) are the same layouts' frames, for the
+// simulated drive's tests and the benchmarks. Pure, no allocation.
+#include "canopen/frames.hpp"
+#include "canopen/pdo_layout.hpp"
+
+#include <cstdint>
+#include <optional>
+
+namespace mcnc::canopen {
+
+// The PDOs of an axis drive: RPDO1 controlword 0x6040 and target position 0x607A (CSP) or
+// target velocity 0x60FF (CSV); TPDO1 statusword 0x6041 and position actual 0x6064; TPDO2, only
+// when asked (it costs a frame per axis and cycle on the bus), velocity actual 0x606C and/or
+// following error actual 0x60F4.
+PdoLayout axis_pdos(bool velocity_mode, bool velocity_actual, bool following_error) noexcept;
+// The PDOs of a spindle drive that switches between CSV (turning) and CSP (positioning,
+// synchronisation) in operation, cycle by cycle: RPDO1 controlword 0x6040, target position
+// 0x607A and modes of operation 0x6060 (7 bytes); RPDO2 target velocity 0x60FF; TPDO1
+// statusword 0x6041, position actual 0x6064 and modes of operation display 0x6061 (7 bytes).
+PdoLayout spindle_pdos() noexcept;
+// The PDOs of an axis that homes at start-up (mode 6, then CSP): a spindle's RPDO1 and TPDO1
+// (the modes of operation and its display travel with them), no RPDO2.
+PdoLayout homing_axis_pdos() noexcept;
+
+// What a master sends its drive in a cycle; an RPDO carries what its mapping names of it.
+struct DriveCommand {
+  std::uint16_t controlword = 0;     // 0x6040
+  std::int32_t target_position = 0;  // 0x607A, counts
+  std::int32_t target_velocity = 0;  // 0x60FF, counts/s
+  std::int8_t mode = 8;              // 0x6060
+};
+// What a drive's TPDOs said; a TPDO sets what its mapping names, the rest stays.
+struct DriveFeedback {
+  std::uint16_t statusword = 0;      // 0x6041
+  std::int32_t position_actual = 0;  // 0x6064, counts
+  std::int8_t mode_display = 0;      // 0x6061
+  std::int32_t velocity_actual = 0;  // 0x606C, counts/s
+  std::int32_t following_error = 0;  // 0x60F4, counts
+  std::int16_t torque_actual = 0;    // 0x6077, per mille of the rated torque
+};
+
+// The frame of RPDO `pdo` from `command`; false when the mapping cannot be carried.
+bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& command,
+                  can::CanFrame& out) noexcept;
+// The frame of TPDO `pdo` from `feedback` (a drive's side: the simulator); false when the mapping
+// cannot be carried.
+bool pack_feedback(const PdoMapping& pdo, std::uint8_t node, const DriveFeedback& feedback,
+                   can::CanFrame& out) noexcept;
+// TPDO `pdo` into `feedback`; false (nothing set) on a length that is not the mapped one.
+bool unpack_feedback(const PdoMapping& pdo, const can::CanFrame& frame,
+                     DriveFeedback& feedback) noexcept;
+
+// The frames of the layouts above, in fixed shapes. RPDO1 of an axis in CSP: controlword +
+// target position (6 bytes).
+struct RxPdoCsp {
+  std::uint16_t controlword = 0;
+  std::int32_t target_position = 0;
+};
+// TPDO1 of an axis in CSP: statusword + position actual value (6 bytes); a spindle's (and a
+// homing axis's) adds the modes of operation display (a 7th byte).
+struct TxPdoCsp {
+  std::uint16_t statusword = 0;
+  std::int32_t position_actual = 0;
+  std::int8_t mode_display = 0;
+  bool has_mode_display = false;
+};
+// A spindle's RPDO1: controlword + target position + modes of operation, 7 bytes; and its
+// RPDO2: target velocity, 4 bytes.
+struct RxPdoSpindle {
+  std::uint16_t controlword = 0;
+  std::int32_t target_position = 0;
+  std::int8_t mode = 8;
+  std::int32_t target_velocity = 0;
+};
+
+CanFrame encode_rpdo_csp(std::uint8_t node, const RxPdoCsp& pdo) noexcept;
+CanFrame encode_tpdo_csp(std::uint8_t node, const TxPdoCsp& pdo) noexcept;  // 7 bytes with mode
+CanFrame encode_rpdo1_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept;
+CanFrame encode_rpdo2_spindle(std::uint8_t node, const RxPdoSpindle& pdo) noexcept;
+// nullopt on a wrong id or a wrong length (a malformed frame is dropped by the caller and
+// counted).
+std::optional<RxPdoCsp> decode_rpdo_csp(const CanFrame& frame) noexcept;
+// 6 bytes; with_mode: 7, the last the modes of operation display (a spindle's mapping).
+std::optional<TxPdoCsp> decode_tpdo_csp(const CanFrame& frame, bool with_mode = false) noexcept;
+
+}  // namespace mcnc::canopen

@@ -3,6 +3,7 @@
 // cyclic synchronous position, velocity for a spindle, homing at start-up). Wiring only: the
 // behaviour is in AxisNode (axisnode/node/), the DDS adapters in axisnode/wire/ and the drive's
 // link in DriveLink.
+#include "axisnode/link/core_exchange.hpp"
 #include "axisnode/link/drive_link.hpp"
 #include "axisnode/node/axis_node.hpp"
 #include "axisnode/setup/axis_node_setup.hpp"
@@ -75,10 +76,7 @@ int main(int argc, char** argv) {
 
     axisnode::DriveLink link(can::open_can_bus(bus->uri), node_id, sync_producer,
                              axisnode::other_nodes_on_bus(machine, *axis), wake);
-    const bool spindle = axis->type == config::AxisType::spindle;
-    link.set_pdo_layout(spindle || axis->has_homing, spindle);
-    link.set_tpdo2(axis->tpdo2_velocity, axis->tpdo2_following_error, axis->tpdo2_torque);
-    if (const auto error = link.bring_up(startup, 10s)) {
+    if (const auto error = link.configure(startup, 10s)) {
       spdlog::error("drive on {}: {}", bus->uri, *error);
       node.raise_alarm(axisnode::kAlarmBase + static_cast<int>(axisnode::AxisAlarm::drive_startup),
                        error->c_str(), 0, 0, axis->id);
@@ -94,26 +92,27 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = loop.lockstep();
+    axisnode::DriveActivation activation;
+    activation.lockstep = lockstep;
     if (sync_producer && !lockstep) {
       // Realtime: SYNC at a fixed offset inside every cycle, from a timer of its own.
       constexpr std::int64_t kNsPerUs = 1000;
-      link.start_sync_timer(canopen::SyncSchedule(node.run_control().start_ns,
-                                                  machine.cycle_us * kNsPerUs,
-                                                  bus->sync_offset_us * kNsPerUs));
+      activation.sync_timer = canopen::SyncSchedule(
+          node.run_control().start_ns, machine.cycle_us * kNsPerUs, bus->sync_offset_us * kNsPerUs);
     }
-    outputs.trace_start(core);
-
-    // A lockstep bus wait ends with the run, an E-stop or the owner gone. Built once: a
-    // std::function made from this lambda inside the loop could allocate every cycle.
-    const std::function<bool()> abandon_bus_wait = [&] {
+    // A lockstep bus wait ends with the run, an E-stop or the owner gone.
+    activation.abandon = [&] {
       const RunCommand cmd = node.run_control().command;
       bool lost = false;
       wake.with_lock([&] { lost = core.owner_lost(); });
       return cmd == RUN_STOP || cmd == RUN_ESTOP || lost || process::g_stop_signal != 0;
     };
+    activation.slow = std::chrono::milliseconds(stall_ms);
+    link.activate(activation);
+    outputs.trace_start(core);
+    const std::int64_t period_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
 
     bool owner_loss_checked = false;
-    std::uint64_t last_tpdo_count = 0;
     for (std::uint64_t cycle = 0; loop.next(
              cycle, [&](std::uint64_t c) { return core.ready(c); },
              [&] { return core.owner_lost(); });
@@ -144,30 +143,22 @@ int main(int argc, char** argv) {
       }
 
       // 2. The drive's cycle, and the feedback stamped N.
-      const axisnode::TpdoSample tpdo = link.tpdo();
-      axisnode::DriveReadings drive;
-      drive.have_tpdo = tpdo.count > last_tpdo_count;
-      last_tpdo_count = tpdo.count;
-      drive.statusword = tpdo.pdo.statusword;
-      drive.position_counts = tpdo.pdo.position_actual;
-      drive.mode_display = tpdo.pdo.mode_display;
-      drive.heartbeats = link.heartbeats();
-      drive.bus_off = link.bus_off();
-      const axisnode::AxisNodeOutput& out = core.step(cycle, drive, loop.emergency_stop());
-      outputs.publish(cycle, core, tpdo, link.last_emcy());
+      const auto time_ns = static_cast<std::int64_t>(cycle) * period_ns;
+      link.read(time_ns, period_ns);  // a bus off is in the state, for the core to alarm
+      const axisnode::DriveSample& state = link.state();
+      const axisnode::AxisNodeOutput& out =
+          core.step(cycle, axisnode::readings_of(state), loop.emergency_stop());
+      outputs.publish(cycle, core, state);
 
       // 3. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
-      link.exchange(axisnode::DriveCommand{out.controlword, out.target_counts,
-                                           out.target_velocity_counts, out.mode},
-                    lockstep && !loop.degraded(), tpdo.count, abandon_bus_wait,
-                    std::chrono::milliseconds(stall_ms));
+      link.command() = axisnode::command_of(out);
+      link.set_lockstep(lockstep && !loop.degraded());
+      link.write(time_ns, period_ns);
     }
 
-    link.stop_sync_timer();
-    link.send_rpdo(
-        axisnode::DriveCommand{cia402::encode_controlword(cia402::Command::disable_voltage),
-                               core.output().target_counts, 0, core.output().mode});
-    link.send_nmt(canopen::NmtCommand::enter_preoperational);
+    link.deactivate(
+        canopen::DriveCommand{cia402::encode_controlword(cia402::Command::disable_voltage),
+                              core.output().target_counts, 0, core.output().mode});
     tracer.flush();
     spdlog::info("stopped: {} EMCY, {} malformed frames, {} trace events dropped",
                  link.emcy_count(), link.malformed_count(), tracer.dropped());

@@ -25,18 +25,171 @@ DriveLink::DriveLink(std::unique_ptr<can::CanBus> bus, std::uint8_t node_id, boo
   if (!bus_->set_filters(std::span(filters.data(), n))) {
     spdlog::warn("node {}: the bus refused the receive filter; receiving every frame", node_id_);
   }
+}
+
+DriveLink::~DriveLink() {
+  stop_sync_timer();
+  stop_ = true;
+  if (thread_.joinable()) {
+    thread_.join();
+  }
+}
+
+std::optional<std::string> DriveLink::configure(const canopen::NodeStartupConfig& config,
+                                                std::chrono::milliseconds timeout) {
+  if (thread_.joinable()) {
+    return "node " + std::to_string(node_id_) + ": configured already";
+  }
+  // The receive thread unpacks by this layout from its start on.
+  layout_ = config.pdos;
   thread_ = std::thread([this] {
     process::name_this_thread("can-rx");
     // The drive's answers close its loop: in realtime, at the cycle thread's priority.
     (void)clock::raise_realtime_thread(clock::kAxisCyclePriority);
     receive_loop();
   });
+  canopen::NodeStartup startup(config);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto now_us = [&] {
+    return static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0)
+            .count());
+  };
+  wakeup_.update([&] {
+    startup_frames_.clear();
+    starting_ = true;
+  });
+  can::CanFrame out;
+  startup.begin(now_us(), out);
+  bus_->send(out);
+  std::deque<can::CanFrame> got;
+  while (startup.status() == canopen::NodeStartup::Status::running &&
+         std::chrono::steady_clock::now() - t0 < timeout) {
+    wakeup_.wait_for([&] { return !startup_frames_.empty(); }, 10ms);
+    wakeup_.with_lock([&] { got.swap(startup_frames_); });
+    for (const can::CanFrame& frame : got) {
+      if (startup.on_frame(frame, now_us(), out)) {
+        bus_->send(out);
+      }
+    }
+    got.clear();
+    if (startup.on_time(now_us(), out)) {
+      bus_->send(out);
+    }
+  }
+  wakeup_.update([&] { starting_ = false; });
+  switch (startup.status()) {
+    case canopen::NodeStartup::Status::done:
+      lifecycle_ = DriveLifecycle::inactive;
+      return std::nullopt;
+    case canopen::NodeStartup::Status::failed:
+      lifecycle_ = DriveLifecycle::failed;
+      return std::string(startup.error());
+    case canopen::NodeStartup::Status::running:
+      break;
+  }
+  lifecycle_ = DriveLifecycle::failed;
+  return "node " + std::to_string(node_id_) + ": start-up not finished within " +
+         std::to_string(timeout.count()) + " ms";
 }
 
-DriveLink::~DriveLink() {
+void DriveLink::activate(const DriveActivation& activation) {
+  activation_ = activation;
+  lockstep_ = activation.lockstep;
+  answers_read_ = snapshot_.latest().answers;
+  if (activation.sync_timer && sync_producer_) {
+    start_sync_timer(*activation.sync_timer);
+  }
+  lifecycle_ = DriveLifecycle::active;
+}
+
+void DriveLink::deactivate(const canopen::DriveCommand& last) noexcept {
   stop_sync_timer();
-  stop_ = true;
-  thread_.join();
+  command_ = last;
+  send_rpdos();
+  bus_->send(canopen::encode_nmt(canopen::NmtCommand::enter_preoperational, node_id_));
+  if (lifecycle_ == DriveLifecycle::active) {
+    lifecycle_ = DriveLifecycle::inactive;
+  }
+}
+
+DriveStatus DriveLink::read(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) noexcept {
+  const Snapshot s = snapshot_.latest();
+  state_.feedback = s.feedback;
+  state_.fresh = s.answers > answers_read_;
+  state_.answers = s.answers;
+  state_.heartbeats = s.heartbeats;
+  state_.last_emcy = s.last_emcy;
+  state_.bus_off = s.bus_off;
+  answers_read_ = s.answers;
+  if (lifecycle_ != DriveLifecycle::active || s.bus_off) {
+    return DriveStatus::error;
+  }
+  return DriveStatus::ok;
+}
+
+DriveStatus DriveLink::write(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) noexcept {
+  if (lifecycle_ != DriveLifecycle::active) {
+    return DriveStatus::error;
+  }
+  send_rpdos();
+  if (sync_producer_ && !lockstep_ && !sync_timer_running()) {
+    send_sync();
+  }
+  if (!lockstep_) {
+    return state_.bus_off ? DriveStatus::error : DriveStatus::ok;
+  }
+  // An abandoned wait goes on as the cycle would have (the SYNC still goes out, the answer is
+  // waited for once more), so that every node of the bus winds down alike.
+  bool waited = true;
+  if (sync_producer_) {
+    waited = wait_lockstep(
+        [&](auto t) {
+          return wakeup_.wait_for(
+              [&] {
+                return std::all_of(other_nodes_.begin(), other_nodes_.end(),
+                                   [&](std::uint8_t node) { return rpdo_seen_.test(node); });
+              },
+              t);
+        },
+        "the RPDOs of the other nodes");
+    send_sync();
+  }
+  // The drive answers the producer's SYNC: every node awaits that answer alone (a node that
+  // does not produce the SYNC does not even receive it, bus_filters.hpp).
+  const std::uint64_t seen = answers_read_;
+  waited = wait_lockstep(
+               [&](auto t) { return wakeup_.wait_for([&] { return answers_.load() > seen; }, t); },
+               "the drive's answer to the SYNC") &&
+           waited;
+  return waited ? DriveStatus::ok : DriveStatus::abandoned;
+}
+
+template <class Arrived>
+bool DriveLink::wait_lockstep(Arrived arrived, const char* what) noexcept {
+  const auto since = std::chrono::steady_clock::now();
+  bool warned = false;
+  while (!arrived(std::chrono::milliseconds(100))) {
+    if (activation_.abandon && activation_.abandon()) {
+      return false;
+    }
+    if (!warned && std::chrono::steady_clock::now() - since > activation_.slow) {
+      spdlog::warn("node {}: still waiting for {}", node_id_, what);
+      warned = true;
+    }
+  }
+  return true;
+}
+
+void DriveLink::send_rpdos() noexcept {
+  can::CanFrame frame;
+  // RPDO2 first: the SYNC producer waits for RPDO1, so both are in before the SYNC.
+  if (layout_.rpdo2.count > 0 && canopen::pack_command(layout_.rpdo2, node_id_, command_, frame)) {
+    bus_->send(frame);
+  }
+  if (layout_.rpdo1.count > 0 && canopen::pack_command(layout_.rpdo1, node_id_, command_, frame)) {
+    bus_->send(frame);
+  }
 }
 
 void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
@@ -81,8 +234,26 @@ std::vector<std::int64_t> DriveLink::sync_lateness() const {
   return out;
 }
 
+void DriveLink::publish() {
+  snapshot_.publish(received_);
+}
+
+void DriveLink::on_tpdo(const can::CanFrame& frame, const canopen::PdoMapping& mapping,
+                        std::uint64_t& count) {
+  if (!canopen::unpack_feedback(mapping, frame, received_.feedback)) {
+    ++malformed_;
+    return;
+  }
+  ++count;
+  // An answer is complete with each of its TPDOs, in whichever order they came.
+  const bool paired = layout_.tpdo2.count > 0;
+  received_.answers = paired ? std::min(tpdo1_count_, tpdo2_count_) : tpdo1_count_;
+  publish();
+  wakeup_.update([&] { answers_ = received_.answers; });
+}
+
 void DriveLink::receive_loop() {
-  canopen::CanFrame frame;
+  can::CanFrame frame;
   while (!stop_) {
     const can::BusResult result = bus_->receive(frame, 50ms);
     if (result == can::BusResult::malformed) {
@@ -90,8 +261,10 @@ void DriveLink::receive_loop() {
       continue;
     }
     if (result == can::BusResult::bus_off) {
-      if (!bus_off_.exchange(true)) {
+      if (!received_.bus_off) {
         spdlog::error("node {}: the CAN controller went bus off", node_id_);
+        received_.bus_off = true;
+        publish();
       }
       wakeup_.notify();
       continue;
@@ -110,60 +283,20 @@ void DriveLink::receive_loop() {
         }
         break;
       case canopen::FrameKind::tpdo1:
-        if (cls.node == node_id_) {
-          if (auto pdo = canopen::decode_tpdo_csp(frame, with_mode_)) {
-            const bool paired = tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_;
-            wakeup_.update([&] {
-              tpdo_statusword_ = pdo->statusword;
-              tpdo_position_ = pdo->position_actual;
-              tpdo_mode_display_ = pdo->mode_display;
-              ++tpdo1_count_;
-              // An answer is complete with both of its TPDOs, in whichever order they came.
-              tpdo_count_ = paired ? std::min(tpdo1_count_, tpdo2_count_) : tpdo1_count_;
-            });
-          } else {
-            ++malformed_;
-          }
+        if (cls.node == node_id_ && layout_.tpdo1.count > 0) {
+          on_tpdo(frame, layout_.tpdo1, tpdo1_count_);
         }
         break;
       case canopen::FrameKind::tpdo2:
-        if (cls.node == node_id_ && (tpdo2_velocity_ || tpdo2_following_error_ || tpdo2_torque_)) {
-          const std::size_t want = (tpdo2_velocity_ ? 4U : 0U) +
-                                   (tpdo2_following_error_ ? 4U : 0U) + (tpdo2_torque_ ? 2U : 0U);
-          if (frame.dlc != want) {
-            ++malformed_;
-            break;
-          }
-          const auto i32 = [&](std::size_t at) {
-            return static_cast<std::int32_t>(static_cast<std::uint32_t>(frame.data[at]) |
-                                             static_cast<std::uint32_t>(frame.data[at + 1]) << 8 |
-                                             static_cast<std::uint32_t>(frame.data[at + 2]) << 16 |
-                                             static_cast<std::uint32_t>(frame.data[at + 3]) << 24);
-          };
-          // In the order the start-up mapped them: velocity, following error, torque.
-          const std::size_t torque_at = want - 2U;
-          wakeup_.update([&] {
-            tpdo2_velocity_value_ = tpdo2_velocity_ ? i32(0) : 0;
-            tpdo2_following_error_value_ =
-                tpdo2_following_error_ ? i32(tpdo2_velocity_ ? 4 : 0) : 0;
-            tpdo2_torque_value_ =
-                tpdo2_torque_ ? static_cast<std::int16_t>(
-                                    static_cast<std::uint16_t>(frame.data[torque_at]) |
-                                    static_cast<std::uint16_t>(frame.data[torque_at + 1] << 8))
-                              : std::int16_t{0};
-            ++tpdo2_count_;
-            tpdo_count_ = std::min(tpdo1_count_, tpdo2_count_);
-          });
+        if (cls.node == node_id_ && layout_.tpdo2.count > 0) {
+          on_tpdo(frame, layout_.tpdo2, tpdo2_count_);
         }
         break;
       case canopen::FrameKind::heartbeat:
         if (cls.node == node_id_) {
-          auto state = canopen::decode_heartbeat(frame);
-          if (state && *state == canopen::NmtState::bootup) {
-            wakeup_.update([&] { ++bootups_; });
-          }
-          if (state) {
-            ++heartbeats_;
+          if (canopen::decode_heartbeat(frame)) {
+            ++received_.heartbeats;
+            publish();
           } else {
             ++malformed_;
           }
@@ -177,8 +310,9 @@ void DriveLink::receive_loop() {
       case canopen::FrameKind::emcy:
         if (cls.node == node_id_) {
           if (auto emcy = canopen::decode_emcy(frame)) {
-            last_emcy_ = emcy->error_code;
+            received_.last_emcy = emcy->error_code;
             ++emcys_;
+            publish();
             spdlog::warn("EMCY from node {}: error code 0x{:04x}", node_id_, emcy->error_code);
           }
         }
@@ -198,65 +332,6 @@ void DriveLink::receive_loop() {
   }
 }
 
-std::optional<std::string> DriveLink::bring_up(const canopen::NodeStartupConfig& config,
-                                               std::chrono::milliseconds timeout) {
-  canopen::NodeStartup startup(config);
-  const auto t0 = std::chrono::steady_clock::now();
-  const auto now_us = [&] {
-    return static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - t0)
-            .count());
-  };
-  wakeup_.update([&] {
-    startup_frames_.clear();
-    starting_ = true;
-  });
-  canopen::CanFrame out;
-  startup.begin(now_us(), out);
-  bus_->send(out);
-  std::deque<canopen::CanFrame> got;
-  while (startup.status() == canopen::NodeStartup::Status::running &&
-         std::chrono::steady_clock::now() - t0 < timeout) {
-    wakeup_.wait_for([&] { return !startup_frames_.empty(); }, 10ms);
-    wakeup_.with_lock([&] { got.swap(startup_frames_); });
-    for (const canopen::CanFrame& frame : got) {
-      if (startup.on_frame(frame, now_us(), out)) {
-        bus_->send(out);
-      }
-    }
-    got.clear();
-    if (startup.on_time(now_us(), out)) {
-      bus_->send(out);
-    }
-  }
-  wakeup_.update([&] { starting_ = false; });
-  switch (startup.status()) {
-    case canopen::NodeStartup::Status::done:
-      return std::nullopt;
-    case canopen::NodeStartup::Status::failed:
-      return std::string(startup.error());
-    case canopen::NodeStartup::Status::running:
-      break;
-  }
-  return "node " + std::to_string(node_id_) + ": start-up not finished within " +
-         std::to_string(timeout.count()) + " ms";
-}
-
-void DriveLink::send_rpdo(const DriveCommand& command) noexcept {
-  if (!with_mode_) {
-    bus_->send(canopen::encode_rpdo_csp(
-        node_id_, canopen::RxPdoCsp{command.controlword, command.target_counts}));
-    return;
-  }
-  const canopen::RxPdoSpindle pdo{command.controlword, command.target_counts, command.mode,
-                                  command.target_velocity_counts};
-  // RPDO2 first: the SYNC producer waits for RPDO1, so both are in before the SYNC.
-  if (with_velocity_) {
-    bus_->send(canopen::encode_rpdo2_spindle(node_id_, pdo));
-  }
-  bus_->send(canopen::encode_rpdo1_spindle(node_id_, pdo));
-}
-
 void DriveLink::send_sync(bool timed) noexcept {
   sync_counter_ = static_cast<std::uint8_t>(sync_counter_ % 240 + 1);
   // Our own frames are not received back: the RPDOs seen are forgotten here, in lockstep before
@@ -271,74 +346,6 @@ void DriveLink::send_sync(bool timed) noexcept {
     forget_rpdos();
     bus_->send(canopen::encode_sync(sync_counter_));
   }
-}
-
-void DriveLink::send_nmt(canopen::NmtCommand command) noexcept {
-  bus_->send(canopen::encode_nmt(command, node_id_));
-}
-
-void DriveLink::exchange(const DriveCommand& command, bool lockstep, std::uint64_t tpdos_seen,
-                         const std::function<bool()>& abandon, std::chrono::milliseconds slow) {
-  const auto wait = [&](auto&& arrived, const char* what) {
-    const auto since = std::chrono::steady_clock::now();
-    bool warned = false;
-    while (!arrived(std::chrono::milliseconds(100))) {
-      if (abandon()) {
-        return;
-      }
-      if (!warned && std::chrono::steady_clock::now() - since > slow) {
-        spdlog::warn("node {}: still waiting for {}", node_id_, what);
-        warned = true;
-      }
-    }
-  };
-  send_rpdo(command);
-  if (sync_producer_ && !lockstep && !sync_timer_running()) {
-    send_sync();
-  }
-  if (!lockstep) {
-    return;
-  }
-  if (sync_producer_) {
-    wait([&](auto t) { return wait_other_rpdos(t); }, "the RPDOs of the other nodes");
-    send_sync();
-  }
-  // The drive answers the producer's SYNC: every node awaits that answer alone (a node that
-  // does not produce the SYNC does not even receive it, bus_filters.hpp).
-  wait([&](auto t) { return wait_tpdo_after(tpdos_seen, t); }, "the drive's answer to the SYNC");
-}
-
-bool DriveLink::wait_other_rpdos(std::chrono::milliseconds timeout) {
-  return wakeup_.wait_for(
-      [&] {
-        for (std::uint8_t node : other_nodes_) {
-          if (!rpdo_seen_.test(node)) {
-            return false;
-          }
-        }
-        return true;
-      },
-      timeout);
-}
-
-bool DriveLink::wait_tpdo_after(std::uint64_t tpdos_seen, std::chrono::milliseconds timeout) {
-  return wakeup_.wait_for([&] { return tpdo_count_.load() > tpdos_seen; }, timeout);
-}
-
-TpdoSample DriveLink::tpdo() noexcept {
-  TpdoSample sample;
-  // Under the lock the receive thread writes with: statusword, position and count of one frame.
-  wakeup_.with_lock([&] {
-    sample.pdo.statusword = tpdo_statusword_.load();
-    sample.pdo.position_actual = tpdo_position_.load();
-    sample.pdo.mode_display = tpdo_mode_display_.load();
-    sample.pdo.has_mode_display = with_mode_;
-    sample.velocity_actual = tpdo2_velocity_value_.load();
-    sample.following_error_actual = tpdo2_following_error_value_.load();
-    sample.torque_actual = tpdo2_torque_value_.load();
-    sample.count = tpdo_count_.load();
-  });
-  return sample;
 }
 
 std::uint64_t DriveLink::malformed_count() const noexcept {

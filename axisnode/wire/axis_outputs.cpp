@@ -100,8 +100,10 @@ void AxisOutputs::trace_reset(std::uint64_t cycle) noexcept {
   tracer_.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"", axis_.name.c_str());
 }
 
-void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const TpdoSample& tpdo,
-                          std::uint16_t last_emcy) noexcept {
+void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core,
+                          const DriveSample& drive) noexcept {
+  const canopen::DriveFeedback& tpdo = drive.feedback;
+  const std::uint16_t last_emcy = drive.last_emcy;
   const AxisNodeOutput& out = core.output();
   const AxisNodeStanding standing = core.standing();
   AxisFeedback fb;
@@ -117,12 +119,11 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const TpdoS
   fb.act(out.act);
   // The drive's own velocity and following error when TPDO2 carries them.
   fb.vel(axis_.tpdo2_velocity ? tpdo.velocity_actual / axis_.counts_per_unit : out.vel);
-  fb.statusword(tpdo.pdo.statusword);
+  fb.statusword(tpdo.statusword);
   fb.drive_state(to_wire(out.drive_state));
   fb.enabled(out.enabled);
-  fb.following_error(axis_.tpdo2_following_error
-                         ? tpdo.following_error_actual / axis_.counts_per_unit
-                         : out.cmd - out.act);
+  fb.following_error(axis_.tpdo2_following_error ? tpdo.following_error / axis_.counts_per_unit
+                                                 : out.cmd - out.act);
   fb.last_emcy(last_emcy);
   fb.load_known(axis_.tpdo2_torque);
   fb.load(axis_.tpdo2_torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent

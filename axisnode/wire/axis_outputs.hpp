@@ -2,7 +2,7 @@
 // What an axis node tells the machine each cycle (ARCHITECTURE.md §5, docs/trace.md): its
 // feedback over DDS, its alarms, and its trace events, formatted from what the AxisNode
 // returns. An adapter: names come from the machine file, values from the core and the drive.
-#include "axisnode/link/drive_link.hpp"
+#include "axisnode/link/drive_interface.hpp"
 #include "axisnode/node/axis_node.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
@@ -32,8 +32,7 @@ class AxisOutputs {
   void trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns) noexcept;
   // The cycle's feedback (with the drive's own values where TPDO2 carries them), then its mode
   // and state changes, a new alarm (raised to the machine too) and every K cycles its position.
-  void publish(std::uint64_t cycle, const AxisNode& core, const TpdoSample& tpdo,
-               std::uint16_t last_emcy) noexcept;
+  void publish(std::uint64_t cycle, const AxisNode& core, const DriveSample& drive) noexcept;
 
  private:
   [[nodiscard]] const char* channel_name(std::uint32_t id) const noexcept;

@@ -1,0 +1,96 @@
+// The axis node's drive link against the drive simulator on a bus in memory: its lifecycle, and
+// read() and write() carrying what the PDO layout of the start-up says.
+#include "simulated_bus.hpp"
+
+#include "axisnode/link/drive_link.hpp"
+#include "canopen/cia402/cia402_state.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace mcnc;
+using namespace std::chrono_literals;
+using axisnode::DriveLifecycle;
+using axisnode::DriveStatus;
+
+namespace {
+
+constexpr double kCycle = 0.002;
+constexpr std::int64_t kPeriodNs = 2'000'000;
+
+struct Link {
+  test::SimulatedBus bus;
+  process::Wakeup wake;
+  axisnode::DriveLink link;
+
+  explicit Link(std::pair<std::unique_ptr<test::MemoryCanBus>, std::unique_ptr<test::MemoryCanBus>>
+                    ends = test::MemoryCanBus::pair())
+      : bus(std::move(ends.second), drivesim::DriveParams{3, 10000.0, 0.004, 500.0, 5000.0, 2.0},
+            kCycle),
+        link(std::move(ends.first), 3, true, {}, wake) {}
+};
+
+}  // namespace
+
+TEST(DriveLink, ALayoutBeyondACanFrameFailsTheConfigurationAndNothingCycles) {
+  Link l;
+  canopen::NodeStartupConfig startup{3};
+  startup.pdos = canopen::axis_pdos(false, true, true);
+  startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x6077, 0, 16};
+  const auto error = l.link.configure(startup, 2s);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_EQ(*error,
+            "node 3: TPDO2 cannot be mapped: the mapping is longer than the 8 bytes a classic CAN "
+            "frame carries");
+  EXPECT_EQ(l.link.lifecycle(), DriveLifecycle::failed);
+  EXPECT_EQ(l.link.read(0, kPeriodNs), DriveStatus::error);
+  EXPECT_EQ(l.link.write(0, kPeriodNs), DriveStatus::error) << "not active: nothing is sent";
+}
+
+TEST(DriveLink, ReadAndWriteCarryTheSpindleLayoutBothWays) {
+  Link l;
+  canopen::NodeStartupConfig startup{3};
+  startup.pdos = canopen::spindle_pdos();  // the mode travels in RPDO1 and TPDO1
+  startup.pdos.tpdo2.objects[startup.pdos.tpdo2.count++] = canopen::MappedObject{0x606C, 0, 32};
+  ASSERT_EQ(l.link.configure(startup, 5s), std::nullopt);
+  EXPECT_EQ(l.link.lifecycle(), DriveLifecycle::inactive);
+  EXPECT_EQ(l.link.write(0, kPeriodNs), DriveStatus::error) << "configured, not active yet";
+  axisnode::DriveActivation activation;
+  activation.lockstep = true;
+  l.link.activate(activation);
+  ASSERT_EQ(l.link.lifecycle(), DriveLifecycle::active);
+
+  ASSERT_EQ(l.link.read(0, kPeriodNs), DriveStatus::ok);
+  EXPECT_FALSE(l.link.state().fresh) << "no SYNC yet, no answer";
+  // Enable (shutdown, switch on, enable operation), then CSV at 1000 counts/s.
+  const std::uint16_t steps[] = {cia402::encode_controlword(cia402::Command::shutdown),
+                                 cia402::encode_controlword(cia402::Command::switch_on),
+                                 cia402::encode_controlword(cia402::Command::enable_operation)};
+  std::int64_t time = 0;
+  for (int cycle = 0; cycle < 40; ++cycle) {
+    canopen::DriveCommand& command = l.link.command();
+    command.controlword = steps[std::min(cycle, 2)];
+    command.mode = 9;
+    command.target_velocity = 1000;
+    command.target_position = l.link.state().feedback.position_actual;
+    ASSERT_EQ(l.link.write(time, kPeriodNs), DriveStatus::ok) << cycle;
+    time += kPeriodNs;
+    ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok) << cycle;
+    EXPECT_TRUE(l.link.state().fresh) << "lockstep: write() waited for the answer, " << cycle;
+    EXPECT_EQ(l.link.state().answers, static_cast<std::uint64_t>(cycle + 1))
+        << "an answer is complete with both TPDOs";
+  }
+  ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok);
+  EXPECT_FALSE(l.link.state().fresh) << "nothing new since the last read";
+  const canopen::DriveFeedback& fb = l.link.state().feedback;
+  EXPECT_EQ(cia402::decode_statusword(fb.statusword), cia402::State::operation_enabled);
+  EXPECT_EQ(fb.mode_display, 9) << "the mode went out in RPDO1 and came back in TPDO1";
+  EXPECT_NEAR(fb.velocity_actual, 1000, 50) << "RPDO2's target velocity, TPDO2's actual";
+  EXPECT_NEAR(fb.position_actual, 20000 + 1000 * 40 * kCycle, 100) << "from 2.0 units on";
+
+  l.link.deactivate(canopen::DriveCommand{});
+  EXPECT_EQ(l.link.lifecycle(), DriveLifecycle::inactive);
+  EXPECT_EQ(l.link.write(time, kPeriodNs), DriveStatus::error);
+}

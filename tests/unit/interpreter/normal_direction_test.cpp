@@ -67,6 +67,36 @@ TEST(InterpNormalDirection, TheAxisTurnsWithAnArc) {
   EXPECT_NEAR(lines[0].to[kA], 90, 1e-9);
 }
 
+// The inserted rotation turns the normal axis alone, from wherever the machine stands: after
+// polar interpolation (whose moves were on the polar plane) as after any move.
+TEST(InterpNormalDirection, TheInsertedRotationMovesTheNormalAxisOnly) {
+  InterpreterConfig c = with_normal_axis();
+  c.axes.push_back(AxisConfig{'C', false, true});
+  c.polar_linear = 'X';
+  c.polar_rotary = 'C';
+  RunResult r = run_ok(
+      "G00 X40 Z0 C0\nG12.1\nG01 X20 F100\nG01 C10\nG13.1\nG41.1\nG01 Z-10 F300\n"
+      "G01 X60\nM30\n",
+      c);
+  AxisVector last{};
+  int rotations = 0;
+  for (const Command& m : r.commands) {
+    if (!m.moves()) {
+      continue;
+    }
+    if (m.op == Op::linear && m.feed == 7200) {
+      ++rotations;
+      for (std::size_t i = 0; i < 4; ++i) {
+        if (i != kA) {
+          EXPECT_NEAR(m.to[i], last[i], 1e-9) << "axis " << i << " line " << m.line;
+        }
+      }
+    }
+    last = m.to;
+  }
+  EXPECT_EQ(rotations, 2);
+}
+
 TEST(InterpNormalDirection, Alarms) {
   const ExpectedAlarm cases[] = {
       {"G41.1 X10\nM30\n", alarm::kMustBeAlone, 1},

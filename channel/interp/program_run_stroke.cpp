@@ -10,7 +10,7 @@ namespace mcnc::interp {
 
 namespace {
 
-// Format ①'s words of the - limits: I, J, K for X, Y, Z (L2397-2405).
+// Format ①'s words of the - limits: I, J, K for X, Y, Z (L2394-2408).
 char minus_word(char axis) {
   switch (axis) {
     case 'X':
@@ -56,7 +56,7 @@ bool ProgramRun::run_stroke_check(GFunction f, int column) {
   }
   limits::StrokeZone zone = stroke_zone_;
   zone.inside_forbidden = config_.stroke_inside_forbidden;
-  // Format ②: `G22 α P1` sets the + limit of α, `P2` its - limit (L2407-2413).
+  // Format ②: `G22 α P1` sets the + limit of α, `P2` its - limit (L2412-2419).
   int side = 0;
   if (BlockWord* p = word('P')) {
     p->used = true;
@@ -97,7 +97,7 @@ bool ProgramRun::run_stroke_check(GFunction f, int column) {
     return fail(alarm::kBadWordValue, "G22 P1/P2 needs the axis whose limit it sets", column);
   }
   if (!any) {
-    // No words: the parameters' limits (L2431: params 0512/0513; gsk №100/№101).
+    // No words: the parameters' limits (L2435: params 0512/0513; gsk №100/№101).
     for (std::size_t i = 0; i < config_.axes.size(); ++i) {
       zone.minus[i] = config_.axes[i].stroke_minus;
       zone.plus[i] = config_.axes[i].stroke_plus;

@@ -460,7 +460,7 @@ bool ProgramRun::run_extended_thread(int column) {
   t.starts = m.starts;
   t.constant_depth = m.constant_depth;
   // Left (r = 1) and right (r = 2) name the flank of the groove the tool goes in along, the
-  // one towards -Z and the one towards +Z as the ZX plane is drawn (decision 65): the flank
+  // one towards -Z and the one towards +Z as the ZX plane is drawn (decision 61): the flank
   // behind the cut is the single-flank infeed's, the one ahead the leading flank's.
   const bool towards_minus = t.end.a < machine_[a];
   switch (m.entry) {

@@ -577,7 +577,7 @@ bool ProgramRun::run_three_point_arc(GFunction motion, const AxisVector& target,
                 column);
   }
   // An omitted word leaves the middle point on the start's coordinate: G05's increment 0, and
-  // for G05.1 the start's position as an omitted axis word keeps it (decision 60).
+  // for G05.1 the start's position as an omitted axis word keeps it (decision 56).
   AxisVector middle = machine_;
   const double inch = metric_ ? 1.0 : 25.4;
   const std::array<BlockWord*, 2> mw{wa, wb};

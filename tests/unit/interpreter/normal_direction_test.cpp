@@ -21,7 +21,7 @@ constexpr std::size_t kA = 2;
 
 // The spec's example (L3894-3904): G41.1 turns A to 90 degrees before the move along +Z. Before
 // the move along +X it turns to 180 (the normal on the left of +X, +X lying at +90 degrees in
-// G18); the spec says 0 there (decision 64).
+// G18); the spec says 0 there (decision 60).
 TEST(InterpNormalDirection, RotationsAreInsertedBeforeTheMoves) {
   RunResult r = run_ok("G00 X0 Z0\nG41.1\nG01 Z10 F300\nG01 X10 F300\nG40.1\nG01 Z20\nM30\n",
                        with_normal_axis());

@@ -237,9 +237,24 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     } else if (owner_seen_) {
       out_.missing_setpoints = static_cast<int>(cycle - last_setpoint_cycle_);
-      // A late sample continues the motion (in CSV the drive keeps its velocity by itself).
-      if (!velocity_mode) {
-        out_.cmd += last_setpoint_vel_ * setup_.cycle_s * static_cast<double>(elapsed);
+      // A late sample continues the motion (in CSV the drive keeps its velocity by itself), as
+      // a stop at the axis's deceleration would: the owner planned its move within that limit,
+      // so the move could not have ended sooner, and the axis never passes where the program
+      // takes it (at the last velocity it overshot the end of a move in realtime under loss).
+      for (std::uint64_t k = 0; !velocity_mode && k < elapsed; ++k) {
+        const double braked =
+            setup_.acceleration > 0.0
+                ? std::copysign(std::max(0.0, std::abs(last_setpoint_vel_) -
+                                                  setup_.acceleration * setup_.cycle_s),
+                                last_setpoint_vel_)
+                : last_setpoint_vel_;
+        const double v0 = last_setpoint_vel_;
+        // The time of this cycle until the stop, when it comes within it.
+        const double t = setup_.acceleration > 0.0 && braked == 0.0
+                             ? std::abs(v0) / setup_.acceleration
+                             : setup_.cycle_s;
+        out_.cmd += 0.5 * (v0 + braked) * t;
+        last_setpoint_vel_ = braked;
       }
       if (cycle - last_setpoint_cycle_ >= deadline) {
         raise(AxisAlarm::setpoint_deadline);

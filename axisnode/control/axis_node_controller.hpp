@@ -25,6 +25,9 @@ struct AxisNodeSetup {
   // More than this between the command and the actual position: alarm and quick stop
   // (0: not checked).
   double following_error_limit = 0.0;
+  // units/s^2: the owner plans its moves within it. A missing setpoint continues the motion as
+  // a stop at this deceleration would (0: at the last velocity).
+  double acceleration = 0.0;
   // After an operator reset, a drive still in fault this many cycles later is alarmed again.
   int fault_reset_cycles = 100;
   // A spindle: its drive starts in CSV and switches between CSV and CSP in operation as the

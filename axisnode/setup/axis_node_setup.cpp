@@ -73,6 +73,7 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
   setup.soft_min = axis.soft_limit_min;
   setup.soft_max = axis.soft_limit_max;
   setup.following_error_limit = axis.following_error_limit;
+  setup.acceleration = axis.acceleration;
   // Heartbeat consumer time: 1.5 producer times (CiA 301 practice), in cycles. At least one
   // cycle: a heartbeat faster than the cycle is still watched.
   setup.heartbeat_cycles =

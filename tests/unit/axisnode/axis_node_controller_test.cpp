@@ -24,8 +24,12 @@ struct Loop {
   bool have_tpdo = false;
   std::uint64_t cycle = 0;
 
-  explicit Loop(int deadline = 5, double start = 12.5)
-      : node(axisnode::AxisNodeSetup{10000.0, kCycle, deadline}),
+  explicit Loop(int deadline = 5, double start = 12.5, double acceleration = 0.0)
+      : node([&] {
+          axisnode::AxisNodeSetup s{10000.0, kCycle, deadline};
+          s.acceleration = acceleration;
+          return s;
+        }()),
         drive(drivesim::DriveParams{1, 10000.0, 0.004, 500.0, 5000.0, start}, kCycle) {
     drive.power_on();
     drive.on_nmt(canopen::NmtCommand::start);
@@ -96,6 +100,27 @@ TEST(AxisNodeController, InvalidSetpointHoldsPosition) {
     loop.step(hold);
   }
   EXPECT_DOUBLE_EQ(loop.node.output().cmd, 12.5);
+}
+
+// With the axis's acceleration known, a missing setpoint continues the motion as a stop at that
+// deceleration would: never past where the owner's move could have ended (in realtime under
+// loss, the last velocity carried a link axis 49 um past the end of its move).
+TEST(AxisNodeController, MissingSetpointsContinueAsAStopAtTheAxisDeceleration) {
+  Loop loop(/*deadline=*/10, 12.5, /*acceleration=*/2000.0);
+  loop.enable();
+  for (int i = 0; i < 50; ++i) {
+    loop.step(setpoint(12.5 + 0.01 * i, 10.0));  // 10 mm/s
+  }
+  const double last = loop.node.output().cmd;
+  AxisNodeInput none;
+  // 2 mm/s less each 1 ms cycle: 9, 7, 5, 3 and 1 um, then at rest.
+  const double expected[] = {0.009, 0.016, 0.021, 0.024, 0.025, 0.025, 0.025};
+  for (int i = 0; i < 7; ++i) {
+    const auto& out = loop.step(none);
+    EXPECT_FALSE(out.quick_stop) << "cycle " << i;
+    EXPECT_NEAR(out.cmd, last + expected[i], 1e-9) << "cycle " << i;
+  }
+  // The stop is 10^2 / (2 * 2000) = 25 um long, half of what the last velocity would have run.
 }
 
 TEST(AxisNodeController, MissingSetpointsAreExtrapolatedThenQuickStopAtTheDeadline) {

@@ -1,16 +1,11 @@
 #include "axisnode/ownership/axis_ownership.hpp"
 
+#include "common/cycle/channel_bit.hpp"
 #include "common/cycle/decision_order.hpp"
 
 namespace mcnc::ownership {
 
-namespace {
-
-std::uint64_t channel_bit(std::uint32_t channel) noexcept {
-  return channel >= 1 && channel <= 64 ? std::uint64_t{1} << (channel - 1) : 0;
-}
-
-}  // namespace
+using cycle::channel_bit;
 
 bool AxisOwnership::request(const OwnershipRequest& request) noexcept {
   if (cycle::insert_in_decision_order(incoming_, incoming_count_, request)) {

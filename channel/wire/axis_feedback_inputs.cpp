@@ -1,6 +1,7 @@
 #include "channel/wire/axis_feedback_inputs.hpp"
 
 #include "common/config/cyclic_routes.hpp"
+#include "common/cycle/channel_bit.hpp"
 
 #include <algorithm>
 #include <utility>
@@ -16,7 +17,7 @@ AxisFeedbackInputs::AxisFeedbackInputs(process::ProcessNode& node,
       fed_(std::move(fed)),
       writers_(config::node_keys(fed_).size()),
       deadline_cycles_(static_cast<std::uint64_t>(deadline_cycles)),
-      self_bit_(channel_id >= 1 && channel_id <= 64 ? std::uint64_t{1} << (channel_id - 1) : 0),
+      self_bit_(cycle::channel_bit(channel_id)),
       feedback_(cycle::tracked_inputs<::mcnc::AxisFeedback>(0, fed_.size())),
       reader_(
           node.participant(), dds::Keys::of(config::node_keys(fed_)),

@@ -1,4 +1,5 @@
 #include "hmi_bridge/core/meeting_tracker.hpp"
+#include "common/cycle/channel_bit.hpp"
 
 #include <algorithm>
 
@@ -7,10 +8,10 @@ namespace mcnc::hmi {
 std::optional<Meeting> MeetingTracker::arrive(std::uint32_t channel, std::int32_t p,
                                               std::uint64_t round, std::uint64_t participants,
                                               std::uint64_t cycle) {
-  if (channel < 1 || channel > 64) {
+  const std::uint64_t bit = mcnc::cycle::channel_bit(channel);
+  if (bit == 0) {
     return std::nullopt;
   }
-  const std::uint64_t bit = std::uint64_t{1} << (channel - 1);
   const auto key = std::make_tuple(p, round, participants | bit);
   Gathering& g = open_[key];
   g.arrived |= bit;

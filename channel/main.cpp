@@ -3,6 +3,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/loading/program_loader.hpp"
+#include "channel/loading/read_ahead.hpp"
 #include "channel/motion/motion_planner.hpp"
 #include "channel/setup/controller_setup.hpp"
 #include "channel/setup/interpreter_setup.hpp"
@@ -86,8 +87,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  // The interpreter runs on the read-ahead's thread: its shared writes travel with its commands
+  // and reach the log as the cycle takes them; the others' writes reach it at read-ahead stops.
+  channel::ReadAhead read_ahead(&shared_writes, &shared_variables);
   interp_config.shared_variables = &shared_variables;
-  interp_config.shared_sink = &shared_writes;
+  interp_config.shared_sink = &read_ahead.interpreter_sink();
   if (!program_dir.empty()) {
     interp_config.program_dir = program_dir;
   }
@@ -107,7 +111,13 @@ int main(int argc, char** argv) {
   channel::ProgramLoader loader(interp_config);
   motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
   setup.shared_writes = &shared_writes;
-  channel::ChannelController controller(setup, interpreter, planner);
+  read_ahead.start(interpreter);
+  // The thread stops before the interpreter it reads goes, on every way out.
+  struct StopReadAhead {
+    channel::ReadAhead& read_ahead;
+    ~StopReadAhead() { read_ahead.stop(); }
+  } stop_read_ahead{read_ahead};
+  channel::ChannelController controller(setup, read_ahead, planner);
 
   try {
     process::ProcessNode node(process::resolve_domain(machine), ch->name,
@@ -125,18 +135,15 @@ int main(int argc, char** argv) {
     cycle::LockstepGate gate(plc_input + (machine.plc.present ? 1 : 0));
     channel::AxisFeedbackInputs feedback(node, fed, gate, machine.deadline_cycles,
                                          static_cast<std::uint32_t>(ch->id));
-    channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), shared_variables);
+    channel::ChannelPeers peers(node, machine, *ch, gate, fed.size(), read_ahead);
     std::optional<channel::PlcLink> plc;
     if (machine.plc.present) {
       plc.emplace(node, gate, plc_input, static_cast<std::uint32_t>(ch->id));
     }
     channel::ChannelOutputs outputs(node, tracer, *ch, config::channel_names(machine), axes,
                                     layout.spindles, program_name, program_lines, shared_writes);
-    channel::OperatorRequests operator_requests(node, tracer, *ch, loader, controller, interpreter,
+    channel::OperatorRequests operator_requests(node, tracer, *ch, loader, controller, read_ahead,
                                                 outputs);
-    if (!interp_config.program_dir.empty()) {
-      outputs.preload_program_dir(interp_config.program_dir.string());
-    }
 
     // Discovery: the feedback writer of every node it reads and the setpoint reader of every node
     // it commands matched.
@@ -153,6 +160,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = loop.lockstep();
+    read_ahead.set_lockstep(lockstep);
     if (load_alarm) {
       controller.report_alarm(*load_alarm);
     } else if (!program_path.empty() && !manual_start) {
@@ -188,10 +196,11 @@ int main(int argc, char** argv) {
       }
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,
-                      static_cast<std::uint32_t>(interpreter.block_count()),
-                      interpreter.has_program());
+                      static_cast<std::uint32_t>(read_ahead.block_count()),
+                      read_ahead.has_program());
     }
     tracer.flush();
+    read_ahead.stop();
     if (ch->id == 1 && !retained_path.empty()) {
       peers.apply_remaining_writes();
       const interp::macro::MacroAlarm a = shared_variables.save_retained_file(retained_path);

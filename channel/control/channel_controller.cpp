@@ -2,9 +2,11 @@
 #include "channel/interp/program_alarms.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <span>
 
 namespace mcnc::channel {
 
@@ -491,7 +493,7 @@ void ChannelController::fill() noexcept {
     for (std::size_t k = 0;
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
          !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ && !coupling_block_ &&
-         !control_block_ && planner_.accepts() && queued_count_ < queued_.size();
+         !control_block_ && planner_.accepts() && queued_count_ < queued_.size() && source_.ready();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -682,6 +684,7 @@ bool ChannelController::queue_command(const interp::Command& c) noexcept {
       c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell,
       spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start),
       c.file,
+      c.block_text,
       c.modal};
   ++queued_count_;
   return true;
@@ -706,6 +709,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
       started.kind = ChannelEventKind::block_started;
       started.line = q.line;
       started.file = q.file;
+      started.text = q.text;
       started.block = q.n;
       push_event(started);
       out_.modal = q.modal;
@@ -826,6 +830,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     started.kind = ChannelEventKind::block_started;
     started.line = end_.line;
     started.file = end_.file;
+    started.text = end_.block_text;
     started.block = end_.n;
     push_event(started);
   }
@@ -875,6 +880,7 @@ ChannelEvent ChannelController::block_event(const HeldBlock& b,
   event.kind = kind;
   event.line = b.line;
   event.file = b.file;
+  event.text = b.text;
   event.block = b.n;
   event.pos = commanded_;
   return event;
@@ -998,16 +1004,18 @@ void ChannelController::take_calls(std::uint64_t cycle) noexcept {
 void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
   const SubCall& call = serving_->call;
   std::optional<interp::ProgramAlarm> alarm;
-  // Loading the called program reads and parses it: the one allocation a call makes.
+  // Loading the called program reads and parses it (on the read-ahead thread, or here for a
+  // source that computes on the caller's thread): out of memory is an alarm.
   try {
-    std::vector<std::pair<int, double>> args;
+    std::array<std::pair<int, double>, interp::kSubcallArgs> args{};
+    std::size_t given = 0;
     for (int n = 1; n <= interp::kSubcallArgs; ++n) {
       if ((call.args_given >> (n - 1)) & 1U) {
-        args.emplace_back(n, call.args[static_cast<std::size_t>(n - 1)]);
+        args[given++] = {n, call.args[static_cast<std::size_t>(n - 1)]};
       }
     }
     settle_slots();
-    alarm = source_.call(call.program, args, commanded_);
+    alarm = source_.call(call.program, std::span(args.data(), given), commanded_);
   } catch (...) {
     alarm =
         interp::ProgramAlarm{kAlarmPlannerRejected, "the interpreter ran out of memory", "", 0, 0};

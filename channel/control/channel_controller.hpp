@@ -17,6 +17,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mcnc::channel {
@@ -160,6 +161,7 @@ struct ChannelEvent {
   ChannelState state = ChannelState::reset;
   int line = 0;
   const std::string* file = nullptr;  // the block's file (nullptr: the main program's)
+  std::string_view text;              // block_started: the block's line as written (the file's)
   std::size_t block = 0;
   int end_code = 0;
   int alarm_number = 0;
@@ -478,6 +480,7 @@ class ChannelController {
     bool exact_stop = false;
     bool still = false;                 // a move to where the axes already are
     const std::string* file = nullptr;  // owned by the interpreter
+    std::string_view text;              // the line, as the interpreter holds it
     interp::ModalState modal;
   };
 
@@ -525,11 +528,12 @@ class ChannelController {
     std::uint64_t n = 0;
     int line = 0;
     const std::string* file = nullptr;
+    std::string_view text;
     bool started = false;  // its block_started event is out
     interp::ModalState modal;
   };
   static HeldBlock held(const interp::Command& c) noexcept {
-    return HeldBlock{c.n, c.line, c.file, false, c.modal};
+    return HeldBlock{c.n, c.line, c.file, c.block_text, false, c.modal};
   }
   // The block's event of `kind`, with the channel's position.
   [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;

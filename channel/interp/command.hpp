@@ -71,6 +71,9 @@ struct Command {
   std::uint64_t n = 0;                // 1-based sequence number of the command in this run
   int line = 0;                       // 1-based line of the block in its file
   const std::string* file = nullptr;  // the file of the block (owned by the interpreter)
+  // The block's line as written, for the trace (not printed: a view into the interpreter's copy
+  // of the file, valid as long as `file`).
+  std::string_view block_text;
   // The interpreter evaluated nothing after this block and will not until it is pulled past:
   // the read-ahead barriers of spec dafeng §4.3 and the multi-channel words.
   bool barrier = false;

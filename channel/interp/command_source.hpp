@@ -3,14 +3,24 @@
 #include "channel/interp/command.hpp"
 
 #include <optional>
+#include <span>
+#include <string>
 #include <utility>
 #include <variant>
-#include <vector>
 
 namespace mcnc::interp {
 
 // next(): a command, or an alarm (the program stops there), or nullopt when nothing is left.
 using PullResult = std::variant<Command, ProgramAlarm>;
+
+// A program checked before it runs (InterpreterSource::check): its text, its block count and
+// the first alarm of its dry run.
+struct CheckedProgram {
+  std::string name;
+  std::string text;
+  std::size_t block_count = 0;
+  std::optional<ProgramAlarm> alarm;
+};
 
 class CommandSource {
  public:
@@ -19,6 +29,10 @@ class CommandSource {
   // (channel axis order); incremental words and unprogrammed axes start from it.
   virtual void rewind(const AxisVector& current) = 0;
   virtual std::optional<PullResult> next() = 0;
+  // Whether next() has its answer now. A source that computes it when asked always has; one
+  // that reads ahead on another thread (channel/loading) may not have it yet: then the
+  // cycle pulls again in a later cycle.
+  virtual bool ready() noexcept { return true; }
   [[nodiscard]] virtual std::size_t block_count() const noexcept = 0;
   // The channel's axes stand at `at` now: an exchanged axis (G141, G142) came with its machine
   // position. Called at a command that stops read-ahead, so nothing after it was evaluated.
@@ -28,8 +42,7 @@ class CommandSource {
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to
   // the channel's own program.
-  virtual std::optional<ProgramAlarm> call(int number,
-                                           const std::vector<std::pair<int, double>>& args,
+  virtual std::optional<ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const AxisVector& current) {
     (void)number;
     (void)args;
@@ -44,6 +57,14 @@ class CommandSource {
     (void)current;
     return ProgramAlarm{1100, "this channel cannot run MDI blocks", "", 0, 0};
   }
+  // Makes `program` the channel's own: the next rewind() starts it; an alarm in it is the
+  // answer of every pull until another program is adopted. Called while no run is under way.
+  // A source without programs of its own ignores it.
+  virtual void adopt(CheckedProgram program) noexcept { (void)program; }
+  // The checked MDI blocks that the next start_mdi() starts.
+  virtual void prepare_mdi(CheckedProgram blocks) noexcept { (void)blocks; }
+  // Whether the channel has its own program, free of alarms.
+  [[nodiscard]] virtual bool has_program() const noexcept { return false; }
 };
 
 }  // namespace mcnc::interp

@@ -18,7 +18,7 @@ std::optional<ProgramAlarm> Interpreter::start_number(int number) {
 }
 
 std::optional<ProgramAlarm> Interpreter::start_called(
-    int number, const std::vector<std::pair<int, double>>& args) {
+    int number, std::span<const std::pair<int, double>> args) {
   return run_->start_called(number, args);
 }
 

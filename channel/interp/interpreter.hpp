@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <variant>
@@ -50,7 +51,7 @@ class Interpreter {
   // Starts O<number> of the program directory for a G144 call of another channel: locals
   // #1-#26 from `args` (#number, value), and M99 in it ends the program (M99 code 99).
   std::optional<ProgramAlarm> start_called(int number,
-                                           const std::vector<std::pair<int, double>>& args);
+                                           std::span<const std::pair<int, double>> args);
   // Starts blocks the operator typed (MDI, file name kMdiName): the end of the text ends them
   // with end code 0, as do M30, M02 and an M99 at their top level.
   std::optional<ProgramAlarm> start_mdi(std::string text);

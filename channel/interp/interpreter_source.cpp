@@ -135,7 +135,7 @@ void InterpreterSource::rewind(const AxisVector& current) {
 }
 
 std::optional<ProgramAlarm> InterpreterSource::call(int number,
-                                                    const std::vector<std::pair<int, double>>& args,
+                                                    std::span<const std::pair<int, double>> args,
                                                     const AxisVector& current) {
   start_interpreter(current);
   calling_ = true;

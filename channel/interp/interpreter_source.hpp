@@ -14,15 +14,6 @@
 
 namespace mcnc::interp {
 
-// A program checked before it runs (InterpreterSource::check): its text, its block count and
-// the first alarm of its dry run.
-struct CheckedProgram {
-  std::string name;
-  std::string text;
-  std::size_t block_count = 0;
-  std::optional<ProgramAlarm> alarm;
-};
-
 class InterpreterSource final : public CommandSource {
  public:
   explicit InterpreterSource(InterpreterConfig config);
@@ -39,17 +30,13 @@ class InterpreterSource final : public CommandSource {
   // check(), then adopt(). Returns the program's first alarm, or nullopt.
   std::optional<ProgramAlarm> load(const std::string& program_text,
                                    const std::string& program_name);
-  // Makes `program` the channel's own: the next rewind() starts it; an alarm in it is the
-  // answer of every pull until another program is adopted. Called while no run is under way;
-  // block_count() is the new program's from then on.
-  void adopt(CheckedProgram program) noexcept;
-  // The checked MDI blocks that the next start_mdi() starts.
-  void prepare_mdi(CheckedProgram blocks) noexcept;
-  // Whether the channel has its own program, free of alarms.
-  [[nodiscard]] bool has_program() const noexcept { return loaded_ && !load_alarm_; }
+  // block_count() is the adopted program's from then on.
+  void adopt(CheckedProgram program) noexcept override;
+  void prepare_mdi(CheckedProgram blocks) noexcept override;
+  [[nodiscard]] bool has_program() const noexcept override { return loaded_ && !load_alarm_; }
   void rewind(const AxisVector& current) override;
   std::optional<PullResult> next() override;
-  std::optional<ProgramAlarm> call(int number, const std::vector<std::pair<int, double>>& args,
+  std::optional<ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                    const AxisVector& current) override;
   std::optional<ProgramAlarm> start_mdi(const AxisVector& current) override;
   // The blocks of the run under way (the channel's program, a called program, MDI blocks).

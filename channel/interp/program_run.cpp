@@ -170,8 +170,8 @@ std::optional<ProgramAlarm> ProgramRun::start_number(int number) {
   return std::nullopt;
 }
 
-std::optional<ProgramAlarm> ProgramRun::start_called(
-    int number, const std::vector<std::pair<int, double>>& args) {
+std::optional<ProgramAlarm> ProgramRun::start_called(int number,
+                                                     std::span<const std::pair<int, double>> args) {
   if (auto alarm = start_number(number)) {
     return alarm;
   }
@@ -754,6 +754,7 @@ Command& ProgramRun::emit(Op op) {
     }
   }
   c.line = line_ != nullptr ? line_->line : 0;
+  c.block_text = line_ != nullptr ? line_->text : std::string_view();
   c.file = file_;
   for (std::size_t k = 0; k < kShownModalGroups.size(); ++k) {
     const double g = modal_codes_[static_cast<std::size_t>(kShownModalGroups[k])];

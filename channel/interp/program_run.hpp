@@ -25,6 +25,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <span>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +53,7 @@ class ProgramRun final : public macro::VariableProvider {
   // Starts O<number> as a program called from another channel (G144): its locals #1-#26 are
   // the call's arguments, and M99 at its top level ends it instead of looping.
   std::optional<ProgramAlarm> start_called(int number,
-                                           const std::vector<std::pair<int, double>>& args);
+                                           std::span<const std::pair<int, double>> args);
   // Starts blocks the operator typed (MDI): the end of the text ends them (end code 0), as do
   // M30, M02 and an M99 at their top level.
   std::optional<ProgramAlarm> start_mdi(std::string text);

@@ -2,14 +2,11 @@
 
 #include "channel/wire/channel_mask.hpp"
 #include "common/config/cyclic_routes.hpp"
-#include "common/text/text_lines.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cstdio>
-
-#include <filesystem>
 
 namespace mcnc::channel {
 
@@ -68,7 +65,7 @@ void ChannelOutputs::set_program(std::string name, std::vector<std::string> line
   set_program_now(program_name_);
 }
 
-void ChannelOutputs::set_program_now(const std::string& name) noexcept {
+void ChannelOutputs::set_program_now(std::string_view name) noexcept {
   const std::size_t n = std::min(name.size(), program_now_.size() - 1);
   std::copy_n(name.begin(), n, program_now_.begin());
   program_now_[n] = '\0';
@@ -266,23 +263,6 @@ CoordinationEvent ChannelOutputs::event(std::uint64_t cycle, CoordinationKind ki
   return e;
 }
 
-void ChannelOutputs::preload_program_dir(const std::string& dir) {
-  std::error_code ec;
-  for (std::filesystem::directory_iterator it(dir, ec), last; !ec && it != last; it.increment(ec)) {
-    if (it->is_regular_file(ec)) {
-      (void)lines_of(it->path().string());  // the path as the program store names it
-    }
-  }
-}
-
-const std::vector<std::string>& ChannelOutputs::lines_of(const std::string& path) {
-  auto it = other_lines_.find(path);
-  if (it == other_lines_.end()) {
-    it = other_lines_.emplace(path, text::read_lines(path)).first;
-  }
-  return it->second;
-}
-
 void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& controller,
                             const ChannelEvent& event, std::span<const AxisFeedbackView> views) {
   const char* ch = channel_.name.c_str();
@@ -291,17 +271,23 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       tracer_.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch, to_string(event.state));
       break;
     case ChannelEventKind::block_started: {
-      // A block of another file (a subprogram from the program directory): its own name and
-      // line text. Its lines are read once, at its first block.
-      // MDI blocks are another "file" too, their lines set before they run.
+      // A block of another file (a subprogram from the program directory, MDI blocks): its own
+      // name, and its line as the interpreter holds it. Nothing is read or built here: a block
+      // start is in the cycle.
       const bool other = event.file != nullptr && *event.file != program_name_;
-      const std::vector<std::string>& lines = other ? lines_of(*event.file) : program_lines_;
-      const std::string name =
-          other ? std::filesystem::path(*event.file).filename().string() : program_name_;
-      const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
-      trace::json_escape(idx < lines.size() ? lines[idx].c_str() : "", escaped_, sizeof escaped_);
+      std::string_view text;
+      std::string_view name = program_name_;
+      if (other) {
+        text = event.text;
+        name = *event.file;
+        name.remove_prefix(std::min(name.size(), name.find_last_of('/') + 1));
+      } else {
+        const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
+        text = idx < program_lines_.size() ? std::string_view(program_lines_[idx]) : text;
+      }
+      trace::json_escape(text, escaped_, sizeof escaped_);
       // A selected program's name comes from the operator: escaped like the text.
-      trace::json_escape(name.c_str(), escaped_name_, sizeof escaped_name_);
+      trace::json_escape(name, escaped_name_, sizeof escaped_name_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,
                    escaped_name_, event.line, escaped_);
       set_program_now(name);

@@ -11,10 +11,10 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mcnc::channel {
@@ -37,16 +37,9 @@ class ChannelOutputs {
   [[nodiscard]] int event_readers() const noexcept { return events_.matched_readers(); }
   // Every node the channel commands has matched its setpoint writer, for discovery.
   [[nodiscard]] bool setpoints_discovered() const noexcept;
-  // Reads the line text of every file of `dir` (the program store), at set-up: the blocks of a
-  // subprogram from there are traced with their text without reading the disk in the cycle.
-  void preload_program_dir(const std::string& dir);
   // The channel's own program is another file now (the operator selected it): its name and
   // lines for the trace; the status names it from now on.
   void set_program(std::string name, std::vector<std::string> lines) noexcept;
-  // The lines of the MDI blocks about to run, for the trace.
-  void set_mdi_lines(std::vector<std::string> lines) {
-    other_lines_[std::string(interp::kMdiName)] = std::move(lines);
-  }
 
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
@@ -55,9 +48,7 @@ class ChannelOutputs {
   CoordinationEvent event(std::uint64_t cycle, CoordinationKind kind);
   [[nodiscard]] const char* channel_name(std::uint32_t id) const;
   // The file of the executing block, for the status (cut to fit).
-  void set_program_now(const std::string& name) noexcept;
-  // The lines of another program file (preloaded; read at its first use if not).
-  const std::vector<std::string>& lines_of(const std::string& path);
+  void set_program_now(std::string_view name) noexcept;
 
   process::ProcessNode& node_;
   trace::TraceWriter& tracer_;
@@ -70,7 +61,6 @@ class ChannelOutputs {
   std::string program_name_;
   std::array<char, 64> program_now_{};
   std::vector<std::string> program_lines_;
-  std::map<std::string, std::vector<std::string>> other_lines_;
   // One per node, in its partition (config/cyclic_routes.hpp): by slot of axes_ (none for the
   // C axis, which the spindle's carries), then by spindle.
   std::vector<std::unique_ptr<dds::Writer<AxisSetpoint>>> axis_setpoints_;

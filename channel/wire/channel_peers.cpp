@@ -24,11 +24,11 @@ std::vector<ChannelPeers::Peer> ChannelPeers::peers_of(const config::MachineConf
 
 ChannelPeers::ChannelPeers(process::ProcessNode& node, const config::MachineConfig& machine,
                            const config::ChannelConfig& self, cycle::LockstepGate& gate,
-                           std::size_t first_input, interp::macro::VariableStore& shared_variables)
+                           std::size_t first_input, ReadAhead& read_ahead)
     : node_(node),
       gate_(gate),
       self_(static_cast<std::uint32_t>(self.id)),
-      shared_(shared_variables),
+      read_ahead_(read_ahead),
       peers_(peers_of(machine, self, first_input)),
       status_reader_(
           node.participant(), dds::Keys::of(config::other_channels(machine, self)),
@@ -121,15 +121,15 @@ void ChannelPeers::apply_remaining_writes() {
   });
 }
 
-void ChannelPeers::apply_write(const ::mcnc::CoordinationEvent& e) const {
-  if (interp::macro::VariableStore::is_shared(e.var())) {
-    (void)shared_.write(e.var(), e.value_null() ? interp::macro::MacroValue::null()
-                                                : interp::macro::MacroValue::of(e.value()));
+void ChannelPeers::apply_write(const ::mcnc::CoordinationEvent& e) {
+  if (interp::macro::VariableStore::is_shared(e.var()) &&
+      !read_ahead_.peer_write(e.var(), e.value_null() ? interp::macro::MacroValue::null()
+                                                      : interp::macro::MacroValue::of(e.value()))) {
+    ++dropped_;
   }
 }
 
-void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e,
-                           ChannelController& controller) const {
+void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e, ChannelController& controller) {
   switch (e.kind()) {
     case COORD_SYNC_ARRIVE: {
       coordination::SyncArrival a;

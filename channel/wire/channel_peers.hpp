@@ -7,7 +7,7 @@
 // cycle, exactly what was sent before that cycle, so every channel decides its barriers from
 // the same facts at the same cycle.
 #include "channel/control/channel_controller.hpp"
-#include "channel/interp/macro/variable_store.hpp"
+#include "channel/loading/read_ahead.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/cycle/pending_events.hpp"
@@ -25,7 +25,7 @@ class ChannelPeers {
   // The peers take the gate's inputs first_input .. first_input + channels - 2.
   ChannelPeers(process::ProcessNode& node, const config::MachineConfig& machine,
                const config::ChannelConfig& self, cycle::LockstepGate& gate,
-               std::size_t first_input, interp::macro::VariableStore& shared_variables);
+               std::size_t first_input, ReadAhead& read_ahead);
   ChannelPeers(const ChannelPeers&) = delete;
   ChannelPeers& operator=(const ChannelPeers&) = delete;
 
@@ -38,8 +38,9 @@ class ChannelPeers {
   // order sent, the channels in automatic operation or in alarm at cycle-1 (realtime: as last
   // heard), and peers whose process is gone. No allocation.
   void apply(std::uint64_t cycle, bool lockstep, ChannelController& controller);
-  // When the run ends: the shared variable writes received and not yet applied, so that the
-  // copy saved to the retained file has every channel's last writes.
+  // When the run ends, after the read-ahead stopped: the shared variable writes received and
+  // not yet applied, so that the copy saved to the retained file has every channel's last
+  // writes.
   void apply_remaining_writes();
   // Events that did not fit the receive queue (a peer far ahead): counted, never silent.
   [[nodiscard]] std::uint64_t dropped() const noexcept { return dropped_; }
@@ -57,13 +58,15 @@ class ChannelPeers {
   void on_event(const ::mcnc::CoordinationEvent& event);
   // One event to the controller: arrivals from all, calls to this channel, releases of its
   // calls.
-  void deliver(const ::mcnc::CoordinationEvent& event, ChannelController& controller) const;
-  void apply_write(const ::mcnc::CoordinationEvent& event) const;
+  void deliver(const ::mcnc::CoordinationEvent& event, ChannelController& controller);
+  // A write to a shared variable, for the interpreter at its next read-ahead stop; one that
+  // does not fit is counted dropped.
+  void apply_write(const ::mcnc::CoordinationEvent& event);
 
   process::ProcessNode& node_;
   cycle::LockstepGate& gate_;
   std::uint32_t self_;
-  interp::macro::VariableStore& shared_;  // the machine-wide variables: others' writes go here
+  ReadAhead& read_ahead_;  // the others' writes to the machine-wide variables go there
   std::vector<Peer> peers_;
   std::uint64_t dropped_ = 0;
   std::uint64_t dropped_told_ = 0;

@@ -21,15 +21,14 @@ EscapedText escaped(const char* text) noexcept {
 
 OperatorRequests::OperatorRequests(process::ProcessNode& node, trace::TraceWriter& tracer,
                                    const config::ChannelConfig& channel, ProgramLoader& loader,
-                                   ChannelController& controller,
-                                   interp::InterpreterSource& interpreter,
+                                   ChannelController& controller, interp::CommandSource& source,
                                    ChannelOutputs& outputs) noexcept
     : node_(node),
       tracer_(tracer),
       channel_(channel),
       loader_(loader),
       controller_(controller),
-      interpreter_(interpreter),
+      source_(source),
       outputs_(outputs) {}
 
 void OperatorRequests::apply(std::uint64_t cycle) {
@@ -110,15 +109,14 @@ void OperatorRequests::take_loaded(std::uint64_t cycle) {
     if (loaded_->program.alarm) {
       controller_.report_alarm(*loaded_->program.alarm);  // the program selected stays
     } else if (loaded_->mdi) {
-      outputs_.set_mdi_lines(std::move(loaded_->lines));
-      interpreter_.prepare_mdi(std::move(loaded_->program));
+      source_.prepare_mdi(std::move(loaded_->program));
       controller_.request_mdi();
     } else {
       tracer_.emit(cycle, "program", "\"ch\":\"%s\",\"prog\":\"%s\",\"blocks\":%zu",
                    channel_.name.c_str(), escaped(loaded_->program.name.c_str()).text,
                    loaded_->program.block_count);
       outputs_.set_program(loaded_->program.name, std::move(loaded_->lines));
-      interpreter_.adopt(std::move(loaded_->program));
+      source_.adopt(std::move(loaded_->program));
     }
     loaded_.reset();
   }

@@ -6,7 +6,7 @@
 // blocks that a reset or another run overtook. An adapter: the process's queue and the trace on
 // one side, the controller and the interpreter on the other.
 #include "channel/control/channel_controller.hpp"
-#include "channel/interp/interpreter_source.hpp"
+#include "channel/interp/command_source.hpp"
 #include "channel/loading/program_loader.hpp"
 #include "channel/wire/channel_outputs.hpp"
 #include "common/config/machine_config.hpp"
@@ -22,7 +22,7 @@ class OperatorRequests {
  public:
   OperatorRequests(process::ProcessNode& node, trace::TraceWriter& tracer,
                    const config::ChannelConfig& channel, ProgramLoader& loader,
-                   ChannelController& controller, interp::InterpreterSource& interpreter,
+                   ChannelController& controller, interp::CommandSource& source,
                    ChannelOutputs& outputs) noexcept;
 
   // The requests of cycle `cycle` that concern this channel.
@@ -39,7 +39,7 @@ class OperatorRequests {
   const config::ChannelConfig& channel_;
   ProgramLoader& loader_;
   ChannelController& controller_;
-  interp::InterpreterSource& interpreter_;
+  interp::CommandSource& source_;  // the channel's, which takes the programs checked
   ChannelOutputs& outputs_;
   std::optional<LoadedProgram> loaded_;  // checked, waiting for the channel to stand
   std::uint64_t mdi_epoch_ = 0;  // the controller's run epoch when the MDI blocks were asked for

@@ -8,13 +8,13 @@
 
 namespace mcnc::trace {
 
-void json_escape(const char* in, char* out, std::size_t out_size) noexcept {
+void json_escape(std::string_view in, char* out, std::size_t out_size) noexcept {
   if (out_size == 0) {
     return;
   }
   std::size_t o = 0;
-  for (const char* p = in; *p != '\0'; ++p) {
-    const auto c = static_cast<unsigned char>(*p);
+  for (const char ch : in) {
+    const auto c = static_cast<unsigned char>(ch);
     char escaped[8];
     int n = 0;
     switch (c) {

@@ -9,13 +9,14 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
 namespace mcnc::trace {
 
 // Escapes `in` as the inside of a JSON string into `out` (always terminated, cut if too long).
-void json_escape(const char* in, char* out, std::size_t out_size) noexcept;
+void json_escape(std::string_view in, char* out, std::size_t out_size) noexcept;
 
 class TraceWriter {
  public:

@@ -136,6 +136,7 @@ ParsedProgramResult parse_program(const program::Program& program, StructureLimi
   ParsedProgram p;
   p.number = program.number;
   p.file = program.file;
+  p.source = program.source;
   p.lines.reserve(program.lines.size());
   p.arena.words.reserve(program.lines.size() * 3);
   for (const program::ProgramLine& pl : program.lines) {
@@ -148,6 +149,7 @@ ParsedProgramResult parse_program(const program::Program& program, StructureLimi
     if (parsed.line.sequence >= 0) {
       p.sequence_lines[parsed.line.sequence].push_back(static_cast<int>(p.lines.size()));
     }
+    parsed.line.text = pl.text;
     p.lines.push_back(std::move(parsed.line));
   }
   if (auto a = match_structure(p, limits)) {

@@ -6,6 +6,7 @@
 #include "channel/interp/parse/statement.hpp"
 #include "channel/interp/program/program_text.hpp"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -22,6 +23,7 @@ struct StructureLimits {
 struct ParsedProgram {
   std::optional<int> number;
   std::string file;
+  std::shared_ptr<const std::string> source;  // the file's text: what the lines' text views
   std::vector<Line> lines;
   Arena arena;  // the words and expressions of `lines`
   // For a WHILE or END line: the index of its partner. For IF / ELIF / ELSE: the next branch

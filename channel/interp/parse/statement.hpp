@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mcnc::interp::parse {
@@ -79,7 +80,8 @@ struct Line {
   std::int64_t sequence = -1;  // N number, -1 when none
   int sequence_column = 0;
   Statement statement;
-  int message = -1;  // arena index of the first `( )` comment: the #3000 / #3006 message
+  int message = -1;       // arena index of the first `( )` comment: the #3000 / #3006 message
+  std::string_view text;  // the line as written, in its ParsedProgram's `source`
 };
 
 }  // namespace mcnc::interp::parse

@@ -17,6 +17,7 @@
 #include <optional>
 #include <ostream>
 #include <random>
+#include <span>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -1381,10 +1382,9 @@ class CallableSource final : public interp::CommandSource {
     return (*script_)[cursor_++];
   }
   [[nodiscard]] std::size_t block_count() const noexcept override { return own_.size(); }
-  std::optional<interp::ProgramAlarm> call(int number,
-                                           const std::vector<std::pair<int, double>>& args,
+  std::optional<interp::ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const AxisVector&) override {
-    calls.emplace_back(number, args);
+    calls.emplace_back(number, std::vector<std::pair<int, double>>(args.begin(), args.end()));
     auto it = store_.find(number);
     if (it == store_.end()) {
       return interp::ProgramAlarm{1150, "program not found", "", 0, 0};

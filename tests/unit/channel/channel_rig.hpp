@@ -3,6 +3,7 @@
 // that a derived rig supplies (`step`): the loop, the program load and the alarms it raised.
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
+#include "channel/loading/read_ahead.hpp"
 #include "channel/motion/motion_planner.hpp"
 
 #include <gtest/gtest.h>
@@ -28,19 +29,67 @@ inline motion::MotionConfig alike_axes(std::size_t axes, double cycle_s) {
   return c;
 }
 
+// Channel 1 with two axes (X, Z, in position within 0.001) and one spindle.
+inline ChannelSetup xz_spindle_setup(double cycle_s) {
+  ChannelSetup s{2, {0.001, 0.001}, cycle_s};
+  s.channel_id = 1;
+  s.spindle_count = 1;
+  return s;
+}
+
+// `count` axes and spindles that stand enabled and present, owned by `channel`.
+inline std::vector<AxisFeedbackView> standing_feedback(std::size_t count, std::uint32_t channel) {
+  std::vector<AxisFeedbackView> feedback(count);
+  for (auto& f : feedback) {
+    f.enabled = true;
+    f.present = true;
+    f.owner = channel;
+  }
+  return feedback;
+}
+
+// The first `axes` axis nodes follow every valid setpoint within the cycle.
+inline void follow_setpoints(const ChannelOutput& out, std::vector<AxisFeedbackView>& feedback,
+                             std::size_t axes) {
+  for (std::size_t a = 0; a < axes; ++a) {
+    if (out.setpoints[a].valid) {
+      feedback[a].cmd = feedback[a].act = out.setpoints[a].pos;
+    }
+  }
+}
+
+// The channel's commands come from its interpreter directly, or (`read_ahead`) as in the channel
+// process: from the read-ahead thread, in lockstep.
 class ChannelRig {
  public:
   ChannelRig(const interp::InterpreterConfig& interp, const motion::MotionConfig& motion,
-             ChannelSetup setup)
-      : source_(interp),
+             ChannelSetup setup, bool read_ahead = false)
+      : config_(interp),
+        source_(interp),
+        read_ahead_(nullptr, nullptr),
         planner_(motion, interp::AxisVector{}),
-        ctl_(std::move(setup), source_, planner_) {}
+        ctl_(std::move(setup),
+             read_ahead ? static_cast<interp::CommandSource&>(read_ahead_) : source_, planner_),
+        reads_ahead_(read_ahead) {
+    if (read_ahead) {
+      read_ahead_.set_lockstep(true);
+      read_ahead_.start(source_);
+    }
+  }
   virtual ~ChannelRig() = default;
   ChannelRig(const ChannelRig&) = delete;
   ChannelRig& operator=(const ChannelRig&) = delete;
 
   void load(const std::string& text) {
-    const auto alarm = source_.load(text, "T.nc");
+    std::optional<interp::ProgramAlarm> alarm;
+    if (reads_ahead_) {
+      interp::CheckedProgram checked =
+          interp::InterpreterSource::check(config_, text, "T.nc", false);
+      alarm = checked.alarm;
+      read_ahead_.adopt(std::move(checked));
+    } else {
+      alarm = source_.load(text, "T.nc");
+    }
     ASSERT_FALSE(alarm.has_value()) << alarm->number << " " << alarm->text;
   }
   // A program whose load finds an alarm: reported to the channel as the real one does.
@@ -73,6 +122,7 @@ class ChannelRig {
 
   ChannelController& ctl() { return ctl_; }
   interp::InterpreterSource& source() { return source_; }
+  ReadAhead& read_ahead() { return read_ahead_; }
 
   std::vector<int> alarms;  // numbers, in the order raised
   std::vector<int> alarm_lines;
@@ -94,9 +144,12 @@ class ChannelRig {
   }
 
  private:
+  interp::InterpreterConfig config_;
   interp::InterpreterSource source_;
+  ReadAhead read_ahead_;  // stopped before the source it reads goes
   motion::MotionPlanner planner_;
   ChannelController ctl_;
+  bool reads_ahead_;
 };
 
 }  // namespace mcnc::channel

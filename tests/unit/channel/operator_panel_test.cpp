@@ -23,13 +23,6 @@ interp::InterpreterConfig xz_channel() {
   return c;
 }
 
-ChannelSetup xz_setup() {
-  ChannelSetup s{2, {0.001, 0.001}, kDt};
-  s.channel_id = 1;
-  s.spindle_count = 1;
-  return s;
-}
-
 // X measures the radius of G96 (css_axis).
 motion::MotionConfig xz_motion() {
   motion::MotionConfig c = alike_axes(2, kDt);
@@ -39,22 +32,11 @@ motion::MotionConfig xz_motion() {
 
 class PanelRig : public ChannelRig {
  public:
-  PanelRig() : ChannelRig(xz_channel(), xz_motion(), xz_setup()) {
-    feedback_.resize(3);
-    for (auto& f : feedback_) {
-      f.enabled = true;
-      f.present = true;
-      f.owner = 1;
-    }
-  }
+  PanelRig() : ChannelRig(xz_channel(), xz_motion(), xz_spindle_setup(kDt)) {}
 
   const ChannelOutput& step() override {
     const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
-    for (std::size_t a = 0; a < 2; ++a) {
-      if (out.setpoints[a].valid) {
-        feedback_[a].cmd = feedback_[a].act = out.setpoints[a].pos;
-      }
-    }
+    follow_setpoints(out, feedback_, 2);
     return out;
   }
 
@@ -63,7 +45,7 @@ class PanelRig : public ChannelRig {
   [[nodiscard]] std::uint64_t cycles() const { return cycle_; }
 
  private:
-  std::vector<AxisFeedbackView> feedback_;
+  std::vector<AxisFeedbackView> feedback_ = standing_feedback(3, 1);
   std::uint64_t cycle_ = 0;
 };
 

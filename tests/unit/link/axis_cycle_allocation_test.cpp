@@ -3,7 +3,7 @@
 // simulator on an in-memory bus, in lockstep. Allocations are counted on the cycle's thread
 // only, while it runs the cycle; the setpoints and events that DDS callbacks would hand over
 // arrive between cycles, uncounted, as they would on other threads.
-#include "allocation_counter.hpp"
+#include "support/allocation_counter.hpp"
 #include "simulated_bus.hpp"
 
 #include "axisnode/link/core_exchange.hpp"

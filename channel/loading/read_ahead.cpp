@@ -1,0 +1,412 @@
+#include "channel/loading/read_ahead.hpp"
+
+#include "common/process/thread_name.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <limits>
+#include <utility>
+
+namespace mcnc::channel {
+
+namespace {
+
+// The channel's alarm of things that are not the program's fault (docs/alarms.md, 1200).
+constexpr int kAlarmReadAhead = 1200;
+
+}  // namespace
+
+ReadAhead::ReadAhead(interp::macro::SharedWriteSink* writes_out,
+                     interp::macro::VariableStore* shared)
+    : writes_out_(writes_out), shared_(shared) {}
+
+ReadAhead::~ReadAhead() {
+  stop();
+}
+
+void ReadAhead::start(interp::CommandSource& inner) {
+  inner_ = &inner;
+  block_count_ = inner.block_count();
+  has_program_ = inner.has_program();
+  thread_ = std::thread([this] { run_thread(); });
+}
+
+void ReadAhead::stop() noexcept {
+  if (stopped_) {
+    return;
+  }
+  if (thread_.joinable()) {
+    stopping_.store(true, std::memory_order_release);
+    bell_.fetch_add(1, std::memory_order_release);
+    bell_.notify_all();
+    thread_.join();
+  }
+  apply_peer_writes(std::numeric_limits<std::uint64_t>::max());
+  stopped_ = true;
+}
+
+bool ReadAhead::peer_write(std::int64_t number, interp::macro::MacroValue value) noexcept {
+  if (shared_ == nullptr) {
+    return true;
+  }
+  if (stopped_) {
+    (void)shared_->write(number, value);
+    return true;
+  }
+  SharedWrite* w = peer_writes_.claim();
+  if (w == nullptr) {
+    return false;
+  }
+  *w = SharedWrite{number, value};
+  peer_writes_.publish();
+  ++peer_writes_posted_;
+  return true;
+}
+
+// --- the cycle's side ---
+
+ReadAhead::Order* ReadAhead::order_slot() noexcept {
+  Order* o = orders_.claim();
+  if (o == nullptr) {
+    // As many orders as the queue holds not taken: the thread is stuck. The next pull
+    // answers the alarm.
+    order_lost_ = true;
+    expecting_ = false;
+  }
+  return o;
+}
+
+void ReadAhead::post() noexcept {
+  orders_.publish();
+  bell_.fetch_add(1, std::memory_order_release);
+  bell_.notify_one();
+}
+
+ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVector& at) noexcept {
+  ++run_;
+  latest_run_.store(run_, std::memory_order_release);
+  passed_stop_ = false;
+  has_position_ = false;
+  order_lost_ = false;
+  Order* o = order_slot();
+  if (o == nullptr) {
+    return nullptr;
+  }
+  expecting_ = true;
+  o->kind = kind;
+  o->run = run_;
+  o->at = at;
+  o->has_position = false;
+  o->arg_count = 0;
+  o->peer_writes = peer_writes_posted_;
+  return o;
+}
+
+void ReadAhead::rewind(const interp::AxisVector& current) {
+  if (begin_run(Order::Kind::rewind, current) != nullptr) {
+    post();
+  }
+}
+
+std::optional<interp::ProgramAlarm> ReadAhead::start_mdi(const interp::AxisVector& current) {
+  if (begin_run(Order::Kind::mdi, current) != nullptr) {
+    post();
+  }
+  return std::nullopt;
+}
+
+std::optional<interp::ProgramAlarm> ReadAhead::call(int number,
+                                                    std::span<const std::pair<int, double>> args,
+                                                    const interp::AxisVector& current) {
+  Order* o = begin_run(Order::Kind::call, current);
+  if (o == nullptr) {
+    return std::nullopt;
+  }
+  o->program = number;
+  for (const auto& arg : args) {
+    if (o->arg_count < o->args.size()) {
+      o->args[o->arg_count++] = arg;
+    }
+  }
+  post();
+  return std::nullopt;
+}
+
+void ReadAhead::adopt(interp::CheckedProgram program) noexcept {
+  block_count_ = program.block_count;
+  has_program_ = !program.alarm.has_value();
+  Order* o = order_slot();
+  if (o == nullptr) {
+    has_program_ = false;
+    return;
+  }
+  o->kind = Order::Kind::adopt;
+  o->run = run_;
+  o->peer_writes = peer_writes_posted_;
+  o->checked = std::move(program);
+  post();
+}
+
+void ReadAhead::prepare_mdi(interp::CheckedProgram blocks) noexcept {
+  Order* o = order_slot();
+  if (o == nullptr) {
+    return;
+  }
+  o->kind = Order::Kind::prepare_mdi;
+  o->run = run_;
+  o->peer_writes = peer_writes_posted_;
+  o->checked = std::move(blocks);
+  post();
+}
+
+void ReadAhead::adopt_position(const interp::AxisVector& at) {
+  position_ = at;
+  has_position_ = true;
+}
+
+bool ReadAhead::ready() noexcept {
+  if (stopped_ || inner_ == nullptr) {
+    return false;
+  }
+  if (order_lost_) {
+    return true;  // next() answers the alarm
+  }
+  for (;;) {
+    Entry* e = entries_.front();
+    if (e != nullptr) {
+      if (e->run != run_) {
+        entries_.pop();  // read ahead for a run that was abandoned
+      } else if (e->kind == Entry::Kind::shared_write) {
+        if (writes_out_ != nullptr) {
+          writes_out_->on_shared_write(e->write.number, e->write.value);
+        }
+        entries_.pop();
+      } else if (e->kind == Entry::Kind::started) {
+        block_count_ = e->block_count;
+        entries_.pop();
+      } else {
+        return true;
+      }
+      bell_.fetch_add(1, std::memory_order_release);
+      bell_.notify_one();
+      continue;
+    }
+    if (passed_stop_) {
+      // The cycle pulls past a read-ahead stop: the thread reads on, from the position the
+      // channel stands at there and with what the partners wrote so far.
+      passed_stop_ = false;
+      Order* o = order_slot();
+      if (o == nullptr) {
+        return true;  // next() answers the alarm
+      }
+      o->kind = Order::Kind::resume;
+      o->run = run_;
+      o->at = position_;
+      o->has_position = has_position_;
+      o->peer_writes = peer_writes_posted_;
+      has_position_ = false;
+      expecting_ = true;
+      post();
+    }
+    if (!lockstep_ || !expecting_) {
+      return false;
+    }
+    entries_.wait_for_item();
+  }
+}
+
+std::optional<interp::PullResult> ReadAhead::next() {
+  if (!ready()) {
+    return interp::PullResult{interp::ProgramAlarm{
+        kAlarmReadAhead, "the read-ahead was asked for a command it did not have", "", 0, 0}};
+  }
+  if (order_lost_) {
+    order_lost_ = false;
+    expecting_ = false;
+    return interp::PullResult{
+        interp::ProgramAlarm{kAlarmReadAhead, "the read-ahead thread does not answer", "", 0, 0}};
+  }
+  Entry* e = entries_.front();
+  std::optional<interp::PullResult> out;
+  if (e->kind == Entry::Kind::pulled) {
+    out.emplace(std::move(e->pulled));
+  }
+  entries_.pop();
+  bell_.fetch_add(1, std::memory_order_release);
+  bell_.notify_one();
+  const auto* c = out ? std::get_if<interp::Command>(&*out) : nullptr;
+  if (c == nullptr || c->op == interp::Op::end) {
+    expecting_ = false;  // the run is over: an alarm, the end, or nothing left
+  } else if (c->barrier) {
+    expecting_ = false;
+    passed_stop_ = true;
+  }
+  return out;
+}
+
+// --- the read-ahead thread ---
+
+void ReadAhead::run_thread() noexcept {
+  // The interpreter may take milliseconds for a block (a G71 over a long contour) and seconds
+  // for a loop: never at the cycle's real-time priority, which a thread inherits from the
+  // process (--clock realtime).
+  sched_param normal{};
+  (void)pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
+  process::name_this_thread("read-ahead");
+  for (;;) {
+    const std::uint32_t bell = bell_.load(std::memory_order_acquire);
+    if (stopping_.load(std::memory_order_acquire)) {
+      return;
+    }
+    if (Order* o = orders_.front()) {
+      handle(*o);
+      orders_.pop();
+      continue;
+    }
+    if (reading_ && !abandoned()) {
+      read_until_stop();
+      continue;
+    }
+    bell_.wait(bell, std::memory_order_acquire);
+  }
+}
+
+bool ReadAhead::abandoned() const noexcept {
+  return stopping_.load(std::memory_order_acquire) ||
+         latest_run_.load(std::memory_order_acquire) != thread_run_;
+}
+
+ReadAhead::Entry* ReadAhead::room() noexcept {
+  for (;;) {
+    const std::uint32_t bell = bell_.load(std::memory_order_acquire);
+    if (Entry* e = entries_.claim()) {
+      return e;
+    }
+    if (abandoned()) {
+      return nullptr;
+    }
+    bell_.wait(bell, std::memory_order_acquire);
+  }
+}
+
+void ReadAhead::apply_peer_writes(std::uint64_t upto) noexcept {
+  while (peer_writes_applied_ < upto) {
+    const SharedWrite* w = peer_writes_.front();
+    if (w == nullptr) {
+      return;
+    }
+    if (shared_ != nullptr) {
+      (void)shared_->write(w->number, w->value);
+    }
+    peer_writes_.pop();
+    ++peer_writes_applied_;
+  }
+}
+
+void ReadAhead::handle(Order& order) noexcept {
+  apply_peer_writes(order.peer_writes);
+  std::optional<interp::ProgramAlarm> alarm;
+  switch (order.kind) {
+    case Order::Kind::adopt:
+      reading_ = false;  // a program is adopted only while no run is under way
+      inner_->adopt(std::move(order.checked));
+      return;
+    case Order::Kind::prepare_mdi:
+      reading_ = false;
+      inner_->prepare_mdi(std::move(order.checked));
+      return;
+    case Order::Kind::resume:
+      if (order.run == thread_run_) {
+        if (order.has_position) {
+          inner_->adopt_position(order.at);
+        }
+        reading_ = true;
+      }
+      return;
+    case Order::Kind::stop:
+      return;
+    case Order::Kind::rewind:
+    case Order::Kind::mdi:
+    case Order::Kind::call:
+      break;
+  }
+  thread_run_ = order.run;
+  reading_ = false;
+  // A start builds the run's interpreter and a call reads and parses its program: allocations,
+  // here and not in the cycle. Out of memory is the run's alarm.
+  try {
+    if (order.kind == Order::Kind::rewind) {
+      inner_->rewind(order.at);
+    } else if (order.kind == Order::Kind::mdi) {
+      alarm = inner_->start_mdi(order.at);
+    } else {
+      alarm = inner_->call(order.program, std::span(order.args.data(), order.arg_count), order.at);
+    }
+  } catch (...) {
+    alarm = interp::ProgramAlarm{kAlarmReadAhead, "the interpreter ran out of memory", "", 0, 0};
+  }
+  Entry* e = room();
+  if (e == nullptr) {
+    return;  // a newer start came meanwhile
+  }
+  e->kind = Entry::Kind::started;
+  e->run = thread_run_;
+  e->block_count = alarm ? 0 : inner_->block_count();
+  entries_.publish();
+  if (!alarm) {
+    reading_ = true;
+    return;
+  }
+  e = room();
+  if (e == nullptr) {
+    return;
+  }
+  e->kind = Entry::Kind::pulled;
+  e->run = thread_run_;
+  e->pulled = std::move(*alarm);
+  entries_.publish();
+}
+
+void ReadAhead::read_until_stop() noexcept {
+  while (reading_ && !abandoned() && orders_.front() == nullptr) {
+    std::optional<interp::PullResult> pulled;
+    try {
+      pulled = inner_->next();
+    } catch (...) {
+      pulled = interp::PullResult{
+          interp::ProgramAlarm{kAlarmReadAhead, "the interpreter ran out of memory", "", 0, 0}};
+    }
+    Entry* e = room();
+    if (e == nullptr) {
+      reading_ = false;
+      return;
+    }
+    e->run = thread_run_;
+    if (!pulled) {
+      e->kind = Entry::Kind::exhausted;
+      reading_ = false;
+    } else {
+      const auto* c = std::get_if<interp::Command>(&*pulled);
+      // It reads no further than a read-ahead stop, the end or an alarm.
+      reading_ = c != nullptr && !c->barrier && c->op != interp::Op::end;
+      e->kind = Entry::Kind::pulled;
+      e->pulled = std::move(*pulled);
+    }
+    entries_.publish();
+  }
+}
+
+void ReadAhead::Relay::on_shared_write(std::int64_t number,
+                                       interp::macro::MacroValue value) noexcept {
+  Entry* e = owner_.room();
+  if (e == nullptr) {
+    return;  // the run was abandoned: nobody takes its writes
+  }
+  e->kind = Entry::Kind::shared_write;
+  e->run = owner_.thread_run_;
+  e->write = SharedWrite{number, value};
+  owner_.entries_.publish();
+}
+
+}  // namespace mcnc::channel

@@ -1,5 +1,7 @@
 #include "axisnode/control/axis_node_controller.hpp"
 
+#include "canopen/cia402/drive_pdos.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -294,11 +296,38 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     homing_started_ = true;
   }
   out_.enabled = operating && !out_.quick_stop;
+  probe_cycle(in);
   // The target in the drive's 32-bit counts, wrapping as the drive's position does.
   const auto target = static_cast<std::int64_t>(std::llround(out_.cmd * setup_.counts_per_unit));
   out_.target_counts = static_cast<std::int32_t>(
       static_cast<std::uint32_t>(static_cast<std::uint64_t>(target) & 0xFFFFFFFFULL));
   return out_;
+}
+
+void AxisNodeController::probe_cycle(const AxisNodeInput& in) noexcept {
+  namespace tp = canopen::touch_probe;
+  // What the drive says belongs to the function sent before: an edge's position counts only
+  // while that edge is asked for and the drive reports the probe enabled.
+  const std::uint16_t sent = out_.touch_probe;
+  const bool rising = (sent & tp::kPositiveEdge) != 0;
+  out_.probe = ProbeState::off;
+  if ((sent & tp::kEnable) != 0 && (in.touch_probe_status & tp::kEnabled) != 0) {
+    const bool stored =
+        (in.touch_probe_status & (rising ? tp::kPositiveStored : tp::kNegativeStored)) != 0;
+    out_.probe = stored ? ProbeState::latched : ProbeState::armed;
+    // Counted on from the position actual value, as the position wraps.
+    const std::int32_t raw = rising ? in.probe_positive : in.probe_negative;
+    const std::int64_t counts =
+        counts_ + static_cast<std::int32_t>(static_cast<std::uint32_t>(raw) -
+                                            static_cast<std::uint32_t>(last_counts_));
+    out_.probe_pos = stored ? static_cast<double>(counts) / setup_.counts_per_unit : 0.0;
+  }
+  const bool asked = out_.enabled && in.probe != ProbeRequest::off;
+  out_.touch_probe =
+      asked ? static_cast<std::uint16_t>(
+                  tp::kEnable |
+                  (in.probe == ProbeRequest::rising ? tp::kPositiveEdge : tp::kNegativeEdge))
+            : std::uint16_t{0};
 }
 
 bool AxisNodeController::drive_at_rest() const noexcept {

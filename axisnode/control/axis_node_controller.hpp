@@ -48,6 +48,11 @@ const char* mode_name(std::int8_t mode) noexcept;
 inline constexpr std::int8_t kModeCsp = 8;
 inline constexpr std::int8_t kModeCsv = 9;
 
+// G31 skip: the owner asks the drive's touch probe to latch the position where its input goes
+// on (rising) or off (falling); what the node reports of it.
+enum class ProbeRequest : std::uint8_t { off = 0, rising = 1, falling = 2 };
+enum class ProbeState : std::uint8_t { off = 0, armed = 1, latched = 2 };
+
 struct AxisNodeInput {
   bool have_setpoint = false;  // a setpoint from the owner stamped N-1 arrived
   double setpoint_pos = 0.0;
@@ -60,8 +65,12 @@ struct AxisNodeInput {
   std::int32_t position_counts = 0;
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
-  std::uint64_t heartbeats = 0;  // the drive's heartbeats received so far
-  bool bus_off = false;          // the CAN controller went bus off
+  std::uint64_t heartbeats = 0;            // the drive's heartbeats received so far
+  bool bus_off = false;                    // the CAN controller went bus off
+  ProbeRequest probe = ProbeRequest::off;  // the owner's, while it commands the axis
+  std::uint16_t touch_probe_status = 0;    // 0x60B9
+  std::int32_t probe_positive = 0;         // 0x60BA, counts
+  std::int32_t probe_negative = 0;         // 0x60BB, counts
 };
 
 enum class AxisAlarm : std::uint8_t {
@@ -98,7 +107,12 @@ struct AxisNodeOutput {
   AxisAlarm new_alarm = AxisAlarm::none;  // raised this cycle
   AxisAlarm alarm = AxisAlarm::none;      // the active (first) alarm
   bool drive_state_changed = false;
-  int missing_setpoints = 0;  // cycles since the last setpoint (skipped cycles count)
+  int missing_setpoints = 0;      // cycles since the last setpoint (skipped cycles count)
+  std::uint16_t touch_probe = 0;  // 0x60B8 to send: touch probe 1 as the owner asks
+  // The probe as the drive reports it for the function sent: armed (enabled, nothing stored)
+  // or latched at probe_pos (units).
+  ProbeState probe = ProbeState::off;
+  double probe_pos = 0.0;
 };
 
 class AxisNodeController {
@@ -119,6 +133,8 @@ class AxisNodeController {
  private:
   void raise(AxisAlarm alarm) noexcept;
   [[nodiscard]] bool drive_at_rest() const noexcept;
+  // Touch probe 1: the function to send and what the drive reports of the last one sent.
+  void probe_cycle(const AxisNodeInput& in) noexcept;
 
   AxisNodeSetup setup_;
   AxisNodeOutput out_{};

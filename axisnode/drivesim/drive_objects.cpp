@@ -37,10 +37,12 @@ std::uint32_t expect_size(std::size_t size, std::size_t wanted) noexcept {
 
 bool mappable(bool receive, std::uint16_t index) noexcept {
   if (receive) {
-    return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060;
+    return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060 ||
+           index == 0x60B8;
   }
   return index == 0x6041 || index == 0x6064 || index == 0x606C || index == 0x60F4 ||
-         index == 0x6061 || index == 0x6077;
+         index == 0x6061 || index == 0x6077 || index == 0x60B9 || index == 0x60BA ||
+         index == 0x60BB;
 }
 
 }  // namespace
@@ -78,6 +80,9 @@ bool DriveObjects::encode_tpdo(std::size_t n, can::CanFrame& out) const noexcept
   values.velocity_actual = live.velocity;
   values.following_error = live.following_error;
   values.torque_actual = live.torque;
+  values.touch_probe_status = live.touch_probe_status;
+  values.probe_positive = live.probe_positive;
+  values.probe_negative = live.probe_negative;
   if (!canopen::pack_feedback(mapping_of(tpdo_[n], false, n), node_, values, out)) {
     return false;
   }
@@ -101,6 +106,10 @@ void RpdoValues::merge(const RpdoValues& other) noexcept {
   if (other.has_mode) {
     mode = other.mode;
     has_mode = true;
+  }
+  if (other.has_touch_probe) {
+    touch_probe = other.touch_probe;
+    has_touch_probe = true;
   }
 }
 
@@ -126,6 +135,10 @@ bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
       case 0x6060:
         out.mode = static_cast<std::int8_t>(canopen::sign_extend(raw, bits));
         out.has_mode = true;
+        break;
+      case 0x60B8:
+        out.touch_probe = static_cast<std::uint16_t>(raw);
+        out.has_touch_probe = true;
         break;
       default:
         break;
@@ -287,6 +300,14 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::uint32_t>(out, quick_stop_dec_);
     case 0x60FF:
       return put<std::int32_t>(out, target_velocity_);
+    case 0x60B8:
+      return put<std::uint16_t>(out, touch_probe_);
+    case 0x60B9:
+      return put<std::uint16_t>(out, live.touch_probe_status);
+    case 0x60BA:
+      return put<std::int32_t>(out, live.probe_positive);
+    case 0x60BB:
+      return put<std::int32_t>(out, live.probe_negative);
     default:
       return abort::kNoObject;
   }
@@ -324,7 +345,16 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
     case 0x60F4:
     case 0x6076:
     case 0x6077:
+    case 0x60B9:
+    case 0x60BA:
+    case 0x60BB:
       return abort::kReadOnly;
+    case 0x60B8:
+      if (const std::uint32_t e = expect_size(size, 2)) {
+        return e;
+      }
+      touch_probe_ = static_cast<std::uint16_t>(value);
+      return 0;
     case 0x1017:
       if (const std::uint32_t e = expect_size(size, 2)) {
         return e;

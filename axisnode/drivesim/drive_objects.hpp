@@ -19,11 +19,14 @@ namespace mcnc::drivesim {
 // What the drive's objects show of its live state (the drive updates it every cycle).
 struct DriveLiveValues {
   std::uint16_t statusword = 0;
-  std::int32_t position = 0;         // counts (0x6064)
-  std::int32_t velocity = 0;         // counts/s (0x606C)
-  std::int32_t following_error = 0;  // counts (0x60F4)
-  std::int16_t torque = 0;           // per mille of the rated torque (0x6077)
-  std::uint32_t rated_torque = 0;    // mN m (0x6076)
+  std::int32_t position = 0;             // counts (0x6064)
+  std::int32_t velocity = 0;             // counts/s (0x606C)
+  std::int32_t following_error = 0;      // counts (0x60F4)
+  std::int16_t torque = 0;               // per mille of the rated torque (0x6077)
+  std::uint32_t rated_torque = 0;        // mN m (0x6076)
+  std::uint16_t touch_probe_status = 0;  // 0x60B9
+  std::int32_t probe_positive = 0;       // counts (0x60BA)
+  std::int32_t probe_negative = 0;       // counts (0x60BB)
 };
 
 // What an RPDO carried, by its mapping: only the objects it maps are set.
@@ -32,10 +35,12 @@ struct RpdoValues {
   std::int32_t target_position = 0;  // counts (0x607A)
   std::int32_t target_velocity = 0;  // counts/s (0x60FF)
   std::int8_t mode = 0;              // 0x6060
+  std::uint16_t touch_probe = 0;     // 0x60B8
   bool has_controlword = false;
   bool has_target_position = false;
   bool has_target_velocity = false;
   bool has_mode = false;
+  bool has_touch_probe = false;
   // Takes what `other` carries, keeps the rest.
   void merge(const RpdoValues& other) noexcept;
 };
@@ -75,6 +80,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   }
 
   [[nodiscard]] std::int8_t mode() const noexcept { return mode_; }
+  // 0x60B8, the touch probe function (by SDO or in an RPDO).
+  [[nodiscard]] std::uint16_t touch_probe() const noexcept { return touch_probe_; }
   [[nodiscard]] std::int32_t home_offset() const noexcept { return home_offset_; }
   [[nodiscard]] std::int8_t homing_method() const noexcept { return homing_method_; }
   [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
@@ -100,6 +107,7 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::uint16_t heartbeat_ms_ = 0;
   std::uint32_t quick_stop_dec_ = 0;
   std::uint16_t controlword_ = 0;
+  std::uint16_t touch_probe_ = 0;
   std::int32_t target_position_ = 0;
   std::int32_t target_velocity_ = 0;
   std::uint16_t refused_index_ = 0;

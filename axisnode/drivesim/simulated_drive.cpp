@@ -153,6 +153,11 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
     const auto value = static_cast<std::uint8_t>(latched_.mode);
     (void)objects_.write(0x6060, 0, &value, 1);  // a mode it does not have is not taken
   }
+  if (latched_.has_touch_probe && rpdo_since_sync_) {
+    const std::array<std::uint8_t, 2> value{static_cast<std::uint8_t>(latched_.touch_probe & 0xFFU),
+                                            static_cast<std::uint8_t>(latched_.touch_probe >> 8)};
+    (void)objects_.write(0x60B8, 0, value.data(), value.size());
+  }
 
   const std::int8_t mode = objects_.mode();
   const bool homing_bit = (latched_.controlword & 0x0010U) != 0;
@@ -192,7 +197,9 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
   // target was written while disabled and may be stale.
   rpdo_since_sync_ = false;
 
+  const double from = position_;
   move_one_cycle();
+  run_touch_probe(from);
 
   canopen::TxPdoCsp out;
   out.statusword = cia402::encode_statusword(now, target_reached());
@@ -370,6 +377,36 @@ std::int32_t SimulatedDrive::to_counts(double units) const noexcept {
     return std::numeric_limits<std::int32_t>::max();
   }
   return static_cast<std::int32_t>(counts);
+}
+
+bool SimulatedDrive::probe_input(double position) const noexcept {
+  return params_.probe_side > 0 ? position >= params_.probe_at : position <= params_.probe_at;
+}
+
+void SimulatedDrive::run_touch_probe(double from) noexcept {
+  namespace tp = canopen::touch_probe;
+  const std::uint16_t function = objects_.touch_probe();
+  if (params_.probe_side == 0 || (function & tp::kEnable) == 0) {
+    probe_status_ = 0;  // disabling clears what was stored
+  } else {
+    probe_status_ |= tp::kEnabled;
+    const bool was_on = probe_input(from);
+    const bool on = probe_input(position_);
+    // The input switches where the axis passes probe_at: a drive latches its encoder at the
+    // edge, between two cycles' positions.
+    const std::int32_t at = position_counts(params_.probe_at);
+    if (!was_on && on && (function & tp::kPositiveEdge) != 0 &&
+        (probe_status_ & tp::kPositiveStored) == 0) {
+      probe_status_ |= tp::kPositiveStored;
+      objects_.live.probe_positive = at;
+    }
+    if (was_on && !on && (function & tp::kNegativeEdge) != 0 &&
+        (probe_status_ & tp::kNegativeStored) == 0) {
+      probe_status_ |= tp::kNegativeStored;
+      objects_.live.probe_negative = at;
+    }
+  }
+  objects_.live.touch_probe_status = probe_status_;
 }
 
 }  // namespace mcnc::drivesim

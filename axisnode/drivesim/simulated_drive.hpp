@@ -42,6 +42,11 @@ struct DriveParams {
   double torque_limit = 10.0;            // N m
   double rated_torque = 3.0;             // N m, the motor's (0x6076): 0x6077 is per mille of it
   double velocity_bandwidth_hz = 200.0;  // the velocity loop (PI) is tuned for this
+  // Touch probe 1 (0x60B8-0x60BB): its input is on while the axis stands at or beyond
+  // `probe_at` (units) on the side `probe_side` (+1 above, -1 below), as a stylus touching a
+  // part there; 0: the drive has no probe input.
+  int probe_side = 0;
+  double probe_at = 0.0;
   // Object defaults from the machine file (drive.objects), applied after the built-in ones.
   std::array<ObjectDefault, 16> objects{};
   std::size_t object_count = 0;
@@ -116,6 +121,10 @@ class SimulatedDrive {
 
  private:
   void move_one_cycle() noexcept;
+  // Touch probe 1 over the cycle's move from `from` to the present position: the edges of its
+  // input latch `probe_at` as the function 0x60B8 asks (first event of each edge).
+  void run_touch_probe(double from) noexcept;
+  [[nodiscard]] bool probe_input(double position) const noexcept;
   // The velocity and mechanics for one cycle; velocity command from the mode (see above).
   enum class Loop : std::uint8_t { position, velocity, ramp_down };
   void run_loops(Loop loop, double dt) noexcept;
@@ -147,6 +156,7 @@ class SimulatedDrive {
   double velocity_target_ = 0.0;    // CSV: units/s
   bool homing_attained_ = false;
   bool homing_bit_ = false;  // controlword bit 4 at the last SYNC (homing starts on its edge)
+  std::uint16_t probe_status_ = 0;  // 0x60B9
   canopen::Emcy emcy_{};
 };
 

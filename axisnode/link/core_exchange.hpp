@@ -15,12 +15,15 @@ inline DriveReadings readings_of(const DriveSample& sample) noexcept {
   drive.mode_display = sample.feedback.mode_display;
   drive.heartbeats = sample.heartbeats;
   drive.bus_off = sample.bus_off;
+  drive.touch_probe_status = sample.feedback.touch_probe_status;
+  drive.probe_positive = sample.feedback.probe_positive;
+  drive.probe_negative = sample.feedback.probe_negative;
   return drive;
 }
 
 inline canopen::DriveCommand command_of(const AxisNodeOutput& out) noexcept {
   return canopen::DriveCommand{out.controlword, out.target_counts, out.target_velocity_counts,
-                               out.mode};
+                               out.mode, out.touch_probe};
 }
 
 }  // namespace mcnc::axisnode

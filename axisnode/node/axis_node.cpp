@@ -224,6 +224,7 @@ ownership::OwnershipChange AxisNode::decide_owner(std::uint64_t cycle, bool lock
   // A new owner's setpoint from before it knew is not followed (it holds, too).
   in_.setpoint_valid = sp.valid && !change.changed && owner_now_ != 0;
   in_.setpoint_velocity = sp.velocity;
+  in_.probe = in_.setpoint_valid ? sp.probe : ProbeRequest::off;
   in_.owner_lost = owner_lost_;
   return change;
 }
@@ -330,6 +331,9 @@ const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& d
   in_.mode_display = drive.mode_display;
   in_.heartbeats = drive.heartbeats;
   in_.bus_off = drive.bus_off;
+  in_.touch_probe_status = drive.touch_probe_status;
+  in_.probe_positive = drive.probe_positive;
+  in_.probe_negative = drive.probe_negative;
   in_.emergency_stop = emergency_stop;
   return controller_.cycle(cycle, in_);
 }

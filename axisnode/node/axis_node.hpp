@@ -57,8 +57,9 @@ struct SetpointSample {
   double pos = 0.0;
   double vel = 0.0;
   double acc = 0.0;
-  bool valid = false;     // the channel commands the axis (false: hold)
-  bool velocity = false;  // a spindle in velocity mode
+  bool valid = false;                      // the channel commands the axis (false: hold)
+  bool velocity = false;                   // a spindle in velocity mode
+  ProbeRequest probe = ProbeRequest::off;  // G31: the touch probe to arm
 };
 
 // A coordination event from a channel, as far as an axis node reads it.
@@ -85,6 +86,9 @@ struct DriveReadings {
   std::int8_t mode_display = 0;
   std::uint64_t heartbeats = 0;
   bool bus_off = false;
+  std::uint16_t touch_probe_status = 0;  // 0x60B9
+  std::int32_t probe_positive = 0;       // 0x60BA
+  std::int32_t probe_negative = 0;       // 0x60BB
 };
 
 // What happened in a cycle that the trace tells, in the order it happened.

@@ -32,6 +32,9 @@ canopen::NodeStartupConfig drive_startup_of(const config::AxisConfig& axis) {
   if (axis.tpdo2_torque) {
     tpdo2.objects[tpdo2.count++] = canopen::MappedObject{0x6077, 0, 16};
   }
+  if (axis.probe_input > 0) {
+    canopen::add_touch_probe(startup.pdos);
+  }
   return startup;
 }
 

@@ -52,8 +52,11 @@ AxisNodeEvent to_core(const CoordinationEvent& e) {
 }
 
 SetpointSample to_core(const AxisSetpoint& sp) {
-  return SetpointSample{sp.cycle(), sp.pos(),   sp.vel(),
-                        sp.acc(),   sp.valid(), sp.mode() == SP_VELOCITY};
+  SetpointSample out{sp.cycle(), sp.pos(),   sp.vel(),
+                     sp.acc(),   sp.valid(), sp.mode() == SP_VELOCITY};
+  // A value the wire does not know is no request: the probe stays off.
+  out.probe = sp.probe() <= 2 ? static_cast<ProbeRequest>(sp.probe()) : ProbeRequest::off;
+  return out;
 }
 
 std::vector<std::string> names_of(const config::MachineConfig& machine,

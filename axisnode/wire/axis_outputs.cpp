@@ -129,6 +129,8 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core,
   fb.load(axis_.tpdo2_torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
   fb.mode_display(out.mode_display);
   fb.alarm(out.alarm != AxisAlarm::none);
+  fb.probe(static_cast<std::uint8_t>(out.probe));
+  fb.probe_pos(out.probe_pos);
   feedback_.write(fb);
 
   const char* self = axis_.name.c_str();

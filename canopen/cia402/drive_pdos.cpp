@@ -66,6 +66,13 @@ PdoLayout homing_axis_pdos() noexcept {
   return p;
 }
 
+void add_touch_probe(PdoLayout& layout) noexcept {
+  layout.rpdo1.objects[layout.rpdo1.count++] = MappedObject{0x60B8, 0, 16};
+  layout.tpdo1.objects[layout.tpdo1.count++] = MappedObject{0x60B9, 0, 16};
+  layout.tpdo2.objects[layout.tpdo2.count++] = MappedObject{0x60BA, 0, 32};
+  layout.tpdo2.objects[layout.tpdo2.count++] = MappedObject{0x60BB, 0, 32};
+}
+
 bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& command,
                   can::CanFrame& out) noexcept {
   const auto value_of = [&](std::uint16_t index, std::uint8_t) -> std::uint32_t {
@@ -78,6 +85,8 @@ bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& 
         return static_cast<std::uint32_t>(command.target_velocity);
       case 0x6060:
         return static_cast<std::uint8_t>(command.mode);
+      case 0x60B8:
+        return command.touch_probe;
       default:
         return 0;  // an object the master does not command: zeros, as the mapping's length asks
     }
@@ -101,6 +110,12 @@ bool pack_feedback(const PdoMapping& pdo, std::uint8_t node, const DriveFeedback
         return static_cast<std::uint32_t>(feedback.following_error);
       case 0x6077:
         return static_cast<std::uint16_t>(feedback.torque_actual);
+      case 0x60B9:
+        return feedback.touch_probe_status;
+      case 0x60BA:
+        return static_cast<std::uint32_t>(feedback.probe_positive);
+      case 0x60BB:
+        return static_cast<std::uint32_t>(feedback.probe_negative);
       default:
         return 0;  // an object this project does not map: zeros, as the mapping's length asks
     }
@@ -129,6 +144,15 @@ bool unpack_feedback(const PdoMapping& pdo, const can::CanFrame& frame,
         break;
       case 0x6077:
         feedback.torque_actual = static_cast<std::int16_t>(sign_extend(raw, bits));
+        break;
+      case 0x60B9:
+        feedback.touch_probe_status = static_cast<std::uint16_t>(raw);
+        break;
+      case 0x60BA:
+        feedback.probe_positive = sign_extend(raw, bits);
+        break;
+      case 0x60BB:
+        feedback.probe_negative = sign_extend(raw, bits);
         break;
       default:
         break;  // an object the master does not read

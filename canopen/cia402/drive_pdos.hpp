@@ -25,6 +25,23 @@ PdoLayout spindle_pdos() noexcept;
 // The PDOs of an axis that homes at start-up (mode 6, then CSP): a spindle's RPDO1 and TPDO1
 // (the modes of operation and its display travel with them), no RPDO2.
 PdoLayout homing_axis_pdos() noexcept;
+// An axis layout (axis_pdos, no TPDO2 objects of its own) with touch probe 1 (CiA 402 §
+// touch probe function; docs/drives.md): RPDO1 adds the function 0x60B8 (8 bytes), TPDO1 the
+// status 0x60B9 (8 bytes), TPDO2 the positive and negative edge positions 0x60BA and 0x60BB
+// (8 bytes). One frame more per cycle, and only on the axes that have a probe.
+void add_touch_probe(PdoLayout& layout) noexcept;
+
+// Touch probe 1's bits in its function 0x60B8 and status 0x60B9 (CiA 402): enable, sample the
+// first event only, sample the positive / negative edge; the status says enabled and which
+// edge's position is stored.
+namespace touch_probe {
+inline constexpr std::uint16_t kEnable = 1U << 0;
+inline constexpr std::uint16_t kPositiveEdge = 1U << 4;
+inline constexpr std::uint16_t kNegativeEdge = 1U << 5;
+inline constexpr std::uint16_t kEnabled = 1U << 0;
+inline constexpr std::uint16_t kPositiveStored = 1U << 1;
+inline constexpr std::uint16_t kNegativeStored = 1U << 2;
+}  // namespace touch_probe
 
 // What a master sends its drive in a cycle; an RPDO carries what its mapping names of it.
 struct DriveCommand {
@@ -32,15 +49,19 @@ struct DriveCommand {
   std::int32_t target_position = 0;  // 0x607A, counts
   std::int32_t target_velocity = 0;  // 0x60FF, counts/s
   std::int8_t mode = 8;              // 0x6060
+  std::uint16_t touch_probe = 0;     // 0x60B8, touch probe function
 };
 // What a drive's TPDOs said; a TPDO sets what its mapping names, the rest stays.
 struct DriveFeedback {
-  std::uint16_t statusword = 0;      // 0x6041
-  std::int32_t position_actual = 0;  // 0x6064, counts
-  std::int8_t mode_display = 0;      // 0x6061
-  std::int32_t velocity_actual = 0;  // 0x606C, counts/s
-  std::int32_t following_error = 0;  // 0x60F4, counts
-  std::int16_t torque_actual = 0;    // 0x6077, per mille of the rated torque
+  std::uint16_t statusword = 0;          // 0x6041
+  std::int32_t position_actual = 0;      // 0x6064, counts
+  std::int8_t mode_display = 0;          // 0x6061
+  std::int32_t velocity_actual = 0;      // 0x606C, counts/s
+  std::int32_t following_error = 0;      // 0x60F4, counts
+  std::int16_t torque_actual = 0;        // 0x6077, per mille of the rated torque
+  std::uint16_t touch_probe_status = 0;  // 0x60B9
+  std::int32_t probe_positive = 0;       // 0x60BA, counts at the positive edge
+  std::int32_t probe_negative = 0;       // 0x60BB, counts at the negative edge
 };
 
 // The frame of RPDO `pdo` from `command`; false when the mapping cannot be carried.

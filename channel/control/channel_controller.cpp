@@ -239,6 +239,7 @@ void ChannelController::forget_program_run() noexcept {
   aux_answer_.reset();
   coupling_block_.reset();
   control_block_.reset();
+  skip_block_.reset();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
@@ -291,6 +292,14 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   for (std::size_t i = 0; i < setup_.axis_count && exchanges(); ++i) {
     if (slot_use_[i] != SlotUse::commanded) {
       out_.setpoints[i].valid = false;
+    }
+  }
+  // G31: the probes on the block's input stay armed while it arms and moves.
+  if (skip_block_ && skip_block_->phase != SkipBlock::Phase::stopping && in_run()) {
+    for (std::size_t i = 0; i < setup_.axis_count; ++i) {
+      if (probe_on_input(i, skip_block_->command.input)) {
+        out_.setpoints[i].probe = skip_block_->arm;
+      }
     }
   }
   out_.spindle_position = false;
@@ -490,10 +499,10 @@ void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
-    for (std::size_t k = 0;
-         k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
-         !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ && !coupling_block_ &&
-         !control_block_ && planner_.accepts() && queued_count_ < queued_.size() && source_.ready();
+    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
+                            !sync_block_ && !call_block_ && !release_block_ && !exchange_block_ &&
+                            !aux_block_ && !coupling_block_ && !control_block_ && !skip_block_ &&
+                            planner_.accepts() && queued_count_ < queued_.size() && source_.ready();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -657,6 +666,14 @@ void ChannelController::fill() noexcept {
         source_alarm_ = interp::ProgramAlarm{kAlarmAxisAway, text, "", c->line, 0};
         return;
       }
+      if (c->skip) {
+        // G31 stops the read-ahead (spec L6907): its move starts once its probes are armed.
+        SkipBlock b;
+        b.command = *c;
+        b.arm = c->input_on ? ProbeArm::rising : ProbeArm::falling;
+        skip_block_ = b;
+        return;
+      }
       if (!queue_command(*c)) {
         return;
       }
@@ -739,6 +756,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
                                    std::span<const AxisFeedbackView> feedback) noexcept {
   const bool in_pos = in_position(feedback, commanded_);
   fill();
+  watch_skip(feedback);
   motion::CycleInput input;
   input.in_position = in_pos;
   input.feed_hold = out_.state == ChannelState::hold;
@@ -761,6 +779,11 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.block = m.block;
     out_.line = m.line;
   }
+  if (skip_block_ && skip_block_->phase == SkipBlock::Phase::stopping && planner_.idle() &&
+      queued_count_ > 0) {
+    // The skipped move ends where it stopped, not at its programmed end.
+    queued_[(queued_head_ + queued_count_ - 1) % queued_.size()].to = commanded_;
+  }
   block_events(m, feedback);
   if (m.state == motion::MotionState::block_stop && out_.state == ChannelState::running) {
     set_state(ChannelState::hold);  // single block: at the block's end until a cycle start
@@ -772,7 +795,8 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   // Single block: the motion before a block that moves nothing (the planner ran dry there)
   // stops too, before that block runs.
   const bool held_block = sync_block_ || call_block_ || exchange_block_ || aux_block_ ||
-                          coupling_block_ || control_block_ || release_block_;
+                          coupling_block_ || control_block_ || release_block_ ||
+                          (skip_block_ && skip_block_->phase == SkipBlock::Phase::arming);
   if (single_block_ && held_block && m.completed_block > single_block_stop_) {
     single_block_stop_ = m.completed_block;
     set_state(ChannelState::hold);
@@ -801,6 +825,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (control_block_) {
     run_control();
+    return;
+  }
+  if (skip_block_) {
+    run_skip(feedback);
     return;
   }
   if (release_block_) {
@@ -1665,6 +1693,70 @@ void ChannelController::leave_position_control() noexcept {
   if (setup_.spindle_c_slot && *setup_.spindle_c_slot < slot_use_.size()) {
     slot_use_[*setup_.spindle_c_slot] = SlotUse::speed_control;
   }
+}
+
+void ChannelController::watch_skip(std::span<const AxisFeedbackView> feedback) noexcept {
+  if (!skip_block_ || skip_block_->phase != SkipBlock::Phase::moving) {
+    return;
+  }
+  SkipBlock& b = *skip_block_;
+  for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
+    if (probe_on_input(i, b.command.input) && feedback[i].probe == ProbeSeen::latched) {
+      // The signal came: the latching axis where its drive latched it, the others where
+      // they stood in the same feedback.
+      for (std::size_t j = 0; j < setup_.axis_count && j < feedback.size(); ++j) {
+        b.skip_at[j] = feedback[j].act;
+      }
+      b.skip_at[i] = feedback[i].probe_pos;
+      b.skipped = true;
+      b.phase = SkipBlock::Phase::stopping;
+      planner_.reset();  // stop at once (the reset deceleration) and drop the rest of the move
+      return;
+    }
+  }
+}
+
+void ChannelController::run_skip(std::span<const AxisFeedbackView> feedback) noexcept {
+  SkipBlock& b = *skip_block_;
+  if (b.phase == SkipBlock::Phase::arming) {
+    bool armed = true;
+    bool any = false;
+    for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
+      if (probe_on_input(i, b.command.input)) {
+        any = true;
+        armed = armed && feedback[i].probe == ProbeSeen::armed;
+      }
+    }
+    if (!any) {
+      char text[96];
+      std::snprintf(text, sizeof text,
+                    "G31: no axis this channel commands has its touch probe on input %d",
+                    b.command.input);
+      raise(interp::alarm::kSkipInput, text, b.command.line, 0, 0);
+      return;
+    }
+    if (!armed) {
+      if (++b.waited > setup_.probe_arm_cycles) {
+        char text[96];
+        std::snprintf(text, sizeof text, "G31: the touch probe on input %d did not arm",
+                      b.command.input);
+        raise(kAlarmProbeNotArmed, text, b.command.line, 0, 0);
+      }
+      return;
+    }
+    if (queue_command(b.command)) {
+      b.phase = SkipBlock::Phase::moving;
+    } else {
+      skip_block_.reset();  // the planner refused it: its alarm (source_alarm_) comes next
+    }
+    return;
+  }
+  // The move ended (its end reached without the signal, or stopped at it) and its block too.
+  if (!b.skipped) {
+    b.skip_at = commanded_;
+  }
+  source_.skip_result(b.skipped, b.skip_at, commanded_);
+  skip_block_.reset();
 }
 
 }  // namespace mcnc::channel

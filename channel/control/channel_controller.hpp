@@ -28,6 +28,11 @@ using interp::kMaxChannelAxes;
 enum class ChannelState : std::uint8_t { reset, idle, running, hold, waiting, alarm };
 const char* to_string(ChannelState state) noexcept;
 
+// G31 skip: the touch probe the channel asks an axis's drive to arm (latch where its input
+// goes on, or off), and what the axis node says of it (the values the wire carries).
+enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2 };
+enum class ProbeSeen : std::uint8_t { off = 0, armed = 1, latched = 2 };
+
 // What the channel knows of one of its axes at cycle N (the feedback stamped N-1).
 struct AxisFeedbackView {
   double cmd = 0.0;      // position the axis node commands its drive
@@ -46,6 +51,9 @@ struct AxisFeedbackView {
   // G140-G142: the node refused this channel's latest request, or could not keep it.
   bool request_refused = false;
   bool request_full = false;
+  // G31: the axis's touch probe, and where it latched (units, as act).
+  ProbeSeen probe = ProbeSeen::off;
+  double probe_pos = 0.0;
 };
 
 // G114.1 group K (param 1420) whose master is this channel's spindle: the slave's feedback is
@@ -120,7 +128,8 @@ struct AxisSetpointOut {
   double pos = 0.0;
   double vel = 0.0;
   double acc = 0.0;
-  bool valid = false;  // false: the axis node holds its position
+  bool valid = false;              // false: the axis node holds its position
+  ProbeArm probe = ProbeArm::off;  // G31: arm the drive's touch probe
 };
 
 // G144 (spec dafeng §3.4): a program started in another channel, and how the call ended.
@@ -261,6 +270,10 @@ struct ChannelSetup {
   // spindle's, and it is commanded only while M18 (GSK M14) holds the spindle under position
   // control.
   std::optional<std::size_t> spindle_c_slot{};
+  // Per axis: the skip input its drive's touch probe is wired to (G31; 0: none). Empty: none.
+  std::vector<int> probe_inputs{};
+  // G31: a touch probe that does not report itself armed within this many cycles is an alarm.
+  std::uint64_t probe_arm_cycles = 200;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -288,6 +301,7 @@ inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this
 inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest
+inline constexpr int kAlarmProbeNotArmed = 1270;     // G31: a drive's touch probe did not arm
 
 class ChannelController {
  public:
@@ -673,6 +687,24 @@ class ChannelController {
     double last_act = 0.0;
   };
   std::optional<ControlBlock> control_block_;
+  // G31: the move waits until the touch probes on its input are armed, runs until one latches
+  // (then stops at the planner's reset deceleration) or it ends, and the source learns where.
+  struct SkipBlock {
+    enum class Phase : std::uint8_t { arming, moving, stopping };
+    interp::Command command;  // the move, queued once the probes are armed
+    ProbeArm arm = ProbeArm::rising;
+    Phase phase = Phase::arming;
+    std::uint64_t waited = 0;  // cycles arming
+    bool skipped = false;
+    AxisVector skip_at{};
+  };
+  std::optional<SkipBlock> skip_block_;
+  [[nodiscard]] bool probe_on_input(std::size_t axis, int input) const noexcept {
+    return axis < setup_.probe_inputs.size() && setup_.probe_inputs[axis] == input &&
+           (!exchanges() || slot_use_[axis] == SlotUse::commanded);
+  }
+  void run_skip(std::span<const AxisFeedbackView> feedback) noexcept;    // arming, and the end
+  void watch_skip(std::span<const AxisFeedbackView> feedback) noexcept;  // moving: a latch
   void run_control() noexcept;
   void leave_position_control() noexcept;  // no program runs: speed control, at rest
   [[nodiscard]] bool under_position_control() const noexcept {

@@ -128,6 +128,9 @@ struct Command {
   // aux, stop (0 = M00, 1 = M01), end (2 or 30)
   int code = 0;
 
+  // linear with skip (G31): the move ends where skip input `input` goes on (input_on) or off;
+  // the channel then hands the skip position back (CommandSource::skip_result).
+  bool skip = false;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   int input = 0;
   bool input_on = true;

@@ -38,6 +38,13 @@ class CommandSource {
   // position. Called at a command that stops read-ahead, so nothing after it was evaluated.
   // A source that does not track positions ignores it.
   virtual void adopt_position(const AxisVector& at) { (void)at; }
+  // The G31 (Command::skip) just pulled ended: skipped at `skip_at` (the axes' position when
+  // the input switched), or not; the axes stand at `stop_at`. Called before the next pull.
+  virtual void skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at) {
+    (void)skipped;
+    (void)skip_at;
+    (void)stop_at;
+  }
   // Positions the source at the start of program O<number> called by another channel (G144)
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to

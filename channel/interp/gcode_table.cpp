@@ -186,6 +186,7 @@ GCodeInfo common_code(int code10) {
     case 1450:
       return {GFunction::channel_release, 0};
     case 310:
+      return {GFunction::skip, 0};
     case 318:
     case 502:
     case 512:

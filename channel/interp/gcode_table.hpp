@@ -30,6 +30,7 @@ enum class GFunction : std::uint8_t {
   normal_off,                // G40.1 (a private group, 19 here)
   normal_left,               // G41.1
   normal_right,              // G42.1
+  skip,                      // G31
   plane_xy,
   plane_zx,
   plane_yz,

@@ -47,6 +47,8 @@ struct AxisConfig {
   // 0513, GSK №100 and №101): machine positions (physical); infinite: no limit.
   double stroke_minus = -std::numeric_limits<double>::infinity();
   double stroke_plus = std::numeric_limits<double>::infinity();
+  // G31: the skip input its drive's touch probe is wired to (0: none).
+  int probe_input = 0;
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.
@@ -140,6 +142,9 @@ struct InterpreterConfig {
   // degrees per minute).
   char normal_axis = 0;
   double normal_feed = 3600.0;
+  // G31 without L, K or I skips on this input going on (param 5510; 0: such a G31 is alarm
+  // 1157).
+  int skip_input = 0;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

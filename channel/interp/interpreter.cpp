@@ -42,6 +42,10 @@ void Interpreter::set_machine_position(const AxisVector& at) {
   run_->set_machine(at);
 }
 
+void Interpreter::skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at) {
+  run_->set_skip_result(skipped, skip_at, stop_at);
+}
+
 double Interpreter::program_position(int axis) const {
   return run_->program_position(axis);
 }

@@ -66,6 +66,11 @@ class Interpreter {
   // The axes stand at `at` now (an exchanged axis came with its machine position): the next
   // command starts from there. Only between commands that stop read-ahead.
   void set_machine_position(const AxisVector& at);
+  // The G31 just pulled ended: skipped at `skip_at` (machine position when the signal came),
+  // or not (it ran to its end); the axes stand at `stop_at`. Without this call a G31 counts as
+  // skipped at its end point (a dry run, `mcnc interp`). Only while the G31 is the last
+  // command pulled.
+  void skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at);
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
   // The number of non-empty lines of the main program (0 before start).

@@ -40,14 +40,28 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
   }
 }
 
+// A G31's input is the input of a drive's touch probe of the channel (touch_probe in the machine
+// file).
+bool skip_wired(const Command& c, const InterpreterConfig& config) {
+  for (const AxisConfig& a : config.axes) {
+    if (a.probe_input == c.input) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
-int alarm_for(const Command& c) {
+int alarm_for(const Command& c, const InterpreterConfig& config) {
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
   }
   if (c.op == Op::spindle_mode) {
     return alarm::kSpindleControl;
+  }
+  if (c.skip && !skip_wired(c, config)) {
+    return alarm::kSkipInput;
   }
   const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release ||
                         c.op == Op::axis_acquire || c.op == Op::axis_couple ||
@@ -84,8 +98,8 @@ CheckedProgram InterpreterSource::check(const InterpreterConfig& config, std::st
     const Command& c = std::get<Command>(*r);
     std::string why;
     if (!for_channel(c, why, config)) {
-      alarm =
-          ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : checked.name, c.line, 0};
+      alarm = ProgramAlarm{alarm_for(c, config), why, c.file != nullptr ? *c.file : checked.name,
+                           c.line, 0};
     } else if (c.op == Op::end) {
       break;
     }
@@ -244,6 +258,11 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     }
     return true;
   }
+  if (c.skip && !skip_wired(c, config)) {
+    why = "G31: no touch probe of this channel's axes is wired to input " +
+          std::to_string(c.input) + " (touch_probe of an axis in the machine file)";
+    return false;
+  }
   if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {
     why = missing;
     return false;
@@ -264,6 +283,13 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
 void InterpreterSource::adopt_position(const AxisVector& at) {
   if (interpreter_) {
     interpreter_->set_machine_position(at);
+  }
+}
+
+void InterpreterSource::skip_result(bool skipped, const AxisVector& skip_at,
+                                    const AxisVector& stop_at) {
+  if (interpreter_) {
+    interpreter_->skip_result(skipped, skip_at, stop_at);
   }
 }
 
@@ -290,7 +316,8 @@ std::optional<PullResult> InterpreterSource::next() {
   if (for_channel(c, why, config_)) {
     return PullResult{c};
   }
-  run_alarm_ = ProgramAlarm{alarm_for(c), why, c.file != nullptr ? *c.file : name_, c.line, 0};
+  run_alarm_ =
+      ProgramAlarm{alarm_for(c, config_), why, c.file != nullptr ? *c.file : name_, c.line, 0};
   return PullResult{*run_alarm_};
 }
 

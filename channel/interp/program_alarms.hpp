@@ -72,6 +72,8 @@ inline constexpr int kReferencePoint = 1155;
 // G22: a move would enter the forbidden area of the stored stroke check 2, or G22 is given
 // where the tool stands in it.
 inline constexpr int kStrokeLimit = 1156;
+// G31: no skip input (param 5510 = 0 and no L, K or I), or one wired to no axis of the block.
+inline constexpr int kSkipInput = 1157;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

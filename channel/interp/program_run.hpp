@@ -63,6 +63,8 @@ class ProgramRun final : public macro::VariableProvider {
   // The machine position (machine_ turned and mirrored by the frame).
   AxisVector machine() const;
   void set_machine(const AxisVector& at);
+  // The last G31: skipped at `skip_at` (machine), or not; the axes stand at `stop_at`.
+  void set_skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at);
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;
@@ -213,6 +215,9 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- G40.1 / G41.1 / G42.1 normal direction control (program_run_normal.cpp)
   bool run_normal_direction(GFunction f, int column);
+  bool run_skip(int column);
+  // #5061.. from `skip_at` (machine) and the R variable of the last G31.
+  void record_skip(bool skipped, const AxisVector& skip_at);
   // The block's moves (out_) with the rotary axis turned normal to the path: a rotation of that
   // axis alone before each cutting move that starts in another direction, an arc turning it as
   // it goes (false after an alarm).
@@ -546,6 +551,11 @@ class ProgramRun final : public macro::VariableProvider {
   // programmed point plus the offsets, before the G68.1 rotation and the G51.1 mirror, which
   // frame_ applies to every command on its way out (identity when neither is active).
   AxisVector machine_{};
+  // G31: the skip position as #5061.. read it (workpiece, programmed units), and the variable
+  // of the last G31's R (0: none), told whether the signal came.
+  AxisVector skip_position_{};
+  bool skip_known_ = false;
+  std::int64_t skip_flag_variable_ = 0;
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

@@ -121,6 +121,7 @@ bool takes_p(GFunction f) {
     case GFunction::stroke_check_on:
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
+    case GFunction::skip:
       return true;
     default:
       return false;
@@ -1428,6 +1429,8 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::normal_left:
     case GFunction::normal_right:
       return run_normal_direction(f, column);
+    case GFunction::skip:
+      return run_skip(column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);

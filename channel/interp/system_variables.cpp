@@ -164,8 +164,8 @@ VariableRead ProgramRun::read(std::int64_t n) const {
         double v = machine()[i] * (a.diameter ? 2.0 : 1.0);
         return value(!a.rotary && !metric_ ? v / 25.4 : v);
       }
-      case 3:  // #5061: skip position (G31 is not implemented: null)
-        return VariableRead{};
+      case 3:  // #5061: the last G31's skip position (null before the first)
+        return skip_known_ ? value(skip_position_[i]) : VariableRead{};
       case 6:  // #5121: handwheel interrupt
       case 9:  // #5181: distance to go (the interpreter's position is the block end)
         return value(0.0);

@@ -88,6 +88,7 @@ ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVecto
   latest_run_.store(run_, std::memory_order_release);
   passed_stop_ = false;
   has_position_ = false;
+  has_skip_ = false;
   order_lost_ = false;
   Order* o = order_slot();
   if (o == nullptr) {
@@ -98,6 +99,7 @@ ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVecto
   o->run = run_;
   o->at = at;
   o->has_position = false;
+  o->has_skip = false;
   o->arg_count = 0;
   o->peer_writes = peer_writes_posted_;
   return o;
@@ -165,6 +167,14 @@ void ReadAhead::adopt_position(const interp::AxisVector& at) {
   has_position_ = true;
 }
 
+void ReadAhead::skip_result(bool skipped, const interp::AxisVector& skip_at,
+                            const interp::AxisVector& stop_at) {
+  has_skip_ = true;
+  skipped_ = skipped;
+  skip_at_ = skip_at;
+  stop_at_ = stop_at;
+}
+
 bool ReadAhead::ready() noexcept {
   if (stopped_ || inner_ == nullptr) {
     return false;
@@ -204,8 +214,13 @@ bool ReadAhead::ready() noexcept {
       o->run = run_;
       o->at = position_;
       o->has_position = has_position_;
+      o->has_skip = has_skip_;
+      o->skipped = skipped_;
+      o->skip_at = skip_at_;
+      o->stop_at = stop_at_;
       o->peer_writes = peer_writes_posted_;
       has_position_ = false;
+      has_skip_ = false;
       expecting_ = true;
       post();
     }
@@ -320,6 +335,9 @@ void ReadAhead::handle(Order& order) noexcept {
       if (order.run == thread_run_) {
         if (order.has_position) {
           inner_->adopt_position(order.at);
+        }
+        if (order.has_skip) {
+          inner_->skip_result(order.skipped, order.skip_at, order.stop_at);
         }
         reading_ = true;
       }

@@ -7,8 +7,9 @@
 // What the interpreter evaluates stays what it evaluates when the cycle pulls each command
 // itself:
 // - A read-ahead stop (a command with `barrier`: G04.1, G140-G142, G144/G145, M00/M01/M30,
-//   G53, #3006, M18 and the others of spec dafeng §4.3) ends the producer's reading: it waits
-//   until the cycle has pulled past it, and takes then the position the channel adopted there.
+//   G53, #3006, M18, G31 and the others of spec dafeng §4.3) ends the producer's reading: it
+//   waits until the cycle has pulled past it, and takes then the position the channel adopted
+//   there and a G31's result.
 // - The channel's own writes to the shared variables travel in the ring, in program order, and
 //   reach `writes_out` as the cycle takes the commands after them, in the cycle they would have
 //   been evaluated in.
@@ -73,6 +74,8 @@ class ReadAhead final : public interp::CommandSource {
   std::optional<interp::PullResult> next() override;
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
   void adopt_position(const interp::AxisVector& at) override;
+  void skip_result(bool skipped, const interp::AxisVector& skip_at,
+                   const interp::AxisVector& stop_at) override;
   std::optional<interp::ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const interp::AxisVector& current) override;
   std::optional<interp::ProgramAlarm> start_mdi(const interp::AxisVector& current) override;
@@ -101,6 +104,10 @@ class ReadAhead final : public interp::CommandSource {
     std::uint64_t run = 0;
     interp::AxisVector at{};
     bool has_position = false;
+    bool has_skip = false;  // a G31's result, after the position
+    bool skipped = false;
+    interp::AxisVector skip_at{};
+    interp::AxisVector stop_at{};
     int program = 0;
     std::array<std::pair<int, double>, interp::kSubcallArgs> args{};
     std::size_t arg_count = 0;
@@ -153,6 +160,10 @@ class ReadAhead final : public interp::CommandSource {
   bool passed_stop_ = false;  // the last command taken stopped the read-ahead: resume it
   bool has_position_ = false;
   interp::AxisVector position_{};
+  bool has_skip_ = false;  // skip_result() waits for the resume
+  bool skipped_ = false;
+  interp::AxisVector skip_at_{};
+  interp::AxisVector stop_at_{};
   std::uint64_t peer_writes_posted_ = 0;
   std::size_t block_count_ = 0;
   bool has_program_ = false;

@@ -26,6 +26,7 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.cylindrical_parallel = channel.cylindrical_parallel;
   c.normal_axis = channel.normal_axis;
   c.normal_feed = channel.normal_feed;
+  c.skip_input = channel.skip_input;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);
@@ -36,6 +37,7 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     axis.exchange = a->exchange;
     axis.id = a->id;
     axis.may_follow = a->sync_slave;
+    axis.probe_input = a->probe_input;
     for (std::size_t s = 0; s < channel.spindles.size() && !a->spindle.empty(); ++s) {
       axis.spindle = channel.spindles[s] == a->spindle ? static_cast<int>(s) + 1 : axis.spindle;
     }

@@ -64,6 +64,15 @@ bool AxisFeedbackInputs::check_losses(std::uint64_t cycle, bool lockstep, bool w
   return newly_lost;
 }
 
+namespace {
+
+// A value the wire does not know is no probe.
+ProbeSeen probe_of(std::uint8_t wire) noexcept {
+  return wire <= 2 ? static_cast<ProbeSeen>(wire) : ProbeSeen::off;
+}
+
+}  // namespace
+
 void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                               std::vector<AxisFeedbackView>& views, ChannelController& controller) {
   node_.wakeup().update([&] {
@@ -79,7 +88,9 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                                     fb->coupled_to(),
                                     fb->coupling_locked(),
                                     (fb->refused_channels() & self_bit_) != 0,
-                                    (fb->full_channels() & self_bit_) != 0};
+                                    (fb->full_channels() & self_bit_) != 0,
+                                    probe_of(fb->probe()),
+                                    fb->probe_pos()};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

@@ -171,6 +171,7 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.vel(out.setpoints[i].vel);
     sp.acc(out.setpoints[i].acc);
     sp.valid(out.setpoints[i].valid);
+    sp.probe(static_cast<std::uint8_t>(out.setpoints[i].probe));
     axis_setpoints_[i]->write(sp);
   }
   const double rpm = out.spindle_rpm * out.spindle_direction;

@@ -226,7 +226,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
                             std::vector<YamlValue>& spindle_refs) {
   const YamlMap map =
       value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
-                 "dialect", "polar", "cylindrical_parallel", "normal"});
+                 "dialect", "polar", "cylindrical_parallel", "normal", "skip_input"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -295,13 +295,16 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
       channel.normal_feed = feed->positive_number();
     }
   }
+  if (auto skip = map.optional("skip_input")) {
+    channel.skip_input = read_int(*skip, 1, 99);
+  }
   return channel;
 }
 
 DriveSimConfig parse_drive(const YamlValue& value) {
-  const YamlMap map =
-      value.map({"time_constant_s", "max_velocity", "quick_stop_decel", "units_per_rev", "inertia",
-                 "friction", "torque_limit", "rated_torque", "velocity_bandwidth_hz", "objects"});
+  const YamlMap map = value.map({"time_constant_s", "max_velocity", "quick_stop_decel",
+                                 "units_per_rev", "inertia", "friction", "torque_limit",
+                                 "rated_torque", "velocity_bandwidth_hz", "objects", "probe"});
   DriveSimConfig drive;
   read_optional_positive(map, "time_constant_s", drive.time_constant_s);
   read_optional_positive(map, "max_velocity", drive.max_velocity);
@@ -312,6 +315,16 @@ DriveSimConfig parse_drive(const YamlValue& value) {
   read_optional_positive(map, "torque_limit", drive.torque_limit);
   read_optional_positive(map, "rated_torque", drive.rated_torque);
   read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
+  if (auto probe = map.optional("probe")) {
+    const YamlMap p = probe->map({"at", "on"});
+    drive.probe_at = p.required("at").number();
+    const YamlValue on = p.required("on");
+    const std::string side = on.string();
+    if (side != "above" && side != "below") {
+      on.fail("the probe's input is on above or below its position, got '" + side + "'");
+    }
+    drive.probe_side = side == "above" ? 1 : -1;
+  }
   if (auto objects = map.optional("objects")) {
     const std::vector<YamlValue> list = objects->list();
     if (list.size() > 16) {
@@ -360,6 +373,7 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "heartbeat_ms",
                                  "quick_stop_deceleration",
                                  "tpdo2",
+                                 "touch_probe",
                                  "exchange",
                                  "axis_sync",
                                  "c_axis",
@@ -462,6 +476,16 @@ AxisConfig parse_axis(const YamlValue& value) {
       tpdo2->fail(
           "tpdo2 holds 8 bytes: velocity_actual (4), following_error_actual (4) and "
           "torque_actual (2) do not all fit");
+    }
+  }
+  if (auto probe = map.optional("touch_probe")) {
+    const YamlMap p = probe->map({"input"});
+    axis.probe_input = read_int(p.required("input"), 1, 99);
+    // Its objects fill RPDO1, TPDO1 and TPDO2 of a CSP axis (canopen::add_touch_probe).
+    if (axis.type == AxisType::spindle || map.optional("homing") || tpdo2_bytes(axis) > 0) {
+      probe->fail(
+          "a touch probe is on a linear or rotary axis without homing and without tpdo2 (its "
+          "objects take those PDOs' room)");
     }
   }
   if (auto homing = map.optional("homing")) {
@@ -1293,6 +1317,9 @@ int tpdo2_bytes(const AxisConfig& axis) noexcept {
 }
 
 int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
+  if (axis.probe_input > 0) {
+    return 3 * can_frame_bits(8);  // RPDO1, TPDO1 and TPDO2 full (canopen::add_touch_probe)
+  }
   const int bytes = tpdo2_bytes(axis);
   const int tpdo2 = bytes > 0 ? can_frame_bits(bytes) : 0;
   if (axis.type == AxisType::spindle) {

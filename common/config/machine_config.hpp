@@ -45,6 +45,10 @@ struct DriveSimConfig {
   double torque_limit = 10.0;        // N m
   double rated_torque = 3.0;         // N m, the motor's (0x6076): 100 % load
   double velocity_bandwidth_hz = 200.0;
+  // `probe`: the touch probe's input is on while the axis stands at or beyond `probe_at` on
+  // the side probe_side (+1 above, -1 below), a part the stylus touches there; 0: no probe.
+  int probe_side = 0;
+  double probe_at = 0.0;
   std::vector<DriveObjectDefault> objects;  // at most 16
 };
 
@@ -84,6 +88,9 @@ struct AxisConfig {
   bool tpdo2_velocity = false;
   bool tpdo2_following_error = false;
   bool tpdo2_torque = false;  // 0x6077, after the others
+  // `touch_probe`: the drive's touch probe 1 is wired to skip input `probe_input` (G31 L/K/I,
+  // param 5510; 0: none). Its objects take TPDO2 (0x60BA/0x60BB) and a word of RPDO1 and TPDO1.
+  int probe_input = 0;
   // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
   bool has_homing = false;
   int homing_method = 0;
@@ -151,6 +158,8 @@ struct ChannelConfig {
   // blocks, degrees per minute.
   char normal_axis = 0;
   double normal_feed = 3600.0;
+  // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
+  int skip_input = 0;
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

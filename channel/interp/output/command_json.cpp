@@ -207,6 +207,12 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       key(out, "to");
       positions(out, c.to, axes);
       feed(out, c);
+      if (c.skip) {  // G31: the move ends where this input switches
+        key(out, "skip");
+        out += "{\"input\":";
+        integer(out, c.input);
+        out += c.input_on ? ",\"state\":\"on\"}" : ",\"state\":\"off\"}";
+      }
       break;
     case Op::arc:
       key(out, "to");

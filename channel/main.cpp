@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
 
       peers.apply(cycle, lockstep, controller);
       if (plc) {
-        plc->apply(cycle, controller);
+        plc->apply(cycle, lockstep, controller);
       }
       const channel::ChannelOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,

@@ -240,6 +240,7 @@ void ChannelController::forget_program_run() noexcept {
   coupling_block_.reset();
   control_block_.reset();
   skip_block_.reset();
+  wait_block_.reset();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
   queued_head_ = 0;
@@ -499,10 +500,11 @@ void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
-    for (std::size_t k = 0; k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ &&
-                            !sync_block_ && !call_block_ && !release_block_ && !exchange_block_ &&
-                            !aux_block_ && !coupling_block_ && !control_block_ && !skip_block_ &&
-                            planner_.accepts() && queued_count_ < queued_.size() && source_.ready();
+    for (std::size_t k = 0;
+         k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !sync_block_ &&
+         !call_block_ && !release_block_ && !exchange_block_ && !aux_block_ && !coupling_block_ &&
+         !control_block_ && !skip_block_ && !wait_block_ && planner_.accepts() &&
+         queued_count_ < queued_.size() && source_.ready();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -666,6 +668,17 @@ void ChannelController::fill() noexcept {
         source_alarm_ = interp::ProgramAlarm{kAlarmAxisAway, text, "", c->line, 0};
         return;
       }
+      if (c->op == interp::Op::wait_input || c->op == interp::Op::wait_spindle) {
+        // G04 I / G04 PS stop the read-ahead (spec L6907): the next block waits for them.
+        const bool input = c->op == interp::Op::wait_input;
+        coordination::ConditionWaitLimits limits;
+        limits.width_s = input ? c->width_s : -1.0;
+        limits.dwell_s = c->dwell_s;
+        limits.timeout_s = input ? c->timeout_s : setup_.speed_arrival_timeout_s;
+        wait_block_.emplace(
+            WaitBlock{held(*c), *c, coordination::ConditionWait(limits, setup_.cycle_s)});
+        return;
+      }
       if (c->skip) {
         // G31 stops the read-ahead (spec L6907): its move starts once its probes are armed.
         SkipBlock b;
@@ -795,7 +808,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   // Single block: the motion before a block that moves nothing (the planner ran dry there)
   // stops too, before that block runs.
   const bool held_block = sync_block_ || call_block_ || exchange_block_ || aux_block_ ||
-                          coupling_block_ || control_block_ || release_block_ ||
+                          coupling_block_ || control_block_ || release_block_ || wait_block_ ||
                           (skip_block_ && skip_block_->phase == SkipBlock::Phase::arming);
   if (single_block_ && held_block && m.completed_block > single_block_stop_) {
     single_block_stop_ = m.completed_block;
@@ -829,6 +842,10 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   if (skip_block_) {
     run_skip(feedback);
+    return;
+  }
+  if (wait_block_) {
+    run_wait();
     return;
   }
   if (release_block_) {
@@ -1757,6 +1774,67 @@ void ChannelController::run_skip(std::span<const AxisFeedbackView> feedback) noe
   }
   source_.skip_result(b.skipped, b.skip_at, commanded_);
   skip_block_.reset();
+}
+
+void ChannelController::run_wait() noexcept {
+  WaitBlock& b = *wait_block_;
+  start_held(b.block);
+  const interp::Command& c = b.command;
+  bool holds = false;
+  char text[160];
+  if (c.op == interp::Op::wait_input) {
+    const auto port = static_cast<std::size_t>(c.input);
+    const int bit = port < setup_.input_ports.size() ? setup_.input_ports[port] : -1;
+    if (bit < 0 || bit > 63 || plc_lost_) {
+      std::snprintf(text, sizeof text, "G04 I%s%d: %s", c.input_on ? "" : "-", c.input,
+                    plc_lost_ ? "the PLC node is gone" : "the PLC has no input with this port");
+      raise(interp::alarm::kInputPort, text, b.block.line, 0, 0);
+      return;
+    }
+    holds = (((plc_inputs_ >> bit) & 1U) != 0) == c.input_on;
+  } else {
+    const std::size_t view = setup_.axis_count + static_cast<std::size_t>(c.spindle) - 1;
+    if (c.spindle < 1 || static_cast<std::size_t>(c.spindle) > setup_.spindle_count ||
+        view >= received_.size() || !received_[view].present) {
+      std::snprintf(text, sizeof text, "G04 PS%d=: no feedback of spindle %d in this channel",
+                    c.spindle, c.spindle);
+      raise(interp::alarm::kNoSuchSpindle, text, b.block.line, 0, 0);
+      return;
+    }
+    // degrees per second to revolutions per minute; the direction does not count.
+    constexpr double kRpmPerDegreePerSecond = 60.0 / 360.0;
+    const double rpm = std::fabs(received_[view].vel) * kRpmPerDegreePerSecond;
+    holds = std::fabs(rpm - c.rpm) <= setup_.speed_arrival_rpm;
+  }
+  switch (b.wait.step(holds)) {
+    case coordination::WaitOutcome::waiting:
+      return;
+    case coordination::WaitOutcome::timed_out:
+      // With a dwell time the time ends the block (spec [AMBIGUOUS], decision 71); without
+      // one, an input or a speed that never comes is an alarm, as M01 I/J's (L6045-6049).
+      if (c.dwell_s < 0.0) {
+        if (c.op == interp::Op::wait_input) {
+          std::snprintf(text, sizeof text, "G04 I%s%d: input %d not %s within %.3f s (J)",
+                        c.input_on ? "" : "-", c.input, c.input, c.input_on ? "on" : "off",
+                        c.timeout_s);
+          raise(kAlarmInputTimeout, text, b.block.line, 0, 0);
+        } else {
+          std::snprintf(text, sizeof text,
+                        "G04 PS%d=%.0f: spindle %d not within %.0f rpm of it after %.3f s "
+                        "(speed_arrival, parameters 1057/1059)",
+                        c.spindle, c.rpm, c.spindle, setup_.speed_arrival_rpm,
+                        setup_.speed_arrival_timeout_s);
+          raise(kAlarmSpeedTimeout, text, b.block.line, 0, 0);
+        }
+        return;
+      }
+      break;
+    case coordination::WaitOutcome::met:
+    case coordination::WaitOutcome::dwell_over:
+      break;
+  }
+  push_event(block_event(b.block, ChannelEventKind::block_ended));
+  wait_block_.reset();
 }
 
 }  // namespace mcnc::channel

@@ -7,6 +7,7 @@
 // waiting) until its SyncBarrier releases it. Pure and deterministic: inputs and cycle number
 // in, outputs out.
 #include "channel/control/shared_write_log.hpp"
+#include "channel/coordination/condition_wait.hpp"
 #include "channel/coordination/sync_barrier.hpp"
 #include "channel/interp/command_source.hpp"
 #include "channel/motion/motion_planner.hpp"
@@ -54,6 +55,7 @@ struct AxisFeedbackView {
   // G31: the axis's touch probe, and where it latched (units, as act).
   ProbeSeen probe = ProbeSeen::off;
   double probe_pos = 0.0;
+  double vel = 0.0;  // actual velocity, units/s (a spindle's degrees/s: G04 PS)
 };
 
 // G114.1 group K (param 1420) whose master is this channel's spindle: the slave's feedback is
@@ -274,6 +276,11 @@ struct ChannelSetup {
   std::vector<int> probe_inputs{};
   // G31: a touch probe that does not report itself armed within this many cycles is an alarm.
   std::uint64_t probe_arm_cycles = 200;
+  // G04 I: per input port (the index), the bit of the PLC's inputs it reads (-1: none).
+  std::vector<int> input_ports{};
+  // G04 PS: reached within this many rpm (param 1057); an alarm after this long (param 1059).
+  double speed_arrival_rpm = 10.0;
+  double speed_arrival_timeout_s = 10.0;
 };
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
@@ -302,6 +309,8 @@ inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes d
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest
 inline constexpr int kAlarmProbeNotArmed = 1270;     // G31: a drive's touch probe did not arm
+inline constexpr int kAlarmInputTimeout = 1271;      // G04 I: the input did not come within J
+inline constexpr int kAlarmSpeedTimeout = 1272;      // G04 PS: the speed not reached (param 1059)
 
 class ChannelController {
  public:
@@ -391,6 +400,8 @@ class ChannelController {
   void on_aux_answer(const AuxAnswer& answer) noexcept;
   // The PLC node is gone: a request waiting for it, and every later one, is refused.
   void plc_lost() noexcept;
+  // The PLC's inputs as its status stamped N-1 reports them (bit k: signal k on): G04 I.
+  void set_plc_inputs(std::uint64_t inputs) noexcept { plc_inputs_ = inputs; }
 
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const ChannelOutput& cycle(std::uint64_t cycle,
@@ -699,6 +710,16 @@ class ChannelController {
     AxisVector skip_at{};
   };
   std::optional<SkipBlock> skip_block_;
+  // G04 I / G04 PS: the block waits (read-ahead stopped) until its condition holds, its dwell
+  // time ends or it times out.
+  struct WaitBlock {
+    HeldBlock block;
+    interp::Command command;
+    coordination::ConditionWait wait;
+  };
+  std::optional<WaitBlock> wait_block_;
+  std::uint64_t plc_inputs_ = 0;
+  void run_wait() noexcept;
   [[nodiscard]] bool probe_on_input(std::size_t axis, int input) const noexcept {
     return axis < setup_.probe_inputs.size() && setup_.probe_inputs[axis] == input &&
            (!exchanges() || slot_use_[axis] == SlotUse::commanded);

@@ -41,6 +41,7 @@ enum class Op : std::uint8_t {
   message,
   thread,
   spindle_mode,  // M18 / M17 (GSK M14 / M15): `spindle` to position or speed control
+  wait_spindle,  // G04 PSn=: until spindle `spindle`'s actual speed is `rpm` (or `dwell_s`)
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -132,6 +133,7 @@ struct Command {
   // the channel then hands the skip position back (CommandSource::skip_result).
   bool skip = false;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
+  // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;
   bool input_on = true;
   double timeout_s = -1.0;

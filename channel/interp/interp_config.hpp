@@ -108,6 +108,8 @@ struct InterpreterConfig {
   int spindles = kSpindlesUnknown;
   int channel_count = 0;  // channels of the machine (G04.1 Q must name them); 0: not checked
   bool plc = false;       // a PLC node runs M codes and T codes (else they are not executable)
+  // G04 I: the input ports of the PLC's inputs (`port` in plc.signals); others are an alarm.
+  std::vector<int> input_ports{};
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
   DecimalPoint decimal_point = DecimalPoint::calculator;
   double least_increment = 0.001;                   // mm (param 0013)

@@ -20,7 +20,6 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::spindle_select:
     case Op::tool:
     case Op::aux:
-    case Op::wait_input:
     case Op::stop:
       return "spindle, tool, M-code and input commands need the PLC node";
     case Op::axis_release:
@@ -62,6 +61,12 @@ int alarm_for(const Command& c, const InterpreterConfig& config) {
   }
   if (c.skip && !skip_wired(c, config)) {
     return alarm::kSkipInput;
+  }
+  if (c.op == Op::wait_input) {
+    return alarm::kInputPort;
+  }
+  if (c.op == Op::wait_spindle) {
+    return alarm::kNoSuchSpindle;
   }
   const bool bad_word = c.op == Op::subcall || c.op == Op::axis_release ||
                         c.op == Op::axis_acquire || c.op == Op::axis_couple ||
@@ -257,6 +262,27 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
       return false;
     }
     return true;
+  }
+  if (c.op == Op::wait_input) {
+    // G04 I n waits on the PLC input whose port is n (plc.signals), as the PLC reports it.
+    for (const int port : config.input_ports) {
+      if (port == c.input) {
+        return true;
+      }
+    }
+    why = "G04 I" + std::string(c.input_on ? "" : "-") + std::to_string(c.input) +
+          ": the machine's PLC has no input with port " + std::to_string(c.input) +
+          " (port of an input in plc.signals)";
+    return false;
+  }
+  if (c.op == Op::wait_spindle) {
+    // The spindle's actual speed comes from its axis node's feedback.
+    if (c.spindle >= 1 && c.spindle <= config.spindles) {
+      return true;
+    }
+    why = "G04 PS" + std::to_string(c.spindle) + "=: this channel has no spindle " +
+          std::to_string(c.spindle) + " whose actual speed it reads (spindles in the machine file)";
+    return false;
   }
   if (c.skip && !skip_wired(c, config)) {
     why = "G31: no touch probe of this channel's axes is wired to input " +

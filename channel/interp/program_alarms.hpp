@@ -74,6 +74,8 @@ inline constexpr int kReferencePoint = 1155;
 inline constexpr int kStrokeLimit = 1156;
 // G31: no skip input (param 5510 = 0 and no L, K or I), or one wired to no axis of the block.
 inline constexpr int kSkipInput = 1157;
+// G04 I: the input port the block names is no input of the machine's PLC (port of plc.signals).
+inline constexpr int kInputPort = 1158;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

@@ -1483,11 +1483,9 @@ bool ProgramRun::run_dwell(int column) {
   BlockWord* x = word('X');
   BlockWord* u = word('U');
   BlockWord* i = word('I');
-  if (BlockWord* ps = word('P', 'S')) {
-    return fail(alarm::kNotInThisVersion,
-                "G04 PS (wait for the spindle speed) needs the spindle feedback of a later "
-                "release",
-                ps->column);
+  BlockWord* ps = word('P', 'S');
+  if (ps != nullptr && i != nullptr) {
+    return fail(alarm::kGroupConflict, "G04 PS and G04 I cannot wait in one block", i->column);
   }
   const bool gsk = config_.dialect == Dialect::gsk;
   const int given = (p != nullptr) + (x != nullptr) + (u != nullptr);
@@ -1548,6 +1546,26 @@ bool ProgramRun::run_dwell(int column) {
       k->used = true;
       c.width_s = k->value;
     }
+    c.dwell_s = has_time ? seconds : -1.0;
+    return true;
+  }
+  if (ps != nullptr) {
+    // G04 PSn=r (dafeng L2747-2782): n omitted is spindle 1; r in rpm, 0 waits for the stop.
+    ps->used = true;
+    const int spindle = ps->index < 0 ? 1 : ps->index;
+    if (spindle < 1 || spindle > 9) {
+      return fail(alarm::kBadWordValue, "G04 PS names spindle 1-9", ps->column);
+    }
+    if (ps->value < 0.0) {
+      return fail(alarm::kBadWordValue, "G04 PS: the speed (rpm) must not be negative", ps->column);
+    }
+    if (!own_spindle(spindle, "G04 PS", ps->column)) {
+      return false;
+    }
+    block_barrier_ = true;
+    Command& c = emit(Op::wait_spindle);
+    c.spindle = spindle;
+    c.rpm = ps->value;
     c.dwell_s = has_time ? seconds : -1.0;
     return true;
   }

@@ -1,5 +1,7 @@
 #include "channel/setup/controller_setup.hpp"
 
+#include <algorithm>
+
 namespace mcnc::channel {
 
 ControllerLayout controller_layout_for(const config::MachineConfig& machine,
@@ -36,6 +38,16 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
   setup.cycle_s = machine.cycle_s();
   setup.channel_id = static_cast<std::uint32_t>(ch.id);
   setup.plc = machine.plc.present;
+  for (const config::PlcSignal& s : machine.plc.signals) {
+    if (!s.output && s.port > 0) {
+      setup.input_ports.resize(
+          std::max<std::size_t>(setup.input_ports.size(), static_cast<std::size_t>(s.port) + 1),
+          -1);
+      setup.input_ports[static_cast<std::size_t>(s.port)] = s.index;
+    }
+  }
+  setup.speed_arrival_rpm = ch.speed_arrival_rpm;
+  setup.speed_arrival_timeout_s = ch.speed_arrival_timeout_s;
   setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their
   // feedback follows the channel's spindles' (their slots come last, as config::fed_axes has

@@ -19,6 +19,11 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
       channel.feed_per_rev ? interp::FeedMode::per_rev : interp::FeedMode::per_min;
   c.channel_count = static_cast<int>(machine.channels.size());
   c.plc = machine.plc.present;
+  for (const config::PlcSignal& s : machine.plc.signals) {
+    if (!s.output && s.port > 0) {
+      c.input_ports.push_back(s.port);
+    }
+  }
   c.program_dir = machine.program_dir;
   c.polar_linear = channel.polar_linear;
   c.polar_rotary = channel.polar_rotary;

@@ -90,7 +90,8 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                                     (fb->refused_channels() & self_bit_) != 0,
                                     (fb->full_channels() & self_bit_) != 0,
                                     probe_of(fb->probe()),
-                                    fb->probe_pos()};
+                                    fb->probe_pos(),
+                                    fb->vel()};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

@@ -35,8 +35,11 @@ bool PlcLink::discovered() const noexcept {
   return status_reader_.matched_writers() >= 1 && ack_reader_.matched_writers() >= 1;
 }
 
-void PlcLink::apply(std::uint64_t cycle, ChannelController& controller) {
+void PlcLink::apply(std::uint64_t cycle, bool lockstep, ChannelController& controller) {
   node_.wakeup().with_lock([&] {
+    if (const ::mcnc::PlcStatus* status = status_.for_cycle(cycle, lockstep)) {
+      controller.set_plc_inputs(status->inputs());
+    }
     answers_.take_due(cycle, [&](const ::mcnc::AuxAck& ack) {
       AuxAnswer answer;
       answer.id = ack.aux_id();

@@ -24,8 +24,9 @@ class PlcLink {
 
   // The PLC's status writer and answer writer matched.
   [[nodiscard]] bool discovered() const noexcept;
-  // Before the controller's cycle `cycle`: the answers sent before it; a PLC that is gone.
-  void apply(std::uint64_t cycle, ChannelController& controller);
+  // Before the controller's cycle `cycle`: the PLC's inputs stamped cycle-1, the answers sent
+  // before it; a PLC that is gone.
+  void apply(std::uint64_t cycle, bool lockstep, ChannelController& controller);
 
  private:
   process::ProcessNode& node_;

@@ -224,9 +224,9 @@ char read_address(const YamlValue& value, std::string_view letters) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map =
-      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
-                 "dialect", "polar", "cylindrical_parallel", "normal", "skip_input"});
+  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
+                                 "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
+                                 "skip_input", "speed_arrival"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -297,6 +297,11 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   if (auto skip = map.optional("skip_input")) {
     channel.skip_input = read_int(*skip, 1, 99);
+  }
+  if (auto arrival = map.optional("speed_arrival")) {
+    const YamlMap a = arrival->map({"tolerance", "timeout"});
+    read_optional_positive(a, "tolerance", channel.speed_arrival_rpm);
+    read_optional_positive(a, "timeout", channel.speed_arrival_timeout_s);
   }
   return channel;
 }
@@ -630,7 +635,7 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
       signals->fail("at most " + std::to_string(kMaxPlcSignals) + " signals");
     }
     for (const YamlValue& v : list) {
-      const YamlMap s = v.map({"name", "type", "follows", "invert", "delay_ms", "initial"});
+      const YamlMap s = v.map({"name", "type", "follows", "invert", "delay_ms", "initial", "port"});
       PlcSignal signal;
       signal.name = read_name(s.required("name"));
       const YamlValue type = s.required("type");
@@ -659,6 +664,17 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
       read_optional_int(s, "delay_ms", 0, 600000, signal.delay_ms);
       if (auto initial = s.optional("initial")) {
         signal.initial = initial->boolean();
+      }
+      if (auto port = s.optional("port")) {
+        if (signal.output) {
+          port->fail("an output has no port: G04 I waits on inputs");
+        }
+        signal.port = read_int(*port, 1, 99);
+        for (const PlcSignal& other : plc.signals) {
+          if (other.port == signal.port) {
+            port->fail("port " + std::to_string(signal.port) + " is " + other.name + "'s already");
+          }
+        }
       }
       signal.index = static_cast<int>(plc.signals.size());
       plc.signals.push_back(signal);

@@ -160,6 +160,10 @@ struct ChannelConfig {
   double normal_feed = 3600.0;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
+  // G04 PS: the actual speed is reached within this many rpm (param 1057), and not reaching it
+  // within this many seconds is an alarm (param 1059).
+  double speed_arrival_rpm = 10.0;
+  double speed_arrival_timeout_s = 10.0;
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

@@ -23,6 +23,8 @@ struct PlcSignal {
   int delay_ms = 0;
   bool initial = false;
   int index = 0;  // position in `signals`
+  // An input: the port number G04 I names it by (1-99; 0: none).
+  int port = 0;
 };
 
 // `name` or `name=1`: the signal on; `name=0`: off.

@@ -132,6 +132,8 @@ const char* op_name(Op op) {
       return "aux";
     case Op::wait_input:
       return "wait_input";
+    case Op::wait_spindle:
+      return "wait_spindle";
     case Op::stop:
       return "stop";
     case Op::end:
@@ -321,6 +323,16 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
         key(out, "width");
         number(out, c.width_s);
       }
+      if (c.dwell_s >= 0.0) {
+        key(out, "seconds");
+        number(out, c.dwell_s);
+      }
+      break;
+    case Op::wait_spindle:
+      key(out, "spindle");
+      integer(out, c.spindle);
+      key(out, "rpm");
+      number(out, c.rpm);
       if (c.dwell_s >= 0.0) {
         key(out, "seconds");
         number(out, c.dwell_s);

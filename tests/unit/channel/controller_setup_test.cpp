@@ -1,10 +1,12 @@
 // A channel's axes in program order and its controller's set-up, as the twin turret's machine
 // file gives them.
 #include "channel/setup/controller_setup.hpp"
+#include "channel/setup/interpreter_setup.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 namespace mcnc::channel {
 namespace {
@@ -40,6 +42,50 @@ TEST(ControllerSetup, AnAxisTheChannelMayAcquireIsASlotAfterItsOwnAndTheSpindles
   EXPECT_EQ(ch1.setup.spindle_groups[0].group, 1);
   EXPECT_EQ(ch1.setup.spindle_groups[0].slave_view, ch1.axes.size() + 1);
   EXPECT_EQ(ch1.setup.machine_axes.size(), m.axes.size());
+}
+
+// G04 I and G04 PS: a PLC input's port names its bit of the PLC status, the channel's
+// speed_arrival gives params 1057/1059; a port on an output, twice, or out of range is refused.
+std::string with_plc(const std::string& signals, const std::string& channel_extra = "") {
+  return "machine: {name: m, cycle_us: 1000}\n"
+         "buses: [{name: b, uri: \"socketcan:can0\", sync_producer: X1}]\n"
+         "axes:\n"
+         "  - {name: X1, address: X, bus: b, node_id: 1}\n"
+         "  - {name: S1, type: spindle, bus: b, node_id: 2}\n"
+         "channels: [{name: CH1, axes: [X1], spindles: [S1]" +
+         channel_extra +
+         "}]\n"
+         "plc:\n"
+         "  signals:\n" +
+         signals;
+}
+
+TEST(ControllerSetup, PlcInputPortsAndSpeedArrivalReachTheChannel) {
+  const config::MachineConfig m = config::parse_machine_yaml(
+      with_plc("    - {name: lamp, type: output}\n"
+               "    - {name: door, type: input, port: 7}\n"
+               "    - {name: part, type: input, follows: lamp, port: 2}\n",
+               ", speed_arrival: {tolerance: 5, timeout: 3}"));
+  const ControllerLayout ch = controller_layout_for(m, *m.find_channel("CH1"));
+  ASSERT_EQ(ch.setup.input_ports.size(), 8U);
+  EXPECT_EQ(ch.setup.input_ports[7], 1);  // door is signal 1
+  EXPECT_EQ(ch.setup.input_ports[2], 2);
+  EXPECT_EQ(ch.setup.input_ports[3], -1);
+  EXPECT_DOUBLE_EQ(ch.setup.speed_arrival_rpm, 5.0);
+  EXPECT_DOUBLE_EQ(ch.setup.speed_arrival_timeout_s, 3.0);
+  const interp::InterpreterConfig ic = interpreter_config_for(m, *m.find_channel("CH1"));
+  EXPECT_EQ(ic.input_ports, (std::vector<int>{7, 2}));
+
+  EXPECT_THROW(config::parse_machine_yaml(with_plc("    - {name: l, type: output, port: 1}\n")),
+               config::ConfigError);
+  EXPECT_THROW(config::parse_machine_yaml(with_plc("    - {name: a, type: input, port: 1}\n"
+                                                   "    - {name: b, type: input, port: 1}\n")),
+               config::ConfigError);
+  EXPECT_THROW(config::parse_machine_yaml(with_plc("    - {name: a, type: input, port: 100}\n")),
+               config::ConfigError);
+  EXPECT_THROW(config::parse_machine_yaml(
+                   with_plc("    - {name: a, type: input}\n", ", speed_arrival: {tolerance: -1}")),
+               config::ConfigError);
 }
 
 }  // namespace

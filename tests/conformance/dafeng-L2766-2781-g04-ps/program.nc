@@ -1,0 +1,10 @@
+%
+O0001 (spec L2766-2781: wait for the spindle speed; M98 P9200 left out)
+M03 S3000
+G04 PS3000
+G00 X50 Z2
+M05
+G04 PS0
+G04 PS2=500 X1.5
+M30
+%

@@ -1810,7 +1810,7 @@ void ChannelController::run_wait() noexcept {
     case coordination::WaitOutcome::waiting:
       return;
     case coordination::WaitOutcome::timed_out:
-      // With a dwell time the time ends the block (spec [AMBIGUOUS], decision 71); without
+      // With a dwell time the time ends the block (spec [AMBIGUOUS], decision 68); without
       // one, an input or a speed that never comes is an alarm, as M01 I/J's (L6045-6049).
       if (c.dwell_s < 0.0) {
         if (c.op == interp::Op::wait_input) {

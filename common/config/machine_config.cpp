@@ -141,7 +141,7 @@ void read_optional_middleware(const YamlMap& map, std::string& out) {
 void parse_machine_section(const YamlValue& value, MachineConfig& out) {
   const YamlMap map =
       value.map({"name", "cycle_us", "deadline_cycles", "domain", "program_dir", "retained_file",
-                 "call_wait_timeout_ms", "middleware", "roudi", "link_cycle_us"});
+                 "call_wait_timeout_ms", "middleware", "roudi", "link_cycle_us", "security_dir"});
   out.name = read_name(map.required("name"));
   read_optional_int(map, "cycle_us", 100, 100000, out.cycle_us);
   read_optional_int(map, "link_cycle_us", 100, 100000, out.link_cycle_us);
@@ -170,6 +170,12 @@ void parse_machine_section(const YamlValue& value, MachineConfig& out) {
     out.retained_file = file->string();
     if (out.retained_file.empty()) {
       file->fail("retained_file must name a file");
+    }
+  }
+  if (auto dir = map.optional("security_dir")) {
+    out.security_dir = dir->string();
+    if (out.security_dir.empty()) {
+      dir->fail("security_dir must name the directory `mcnc certs` made");
     }
   }
 }
@@ -1401,6 +1407,15 @@ MachineConfig load_machine_file(const std::string& path) {
       machine.retained_file = (std::filesystem::path(path).parent_path() / machine.retained_file)
                                   .lexically_normal()
                                   .string();
+    }
+    // Its files are checked by whoever uses them (process::resolve_security_or_exit), which
+    // names the file that is wrong; `mcnc certs` makes the directory after the file names it.
+    if (!machine.security_dir.empty() &&
+        std::filesystem::path(machine.security_dir).is_relative()) {
+      machine.security_dir = std::filesystem::absolute(std::filesystem::path(path).parent_path() /
+                                                       machine.security_dir)
+                                 .lexically_normal()
+                                 .string();
     }
     return machine;
   } catch (const ConfigError& error) {

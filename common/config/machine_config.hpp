@@ -207,6 +207,9 @@ struct MachineConfig {
   // Where the machine keeps #500-#999 between runs (relative to the machine file; created at
   // the first run's end). Empty: they start null.
   std::string retained_file;
+  // The machine's DDS Security files, made by `mcnc certs` (relative to the machine file;
+  // resolved by load_machine_file). Empty: the machine runs unsecured, and its launcher says so.
+  std::string security_dir;
   std::vector<BusConfig> buses;
   std::vector<ChannelConfig> channels;
   std::vector<AxisConfig> axes;

@@ -2,6 +2,7 @@
 #include "common/log/logging.hpp"
 #include "launch/run_command.hpp"
 #include "launch/status_command.hpp"
+#include "tools/certs/certs_command.hpp"
 #include "tools/mcnc/interp_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -21,6 +22,10 @@ int main(int argc, char** argv) {
   CLI::App* status = app.add_subcommand(
       "status", "print one line per channel and axis of a running machine (its DDS domain)");
   mcnc::launch::add_status_options(*status, status_args);
+  mcnc::tools::CertsArguments certs_args;
+  CLI::App* certs = app.add_subcommand(
+      "certs", "make a machine's DDS Security: CA, an identity per process, signed permissions");
+  mcnc::tools::add_certs_options(*certs, certs_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -29,6 +34,9 @@ int main(int argc, char** argv) {
   }
   if (interp->parsed()) {
     return mcnc::tools::execute_interp(interp_args);
+  }
+  if (certs->parsed()) {
+    return mcnc::tools::execute_certs(certs_args);
   }
   mcnc::log::setup("mcnc", run_args.log_level);
   if (run->parsed()) {

@@ -1,5 +1,7 @@
 #include "tools/report/run_report.hpp"
 
+#include "common/text/markup_escape.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -9,29 +11,6 @@
 
 namespace mcnc::report {
 namespace {
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string number(double v) {
   char text[32];
@@ -80,7 +59,7 @@ std::string rect(const char* cls, double x0, double x1, double y, double h, cons
                  const std::string& data, const std::string& title) {
   return "<rect class=\"" + std::string(cls) + "\"" + data + " x=\"" + number(x0) + "\" y=\"" +
          number(y) + "\" width=\"" + number(std::max(x1 - x0, 0.5)) + "\" height=\"" + number(h) +
-         "\" fill=\"" + fill + "\"><title>" + escaped(title) + "</title></rect>\n";
+         "\" fill=\"" + fill + "\"><title>" + text::markup_escaped(title) + "</title></rect>\n";
 }
 
 }  // namespace
@@ -97,8 +76,9 @@ std::string timeline_svg(const config::MachineConfig& machine, const Trace& trac
   for (std::size_t lane = 0; lane < machine.channels.size(); ++lane) {
     const std::string& ch = machine.channels[lane].name;
     const double y = kTop + static_cast<double>(lane) * (kLane + kGap);
-    svg += "<g data-channel=\"" + escaped(ch) + "\">\n";
-    svg += "<text x=\"4\" y=\"" + number(y + kLane / 2 + 4) + "\">" + escaped(ch) + "</text>\n";
+    svg += "<g data-channel=\"" + text::markup_escaped(ch) + "\">\n";
+    svg += "<text x=\"4\" y=\"" + number(y + kLane / 2 + 4) + "\">" + text::markup_escaped(ch) +
+           "</text>\n";
     svg += "<rect x=\"" + number(kLeft) + "\" y=\"" + number(y) + "\" width=\"" +
            number(kWidth - kLeft - kRight) + "\" height=\"" + number(kLane) +
            "\" fill=\"#f4f4f4\"/>\n";
@@ -171,11 +151,11 @@ std::string timeline_svg(const config::MachineConfig& machine, const Trace& trac
           continue;
         }
         const std::string axis = text_of(e, "axis");
-        svg += "<circle class=\"owner\" data-axis=\"" + escaped(axis) + "\" cx=\"" +
+        svg += "<circle class=\"owner\" data-axis=\"" + text::markup_escaped(axis) + "\" cx=\"" +
                number(x(cycle_of(e))) + "\" cy=\"" + number(y + kLane / 2) +
                "\" r=\"5\" fill=\"#1a9c5b\"><title>" +
-               escaped(axis + ": " + (previous.empty() ? "released" : previous) + " -> " +
-                       (owner.empty() ? "released" : owner)) +
+               text::markup_escaped(axis + ": " + (previous.empty() ? "released" : previous) +
+                                    " -> " + (owner.empty() ? "released" : owner)) +
                "</title></circle>\n";
       }
     }
@@ -254,11 +234,12 @@ std::string toolpath_svg(const config::MachineConfig& machine, const Trace& trac
     d += (d.empty() ? "M" : " L") + number(px(p.first)) + " " + number(py(p.second));
   }
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"toolpath\" data-channel=\"" +
-                    escaped(channel) + "\" width=\"" + number(kSize) + "\" height=\"" +
+                    text::markup_escaped(channel) + "\" width=\"" + number(kSize) + "\" height=\"" +
                     number(kSize) + "\" viewBox=\"0 0 " + number(kSize) + " " + number(kSize) +
                     "\" font-family=\"sans-serif\" font-size=\"11\">\n";
-  svg += "<text x=\"4\" y=\"12\">" + escaped(channel) + ": " + escaped(z_axis) + " right, " +
-         escaped(x_axis) + (diameter ? " up (radius), " : " up, ") + number(zmin) + ".." + number(zmax) + " x " +
+  svg += "<text x=\"4\" y=\"12\">" + text::markup_escaped(channel) + ": " +
+         text::markup_escaped(z_axis) + " right, " + text::markup_escaped(x_axis) +
+         (diameter ? " up (radius), " : " up, ") + number(zmin) + ".." + number(zmax) + " x " +
          number(xmin) + ".." + number(xmax) + "</text>\n";
   svg += "<path class=\"toolpath\" d=\"" + d +
          "\" fill=\"none\" stroke=\"#1f5fbf\" stroke-width=\"1.5\"/>\n";
@@ -283,7 +264,7 @@ std::string toolpath_svg(const config::MachineConfig& machine, const Trace& trac
 std::string report_html(const config::MachineConfig& machine, const Trace& trace) {
   std::string html =
       "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>mcnc run report: " +
-      escaped(machine.name) +
+      text::markup_escaped(machine.name) +
       "</title>\n<style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}"
       "td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}.ok{color:#1a7f37}"
       ".failed{color:#c62828}.legend span{display:inline-block;width:12px;height:12px;"
@@ -293,7 +274,7 @@ std::string report_html(const config::MachineConfig& machine, const Trace& trace
     summary = is(e, "summary") ? &e : summary;
   }
   const bool ok = summary != nullptr && summary->value("ok", false);
-  html += "<h1>Run report: " + escaped(machine.name) + "</h1>\n<p class=\"" +
+  html += "<h1>Run report: " + text::markup_escaped(machine.name) + "</h1>\n<p class=\"" +
           std::string(ok ? "ok" : "failed") + "\">" + (ok ? "ok" : "failed") + ", " +
           std::to_string(last_cycle(trace)) + " cycles of " + std::to_string(machine.cycle_us) +
           " &micro;s</p>\n<table><tr><th>channel</th><th>end</th><th>cycle time (s)</th>"
@@ -305,7 +286,7 @@ std::string report_html(const config::MachineConfig& machine, const Trace& trace
       r = &(*summary)["channels"][c.name];
     }
     const bool has_end = r != nullptr && r->contains("end") && (*r)["end"].is_number();
-    html += "<tr><td>" + escaped(c.name) + "</td><td>" +
+    html += "<tr><td>" + text::markup_escaped(c.name) + "</td><td>" +
             (r == nullptr ? std::string("no program")
              : has_end    ? "M" + std::to_string((*r)["end"].get<int>())
                           : std::string("did not end")) +
@@ -318,8 +299,9 @@ std::string report_html(const config::MachineConfig& machine, const Trace& trace
   for (const auto& e : trace) {
     if (is(e, "alarm")) {
       ++alarms;
-      html += "<li>" + escaped(text_of(e, "src")) + " " + std::to_string(e.value("number", 0)) +
-              " " + escaped(text_of(e, "text")) +
+      html += "<li>" + text::markup_escaped(text_of(e, "src")) + " " +
+              std::to_string(e.value("number", 0)) + " " +
+              text::markup_escaped(text_of(e, "text")) +
               (e.contains("line") ? " (line " + std::to_string(e.value("line", 0)) + ")" : "") +
               "</li>\n";
     }
@@ -335,8 +317,8 @@ std::string report_html(const config::MachineConfig& machine, const Trace& trace
   html += "<h2>Toolpaths</h2>\n";
   for (const config::ChannelConfig& c : machine.channels) {
     const std::string svg = toolpath_svg(machine, trace, c.name);
-    html +=
-        "<h3>" + escaped(c.name) + "</h3>\n" + (svg.empty() ? "<p>no X and Z samples</p>\n" : svg);
+    html += "<h3>" + text::markup_escaped(c.name) + "</h3>\n" +
+            (svg.empty() ? "<p>no X and Z samples</p>\n" : svg);
   }
   html += "</body></html>\n";
   return html;

@@ -1,0 +1,34 @@
+#pragma once
+// Where `mcnc certs` puts a machine's DDS Security files, and which of them a process presents
+// (docs/operations.md, "Security"). One CA signs the identities, the governance and the
+// permissions (decision 80); every identity shares the one permissions document, whose grant for
+// its subject name says what it may write.
+#include <string>
+#include <vector>
+
+namespace mcnc::security {
+
+// The files a participant of the identity `name` is configured with (absolute when `dir` is).
+struct IdentityFiles {
+  std::string identity;        // the identity's name (a process of the machine, or "viewer")
+  std::string ca_certificate;  // the identity CA: whose identities this one meets
+  std::string permissions_ca;  // whose signature on the documents holds: the same CA here
+  std::string certificate;     // the identity's own, signed by the CA
+  std::string private_key;     // its key, unencrypted, readable by its owner only
+  std::string governance;      // signed (S/MIME)
+  std::string permissions;     // signed (S/MIME)
+};
+
+IdentityFiles identity_files(const std::string& dir, const std::string& identity);
+
+// The files the CA keeps besides its certificate: its private key (move it off the machine
+// once the identities are made) and the unsigned documents it signed, for reading.
+std::string ca_key_file(const std::string& dir);
+std::string governance_source_file(const std::string& dir);
+std::string permissions_source_file(const std::string& dir);
+
+// The identity of the machine's read-only onlookers (`mcnc status`, a user's DDS tool): it may
+// write nothing.
+inline constexpr const char* kViewerIdentity = "viewer";
+
+}  // namespace mcnc::security

@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   const config::BusConfig* bus = machine.find_bus(axis->bus);
   process::start_process(axis->name, shell);
   process::require_roudi_or_exit(machine, axis->name);
+  std::optional<security::IdentityFiles> identity =
+      process::resolve_security_or_exit(machine, axis->name);
 
   const bool sync_producer = bus->sync_producer == axis->name;
   const auto node_id = static_cast<std::uint8_t>(axis->node_id);
@@ -64,7 +66,8 @@ int main(int argc, char** argv) {
   try {
     process::ProcessNode node(process::resolve_domain(machine), axis->name,
                               process::cyclic_clock(shell),
-                              process::resolve_middleware(machine, axis->name));
+                              process::resolve_middleware(machine, axis->name),
+                              dds::LocalTransport::shared_memory, std::move(identity));
     trace::TraceWriter tracer(trace_path, axis->name);
     node.announce(PHASE_STARTING);
 

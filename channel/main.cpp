@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
   }
   process::start_process(ch->name, shell);
   process::require_roudi_or_exit(machine, ch->name);
+  std::optional<security::IdentityFiles> identity =
+      process::resolve_security_or_exit(machine, ch->name);
 
   channel::ControllerLayout layout = channel::controller_layout_for(machine, *ch);
   channel::ChannelSetup& setup = layout.setup;
@@ -122,7 +124,8 @@ int main(int argc, char** argv) {
   try {
     process::ProcessNode node(process::resolve_domain(machine), ch->name,
                               process::cyclic_clock(shell),
-                              process::resolve_middleware(machine, ch->name));
+                              process::resolve_middleware(machine, ch->name),
+                              dds::LocalTransport::shared_memory, std::move(identity));
     trace::TraceWriter tracer(trace_path, ch->name);
     node.announce(PHASE_STARTING);
 

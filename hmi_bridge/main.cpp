@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
   }
   process::start_process("hmi", shell);
   process::require_roudi_or_exit(machine, "HMI");
+  std::optional<security::IdentityFiles> identity =
+      process::resolve_security_or_exit(machine, "hmi");
 
   try {
     const bool generated = token.empty() && machine.hmi.operator_token.empty();
@@ -77,7 +79,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     hmi::MachineFeed feed(machine, process::resolve_domain(machine), programs,
-                          progdir.empty() ? machine.program_dir : progdir);
+                          progdir.empty() ? machine.program_dir : progdir, std::move(identity));
     hmi::HmiServerConfig config;
     config.listen = listen.empty() ? machine.hmi.listen : listen;
     const std::size_t colon = config.listen.rfind(':');

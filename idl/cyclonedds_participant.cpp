@@ -215,9 +215,36 @@ class DomainUse {
   }
 };
 
+// DDS Security's builtin plugins, as Cyclone DDS names its properties. Debian ships the
+// plugins beside libddsc in a directory of their own, which Cyclone DDS does not search: the
+// build found them (idl/CMakeLists.txt).
+void secure(dds_qos_t* qos, const security::IdentityFiles& files) {
+  const std::string plugins = MCNC_CYCLONEDDS_SECURITY_DIR;
+  const auto set = [qos](const char* name, const std::string& value) {
+    dds_qset_prop(qos, name, value.c_str());
+  };
+  set("dds.sec.auth.library.path", plugins + "/libdds_security_auth.so");
+  set("dds.sec.auth.library.init", "init_authentication");
+  set("dds.sec.auth.library.finalize", "finalize_authentication");
+  set("dds.sec.access.library.path", plugins + "/libdds_security_ac.so");
+  set("dds.sec.access.library.init", "init_access_control");
+  set("dds.sec.access.library.finalize", "finalize_access_control");
+  set("dds.sec.crypto.library.path", plugins + "/libdds_security_crypto.so");
+  set("dds.sec.crypto.library.init", "init_crypto");
+  set("dds.sec.crypto.library.finalize", "finalize_crypto");
+  set("dds.sec.auth.identity_ca", "file:" + files.ca_certificate);
+  set("dds.sec.auth.identity_certificate", "file:" + files.certificate);
+  set("dds.sec.auth.private_key", "file:" + files.private_key);
+  set("dds.sec.access.permissions_ca", "file:" + files.permissions_ca);
+  set("dds.sec.access.governance", "file:" + files.governance);
+  set("dds.sec.access.permissions", "file:" + files.permissions);
+}
+
 class CycloneParticipant final : public detail::ParticipantImpl {
  public:
-  CycloneParticipant(int domain, const std::string& name, bool shared_memory) : domain_(domain) {
+  CycloneParticipant(int domain, const std::string& name, bool shared_memory,
+                     const security::IdentityFiles* security)
+      : domain_(domain) {
     if (shared_memory && !roudi_answers()) {
       throw std::runtime_error(std::string("no iceoryx RouDi answers at ") + kRoudiSocket +
                                ": a Cyclone DDS process needs one running on its host (iox-roudi;"
@@ -226,11 +253,16 @@ class CycloneParticipant final : public detail::ParticipantImpl {
     DomainUse::enter(domain, shared_memory);
     QosOf qos;
     dds_qset_entity_name(qos.qos, name.c_str());
+    if (security != nullptr) {
+      secure(qos.qos, *security);
+    }
     participant_ = dds_create_participant(static_cast<dds_domainid_t>(domain), qos.qos, nullptr);
     if (participant_ < 0) {
       DomainUse::leave(domain);
-      throw std::runtime_error("cannot create Cyclone DDS participant on domain " +
-                               std::to_string(domain) + ": " + error_text(participant_));
+      throw std::runtime_error(
+          "cannot create Cyclone DDS participant on domain " + std::to_string(domain) + ": " +
+          error_text(participant_) +
+          (security != nullptr ? " (secured as " + security->identity + ")" : std::string()));
     }
   }
   ~CycloneParticipant() override {
@@ -508,10 +540,10 @@ std::unique_ptr<detail::ReaderImpl> CycloneParticipant::reader(const char* topic
 }  // namespace
 
 namespace detail {
-std::unique_ptr<ParticipantImpl> make_cyclonedds_participant(int domain, const std::string& name,
-                                                             CyclicClock /*clock*/,
-                                                             bool shared_memory) {
-  return std::make_unique<CycloneParticipant>(domain, name, shared_memory);
+std::unique_ptr<ParticipantImpl> make_cyclonedds_participant(
+    int domain, const std::string& name, CyclicClock /*clock*/, bool shared_memory,
+    const security::IdentityFiles* security) {
+  return std::make_unique<CycloneParticipant>(domain, name, shared_memory, security);
 }
 }  // namespace detail
 

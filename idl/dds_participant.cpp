@@ -49,12 +49,15 @@ std::string partition_key(const Partitions& partitions) {
 }  // namespace detail
 
 Participant::Participant(int domain, const std::string& name, CyclicClock clock,
-                         std::optional<Middleware> middleware, LocalTransport local)
+                         std::optional<Middleware> middleware, LocalTransport local,
+                         std::optional<security::IdentityFiles> security)
     : middleware_(middleware ? *middleware : middleware_from_env()),
       impl_(middleware_ == Middleware::cyclonedds
                 ? detail::make_cyclonedds_participant(domain, name, clock,
-                                                      local == LocalTransport::shared_memory)
-                : detail::make_fastdds_participant(domain, name, clock)) {}
+                                                      local == LocalTransport::shared_memory,
+                                                      security ? &*security : nullptr)
+                : detail::make_fastdds_participant(domain, name, clock,
+                                                   security ? &*security : nullptr)) {}
 
 Participant::~Participant() = default;
 

@@ -5,6 +5,7 @@
 // partition they write in or read. Both middlewares speak the same wire (RTPS, the same IDL,
 // XCDR1), so processes on either meet.
 // Reader callbacks run on a middleware thread: hand the data to your own thread, do not block.
+#include "common/security/identity_files.hpp"
 #include "idl/topics.hpp"
 
 #include <array>
@@ -90,10 +91,14 @@ class ParticipantImpl {
 // per set: the names joined with '\n' ("" is the default partition).
 std::string partition_key(const Partitions& partitions);
 
+// `security`: DDS Security's builtin plugins (PKI-DH, permissions, AES-GCM-GMAC) with these
+// files; null: an unsecured participant.
 std::unique_ptr<ParticipantImpl> make_fastdds_participant(int domain, const std::string& name,
-                                                          CyclicClock clock);
-std::unique_ptr<ParticipantImpl> make_cyclonedds_participant(int domain, const std::string& name,
-                                                             CyclicClock clock, bool shared_memory);
+                                                          CyclicClock clock,
+                                                          const security::IdentityFiles* security);
+std::unique_ptr<ParticipantImpl> make_cyclonedds_participant(
+    int domain, const std::string& name, CyclicClock clock, bool shared_memory,
+    const security::IdentityFiles* security);
 }  // namespace detail
 
 class Participant {
@@ -103,10 +108,13 @@ class Participant {
   // how its samples meet the processes of its host on Cyclone DDS: a process on the machine's
   // cyclic path uses shared memory; an onlooker (the launcher, `mcnc status`) uses the network,
   // needs no RouDi, and is not among the processes RouDi ends when it stops. The first
-  // participant of a domain in a process decides for every other.
+  // participant of a domain in a process decides for every other. With `security` it joins a
+  // secured machine with that identity (docs/operations.md, "Security"): it meets only
+  // participants the machine's CA vouches for, and writes only what its grant allows.
   Participant(int domain, const std::string& name, CyclicClock clock = CyclicClock::realtime,
               std::optional<Middleware> middleware = std::nullopt,
-              LocalTransport local = LocalTransport::shared_memory);
+              LocalTransport local = LocalTransport::shared_memory,
+              std::optional<security::IdentityFiles> security = std::nullopt);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;

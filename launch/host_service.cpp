@@ -1,5 +1,7 @@
 #include "launch/host_service.hpp"
 
+#include "launch/machine_security.hpp"
+
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
@@ -57,9 +59,11 @@ int serve_host(const RunArguments& args) {
   }
   const std::string machine_path = std::filesystem::absolute(args.machine_path).string();
   process::install_stop_signals();
+  // A host's service commands its host's runs as the launcher it starts would.
   process::ProcessNode node(
       process::resolve_domain(machine), kServicePrefix + args.host, dds::CyclicClock::realtime,
-      process::resolve_middleware(machine, "launch"), dds::LocalTransport::network);
+      process::resolve_middleware(machine, "launch"), dds::LocalTransport::network,
+      process::resolve_security_or_exit(machine, launcher_identity(machine, args.host)));
   std::mutex mutex;
   std::deque<RunRequest> requests;
   std::set<std::string> seen_ids;
@@ -135,10 +139,10 @@ int request_run(const RunArguments& args) {
     return 2;
   }
   process::install_stop_signals();
-  process::ProcessNode node(process::resolve_domain(machine),
-                            "mcnc-run-" + std::to_string(::getpid()), dds::CyclicClock::realtime,
-                            process::resolve_middleware(machine, "launch"),
-                            dds::LocalTransport::network);
+  process::ProcessNode node(
+      process::resolve_domain(machine), "mcnc-run-" + std::to_string(::getpid()),
+      dds::CyclicClock::realtime, process::resolve_middleware(machine, "launch"),
+      dds::LocalTransport::network, process::resolve_security_or_exit(machine, "launch"));
   std::map<std::string, ProcessPhase> services;  // under the wake-up lock, as outcomes
   std::map<std::string, RunOutcome> outcomes;
   const std::string id = run_id();

@@ -14,6 +14,7 @@
 #include "launch/child_process.hpp"
 #include "launch/launch_plan.hpp"
 #include "launch/machine_clock.hpp"
+#include "launch/machine_security.hpp"
 #include "launch/trace_shipping.hpp"
 
 #include <pthread.h>
@@ -77,8 +78,7 @@ LaunchResult Launcher::run(
   LaunchResult result;
   const int domain = process::resolve_domain(machine_);
   // On a machine of several hosts, a launcher other than the first host's follows the run.
-  const bool follower = !options_.host.empty() && !machine_.hosts.empty() &&
-                        options_.host != machine_.hosts.front().name;
+  const bool follower = is_follower(machine_, options_.host);
   // Children end with the launcher, even when it is killed (see process::die_with_parent()).
   std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain), "MCNC_DIE_WITH_PARENT=1"};
   if (!options_.host.empty()) {
@@ -105,10 +105,10 @@ LaunchResult Launcher::run(
 
   // An onlooker of the cyclic topics: off shared memory, so a RouDi it started and stops
   // after the machine never counts it among the processes to end (HostRoudi).
-  const std::string self = follower ? "launch-" + options_.host : "launch";
-  process::ProcessNode node(domain, self, dds::CyclicClock::realtime,
-                            process::resolve_middleware(machine_, "launch"),
-                            dds::LocalTransport::network);
+  const std::string self = launcher_identity(machine_, options_.host);
+  process::ProcessNode node(
+      domain, self, dds::CyclicClock::realtime, process::resolve_middleware(machine_, "launch"),
+      dds::LocalTransport::network, process::resolve_security_or_exit(machine_, self));
   trace::TraceWriter tracer(follower ? std::string() : part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();

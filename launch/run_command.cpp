@@ -6,6 +6,7 @@
 #include "launch/host_roudi.hpp"
 #include "launch/host_service.hpp"
 #include "launch/launcher.hpp"
+#include "launch/machine_security.hpp"
 #include "launch/self_path.hpp"
 #include "tools/report/run_report.hpp"
 
@@ -359,9 +360,12 @@ int execute_run(const RunArguments& args) {
       return 2;
     }
   }
+  const bool with_hmi = !options.hmi_listen.empty();
+  if (!check_machine_security(machine, options.host, with_hmi)) {
+    return 2;
+  }
   // RouDi before any process, and stopped after the last (HostRoudi's destructor).
   std::optional<HostRoudi> roudi;
-  const bool with_hmi = !options.hmi_listen.empty();
   if (needs_roudi(machine, with_hmi)) {
     try {
       roudi.emplace(dds_process_names(machine, with_hmi).size(), machine.roudi_running);

@@ -32,9 +32,11 @@ void add_status_options(CLI::App& app, StatusArguments& args) {
 int execute_status(const StatusArguments& args) {
   const config::MachineConfig machine = process::load_machine_or_exit(args.machine_path);
   process::install_stop_signals();
+  // It only looks on: on a secured machine, as the viewer, which may write nothing.
   dds::Participant participant(
       process::resolve_domain(machine), "status", dds::CyclicClock::realtime,
-      process::resolve_middleware(machine, "status"), dds::LocalTransport::network);
+      process::resolve_middleware(machine, "status"), dds::LocalTransport::network,
+      process::resolve_security_or_exit(machine, security::kViewerIdentity));
   std::mutex mutex;
   status::StatusSnapshot snapshot;
   dds::Reader<::mcnc::ChannelStatus> channels(

@@ -33,10 +33,13 @@ int main(int argc, char** argv) {
   }
   process::start_process("PLC", shell);
   process::require_roudi_or_exit(machine, "PLC");
+  std::optional<security::IdentityFiles> identity =
+      process::resolve_security_or_exit(machine, "PLC");
 
   try {
     process::ProcessNode node(process::resolve_domain(machine), "PLC", process::cyclic_clock(shell),
-                              process::resolve_middleware(machine, "PLC"));
+                              process::resolve_middleware(machine, "PLC"),
+                              dds::LocalTransport::shared_memory, std::move(identity));
     trace::TraceWriter tracer(trace_path, "PLC");
     node.announce(PHASE_STARTING);
 

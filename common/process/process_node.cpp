@@ -45,9 +45,10 @@ std::string resolve_host() {
 }
 
 ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
-                         std::optional<dds::Middleware> middleware, dds::LocalTransport local)
+                         std::optional<dds::Middleware> middleware, dds::LocalTransport local,
+                         std::optional<security::IdentityFiles> security)
     : name_(std::move(name)),
-      participant_(domain, name_, clock, middleware, local),
+      participant_(domain, name_, clock, middleware, local, std::move(security)),
       state_writer_(participant_),
       alarm_writer_(participant_),
       run_control_reader_(participant_,

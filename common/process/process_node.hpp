@@ -49,9 +49,11 @@ class ProcessNode {
  public:
   // `clock` chooses the cyclic writers' heartbeat (dds::CyclicClock); no `middleware`:
   // MCNC_MIDDLEWARE, else the default.
+  // `security`: its identity on a secured machine (process::resolve_security_or_exit).
   ProcessNode(int domain, std::string name, dds::CyclicClock clock = dds::CyclicClock::realtime,
               std::optional<dds::Middleware> middleware = std::nullopt,
-              dds::LocalTransport local = dds::LocalTransport::shared_memory);
+              dds::LocalTransport local = dds::LocalTransport::shared_memory,
+              std::optional<security::IdentityFiles> security = std::nullopt);
   ProcessNode(const ProcessNode&) = delete;
   ProcessNode& operator=(const ProcessNode&) = delete;
 

@@ -1,5 +1,7 @@
 #include "common/process/startup.hpp"
 
+#include "common/security/pki/pki.hpp"
+
 #include "common/clock/cycle_clock.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/process_node.hpp"
@@ -58,6 +60,28 @@ config::MachineConfig load_machine_or_exit(const std::string& path) {
     std::fprintf(stderr, "error: machine file %s: %s\n", path.c_str(), e.what());
     std::exit(2);
   }
+}
+
+std::optional<std::string> security_problem(const config::MachineConfig& machine,
+                                            const std::string& identity) {
+  if (machine.security_dir.empty()) {
+    return std::nullopt;
+  }
+  return security::check_identity(security::identity_files(machine.security_dir, identity),
+                                  std::chrono::system_clock::now());
+}
+
+std::optional<security::IdentityFiles> resolve_security_or_exit(
+    const config::MachineConfig& machine, const std::string& identity) {
+  if (machine.security_dir.empty()) {
+    return std::nullopt;
+  }
+  if (const auto problem = security_problem(machine, identity)) {
+    std::fprintf(stderr, "error: DDS Security identity %s: %s\n", identity.c_str(),
+                 problem->c_str());
+    std::exit(2);
+  }
+  return security::identity_files(machine.security_dir, identity);
 }
 
 namespace {

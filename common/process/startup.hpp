@@ -1,8 +1,10 @@
 #pragma once
 // Start-up helpers shared by the process shells.
 #include "common/config/machine_config.hpp"
+#include "common/security/identity_files.hpp"
 
 #include <csignal>
+#include <optional>
 #include <string>
 
 namespace CLI {
@@ -37,6 +39,18 @@ config::MachineConfig load_machine_or_exit(const std::string& path);
 // participant would wait for ever for one: when none answers, prints why to stderr and exits
 // with code 2 (nothing is started). `process` as the machine file names it (CH1, X1, PLC, HMI).
 void require_roudi_or_exit(const config::MachineConfig& machine, const std::string& process);
+
+// The DDS Security files a process of the machine presents as `identity` (docs/operations.md,
+// "Security"): nullopt when the machine file names no security_dir (unsecured). When they do
+// not let it join (a file missing or unreadable, a certificate expired or of another CA, a key
+// not the certificate's, documents not signed by the CA), prints the reason, which names the
+// file, and exits with code 2: nothing is started.
+std::optional<security::IdentityFiles> resolve_security_or_exit(
+    const config::MachineConfig& machine, const std::string& identity);
+// The same check without exiting: nullopt when the identity's files are good (or the machine is
+// unsecured), else the reason.
+std::optional<std::string> security_problem(const config::MachineConfig& machine,
+                                            const std::string& identity);
 
 // SIGINT/SIGTERM set this flag (installed by install_stop_signals()). When MCNC_DIE_WITH_PARENT
 // is set (mcnc-launch sets it for its children), the process also gets SIGTERM when its parent

@@ -14,12 +14,14 @@
 namespace mcnc::hmi {
 
 MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
-                         std::map<std::string, std::string> programs, std::string program_dir)
+                         std::map<std::string, std::string> programs, std::string program_dir,
+                         std::optional<security::IdentityFiles> security)
     : machine_(machine),
       main_programs_(std::move(programs)),
       program_dir_(std::move(program_dir)),
       participant_(domain, "hmi", dds::CyclicClock::realtime,
-                   process::resolve_middleware(machine, "HMI")),
+                   process::resolve_middleware(machine, "HMI"), dds::LocalTransport::shared_memory,
+                   std::move(security)),
       commands_(participant_),
       // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
       channels_(participant_, dds::Keys::of(config::channel_names(machine)),

@@ -20,9 +20,11 @@ namespace mcnc::hmi {
 class MachineFeed {
  public:
   // `programs`: the main program file of a channel, by channel name (its text is shown until
-  // the channel names another file); `program_dir`: where the others are.
+  // the channel names another file); `program_dir`: where the others are; `security`: the
+  // HMI's identity on a secured machine.
   MachineFeed(const config::MachineConfig& machine, int domain,
-              std::map<std::string, std::string> programs, std::string program_dir);
+              std::map<std::string, std::string> programs, std::string program_dir,
+              std::optional<security::IdentityFiles> security = std::nullopt);
 
   // The state message of now; notes the programs channels have moved to.
   std::string state();

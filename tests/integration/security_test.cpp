@@ -1,0 +1,245 @@
+// Nobody outside the machine commands it (issue 25): a machine secured by `mcnc certs` ignores a
+// participant of the attacker's, which joins its DDS domain without a certificate, with another
+// machine's, and with the machine's own viewer certificate under permissions it forged; the same
+// participant commands an unsecured machine. A machine whose certificates are bad starts nothing.
+#include "common/security/identity_files.hpp"
+#include "common/security/machine_permissions.hpp"
+#include "common/security/pki/pki.hpp"
+#include "harness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+using namespace mcnc;
+using namespace mcnc::test;
+using namespace std::chrono_literals;
+namespace fs = std::filesystem;
+
+namespace {
+
+using Trace = std::vector<nlohmann::json>;
+
+// Domains no other test uses.
+constexpr int kSecuredDomain = 207;
+constexpr int kUnsecuredDomain = 208;
+constexpr int kBadCertificatesDomain = 209;
+
+// CH1 reaches its wait mark long before CH2: a fake arrival of CH2 would release it early.
+constexpr const char* kCh1 = "G00 X20 Z5\nG01 Z-10 F600\nG04.1 P1 Q12\nG01 X30 F600\nM30\n";
+constexpr const char* kCh2 = "G00 X20 Z5\nG01 Z-40 F300\nG04.1 P1 Q12\nG01 X30 F300\nM30\n";
+
+std::string write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+// `mcnc certs` for `machine_file` into `dir`.
+void make_certs(const std::string& machine_file, const std::string& dir) {
+  const RunResult r = run({bin("mcnc"), "certs", machine_file, dir}, -1, 120s);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
+// The machine file of `machine` naming `dir` (relative to it) as its security_dir.
+void name_security_dir(const TestMachine& machine, const std::string& dir) {
+  const std::string text = slurp(machine.path());
+  write_text(machine.path(), std::regex_replace(text, std::regex("machine:\n"),
+                                                "machine:\n  security_dir: " + dir + "\n"));
+}
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;
+  Trace trace;
+};
+
+// The two channels' programs run on `machine`; `during` runs while the machine runs.
+Outcome run_programs(const TestMachine& machine, const std::string& name) {
+  const std::string trace_file = machine.file(name + ".jsonl");
+  const RunResult r =
+      run({bin("mcnc"), "run", machine.path(), "--program",
+           "CH1=" + write_text(machine.file("ch1.nc"), kCh1), "--program",
+           "CH2=" + write_text(machine.file("ch2.nc"), kCh2), "--trace", trace_file},
+          -1, 240s);
+  return Outcome{r.exit_code, r.out + r.err, read_trace(trace_file)};
+}
+
+// A participant of an attacker's (tests/integration/rogue): it joins `domain` over the network
+// with `args` (none: no DDS Security) and publishes what would command the machine until it is
+// destroyed.
+class Rogue {
+ public:
+  Rogue(const TestMachine& machine, const std::string& name, std::vector<std::string> args)
+      : log_(machine.file("rogue-" + name)) {
+    std::vector<std::string> argv{bin("mcnc_rogue"), "--domain", std::to_string(machine.domain())};
+    argv.insert(argv.end(), args.begin(), args.end());
+    process_ = std::make_unique<Background>(argv, -1, log_);
+    // Its writers are made before the machine starts.
+    eventually([&] { return slurp(log_ + ".out").find("writers") != std::string::npos; }, 20s);
+  }
+  // How many kinds of sample its own access control let it write.
+  [[nodiscard]] int writers() const { return number_after("writers "); }
+  // Stops it; how many rounds of samples it wrote.
+  int stop() {
+    process_->kill(SIGTERM);
+    EXPECT_EQ(process_->wait(20s), 0) << slurp(log_ + ".err");
+    return number_after("rounds ");
+  }
+
+ private:
+  [[nodiscard]] int number_after(const std::string& label) const {
+    const std::string out = slurp(log_ + ".out");
+    const auto at = out.find(label);
+    return at == std::string::npos ? -1 : std::stoi(out.substr(at + label.size()));
+  }
+  std::string log_;
+  std::unique_ptr<Background> process_;
+};
+
+// Permissions of the attacker's own: everything granted to the machine's viewer, signed by a CA
+// the attacker made (the machine's CA key stays with its integrator). The rogue's arguments.
+std::vector<std::string> forged_viewer(const std::string& certs, const std::string& dir) {
+  fs::create_directories(dir);
+  const auto now = std::chrono::system_clock::now();
+  const security::KeyAndCertificate ca = security::make_ca("CA.attacker", now - 1h, now + 24h);
+  const security::Identity everything{"viewer", security::Role::launcher, {"*"}};
+  return {"--certs",
+          certs,
+          "--identity",
+          security::kViewerIdentity,
+          "--permissions-ca",
+          write_text(dir + "/attacker_ca.pem", ca.certificate_pem),
+          "--permissions",
+          write_text(dir + "/permissions.p7s",
+                     security::sign_document(
+                         ca, security::permissions_xml(
+                                 "twin_turret", {everything},
+                                 {security::xml_date(now - 1h), security::xml_date(now + 24h)}))),
+          "--governance",
+          write_text(
+              dir + "/governance.p7s",
+              security::sign_document(ca, security::governance_xml(security::Protection::sign)))};
+}
+
+}  // namespace
+
+TEST(Security, ASecuredMachineIgnoresParticipantsWithoutItsCertificatesOrBeyondTheirPermissions) {
+  TestMachine machine("twin_turret.yaml", kSecuredDomain);
+  make_certs(machine.path(), machine.file("certs"));
+  TestMachine other("small_lathe.yaml", kSecuredDomain);
+  make_certs(other.path(), other.file("certs"));
+  name_security_dir(machine, "certs");
+
+  const Outcome alone = run_programs(machine, "alone");
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  EXPECT_EQ(alone.output.find("UNSECURED"), std::string::npos) << alone.output;
+  ASSERT_FALSE(events(alone.trace, "sync_release", "CH1").empty());
+
+  // The viewer's own access control refuses it every writer.
+  {
+    Rogue viewer(machine, "viewer", {"--certs", machine.file("certs"), "--identity", "viewer"});
+    EXPECT_EQ(viewer.writers(), 0);
+    viewer.stop();
+  }
+
+  std::vector<std::unique_ptr<Rogue>> rogues;
+  rogues.push_back(std::make_unique<Rogue>(machine, "uncertified", std::vector<std::string>{}));
+  EXPECT_EQ(rogues.back()->writers(), 6);
+  // Another machine's launcher, channel and axis node write among them every kind of sample.
+  for (const std::string identity : {"launch", "CH1", "X1"}) {
+    rogues.push_back(std::make_unique<Rogue>(
+        machine, "other-" + identity,
+        std::vector<std::string>{"--certs", other.file("certs"), "--identity", identity}));
+  }
+  EXPECT_EQ(rogues[1]->writers(), 2);  // operator commands and run control
+  EXPECT_EQ(rogues[2]->writers(), 3);  // CH1's status, coordination, X1's setpoints
+  EXPECT_EQ(rogues[3]->writers(), 1);  // X1's feedback
+  rogues.push_back(std::make_unique<Rogue>(
+      machine, "forged", forged_viewer(machine.file("certs"), machine.file("forged"))));
+  EXPECT_EQ(rogues.back()->writers(), 6);
+  const Outcome attacked = run_programs(machine, "attacked");
+  for (const auto& rogue : rogues) {
+    EXPECT_GT(rogue->stop(), 10);
+  }
+  ASSERT_EQ(attacked.exit_code, 0) << attacked.output;
+  // Not a sample of theirs reached the machine: the trace is the undisturbed run's, cycle for
+  // cycle (the barrier released as late, no hold, no reset, no E-stop, no early end).
+  EXPECT_EQ(trace_until_end(attacked.trace), trace_until_end(alone.trace));
+}
+
+TEST(Security, AnUnsecuredMachineSaysSoOnceAndObeysAnyParticipant) {
+  TestMachine machine("twin_turret.yaml", kUnsecuredDomain);
+  const Outcome alone = run_programs(machine, "alone");
+  ASSERT_EQ(alone.exit_code, 0) << alone.output;
+  const std::regex warning("warning: machine twin_turret runs UNSECURED on DDS domain 208");
+  EXPECT_EQ(std::distance(std::sregex_iterator(alone.output.begin(), alone.output.end(), warning),
+                          std::sregex_iterator()),
+            1)
+      << alone.output;
+
+  Rogue rogue(machine, "uncertified", {});
+  const Outcome attacked = run_programs(machine, "attacked");
+  EXPECT_GT(rogue.stop(), 10);
+  // Obeyed: the rogue's E-stop (or its reset, its feed hold) ended the run before its programs.
+  EXPECT_NE(attacked.exit_code, 0) << attacked.output;
+  EXPECT_NE(trace_until_end(attacked.trace), trace_until_end(alone.trace));
+}
+
+TEST(Security, BadCertificatesStopTheStartNamingTheFileAndNothingStarts) {
+  TestMachine machine("twin_turret.yaml", kBadCertificatesDomain);
+  const std::string certs = machine.file("certs");
+  make_certs(machine.path(), certs);
+  name_security_dir(machine, "certs");
+  const security::IdentityFiles ch1 = security::identity_files(certs, "CH1");
+  const security::KeyAndCertificate ca{slurp(security::ca_key_file(certs)),
+                                       slurp(ch1.ca_certificate)};
+  const std::string good_certificate = slurp(ch1.certificate);
+  const std::string good_key = slurp(ch1.private_key);
+  const auto now = std::chrono::system_clock::now();
+
+  const auto expect_refused = [&](const std::string& named_file, const std::string& reason,
+                                  const std::string& what) {
+    const std::string trace_file = machine.file("trace-" + what + ".jsonl");
+    const RunResult r =
+        run({bin("mcnc"), "run", machine.path(), "--program",
+             "CH1=" + write_text(machine.file("ch1.nc"), kCh1), "--trace", trace_file},
+            -1, 60s);
+    EXPECT_EQ(r.exit_code, 2) << what << ": " << r.out << r.err;
+    EXPECT_NE(r.err.find(named_file + ": "), std::string::npos) << what << ": " << r.err;
+    EXPECT_NE(r.err.find(reason), std::string::npos) << what << ": " << r.err;
+    EXPECT_NE(r.err.find("nothing started"), std::string::npos) << what << ": " << r.err;
+    EXPECT_FALSE(fs::exists(trace_file)) << what;
+    EXPECT_FALSE(fs::exists(trace_file + ".parts")) << what;
+  };
+
+  const security::KeyAndCertificate expired = security::make_identity(
+      ca, security::common_name("twin_turret", "CH1"), now - 48h, now - 24h);
+  write_text(ch1.certificate, expired.certificate_pem);
+  write_text(ch1.private_key, expired.key_pem);
+  expect_refused(ch1.certificate, "expired", "expired");
+
+  const security::KeyAndCertificate stranger =
+      security::make_ca("CA.stranger", now - 1h, now + 24h);
+  const security::KeyAndCertificate foreign = security::make_identity(
+      stranger, security::common_name("twin_turret", "CH1"), now - 1h, now + 24h);
+  write_text(ch1.certificate, foreign.certificate_pem);
+  write_text(ch1.private_key, foreign.key_pem);
+  expect_refused(ch1.certificate, ch1.ca_certificate, "wrong CA");
+
+  write_text(ch1.certificate, good_certificate);
+  fs::remove(ch1.private_key);
+  expect_refused(ch1.private_key, "cannot read", "missing key");
+
+  write_text(ch1.private_key, "-----BEGIN PRIVATE KEY-----\ngarbage\n-----END PRIVATE KEY-----\n");
+  expect_refused(ch1.private_key, "not an unencrypted PEM private key", "unreadable key");
+
+  // With its files back the machine runs, secured.
+  write_text(ch1.private_key, good_key);
+  const RunResult good = run({bin("mcnc"), "run", machine.path(), "--program",
+                              "CH1=" + write_text(machine.file("short.nc"), "G00 X20 Z5\nM30\n")},
+                             -1, 240s);
+  EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+}

@@ -236,8 +236,26 @@ TEST(Security, BadCertificatesStopTheStartNamingTheFileAndNothingStarts) {
   write_text(ch1.private_key, "-----BEGIN PRIVATE KEY-----\ngarbage\n-----END PRIVATE KEY-----\n");
   expect_refused(ch1.private_key, "not an unencrypted PEM private key", "unreadable key");
 
-  // With its files back the machine runs, secured.
   write_text(ch1.private_key, good_key);
+  // Nor does a secured machine that mixes the implementations (their handshakes fail), or one
+  // on a domain above Cyclone DDS's access control's 230.
+  const std::string file = slurp(machine.path());
+  write_text(machine.path(), std::regex_replace(file, std::regex("  - name: CH1\n"),
+                                                "  - name: CH1\n    middleware: fastdds\n"));
+  RunResult refused = run(
+      {bin("mcnc"), "run", machine.path(), "--program", "CH1=" + machine.file("ch1.nc")}, -1, 60s);
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_NE(refused.err.find("runs every process on one DDS implementation, but launch runs on "
+                             "cyclonedds and CH1 on fastdds"),
+            std::string::npos)
+      << refused.err;
+  write_text(machine.path(), file);
+  refused = run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + machine.file("ch1.nc")},
+                231, 60s);
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_NE(refused.err.find("domains 0-230"), std::string::npos) << refused.err;
+
+  // With its files back the machine runs, secured.
   const RunResult good = run({bin("mcnc"), "run", machine.path(), "--program",
                               "CH1=" + write_text(machine.file("short.nc"), "G00 X20 Z5\nM30\n")},
                              -1, 240s);

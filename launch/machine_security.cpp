@@ -66,7 +66,7 @@ bool check_machine_security(const config::MachineConfig& machine, const std::str
     return false;
   }
   // Cyclone DDS 0.10 and Fast DDS 2.9 encode the handshake's Diffie-Hellman key differently:
-  // between the two, half the handshakes fail (decision 84).
+  // between the two, half the handshakes fail (decision 73).
   const std::vector<std::string> processes = dds_process_names(machine, with_hmi);
   const dds::Middleware first = process::resolve_middleware(machine, processes.front());
   for (const std::string& process : processes) {

@@ -1,7 +1,7 @@
 #pragma once
 // Where `mcnc certs` puts a machine's DDS Security files, and which of them a process presents
 // (docs/operations.md, "Security"). One CA signs the identities, the governance and the
-// permissions (decision 80); every identity shares the one permissions document, whose grant for
+// permissions (decision 69); every identity shares the one permissions document, whose grant for
 // its subject name says what it may write.
 #include <string>
 #include <vector>

@@ -60,7 +60,7 @@ Identity launcher_identity(std::string name) {
 }
 
 // Every domain a secured machine may run on: the CA, not the domain, tells machines apart, and
-// MCNC_DOMAIN moves a machine to another domain (decision 81).
+// MCNC_DOMAIN moves a machine to another domain (decision 70).
 const std::string kAllDomains = "<domains><id_range><min>0</min><max>" +
                                 std::to_string(kMaxSecuredDomain) + "</max></id_range></domains>";
 

@@ -1,5 +1,5 @@
 #pragma once
-// What each identity of a machine may write, from its machine file (decision 81), and the
+// What each identity of a machine may write, from its machine file (decision 70), and the
 // governance and permissions documents that say so to DDS Security's builtin access control.
 // Text only: signing and files are pki.hpp's and the `mcnc certs` command's.
 #include "common/config/machine_config.hpp"
@@ -36,7 +36,7 @@ struct Identity {
 [[nodiscard]] std::string common_name(const std::string& machine, const std::string& identity);
 [[nodiscard]] std::string subject_name(const std::string& machine, const std::string& identity);
 
-// How the samples of the machine's topics are protected on the network (decision 82).
+// How the samples of the machine's topics are protected on the network (decision 71).
 // access_control: authenticated participants and the permissions only; sign: each submessage
 // also signed (GMAC); encrypt: also encrypted (AES-GCM), for a link between hosts that others
 // can read.

@@ -35,7 +35,7 @@ std::filesystem::path write_directory() {
   std::filesystem::create_directories(dir);
   for (int k = 0; k < kCount; ++k) {
     std::ofstream(dir / ("O" + std::to_string(kFirst + k) + ".nc"))
-        << "O" << kFirst + k << "\nG01 W-1. F2000\nW1.\nM99\n";
+        << "O" << kFirst + k << "\nG01 W-1. F4000\nW1.\nM99\n";
   }
   return dir;
 }
@@ -49,7 +49,7 @@ std::string program(int repeats) {
       p << "M98 P" << kFirst + k << "\n";
     }
     p << "#10=0\nWHILE[#10LT8]DO1\n#11=SIN[#10*10]*COS[#10*5]\n#10=#10+1\nEND1\n";
-    p << "G71 U1. R0.5\nG71 P" << 1000 + r * 2 << " Q" << 1001 + r * 2 << " U0.4 W0.1 F800\n";
+    p << "G71 U1. R0.5\nG71 P" << 1000 + r * 2 << " Q" << 1001 + r * 2 << " U0.4 W0.1 F4000\n";
     p << "N" << 1000 + r * 2 << " G00 X20.\n";
     for (int i = 1; i < 99; ++i) {
       p << "G01 X" << 20.0 + 0.6 * i << " Z" << -1.0 * i << "\n";
@@ -150,6 +150,11 @@ int main(int argc, char** argv) {
     }
   }
   std::filesystem::remove_all(dir);
+  const auto over = [&](std::int64_t ns) {
+    return std::count_if(took.begin(), took.end(), [&](std::int64_t t) { return t > ns; });
+  };
+  std::printf("cycles over 50 us: %td, over 200 us: %td, over 1 ms: %td\n", over(50'000),
+              over(200'000), over(1'000'000));
   std::printf("cycle duration: median %.1f us, p99 %.1f us, p99.99 %.1f us, max %.1f us\n",
               percentile(took, 0.5), percentile(took, 0.99), percentile(took, 0.9999),
               percentile(took, 1.0));

@@ -261,6 +261,7 @@ void ChannelController::forget_program_run() noexcept {
 
 void ChannelController::finish_reset() noexcept {
   resetting_ = false;
+  source_.abandon();
   release_caller(CallOutcome::aborted);  // a caller waiting for this channel goes on with an alarm
   serving_.reset();
   forget_program_run();

@@ -70,6 +70,9 @@ class CommandSource {
   virtual void adopt(CheckedProgram program) noexcept { (void)program; }
   // The checked MDI blocks that the next start_mdi() starts.
   virtual void prepare_mdi(CheckedProgram blocks) noexcept { (void)blocks; }
+  // The run under way ended without its end (a reset): nothing more of it is pulled. A source
+  // that reads ahead stops reading it.
+  virtual void abandon() noexcept {}
   // Whether the channel has its own program, free of alarms.
   [[nodiscard]] virtual bool has_program() const noexcept { return false; }
 };

@@ -61,7 +61,33 @@ bool ReadAhead::peer_write(std::int64_t number, interp::macro::MacroValue value)
   *w = SharedWrite{number, value};
   peer_writes_.publish();
   ++peer_writes_posted_;
+  if (!expecting_) {
+    visible_writes_.store(peer_writes_posted_, std::memory_order_release);
+    ring_bell();
+  }
   return true;
+}
+
+void ReadAhead::ring_bell() noexcept {
+  bell_.fetch_add(1, std::memory_order_release);
+  bell_.notify_one();
+}
+
+void ReadAhead::thread_stands() noexcept {
+  expecting_ = false;
+  visible_writes_.store(peer_writes_posted_, std::memory_order_release);
+  ring_bell();
+}
+
+void ReadAhead::abandon() noexcept {
+  // A newer run that nobody starts: the thread stops reading the old one. Its shared writes
+  // still reach writes_out in order (ready() passes the old run's on at the next start).
+  ++run_;
+  latest_run_.store(run_, std::memory_order_release);
+  passed_stop_ = false;
+  has_position_ = false;
+  has_skip_ = false;
+  thread_stands();
 }
 
 // --- the cycle's side ---
@@ -79,8 +105,7 @@ ReadAhead::Order* ReadAhead::order_slot() noexcept {
 
 void ReadAhead::post() noexcept {
   orders_.publish();
-  bell_.fetch_add(1, std::memory_order_release);
-  bell_.notify_one();
+  ring_bell();
 }
 
 ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVector& at) noexcept {
@@ -185,21 +210,22 @@ bool ReadAhead::ready() noexcept {
   for (;;) {
     Entry* e = entries_.front();
     if (e != nullptr) {
-      if (e->run != run_) {
-        entries_.pop();  // read ahead for a run that was abandoned
-      } else if (e->kind == Entry::Kind::shared_write) {
+      if (e->kind == Entry::Kind::shared_write) {
+        // Evaluated, so in this channel's own copy: the partners get it too, even from a run
+        // that was abandoned.
         if (writes_out_ != nullptr) {
           writes_out_->on_shared_write(e->write.number, e->write.value);
         }
         entries_.pop();
+      } else if (e->run != run_) {
+        entries_.pop();  // read ahead for a run that was abandoned
       } else if (e->kind == Entry::Kind::started) {
         block_count_ = e->block_count;
         entries_.pop();
       } else {
         return true;
       }
-      bell_.fetch_add(1, std::memory_order_release);
-      bell_.notify_one();
+      ring_bell();
       continue;
     }
     if (passed_stop_) {
@@ -248,13 +274,12 @@ std::optional<interp::PullResult> ReadAhead::next() {
     out.emplace(std::move(e->pulled));
   }
   entries_.pop();
-  bell_.fetch_add(1, std::memory_order_release);
-  bell_.notify_one();
+  ring_bell();
   const auto* c = out ? std::get_if<interp::Command>(&*out) : nullptr;
   if (c == nullptr || c->op == interp::Op::end) {
-    expecting_ = false;  // the run is over: an alarm, the end, or nothing left
+    thread_stands();  // the run is over: an alarm, the end, or nothing left
   } else if (c->barrier) {
-    expecting_ = false;
+    thread_stands();
     passed_stop_ = true;
   }
   return out;
@@ -283,6 +308,9 @@ void ReadAhead::run_thread() noexcept {
       read_until_stop();
       continue;
     }
+    // Standing: the partners' writes posted since reach the interpreter now, so that they
+    // never pile up while a channel stands.
+    apply_peer_writes(visible_writes_.load(std::memory_order_acquire));
     bell_.wait(bell, std::memory_order_acquire);
   }
 }
@@ -417,9 +445,20 @@ void ReadAhead::read_until_stop() noexcept {
 
 void ReadAhead::Relay::on_shared_write(std::int64_t number,
                                        interp::macro::MacroValue value) noexcept {
-  Entry* e = owner_.room();
+  // Written already in this channel's copy: it must reach the partners, even from a run that
+  // was abandoned, so the thread waits for room (the cycle passes such writes on at the next
+  // start). Only a stop of the thread loses it.
+  Entry* e = nullptr;
+  for (;;) {
+    const std::uint32_t bell = owner_.bell_.load(std::memory_order_acquire);
+    e = owner_.entries_.claim();
+    if (e != nullptr || owner_.stopping_.load(std::memory_order_acquire)) {
+      break;
+    }
+    owner_.bell_.wait(bell, std::memory_order_acquire);
+  }
   if (e == nullptr) {
-    return;  // the run was abandoned: nobody takes its writes
+    return;
   }
   e->kind = Entry::Kind::shared_write;
   e->run = owner_.thread_run_;

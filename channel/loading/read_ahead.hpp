@@ -82,6 +82,7 @@ class ReadAhead final : public interp::CommandSource {
   void adopt(interp::CheckedProgram program) noexcept override;
   void prepare_mdi(interp::CheckedProgram blocks) noexcept override;
   [[nodiscard]] bool has_program() const noexcept override { return has_program_; }
+  void abandon() noexcept override;
 
  private:
   struct SharedWrite {
@@ -125,6 +126,9 @@ class ReadAhead final : public interp::CommandSource {
   };
 
   // Cycle side.
+  void ring_bell() noexcept;
+  // The thread stands (a stop, the end, an alarm, no run): what partners wrote may reach it.
+  void thread_stands() noexcept;
   // The next order's slot; nullptr (and the alarm) when the queue is full.
   Order* order_slot() noexcept;
   void post() noexcept;
@@ -152,6 +156,10 @@ class ReadAhead final : public interp::CommandSource {
   // The thread waits on this for orders and for room; the cycle adds 1 to wake it.
   std::atomic<std::uint32_t> bell_{0};
   std::atomic<std::uint64_t> latest_run_{0};  // the newest start the cycle posted
+  // Partners' writes the thread may apply while it is not reading (idle, or parked at a stop):
+  // those posted while the cycle expected nothing of it, so never one posted after an order
+  // that made it read on.
+  std::atomic<std::uint64_t> visible_writes_{0};
   std::atomic<bool> stopping_{false};
 
   // The cycle's own state.

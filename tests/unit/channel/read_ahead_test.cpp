@@ -305,5 +305,56 @@ TEST(ReadAhead, ACallsAlarmIsTheFirstPullsAnswer) {
   EXPECT_EQ(source.called_args_, 2U);
 }
 
+TEST(ReadAhead, PartnersWritesNeverPileUpWhileTheChannelStands) {
+  interp::macro::VariableStore shared(interp::macro::MacroDialect{});
+  ScriptSource source(3, {});
+  source.shared_ = &shared;
+  ReadAhead r(nullptr, &shared);
+  r.set_lockstep(true);
+  r.start(source);
+  // Idle, no run: ten times what the queue holds, as a partner writing in a loop would.
+  // The thread applies them as they come: a full queue empties again.
+  for (int i = 1; i <= static_cast<int>(ReadAhead::kPeerWrites) * 10; ++i) {
+    const auto until = std::chrono::steady_clock::now() + 10s;
+    while (!r.peer_write(600, interp::macro::MacroValue::of(i))) {
+      ASSERT_LT(std::chrono::steady_clock::now(), until) << "write " << i << " never taken";
+      std::this_thread::sleep_for(1ms);
+    }
+  }
+  r.rewind({});
+  EXPECT_EQ(take_until_stop(r), (std::vector<int>{1, 2, 3, 4}));
+  r.stop();
+  ASSERT_FALSE(source.seen_600_.empty());
+  EXPECT_DOUBLE_EQ(source.seen_600_.front(), static_cast<double>(ReadAhead::kPeerWrites) * 10);
+}
+
+TEST(ReadAhead, TheSharedWritesOfARunAbandonedByAResetStillReachThePartners) {
+  ScriptSource source(600, {});
+  source.writes_at_ = {5, 400};
+  TakenWrites out;
+  int taken = 0;
+  out.taken = &taken;
+  ReadAhead r(&out, nullptr);
+  source.sink_ = &r.interpreter_sink();
+  r.set_lockstep(true);
+  r.start(source);
+  r.rewind({});
+  ASSERT_TRUE(r.ready());
+  EXPECT_EQ(std::get<Command>(*r.next()).line, 1);  // the cycle took one command, then a reset
+  const auto until = std::chrono::steady_clock::now() + 10s;
+  while (source.pulls_.load() < 20 && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(1ms);  // the thread reads the old run ahead, past line 5
+  }
+  r.abandon();
+  r.rewind({});
+  ASSERT_TRUE(r.ready());
+  EXPECT_EQ(std::get<Command>(*r.next()).line, 1);
+  // #500 = 5 was evaluated (the thread read past line 5 before the reset came): in this
+  // channel's copy, so the partners get it too. Line 400 lies beyond the window: never.
+  ASSERT_GE(out.writes.size(), 1U);
+  EXPECT_DOUBLE_EQ(out.writes[0].value, 5.0);
+  EXPECT_EQ(out.writes[0].taken_before, 0);
+}
+
 }  // namespace
 }  // namespace mcnc::channel

@@ -83,7 +83,8 @@ TEST(DwellWait, PsEndsAtTheSpindlesActualSpeedAndIAtThePlcInput) {
     }
   }
   // G04 PS0 (line 7) waited for the stop, which came at the end of M05's ramp down: still
-  // turning over the 10 ms before the block ended, at rest over the 10 ms after.
+  // turning over the 10 ms before the block ended, at rest over the 10 ms after (line 8 dwells,
+  // so that the trace has them: a run that ends at once may end before them).
   EXPECT_GT(rpm(start.at(8) - 10, start.at(8)), 10.0);
   EXPECT_LT(std::abs(rpm(start.at(8), start.at(8) + 10)), 10.0);
   EXPECT_GT(start.at(8), start.at(7) + 30);

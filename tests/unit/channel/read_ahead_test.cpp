@@ -131,6 +131,14 @@ class TakenWrites final : public interp::macro::SharedWriteSink {
   const int* taken = nullptr;
 };
 
+// In lockstep, `source` telling its shared writes to `r`, a run started.
+void start_writing_run(ReadAhead& r, ScriptSource& source) {
+  source.sink_ = &r.interpreter_sink();
+  r.set_lockstep(true);
+  r.start(source);
+  r.rewind({});
+}
+
 // Takes commands in lockstep until the end or a stop; the lines taken.
 std::vector<int> take_until_stop(ReadAhead& r, int* taken = nullptr) {
   std::vector<int> lines;
@@ -211,10 +219,7 @@ TEST(ReadAhead, TheChannelsSharedWritesReachTheCycleWithTheCommandAfterThem) {
   int taken = 0;
   out.taken = &taken;
   ReadAhead r(&out, nullptr);
-  source.sink_ = &r.interpreter_sink();
-  r.set_lockstep(true);
-  r.start(source);
-  r.rewind({});
+  start_writing_run(r, source);
   (void)take_until_stop(r, &taken);
   ASSERT_EQ(out.writes.size(), 3U);
   // Written while line k was evaluated, before its command: seen once k-1 commands were taken.
@@ -335,10 +340,7 @@ TEST(ReadAhead, TheSharedWritesOfARunAbandonedByAResetStillReachThePartners) {
   int taken = 0;
   out.taken = &taken;
   ReadAhead r(&out, nullptr);
-  source.sink_ = &r.interpreter_sink();
-  r.set_lockstep(true);
-  r.start(source);
-  r.rewind({});
+  start_writing_run(r, source);
   ASSERT_TRUE(r.ready());
   EXPECT_EQ(std::get<Command>(*r.next()).line, 1);  // the cycle took one command, then a reset
   const auto until = std::chrono::steady_clock::now() + 10s;

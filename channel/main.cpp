@@ -19,7 +19,6 @@
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
-#include "common/text/text_lines.hpp"
 #include "common/trace/trace_writer.hpp"
 
 #include <spdlog/spdlog.h>
@@ -28,7 +27,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 using namespace std::chrono_literals;
 using namespace mcnc;
@@ -97,21 +95,21 @@ int main(int argc, char** argv) {
   if (!program_dir.empty()) {
     interp_config.program_dir = program_dir;
   }
-  interp::InterpreterSource interpreter(interp_config);
-  std::vector<std::string> program_lines;
+  // A command's block text is kept while the controller may show it: in the read-ahead's
+  // window, the planner's and the few blocks the controller holds besides.
+  const motion::MotionConfig motion_config = channel::motion_config_for(machine, *ch);
+  constexpr std::size_t kHeldBesides = 64;
+  interp::InterpreterSource interpreter(
+      interp_config, channel::ReadAhead::kWindow + motion_config.lookahead_blocks + kHeldBesides);
   std::string program_name;
   std::optional<interp::ProgramAlarm> load_alarm;
   if (!program_path.empty()) {
-    std::ifstream file(program_path);
-    std::stringstream content;
-    content << file.rdbuf();
-    program_lines = text::split_lines(content.str());
     program_name = program_path.substr(program_path.find_last_of('/') + 1);
-    load_alarm = interpreter.load(content.str(), program_name);
+    load_alarm = interpreter.load_file(program_path, program_name);
   }
   // Programs the operator selects and MDI blocks are checked off the cycle.
   channel::ProgramLoader loader(interp_config);
-  motion::MotionPlanner planner(channel::motion_config_for(machine, *ch), interp::AxisVector{});
+  motion::MotionPlanner planner(motion_config, interp::AxisVector{});
   setup.shared_writes = &shared_writes;
   read_ahead.start(interpreter);
   // The thread stops before the interpreter it reads goes, on every way out.
@@ -144,7 +142,7 @@ int main(int argc, char** argv) {
       plc.emplace(node, gate, plc_input, static_cast<std::uint32_t>(ch->id));
     }
     channel::ChannelOutputs outputs(node, tracer, *ch, config::channel_names(machine), axes,
-                                    layout.spindles, program_name, program_lines, shared_writes);
+                                    layout.spindles, program_name, shared_writes);
     channel::OperatorRequests operator_requests(node, tracer, *ch, loader, controller, read_ahead,
                                                 outputs);
 

@@ -13,11 +13,12 @@ namespace mcnc::interp {
 // next(): a command, or an alarm (the program stops there), or nullopt when nothing is left.
 using PullResult = std::variant<Command, ProgramAlarm>;
 
-// A program checked before it runs (InterpreterSource::check): its text, its block count and
-// the first alarm of its dry run.
+// A program checked before it runs (InterpreterSource::check): where its blocks are, its
+// block count and the first alarm of its dry run.
 struct CheckedProgram {
   std::string name;
-  std::string text;
+  std::string text;  // the blocks, when they came as a text (MDI blocks, a test's program)
+  std::string path;  // else the file they are read from as they run
   std::size_t block_count = 0;
   std::optional<ProgramAlarm> alarm;
 };

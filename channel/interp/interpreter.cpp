@@ -13,6 +13,11 @@ std::optional<ProgramAlarm> Interpreter::start(std::string text, const std::stri
   return run_->start_text(std::move(text), file_name);
 }
 
+std::optional<ProgramAlarm> Interpreter::start_file(const std::string& path,
+                                                    const std::string& file_name) {
+  return run_->start_file(path, file_name);
+}
+
 std::optional<ProgramAlarm> Interpreter::start_number(int number) {
   return run_->start_number(number);
 }

@@ -5,8 +5,9 @@
 // read-ahead barrier (Command::barrier) is never looked past: a channel that holds its pulls at
 // a G04.1 has not evaluated the IF[#500...] after it.
 //
-// Pure: no I/O except reading programs (the program directory) and the retained-variable file;
-// no DDS, no threads, no clock (timers come through InterpreterEnvironment).
+// Pure: no I/O except reading programs (their files, the program directory) and the
+// retained-variable file; no DDS, no threads, no clock (timers come through
+// InterpreterEnvironment).
 #include "channel/interp/command.hpp"
 #include "channel/interp/interp_config.hpp"
 #include "channel/interp/macro/variable_store.hpp"
@@ -46,6 +47,9 @@ class Interpreter {
   // by number (M98, G65, ...) before the program directory is searched. Every line of a program
   // is parsed when the program is loaded, so a syntax error is an alarm before anything moves.
   std::optional<ProgramAlarm> start(std::string text, const std::string& file_name);
+  // The same from the file at `path`, read as the program runs, never whole: memory does not
+  // grow with the program (`file_name`: the file's name in alarms and commands).
+  std::optional<ProgramAlarm> start_file(const std::string& path, const std::string& file_name);
   // Starts program O<number> of the program directory.
   std::optional<ProgramAlarm> start_number(int number);
   // Starts O<number> of the program directory for a G144 call of another channel: locals

@@ -2,6 +2,8 @@
 
 #include "channel/interp/program_alarms.hpp"
 
+#include <algorithm>
+
 namespace mcnc::interp {
 
 namespace {
@@ -74,22 +76,32 @@ int alarm_for(const Command& c, const InterpreterConfig& config) {
   return bad_word ? alarm::kBadWordValue : alarm::kNotInThisVersion;
 }
 
+// Room each kept block text has from the start, so that keeping one allocates only for a
+// longer line.
+constexpr std::size_t kTypicalLine = 128;
+
 }  // namespace
 
-InterpreterSource::InterpreterSource(InterpreterConfig config) : config_(std::move(config)) {}
+InterpreterSource::InterpreterSource(InterpreterConfig config, std::size_t texts_kept)
+    : config_(std::move(config)), texts_(std::max<std::size_t>(texts_kept, 1)) {
+  for (std::string& t : texts_) {
+    t.reserve(kTypicalLine);
+  }
+}
 
 InterpreterSource::~InterpreterSource() = default;
 
-CheckedProgram InterpreterSource::check(const InterpreterConfig& config, std::string text,
-                                        std::string name, bool mdi) {
-  CheckedProgram checked{std::move(name), std::move(text), 0, std::nullopt};
+InterpreterConfig InterpreterSource::dry_config(const InterpreterConfig& config) {
   InterpreterConfig dry = config;
   dry.retained_file.clear();       // a dry run must not write the retained variables
   dry.shared_variables = nullptr;  // nor tell the other channels of its writes
   dry.shared_sink = nullptr;
-  Interpreter probe(dry);
+  return dry;
+}
+
+void InterpreterSource::dry_run(const InterpreterConfig& config, Interpreter& probe,
+                                CheckedProgram& checked) {
   std::optional<ProgramAlarm>& alarm = checked.alarm;
-  alarm = mdi ? probe.start_mdi(checked.text) : probe.start(checked.text, checked.name);
   checked.block_count = alarm ? 0 : probe.main_block_count();
   for (int i = 0; i < kDryRunCommands && !alarm; ++i) {
     std::optional<InterpResult> r = probe.next();
@@ -109,6 +121,23 @@ CheckedProgram InterpreterSource::check(const InterpreterConfig& config, std::st
       break;
     }
   }
+}
+
+CheckedProgram InterpreterSource::check(const InterpreterConfig& config, std::string text,
+                                        std::string name, bool mdi) {
+  CheckedProgram checked{std::move(name), std::move(text), std::string(), 0, std::nullopt};
+  Interpreter probe(dry_config(config));
+  checked.alarm = mdi ? probe.start_mdi(checked.text) : probe.start(checked.text, checked.name);
+  dry_run(config, probe, checked);
+  return checked;
+}
+
+CheckedProgram InterpreterSource::check_file(const InterpreterConfig& config, std::string path,
+                                             std::string name) {
+  CheckedProgram checked{std::move(name), std::string(), std::move(path), 0, std::nullopt};
+  Interpreter probe(dry_config(config));
+  checked.alarm = probe.start_file(checked.path, checked.name);
+  dry_run(config, probe, checked);
   return checked;
 }
 
@@ -118,8 +147,15 @@ std::optional<ProgramAlarm> InterpreterSource::load(const std::string& program_t
   return load_alarm_;
 }
 
+std::optional<ProgramAlarm> InterpreterSource::load_file(const std::string& path,
+                                                         const std::string& program_name) {
+  adopt(check_file(config_, path, program_name));
+  return load_alarm_;
+}
+
 void InterpreterSource::adopt(CheckedProgram program) noexcept {
   text_ = std::move(program.text);
+  path_ = std::move(program.path);
   name_ = std::move(program.name);
   block_count_ = program.block_count;
   run_blocks_ = block_count_;  // adopted while no run is under way: the status shows its count
@@ -150,7 +186,8 @@ void InterpreterSource::rewind(const AxisVector& current) {
     return;
   }
   start_interpreter(current);
-  run_alarm_ = interpreter_->start(text_, name_);
+  run_alarm_ =
+      path_.empty() ? interpreter_->start(text_, name_) : interpreter_->start_file(path_, name_);
 }
 
 std::optional<ProgramAlarm> InterpreterSource::call(int number,
@@ -337,14 +374,22 @@ std::optional<PullResult> InterpreterSource::next() {
     run_alarm_ = *alarm;
     return PullResult{*alarm};
   }
-  const Command& c = std::get<Command>(*r);
+  Command& c = std::get<Command>(*r);
   std::string why;
   if (for_channel(c, why, config_)) {
-    return PullResult{c};
+    keep_text(c);
+    return PullResult{std::move(c)};
   }
   run_alarm_ =
       ProgramAlarm{alarm_for(c, config_), why, c.file != nullptr ? *c.file : name_, c.line, 0};
   return PullResult{*run_alarm_};
+}
+
+void InterpreterSource::keep_text(Command& c) {
+  std::string& kept = texts_[next_text_];
+  next_text_ = (next_text_ + 1) % texts_.size();
+  kept.assign(c.block_text);
+  c.block_text = kept;
 }
 
 }  // namespace mcnc::interp

@@ -11,12 +11,16 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace mcnc::interp {
 
 class InterpreterSource final : public CommandSource {
  public:
-  explicit InterpreterSource(InterpreterConfig config);
+  // `texts_kept`: how many commands pulled later a command's block_text is still valid (each
+  // is copied here: the interpreter keeps a program's lines only for a window of it).
+  explicit InterpreterSource(InterpreterConfig config, std::size_t texts_kept = kTextsKept);
+  static constexpr std::size_t kTextsKept = 1024;
   ~InterpreterSource() override;
 
   // Parses the whole text, then interprets it to its end from machine position 0 (a dry run of
@@ -26,10 +30,16 @@ class InterpreterSource final : public CommandSource {
   // Touches no source: it may run on another thread than the channel's cycle, and take long.
   static CheckedProgram check(const InterpreterConfig& config, std::string text, std::string name,
                               bool mdi);
+  // The same for the program file at `path`, read line by line (named `name` in alarms): the
+  // check and each run read it again, and never hold it whole.
+  static CheckedProgram check_file(const InterpreterConfig& config, std::string path,
+                                   std::string name);
   static constexpr int kDryRunCommands = 1000000;
   // check(), then adopt(). Returns the program's first alarm, or nullopt.
   std::optional<ProgramAlarm> load(const std::string& program_text,
                                    const std::string& program_name);
+  // check_file(), then adopt().
+  std::optional<ProgramAlarm> load_file(const std::string& path, const std::string& program_name);
   // block_count() is the adopted program's from then on.
   void adopt(CheckedProgram program) noexcept override;
   void prepare_mdi(CheckedProgram blocks) noexcept override;
@@ -53,9 +63,15 @@ class InterpreterSource final : public CommandSource {
  private:
   // A fresh interpreter at `current` for a run.
   void start_interpreter(const AxisVector& current);
+  // The dry run of check() over a started probe.
+  static void dry_run(const InterpreterConfig& config, Interpreter& probe, CheckedProgram& checked);
+  static InterpreterConfig dry_config(const InterpreterConfig& config);
+  // `c`'s block_text, as a copy that outlives the interpreter's window.
+  void keep_text(Command& c);
 
   InterpreterConfig config_;
   std::string text_;
+  std::string path_;
   std::string name_;
   std::unique_ptr<Interpreter> interpreter_;
   std::optional<ProgramAlarm> load_alarm_;  // the channel's own program, found at load()
@@ -66,6 +82,8 @@ class InterpreterSource final : public CommandSource {
   bool loaded_ = false;
   std::string mdi_text_;  // prepared by prepare_mdi()
   std::size_t mdi_blocks_ = 0;
+  std::vector<std::string> texts_;  // a ring: the block texts of the last commands pulled
+  std::size_t next_text_ = 0;
 };
 
 }  // namespace mcnc::interp

@@ -122,8 +122,23 @@ parse::StructureLimits ProgramRun::structure_limits() const {
 }
 
 std::optional<ProgramAlarm> ProgramRun::start_text(std::string text, const std::string& file_name) {
-  program::SplitResult split =
-      program::split_programs(std::make_shared<const std::string>(std::move(text)), file_name);
+  return start_programs(
+      program::split_programs(program::TextSource::of_text(std::move(text)), file_name), file_name);
+}
+
+std::optional<ProgramAlarm> ProgramRun::start_file(const std::string& path,
+                                                   const std::string& file_name) {
+  std::string error;
+  std::shared_ptr<const program::TextSource> text = program::TextSource::open_file(path, error);
+  if (!text) {
+    return ProgramAlarm{program::alarm::kFileUnreadable,
+                        "cannot read program file " + file_name + ": " + error, file_name, 0, 0};
+  }
+  return start_programs(program::split_programs(std::move(text), file_name), file_name);
+}
+
+std::optional<ProgramAlarm> ProgramRun::start_programs(program::SplitResult split,
+                                                       const std::string& file_name) {
   if (split.alarm) {
     return split.alarm;
   }
@@ -330,9 +345,9 @@ void ProgramRun::release_through_lookahead() {
 bool ProgramRun::step() {
   Frame& f = frames_.back();
   const parse::ParsedProgram& p = *f.program;
-  if (f.pc >= static_cast<int>(p.lines.size())) {
+  if (f.pc >= p.size()) {
     file_ = &p.file;
-    line_ = p.lines.empty() ? nullptr : &p.lines.back();
+    line_ = p.line(p.size() - 1);
     if (f.kind == CallKind::main && frames_.size() == 1 && mdi_) {
       end_program(0);  // MDI blocks end with their text
       return true;
@@ -344,7 +359,12 @@ bool ProgramRun::step() {
                 "subprogram " + label(p.number.value_or(0)) + " ends without M99", 0);
   }
   const int index = f.pc++;
-  const parse::Line& line = p.lines[static_cast<std::size_t>(index)];
+  const parse::Line* read = p.line(index);
+  if (read == nullptr) {
+    alarm_ = p.read_alarm();
+    return false;
+  }
+  const parse::Line& line = *read;
   if (line.skip_level > 0 && config_.block_skip[static_cast<std::size_t>(line.skip_level)]) {
     return true;
   }
@@ -357,10 +377,10 @@ bool ProgramRun::step() {
 // ---------------------------------------------------------------------------------------------
 // Macro statements
 
-// Expressions live in the arena of the program being executed, which holds `s`.
+// Expressions live in the arena of the line being executed, which holds `s`.
 bool ProgramRun::evaluate(const parse::Statement& /*s*/, int expression, macro::MacroValue& out) {
-  const macro::EvalResult r = macro::evaluate(
-      frames_.back().program->arena.expressions[static_cast<std::size_t>(expression)], vars_);
+  const macro::EvalResult r =
+      macro::evaluate(line_->arena->expressions[static_cast<std::size_t>(expression)], vars_);
   if (r.alarm) {
     return fail_macro(r.alarm);
   }
@@ -379,7 +399,6 @@ bool ProgramRun::condition(const parse::Statement& s, int expression, bool& out)
 
 bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statement& s) {
   const parse::ParsedProgram& p = *frames_.back().program;
-  const auto at = [&](const std::vector<int>& v) { return v[static_cast<std::size_t>(index)]; };
   switch (s.kind) {
     case parse::StatementKind::empty:
     case parse::StatementKind::endif:
@@ -415,8 +434,13 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
       if (c) {
         return true;
       }
-      for (int j = at(p.partner); j >= 0;) {
-        const parse::Line& branch = p.lines[static_cast<std::size_t>(j)];
+      for (int j = p.partner(index); j >= 0;) {
+        const parse::Line* read = p.line(j);
+        if (read == nullptr) {
+          alarm_ = p.read_alarm();
+          return false;
+        }
+        const parse::Line& branch = *read;
         if (branch.statement.kind == parse::StatementKind::elif) {
           line_ = &branch;
           bool taken = false;
@@ -427,7 +451,7 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
             frames_.back().pc = j + 1;
             return true;
           }
-          j = p.partner[static_cast<std::size_t>(j)];
+          j = p.partner(j);
           continue;
         }
         frames_.back().pc = j + 1;  // ELSE body, or past ENDIF
@@ -438,7 +462,7 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
     case parse::StatementKind::elif:
     case parse::StatementKind::else_branch:
       // Reached in sequence: the branch before it ran; continue after ENDIF.
-      frames_.back().pc = at(p.endif_of) + 1;
+      frames_.back().pc = p.endif_of(index) + 1;
       return true;
     case parse::StatementKind::while_do: {
       bool c = false;
@@ -446,25 +470,23 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
         return false;
       }
       if (!c) {
-        frames_.back().pc = at(p.partner) + 1;
+        frames_.back().pc = p.partner(index) + 1;
       }
       return true;
     }
     case parse::StatementKind::loop_end:
-      frames_.back().pc = at(p.partner);
+      frames_.back().pc = p.partner(index);
       return true;
     case parse::StatementKind::loop_break:
     case parse::StatementKind::loop_continue: {
-      const int w = at(p.loop_of);
+      const int w = p.loop_of(index);
       if (w < 0) {
         return fail(alarm::kLoopControl,
                     s.kind == parse::StatementKind::loop_break ? "BREAK outside a WHILE loop"
                                                                : "CONTINUE outside a WHILE loop",
                     s.column);
       }
-      frames_.back().pc = s.kind == parse::StatementKind::loop_break
-                              ? p.partner[static_cast<std::size_t>(w)] + 1
-                              : w;
+      frames_.back().pc = s.kind == parse::StatementKind::loop_break ? p.partner(w) + 1 : w;
       return true;
     }
     case parse::StatementKind::channel_only:
@@ -481,7 +503,7 @@ bool ProgramRun::execute(const parse::Line& line, int index, const parse::Statem
 }
 
 const std::string& ProgramRun::message_of(const parse::Line& line) const {
-  return frames_.back().program->arena.messages[static_cast<std::size_t>(line.message)];
+  return line.arena->messages[static_cast<std::size_t>(line.message)];
 }
 
 bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
@@ -531,32 +553,13 @@ bool ProgramRun::assign(const parse::Line& line, const parse::Statement& s) {
 
 int ProgramRun::find_sequence(const parse::ParsedProgram& p, std::int64_t n, int from,
                               parse::GotoDirection direction, int column) {
-  const auto it = p.sequence_lines.find(n);
-  if (it != p.sequence_lines.end()) {
-    const std::vector<int>& at = it->second;
-    switch (direction) {
-      case parse::GotoDirection::wrap:
-        for (int i : at) {
-          if (i > from) {
-            return i;
-          }
-        }
-        return at.front();
-      case parse::GotoDirection::forward:
-        for (int i : at) {
-          if (i > from) {
-            return i;
-          }
-        }
-        break;
-      case parse::GotoDirection::backward:
-        for (auto r = at.rbegin(); r != at.rend(); ++r) {
-          if (*r <= from) {
-            return *r;
-          }
-        }
-        break;
-    }
+  const int found = p.find_sequence(n, from, direction);
+  if (found >= 0) {
+    return found;
+  }
+  if (p.read_alarm()) {
+    alarm_ = p.read_alarm();
+    return -1;
   }
   fail(alarm::kSequenceNotFound,
        "sequence number N" + std::to_string(n) + " not found in " +
@@ -718,11 +721,7 @@ std::size_t ProgramRun::main_block_count() const {
   if (frames_.empty()) {
     return 0;
   }
-  std::size_t n = 0;
-  for (const parse::Line& l : frames_.front().program->lines) {
-    n += l.statement.kind != parse::StatementKind::empty ? 1 : 0;
-  }
-  return n;
+  return frames_.front().program->block_count();
 }
 
 std::optional<ProgramAlarm> ProgramRun::save_retained() {

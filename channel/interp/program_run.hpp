@@ -25,8 +25,8 @@
 #include <array>
 #include <map>
 #include <memory>
-#include <span>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -49,6 +49,8 @@ class ProgramRun final : public macro::VariableProvider {
   ProgramRun(const InterpreterConfig& config, const InterpreterEnvironment* environment);
 
   std::optional<ProgramAlarm> start_text(std::string text, const std::string& file_name);
+  // The same, read from the file at `path` as it runs (file_name: its name in alarms).
+  std::optional<ProgramAlarm> start_file(const std::string& path, const std::string& file_name);
   std::optional<ProgramAlarm> start_number(int number);
   // Starts O<number> as a program called from another channel (G144): its locals #1-#26 are
   // the call's arguments, and M99 at its top level ends it instead of looping.
@@ -93,6 +95,8 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- programs and flow (program_run.cpp)
   parse::StructureLimits structure_limits() const;
+  std::optional<ProgramAlarm> start_programs(program::SplitResult split,
+                                             const std::string& file_name);
   const parse::ParsedProgram* find_program(int number, int column);
   bool step();
   bool execute(const parse::Line& line, int index, const parse::Statement& s);

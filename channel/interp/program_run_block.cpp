@@ -211,7 +211,7 @@ double ProgramRun::scaled_axis_word(int axis, const BlockWord& w) const {
 
 bool ProgramRun::evaluate_words(const parse::Statement& s) {
   words_.clear();
-  const parse::Arena& arena = frames_.back().program->arena;
+  const parse::Arena& arena = *line_->arena;
   for (std::uint32_t k = 0; k < s.word_count; ++k) {
     const parse::Word& pw = arena.words[s.first_word + k];
     BlockWord w;

@@ -70,7 +70,7 @@ bool ProgramRun::find_contour(const char* code, int& first, int& last, int colum
   if (last < 0) {
     return false;
   }
-  if (program.sequence_lines.at(n_p).size() > 1) {
+  if (program.sequence_repeats(n_p)) {
     return fail(alarm::kContourMissing,
                 "N" + std::to_string(n_p) +
                     " appears more than once in this program (gsk A.6.30 "

@@ -3,15 +3,12 @@
 #include "channel/interp/program/program_format_alarms.hpp"
 #include "common/process/thread_name.hpp"
 #include "common/text/file_name.hpp"
-#include "common/text/text_lines.hpp"
 
 #include <pthread.h>
 #include <sched.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace mcnc::channel {
 
@@ -90,7 +87,6 @@ LoadedProgram ProgramLoader::load(bool mdi, const std::string& text) const {
   if (mdi) {
     loaded.program =
         interp::InterpreterSource::check(config_, text, std::string(interp::kMdiName), true);
-    loaded.lines = text::split_lines(text);
     return loaded;
   }
   // The name comes from the wire: only a plain file of the program store is read.
@@ -111,14 +107,11 @@ LoadedProgram ProgramLoader::load(bool mdi, const std::string& text) const {
   if (!std::filesystem::is_regular_file(path, ec)) {
     return refuse("program " + text + " not found in the program directory");
   }
-  std::ifstream file(path);
-  std::stringstream content;
-  content << file.rdbuf();
-  if (!file) {
+  loaded.program = interp::InterpreterSource::check_file(config_, path.string(), text);
+  if (loaded.program.alarm &&
+      loaded.program.alarm->number == interp::program::alarm::kFileUnreadable) {
     return refuse("program " + text + " cannot be read");
   }
-  loaded.lines = text::split_lines(content.str());
-  loaded.program = interp::InterpreterSource::check(config_, content.str(), text, false);
   return loaded;
 }
 

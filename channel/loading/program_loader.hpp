@@ -12,16 +12,14 @@
 #include <string>
 #include <string_view>
 #include <thread>
-#include <vector>
 
 namespace mcnc::channel {
 
-// A checked request: a program file of the program store, or MDI blocks, with the lines the
-// trace shows. A file that cannot be read is an alarm of its own.
+// A checked request: a program file of the program store (read again as it runs), or MDI
+// blocks. A file that cannot be read is an alarm of its own.
 struct LoadedProgram {
   bool mdi = false;
   interp::CheckedProgram program;
-  std::vector<std::string> lines;
 };
 
 class ProgramLoader {

@@ -25,15 +25,13 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
                                std::vector<std::string> channel_names,
                                std::vector<const config::AxisConfig*> axes,
                                std::vector<const config::AxisConfig*> spindles,
-                               std::string program_name, std::vector<std::string> program_lines,
-                               SharedWriteLog& writes)
+                               std::string program_name, SharedWriteLog& writes)
     : node_(node),
       tracer_(tracer),
       channel_(channel),
       axes_(std::move(axes)),
       spindles_(std::move(spindles)),
       program_name_(std::move(program_name)),
-      program_lines_(std::move(program_lines)),
       status_(node.participant(), channel.name),
       events_(node.participant()),
       writes_(writes),
@@ -59,9 +57,8 @@ bool ChannelOutputs::setpoints_discovered() const noexcept {
          std::all_of(spindle_setpoints_.begin(), spindle_setpoints_.end(), matched);
 }
 
-void ChannelOutputs::set_program(std::string name, std::vector<std::string> lines) noexcept {
+void ChannelOutputs::set_program(std::string name) noexcept {
   program_name_ = std::move(name);
-  program_lines_ = std::move(lines);
   set_program_now(program_name_);
 }
 
@@ -272,21 +269,15 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       tracer_.emit(cycle, "state", "\"ch\":\"%s\",\"state\":\"%s\"", ch, to_string(event.state));
       break;
     case ChannelEventKind::block_started: {
-      // A block of another file (a subprogram from the program directory, MDI blocks): its own
-      // name, and its line as the interpreter holds it. Nothing is read or built here: a block
-      // start is in the cycle.
-      const bool other = event.file != nullptr && *event.file != program_name_;
-      std::string_view text;
+      // The block's line as the interpreter read it; a block of another file (a subprogram
+      // from the program directory, MDI blocks) with that file's name. Nothing is read or
+      // built here: a block start is in the cycle.
       std::string_view name = program_name_;
-      if (other) {
-        text = event.text;
+      if (event.file != nullptr && *event.file != program_name_) {
         name = *event.file;
         name.remove_prefix(std::min(name.size(), name.find_last_of('/') + 1));
-      } else {
-        const std::size_t idx = static_cast<std::size_t>(event.line) - 1;
-        text = idx < program_lines_.size() ? std::string_view(program_lines_[idx]) : text;
       }
-      trace::json_escape(text, escaped_, sizeof escaped_);
+      trace::json_escape(event.text, escaped_, sizeof escaped_);
       // A selected program's name comes from the operator: escaped like the text.
       trace::json_escape(name, escaped_name_, sizeof escaped_name_);
       tracer_.emit(cycle, "block", "\"ch\":\"%s\",\"prog\":\"%s\",\"line\":%d,\"text\":\"%s\"", ch,

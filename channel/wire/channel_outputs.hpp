@@ -25,7 +25,7 @@ class ChannelOutputs {
                  const config::ChannelConfig& channel, std::vector<std::string> channel_names,
                  std::vector<const config::AxisConfig*> axes,
                  std::vector<const config::AxisConfig*> spindles, std::string program_name,
-                 std::vector<std::string> program_lines, SharedWriteLog& writes);
+                 SharedWriteLog& writes);
 
   // Publishes this cycle's setpoints (axes in position, spindles in velocity: the first turns
   // as the program commands, the others stand) and status and records its events. `views` is the
@@ -37,9 +37,9 @@ class ChannelOutputs {
   [[nodiscard]] int event_readers() const noexcept { return events_.matched_readers(); }
   // Every node the channel commands has matched its setpoint writer, for discovery.
   [[nodiscard]] bool setpoints_discovered() const noexcept;
-  // The channel's own program is another file now (the operator selected it): its name and
-  // lines for the trace; the status names it from now on.
-  void set_program(std::string name, std::vector<std::string> lines) noexcept;
+  // The channel's own program is another file now (the operator selected it): the status and
+  // the trace name it from now on.
+  void set_program(std::string name) noexcept;
 
  private:
   void record(std::uint64_t cycle, const ChannelController& controller, const ChannelEvent& event,
@@ -60,7 +60,6 @@ class ChannelOutputs {
   std::size_t c_slot_ = ~std::size_t{0};  // the slot of that spindle's C axis (none: past the end)
   std::string program_name_;
   std::array<char, 64> program_now_{};
-  std::vector<std::string> program_lines_;
   // One per node, in its partition (config/cyclic_routes.hpp): by slot of axes_ (none for the
   // C axis, which the spindle's carries), then by spindle.
   std::vector<std::unique_ptr<dds::Writer<AxisSetpoint>>> axis_setpoints_;

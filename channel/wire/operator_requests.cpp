@@ -115,7 +115,7 @@ void OperatorRequests::take_loaded(std::uint64_t cycle) {
       tracer_.emit(cycle, "program", "\"ch\":\"%s\",\"prog\":\"%s\",\"blocks\":%zu",
                    channel_.name.c_str(), escaped(loaded_->program.name.c_str()).text,
                    loaded_->program.block_count);
-      outputs_.set_program(loaded_->program.name, std::move(loaded_->lines));
+      outputs_.set_program(loaded_->program.name);
       source_.adopt(std::move(loaded_->program));
     }
     loaded_.reset();

@@ -129,27 +129,16 @@ int execute_interp(const InterpArguments& args) {
   if (!args.program_dir.empty()) {
     config.program_dir = args.program_dir;
   }
-  std::string text;
-  {
-    std::ifstream in(args.file, std::ios::binary | std::ios::ate);
-    if (!in) {
-      std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
-      return 2;
-    }
-    text.resize(static_cast<std::size_t>(in.tellg()));
-    in.seekg(0);
-    in.read(text.data(), static_cast<std::streamsize>(text.size()));
-    if (!in) {
-      std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
-      return 2;
-    }
+  if (!std::ifstream(args.file, std::ios::binary)) {
+    std::fprintf(stderr, "mcnc interp: cannot read %s\n", args.file.c_str());
+    return 2;
   }
-
   SystemEnvironment environment;
   interp::Interpreter interpreter(config, &environment);
   std::string out;
   out.reserve(1 << 17);
-  if (auto alarm = interpreter.start(std::move(text), args.file)) {
+  // The file is read as the program runs: memory does not grow with the program.
+  if (auto alarm = interpreter.start_file(args.file, args.file)) {
     interp::output::append_json(out, *alarm);
     flush(out);
     finish(1);

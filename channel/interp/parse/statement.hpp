@@ -26,7 +26,7 @@ struct Address {
 struct Word {
   // The value: a literal, or expression `expression` of the arena (`X#1`, `X[#1+2]`).
   double value = 0.0;
-  std::int32_t expression = -1;  // index in the program's Arena
+  std::int32_t expression = -1;  // index in its line's Arena
   std::int32_t column = 0;       // 1-based column of the address
   std::int16_t index = -1;       // the n of `S2=1000`, `Q1=2`, `PS1=500`; -1 when absent
   Address address;
@@ -53,8 +53,8 @@ enum class StatementKind : std::uint8_t {
 
 enum class GotoDirection : std::uint8_t { wrap, forward, backward };  // GOTO, GOTOF, GOTOB
 
-// The words and expressions of a program's statements, in one place per program: a large
-// program costs no allocation per line. Statements refer to them by index.
+// The words and expressions of a run of program lines, in one place: a large program costs no
+// allocation per line. Statements refer to them by index.
 struct Arena {
   std::vector<Word> words;
   std::vector<macro::Expression> expressions;
@@ -81,7 +81,8 @@ struct Line {
   int sequence_column = 0;
   Statement statement;
   int message = -1;       // arena index of the first `( )` comment: the #3000 / #3006 message
-  std::string_view text;  // the line as written, in its ParsedProgram's `source`
+  std::string_view text;  // the line as written, held with the line by its ParsedProgram
+  const Arena* arena = nullptr;  // what `statement`'s indices refer to
 };
 
 }  // namespace mcnc::interp::parse

@@ -19,5 +19,6 @@ inline constexpr int kFileUnreadable = 1032;
 inline constexpr int kDirectoryUnreadable = 1033;
 inline constexpr int kProgramNumberOutOfRange = 1034;
 inline constexpr int kFileNameMismatch = 1035;  // O0012.nc holds O lines, none of them O0012
+inline constexpr int kFileChanged = 1036;       // a running program's file no longer holds it
 
 }  // namespace mcnc::interp::program::alarm

@@ -4,9 +4,6 @@
 #include "channel/interp/program_chars.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 #include <system_error>
 #include <vector>
 
@@ -44,14 +41,14 @@ SplitResult ProgramStore::load_file(const std::filesystem::path& path) {
     result.alarm = file_alarm(alarm::kFileUnreadable, "program file not found: " + file, file);
     return result;
   }
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in || in.bad()) {
-    result.alarm = file_alarm(alarm::kFileUnreadable, "cannot read program file " + file, file);
+  std::string error;
+  std::shared_ptr<const TextSource> text = TextSource::open_file(file, error);
+  if (!text) {
+    result.alarm =
+        file_alarm(alarm::kFileUnreadable, "cannot read program file " + file + ": " + error, file);
     return result;
   }
-  return split_programs(text.str(), file);
+  return split_programs(std::move(text), file);
 }
 
 ProgramResult ProgramStore::find(int number) const {

@@ -11,32 +11,6 @@ namespace mcnc::interp::program {
 
 namespace {
 
-struct RawLine {
-  int line = 0;
-  std::string_view text;
-};
-
-std::vector<RawLine> split_lines(std::string_view text) {
-  std::vector<RawLine> lines;
-  lines.reserve(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1);
-  int number = 1;
-  std::size_t begin = 0;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    const bool last = end == std::string_view::npos;
-    if (last) {
-      end = text.size();
-    }
-    std::string_view line = text.substr(begin, end - begin);
-    if (!line.empty() && line.back() == '\r') {
-      line.remove_suffix(1);
-    }
-    lines.push_back({number++, line});
-    begin = last ? text.size() : end + 1;
-  }
-  return lines;
-}
-
 std::size_t first_non_blank(std::string_view line) {
   std::size_t i = 0;
   while (i < line.size() && is_blank(line[i])) {
@@ -187,26 +161,42 @@ std::optional<ProgramAlarm> parse_header(std::string_view line, std::size_t o_at
   return std::nullopt;
 }
 
-// The lines that make up the tape, as [begin, end) indices. Dafeng spec L113 (manual L285):
+// The extent of the tape, and whether it has O lines. Dafeng spec L113 (manual L285):
 // everything after `%` is ignored. A `%` with nothing but blank or comment lines before it is
 // the leader of a punched-tape style file (`%` / O… / `%`, GSK and FANUC practice), so the tape
 // starts after it and ends at the next `%` line, or at the end of the file.
-std::pair<std::size_t, std::size_t> tape_range(const std::vector<RawLine>& lines) {
-  std::size_t begin = 0;
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    if (is_percent_line(lines[i].text)) {
-      begin = i + 1;
+struct Tape {
+  std::uint64_t begin = 0;  // byte offsets
+  std::uint64_t end = 0;
+  int first_line = 1;
+  bool any_o_line = false;
+  bool read = true;  // false: the text could not be read
+};
+
+Tape tape_of(const TextSource& text) {
+  Tape tape;
+  tape.end = text.size();
+  LineReader reader(text, 0, text.size(), 1);
+  RawLine raw;
+  bool leader = true;  // no block yet: a `%` here is the leader
+  while (reader.next(raw)) {
+    if (is_percent_line(raw.text)) {
+      if (leader) {
+        leader = false;
+        tape.begin = raw.next;
+        tape.first_line = raw.line + 1;
+        tape.any_o_line = false;
+        continue;
+      }
+      tape.end = raw.offset;
       break;
     }
-    if (shape_of(lines[i].text).first_exec) {
-      break;
-    }
+    const LineShape shape = shape_of(raw.text);
+    leader = leader && !shape.first_exec;
+    tape.any_o_line = tape.any_o_line || shape.o_word.has_value();
   }
-  std::size_t end = begin;
-  while (end < lines.size() && !is_percent_line(lines[end].text)) {
-    ++end;
-  }
-  return {begin, end};
+  tape.read = !reader.failed();
+  return tape;
 }
 
 }  // namespace
@@ -218,25 +208,27 @@ std::string program_label(int number) {
 }
 
 SplitResult split_programs(std::string_view text, const std::string& file_name) {
-  // One copy of the text for all programs of the file; their lines point into it.
-  return split_programs(std::make_shared<const std::string>(text), file_name);
+  return split_programs(TextSource::of_text(std::string(text)), file_name);
 }
 
-SplitResult split_programs(std::shared_ptr<const std::string> source,
-                           const std::string& file_name) {
+SplitResult split_programs(std::shared_ptr<const TextSource> text, const std::string& file_name) {
   SplitResult result;
-  const std::vector<RawLine> lines = split_lines(*source);
-  const auto [begin, end] = tape_range(lines);
+  const Tape tape = tape_of(*text);
+  const auto unreadable = [&] {
+    result.programs.clear();
+    result.alarm = ProgramAlarm{alarm::kFileUnreadable, "cannot read program file " + file_name,
+                                file_name, 0, 0};
+    return result;
+  };
+  if (!tape.read) {
+    return unreadable();
+  }
 
   std::vector<Program> programs;
   std::map<int, int> first_seen;  // O number -> its line, for the duplicate alarm
-  bool any_o_line = false;
-  for (std::size_t k = begin; k < end; ++k) {
-    any_o_line = any_o_line || shape_of(lines[k].text).o_word.has_value();
-  }
-
-  for (std::size_t k = begin; k < end; ++k) {
-    const RawLine& raw = lines[k];
+  LineReader reader(*text, tape.begin, tape.end, tape.first_line);
+  RawLine raw;
+  while (reader.next(raw)) {
     const LineShape shape = shape_of(raw.text);
     if (shape.o_word) {
       if (*shape.o_word != *shape.first_exec) {
@@ -261,7 +253,6 @@ SplitResult split_programs(std::shared_ptr<const std::string> source,
       Program program;
       program.number = header.number;
       program.name = std::move(header.name);
-      program.file = file_name;
       program.header_line = raw.line;
       program.header_column = static_cast<int>(*shape.o_word) + 1;
       programs.push_back(std::move(program));
@@ -269,21 +260,26 @@ SplitResult split_programs(std::shared_ptr<const std::string> source,
       if (!shape.first_exec) {
         continue;  // blank and comment lines before the first O line (a file header)
       }
-      if (any_o_line) {
+      if (tape.any_o_line) {
         result.alarm =
             make_alarm(alarm::kBlockOutsideProgram, "block before the first program number O",
                        file_name, raw.line, *shape.first_exec);
         return result;
       }
-      // A file without O lines is one program; it starts at its first block.
-      Program program;
-      program.file = file_name;
-      programs.push_back(std::move(program));
+      programs.emplace_back();  // a file without O lines is one program, from its first block
     }
-    if (!programs.back().source) {
-      programs.back().source = source;
+    Program& p = programs.back();
+    if (p.line_count == 0) {
+      p.file = file_name;
+      p.text = text;
+      p.first_line = raw.line;
+      p.begin = raw.offset;
     }
-    programs.back().lines.push_back({raw.line, raw.text});
+    ++p.line_count;
+    p.end = raw.next;
+  }
+  if (reader.failed()) {
+    return unreadable();
   }
   result.programs = std::move(programs);
   return result;

@@ -50,7 +50,7 @@ class ProgramLoaderTest : public ::testing::Test {
   interp::InterpreterConfig config_;
 };
 
-TEST_F(ProgramLoaderTest, ASelectedFileIsCheckedWithItsLines) {
+TEST_F(ProgramLoaderTest, ASelectedFileIsCheckedAndReadAgainAsItRuns) {
   ProgramLoader loader(config_);
   EXPECT_FALSE(loader.busy());
   ASSERT_TRUE(loader.submit(false, "O2000.nc"));
@@ -60,9 +60,9 @@ TEST_F(ProgramLoaderTest, ASelectedFileIsCheckedWithItsLines) {
   EXPECT_FALSE(r.mdi);
   EXPECT_FALSE(r.program.alarm.has_value()) << r.program.alarm->text;
   EXPECT_EQ(r.program.name, "O2000.nc");
-  EXPECT_EQ(r.program.block_count, 3U);  // the O line is no block
-  ASSERT_EQ(r.lines.size(), 4U);
-  EXPECT_EQ(r.lines[1], "G00 X10");
+  EXPECT_EQ(r.program.block_count, 3U);                     // the O line is no block
+  EXPECT_EQ(r.program.path, (dir_ / "O2000.nc").string());  // not held whole: read as it runs
+  EXPECT_TRUE(r.program.text.empty());
 }
 
 TEST_F(ProgramLoaderTest, MdiBlocksAreCheckedAsTyped) {
@@ -72,8 +72,8 @@ TEST_F(ProgramLoaderTest, MdiBlocksAreCheckedAsTyped) {
   EXPECT_TRUE(r.mdi);
   EXPECT_FALSE(r.program.alarm.has_value()) << r.program.alarm->text;
   EXPECT_EQ(r.program.name, interp::kMdiName);
-  ASSERT_EQ(r.lines.size(), 1U);
-  EXPECT_EQ(r.lines[0], "G00 X3 Z4");
+  EXPECT_EQ(r.program.text, "G00 X3 Z4");
+  EXPECT_TRUE(r.program.path.empty());
 
   ASSERT_TRUE(loader.submit(true, "G00 X3 Y4"));  // no Y on this channel
   const LoadedProgram bad = answer(loader);
@@ -90,7 +90,7 @@ TEST_F(ProgramLoaderTest, OnlyFilesOfTheProgramDirectoryAreRead) {
     const LoadedProgram r = answer(loader);
     ASSERT_TRUE(r.program.alarm.has_value()) << name;
     EXPECT_NE(r.program.alarm->text.find(name), std::string::npos) << r.program.alarm->text;
-    EXPECT_TRUE(r.lines.empty()) << name;
+    EXPECT_TRUE(r.program.path.empty()) << name;
   }
   fs::remove(dir_.parent_path() / "outside.nc");
   ASSERT_TRUE(loader.submit(false, "BAD.nc"));

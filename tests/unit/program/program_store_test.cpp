@@ -43,11 +43,11 @@ TEST_F(ProgramStoreTest, FoundByFileNameWithAndWithoutOLine) {
   EXPECT_EQ(twelve.program->number, 12);
   EXPECT_EQ(twelve.program->name, "TWELVE");
   EXPECT_EQ(twelve.program->file, path("O0012.nc"));
-  EXPECT_EQ(twelve.program->lines.front().line, 2);
+  EXPECT_EQ(twelve.program->first_line, 2);
   const ProgramResult seven = store.find(7);
   ASSERT_FALSE(seven.alarm) << seven.alarm->text;
   EXPECT_EQ(seven.program->number, 7);
-  EXPECT_EQ(seven.program->lines.front().line, 1);
+  EXPECT_EQ(seven.program->first_line, 1);
   const ProgramResult thirteen = store.find(13);
   ASSERT_TRUE(thirteen.alarm);
   EXPECT_EQ(thirteen.alarm->number, alarm::kProgramNotFound);
@@ -69,8 +69,8 @@ TEST_F(ProgramStoreTest, FoundInsideAnotherFile) {
   ASSERT_FALSE(sub.alarm) << sub.alarm->text;
   EXPECT_EQ(sub.program->file, path("part.nc"));
   EXPECT_EQ(sub.program->header_line, 6);
-  EXPECT_EQ(sub.program->lines.size(), 3u);
-  EXPECT_EQ(store.find(1).program->lines.size(), 4u);
+  EXPECT_EQ(sub.program->line_count, 3);
+  EXPECT_EQ(store.find(1).program->line_count, 4);
 }
 
 TEST_F(ProgramStoreTest, AmbiguousNumberNamesBothFiles) {

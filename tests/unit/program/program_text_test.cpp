@@ -9,9 +9,23 @@
 namespace mcnc::interp::program {
 namespace {
 
+// The program's lines, read from its text as the interpreter reads them.
+std::vector<RawLine> lines_of(const Program& p, std::vector<std::string>& texts) {
+  std::vector<RawLine> out;
+  LineReader reader(*p.text, p.begin, p.end, p.first_line);
+  RawLine raw;
+  while (reader.next(raw)) {
+    texts.emplace_back(raw.text);
+    out.push_back(RawLine{raw.line, {}, raw.offset, raw.next});  // the text is in `texts`
+  }
+  EXPECT_EQ(static_cast<int>(out.size()), p.line_count);
+  return out;
+}
+
 std::vector<int> line_numbers(const Program& p) {
+  std::vector<std::string> texts;
   std::vector<int> out;
-  for (const ProgramLine& l : p.lines) {
+  for (const RawLine& l : lines_of(p, texts)) {
     out.push_back(l.line);
   }
   return out;
@@ -41,8 +55,11 @@ TEST(SplitPrograms, TapeWithOneProgramKeepsFileLineNumbers) {
   EXPECT_EQ(p.header_line, 2);
   EXPECT_EQ(p.header_column, 1);
   EXPECT_EQ(line_numbers(p), (std::vector<int>{2, 3, 4}));
-  EXPECT_EQ(p.lines[1].text, "N10 G00 X64.");  // CR of CRLF removed
-  EXPECT_EQ(p.lines[0].text, "O0100 (demo: rough)");
+  std::vector<std::string> texts;
+  lines_of(p, texts);
+  ASSERT_EQ(texts.size(), 3u);
+  EXPECT_EQ(texts[1], "N10 G00 X64.");  // CR of CRLF removed
+  EXPECT_EQ(texts[0], "O0100 (demo: rough)");
 }
 
 TEST(SplitPrograms, SeveralProgramsInOneFile) {
@@ -110,7 +127,7 @@ TEST(SplitPrograms, MacroKeywordsAreNotProgramNumbers) {
       "f.nc");
   ASSERT_FALSE(r.alarm) << r.alarm->text;
   ASSERT_EQ(r.programs.size(), 1u);
-  EXPECT_EQ(r.programs[0].lines.size(), 9u);
+  EXPECT_EQ(r.programs[0].line_count, 9);
 }
 
 TEST(SplitPrograms, Alarms) {

@@ -95,6 +95,11 @@ int main(int argc, char** argv) {
   if (!program_dir.empty()) {
     interp_config.program_dir = program_dir;
   }
+  if (!interp_config.program_dir.empty()) {
+    // One index of the directory for the program checks and the runs.
+    interp_config.program_store =
+        std::make_shared<interp::program::ProgramStore>(interp_config.program_dir);
+  }
   // A command's block text is kept while the controller may show it: in the read-ahead's
   // window, the planner's and the few blocks the controller holds besides.
   const motion::MotionConfig motion_config = channel::motion_config_for(machine, *ch);

@@ -4,11 +4,13 @@
 // §4.13. `mcnc interp --param FILE` reads them from YAML (tools/mcnc/interp_params.cpp).
 #include "channel/interp/command.hpp"
 #include "channel/interp/macro/variable_store.hpp"
+#include "channel/interp/program/program_store.hpp"
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -162,6 +164,9 @@ struct InterpreterConfig {
   macro::VariableStore* shared_variables = nullptr;
   macro::SharedWriteSink* shared_sink = nullptr;
   std::filesystem::path program_dir;  // searched by O number after the programs of the file
+  // The index of program_dir, shared by whoever reads it (the channel's program checks and its
+  // runs); null: each interpreter keeps one of its own.
+  std::shared_ptr<program::ProgramStore> program_store;
 
   // Initial tables (what G10 writes).
   std::array<ToolOffsetValues, kMaxToolOffsets + 1> tool_geometry{};  // [0] unused

@@ -121,6 +121,14 @@ parse::StructureLimits ProgramRun::structure_limits() const {
   return limits;
 }
 
+program::ProgramStore& ProgramRun::store() {
+  if (!store_) {
+    store_ = config_.program_store ? config_.program_store
+                                   : std::make_shared<program::ProgramStore>(config_.program_dir);
+  }
+  return *store_;
+}
+
 std::optional<ProgramAlarm> ProgramRun::start_text(std::string text, const std::string& file_name) {
   return start_programs(
       program::split_programs(program::TextSource::of_text(std::move(text)), file_name), file_name);
@@ -169,8 +177,7 @@ std::optional<ProgramAlarm> ProgramRun::start_programs(program::SplitResult spli
 }
 
 std::optional<ProgramAlarm> ProgramRun::start_number(int number) {
-  program::ProgramStore store(config_.program_dir);
-  program::ProgramResult found = store.find(number);
+  program::ProgramResult found = store().find(number);
   if (found.alarm) {
     return found.alarm;
   }
@@ -220,8 +227,7 @@ const parse::ParsedProgram* ProgramRun::find_program(int number, int column) {
          column);
     return nullptr;
   }
-  program::ProgramStore store(config_.program_dir);
-  program::ProgramResult found = store.find(number);
+  program::ProgramResult found = store().find(number);
   if (found.alarm) {
     fail(found.alarm->number, found.alarm->text, column);
     return nullptr;

@@ -95,6 +95,7 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- programs and flow (program_run.cpp)
   parse::StructureLimits structure_limits() const;
+  program::ProgramStore& store();
   std::optional<ProgramAlarm> start_programs(program::SplitResult split,
                                              const std::string& file_name);
   const parse::ParsedProgram* find_program(int number, int column);
@@ -397,6 +398,7 @@ class ProgramRun final : public macro::VariableProvider {
   // Programs: those of the started file, then the directory (loaded once per run).
   std::vector<std::unique_ptr<parse::ParsedProgram>> file_programs_;
   std::map<int, std::unique_ptr<parse::ParsedProgram>> directory_programs_;
+  std::shared_ptr<program::ProgramStore> store_;  // config_'s, or made when first asked for
   std::vector<Frame> frames_;
   int macro_depth_ = 0;
   int main_number_ = 0;

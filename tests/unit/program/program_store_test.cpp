@@ -37,7 +37,7 @@ TEST_F(ProgramStoreTest, FoundByFileNameWithAndWithoutOLine) {
   write("O0012.nc", "%\nO0012 (TWELVE)\nM99\n%\n");
   write("O7.nc", "G00 X1\nM99\n");      // no O line: the name gives the number
   write("readme.txt", "O0013\nM99\n");  // not a .nc file
-  const ProgramStore store(dir_);
+  ProgramStore store(dir_);
   const ProgramResult twelve = store.find(12);
   ASSERT_FALSE(twelve.alarm) << twelve.alarm->text;
   EXPECT_EQ(twelve.program->number, 12);
@@ -56,7 +56,7 @@ TEST_F(ProgramStoreTest, FoundByFileNameWithAndWithoutOLine) {
 TEST_F(ProgramStoreTest, ZeroPaddedAndUnpaddedNamesAndCase) {
   write("o0012.NC", "M99\n");
   write("O5.nc", "O0005\nM99\n");
-  const ProgramStore store(dir_);
+  ProgramStore store(dir_);
   EXPECT_EQ(store.find(12).program->file, path("o0012.NC"));
   EXPECT_EQ(store.find(5).program->header_line, 1);
 }
@@ -64,7 +64,7 @@ TEST_F(ProgramStoreTest, ZeroPaddedAndUnpaddedNamesAndCase) {
 TEST_F(ProgramStoreTest, FoundInsideAnotherFile) {
   write("part.nc", "%\nO0001\nM98 P1000\nM30\n\nO1000 (SUB)\nG00 X1\nM99\n%\n");
   write("main.nc", "G00 X0\nM30\n");  // unnumbered: never found by number
-  const ProgramStore store(dir_);
+  ProgramStore store(dir_);
   const ProgramResult sub = store.find(1000);
   ASSERT_FALSE(sub.alarm) << sub.alarm->text;
   EXPECT_EQ(sub.program->file, path("part.nc"));
@@ -76,7 +76,7 @@ TEST_F(ProgramStoreTest, FoundInsideAnotherFile) {
 TEST_F(ProgramStoreTest, AmbiguousNumberNamesBothFiles) {
   write("a.nc", "O0001\nM30\nO0012\nM99\n");
   write("b.nc", "(x)\n  O12\nM99\n");
-  const ProgramStore store(dir_);
+  ProgramStore store(dir_);
   const ProgramResult r = store.find(12);
   ASSERT_TRUE(r.alarm);
   EXPECT_EQ(r.alarm->number, alarm::kProgramAmbiguous);
@@ -126,7 +126,7 @@ TEST_F(ProgramStoreTest, BrokenFileFailsLookupsWithItsAlarm) {
 }
 
 TEST_F(ProgramStoreTest, MissingNumberOutOfRangeAndMissingDirectory) {
-  const ProgramStore store(dir_);
+  ProgramStore store(dir_);
   EXPECT_EQ(store.find(42).alarm->number, alarm::kProgramNotFound);
   EXPECT_EQ(store.find(-1).alarm->number, alarm::kProgramNumberOutOfRange);
   EXPECT_EQ(store.find(10000).alarm->number, alarm::kProgramNumberOutOfRange);
@@ -157,6 +157,38 @@ TEST_F(ProgramStoreTest, LoadFileByPath) {
   EXPECT_EQ(bad.alarm->column, 7);
 
   EXPECT_EQ(ProgramStore::load_file(dir_).alarm->number, alarm::kFileUnreadable);  // a directory
+}
+
+// The index (issue 23): a lookup in an unchanged directory reads no file; a file written,
+// added or removed is read again (only that one), and what the lookup answers follows it.
+TEST_F(ProgramStoreTest, AnUnchangedDirectoryIsNotReadAgain) {
+  for (int k = 1; k <= 50; ++k) {
+    write("O" + std::to_string(k) + ".nc", "G00 X" + std::to_string(k) + "\nM99\n");
+  }
+  ProgramStore store(dir_);
+  ASSERT_TRUE(store.find(7).program);
+  EXPECT_EQ(store.files_read(), 50U);
+  for (int k = 1; k <= 50; ++k) {
+    ASSERT_TRUE(store.find(k).program) << k;
+  }
+  EXPECT_EQ(store.files_read(), 50U) << "every lookup read the directory again";
+
+  write("O7.nc", "G00 X70\nG00 Z1\nM99\n");  // longer: a new size
+  const ProgramResult seven = store.find(7);
+  ASSERT_TRUE(seven.program);
+  EXPECT_EQ(seven.program->line_count, 3);
+  EXPECT_EQ(store.files_read(), 51U);
+
+  write("O0051.nc", "O0051\nM99\n");
+  EXPECT_TRUE(store.find(51).program);
+  fs::remove(dir_ / "O0051.nc");
+  EXPECT_EQ(store.find(51).alarm->number, alarm::kProgramNotFound);
+  write("O8.nc", "O0008\nM99\nO0051\nM99\n");  // now 51 is in O8.nc, with 8
+  const ProgramResult moved = store.find(51);
+  ASSERT_TRUE(moved.program) << moved.alarm->text;
+  EXPECT_EQ(moved.program->file, path("O8.nc"));
+  EXPECT_EQ(moved.program->first_line, 3);
+  EXPECT_EQ(store.files_read(), 53U);
 }
 
 }  // namespace

@@ -108,10 +108,20 @@ bool ChildProcess::poll_exited() noexcept {
     return exited_;
   }
   int status = 0;
-  const pid_t r = waitpid(pid_, &status, WNOHANG);
-  if (r == pid_) {
-    exited_ = true;
-    status_ = status;
+  // A stopped child is reported once per stop, a continued one once per continue: loop until
+  // nothing is left to report, the latest report counting.
+  for (pid_t r = waitpid(pid_, &status, WNOHANG | WUNTRACED | WCONTINUED); r == pid_;
+       r = waitpid(pid_, &status, WNOHANG | WUNTRACED | WCONTINUED)) {
+    if (WIFSTOPPED(status)) {
+      stop_signal_ = WSTOPSIG(status);
+    } else if (WIFCONTINUED(status)) {
+      stop_signal_ = 0;
+    } else {
+      exited_ = true;
+      status_ = status;
+      stop_signal_ = 0;
+      break;
+    }
   }
   return exited_;
 }

@@ -26,8 +26,11 @@ class ChildProcess {
   // to (created or truncated). Unset, it shares this process's.
   void set_directory(std::string directory) { directory_ = std::move(directory); }
   void set_output(std::string path) { output_ = std::move(path); }
-  // True once it has exited (reaps it); exit_status() then says how.
+  // True once it has exited (reaps it); exit_status() then says how. Also notes whether it is
+  // stopped by a signal (SIGSTOP, SIGTSTP, ...) or has been continued since.
   bool poll_exited() noexcept;
+  // The signal that stopped it, 0 while it runs (as of the last poll_exited()).
+  [[nodiscard]] int stop_signal() const noexcept { return stop_signal_; }
   void signal(int sig) noexcept;
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
   [[nodiscard]] pid_t pid() const noexcept { return pid_; }
@@ -43,6 +46,7 @@ class ChildProcess {
   pid_t pid_ = -1;
   bool exited_ = false;
   int status_ = 0;
+  int stop_signal_ = 0;
 };
 
 }  // namespace mcnc::launch

@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -49,6 +50,8 @@ constexpr std::chrono::seconds kTraceShippingWait{20};
 // node's first feedback sample (a node not heard by then is gone).
 constexpr std::chrono::seconds kDrivesAtRestWait{5};
 constexpr std::chrono::seconds kDriveHeardWait{2};
+// The most one look of the run's supervision counts towards a lockstep machine standing still.
+constexpr std::chrono::milliseconds kLookLateCap{100};
 
 struct Observed {
   std::mutex mutex;
@@ -278,6 +281,29 @@ LaunchResult Launcher::run(
     }
     return nullptr;
   };
+  // A child stopped by a signal (SIGSTOP, a debugger, SIGTSTP) takes no step: in lockstep the
+  // whole machine stands with it. Its name and the signal, or "" when none is stopped.
+  const auto stopped_child = [&]() -> std::string {
+    for (auto& child : children) {
+      if (child.running() && child.stop_signal() != 0 && child.name() != kHmiName) {
+        return child.name() + " stopped by signal " + std::to_string(child.stop_signal()) + " (" +
+               strsignal(child.stop_signal()) + "): the machine cannot step";
+      }
+    }
+    return {};
+  };
+  // After the E-stop went out: a stopped child is resumed, so that it quick-stops its drive and
+  // leaves with the others (stopped, it would neither, and a drive it commands would keep its
+  // last setpoint). One that still does not leave is killed as any other.
+  const auto resume_stopped_children = [&] {
+    for (auto& child : children) {
+      if (child.running() && child.stop_signal() != 0) {
+        spdlog::warn("{} was stopped by signal {}: resumed for the E-stop", child.name(),
+                     child.stop_signal());
+        child.signal(SIGCONT);
+      }
+    }
+  };
 
   const auto roudi_lost = [&] { return options_.watch_roudi && !dds::roudi_answers(); };
   const char* const kRoudiLost = "the host's iceoryx RouDi stopped answering";
@@ -470,6 +496,10 @@ LaunchResult Launcher::run(
         failure = dead->name() + " " + dead->exit_description();
         killed_child = dead->exit_code() < 0;
       }
+      if (const std::string stopped = stopped_child(); !stopped.empty() && failure.empty()) {
+        failure = stopped;  // reported to the coordinator, which E-stops the machine
+        resume_stopped_children();
+      }
     }
   } else if (failure.empty()) {
     spdlog::info("all {} processes ready; starting the run ({} clock)", dds_processes.size(),
@@ -513,6 +543,9 @@ LaunchResult Launcher::run(
     const auto run_start = std::chrono::steady_clock::now();
     std::uint64_t heard_cycle = 0;  // the newest cycle any channel reported
     auto heard_at = run_start;
+    // Lockstep: how long no channel has stepped, as far as the launcher looked on time.
+    auto looked_at = run_start;
+    std::chrono::steady_clock::duration standing{};
     auto last_progress = std::chrono::steady_clock::now() - 1s;
     std::optional<std::chrono::steady_clock::time_point> alarm_since;
     std::uint64_t alarm_cycle = 0;
@@ -534,6 +567,10 @@ LaunchResult Launcher::run(
         killed_child = dead->exit_code() < 0;
         break;
       }
+      if (const std::string stopped = stopped_child(); !stopped.empty()) {
+        failure = stopped;
+        break;
+      }
       if (roudi_lost()) {
         failure = kRoudiLost;
         break;
@@ -546,13 +583,27 @@ LaunchResult Launcher::run(
         failure = "interrupted";
         break;
       }
+      const auto looked_now = std::chrono::steady_clock::now();
       if (last_cycle > heard_cycle) {
         heard_cycle = last_cycle;
-        heard_at = std::chrono::steady_clock::now();
+        heard_at = looked_now;
+        standing = std::chrono::steady_clock::duration::zero();
+      } else {
+        // A look that came late (the launcher itself starved by a loaded host) counts for no
+        // more than kLookLateCap: the machine may have stepped in that time unheard.
+        standing +=
+            std::min<std::chrono::steady_clock::duration>(looked_now - looked_at, kLookLateCap);
       }
+      looked_at = looked_now;
       if (realtime && std::chrono::steady_clock::now() - heard_at > kMachineSilentLimit) {
         failure = "no channel heard for " + std::to_string(kMachineSilentLimit.count()) +
                   " s: this host does not keep up with the machine in realtime";
+        break;
+      }
+      if (!realtime && standing > kMachineSilentLimit) {
+        failure = "the machine stands still at cycle " + std::to_string(heard_cycle) +
+                  ": no channel stepped for " + std::to_string(kMachineSilentLimit.count()) +
+                  " s (a process or a drive no longer answers)";
         break;
       }
       if (options_.run_timeout_s > 0 && std::chrono::steady_clock::now() - run_start >
@@ -638,6 +689,7 @@ LaunchResult Launcher::run(
                   failure.c_str());
       node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
       send_control(RUN_ESTOP, 0, failure);
+      resume_stopped_children();
       wait_drives_at_rest();
     }
   }

@@ -51,6 +51,8 @@ const char* to_text(AxisAlarm alarm) noexcept {
       return "following error above its limit: quick stop";
     case AxisAlarm::homing_failed:
       return "homing failed (the drive reports a homing error, or it did not end in time)";
+    case AxisAlarm::foreign_sync:
+      return "a SYNC this node did not send: another SYNC producer on the bus: quick stop";
   }
   return "unknown alarm";
 }
@@ -173,6 +175,11 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
 
   if (in.bus_off) {
     raise(AxisAlarm::bus_off);
+  }
+  // The drives step on every SYNC: a second producer makes them step out of the machine's
+  // cycle (and in lockstep out of its order).
+  if (in.foreign_syncs > 0) {
+    raise(AxisAlarm::foreign_sync);
   }
   if (in.emergency_stop) {
     out_.quick_stop = true;

@@ -67,6 +67,7 @@ struct AxisNodeInput {
   bool emergency_stop = false;
   std::uint64_t heartbeats = 0;            // the drive's heartbeats received so far
   bool bus_off = false;                    // the CAN controller went bus off
+  std::uint64_t foreign_syncs = 0;         // SYNC frames another node sent
   ProbeRequest probe = ProbeRequest::off;  // the owner's, while it commands the axis
   std::uint16_t touch_probe_status = 0;    // 0x60B9
   std::int32_t probe_positive = 0;         // 0x60BA, counts
@@ -85,6 +86,7 @@ enum class AxisAlarm : std::uint8_t {
   soft_limit = 8,       // a setpoint beyond the axis's soft limits
   following_error = 9,  // command and actual position too far apart
   homing_failed = 10,   // homing error (statusword bit 13) or no end within its time
+  foreign_sync = 11,    // a SYNC this node did not send: another SYNC producer on the bus
 };
 inline constexpr int kAlarmBase = 2000;  // alarm number = kAlarmBase + AxisAlarm
 const char* to_text(AxisAlarm alarm) noexcept;

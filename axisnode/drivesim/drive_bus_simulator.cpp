@@ -166,6 +166,17 @@ std::size_t DriveBusSimulator::handle_sync(const CanFrame& in, std::span<CanFram
   return written;
 }
 
+std::size_t DriveBusSimulator::heartbeats_out_of_operation(std::uint64_t now_us,
+                                                           std::span<CanFrame> out) noexcept {
+  std::size_t written = 0;
+  for (SimulatedDrive& drive : drives_) {
+    if (written < out.size() && drive.heartbeat_out_of_operation(now_us, out[written])) {
+      ++written;
+    }
+  }
+  return written;
+}
+
 bool DriveBusSimulator::rpdos_complete() const noexcept {
   for (std::size_t i = 0; i < drives_.size(); ++i) {
     if (drives_[i].nmt_state() == NmtState::operational &&

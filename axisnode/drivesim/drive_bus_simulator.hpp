@@ -42,6 +42,10 @@ class DriveBusSimulator {
   // Handles one received frame; writes the frames to send into `out` (boot-up after an NMT
   // reset, TPDOs after SYNC for operational drives) and returns how many.
   std::size_t handle(const canopen::CanFrame& in, std::span<canopen::CanFrame> out) noexcept;
+  // The heartbeats due at `now_us` (wall clock) of drives an NMT command took out of
+  // operational (SimulatedDrive::heartbeat_out_of_operation); how many it wrote to `out`.
+  std::size_t heartbeats_out_of_operation(std::uint64_t now_us,
+                                          std::span<canopen::CanFrame> out) noexcept;
   [[nodiscard]] const SimulatedDrive* find(std::uint8_t node_id) const noexcept;
 
   // Lockstep over UDP: a real bus shows a frame to every node at once, UDP multicast on

@@ -212,6 +212,11 @@ int main(int argc, char** argv) {
       canopen::CanFrame frame;
       const can::BusResult result =
           bus->receive(frame, std::chrono::milliseconds(held_sync ? 10 : 100));
+      send_all(simulator.heartbeats_out_of_operation(
+          static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                         std::chrono::steady_clock::now().time_since_epoch())
+                                         .count()),
+          out));
       if (held_sync &&
           std::chrono::steady_clock::now() - held_since > std::chrono::milliseconds(500)) {
         simulator.stop_awaiting_silent_drives();

@@ -92,6 +92,7 @@ void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
   if (!powered_) {
     return;
   }
+  const bool was_operational = nmt_ == NmtState::operational;
   switch (command) {
     case NmtCommand::start:
       nmt_ = NmtState::operational;
@@ -119,6 +120,12 @@ void SimulatedDrive::on_nmt(NmtCommand command) noexcept {
       rpdo_since_sync_ = false;
       nmt_ = NmtState::preoperational;
       break;
+  }
+  if (nmt_ == NmtState::operational) {
+    out_of_operation_ = false;
+  } else if (was_operational) {
+    out_of_operation_ = true;
+    wall_heartbeat_ms_ = 0;  // starts afresh: the first heartbeat at once
   }
 }
 
@@ -238,6 +245,17 @@ bool SimulatedDrive::heartbeat(can::CanFrame& out) noexcept {
   const auto now_us =
       static_cast<std::uint64_t>(std::llround(static_cast<double>(syncs_) * cycle_s_ * 1e6));
   return heartbeat_.due(now_us, nmt_, out);
+}
+
+bool SimulatedDrive::heartbeat_out_of_operation(std::uint64_t now_us, can::CanFrame& out) noexcept {
+  if (!out_of_operation_ || heartbeat_stopped_ || objects_.heartbeat_ms() == 0) {
+    return false;
+  }
+  if (objects_.heartbeat_ms() != wall_heartbeat_ms_) {
+    wall_heartbeat_ms_ = objects_.heartbeat_ms();
+    wall_heartbeat_ = canopen::HeartbeatProducer(params_.node_id, wall_heartbeat_ms_ * 1000ULL);
+  }
+  return wall_heartbeat_.due(now_us, nmt_, out);
 }
 
 void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {

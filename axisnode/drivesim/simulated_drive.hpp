@@ -103,6 +103,11 @@ class SimulatedDrive {
   // The heartbeat to send after this SYNC, when one is due (every producer time 0x1017, in
   // SYNC-counted time so that lockstep runs see it at the same cycles every time).
   bool heartbeat(can::CanFrame& out) noexcept;
+  // The heartbeat of a drive that an NMT command took out of operational: no SYNC counts its
+  // time any more, so its producer runs on `now_us` (the simulator's wall clock), as a real
+  // drive's does in stopped and pre-operational (CiA 301). A healthy lockstep run never takes
+  // a drive out of operational before its end, so its heartbeats stay SYNC-counted.
+  bool heartbeat_out_of_operation(std::uint64_t now_us, can::CanFrame& out) noexcept;
   // The fault happens at the SYNC with this number (counted from 1 after power on).
   void schedule_fault(DriveFault fault, std::uint64_t at_sync) noexcept {
     fault_ = fault;
@@ -153,7 +158,12 @@ class SimulatedDrive {
   bool heartbeat_stopped_ = false;
   canopen::HeartbeatProducer heartbeat_{0, 0};
   std::uint16_t heartbeat_ms_ = 0;  // the producer time heartbeat_ runs with
-  double velocity_target_ = 0.0;    // CSV: units/s
+  // Out of operational by an NMT command after it had been operational: heartbeats on the wall
+  // clock (heartbeat_out_of_operation).
+  bool out_of_operation_ = false;
+  canopen::HeartbeatProducer wall_heartbeat_{0, 0};
+  std::uint16_t wall_heartbeat_ms_ = 0;  // the producer time wall_heartbeat_ runs with
+  double velocity_target_ = 0.0;         // CSV: units/s
   bool homing_attained_ = false;
   bool homing_bit_ = false;  // controlword bit 4 at the last SYNC (homing starts on its edge)
   std::uint16_t probe_status_ = 0;  // 0x60B9

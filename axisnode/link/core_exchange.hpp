@@ -15,6 +15,7 @@ inline DriveReadings readings_of(const DriveSample& sample) noexcept {
   drive.mode_display = sample.feedback.mode_display;
   drive.heartbeats = sample.heartbeats;
   drive.bus_off = sample.bus_off;
+  drive.foreign_syncs = sample.foreign_syncs;
   drive.touch_probe_status = sample.feedback.touch_probe_status;
   drive.probe_positive = sample.feedback.probe_positive;
   drive.probe_negative = sample.feedback.probe_negative;

@@ -38,6 +38,9 @@ struct DriveSample {
   std::uint64_t heartbeats = 0;
   std::uint16_t last_emcy = 0;  // error code of the last EMCY, 0: none yet
   bool bus_off = false;
+  // SYNC frames this node did not send, since activate() (the SYNC producer alone receives
+  // SYNC): another SYNC producer on the bus.
+  std::uint64_t foreign_syncs = 0;
 };
 
 // How the cyclic exchange runs once active.

@@ -97,6 +97,10 @@ void DriveLink::activate(const DriveActivation& activation) {
   activation_ = activation;
   lockstep_ = activation.lockstep;
   answers_read_ = snapshot_.latest().answers;
+  wakeup_.update([&] {
+    left_operational_ = false;
+    watching_ = true;
+  });
   if (activation.sync_timer && sync_producer_) {
     start_sync_timer(*activation.sync_timer);
   }
@@ -104,6 +108,7 @@ void DriveLink::activate(const DriveActivation& activation) {
 }
 
 void DriveLink::deactivate(const canopen::DriveCommand& last) noexcept {
+  watching_ = false;
   stop_sync_timer();
   command_ = last;
   send_rpdos();
@@ -121,6 +126,7 @@ DriveStatus DriveLink::read(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/
   state_.heartbeats = s.heartbeats;
   state_.last_emcy = s.last_emcy;
   state_.bus_off = s.bus_off;
+  state_.foreign_syncs = s.foreign_syncs;
   answers_read_ = s.answers;
   if (lifecycle_ != DriveLifecycle::active || s.bus_off) {
     return DriveStatus::error;
@@ -156,10 +162,15 @@ DriveStatus DriveLink::write(std::int64_t /*time_ns*/, std::int64_t /*period_ns*
     send_sync();
   }
   // The drive answers the producer's SYNC: every node awaits that answer alone (a node that
-  // does not produce the SYNC does not even receive it, bus_filters.hpp).
+  // does not produce the SYNC does not even receive it, bus_filters.hpp). A drive whose
+  // heartbeat says it left NMT operational answers no more: the cycle goes on without its
+  // answer, and the node's SYNC watchdog counts the cycles as in realtime (alarm 2004).
   const std::uint64_t seen = answers_read_;
   waited = wait_lockstep(
-               [&](auto t) { return wakeup_.wait_for([&] { return answers_.load() > seen; }, t); },
+               [&](auto t) {
+                 return wakeup_.wait_for(
+                     [&] { return answers_.load() > seen || left_operational_.load(); }, t);
+               },
                "the drive's answer to the SYNC") &&
            waited;
   return waited ? DriveStatus::ok : DriveStatus::abandoned;
@@ -275,7 +286,14 @@ void DriveLink::receive_loop() {
     const canopen::FrameClass cls = canopen::classify(frame);
     switch (cls.kind) {
       case canopen::FrameKind::sync:
-        wakeup_.update([&] { rpdo_seen_.reset(); });  // another SYNC source on the bus
+        // Our own SYNC is not received back: this one comes from another producer. It is
+        // counted for the node to alarm (2011); the RPDOs seen are kept, so a flood of such
+        // frames cannot hold this node's SYNC back for ever (issue 25).
+        if (watching_) {
+          ++received_.foreign_syncs;
+          publish();
+          wakeup_.notify();
+        }
         break;
       case canopen::FrameKind::rpdo1:
         if (cls.node != node_id_ && cls.node < 128) {
@@ -294,8 +312,13 @@ void DriveLink::receive_loop() {
         break;
       case canopen::FrameKind::heartbeat:
         if (cls.node == node_id_) {
-          if (canopen::decode_heartbeat(frame)) {
+          if (const auto state = canopen::decode_heartbeat(frame)) {
             ++received_.heartbeats;
+            if (watching_ && *state != canopen::NmtState::operational && !left_operational_) {
+              spdlog::error("node {}: the drive left NMT operational (heartbeat state 0x{:02x})",
+                            node_id_, static_cast<unsigned>(*state));
+              wakeup_.update([&] { left_operational_ = true; });
+            }
             publish();
           } else {
             ++malformed_;

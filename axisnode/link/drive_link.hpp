@@ -75,6 +75,7 @@ class DriveLink final : public DriveInterface {
     std::uint64_t heartbeats = 0;
     std::uint16_t last_emcy = 0;
     bool bus_off = false;
+    std::uint64_t foreign_syncs = 0;
   };
 
   void receive_loop();
@@ -111,6 +112,13 @@ class DriveLink final : public DriveInterface {
   // Complete answers so far, for the lockstep wait's condition (written under the wakeup's lock).
   std::atomic<std::uint64_t> answers_{0};
   std::atomic<bool> stop_{false};
+  // Set by activate(), cleared by deactivate(): the receive thread counts foreign SYNCs and
+  // watches the drive's NMT state only while the cyclic exchange runs (a boot-up heartbeat of
+  // the start-up is no fault).
+  std::atomic<bool> watching_{false};
+  // The drive's heartbeat said it left NMT operational: a lockstep wait for its answer ends
+  // (written under the wakeup's lock).
+  std::atomic<bool> left_operational_{false};
   std::atomic<std::uint64_t> emcys_{0};
   std::atomic<std::uint64_t> malformed_{0};
   // While configure() runs: this node's SDO responses and heartbeats, for the start-up

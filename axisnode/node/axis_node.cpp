@@ -331,6 +331,7 @@ const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& d
   in_.mode_display = drive.mode_display;
   in_.heartbeats = drive.heartbeats;
   in_.bus_off = drive.bus_off;
+  in_.foreign_syncs = drive.foreign_syncs;
   in_.touch_probe_status = drive.touch_probe_status;
   in_.probe_positive = drive.probe_positive;
   in_.probe_negative = drive.probe_negative;

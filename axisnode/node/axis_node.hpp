@@ -86,6 +86,7 @@ struct DriveReadings {
   std::int8_t mode_display = 0;
   std::uint64_t heartbeats = 0;
   bool bus_off = false;
+  std::uint64_t foreign_syncs = 0;       // SYNC frames another node sent (the producer sees them)
   std::uint16_t touch_probe_status = 0;  // 0x60B9
   std::int32_t probe_positive = 0;       // 0x60BA
   std::int32_t probe_negative = 0;       // 0x60BB

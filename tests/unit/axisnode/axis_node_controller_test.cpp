@@ -517,3 +517,19 @@ TEST(AxisNodeController, AHomingThatDoesNotEndInTimeIsAnAlarm) {
   }
   EXPECT_EQ(alarm_at, 51U);
 }
+
+// Issue 25: a SYNC the SYNC producer did not send (another producer on the bus) is alarm 2011
+// and a quick stop, raised once.
+TEST(AxisNodeController, ASyncOfAnotherProducerIsAnAlarmAndQuickStop) {
+  Loop loop;
+  loop.enable();
+  AxisNodeInput in = setpoint(12.5);
+  EXPECT_EQ(loop.step(in).new_alarm, AxisAlarm::none);
+  in.foreign_syncs = 1;
+  const auto& out = loop.step(in);
+  EXPECT_EQ(out.new_alarm, AxisAlarm::foreign_sync);
+  EXPECT_TRUE(out.quick_stop);
+  EXPECT_EQ(axisnode::kAlarmBase + static_cast<int>(out.alarm), 2011);
+  in.foreign_syncs = 40;
+  EXPECT_EQ(loop.step(in).new_alarm, AxisAlarm::none) << "raised once";
+}

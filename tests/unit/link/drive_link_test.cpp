@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 
 using namespace mcnc;
@@ -93,4 +94,72 @@ TEST(DriveLink, ReadAndWriteCarryTheSpindleLayoutBothWays) {
   l.link.deactivate(canopen::DriveCommand{});
   EXPECT_EQ(l.link.lifecycle(), DriveLifecycle::inactive);
   EXPECT_EQ(l.link.write(time, kPeriodNs), DriveStatus::error);
+}
+
+namespace {
+
+// Configures and activates `l` in lockstep, the spindle layout, and enables its drive in CSV
+// turning at 1000 counts/s. `abandon` as the axis node's.
+void run_enabled(Link& l, const std::function<bool()>& abandon, std::int64_t& time) {
+  canopen::NodeStartupConfig startup{3};
+  startup.pdos = canopen::spindle_pdos();
+  ASSERT_EQ(l.link.configure(startup, 5s), std::nullopt);
+  axisnode::DriveActivation activation;
+  activation.lockstep = true;
+  activation.abandon = abandon;
+  l.link.activate(activation);
+  const std::uint16_t steps[] = {cia402::encode_controlword(cia402::Command::shutdown),
+                                 cia402::encode_controlword(cia402::Command::switch_on),
+                                 cia402::encode_controlword(cia402::Command::enable_operation)};
+  for (int cycle = 0; cycle < 10; ++cycle) {
+    canopen::DriveCommand& command = l.link.command();
+    command.controlword = steps[std::min(cycle, 2)];
+    command.mode = 9;
+    command.target_velocity = 1000;
+    ASSERT_EQ(l.link.write(time, kPeriodNs), DriveStatus::ok) << cycle;
+    time += kPeriodNs;
+    ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok) << cycle;
+    ASSERT_TRUE(l.link.state().fresh) << cycle;
+  }
+}
+
+}  // namespace
+
+// Issue 25: an NMT stop from another node of the bus takes the drive out of operational; it
+// answers no SYNC, and its heartbeat says "stopped". The lockstep wait for its answer ends
+// (instead of waiting for ever), and the cycles go on without answers for the SYNC watchdog to
+// count.
+TEST(DriveLink, ADriveTakenOutOfOperationalIsNoLongerAwaitedInLockstep) {
+  Link l;
+  const auto give_up_at = std::chrono::steady_clock::now() + 20s;
+  const auto abandon = [&] { return std::chrono::steady_clock::now() > give_up_at; };
+  std::int64_t time = 0;
+  run_enabled(l, abandon, time);
+  l.bus.inject(canopen::encode_nmt(canopen::NmtCommand::stop, 3), false);
+  for (int cycle = 0; cycle < 20; ++cycle) {
+    ASSERT_EQ(l.link.write(time, kPeriodNs), DriveStatus::ok) << "waited until given up";
+    time += kPeriodNs;
+    ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok);
+  }
+  EXPECT_FALSE(l.link.state().fresh) << "a stopped drive answers nothing";
+}
+
+// Issue 25: the SYNC producer counts SYNC frames it did not send (for alarm 2011), and they do
+// not hold its cycle back.
+TEST(DriveLink, TheSyncProducerCountsSyncsOfAnotherProducer) {
+  Link l;
+  const auto give_up_at = std::chrono::steady_clock::now() + 20s;
+  const auto abandon = [&] { return std::chrono::steady_clock::now() > give_up_at; };
+  std::int64_t time = 0;
+  run_enabled(l, abandon, time);
+  EXPECT_EQ(l.link.state().foreign_syncs, 0U);
+  for (int i = 0; i < 3; ++i) {
+    l.bus.inject(canopen::encode_sync(static_cast<std::uint8_t>(100 + i)), true);
+  }
+  for (int cycle = 0; cycle < 5; ++cycle) {
+    ASSERT_EQ(l.link.write(time, kPeriodNs), DriveStatus::ok);
+    time += kPeriodNs;
+    ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok);
+  }
+  EXPECT_EQ(l.link.state().foreign_syncs, 3U);
 }

@@ -79,14 +79,25 @@ class SimulatedBus {
     thread_ = std::thread([this] {
       std::array<can::CanFrame, drivesim::DriveBusSimulator::kFramesPerDrive> out{};
       can::CanFrame in;
-      while (!stop_) {
-        if (end_->receive(in, std::chrono::milliseconds(20)) != can::BusResult::ok) {
-          continue;
-        }
-        const std::size_t n = sim_.handle(in, out);
+      const auto send_all = [&](std::size_t n) {
         for (std::size_t i = 0; i < n; ++i) {
           end_->send(out[i]);
         }
+      };
+      while (!stop_) {
+        // As mcnc-drivesim: the heartbeats of drives out of operational on the wall clock.
+        send_all(sim_.heartbeats_out_of_operation(
+            static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                           std::chrono::steady_clock::now().time_since_epoch())
+                                           .count()),
+            out));
+        for (const can::CanFrame& frame : take_injected()) {
+          send_all(sim_.handle(frame, out));
+        }
+        if (end_->receive(in, std::chrono::milliseconds(20)) != can::BusResult::ok) {
+          continue;
+        }
+        send_all(sim_.handle(in, out));
       }
     });
   }
@@ -97,10 +108,29 @@ class SimulatedBus {
   SimulatedBus(const SimulatedBus&) = delete;
   SimulatedBus& operator=(const SimulatedBus&) = delete;
 
+  // A frame from a third node of the bus: the drives get it (within 20 ms) and, when
+  // `to_master`, the master too.
+  void inject(const can::CanFrame& frame, bool to_master) {
+    {
+      std::lock_guard<std::mutex> lock(injected_mutex_);
+      injected_.push_back(frame);
+    }
+    if (to_master) {
+      end_->send(frame);
+    }
+  }
+
  private:
+  std::vector<can::CanFrame> take_injected() {
+    std::lock_guard<std::mutex> lock(injected_mutex_);
+    return std::exchange(injected_, {});
+  }
+
   std::unique_ptr<can::CanBus> end_;
   drivesim::DriveBusSimulator sim_;
   std::atomic<bool> stop_{false};
+  std::mutex injected_mutex_;
+  std::vector<can::CanFrame> injected_;
   std::thread thread_;
 };
 

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -284,6 +285,16 @@ std::vector<nlohmann::json> read_trace(const std::string& path) {
     }
   }
   return lines;
+}
+
+double last_cmd(const std::string& trace_path, const std::string& axis) {
+  double cmd = std::nan("");
+  for (const auto& e : events(read_trace(trace_path), "pos")) {
+    if (e["axis"] == axis) {
+      cmd = e["cmd"];
+    }
+  }
+  return cmd;
 }
 
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,

@@ -88,6 +88,9 @@ std::vector<nlohmann::json> trace_until_end(const std::vector<nlohmann::json>& t
 std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const std::string& program,
                                              const std::vector<std::string>& extra = {});
 
+// The last `cmd` of an axis's pos events in a trace (or trace part), or nan when it has none.
+double last_cmd(const std::string& trace_path, const std::string& axis);
+
 // Polls `pred` until true or timeout.
 template <class Pred>
 bool eventually(Pred pred, std::chrono::milliseconds timeout) {

@@ -23,17 +23,6 @@ using namespace std::chrono_literals;
 
 namespace {
 
-// Last pos `cmd` of an axis in a trace part, or nan.
-double last_cmd(const std::string& part, const std::string& axis) {
-  double cmd = std::nan("");
-  for (const auto& e : events(read_trace(part), "pos")) {
-    if (e["axis"] == axis) {
-      cmd = e["cmd"];
-    }
-  }
-  return cmd;
-}
-
 // Starts the processes of small_lathe one by one (no mcnc-launch), runs them with the given
 // clock, kills the channel while Z moves, and checks what the Z axis node did.
 void kill_channel_while_moving(int domain, ClockKind clock, std::uint32_t expected_alarm) {

@@ -6,6 +6,7 @@
 #include "axisnode/link/core_exchange.hpp"
 #include "axisnode/link/drive_link.hpp"
 #include "axisnode/node/axis_node.hpp"
+#include "axisnode/node/drive_stop.hpp"
 #include "axisnode/setup/axis_node_setup.hpp"
 #include "axisnode/wire/axis_inputs.hpp"
 #include "axisnode/wire/axis_outputs.hpp"
@@ -18,6 +19,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <functional>
@@ -115,8 +117,24 @@ int main(int argc, char** argv) {
     outputs.trace_start(core);
     const std::int64_t period_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
 
+    // The drive's side of a cycle: its answer, the core's step, the feedback stamped N, then
+    // the bus (RPDO and SYNC, and in lockstep the drive's answer to this SYNC).
+    const auto drive_cycle = [&](std::uint64_t cycle, bool emergency_stop, bool step_lockstep,
+                                 bool raise_alarms) {
+      const auto time_ns = static_cast<std::int64_t>(cycle) * period_ns;
+      link.read(time_ns, period_ns);  // a bus off is in the state, for the core to alarm
+      const axisnode::DriveSample& state = link.state();
+      const axisnode::AxisNodeOutput& out =
+          core.step(cycle, axisnode::readings_of(state), emergency_stop);
+      outputs.publish(cycle, core, state, raise_alarms);
+      link.command() = axisnode::command_of(out);
+      link.set_lockstep(step_lockstep);
+      link.write(time_ns, period_ns);
+    };
+
     bool owner_loss_checked = false;
-    for (std::uint64_t cycle = 0; loop.next(
+    std::uint64_t cycle = 0;
+    for (; loop.next(
              cycle, [&](std::uint64_t c) { return core.ready(c); },
              [&] { return core.owner_lost(); });
          ++cycle) {
@@ -144,21 +162,42 @@ int main(int argc, char** argv) {
           outputs.trace_reset(cycle);
         }
       }
-
       // 2. The drive's cycle, and the feedback stamped N.
-      const auto time_ns = static_cast<std::int64_t>(cycle) * period_ns;
-      link.read(time_ns, period_ns);  // a bus off is in the state, for the core to alarm
-      const axisnode::DriveSample& state = link.state();
-      const axisnode::AxisNodeOutput& out =
-          core.step(cycle, axisnode::readings_of(state), loop.emergency_stop());
-      outputs.publish(cycle, core, state);
-
-      // 3. The bus: RPDO and SYNC, and in lockstep the drive's answer to this SYNC.
-      link.command() = axisnode::command_of(out);
-      link.set_lockstep(lockstep && !loop.degraded());
-      link.write(time_ns, period_ns);
+      drive_cycle(cycle, loop.emergency_stop(), lockstep && !loop.degraded(), true);
     }
 
+    // Stopping is safe (axisnode/node/drive_stop.hpp): the drive quick-stops in cycles paced to
+    // real time, nothing the machine says is obeyed any more, and it is disabled only at rest
+    // (the SYNC producer once the bus's other nodes are quiet too). The feedback goes on, so
+    // that a machine still running steps on and sees the axis stop.
+    axisnode::DriveStopLimits stop_limits;
+    const int cycles_per_s = std::max(1, 1'000'000 / machine.cycle_us);
+    stop_limits.limit_cycles = 5 * cycles_per_s;
+    stop_limits.quiet_cycles = std::max(stop_limits.quiet_cycles, cycles_per_s / 20);
+    // Half a second: a lockstep machine may step slower than real time for a while.
+    stop_limits.silent_drive_cycles = std::max(machine.deadline_cycles, cycles_per_s / 2);
+    axisnode::DriveStop drive_stop(sync_producer, stop_limits);
+    axisnode::DriveStop::Verdict verdict = axisnode::DriveStop::Verdict::go_on;
+    axisnode::AxisAlarm alarm_while_stopping = axisnode::AxisAlarm::none;
+    while (verdict == axisnode::DriveStop::Verdict::go_on) {
+      loop.next_stopping(cycle);
+      drive_cycle(cycle, true, false, false);
+      if (alarm_while_stopping == axisnode::AxisAlarm::none) {
+        alarm_while_stopping = core.output().new_alarm;
+      }
+      verdict =
+          drive_stop.cycle(link.state().fresh, core.ready_to_disable(), link.other_nodes_rpdos());
+      ++cycle;
+    }
+    spdlog::info("drive stopped in {} cycles: {}", drive_stop.cycles(), axisnode::to_text(verdict));
+    if (verdict != axisnode::DriveStop::Verdict::disable) {
+      spdlog::warn("the drive is disabled without standing still: {}", axisnode::to_text(verdict));
+    }
+    if (alarm_while_stopping != axisnode::AxisAlarm::none) {
+      spdlog::warn("while stopping: alarm {} {}",
+                   axisnode::kAlarmBase + static_cast<int>(alarm_while_stopping),
+                   axisnode::to_text(alarm_while_stopping));
+    }
     link.deactivate(
         canopen::DriveCommand{cia402::encode_controlword(cia402::Command::disable_voltage),
                               core.output().target_counts, 0, core.output().mode});

@@ -348,4 +348,16 @@ bool AxisNodeController::drive_at_rest() const noexcept {
   }
 }
 
+bool AxisNodeController::ready_to_disable() const noexcept {
+  switch (out_.drive_state) {
+    case cia402::State::operation_enabled:
+    case cia402::State::fault_reaction_active:
+      return false;
+    case cia402::State::quick_stop_active:
+      return (statusword_ & kTargetReached) != 0;  // "halted"
+    default:
+      return true;
+  }
+}
+
 }  // namespace mcnc::axisnode

@@ -131,6 +131,10 @@ class AxisNodeController {
   // its alarm again: a drive still in fault after fault_reset_cycles or faulting again, a
   // heartbeat still silent after the consumer time, bus off and E-stop at once.
   void reset() noexcept { reset_requested_ = true; }
+  // The drive may now be disabled without letting its axis fall or coast: it is out of
+  // operation and no longer braking (a quick stop that has halted, or never enabled). A drive
+  // in operation, in a quick stop still ramping down or in a fault reaction may not.
+  [[nodiscard]] bool ready_to_disable() const noexcept;
 
  private:
   void raise(AxisAlarm alarm) noexcept;

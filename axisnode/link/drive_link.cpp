@@ -297,6 +297,7 @@ void DriveLink::receive_loop() {
         break;
       case canopen::FrameKind::rpdo1:
         if (cls.node != node_id_ && cls.node < 128) {
+          ++other_rpdos_;
           wakeup_.update([&] { rpdo_seen_.set(cls.node); });
         }
         break;

@@ -64,6 +64,10 @@ class DriveLink final : public DriveInterface {
   static constexpr std::size_t kLatenessRecords = 1U << 14;
   [[nodiscard]] std::vector<std::int64_t> sync_lateness() const;
 
+  // RPDO1 frames of the bus's other nodes seen so far: a stopping SYNC producer waits until
+  // they stop (axisnode/node/drive_stop.hpp).
+  [[nodiscard]] std::uint64_t other_nodes_rpdos() const noexcept { return other_rpdos_.load(); }
+
   [[nodiscard]] std::uint64_t malformed_count() const noexcept;
   [[nodiscard]] std::uint64_t emcy_count() const noexcept { return emcys_.load(); }
 
@@ -120,6 +124,7 @@ class DriveLink final : public DriveInterface {
   // (written under the wakeup's lock).
   std::atomic<bool> left_operational_{false};
   std::atomic<std::uint64_t> emcys_{0};
+  std::atomic<std::uint64_t> other_rpdos_{0};
   std::atomic<std::uint64_t> malformed_{0};
   // While configure() runs: this node's SDO responses and heartbeats, for the start-up
   // (guarded by the wakeup's lock).

@@ -166,6 +166,7 @@ class AxisNode {
                              bool emergency_stop) noexcept;
 
   [[nodiscard]] const AxisNodeOutput& output() const noexcept { return controller_.output(); }
+  [[nodiscard]] bool ready_to_disable() const noexcept { return controller_.ready_to_disable(); }
   [[nodiscard]] AxisNodeStanding standing() const noexcept;
   [[nodiscard]] const AxisNodeHappening* happenings() const noexcept { return happened_.data(); }
   [[nodiscard]] std::size_t happening_count() const noexcept { return happened_count_; }

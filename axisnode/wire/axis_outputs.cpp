@@ -100,8 +100,8 @@ void AxisOutputs::trace_reset(std::uint64_t cycle) noexcept {
   tracer_.emit(cycle, "operator", "\"axis\":\"%s\",\"action\":\"reset\"", axis_.name.c_str());
 }
 
-void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core,
-                          const DriveSample& drive) noexcept {
+void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const DriveSample& drive,
+                          bool raise_alarms) noexcept {
   const canopen::DriveFeedback& tpdo = drive.feedback;
   const std::uint16_t last_emcy = drive.last_emcy;
   const AxisNodeOutput& out = core.output();
@@ -142,7 +142,7 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core,
     tracer_.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", self,
                  cia402::to_string(out.drive_state));
   }
-  if (out.new_alarm != AxisAlarm::none) {
+  if (out.new_alarm != AxisAlarm::none && raise_alarms) {
     const int number = kAlarmBase + static_cast<int>(out.new_alarm);
     const char* text = to_text(out.new_alarm);
     char with_emcy[160];

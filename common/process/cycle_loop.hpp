@@ -69,6 +69,19 @@ class CycleLoop {
     return true;
   }
 
+  // After next() said the run stops: waits for the next cycle paced to real time (a lockstep
+  // machine's inputs no longer come), so that the process can bring its outputs to rest
+  // before it leaves. `cycle` is the one next() did not run, then the one after each call.
+  void next_stopping(std::uint64_t& cycle) noexcept {
+    if (lockstep_ && !degraded_) {
+      degraded_ = true;
+      origin_ns_ = clock::monotonic_ns() - static_cast<std::int64_t>(cycle) * period_ns_;
+    }
+    cycle = clock::wait_for_cycle(origin_ns_, period_ns_, cycle, true);
+    woke_ns_ = clock::monotonic_ns();
+    due_ns_ = origin_ns_ + static_cast<std::int64_t>(cycle) * period_ns_;
+  }
+
   [[nodiscard]] bool lockstep() const noexcept { return lockstep_; }
   // Stepping on its own: lockstep without a feed, paced to real time.
   [[nodiscard]] bool degraded() const noexcept { return degraded_; }

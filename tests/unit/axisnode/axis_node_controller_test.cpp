@@ -533,3 +533,31 @@ TEST(AxisNodeController, ASyncOfAnotherProducerIsAnAlarmAndQuickStop) {
   in.foreign_syncs = 40;
   EXPECT_EQ(loop.step(in).new_alarm, AxisAlarm::none) << "raised once";
 }
+
+// Stopping is safe: a drive moving at feed is not ready to be disabled until its quick stop
+// has brought it to rest (statusword "halted"); then it is.
+TEST(AxisNodeController, AMovingDriveIsReadyToDisableOnlyOnceItsQuickStopHalted) {
+  Loop loop;
+  loop.enable();
+  for (int i = 0; i < 100; ++i) {
+    loop.step(setpoint(12.5 + 0.1 * i, 100.0));  // 100 mm/s
+  }
+  ASSERT_FALSE(loop.node.ready_to_disable()) << "in operation";
+  AxisNodeInput estop;
+  estop.emergency_stop = true;
+  int cycles = 0;
+  while (!loop.node.ready_to_disable() && cycles < 1000) {
+    loop.step(estop);
+    ++cycles;
+    if (!loop.node.ready_to_disable()) {
+      EXPECT_NE(loop.drive.state(), cia402::State::switch_on_disabled);
+    }
+  }
+  // 100 mm/s at the drive's 5000 mm/s^2 takes 20 cycles to stop, and a few for the frames.
+  EXPECT_GE(cycles, 20);
+  ASSERT_TRUE(loop.node.ready_to_disable());
+  EXPECT_EQ(loop.drive.state(), cia402::State::quick_stop_active);
+  const double at_rest = loop.drive.position();
+  loop.step(estop);
+  EXPECT_DOUBLE_EQ(loop.drive.position(), at_rest);
+}

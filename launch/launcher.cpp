@@ -20,6 +20,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <csignal>
@@ -67,6 +68,23 @@ struct Observed {
   std::vector<Alarm> alarms;
 };
 
+// Removes, when it goes, what a run left in /dev/shm (process::RunShmFootprint).
+class LeftOverShmRemoval {
+ public:
+  explicit LeftOverShmRemoval(int domain) : footprint_(domain) {}
+  ~LeftOverShmRemoval() {
+    if (const std::size_t removed = footprint_.remove_left_over(); removed > 0) {
+      spdlog::info("removed {} shared-memory files the run left in /dev/shm", removed);
+    }
+  }
+  LeftOverShmRemoval(const LeftOverShmRemoval&) = delete;
+  LeftOverShmRemoval& operator=(const LeftOverShmRemoval&) = delete;
+  void note_process(pid_t pid) noexcept { footprint_.note_process(pid); }
+
+ private:
+  process::RunShmFootprint footprint_;
+};
+
 bool drive_at_rest(const AxisFeedback& fb) {
   return std::fabs(fb.vel()) < 1e-9 && !fb.enabled();
 }
@@ -80,6 +98,10 @@ LaunchResult Launcher::run(
     const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
   LaunchResult result;
   const int domain = process::resolve_domain(machine_);
+  // What /dev/shm held before the run: what the run's processes leave there is removed when
+  // run() returns, after this launcher's own participant is gone too (Fast DDS leaves its port
+  // files even after a clean exit), and nothing of another machine's run on this host.
+  LeftOverShmRemoval shm_footprint(domain);
   // On a machine of several hosts, a launcher other than the first host's follows the run.
   const bool follower = is_follower(machine_, options_.host);
   // Children end with the launcher, even when it is killed (see process::die_with_parent()).
@@ -226,6 +248,15 @@ LaunchResult Launcher::run(
   std::vector<std::string> merge_order = launch_plan(machine_, options_, parts_dir).trace_parts;
   merge_order.insert(merge_order.end(), part_paths.begin(), part_paths.end());
 
+  // The files in /dev/shm that the run's processes (this one among them) use.
+  const auto note_run_shm = [&] {
+    shm_footprint.note_process(::getpid());
+    for (auto& child : children) {
+      if (child.running()) {
+        shm_footprint.note_process(child.pid());
+      }
+    }
+  };
   for (auto& child : children) {
     child.start(env);
     spdlog::debug("started {} (pid {})", child.name(), child.pid());
@@ -515,6 +546,7 @@ LaunchResult Launcher::run(
     }
     // Realtime: cycle 0 a little in the future so every process starts on the same tick.
     send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
+    note_run_shm();  // every endpoint is made by now: ready means discovered
     std::uint64_t operator_seq = 0;
     for (const auto& c : options_.operator_script) {
       OperatorCommand cmd;
@@ -696,6 +728,7 @@ LaunchResult Launcher::run(
 
   // 3. Stop: ask politely (DDS processes by run control, drive simulators by SIGTERM once
   // their nodes are gone), then insist.
+  note_run_shm();
   send_control(RUN_STOP, 0, failure);
   auto wait_all = [&](std::chrono::milliseconds timeout, bool dds_only = false) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;

@@ -8,6 +8,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <string>
 
 namespace fs = std::filesystem;
 
@@ -41,4 +43,43 @@ TEST(ShmCleanup, RemovesSegmentsWhoseLockIsFreeAndKeepsLockedOnes) {
   ::close(fd);
   fs::remove(shm(live));
   fs::remove(shm(live + "_el"));
+}
+
+// After a run, its launcher removes what the run left, and nothing of another run's: files that
+// were there before, ports of other domains, other participants' data-sharing files and files
+// still in use stay.
+TEST(ShmCleanup, ARunRemovesOnlyWhatItLeftAndNoLongerUses) {
+  const fs::path dir = fs::temp_directory_path() / ("mcnc_shm_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  const auto touch = [&](const std::string& name) { std::ofstream(d + name) << "x"; };
+  touch("fastrtps_port57401");  // domain 200's, before the run
+  touch("unrelated_file");
+  mcnc::process::RunShmFootprint run(200, d);
+
+  // During the run: domain 200's ports (one still in use), another domain's port, a run
+  // process's data-sharing segment and another participant's.
+  for (const char* name :
+       {"fastrtps_port57410", "sem.fastrtps_port57410_mutex", "fastrtps_port57412",
+        "fastrtps_port57650", "fast_datasharing_01.0f.aa_0.0.1.3",
+        "fast_datasharing_01.0f.bb_0.0.1.3", "unrelated_new"}) {
+    touch(name);
+  }
+  // The run's process maps its data-sharing segment (as /proc/<pid>/maps would say).
+  const int fd = ::open((d + "fast_datasharing_01.0f.aa_0.0.1.3").c_str(), O_RDONLY);
+  ASSERT_GE(fd, 0);
+  run.note_process(getpid());
+  ::close(fd);
+
+  const std::set<std::string> in_use{d + "fastrtps_port57412"};
+  EXPECT_EQ(run.remove_left_over(in_use), 3U);
+  EXPECT_FALSE(fs::exists(d + "fastrtps_port57410"));
+  EXPECT_FALSE(fs::exists(d + "sem.fastrtps_port57410_mutex"));
+  EXPECT_FALSE(fs::exists(d + "fast_datasharing_01.0f.aa_0.0.1.3"));
+  EXPECT_TRUE(fs::exists(d + "fastrtps_port57401")) << "there before the run";
+  EXPECT_TRUE(fs::exists(d + "fastrtps_port57412")) << "in use";
+  EXPECT_TRUE(fs::exists(d + "fastrtps_port57650")) << "domain 201's";
+  EXPECT_TRUE(fs::exists(d + "fast_datasharing_01.0f.bb_0.0.1.3")) << "not the run's";
+  EXPECT_TRUE(fs::exists(d + "unrelated_new"));
+  fs::remove_all(dir);
 }

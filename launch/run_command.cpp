@@ -29,7 +29,8 @@ namespace mcnc::launch {
 namespace {
 
 // Checks a program before the machine starts (InterpreterSource::load: parse and dry run).
-// Prints "FILE:LINE:COL: alarm N: text" when bad.
+// Prints "FILE:LINE:COL: alarm N: text" when bad (FILE: the called program's file when the
+// alarm is in a called program).
 bool program_is_good(const config::MachineConfig& machine, const config::ChannelConfig& ch,
                      const std::string& path) {
   std::ifstream file(path);
@@ -38,7 +39,11 @@ bool program_is_good(const config::MachineConfig& machine, const config::Channel
   const std::string name = std::filesystem::path(path).filename().string();
   interp::InterpreterSource source(channel::interpreter_config_for(machine, ch));
   if (auto alarm = source.load(text.str(), name)) {
-    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", path.c_str(), alarm->line,
+    // An alarm in a called program (M98, G65 from the program directory) is that file's: its
+    // line and column are too.
+    const std::string& where =
+        alarm->program.empty() || alarm->program == name ? path : alarm->program;
+    std::fprintf(stderr, "error: %s:%d:%d: alarm %d: %s\n", where.c_str(), alarm->line,
                  alarm->column, alarm->number, alarm->text.c_str());
     return false;
   }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -194,6 +195,24 @@ TEST(Run, BadProgramExits2WithLineAndColumnAndMovesNothing) {
       run({bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program}, -1, 60s);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("bad.nc:3:"), std::string::npos) << r.err;
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty());
+}
+
+// An alarm in a called program (M98 from the program directory) names that program's file with
+// its own line and column, not the main program's path (issue 25).
+TEST(Run, AnAlarmInACalledProgramNamesThatProgramsFileLineAndColumn) {
+  TestMachine machine("small_lathe.yaml", 216);
+  const std::string dir = machine.file("programs");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/O3200.nc") << "O3200\nG01 X10 Z-5 F100\nG01 X12 Q#\nM99\n";
+  const std::string main_program = machine.file("main.nc");
+  std::ofstream(main_program) << "%\nO0001\nG00 X20 Z2\nM98 P3200\nM30\n%\n";
+  const RunResult r = run(
+      {bin("mcnc"), "run", machine.path(), "--progdir", dir, "--program", "CH1=" + main_program},
+      -1, 60s);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("O3200.nc:3:10: alarm 3105"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("main.nc:"), std::string::npos) << r.err;
   EXPECT_TRUE(pids_with_arg(machine.path()).empty());
 }
 

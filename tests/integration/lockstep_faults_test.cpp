@@ -88,7 +88,7 @@ nlohmann::json first_alarm(const std::vector<nlohmann::json>& trace, const std::
 // An NMT stop to Z's drive: the drive answers no SYNC and its heartbeat says "stopped". Z1 no
 // longer waits for the answer, its SYNC watchdog counts the cycles as in realtime: alarm 2004.
 TEST(LockstepFaults, AnNmtStopToADriveEndsTheRunWithAlarm2004) {
-  MovingLockstepLathe lathe(210);
+  MovingLockstepLathe lathe(124);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   const auto fault_at = std::chrono::steady_clock::now();
   ASSERT_EQ(inject(lathe, "nmt-stop", std::to_string(kZDriveNode)).exit_code, 0);
@@ -103,7 +103,7 @@ TEST(LockstepFaults, AnNmtStopToADriveEndsTheRunWithAlarm2004) {
 // SYNC frames from another node, one a millisecond for 10 s: X1, the bus's SYNC producer, sees
 // SYNCs it did not send and raises alarm 2011; the flood no longer holds its own SYNC back.
 TEST(LockstepFaults, ASyncFloodEndsTheRunWithAlarm2011) {
-  MovingLockstepLathe lathe(211);
+  MovingLockstepLathe lathe(131);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   Background flood(
       {source("tests/integration/bus_faults.py"), lathe.group(), lathe.port(), "sync-flood", "10"},
@@ -121,7 +121,7 @@ TEST(LockstepFaults, ASyncFloodEndsTheRunWithAlarm2011) {
 // stopped, E-stops the machine (alarm 3001 naming it), resumes it so that it quick-stops its
 // drive, and the run ends.
 TEST(LockstepFaults, AStoppedAxisNodeEndsTheRunInAnEStop) {
-  MovingLockstepLathe lathe(212);
+  MovingLockstepLathe lathe(133);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   std::vector<pid_t> z1;
   for (const pid_t p : pids_with_arg("--axis Z1")) {

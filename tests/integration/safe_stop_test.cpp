@@ -195,7 +195,7 @@ void expect_quick_stop_then_rest_then_disable(const std::vector<mcnc::can::CanFr
 // SIGTERM to Z1 (not its bus's SYNC producer) while Z moves at F300: Z1 quick-stops its drive,
 // which X1's SYNC steps to rest, before disabling it; the run ends in an alarm.
 TEST(SafeStop, ASigtermToAMovingAxisNodeQuickStopsItsDriveBeforeDisablingIt) {
-  MovingLathe lathe(213);
+  MovingLathe lathe(138);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   const pid_t z1 = lathe.axis_node("Z1");
   ASSERT_GT(z1, 0);
@@ -209,7 +209,7 @@ TEST(SafeStop, ASigtermToAMovingAxisNodeQuickStopsItsDriveBeforeDisablingIt) {
 // SIGTERM to the launcher while Z moves: it E-stops the machine, and every node brings its
 // drive to rest before disabling it.
 TEST(SafeStop, ASigtermToTheLauncherQuickStopsTheMovingDriveBeforeDisablingIt) {
-  MovingLathe lathe(214);
+  MovingLathe lathe(139);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   const std::size_t from = lathe.frames().size();
   ASSERT_EQ(::kill(lathe.launcher(), SIGTERM), 0);
@@ -223,7 +223,7 @@ TEST(SafeStop, ASigtermToTheLauncherQuickStopsTheMovingDriveBeforeDisablingIt) {
 // data-sharing files and port files included).
 TEST(SafeStop, AChildKilledOnFastDdsLeavesNothingInDevShm) {
   ASSERT_EQ(::setenv("MCNC_MIDDLEWARE", "fastdds", 1), 0);
-  MovingLathe lathe(215);
+  MovingLathe lathe(144);
   ASSERT_TRUE(lathe.z_moves()) << lathe.output();
   const pid_t z1 = lathe.axis_node("Z1");
   ASSERT_GT(z1, 0);

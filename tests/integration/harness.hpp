@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <sys/types.h>
+#include "../support/eventually.hpp"
+
 #include <chrono>
 #include <memory>
 #include <string>
@@ -90,19 +92,6 @@ std::vector<nlohmann::json> run_to_clean_end(const TestMachine& machine, const s
 
 // The last `cmd` of an axis's pos events in a trace (or trace part), or nan when it has none.
 double last_cmd(const std::string& trace_path, const std::string& axis);
-
-// Polls `pred` until true or timeout.
-template <class Pred>
-bool eventually(Pred pred, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (pred()) {
-      return true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return pred();
-}
 
 // Gives this test process, and every process it starts after, a host of its own as iceoryx sees
 // it: a mount namespace where /dev/shm is empty and /tmp shows what the host's does, except

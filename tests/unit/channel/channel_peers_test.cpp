@@ -8,11 +8,11 @@
 #include "channel/wire/channel_peers.hpp"
 #include "channel_rig.hpp"
 #include "common/config/machine_config.hpp"
+#include "support/eventually.hpp"
 
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <thread>
 
@@ -20,17 +20,9 @@ namespace mcnc::channel {
 namespace {
 
 using namespace std::chrono_literals;
+using test::eventually;
 
-bool eventually(const std::function<bool()>& done, std::chrono::milliseconds within = 20s) {
-  const auto end = std::chrono::steady_clock::now() + within;
-  while (std::chrono::steady_clock::now() < end) {
-    if (done()) {
-      return true;
-    }
-    std::this_thread::sleep_for(5ms);
-  }
-  return done();
-}
+constexpr auto kWait = 20s;
 
 // CH2 as its process is seen on the wire: a status every cycle, numbered events.
 class PeerOnTheWire {
@@ -129,17 +121,19 @@ constexpr std::size_t kCh2 = 0;  // CH2's gate input: the first other channel
 TEST(ChannelPeers, TheGateWaitsForThePeersStatusAndForTheEventsItAnnounces) {
   PeersRig ch1(146, "M30\n");
   PeerOnTheWire ch2(146);
-  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2.matched(); }));
+  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2.matched(); }, kWait, 5ms));
   EXPECT_FALSE(ch1.gate_.may_run(1));
   ch2.status(0);
-  ASSERT_TRUE(eventually([&] { return ch1.gate_.may_run(1); })) << "CH2's status 0 is in";
+  ASSERT_TRUE(eventually([&] { return ch1.gate_.may_run(1); }, kWait, 5ms))
+      << "CH2's status 0 is in";
   EXPECT_FALSE(ch1.gate_.may_run(2));
 
   // Status 1 announces an event that has not come: cycle 2 waits for it, however long.
   ch2.announce_unsent_event();
   ch2.status(1);
   ASSERT_TRUE(eventually(
-      [&] { return ch1.gate_.events_received(kCh2) == 0 && ch1.gate_.first_missing(2) == kCh2; }));
+      [&] { return ch1.gate_.events_received(kCh2) == 0 && ch1.gate_.first_missing(2) == kCh2; },
+      kWait, 5ms));
   std::this_thread::sleep_for(300ms);
   EXPECT_FALSE(ch1.gate_.may_run(2)) << "a status without the event it announces";
 }
@@ -147,7 +141,7 @@ TEST(ChannelPeers, TheGateWaitsForThePeersStatusAndForTheEventsItAnnounces) {
 TEST(ChannelPeers, AnArrivalReachesTheControllerInTheCycleAfterTheOneItWasSentIn) {
   PeersRig ch1(218, "G04.1 P1 Q12\nG01 X10 F300\nM30\n");
   PeerOnTheWire ch2(218);
-  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2.matched(); }));
+  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2.matched(); }, kWait, 5ms));
   ch1.ctl().request_start();
   ASSERT_TRUE(
       ch1.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }, 2000));
@@ -155,7 +149,7 @@ TEST(ChannelPeers, AnArrivalReachesTheControllerInTheCycleAfterTheOneItWasSentIn
   const std::uint64_t sent = ch1.cycle_ + 5;
   ch2.arrival(sent, 1);
   ch2.status(sent);
-  ASSERT_TRUE(eventually([&] { return ch1.gate_.events_received(kCh2) == 1; }));
+  ASSERT_TRUE(eventually([&] { return ch1.gate_.events_received(kCh2) == 1; }, kWait, 5ms));
   while (ch1.cycle_ < sent) {
     ch1.step();
     ASSERT_EQ(ch1.last_state_, ChannelState::waiting) << "cycle " << ch1.cycle_;
@@ -169,18 +163,20 @@ TEST(ChannelPeers, AnArrivalReachesTheControllerInTheCycleAfterTheOneItWasSentIn
 TEST(ChannelPeers, APeerWhoseProcessIsGoneIsLostToTheControllerWaitingForIt) {
   PeersRig ch1(219, "G04.1 P1 Q12\nM30\n");
   auto ch2 = std::make_unique<PeerOnTheWire>(219);
-  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2->matched(); }));
+  ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2->matched(); }, kWait, 5ms));
   ch2->status(0);
-  ASSERT_TRUE(
-      eventually([&] { return ch1.gate_.may_run(1) || ch1.gate_.first_missing(1) != kCh2; }));
+  ASSERT_TRUE(eventually([&] { return ch1.gate_.may_run(1) || ch1.gate_.first_missing(1) != kCh2; },
+                         kWait, 5ms));
   ch1.ctl().request_start();
   ASSERT_TRUE(
       ch1.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }, 2000));
   ch2.reset();  // CH2's process ends: its writers leave
-  ASSERT_TRUE(eventually([&] {
-    ch1.step();
-    return ch1.last_state_ == ChannelState::alarm;
-  }));
+  ASSERT_TRUE(eventually(
+      [&] {
+        ch1.step();
+        return ch1.last_state_ == ChannelState::alarm;
+      },
+      kWait, 5ms));
   EXPECT_EQ(ch1.ctl().last_alarm().number, kAlarmSyncPartnerLost);
   EXPECT_TRUE(ch1.gate_.may_run(ch1.cycle_ + 5)) << "a lost peer no longer holds the gate";
   EXPECT_FALSE(ch1.released_.has_value());

@@ -16,45 +16,41 @@ ProgramLoader::ProgramLoader(interp::InterpreterConfig config)
     : config_(std::move(config)), thread_([this] { run(); }) {}
 
 ProgramLoader::~ProgramLoader() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_one();
+  stop_.store(true, std::memory_order_release);
+  ring();
   thread_.join();
 }
 
+void ProgramLoader::ring() noexcept {
+  bell_.fetch_add(1, std::memory_order_release);
+  bell_.notify_one();
+}
+
 bool ProgramLoader::submit(bool mdi, std::string_view text) noexcept {
-  if (text.empty() || text.size() > kMaxText) {
+  if (text.empty() || text.size() > kMaxText ||
+      phase_.load(std::memory_order_acquire) != Phase::idle) {
     return false;
   }
-  {
-    std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
-    if (!lock.owns_lock() || requested_ || checking_ || result_) {
-      return false;
-    }
-    std::copy(text.begin(), text.end(), text_.begin());
-    text_[text.size()] = '\0';
-    mdi_ = mdi;
-    requested_ = true;
-  }
-  wake_.notify_one();
+  std::copy(text.begin(), text.end(), text_.begin());
+  text_[text.size()] = '\0';
+  mdi_ = mdi;
+  phase_.store(Phase::requested, std::memory_order_release);
+  ring();
   return true;
 }
 
 std::optional<LoadedProgram> ProgramLoader::take() noexcept {
-  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
-  if (!lock.owns_lock() || !result_) {
+  if (phase_.load(std::memory_order_acquire) != Phase::done) {
     return std::nullopt;
   }
   std::optional<LoadedProgram> r = std::move(result_);
   result_.reset();
+  phase_.store(Phase::idle, std::memory_order_release);
   return r;
 }
 
 bool ProgramLoader::busy() const noexcept {
-  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
-  return !lock.owns_lock() || requested_ || checking_ || result_.has_value();
+  return phase_.load(std::memory_order_acquire) != Phase::idle;
 }
 
 void ProgramLoader::run() {
@@ -63,21 +59,19 @@ void ProgramLoader::run() {
   sched_param normal{};
   (void)pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
   process::name_this_thread("program-loader");
-  std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    wake_.wait(lock, [this] { return stop_ || requested_; });
-    if (stop_) {
+    const std::uint32_t rung = bell_.load(std::memory_order_acquire);
+    if (stop_.load(std::memory_order_acquire)) {
       return;
     }
-    requested_ = false;
-    checking_ = true;
-    const bool mdi = mdi_;
+    if (phase_.load(std::memory_order_acquire) != Phase::requested) {
+      bell_.wait(rung, std::memory_order_acquire);
+      continue;
+    }
+    phase_.store(Phase::checking, std::memory_order_release);
     const std::string text(text_.data());
-    lock.unlock();
-    LoadedProgram loaded = load(mdi, text);
-    lock.lock();
-    result_ = std::move(loaded);
-    checking_ = false;
+    result_ = load(mdi_, text);
+    phase_.store(Phase::done, std::memory_order_release);
   }
 }
 

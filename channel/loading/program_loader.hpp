@@ -2,12 +2,13 @@
 // The channel's program checks off the cycle: a program the operator selects, or MDI blocks,
 // checked on a thread of its own, since a dry run (InterpreterSource::check) may take seconds
 // where a cycle has milliseconds. The cycle hands a request over and later takes the result;
-// neither blocks nor allocates. One request at a time.
+// neither blocks, allocates or takes a lock (the hand-over is one atomic phase, the thread's
+// wake-up a futex). One request at a time.
 #include "channel/interp/interpreter_source.hpp"
 
 #include <array>
-#include <condition_variable>
-#include <mutex>
+#include <atomic>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,12 +46,15 @@ class ProgramLoader {
   void run();
   LoadedProgram load(bool mdi, const std::string& text) const;
 
+  // Who holds the request: the cycle (idle: no request; done: its result waits to be taken)
+  // or the thread (requested, checking). text_, mdi_ and result_ belong to whoever holds it.
+  enum class Phase : std::uint8_t { idle, requested, checking, done };
+  void ring() noexcept;
+
   const interp::InterpreterConfig config_;
-  mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;
-  bool requested_ = false;  // a request waits for the thread
-  bool checking_ = false;
+  std::atomic<Phase> phase_{Phase::idle};
+  std::atomic<std::uint32_t> bell_{0};  // rung on a request and on stop
+  std::atomic<bool> stop_{false};
   bool mdi_ = false;
   std::array<char, kMaxText + 1> text_{};
   std::optional<LoadedProgram> result_;

@@ -120,13 +120,13 @@ int main(int argc, char** argv) {
     // The drive's side of a cycle: its answer, the core's step, the feedback stamped N, then
     // the bus (RPDO and SYNC, and in lockstep the drive's answer to this SYNC).
     const auto drive_cycle = [&](std::uint64_t cycle, bool emergency_stop, bool step_lockstep,
-                                 bool raise_alarms) {
+                                 bool in_run) {
       const auto time_ns = static_cast<std::int64_t>(cycle) * period_ns;
       link.read(time_ns, period_ns);  // a bus off is in the state, for the core to alarm
       const axisnode::DriveSample& state = link.state();
       const axisnode::AxisNodeOutput& out =
           core.step(cycle, axisnode::readings_of(state), emergency_stop);
-      outputs.publish(cycle, core, state, raise_alarms);
+      outputs.publish(cycle, core, state, in_run);
       link.command() = axisnode::command_of(out);
       link.set_lockstep(step_lockstep);
       link.write(time_ns, period_ns);
@@ -177,7 +177,12 @@ int main(int argc, char** argv) {
     // Half a second: a lockstep machine may step slower than real time for a while.
     stop_limits.silent_drive_cycles = std::max(machine.deadline_cycles, cycles_per_s / 2);
     axisnode::DriveStop drive_stop(sync_producer, stop_limits);
-    axisnode::DriveStop::Verdict verdict = axisnode::DriveStop::Verdict::go_on;
+    // At a run's end the drives stand where the programs ended, and an E-stop has already
+    // stopped them in the loop: they are disabled at once, as before, and the bus and the trace
+    // end as they did. A signal, or a drive still moving, takes the stop.
+    const bool must_stop = process::g_stop_signal != 0 || core.output().vel != 0.0;
+    axisnode::DriveStop::Verdict verdict =
+        must_stop ? axisnode::DriveStop::Verdict::go_on : axisnode::DriveStop::Verdict::disable;
     axisnode::AxisAlarm alarm_while_stopping = axisnode::AxisAlarm::none;
     while (verdict == axisnode::DriveStop::Verdict::go_on) {
       loop.next_stopping(cycle);
@@ -189,7 +194,10 @@ int main(int argc, char** argv) {
           drive_stop.cycle(link.state().fresh, core.ready_to_disable(), link.other_nodes_rpdos());
       ++cycle;
     }
-    spdlog::info("drive stopped in {} cycles: {}", drive_stop.cycles(), axisnode::to_text(verdict));
+    if (must_stop) {
+      spdlog::info("drive stopped in {} cycles: {}", drive_stop.cycles(),
+                   axisnode::to_text(verdict));
+    }
     if (verdict != axisnode::DriveStop::Verdict::disable) {
       spdlog::warn("the drive is disabled without standing still: {}", axisnode::to_text(verdict));
     }

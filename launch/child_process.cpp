@@ -113,6 +113,9 @@ bool ChildProcess::poll_exited() noexcept {
   for (pid_t r = waitpid(pid_, &status, WNOHANG | WUNTRACED | WCONTINUED); r == pid_;
        r = waitpid(pid_, &status, WNOHANG | WUNTRACED | WCONTINUED)) {
     if (WIFSTOPPED(status)) {
+      if (stop_signal_ == 0) {
+        stopped_at_ = std::chrono::steady_clock::now();
+      }
       stop_signal_ = WSTOPSIG(status);
     } else if (WIFCONTINUED(status)) {
       stop_signal_ = 0;

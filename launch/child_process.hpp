@@ -1,6 +1,8 @@
 #pragma once
 // A child process started by mcnc-launch: spawn, poll for exit, signal.
 #include <sys/types.h>
+
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,11 @@ class ChildProcess {
   bool poll_exited() noexcept;
   // The signal that stopped it, 0 while it runs (as of the last poll_exited()).
   [[nodiscard]] int stop_signal() const noexcept { return stop_signal_; }
+  // How long it has been stopped (poll_exited() notices stops); zero when it runs.
+  [[nodiscard]] std::chrono::steady_clock::duration stopped_for() const noexcept {
+    return stop_signal_ == 0 ? std::chrono::steady_clock::duration::zero()
+                             : std::chrono::steady_clock::now() - stopped_at_;
+  }
   void signal(int sig) noexcept;
   [[nodiscard]] const std::string& name() const noexcept { return name_; }
   [[nodiscard]] pid_t pid() const noexcept { return pid_; }
@@ -47,6 +54,7 @@ class ChildProcess {
   bool exited_ = false;
   int status_ = 0;
   int stop_signal_ = 0;
+  std::chrono::steady_clock::time_point stopped_at_{};
 };
 
 }  // namespace mcnc::launch

@@ -313,10 +313,14 @@ LaunchResult Launcher::run(
     return nullptr;
   };
   // A child stopped by a signal (SIGSTOP, a debugger, SIGTSTP) takes no step: in lockstep the
-  // whole machine stands with it. Its name and the signal, or "" when none is stopped.
+  // whole machine stands with it. Its name and the signal, or "" when none is stopped. A stop
+  // of less than a second is not yet a fault: a process held for a moment and resumed (a
+  // debugger's attach, a machine paused as a whole and resumed child by child) goes on.
+  constexpr auto kStoppedGrace = std::chrono::seconds(1);
   const auto stopped_child = [&]() -> std::string {
     for (auto& child : children) {
-      if (child.running() && child.stop_signal() != 0 && child.name() != kHmiName) {
+      if (child.running() && child.stop_signal() != 0 && child.name() != kHmiName &&
+          child.stopped_for() >= kStoppedGrace) {
         return child.name() + " stopped by signal " + std::to_string(child.stop_signal()) + " (" +
                strsignal(child.stop_signal()) + "): the machine cannot step";
       }

@@ -101,7 +101,7 @@ void AxisOutputs::trace_reset(std::uint64_t cycle) noexcept {
 }
 
 void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const DriveSample& drive,
-                          bool raise_alarms) noexcept {
+                          bool in_run) noexcept {
   const canopen::DriveFeedback& tpdo = drive.feedback;
   const std::uint16_t last_emcy = drive.last_emcy;
   const AxisNodeOutput& out = core.output();
@@ -132,6 +132,9 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   fb.probe(static_cast<std::uint8_t>(out.probe));
   fb.probe_pos(out.probe_pos);
   feedback_.write(fb);
+  if (!in_run) {
+    return;
+  }
 
   const char* self = axis_.name.c_str();
   if (out.mode_changed) {
@@ -142,7 +145,7 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
     tracer_.emit(cycle, "drive", "\"axis\":\"%s\",\"state\":\"%s\"", self,
                  cia402::to_string(out.drive_state));
   }
-  if (out.new_alarm != AxisAlarm::none && raise_alarms) {
+  if (out.new_alarm != AxisAlarm::none) {
     const int number = kAlarmBase + static_cast<int>(out.new_alarm);
     const char* text = to_text(out.new_alarm);
     char with_emcy[160];

@@ -32,10 +32,12 @@ class AxisOutputs {
   void trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns) noexcept;
   // The cycle's feedback (with the drive's own values where TPDO2 carries them), then its mode
   // and state changes, a new alarm (raised to the machine too) and every K cycles its position.
-  // `raise_alarms` false: a stopping node, whose stop (its owner leaving, its setpoints ending)
-  // is no alarm of the machine's; the caller reports what happened meanwhile.
+  // `in_run` false: a stopping node after its run (drive_stop.hpp): its feedback still goes
+  // out, but its stop is no part of the run's record: no alarm raised to the machine (the
+  // caller reports what happened meanwhile) and nothing traced, so that a run's trace ends
+  // where it ended before the node stopped its drive.
   void publish(std::uint64_t cycle, const AxisNode& core, const DriveSample& drive,
-               bool raise_alarms = true) noexcept;
+               bool in_run = true) noexcept;
 
  private:
   [[nodiscard]] const char* channel_name(std::uint32_t id) const noexcept;

@@ -298,17 +298,27 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     }
 
     // Heartbeats: a boot-up (state 0) at power-on and after each NMT reset, then one every
-    // heartbeat_ms of SYNC time while the node runs.
+    // heartbeat_ms of SYNC time while the node runs: from the NMT start to the NMT command
+    // that ends its run (after that it reports the state it was put in, CiA 301).
+    std::size_t ended = frames.size();
+    for (std::size_t i = start + 1; i < frames.size() && ended == frames.size(); ++i) {
+      if (is_nmt(frames[i], NmtCommand::stop, n) ||
+          is_nmt(frames[i], NmtCommand::enter_preoperational, n) ||
+          is_nmt(frames[i], NmtCommand::reset_node, n) ||
+          is_nmt(frames[i], NmtCommand::reset_communication, n)) {
+        ended = i;
+      }
+    }
     int bootups = 0;
-    int beats = 0;        // "operational" (0x05) after the NMT start
-    int other_after = 0;  // any other state after the NMT start
+    int beats = 0;        // "operational" (0x05) while it runs
+    int other_after = 0;  // any other state while it runs
     int resets = 0;
     for (std::size_t i = 0; i < frames.size(); ++i) {
       const auto& f = frames[i];
       if (f.id == kHeartbeatBase + n && f.data.size() == 1) {
         if (f.data[0] == static_cast<std::uint8_t>(NmtState::bootup)) {
           ++bootups;
-        } else if (i > start) {
+        } else if (i > start && i < ended) {
           (f.data[0] == static_cast<std::uint8_t>(NmtState::operational) ? beats : other_after) +=
               1;
         }

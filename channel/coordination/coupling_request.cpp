@@ -1,0 +1,148 @@
+#include "channel/coordination/coupling_request.hpp"
+
+namespace mcnc::coordination {
+
+void CouplingRequest::begin_spindle(const SpindleSyncOut& sync) noexcept {
+  axis_ = false;
+  spindle_ = sync;
+  sent_ = false;
+  change_ = {};
+}
+
+void CouplingRequest::begin_axis(bool on, std::uint32_t master, std::uint32_t slave) noexcept {
+  axis_ = true;
+  axis_sync_ = AxisSyncOut{on, 0, master};
+  slave_ = slave;
+  sent_ = false;
+  change_ = {};
+}
+
+CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
+  if (!sent_) {
+    const Start start = axis_ ? start_axis(in) : start_spindle();
+    if (start == Start::refused) {
+      return CouplingStep::alarm;
+    }
+    if (start == Start::send) {
+      sent_ = true;
+      sent_cycle_ = in.cycle;
+      return CouplingStep::send;
+    }
+    return CouplingStep::done;
+  }
+  if (!answer_visible(sent_cycle_, in.cycle) || !(axis_ ? axis_done(in) : spindle_done(in))) {
+    return CouplingStep::waiting;
+  }
+  return CouplingStep::done;
+}
+
+CouplingRequest::Start CouplingRequest::start_spindle() noexcept {
+  bool known = !spindle_.on;  // G113 cancels whatever this channel's groups have
+  for (const SpindleGroupSetup& g : setup_.spindle_groups) {
+    known = known || g.group == spindle_.group;
+  }
+  if (!known) {
+    alarm_.set(kAlarmSyncGroup,
+               "G114.1 K%d: no synchronisation group %d has this channel's spindle as master",
+               spindle_.group, spindle_.group);
+    return Start::refused;
+  }
+  return Start::send;
+}
+
+bool CouplingRequest::spindle_done(const CouplingInputs& in) const noexcept {
+  for (const SpindleGroupSetup& g : setup_.spindle_groups) {
+    if (spindle_.on && g.group != spindle_.group) {
+      continue;
+    }
+    const AxisFeedbackView none{};
+    const AxisFeedbackView& slave =
+        g.slave_view < in.feedback.size() ? in.feedback[g.slave_view] : none;
+    const bool done =
+        spindle_.on ? slave.coupled_to != 0 && slave.coupling_locked : slave.coupled_to == 0;
+    if (!done) {
+      return false;  // G114.1 ends once the slave is at speed and in phase
+    }
+  }
+  return true;
+}
+
+CouplingRequest::Start CouplingRequest::start_axis(const CouplingInputs& in) noexcept {
+  const char* g = axis_sync_.on ? "G51.4" : "G50.4";
+  std::size_t s = setup_.slots.size();
+  for (std::size_t i = 0; i < setup_.slots.size() && i < setup_.axis_count; ++i) {
+    s = setup_.slots[i].id == slave_ && !setup_.slots[i].exchange_slot ? i : s;
+  }
+  const SlotUse use = s < in.slot_use.size() ? in.slot_use[s] : SlotUse::away;
+  if (s == setup_.slots.size() || (use != SlotUse::commanded && use != SlotUse::follows)) {
+    alarm_.set(kAlarmAxisSync,
+               "%s Q%u: axis %u is not this channel's (the channel that commands it programs it)",
+               g, slave_, slave_);
+    return Start::refused;
+  }
+  const AxisSlot& slot = setup_.slots[s];
+  if (!slot.may_follow) {
+    alarm_.set(kAlarmAxisSync,
+               "%s Q%u: %c cannot follow another axis (parameter 5600.1: axis_sync)", g, slave_,
+               slot.address);
+    return Start::refused;
+  }
+  axis_sync_.slot = s;
+  const std::uint32_t coupled_to = s < in.feedback.size() ? in.feedback[s].coupled_to : 0;
+  if (!axis_sync_.on) {
+    return use == SlotUse::follows || coupled_to != 0 ? Start::send : Start::nothing_to_do;
+  }
+  const std::uint32_t master = axis_sync_.master != 0 ? axis_sync_.master : slot.default_master;
+  if (master == 0) {
+    alarm_.set(kAlarmAxisSync,
+               "G51.4 Q%u: no P, and %c has no default master (parameter 5610: axis_sync master)",
+               slave_, slot.address);
+    return Start::refused;
+  }
+  const MachineAxis* m =
+      master <= setup_.machine_axes.size() ? &setup_.machine_axes[master - 1] : nullptr;
+  const MachineAxisKind kind = slot.id >= 1 && slot.id <= setup_.machine_axes.size()
+                                   ? setup_.machine_axes[slot.id - 1].kind
+                                   : MachineAxisKind::linear;
+  if (m == nullptr || m->kind != kind || m->may_follow) {
+    alarm_.set(kAlarmAxisSync, "G51.4 P%u: %s", master,
+               m == nullptr      ? "the machine has no such axis"
+               : m->kind != kind ? "the master is not of the same kind as the slave"
+                                 : "the axis may follow another itself (5600.1), it cannot lead");
+    return Start::refused;
+  }
+  if (use == SlotUse::follows || coupled_to != 0) {
+    if (coupled_to == master) {
+      change_ = SlotChange{SlotChange::To::follows, s, 0.0};
+      return Start::nothing_to_do;
+    }
+    alarm_.set(kAlarmAxisSync, "G51.4 Q%u: %c already follows axis %u: G50.4 Q%u first", slave_,
+               slot.address, coupled_to, slave_);
+    return Start::refused;
+  }
+  axis_sync_.master = master;
+  return Start::send;
+}
+
+bool CouplingRequest::axis_done(const CouplingInputs& in) noexcept {
+  const std::size_t s = axis_sync_.slot;
+  if (s >= in.feedback.size()) {
+    return false;
+  }
+  const AxisFeedbackView& f = in.feedback[s];
+  if (axis_sync_.on) {
+    if (f.coupled_to != axis_sync_.master) {
+      return false;
+    }
+    change_ = SlotChange{SlotChange::To::follows, s, 0.0};  // the program no longer moves it
+    return true;
+  }
+  if (f.coupled_to != 0) {
+    return false;
+  }
+  // The axis stands where its master took it: the program goes on from there.
+  change_ = SlotChange{SlotChange::To::commanded, s, f.cmd};
+  return true;
+}
+
+}  // namespace mcnc::coordination

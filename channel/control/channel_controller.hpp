@@ -4,11 +4,22 @@
 // steps the planner once per cycle, holds every exact stop until the axes are in position, and
 // yields one setpoint per axis per cycle plus the events of that cycle. At a G04.1 wait mark it
 // stops reading ahead, arrives once the blocks before the mark have ended, and waits (state
-// waiting) until its SyncBarrier releases it. Pure and deterministic: inputs and cycle number
-// in, outputs out.
+// waiting) until its SyncBarrier releases it. The other blocks that stop read-ahead are run by
+// the coordination state machines it composes: SubCall (G144/G145), AxisExchange (G140-G142 and
+// the table of what it does with each axis), AuxHandshake (M/S/T codes and FIN),
+// CouplingRequest (G114.1/G113, G51.4/G50.4), SpindleMode (M18/M17) and ConditionWait (G04 I,
+// G04 PS). Pure and deterministic: inputs and cycle number in, outputs out.
 #include "channel/control/shared_write_log.hpp"
+#include "channel/coordination/aux_handshake.hpp"
+#include "channel/coordination/axis_exchange.hpp"
+#include "channel/coordination/channel_axes.hpp"
+#include "channel/coordination/channel_state.hpp"
 #include "channel/coordination/condition_wait.hpp"
+#include "channel/coordination/coupling_request.hpp"
+#include "channel/coordination/spindle_mode.hpp"
+#include "channel/coordination/sub_call.hpp"
 #include "channel/coordination/sync_barrier.hpp"
+#include "channel/coordination/sync_mark.hpp"
 #include "channel/interp/command_source.hpp"
 #include "channel/motion/motion_planner.hpp"
 
@@ -19,6 +30,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 namespace mcnc::channel {
@@ -26,105 +38,31 @@ namespace mcnc::channel {
 using interp::AxisVector;
 using interp::kMaxChannelAxes;
 
-enum class ChannelState : std::uint8_t { reset, idle, running, hold, waiting, alarm };
-const char* to_string(ChannelState state) noexcept;
+// The coordination state machines' vocabulary, as the channel's adapters and tests name it.
+using coordination::AuxAnswer;
+using coordination::AuxKind;
+using coordination::AuxOutcome;
+using coordination::AuxRequestOut;
+using coordination::AxisFeedbackView;
+using coordination::AxisRequestKind;
+using coordination::AxisRequestOut;
+using coordination::AxisSlot;
+using coordination::AxisSyncOut;
+using coordination::CallOutcome;
+using coordination::CallRelease;
+using coordination::CallRequest;
+using coordination::ChannelState;
+using coordination::MachineAxis;
+using coordination::MachineAxisKind;
+using coordination::PartnerStatus;
+using coordination::ProbeSeen;
+using coordination::SpindleGroupSetup;
+using coordination::SpindleSyncOut;
+using coordination::to_string;
 
 // G31 skip: the touch probe the channel asks an axis's drive to arm (latch where its input
-// goes on, or off), and what the axis node says of it (the values the wire carries).
+// goes on, or off); what the axis node says of it is ProbeSeen (the values the wire carries).
 enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2 };
-enum class ProbeSeen : std::uint8_t { off = 0, armed = 1, latched = 2 };
-
-// What the channel knows of one of its axes at cycle N (the feedback stamped N-1).
-struct AxisFeedbackView {
-  double cmd = 0.0;      // position the axis node commands its drive
-  double act = 0.0;      // actual position
-  bool enabled = false;  // drive in operation and following this channel
-  bool alarm = false;    // the axis node holds an alarm
-  bool present = false;  // feedback received at all
-  // G140/G141: the channel that owns the axis now (0: nobody) and the one that released it
-  // (or had it taken) to that owner, 0 in the configured assignment.
-  std::uint32_t owner = 0;
-  std::uint32_t released_by = 0;
-  // G114.1: a slave spindle's master (axis id, 0: none) and whether it is in phase; G51.4: a
-  // slave axis's master.
-  std::uint32_t coupled_to = 0;
-  bool coupling_locked = false;
-  // G140-G142: the node refused this channel's latest request, or could not keep it.
-  bool request_refused = false;
-  bool request_full = false;
-  // G31: the axis's touch probe, and where it latched (units, as act).
-  ProbeSeen probe = ProbeSeen::off;
-  double probe_pos = 0.0;
-  double vel = 0.0;  // actual velocity, units/s (a spindle's degrees/s: G04 PS)
-};
-
-// G114.1 group K (param 1420) whose master is this channel's spindle: the slave's feedback is
-// `feedback[slave_view]` (after the channel's axes and spindles).
-struct SpindleGroupSetup {
-  int group = 1;
-  std::size_t slave_view = 0;
-};
-struct SpindleSyncOut {
-  bool on = true;  // G114.1; false: G113
-  int group = 0;   // K; 0 with G113: every group of the channel
-  int p = 1;
-  int q = 1;
-  double r = 0.0;
-};
-
-// One axis the channel programs. The channel's own axes belong to it at start; an exchange
-// slot (another channel's exchangeable axis: the spec's virtual axis, dafeng §3.3) moves
-// nothing physical until the channel acquires the axis (G141).
-struct AxisSlot {
-  char address = 'X';
-  bool exchange_slot = false;
-  std::uint32_t home = 0;  // the channel that owns the axis in the configured assignment
-  std::uint32_t id = 0;    // the axis's system number (G51.4 P and Q name axes by it)
-  // G51.4 (params 5600, 5610): it may follow another axis, its master when G51.4 has no P (0:
-  // none), and whether it follows that master from power-on (a gantry's second drive).
-  bool may_follow = false;
-  std::uint32_t default_master = 0;
-  bool follows_at_start = false;
-};
-
-// G51.4: an axis of the machine as a possible master (spec dafeng §3.2: of the same kind as
-// the slave, and here never a slave itself, so that no slave follows a slave).
-enum class MachineAxisKind : std::uint8_t { linear, rotary, spindle };
-struct MachineAxis {
-  MachineAxisKind kind = MachineAxisKind::linear;
-  bool may_follow = false;
-};
-// G51.4 (on) or G50.4 to the node of the axis in `slot`.
-struct AxisSyncOut {
-  bool on = true;
-  std::size_t slot = 0;
-  std::uint32_t master = 0;  // axis id
-};
-
-// M and T codes for the PLC node (and M03/M04, which it must allow): one request at a time,
-// the block ends with the answer (FIN).
-enum class AuxKind : std::uint8_t { m_code, t_code };
-struct AuxRequestOut {
-  std::uint64_t id = 0;  // channel << 40 | the channel's count of requests
-  AuxKind kind = AuxKind::m_code;
-  int code = 0;
-};
-enum class AuxOutcome : std::uint8_t { done, refused, timed_out };
-struct AuxAnswer {
-  std::uint64_t id = 0;
-  AuxOutcome outcome = AuxOutcome::done;
-  std::array<char, 96> reason{};
-};
-
-// G140/G141/G142 as the channel asks its axis nodes.
-enum class AxisRequestKind : std::uint8_t { release, acquire, restore, withdraw };
-const char* to_string(AxisRequestKind kind) noexcept;
-struct AxisRequestOut {
-  AxisRequestKind kind = AxisRequestKind::acquire;
-  std::size_t slot = 0;  // restore: kAllSlots
-  bool force = false;    // G141 P1
-  static constexpr std::size_t kAllSlots = ~std::size_t{0};
-};
 
 struct AxisSetpointOut {
   double pos = 0.0;
@@ -132,26 +70,6 @@ struct AxisSetpointOut {
   double acc = 0.0;
   bool valid = false;              // false: the axis node holds its position
   ProbeArm probe = ProbeArm::off;  // G31: arm the drive's touch probe
-};
-
-// G144 (spec dafeng §3.4): a program started in another channel, and how the call ended.
-enum class CallOutcome : std::uint8_t { released, refused, failed, aborted };
-struct SubCall {
-  std::uint64_t call_id = 0;  // caller << 40 | the caller's count of calls
-  std::uint32_t caller = 0;
-  std::uint32_t target = 0;
-  int program = 0;
-  bool wait = true;                                 // H1
-  int repeat = 1;                                   // L
-  std::array<double, interp::kSubcallArgs> args{};  // #1-#26
-  std::uint32_t args_given = 0;                     // bit n-1: #n given
-};
-const char* to_string(CallOutcome outcome) noexcept;
-struct CallRelease {
-  std::uint64_t call_id = 0;
-  std::uint32_t caller = 0;
-  std::uint32_t target = 0;  // the called channel, which sends the release
-  CallOutcome outcome = CallOutcome::released;
 };
 
 enum class ChannelEventKind : std::uint8_t {
@@ -179,14 +97,6 @@ struct ChannelEvent {
   AxisVector pos{};           // block_ended: the commanded end point of the block
   std::uint64_t call_id = 0;  // subcall_release
   CallOutcome call_outcome = CallOutcome::released;
-};
-
-// What a channel knows of another channel (its status stamped N-1).
-struct PartnerStatus {
-  bool known = false;
-  ChannelState state = ChannelState::reset;
-  std::uint64_t call_id = 0;  // the G144 call it runs, 0: none
-  std::uint32_t call_caller = 0;
 };
 
 struct ChannelAlarm {
@@ -219,12 +129,12 @@ struct ChannelOutput {
   coordination::SyncArrival arrival{};
   // A G144 call to send this cycle (subcall event), and the releases of calls to send.
   bool call_due = false;
-  SubCall call{};
+  CallRequest call{};
   static constexpr std::size_t kMaxReleases = 8;
   std::array<CallRelease, kMaxReleases> releases{};
   std::size_t release_count = 0;
   // G140/G141/G142 requests to send to the axis nodes this cycle.
-  static constexpr std::size_t kMaxAxisRequests = 4;
+  static constexpr std::size_t kMaxAxisRequests = coordination::AxisExchange::kMaxRequests;
   std::array<AxisRequestOut, kMaxAxisRequests> axis_requests{};
   std::size_t axis_request_count = 0;
   // An M or T code for the PLC node, sent this cycle.
@@ -288,29 +198,29 @@ inline constexpr int kAlarmPlannerRejected = 1200;
 inline constexpr int kAlarmAxisAlarm = 1201;
 inline constexpr int kAlarmAxisLost = 1202;
 inline constexpr int kAlarmEmergencyStop = 1203;
-inline constexpr int kAlarmSyncMismatch = 1210;      // G04.1: partners name other participants
-inline constexpr int kAlarmSyncDeadlock = 1211;      // G04.1: waits in a circle
-inline constexpr int kAlarmSyncTableFull = 1212;     // G04.1: more marks than the table holds
-inline constexpr int kAlarmSyncPartnerLost = 1213;   // G04.1: a partner's process is gone
 inline constexpr int kAlarmCoordinationLost = 1214;  // shared writes or partner events lost
-inline constexpr int kAlarmCallBusy = 1220;          // G144: the target runs something else
-inline constexpr int kAlarmCallFailed = 1221;        // G144: the called program stopped
-inline constexpr int kAlarmCallRefused = 1222;       // G144: the target refused the call
-inline constexpr int kAlarmCallCycle = 1223;         // G144: the target is this call's caller
-inline constexpr int kAlarmCallTimeout = 1224;       // G144: the target did not become free
-inline constexpr int kAlarmNotOwner = 1230;          // G140: the axis is not this channel's
-inline constexpr int kAlarmAxisAway = 1231;          // a block moves an axis another channel has
-inline constexpr int kAlarmRequestRefused = 1232;    // the axis node refused G140-G142 or is full
-inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or T code
-inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
-inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G114.1 slave
-inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
-inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
-inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
-inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest
-inline constexpr int kAlarmProbeNotArmed = 1270;     // G31: a drive's touch probe did not arm
-inline constexpr int kAlarmInputTimeout = 1271;      // G04 I: the input did not come within J
-inline constexpr int kAlarmSpeedTimeout = 1272;      // G04 PS: the speed not reached (param 1059)
+using coordination::kAlarmAuxRefused;
+using coordination::kAlarmAuxTimeout;
+using coordination::kAlarmAxisAway;
+using coordination::kAlarmAxisFollows;
+using coordination::kAlarmAxisSync;
+using coordination::kAlarmCallBusy;
+using coordination::kAlarmCallCycle;
+using coordination::kAlarmCallFailed;
+using coordination::kAlarmCallRefused;
+using coordination::kAlarmCallTimeout;
+using coordination::kAlarmNotOwner;
+using coordination::kAlarmRequestRefused;
+using coordination::kAlarmSlaveSpindle;
+using coordination::kAlarmSpindleNotAtRest;
+using coordination::kAlarmSyncDeadlock;
+using coordination::kAlarmSyncGroup;
+using coordination::kAlarmSyncMismatch;
+using coordination::kAlarmSyncPartnerLost;
+using coordination::kAlarmSyncTableFull;
+inline constexpr int kAlarmProbeNotArmed = 1270;  // G31: a drive's touch probe did not arm
+inline constexpr int kAlarmInputTimeout = 1271;   // G04 I: the input did not come within J
+inline constexpr int kAlarmSpeedTimeout = 1272;   // G04 PS: the speed not reached (param 1059)
 
 class ChannelController {
  public:
@@ -393,7 +303,7 @@ class ChannelController {
   void coordination_lost() noexcept { coordination_lost_ = true; }
   // G144 calls addressed to this channel (run when it is idle, else refused), and the end of a
   // call this channel made.
-  void on_call(const SubCall& call) noexcept;
+  void on_call(const CallRequest& call) noexcept;
   void on_call_release(const CallRelease& release) noexcept;
   // The PLC's answer to an aux request of this channel (applied from the cycle after it was
   // sent, as every event).
@@ -409,7 +319,7 @@ class ChannelController {
   // G140/G141/G142: whether the channel commands axis `slot` now (owns it and took over its
   // position); a slot it does not command is a virtual axis or with another channel.
   [[nodiscard]] bool commands_axis(std::size_t slot) const noexcept {
-    return slot < slot_use_.size() && slot_use_[slot] == SlotUse::commanded;
+    return slot < kMaxChannelAxes && exchange_.use(slot) == coordination::SlotUse::commanded;
   }
 
   [[nodiscard]] ChannelState state() const noexcept { return out_.state; }
@@ -417,26 +327,24 @@ class ChannelController {
   [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
   // The spindle's position at C = 0 (whole turns) of the last position control (0: none yet).
-  [[nodiscard]] double spindle_c_base() const noexcept { return c_base_; }
+  [[nodiscard]] double spindle_c_base() const noexcept { return spindle_mode_.c_base(); }
   // The G04.1 marks as this channel sees them: the mark it waits at and whom it misses.
-  [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return barrier_; }
+  [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return mark_.barrier(); }
   // The G144 call this channel runs for another channel: its id (0: none) and caller.
-  [[nodiscard]] std::uint64_t serving_call() const noexcept {
-    return serving_ ? serving_->call.call_id : 0;
-  }
+  [[nodiscard]] std::uint64_t serving_call() const noexcept { return calls_.serving_call(); }
+  [[nodiscard]] std::uint32_t serving_caller() const noexcept { return calls_.serving_caller(); }
   // The operator panel's overrides as applied, as fractions (1.0: 100 %).
   [[nodiscard]] double feed_override() const noexcept { return feed_override_; }
   [[nodiscard]] double rapid_override() const noexcept { return rapid_override_; }
   [[nodiscard]] double spindle_override() const noexcept { return spindle_override_; }
   // G144 H1: the channel this one's sent call waits for, 0 when none.
   [[nodiscard]] std::uint32_t waiting_for_call() const noexcept {
-    return call_block_ && call_block_->phase == CallPhase::sent && call_block_->call.wait
-               ? call_block_->call.target
-               : 0;
+    return std::holds_alternative<CallBlock>(held_) ? calls_.waiting_for() : 0;
   }
   // The M or T code whose answer (FIN) from the PLC the channel waits for, or nullptr.
   [[nodiscard]] const AuxRequestOut* waiting_for_fin() const noexcept {
-    return aux_block_ && aux_block_->sent && in_run() ? &aux_block_->request : nullptr;
+    return std::holds_alternative<AuxBlock>(held_) && aux_.sent() && in_run() ? &aux_.request()
+                                                                              : nullptr;
   }
   // The axis exchange the channel waits for: its G code (140, 141, 142; 0: none) and the slot
   // (AxisRequestOut::kAllSlots for G142).
@@ -445,25 +353,15 @@ class ChannelController {
     std::size_t slot = 0;
   };
   [[nodiscard]] ExchangeWait waiting_for_exchange() const noexcept {
-    if (!exchange_block_ || !exchange_block_->sent || !in_run()) {
+    if (!std::holds_alternative<ExchangeBlock>(held_) || exchange_.waiting_g() == 0 || !in_run()) {
       return {};
     }
-    switch (exchange_block_->op) {
-      case interp::Op::axis_release:
-        return {140, exchange_block_->slot};
-      case interp::Op::axis_acquire:
-        return {141, exchange_block_->slot};
-      default:
-        return {142, AxisRequestOut::kAllSlots};
-    }
+    return {exchange_.waiting_g(), exchange_.waiting_slot()};
   }
   // A run is under way (not stopped by an alarm or a reset): what it waits for is real.
   [[nodiscard]] bool in_run() const noexcept {
     return out_.state == ChannelState::running || out_.state == ChannelState::waiting ||
            out_.state == ChannelState::hold;
-  }
-  [[nodiscard]] std::uint32_t serving_caller() const noexcept {
-    return serving_ ? serving_->call.caller : 0;
   }
 
  private:
@@ -472,24 +370,23 @@ class ChannelController {
   void set_state(ChannelState state) noexcept;
   void push_event(const ChannelEvent& event) noexcept;
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
+  void raise(const coordination::CoordinationAlarm& alarm, int line) noexcept {
+    raise(alarm.number, alarm.text.data(), line, 0, alarm.axis);
+  }
   void raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept;
   bool all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept;
   // Every axis's actual position within its in-position width of `at`.
   bool in_position(std::span<const AxisFeedbackView> feedback, const AxisVector& at) const noexcept;
   void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
   void fill() noexcept;
+  // The block `c` pulled stops read-ahead (held_ holds it), or is an alarm (source_alarm_):
+  // true; false when it goes to the planner.
+  bool hold_block(const interp::Command& c) noexcept;
   void block_events(const motion::MotionOutput& m,
                     std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
   void finish_reset() noexcept;
   void forget_program_run() noexcept;  // the queue, the end and the alarms of a program run
-  // At a G04.1 block with everything before it ended: arrive, wait, go on.
-  void run_sync() noexcept;
-  // At a G144 block with everything before it ended: check the target, call, wait if H1.
-  void run_call(std::uint64_t cycle) noexcept;
-  // The target is among the channels whose calls this channel runs (directly or through
-  // others): calling it would wait for itself.
-  [[nodiscard]] bool calls_back(std::uint32_t target) const noexcept;
   // Starts (or repeats) the program of the call this channel serves.
   void start_served_call(std::uint64_t cycle) noexcept;
   void take_calls(std::uint64_t cycle) noexcept;
@@ -547,8 +444,7 @@ class ChannelController {
   std::optional<interp::ProgramAlarm> pending_alarm_;
   bool first_cycle_ = true;
 
-  // G04.1: the block pulled and not passed yet (read-ahead stops there), and the marks.
-  // A block that stops read-ahead (G04.1, G144, G145): where it stands in the program.
+  // A block that stops read-ahead: where it stands in the program.
   struct HeldBlock {
     std::uint64_t n = 0;
     int line = 0;
@@ -564,140 +460,33 @@ class ChannelController {
   [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;
   // The block is the channel's current one: its start event, once.
   void start_held(HeldBlock& b) noexcept;
-  struct SyncBlock {
-    HeldBlock block;
-    bool has_p = false;
-    std::int32_t p = 0;
-    bool all_channels = false;
-    coordination::ChannelSet participants;
-  };
-  std::optional<SyncBlock> sync_block_;
-  // G144 in this channel's program: the call once pulled, and where it stands.
-  enum class CallPhase : std::uint8_t { reached, sent };
-  struct CallBlock {
-    HeldBlock block;
-    SubCall call;
-    CallPhase phase = CallPhase::reached;
-    bool waiting_for_target = false;  // the target still finishes an earlier call
-    std::uint64_t waiting_since = 0;
-  };
-  std::optional<CallBlock> call_block_;
-  std::uint64_t calls_made_ = 0;
-  std::optional<CallRelease> call_ended_;   // the release of the call this channel waits for
-  std::optional<HeldBlock> release_block_;  // G145 pulled and not passed yet
-  // The call this channel serves: its request, the repetitions left, whether it released.
-  struct ServedCall {
-    SubCall call;
-    int repeats_left = 0;
-    bool released = false;
-  };
-  std::optional<ServedCall> serving_;
-  static constexpr std::size_t kMaxIncoming = coordination::kMaxChannels;  // one per caller
-  std::array<SubCall, kMaxIncoming> incoming_{};
-  std::size_t incoming_count_ = 0;
-  std::array<PartnerStatus, coordination::kMaxChannels + 1> partners_{};
-  // A call sent and not yet seen running in the target's status nor ended: the target is not
-  // free for another call from here until then.
-  std::array<std::uint64_t, coordination::kMaxChannels + 1> outstanding_{};
-  std::optional<CallRelease> refused_;  // a call without wait (H0) that the target refused
-  bool coordination_lost_ = false;
-  std::uint64_t writes_lost_seen_ = 0;
-  [[nodiscard]] bool writes_pending() const noexcept {
-    return setup_.shared_writes != nullptr && setup_.shared_writes->size() > 0;
-  }
-  bool sync_arrived_ = false;
-  coordination::SyncBarrier barrier_;
+  // The held block ends: its end event, and read-ahead goes on.
+  void end_held(const HeldBlock& b) noexcept;
 
-  // G140/G141/G142 (spec dafeng §3.3). The owner comes from the axis nodes' feedback; a slot
-  // is commanded (owned, its position taken over), a virtual axis (an exchange slot the channel
-  // does not own: moves nothing physical) or away (given to or taken by another channel, or
-  // back but not taken over yet: a block moving it is an alarm). G51.4: an axis that follows
-  // its master moves with it and not with this channel's program (a block moving it is an
-  // alarm too).
-  // speed_control: the C axis of the first spindle while the spindle is under speed control.
-  enum class SlotUse : std::uint8_t { commanded, virtual_axis, away, follows, speed_control };
-  [[nodiscard]] bool exchanges() const noexcept { return !setup_.slots.empty(); }
-  void update_slots() noexcept;  // a commanded axis whose owner is now another channel
-  // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
-  // `s`, which the channel no longer commands: "<address> <why>".
-  void raise_if_queued_moves(std::size_t s, const char* why) noexcept;
-  void build_views(std::span<const AxisFeedbackView> received) noexcept;
-  // At a program start and at G142's end: owned slots are taken over from where their axes
-  // stand; the others are virtual (exchange slots) or away (the channel's own axes).
-  void settle_slots() noexcept;
-  void sync_positions() noexcept;  // the interpreter and the planner stand at commanded_
-  void run_exchange(std::uint64_t cycle) noexcept;
-  void push_axis_request(AxisRequestKind kind, std::size_t slot, bool force) noexcept;
-  void withdraw_waits() noexcept;  // a reset ends a G141/G142 wait at the axis nodes too
-  // The first slot that `c` moves and the channel does not command (away, or following its
-  // master), or nullopt.
-  [[nodiscard]] std::optional<std::size_t> moves_foreign_slot(
-      const interp::Command& c) const noexcept;
-  struct ExchangeBlock {
+  // "The block that stops read-ahead": pulled and not passed yet, at most one at a time. Each
+  // kind runs once every block before it ended; the coordination machines hold its state.
+  struct SyncBlock {  // G04.1: mark_
     HeldBlock block;
-    interp::Op op = interp::Op::axis_restore;
-    std::size_t slot = 0;
-    bool force = false;
-    bool sent = false;
-    std::uint64_t sent_cycle = 0;
   };
-  std::optional<ExchangeBlock> exchange_block_;
-  // Slot `s`'s axis is away on this channel's account (G142 waits until none is): its own axis
-  // elsewhere, or one it borrowed or released not back home.
-  [[nodiscard]] bool away_on_own_account(std::size_t s) const noexcept;
-  // Alarm 1232 when an axis node refused the block's request or could not keep it (its
-  // feedback says so once the answer is visible): true when it raised it.
-  bool exchange_refused(const ExchangeBlock& b) noexcept;
-  // A request an axis node answers in its feedback: sent at N, taken at N+1 (ARCHITECTURE.md
-  // §4), seen in the feedback at N+2. Before that the feedback cannot show the answer.
-  [[nodiscard]] static bool answer_visible(std::uint64_t sent_cycle, std::uint64_t cycle) noexcept {
-    return cycle >= sent_cycle + 2;
-  }
-
-  // An M or T code for the PLC (or a spindle start it must allow): the block until its answer.
-  struct AuxBlock {
+  struct CallBlock {  // G144: calls_
     HeldBlock block;
-    AuxRequestOut request;
-    bool sent = false;
-    bool spindle = false;  // a spindle start: `command` goes to the planner once allowed
-    interp::Command command;
   };
-  std::optional<AuxBlock> aux_block_;
-  std::optional<AuxAnswer> aux_answer_;
-  std::uint64_t aux_requests_ = 0;
-  bool plc_lost_ = false;
-  int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
-  void run_aux() noexcept;
-  // A coupling held by a slave's axis node: G114.1 / G113 (the block ends when the slave
-  // spindles are in phase, or free) or G51.4 / G50.4 (when the slave axis follows its master,
-  // or this channel again).
-  struct CouplingBlock {
+  struct ReleaseBlock {  // G145
     HeldBlock block;
-    bool axis = false;  // G51.4 / G50.4
-    SpindleSyncOut spindle{};
-    AxisSyncOut axis_sync{};
-    std::uint32_t slave = 0;  // G51.4 / G50.4 Q: the slave's system number
-    bool sent = false;
-    std::uint64_t sent_cycle = 0;
   };
-  std::optional<CouplingBlock> coupling_block_;
-  void run_coupling(std::uint64_t cycle) noexcept;
-  enum class CouplingStart : std::uint8_t { send, nothing_to_do, refused };
-  CouplingStart start_spindle_sync(const CouplingBlock& b) noexcept;
-  CouplingStart start_axis_sync(CouplingBlock& b) noexcept;
-  [[nodiscard]] bool spindle_sync_done(const CouplingBlock& b) const noexcept;
-  bool axis_sync_done(const CouplingBlock& b) noexcept;
-  // M18 / M17 (GSK M14 / M15): the first spindle to position control once it stands (its C
-  // axis taken over from where it stands), or back to speed control.
-  struct ControlBlock {
+  struct ExchangeBlock {  // G140 / G141 / G142: exchange_
     HeldBlock block;
-    bool position = false;
-    int still_cycles = 0;      // cycles in a row the spindle moved less than C's in-position width
-    std::uint64_t waited = 0;  // cycles M18 waited for the spindle to rest
-    bool seen = false;
-    double last_act = 0.0;
   };
-  std::optional<ControlBlock> control_block_;
+  struct AuxBlock {  // an M or T code, or a spindle start the PLC allows: aux_
+    HeldBlock block;
+    interp::Command command;  // a spindle start: goes to the planner once allowed
+  };
+  struct CouplingBlock {  // G114.1 / G113 / G51.4 / G50.4: coupling_
+    HeldBlock block;
+  };
+  struct ModeBlock {  // M18 / M17: spindle_mode_
+    HeldBlock block;
+  };
   // G31: the move waits until the touch probes on its input are armed, runs until one latches
   // (then stops at the planner's reset deceleration) or it ends, and the source learns where.
   struct SkipBlock {
@@ -709,42 +498,82 @@ class ChannelController {
     bool skipped = false;
     AxisVector skip_at{};
   };
-  std::optional<SkipBlock> skip_block_;
-  // G04 I / G04 PS: the block waits (read-ahead stopped) until its condition holds, its dwell
-  // time ends or it times out.
+  // G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
+  // out.
   struct WaitBlock {
     HeldBlock block;
     interp::Command command;
     coordination::ConditionWait wait;
   };
-  std::optional<WaitBlock> wait_block_;
-  std::uint64_t plc_inputs_ = 0;
-  void run_wait() noexcept;
-  [[nodiscard]] bool probe_on_input(std::size_t axis, int input) const noexcept {
-    return axis < setup_.probe_inputs.size() && setup_.probe_inputs[axis] == input &&
-           (!exchanges() || slot_use_[axis] == SlotUse::commanded);
+  using Held = std::variant<std::monostate, SyncBlock, CallBlock, ReleaseBlock, ExchangeBlock,
+                            AuxBlock, CouplingBlock, ModeBlock, SkipBlock, WaitBlock>;
+  Held held_;
+  [[nodiscard]] bool holds_block() const noexcept {
+    return !std::holds_alternative<std::monostate>(held_);
   }
-  void run_skip(std::span<const AxisFeedbackView> feedback) noexcept;    // arming, and the end
-  void watch_skip(std::span<const AxisFeedbackView> feedback) noexcept;  // moving: a latch
-  void run_control() noexcept;
-  void leave_position_control() noexcept;  // no program runs: speed control, at rest
-  [[nodiscard]] bool under_position_control() const noexcept {
-    return setup_.spindle_c_slot && slot_use_[*setup_.spindle_c_slot] == SlotUse::commanded;
+  // One cycle of the held block, once every block before it ended.
+  void run(std::monostate& /*none*/, std::uint64_t /*cycle*/,
+           std::span<const AxisFeedbackView> /*feedback*/) noexcept {}
+  void run(SyncBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(CallBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(ReleaseBlock& b, std::uint64_t cycle,
+           std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(ExchangeBlock& b, std::uint64_t cycle,
+           std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(AuxBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(CouplingBlock& b, std::uint64_t cycle,
+           std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(ModeBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(SkipBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(WaitBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+
+  // G04.1 (the barrier) and G144 / G145 (calls made and served).
+  coordination::SyncMark mark_;
+  coordination::SubCall calls_;
+  coordination::ChannelSet active_;
+  coordination::ChannelSet halted_partners_;
+  coordination::ChannelSet lost_partners_;
+  bool coordination_lost_ = false;
+  std::uint64_t writes_lost_seen_ = 0;
+  [[nodiscard]] bool writes_pending() const noexcept {
+    return setup_.shared_writes != nullptr && setup_.shared_writes->size() > 0;
   }
-  // C = the spindle's position - c_base_ (whole turns): C starts within 0-360 degrees.
-  double c_base_ = 0.0;
-  // Hands a command to the planner and the block queue; false (and a source alarm) when the
-  // planner refuses it.
-  bool queue_command(const interp::Command& c) noexcept;
-  std::array<SlotUse, kMaxChannelAxes> slot_use_{};
-  std::array<bool, kMaxChannelAxes> unasked_released_{};  // a grant it did not wait for, given back
+
+  // G140/G141/G142 and what the channel does with each slot.
+  coordination::AxisExchange exchange_;
+  [[nodiscard]] bool exchanges() const noexcept { return exchange_.exchanges(); }
+  // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
+  // `s`, which the channel no longer commands: "<address> <why>".
+  void raise_if_queued_moves(std::size_t s, const char* why) noexcept;
+  void build_views(std::span<const AxisFeedbackView> received) noexcept;
+  void settle_slots() noexcept { exchange_.settle(received_, commanded_); }
+  void sync_positions() noexcept;  // the interpreter and the planner stand at commanded_
+  void withdraw_waits() noexcept { exchange_.withdraw(); }
   static constexpr std::size_t kMaxViews = kMaxChannelAxes + 8;  // axes, then spindles
   std::array<AxisFeedbackView, kMaxViews> views_{};
   std::span<const AxisFeedbackView> received_;  // this cycle's feedback as it came
 
-  coordination::ChannelSet active_;
-  coordination::ChannelSet halted_partners_;
-  coordination::ChannelSet lost_partners_;
+  // M/S/T codes, couplings, the spindle's mode.
+  coordination::AuxHandshake aux_;
+  int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
+  coordination::CouplingRequest coupling_;
+  coordination::SpindleMode spindle_mode_;
+  void leave_position_control() noexcept;  // no program runs: speed control, at rest
+  [[nodiscard]] bool under_position_control() const noexcept {
+    return setup_.spindle_c_slot &&
+           exchange_.use(*setup_.spindle_c_slot) == coordination::SlotUse::commanded;
+  }
+
+  // G31 and G04 I / G04 PS.
+  std::uint64_t plc_inputs_ = 0;
+  [[nodiscard]] bool probe_on_input(std::size_t axis, int input) const noexcept {
+    return axis < setup_.probe_inputs.size() && setup_.probe_inputs[axis] == input &&
+           (!exchanges() || exchange_.use(axis) == coordination::SlotUse::commanded);
+  }
+  void watch_skip(std::span<const AxisFeedbackView> feedback) noexcept;  // moving: a latch
+  // Hands a command to the planner and the block queue; false (and a source alarm) when the
+  // planner refuses it.
+  bool queue_command(const interp::Command& c) noexcept;
 };
 
 }  // namespace mcnc::channel

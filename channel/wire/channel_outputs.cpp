@@ -339,7 +339,7 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
       break;
     }
     case ChannelEventKind::subcall: {
-      const SubCall& call = out_call_;
+      const CallRequest& call = out_call_;
       tracer_.emit(cycle, "subcall",
                    "\"caller\":\"%s\",\"target\":\"%s\",\"program\":%d,\"call_id\":%llu,"
                    "\"wait\":%s",

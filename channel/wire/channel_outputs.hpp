@@ -67,7 +67,7 @@ class ChannelOutputs {
   dds::Writer<::mcnc::ChannelStatus> status_;
   dds::Writer<::mcnc::CoordinationEvent> events_;
   std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent
-  SubCall out_call_{};           // this cycle's G144 call, for its trace event
+  CallRequest out_call_{};       // this cycle's G144 call, for its trace event
   SharedWriteLog& writes_;
   std::vector<std::string> channel_names_;  // by channel id - 1
   char escaped_[512] = {};

@@ -145,7 +145,7 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e, ChannelController
       if (e.target() != self_) {
         break;
       }
-      SubCall call;
+      CallRequest call;
       call.call_id = e.call_id();
       call.caller = e.caller();
       call.target = e.target();

@@ -1723,7 +1723,7 @@ TEST(ChannelCall, ACallCycleThroughAnotherChannelIsFoundFromThePartnersStatus) {
   for (; cycle < 5; ++cycle) {
     ctl.cycle(cycle, fb);  // up to idle
   }
-  SubCall call;
+  CallRequest call;
   call.call_id = from_2;
   call.caller = 2;
   call.target = 1;

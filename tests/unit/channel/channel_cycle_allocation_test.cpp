@@ -92,7 +92,7 @@ class CountedRig : public ChannelRig {
     return *out;
   }
 
-  void call_at(std::uint64_t cycle, const SubCall& call) {
+  void call_at(std::uint64_t cycle, const CallRequest& call) {
     call_ = call;
     call_at_ = cycle;
   }
@@ -104,7 +104,7 @@ class CountedRig : public ChannelRig {
  private:
   std::vector<AxisFeedbackView> feedback_ = standing_feedback(3, 1);
   std::uint64_t cycle_ = 0;
-  std::optional<SubCall> call_;
+  std::optional<CallRequest> call_;
   std::uint64_t call_at_ = 0;
 };
 
@@ -130,7 +130,7 @@ TEST(ChannelCycle, NeverAllocatesOverM98G71MacroLoopsAFeedHoldAndAG144Call) {
   for (int i = 0; i < 10; ++i) {
     rig.step();
   }
-  SubCall call;
+  CallRequest call;
   call.call_id = 7;
   call.caller = 2;
   call.target = 1;

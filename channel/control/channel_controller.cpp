@@ -243,8 +243,8 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     }
   }
   // G31: the probes on the block's input stay armed while it arms and moves.
-  const auto* skip = std::get_if<SkipBlock>(&held_);
-  if (skip != nullptr && skip->phase != SkipBlock::Phase::stopping && in_run()) {
+  const auto* skip = std::get_if<SkipStop>(&held_);
+  if (skip != nullptr && skip->phase != SkipStop::Phase::stopping && in_run()) {
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
       if (probe_on_input(i, skip->command.input)) {
         out_.setpoints[i].probe = skip->arm;
@@ -469,7 +469,24 @@ void ChannelController::fill() noexcept {
         end_pulled_ = true;
         return;
       }
-      if (hold_block(*c) || !queue_command(*c)) {
+      if (const auto away =
+              c->moves() ? exchange_.foreign_slot(planner_.queue_end(), c->to) : std::nullopt) {
+        const coordination::CoordinationAlarm a = exchange_.foreign_move_alarm(*away, received_);
+        source_alarm_ = interp::ProgramAlarm{a.number, a.text.data(), "", c->line, 0};
+        return;
+      }
+      const StopRules rules{setup_.channel_id,
+                            setup_.slots,
+                            setup_.plc,
+                            setup_.spindle_may_follow,
+                            setup_.speed_arrival_timeout_s,
+                            setup_.cycle_s};
+      held_ = read_ahead_stop(*c, rules, spindle_queued_, source_alarm_);
+      if (holds_block()) {
+        begin_held();
+        return;
+      }
+      if (source_alarm_ || !queue_command(*c)) {
         return;
       }
     }
@@ -478,131 +495,24 @@ void ChannelController::fill() noexcept {
   }
 }
 
-bool ChannelController::hold_block(const interp::Command& c) noexcept {
-  using interp::Op;
-  switch (c.op) {
-    case Op::sync: {
-      // Read-ahead stops here: the interpreter evaluates nothing after the mark until the
-      // channel pulls past it (spec dafeng §3.0).
-      coordination::ChannelSet participants;
-      for (std::uint32_t ch = 1; ch <= coordination::kMaxChannels; ++ch) {
-        participants.set(ch, c.has_channel(static_cast<int>(ch)));
-      }
-      mark_.begin(c.has_p, c.p, participants, c.all_channels);
-      held_ = SyncBlock{held(c)};
-      return true;
+void ChannelController::begin_held() noexcept {
+  if (const auto* s = std::get_if<SyncStop>(&held_)) {
+    mark_.begin(s->has_p, s->p, s->participants, s->all_channels);
+  } else if (const auto* s = std::get_if<CallStop>(&held_)) {
+    calls_.begin(s->call);
+  } else if (const auto* s = std::get_if<ExchangeStop>(&held_)) {
+    exchange_.begin(s->kind, s->slot, s->force);
+  } else if (const auto* s = std::get_if<AuxStop>(&held_)) {
+    aux_.begin(s->kind, s->code, s->spindle_start);
+  } else if (const auto* s = std::get_if<CouplingStop>(&held_)) {
+    if (s->axis) {
+      coupling_.begin_axis(s->on, s->master, s->slave);
+    } else {
+      coupling_.begin_spindle(s->spindle);
     }
-    case Op::subcall: {
-      CallRequest call;
-      call.caller = setup_.channel_id;
-      call.target = static_cast<std::uint32_t>(c.channel);
-      call.program = c.program;
-      call.wait = c.wait;
-      call.repeat = c.repeat;
-      for (const auto& [var, value] : c.args) {
-        if (var >= 1 && var <= interp::kSubcallArgs) {
-          call.args[static_cast<std::size_t>(var - 1)] = value;
-          call.args_given |= 1U << (var - 1);
-        }
-      }
-      calls_.begin(call);
-      held_ = CallBlock{held(c)};
-      return true;
-    }
-    case Op::subcall_release:
-      held_ = ReleaseBlock{held(c)};
-      return true;
-    case Op::axis_release:
-    case Op::axis_acquire:
-    case Op::axis_restore: {
-      std::size_t slot = 0;
-      if (c.op != Op::axis_restore) {
-        slot = setup_.slots.size();
-        for (std::size_t i = 0; i < setup_.slots.size(); ++i) {
-          slot = setup_.slots[i].address == c.axis ? i : slot;
-        }
-        if (slot == setup_.slots.size()) {
-          source_alarm_ = interp::ProgramAlarm{
-              kAlarmNotOwner, std::string("axis ") + c.axis + " of this channel is not exchanged",
-              "", c.line, 0};
-          return true;
-        }
-      }
-      exchange_.begin(c.op == Op::axis_release   ? AxisRequestKind::release
-                      : c.op == Op::axis_acquire ? AxisRequestKind::acquire
-                                                 : AxisRequestKind::restore,
-                      slot, c.force);
-      held_ = ExchangeBlock{held(c)};
-      return true;
-    }
-    default:
-      break;
+  } else if (const auto* s = std::get_if<ModeStop>(&held_)) {
+    spindle_mode_.begin(s->position);
   }
-  // A spindle start or reversal asks the PLC; a speed change of a turning spindle does not.
-  const bool spindle_start =
-      c.op == Op::spindle &&
-      ((c.spindle_direction == interp::SpindleDirection::cw && spindle_queued_ != 1) ||
-       (c.spindle_direction == interp::SpindleDirection::ccw && spindle_queued_ != -1));
-  if (c.op == Op::spindle && c.channel == 0 && c.spindle <= 1) {
-    spindle_queued_ = c.spindle_direction == interp::SpindleDirection::cw     ? 1
-                      : c.spindle_direction == interp::SpindleDirection::ccw  ? -1
-                      : c.spindle_direction == interp::SpindleDirection::keep ? spindle_queued_
-                                                                              : 0;
-  }
-  if (c.op == Op::spindle_sync || c.op == Op::spindle_unsync) {
-    const bool on = c.op == Op::spindle_sync;
-    coupling_.begin_spindle(SpindleSyncOut{on, on ? c.sync_k : 0, c.sync_p, c.sync_q, c.sync_r});
-    held_ = CouplingBlock{held(c)};
-    return true;
-  }
-  if (c.op == Op::spindle_mode) {
-    spindle_mode_.begin(c.position_control);
-    held_ = ModeBlock{held(c)};
-    return true;
-  }
-  if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {
-    coupling_.begin_axis(c.op == Op::axis_couple, static_cast<std::uint32_t>(c.master),
-                         static_cast<std::uint32_t>(c.slave));
-    held_ = CouplingBlock{held(c)};
-    return true;
-  }
-  if ((setup_.plc && (c.op == Op::aux || c.op == Op::tool)) ||
-      (spindle_start && (setup_.plc || setup_.spindle_may_follow))) {
-    // Sent when every block before it ended; the next block waits for the answer.
-    const int code = c.op == Op::tool ? c.tool * 100 + c.offset
-                     : spindle_start ? (c.spindle_direction == interp::SpindleDirection::cw ? 3 : 4)
-                                     : c.code;
-    aux_.begin(c.op == Op::tool ? AuxKind::t_code : AuxKind::m_code, code, spindle_start);
-    held_ = AuxBlock{held(c), c};
-    return true;
-  }
-  const bool moves =
-      c.op == Op::rapid || c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
-  if (const auto away = moves ? exchange_.foreign_slot(planner_.queue_end(), c.to) : std::nullopt) {
-    const coordination::CoordinationAlarm alarm = exchange_.foreign_move_alarm(*away, received_);
-    source_alarm_ = interp::ProgramAlarm{alarm.number, alarm.text.data(), "", c.line, 0};
-    return true;
-  }
-  if (c.op == Op::wait_input || c.op == Op::wait_spindle) {
-    // G04 I / G04 PS stop the read-ahead (spec L6907): the next block waits for them.
-    const bool input = c.op == Op::wait_input;
-    coordination::ConditionWaitLimits limits;
-    limits.width_s = input ? c.width_s : -1.0;
-    limits.dwell_s = c.dwell_s;
-    limits.timeout_s = input ? c.timeout_s : setup_.speed_arrival_timeout_s;
-    held_.emplace<WaitBlock>(
-        WaitBlock{held(c), c, coordination::ConditionWait(limits, setup_.cycle_s)});
-    return true;
-  }
-  if (c.skip) {
-    // G31 stops the read-ahead (spec L6907): its move starts once its probes are armed.
-    SkipBlock b;
-    b.command = c;
-    b.arm = c.input_on ? ProbeArm::rising : ProbeArm::falling;
-    held_ = std::move(b);
-    return true;
-  }
-  return false;
 }
 
 bool ChannelController::queue_command(const interp::Command& c) noexcept {
@@ -701,9 +611,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.block = m.block;
     out_.line = m.line;
   }
-  if (const auto* skip = std::get_if<SkipBlock>(&held_);
-      skip != nullptr && skip->phase == SkipBlock::Phase::stopping && planner_.idle() &&
-      queued_count_ > 0) {
+  if (const auto* skip = std::get_if<SkipStop>(&held_); skip != nullptr &&
+                                                        skip->phase == SkipStop::Phase::stopping &&
+                                                        planner_.idle() && queued_count_ > 0) {
     // The skipped move ends where it stopped, not at its programmed end.
     queued_[(queued_head_ + queued_count_ - 1) % queued_.size()].to = commanded_;
   }
@@ -717,9 +627,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   // Single block: the motion before a block that moves nothing (the planner ran dry there)
   // stops too, before that block runs.
-  const auto* skip = std::get_if<SkipBlock>(&held_);
+  const auto* skip = std::get_if<SkipStop>(&held_);
   const bool held_block =
-      holds_block() && (skip == nullptr || skip->phase == SkipBlock::Phase::arming);
+      holds_block() && (skip == nullptr || skip->phase == SkipStop::Phase::arming);
   if (single_block_ && held_block && m.completed_block > single_block_stop_) {
     single_block_stop_ = m.completed_block;
     set_state(ChannelState::hold);
@@ -814,7 +724,7 @@ void ChannelController::end_held(const HeldBlock& b) noexcept {
   held_ = std::monostate{};  // `b` is gone from here on
 }
 
-void ChannelController::run(SyncBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(SyncStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   const coordination::SyncMarkStep step =
@@ -903,7 +813,7 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
   }
 }
 
-void ChannelController::run(CallBlock& b, std::uint64_t cycle,
+void ChannelController::run(CallStop& b, std::uint64_t cycle,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   switch (calls_.step(cycle, lost_partners_, writes_pending())) {
@@ -931,7 +841,7 @@ void ChannelController::run(CallBlock& b, std::uint64_t cycle,
   set_state(ChannelState::running);
 }
 
-void ChannelController::run(ReleaseBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(ReleaseStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   // G145: the caller goes on; this program goes on too (spec dafeng §3.4).
   start_held(b.block);
@@ -982,7 +892,7 @@ void ChannelController::sync_positions() noexcept {
   hold_outputs(true);  // this cycle's setpoints came from the planner before it knew
 }
 
-void ChannelController::run(ExchangeBlock& b, std::uint64_t cycle,
+void ChannelController::run(ExchangeStop& b, std::uint64_t cycle,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   switch (exchange_.step(cycle, received_, commanded_)) {
@@ -1004,7 +914,7 @@ void ChannelController::run(ExchangeBlock& b, std::uint64_t cycle,
   set_state(ChannelState::running);
 }
 
-void ChannelController::run(AuxBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(AuxStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   const bool spindle = aux_.spindle_start();
   if (!spindle) {
@@ -1036,7 +946,7 @@ void ChannelController::run(AuxBlock& b, std::uint64_t /*cycle*/,
   end_held(b.block);
 }
 
-void ChannelController::run(CouplingBlock& b, std::uint64_t cycle,
+void ChannelController::run(CouplingStop& b, std::uint64_t cycle,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   switch (coupling_.step(coordination::CouplingInputs{cycle, received_, exchange_.uses()})) {
@@ -1069,7 +979,7 @@ void ChannelController::run(CouplingBlock& b, std::uint64_t cycle,
   end_held(b.block);
 }
 
-void ChannelController::run(ModeBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(ModeStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   const auto c = setup_.spindle_c_slot;
@@ -1104,11 +1014,11 @@ void ChannelController::leave_position_control() noexcept {
 }
 
 void ChannelController::watch_skip(std::span<const AxisFeedbackView> feedback) noexcept {
-  auto* skip = std::get_if<SkipBlock>(&held_);
-  if (skip == nullptr || skip->phase != SkipBlock::Phase::moving) {
+  auto* skip = std::get_if<SkipStop>(&held_);
+  if (skip == nullptr || skip->phase != SkipStop::Phase::moving) {
     return;
   }
-  SkipBlock& b = *skip;
+  SkipStop& b = *skip;
   for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
     if (probe_on_input(i, b.command.input) && feedback[i].probe == ProbeSeen::latched) {
       // The signal came: the latching axis where its drive latched it, the others where
@@ -1118,16 +1028,16 @@ void ChannelController::watch_skip(std::span<const AxisFeedbackView> feedback) n
       }
       b.skip_at[i] = feedback[i].probe_pos;
       b.skipped = true;
-      b.phase = SkipBlock::Phase::stopping;
+      b.phase = SkipStop::Phase::stopping;
       planner_.reset();  // stop at once (the reset deceleration) and drop the rest of the move
       return;
     }
   }
 }
 
-void ChannelController::run(SkipBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(SkipStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> feedback) noexcept {
-  if (b.phase == SkipBlock::Phase::arming) {
+  if (b.phase == SkipStop::Phase::arming) {
     bool armed = true;
     bool any = false;
     for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
@@ -1154,7 +1064,7 @@ void ChannelController::run(SkipBlock& b, std::uint64_t /*cycle*/,
       return;
     }
     if (queue_command(b.command)) {
-      b.phase = SkipBlock::Phase::moving;
+      b.phase = SkipStop::Phase::moving;
     } else {
       held_ = std::monostate{};  // the planner refused it: its alarm (source_alarm_) comes next
     }
@@ -1168,7 +1078,7 @@ void ChannelController::run(SkipBlock& b, std::uint64_t /*cycle*/,
   held_ = std::monostate{};
 }
 
-void ChannelController::run(WaitBlock& b, std::uint64_t /*cycle*/,
+void ChannelController::run(WaitStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
   const interp::Command& c = b.command;

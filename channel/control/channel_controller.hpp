@@ -9,6 +9,7 @@
 // the table of what it does with each axis), AuxHandshake (M/S/T codes and FIN),
 // CouplingRequest (G114.1/G113, G51.4/G50.4), SpindleMode (M18/M17) and ConditionWait (G04 I,
 // G04 PS). Pure and deterministic: inputs and cycle number in, outputs out.
+#include "channel/control/read_ahead_stop.hpp"
 #include "channel/control/shared_write_log.hpp"
 #include "channel/coordination/aux_handshake.hpp"
 #include "channel/coordination/axis_exchange.hpp"
@@ -59,10 +60,6 @@ using coordination::ProbeSeen;
 using coordination::SpindleGroupSetup;
 using coordination::SpindleSyncOut;
 using coordination::to_string;
-
-// G31 skip: the touch probe the channel asks an axis's drive to arm (latch where its input
-// goes on, or off); what the axis node says of it is ProbeSeen (the values the wire carries).
-enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2 };
 
 struct AxisSetpointOut {
   double pos = 0.0;
@@ -339,12 +336,12 @@ class ChannelController {
   [[nodiscard]] double spindle_override() const noexcept { return spindle_override_; }
   // G144 H1: the channel this one's sent call waits for, 0 when none.
   [[nodiscard]] std::uint32_t waiting_for_call() const noexcept {
-    return std::holds_alternative<CallBlock>(held_) ? calls_.waiting_for() : 0;
+    return std::holds_alternative<CallStop>(held_) ? calls_.waiting_for() : 0;
   }
   // The M or T code whose answer (FIN) from the PLC the channel waits for, or nullptr.
   [[nodiscard]] const AuxRequestOut* waiting_for_fin() const noexcept {
-    return std::holds_alternative<AuxBlock>(held_) && aux_.sent() && in_run() ? &aux_.request()
-                                                                              : nullptr;
+    return std::holds_alternative<AuxStop>(held_) && aux_.sent() && in_run() ? &aux_.request()
+                                                                             : nullptr;
   }
   // The axis exchange the channel waits for: its G code (140, 141, 142; 0: none) and the slot
   // (AxisRequestOut::kAllSlots for G142).
@@ -353,7 +350,7 @@ class ChannelController {
     std::size_t slot = 0;
   };
   [[nodiscard]] ExchangeWait waiting_for_exchange() const noexcept {
-    if (!std::holds_alternative<ExchangeBlock>(held_) || exchange_.waiting_g() == 0 || !in_run()) {
+    if (!std::holds_alternative<ExchangeStop>(held_) || exchange_.waiting_g() == 0 || !in_run()) {
       return {};
     }
     return {exchange_.waiting_g(), exchange_.waiting_slot()};
@@ -379,9 +376,6 @@ class ChannelController {
   bool in_position(std::span<const AxisFeedbackView> feedback, const AxisVector& at) const noexcept;
   void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
   void fill() noexcept;
-  // The block `c` pulled stops read-ahead (held_ holds it), or is an alarm (source_alarm_):
-  // true; false when it goes to the planner.
-  bool hold_block(const interp::Command& c) noexcept;
   void block_events(const motion::MotionOutput& m,
                     std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
@@ -444,18 +438,6 @@ class ChannelController {
   std::optional<interp::ProgramAlarm> pending_alarm_;
   bool first_cycle_ = true;
 
-  // A block that stops read-ahead: where it stands in the program.
-  struct HeldBlock {
-    std::uint64_t n = 0;
-    int line = 0;
-    const std::string* file = nullptr;
-    std::string_view text;
-    bool started = false;  // its block_started event is out
-    interp::ModalState modal;
-  };
-  static HeldBlock held(const interp::Command& c) noexcept {
-    return HeldBlock{c.n, c.line, c.file, c.block_text, false, c.modal};
-  }
   // The block's event of `kind`, with the channel's position.
   [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;
   // The block is the channel's current one: its start event, once.
@@ -463,69 +445,28 @@ class ChannelController {
   // The held block ends: its end event, and read-ahead goes on.
   void end_held(const HeldBlock& b) noexcept;
 
-  // "The block that stops read-ahead": pulled and not passed yet, at most one at a time. Each
-  // kind runs once every block before it ended; the coordination machines hold its state.
-  struct SyncBlock {  // G04.1: mark_
-    HeldBlock block;
-  };
-  struct CallBlock {  // G144: calls_
-    HeldBlock block;
-  };
-  struct ReleaseBlock {  // G145
-    HeldBlock block;
-  };
-  struct ExchangeBlock {  // G140 / G141 / G142: exchange_
-    HeldBlock block;
-  };
-  struct AuxBlock {  // an M or T code, or a spindle start the PLC allows: aux_
-    HeldBlock block;
-    interp::Command command;  // a spindle start: goes to the planner once allowed
-  };
-  struct CouplingBlock {  // G114.1 / G113 / G51.4 / G50.4: coupling_
-    HeldBlock block;
-  };
-  struct ModeBlock {  // M18 / M17: spindle_mode_
-    HeldBlock block;
-  };
-  // G31: the move waits until the touch probes on its input are armed, runs until one latches
-  // (then stops at the planner's reset deceleration) or it ends, and the source learns where.
-  struct SkipBlock {
-    enum class Phase : std::uint8_t { arming, moving, stopping };
-    interp::Command command;  // the move, queued once the probes are armed
-    ProbeArm arm = ProbeArm::rising;
-    Phase phase = Phase::arming;
-    std::uint64_t waited = 0;  // cycles arming
-    bool skipped = false;
-    AxisVector skip_at{};
-  };
-  // G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
-  // out.
-  struct WaitBlock {
-    HeldBlock block;
-    interp::Command command;
-    coordination::ConditionWait wait;
-  };
-  using Held = std::variant<std::monostate, SyncBlock, CallBlock, ReleaseBlock, ExchangeBlock,
-                            AuxBlock, CouplingBlock, ModeBlock, SkipBlock, WaitBlock>;
-  Held held_;
+  // The block that stops read-ahead, pulled and not passed yet (std::monostate: none). Each
+  // kind runs once every block before it ended; the coordination machines hold what outlives it.
+  ReadAheadStop held_;
   [[nodiscard]] bool holds_block() const noexcept {
     return !std::holds_alternative<std::monostate>(held_);
   }
+  void begin_held() noexcept;  // the held block's machine starts on it
   // One cycle of the held block, once every block before it ended.
   void run(std::monostate& /*none*/, std::uint64_t /*cycle*/,
            std::span<const AxisFeedbackView> /*feedback*/) noexcept {}
-  void run(SyncBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(CallBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ReleaseBlock& b, std::uint64_t cycle,
+  void run(SyncStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(CallStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(ReleaseStop& b, std::uint64_t cycle,
            std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ExchangeBlock& b, std::uint64_t cycle,
+  void run(ExchangeStop& b, std::uint64_t cycle,
            std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(AuxBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(CouplingBlock& b, std::uint64_t cycle,
+  void run(AuxStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(CouplingStop& b, std::uint64_t cycle,
            std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ModeBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(SkipBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(WaitBlock& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(ModeStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(SkipStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  void run(WaitStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
 
   // G04.1 (the barrier) and G144 / G145 (calls made and served).
   coordination::SyncMark mark_;

@@ -17,9 +17,9 @@ inline constexpr int kAlarmSyncTableFull = 1212;    // G04.1: more marks than th
 inline constexpr int kAlarmSyncPartnerLost = 1213;  // G04.1: a partner's process is gone
 
 struct SyncMarkInputs {
-  ChannelSet active;           // channels in automatic operation (their status stamped N-1)
-  ChannelSet halted;           // channels an alarm stopped
-  ChannelSet lost;             // channels whose process is gone
+  ChannelSet active;            // channels in automatic operation (their status stamped N-1)
+  ChannelSet halted;            // channels an alarm stopped
+  ChannelSet lost;              // channels whose process is gone
   bool writes_pending = false;  // shared writes before the mark not out yet
 };
 
@@ -36,7 +36,8 @@ class SyncMark {
   explicit SyncMark(std::uint32_t self) noexcept : barrier_(self) {}
 
   // A block G04.1 [P with its participants] reached the front.
-  void begin(bool has_p, std::int32_t p, const ChannelSet& participants, bool all_channels) noexcept;
+  void begin(bool has_p, std::int32_t p, const ChannelSet& participants,
+             bool all_channels) noexcept;
   SyncMarkStep step(const SyncMarkInputs& in) noexcept;
   // The wait ends without release (reset, new run).
   void abandon() noexcept;

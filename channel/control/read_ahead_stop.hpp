@@ -1,0 +1,121 @@
+#pragma once
+// The blocks that stop the channel's read-ahead (spec dafeng §3.0, spec L6907): G04.1, G144,
+// G145, G140-G142, aux codes the PLC answers (and spindle starts it allows), G114.1/G113,
+// G51.4/G50.4, M18/M17, G31 and G04 I/PS. Such a block is pulled and held until every block
+// before it ended, then run by its coordination machine; nothing after it is read meanwhile.
+// "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the one place
+// that says which commands are one and what each carries. Pure: no allocation beyond the
+// command copies the G31 and G04 blocks keep (made while reading ahead, as before), nothing
+// throws but a copy of a command.
+#include "channel/coordination/aux_handshake.hpp"
+#include "channel/coordination/axis_exchange.hpp"
+#include "channel/coordination/condition_wait.hpp"
+#include "channel/coordination/coupling_request.hpp"
+#include "channel/coordination/sub_call.hpp"
+#include "channel/coordination/sync_barrier.hpp"
+#include "channel/interp/command.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <variant>
+
+namespace mcnc::channel {
+
+// G31 skip: the touch probe the channel asks an axis's drive to arm (latch where its input
+// goes on, or off); what the axis node says of it is ProbeSeen (the values the wire carries).
+enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2 };
+
+// Where a block that stops read-ahead stands in the program.
+struct HeldBlock {
+  std::uint64_t n = 0;
+  int line = 0;
+  const std::string* file = nullptr;
+  std::string_view text;
+  bool started = false;  // its block_started event is out
+  interp::ModalState modal;
+};
+
+struct SyncStop {  // G04.1 [P]
+  HeldBlock block;
+  bool has_p = false;
+  std::int32_t p = 0;
+  coordination::ChannelSet participants;
+  bool all_channels = false;
+};
+struct CallStop {  // G144
+  HeldBlock block;
+  coordination::CallRequest call;  // call_id set when it is sent
+};
+struct ReleaseStop {  // G145
+  HeldBlock block;
+};
+struct ExchangeStop {  // G140 / G141 / G142
+  HeldBlock block;
+  coordination::AxisRequestKind kind = coordination::AxisRequestKind::restore;
+  std::size_t slot = 0;
+  bool force = false;  // G141 P1
+};
+struct AuxStop {  // an M or T code for the PLC, or a spindle start it must allow
+  HeldBlock block;
+  coordination::AuxKind kind = coordination::AuxKind::m_code;
+  int code = 0;
+  bool spindle_start = false;
+  interp::Command command;  // a spindle start: goes to the planner once allowed
+};
+struct CouplingStop {  // G114.1 / G113 (spindle), G51.4 / G50.4 (axis)
+  HeldBlock block;
+  bool axis = false;
+  coordination::SpindleSyncOut spindle{};
+  bool on = false;           // axis: G51.4
+  std::uint32_t master = 0;  // axis: P (0: the slave's default)
+  std::uint32_t slave = 0;   // axis: Q
+};
+struct ModeStop {  // M18 / M17
+  HeldBlock block;
+  bool position = false;
+};
+// G31: the move waits until the touch probes on its input are armed, runs until one latches
+// (then stops at the planner's reset deceleration) or it ends, and the source learns where.
+struct SkipStop {
+  enum class Phase : std::uint8_t { arming, moving, stopping };
+  interp::Command command;  // the move, queued once the probes are armed
+  ProbeArm arm = ProbeArm::rising;
+  Phase phase = Phase::arming;
+  std::uint64_t waited = 0;  // cycles arming
+  bool skipped = false;
+  interp::AxisVector skip_at{};
+};
+// G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
+// out.
+struct WaitStop {
+  HeldBlock block;
+  interp::Command command;
+  coordination::ConditionWait wait;
+};
+
+// The block held, std::monostate when none.
+using ReadAheadStop = std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop,
+                                   AuxStop, CouplingStop, ModeStop, SkipStop, WaitStop>;
+
+// What decides which commands stop read-ahead in a channel.
+struct StopRules {
+  std::uint32_t channel_id = 1;
+  std::span<const coordination::AxisSlot> slots;  // G140/G141 name a slot by its address
+  bool plc = false;                               // M and T codes go to a PLC node
+  bool spindle_may_follow = false;                // the first spindle may follow (G114.1 slave)
+  double speed_arrival_timeout_s = 10.0;          // G04 PS times out after this long
+  double cycle_s = 0.001;
+};
+
+// The stop that command `c` (pulled in program order) makes, or std::monostate when it goes to
+// the planner. `spindle_queued` is the first spindle's direction as the pulled blocks leave it
+// (+1 M03, -1 M04, 0 stopped): a spindle start or reversal asks the PLC, a speed change of a
+// turning spindle does not; it is kept up to date. A G140/G141 of an axis that is not exchanged
+// sets `alarm` (raised when the blocks before it ran).
+ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, int& spindle_queued,
+                              std::optional<interp::ProgramAlarm>& alarm);
+
+}  // namespace mcnc::channel

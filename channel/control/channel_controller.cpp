@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <span>
+#include <type_traits>
 
 namespace mcnc::channel {
 
@@ -22,6 +23,7 @@ double c_rest_width(const ChannelSetup& setup) noexcept {
 
 static_assert(coordination::kCallArgs == interp::kSubcallArgs);
 static_assert(coordination::AxisExchange::kMaxSlots >= kMaxChannelAxes);
+static_assert(std::is_same_v<coordination::SkipProbe::Position, AxisVector>);
 
 ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& source,
                                      motion::MotionPlanner& planner)
@@ -35,7 +37,8 @@ ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& 
       aux_(setup_.channel_id),
       coupling_(coordination::CouplingSetup{setup_.axis_count, setup_.slots, setup_.spindle_groups,
                                             setup_.machine_axes}),
-      spindle_mode_(c_rest_width(setup_), setup_.cycle_s) {
+      spindle_mode_(c_rest_width(setup_), setup_.cycle_s),
+      skip_(setup_.axis_count, setup_.probe_arm_cycles) {
   queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
 }
 
@@ -244,9 +247,10 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   }
   // G31: the probes on the block's input stay armed while it arms and moves.
   const auto* skip = std::get_if<SkipStop>(&held_);
-  if (skip != nullptr && skip->phase != SkipStop::Phase::stopping && in_run()) {
+  if (skip != nullptr && skip_.phase() != coordination::SkipPhase::stopping && in_run()) {
+    const std::uint32_t probes = probe_axes(skip->command.input);
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
-      if (probe_on_input(i, skip->command.input)) {
+      if (((probes >> i) & 1U) != 0) {
         out_.setpoints[i].probe = skip->arm;
       }
     }
@@ -512,6 +516,8 @@ void ChannelController::begin_held() noexcept {
     }
   } else if (const auto* s = std::get_if<ModeStop>(&held_)) {
     spindle_mode_.begin(s->position);
+  } else if (const auto* s = std::get_if<SkipStop>(&held_)) {
+    skip_.begin(s->command.input);
   }
 }
 
@@ -611,9 +617,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.block = m.block;
     out_.line = m.line;
   }
-  if (const auto* skip = std::get_if<SkipStop>(&held_); skip != nullptr &&
-                                                        skip->phase == SkipStop::Phase::stopping &&
-                                                        planner_.idle() && queued_count_ > 0) {
+  if (skip_in(coordination::SkipPhase::stopping) && planner_.idle() && queued_count_ > 0) {
     // The skipped move ends where it stopped, not at its programmed end.
     queued_[(queued_head_ + queued_count_ - 1) % queued_.size()].to = commanded_;
   }
@@ -627,9 +631,8 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   // Single block: the motion before a block that moves nothing (the planner ran dry there)
   // stops too, before that block runs.
-  const auto* skip = std::get_if<SkipStop>(&held_);
-  const bool held_block =
-      holds_block() && (skip == nullptr || skip->phase == SkipStop::Phase::arming);
+  const bool held_block = holds_block() && (!std::holds_alternative<SkipStop>(held_) ||
+                                            skip_in(coordination::SkipPhase::arming));
   if (single_block_ && held_block && m.completed_block > single_block_stop_) {
     single_block_stop_ = m.completed_block;
     set_state(ChannelState::hold);
@@ -1013,68 +1016,43 @@ void ChannelController::leave_position_control() noexcept {
   }
 }
 
-void ChannelController::watch_skip(std::span<const AxisFeedbackView> feedback) noexcept {
-  auto* skip = std::get_if<SkipStop>(&held_);
-  if (skip == nullptr || skip->phase != SkipStop::Phase::moving) {
-    return;
+std::uint32_t ChannelController::probe_axes(int input) const noexcept {
+  std::uint32_t probes = 0;
+  for (std::size_t i = 0; i < setup_.axis_count && i < setup_.probe_inputs.size(); ++i) {
+    const bool commanded = !exchanges() || exchange_.use(i) == coordination::SlotUse::commanded;
+    probes |= setup_.probe_inputs[i] == input && commanded ? 1U << i : 0U;
   }
-  SkipStop& b = *skip;
-  for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
-    if (probe_on_input(i, b.command.input) && feedback[i].probe == ProbeSeen::latched) {
-      // The signal came: the latching axis where its drive latched it, the others where
-      // they stood in the same feedback.
-      for (std::size_t j = 0; j < setup_.axis_count && j < feedback.size(); ++j) {
-        b.skip_at[j] = feedback[j].act;
-      }
-      b.skip_at[i] = feedback[i].probe_pos;
-      b.skipped = true;
-      b.phase = SkipStop::Phase::stopping;
-      planner_.reset();  // stop at once (the reset deceleration) and drop the rest of the move
-      return;
-    }
+  return probes;
+}
+
+void ChannelController::watch_skip(std::span<const AxisFeedbackView> feedback) noexcept {
+  const auto* skip = std::get_if<SkipStop>(&held_);
+  if (skip != nullptr && skip_.watch(feedback, probe_axes(skip->command.input))) {
+    planner_.reset();  // stop at once (the reset deceleration) and drop the rest of the move
   }
 }
 
 void ChannelController::run(SkipStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> feedback) noexcept {
-  if (b.phase == SkipStop::Phase::arming) {
-    bool armed = true;
-    bool any = false;
-    for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
-      if (probe_on_input(i, b.command.input)) {
-        any = true;
-        armed = armed && feedback[i].probe == ProbeSeen::armed;
-      }
-    }
-    if (!any) {
-      char text[96];
-      std::snprintf(text, sizeof text,
-                    "G31: no axis this channel commands has its touch probe on input %d",
-                    b.command.input);
-      raise(interp::alarm::kSkipInput, text, b.command.line, 0, 0);
-      return;
-    }
-    if (!armed) {
-      if (++b.waited > setup_.probe_arm_cycles) {
-        char text[96];
-        std::snprintf(text, sizeof text, "G31: the touch probe on input %d did not arm",
-                      b.command.input);
-        raise(kAlarmProbeNotArmed, text, b.command.line, 0, 0);
-      }
-      return;
+  if (skip_.phase() == coordination::SkipPhase::arming) {
+    switch (skip_.arm(feedback, probe_axes(b.command.input))) {
+      case coordination::SkipArming::waiting:
+        return;
+      case coordination::SkipArming::alarm:
+        raise(skip_.alarm(), b.command.line);
+        return;
+      case coordination::SkipArming::armed:
+        break;
     }
     if (queue_command(b.command)) {
-      b.phase = SkipStop::Phase::moving;
+      skip_.start_moving();
     } else {
       held_ = std::monostate{};  // the planner refused it: its alarm (source_alarm_) comes next
     }
     return;
   }
   // The move ended (its end reached without the signal, or stopped at it) and its block too.
-  if (!b.skipped) {
-    b.skip_at = commanded_;
-  }
-  source_.skip_result(b.skipped, b.skip_at, commanded_);
+  source_.skip_result(skip_.skipped(), skip_.where(commanded_), commanded_);
   held_ = std::monostate{};
 }
 

@@ -17,6 +17,7 @@
 #include "channel/coordination/channel_state.hpp"
 #include "channel/coordination/condition_wait.hpp"
 #include "channel/coordination/coupling_request.hpp"
+#include "channel/coordination/skip_probe.hpp"
 #include "channel/coordination/spindle_mode.hpp"
 #include "channel/coordination/sub_call.hpp"
 #include "channel/coordination/sync_barrier.hpp"
@@ -207,6 +208,7 @@ using coordination::kAlarmCallFailed;
 using coordination::kAlarmCallRefused;
 using coordination::kAlarmCallTimeout;
 using coordination::kAlarmNotOwner;
+using coordination::kAlarmProbeNotArmed;
 using coordination::kAlarmRequestRefused;
 using coordination::kAlarmSlaveSpindle;
 using coordination::kAlarmSpindleNotAtRest;
@@ -215,9 +217,8 @@ using coordination::kAlarmSyncGroup;
 using coordination::kAlarmSyncMismatch;
 using coordination::kAlarmSyncPartnerLost;
 using coordination::kAlarmSyncTableFull;
-inline constexpr int kAlarmProbeNotArmed = 1270;  // G31: a drive's touch probe did not arm
-inline constexpr int kAlarmInputTimeout = 1271;   // G04 I: the input did not come within J
-inline constexpr int kAlarmSpeedTimeout = 1272;   // G04 PS: the speed not reached (param 1059)
+inline constexpr int kAlarmInputTimeout = 1271;  // G04 I: the input did not come within J
+inline constexpr int kAlarmSpeedTimeout = 1272;  // G04 PS: the speed not reached (param 1059)
 
 class ChannelController {
  public:
@@ -507,9 +508,11 @@ class ChannelController {
 
   // G31 and G04 I / G04 PS.
   std::uint64_t plc_inputs_ = 0;
-  [[nodiscard]] bool probe_on_input(std::size_t axis, int input) const noexcept {
-    return axis < setup_.probe_inputs.size() && setup_.probe_inputs[axis] == input &&
-           (!exchanges() || exchange_.use(axis) == coordination::SlotUse::commanded);
+  coordination::SkipProbe skip_;
+  // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
+  [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
+  [[nodiscard]] bool skip_in(coordination::SkipPhase phase) const noexcept {
+    return std::holds_alternative<SkipStop>(held_) && skip_.phase() == phase;
   }
   void watch_skip(std::span<const AxisFeedbackView> feedback) noexcept;  // moving: a latch
   // Hands a command to the planner and the block queue; false (and a source alarm) when the

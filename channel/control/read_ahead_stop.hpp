@@ -80,13 +80,8 @@ struct ModeStop {  // M18 / M17
 // G31: the move waits until the touch probes on its input are armed, runs until one latches
 // (then stops at the planner's reset deceleration) or it ends, and the source learns where.
 struct SkipStop {
-  enum class Phase : std::uint8_t { arming, moving, stopping };
   interp::Command command;  // the move, queued once the probes are armed
   ProbeArm arm = ProbeArm::rising;
-  Phase phase = Phase::arming;
-  std::uint64_t waited = 0;  // cycles arming
-  bool skipped = false;
-  interp::AxisVector skip_at{};
 };
 // G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
 // out.

@@ -36,7 +36,7 @@ TEST(ReadAheadStop, AMoveGoesToThePlannerAndASkipMoveStops) {
   const ReadAheadStop s = r.stop(move);
   ASSERT_TRUE(std::holds_alternative<SkipStop>(s));
   EXPECT_EQ(std::get<SkipStop>(s).arm, ProbeArm::falling);
-  EXPECT_EQ(std::get<SkipStop>(s).phase, SkipStop::Phase::arming);
+  EXPECT_TRUE(std::get<SkipStop>(s).command.skip);
   EXPECT_FALSE(r.alarm);
 }
 

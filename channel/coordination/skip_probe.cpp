@@ -1,0 +1,60 @@
+#include "channel/coordination/skip_probe.hpp"
+
+#include "channel/interp/program_alarms.hpp"
+
+namespace mcnc::coordination {
+
+void SkipProbe::begin(int input) noexcept {
+  input_ = input;
+  phase_ = SkipPhase::arming;
+  waited_ = 0;
+  skipped_ = false;
+  skip_at_ = {};
+}
+
+SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
+                          std::uint32_t probes) noexcept {
+  bool armed = true;
+  bool any = false;
+  for (std::size_t i = 0; i < axis_count_ && i < feedback.size() && i < kMaxAxes; ++i) {
+    if (((probes >> i) & 1U) != 0) {
+      any = true;
+      armed = armed && feedback[i].probe == ProbeSeen::armed;
+    }
+  }
+  if (!any) {
+    alarm_.set(interp::alarm::kSkipInput,
+               "G31: no axis this channel commands has its touch probe on input %d", input_);
+    return SkipArming::alarm;
+  }
+  if (armed) {
+    return SkipArming::armed;
+  }
+  if (++waited_ > arm_cycles_) {
+    alarm_.set(kAlarmProbeNotArmed, "G31: the touch probe on input %d did not arm", input_);
+    return SkipArming::alarm;
+  }
+  return SkipArming::waiting;
+}
+
+bool SkipProbe::watch(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept {
+  if (phase_ != SkipPhase::moving) {
+    return false;
+  }
+  for (std::size_t i = 0; i < axis_count_ && i < feedback.size() && i < kMaxAxes; ++i) {
+    if (((probes >> i) & 1U) != 0 && feedback[i].probe == ProbeSeen::latched) {
+      // The latching axis where its drive latched it, the others where they stood in the same
+      // feedback.
+      for (std::size_t j = 0; j < axis_count_ && j < feedback.size() && j < kMaxAxes; ++j) {
+        skip_at_[j] = feedback[j].act;
+      }
+      skip_at_[i] = feedback[i].probe_pos;
+      skipped_ = true;
+      phase_ = SkipPhase::stopping;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace mcnc::coordination

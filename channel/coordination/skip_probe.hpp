@@ -1,0 +1,58 @@
+#pragma once
+// G31 (skip) as the channel runs it with its drives' touch probes: the move waits until every
+// probe on the block's skip input reports itself armed (an alarm if none is on that input, or
+// one does not arm in time), then runs; the first probe that latches stops it, and the skip
+// position is where that drive latched, the other axes where the same feedback shows them. A
+// move that ends without the signal ends where it was programmed to. Pure: one call per cycle
+// with the feedback of that cycle; no allocation, nothing throws.
+#include "channel/coordination/channel_axes.hpp"
+#include "channel/coordination/coordination_alarm.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+namespace mcnc::coordination {
+
+inline constexpr int kAlarmProbeNotArmed = 1270;  // G31: a drive's touch probe did not arm
+
+enum class SkipPhase : std::uint8_t { arming, moving, stopping };
+enum class SkipArming : std::uint8_t { waiting, armed, alarm };
+
+class SkipProbe {
+ public:
+  static constexpr std::size_t kMaxAxes = 8;
+  using Position = std::array<double, kMaxAxes>;
+
+  SkipProbe(std::size_t axis_count, std::uint64_t arm_cycles) noexcept
+      : axis_count_(axis_count), arm_cycles_(arm_cycles) {}
+
+  // A G31 block on skip input `input` reached the front.
+  void begin(int input) noexcept;
+  // Arming, one cycle. `probes`: bit i, the touch probe of axis i is on the block's input.
+  SkipArming arm(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
+  void start_moving() noexcept { phase_ = SkipPhase::moving; }
+  // Moving, one cycle: true when a probe latched now (the move must stop at once).
+  bool watch(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
+
+  [[nodiscard]] SkipPhase phase() const noexcept { return phase_; }
+  [[nodiscard]] bool skipped() const noexcept { return skipped_; }
+  // Where the skip happened, or `end` (where the move ended) without the signal.
+  [[nodiscard]] Position where(const Position& end) const noexcept {
+    return skipped_ ? skip_at_ : end;
+  }
+  [[nodiscard]] const CoordinationAlarm& alarm() const noexcept { return alarm_; }
+
+ private:
+  std::size_t axis_count_;
+  std::uint64_t arm_cycles_;
+  int input_ = 0;
+  SkipPhase phase_ = SkipPhase::arming;
+  std::uint64_t waited_ = 0;  // cycles arming
+  bool skipped_ = false;
+  Position skip_at_{};
+  CoordinationAlarm alarm_{};
+};
+
+}  // namespace mcnc::coordination

@@ -1,14 +1,15 @@
 #pragma once
-// The channel's cyclic core: the channel state machine (reset / idle / running / alarm) that
-// pulls canonical commands from its CommandSource as far as its look-ahead planner takes them,
-// steps the planner once per cycle, holds every exact stop until the axes are in position, and
-// yields one setpoint per axis per cycle plus the events of that cycle. At a G04.1 wait mark it
-// stops reading ahead, arrives once the blocks before the mark have ended, and waits (state
-// waiting) until its SyncBarrier releases it. The other blocks that stop read-ahead are run by
-// the coordination state machines it composes: SubCall (G144/G145), AxisExchange (G140-G142 and
-// the table of what it does with each axis), AuxHandshake (M/S/T codes and FIN),
-// CouplingRequest (G114.1/G113, G51.4/G50.4), SpindleMode (M18/M17) and ConditionWait (G04 I,
-// G04 PS). Pure and deterministic: inputs and cycle number in, outputs out.
+// The channel's cyclic core: the channel state machine (reset / idle / running / hold / waiting
+// / alarm) that pulls canonical commands from its CommandSource as far as its look-ahead planner
+// takes them, steps the planner once per cycle, holds every exact stop until the axes are in
+// position, and yields one setpoint per axis per cycle plus the events of that cycle. A block
+// that stops read-ahead (read_ahead_stop.hpp: G04.1, G144/G145, G140-G142, aux codes, couplings,
+// M18/M17, G31, G04 I/PS) is held until the blocks before it ended, then run by the
+// coordination state machine it composes for it: SyncMark (around SyncBarrier), SubCall,
+// AxisExchange (which also keeps what the channel does with each axis slot), AuxHandshake,
+// CouplingRequest, SpindleMode, SkipProbe and ConditionWait; the controller maps their step
+// outcomes to events, state changes and outputs. Pure and deterministic: inputs and cycle
+// number in, outputs out.
 #include "channel/control/read_ahead_stop.hpp"
 #include "channel/control/shared_write_log.hpp"
 #include "channel/coordination/aux_handshake.hpp"

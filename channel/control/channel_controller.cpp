@@ -30,6 +30,7 @@ ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& 
     : setup_(std::move(setup)),
       source_(source),
       planner_(planner),
+      queued_(std::max<std::size_t>(planner.window_blocks(), 1) + 8),
       mark_(setup_.channel_id),
       calls_(setup_.channel_id, setup_.call_wait_cycles),
       exchange_(coordination::ExchangeSetup{setup_.channel_id, setup_.axis_count, setup_.slots,
@@ -38,9 +39,7 @@ ChannelController::ChannelController(ChannelSetup setup, interp::CommandSource& 
       coupling_(coordination::CouplingSetup{setup_.axis_count, setup_.slots, setup_.spindle_groups,
                                             setup_.machine_axes}),
       spindle_mode_(c_rest_width(setup_), setup_.cycle_s),
-      skip_(setup_.axis_count, setup_.probe_arm_cycles) {
-  queued_.resize(std::max<std::size_t>(planner.window_blocks(), 1) + 8);
-}
+      skip_(setup_.axis_count, setup_.probe_arm_cycles) {}
 
 void ChannelController::axis_lost(std::size_t axis) noexcept {
   if (lost_axis_ == 0) {
@@ -192,9 +191,7 @@ void ChannelController::forget_program_run() noexcept {
   aux_.abandon();
   spindle_queued_ = 0;  // a program (re)starts with its spindle stopped
   halted_ = false;
-  queued_head_ = 0;
-  queued_count_ = 0;
-  queued_started_ = 0;
+  queued_.clear();
   end_pulled_ = false;
   end_started_ = false;
   source_alarm_.reset();
@@ -452,7 +449,7 @@ void ChannelController::fill() noexcept {
   try {
     for (std::size_t k = 0;
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !holds_block() &&
-         planner_.accepts() && queued_count_ < queued_.size() && source_.ready();
+         planner_.accepts() && !queued_.full() && source_.ready();
          ++k) {
       auto pulled = source_.next();
       if (!pulled) {
@@ -528,65 +525,37 @@ bool ChannelController::queue_command(const interp::Command& c) noexcept {
         kAlarmPlannerRejected, "block cannot be planned (feed or target invalid)", "", c.line, 0};
     return false;
   }
-  QueuedBlock& q = queued_[(queued_head_ + queued_count_) % queued_.size()];
-  // A spindle command takes effect where the planner reaches it; as a block it does not move
-  // and passes at once.
-  const bool spindle = c.op == interp::Op::spindle;
-  q = QueuedBlock{
-      c.n,
-      c.line,
-      c.op == interp::Op::dwell || spindle ? start : c.to,
-      c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell,
-      spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start),
-      c.file,
-      c.block_text,
-      c.modal};
-  ++queued_count_;
+  queued_.push(c, start);
   return true;
 }
 
-// Block events in program order, each block's end before the next one's start: a block
-// starts when the planner is in it (or past it), ends when the path passed its end (a stop
-// there: and every axis is in position); a block that does not move passes at once. Events
-// that do not fit in this cycle's output come in the next.
+// Block events in program order, each block's end before the next one's start. Events that do
+// not fit in this cycle's output come in the next.
 void ChannelController::block_events(const motion::MotionOutput& m,
                                      std::span<const AxisFeedbackView> feedback) noexcept {
-  // An idle planner has run everything it took.
-  const std::uint64_t done = planner_.idle() ? ~std::uint64_t{0} : m.completed_block;
   constexpr std::size_t kKeepFree = 4;  // for a program end in the same cycle
-  while (out_.event_count + kKeepFree < ChannelOutput::kMaxEvents && queued_count_ > 0) {
-    const QueuedBlock& q = queued_[queued_head_];
-    if (queued_started_ == 0) {
-      if (q.n > m.block && q.n > done && !q.still) {
-        return;
-      }
-      ChannelEvent started;
-      started.kind = ChannelEventKind::block_started;
-      started.line = q.line;
-      started.file = q.file;
-      started.text = q.text;
-      started.block = q.n;
-      push_event(started);
-      out_.modal = q.modal;
-      queued_started_ = 1;
-      continue;
-    }
-    // A block the path stopped at is an exact stop, whatever made it stop (G09/G61, a rapid,
-    // a dwell or the program end after it, a corner the look-ahead would not blend).
-    const bool stopped_here = q.n == m.completed_block && m.path_velocity <= 0.0;
-    if (!q.still &&
-        (q.n > done || ((q.exact_stop || stopped_here) && !in_position(feedback, q.to)))) {
+  while (out_.event_count + kKeepFree < ChannelOutput::kMaxEvents) {
+    const BlockQueue::Due due = queued_.due(m, planner_.idle());
+    const QueuedBlock& q = queued_.front();
+    if (due == BlockQueue::Due::none ||
+        (due == BlockQueue::Due::end_if_in_position && !in_position(feedback, q.to))) {
       return;
     }
-    ChannelEvent ended;
-    ended.kind = ChannelEventKind::block_ended;
-    ended.line = q.line;
-    ended.block = q.n;
-    ended.pos = q.to;
-    push_event(ended);
-    queued_head_ = (queued_head_ + 1) % queued_.size();
-    --queued_count_;
-    queued_started_ = 0;
+    ChannelEvent event;
+    event.line = q.line;
+    event.block = q.n;
+    if (due == BlockQueue::Due::start) {
+      event.kind = ChannelEventKind::block_started;
+      event.file = q.file;
+      event.text = q.text;
+      out_.modal = q.modal;
+      queued_.started();
+    } else {
+      event.kind = ChannelEventKind::block_ended;
+      event.pos = q.to;
+      queued_.ended();
+    }
+    push_event(event);
   }
 }
 
@@ -617,16 +586,15 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.block = m.block;
     out_.line = m.line;
   }
-  if (skip_in(coordination::SkipPhase::stopping) && planner_.idle() && queued_count_ > 0) {
-    // The skipped move ends where it stopped, not at its programmed end.
-    queued_[(queued_head_ + queued_count_ - 1) % queued_.size()].to = commanded_;
+  if (skip_in(coordination::SkipPhase::stopping) && planner_.idle()) {
+    queued_.end_newest_at(commanded_);  // the skipped move ends where it stopped
   }
   block_events(m, feedback);
   if (m.state == motion::MotionState::block_stop && out_.state == ChannelState::running) {
     set_state(ChannelState::hold);  // single block: at the block's end until a cycle start
     single_block_stop_ = m.completed_block;
   }
-  if (out_.state == ChannelState::hold || !planner_.idle() || queued_count_ > 0) {
+  if (out_.state == ChannelState::hold || !planner_.idle() || !queued_.empty()) {
     return;  // in feed hold nothing new starts
   }
   // Single block: the motion before a block that moves nothing (the planner ran dry there)
@@ -853,11 +821,7 @@ void ChannelController::run(ReleaseStop& b, std::uint64_t /*cycle*/,
 }
 
 void ChannelController::raise_if_queued_moves(std::size_t s, const char* why) noexcept {
-  int moving_line = 0;  // the first queued block that moves it
-  for (std::size_t k = 0; k < queued_count_ && moving_line == 0; ++k) {
-    const QueuedBlock& q = queued_[(queued_head_ + k) % queued_.size()];
-    moving_line = std::fabs(q.to[s] - commanded_[s]) > 1e-9 ? q.line : 0;
-  }
+  const int moving_line = queued_.first_moving(s, commanded_[s]);
   if (moving_line != 0 &&
       (out_.state == ChannelState::running || out_.state == ChannelState::hold)) {
     char text[128];

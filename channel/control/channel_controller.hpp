@@ -10,6 +10,7 @@
 // CouplingRequest, SpindleMode, SkipProbe and ConditionWait; the controller maps their step
 // outcomes to events, state changes and outputs. Pure and deterministic: inputs and cycle
 // number in, outputs out.
+#include "channel/control/block_queue.hpp"
 #include "channel/control/read_ahead_stop.hpp"
 #include "channel/control/shared_write_log.hpp"
 #include "channel/coordination/aux_handshake.hpp"
@@ -390,18 +391,6 @@ class ChannelController {
   void release_caller(CallOutcome outcome) noexcept;
   void push_release(const CallRelease& release) noexcept;
 
-  // A block handed to the planner, until its end event.
-  struct QueuedBlock {
-    std::uint64_t n = 0;
-    int line = 0;
-    AxisVector to{};
-    bool exact_stop = false;
-    bool still = false;                 // a move to where the axes already are
-    const std::string* file = nullptr;  // owned by the interpreter
-    std::string_view text;              // the line, as the interpreter holds it
-    interp::ModalState modal;
-  };
-
   ChannelSetup setup_;
   interp::CommandSource& source_;
   motion::MotionPlanner& planner_;
@@ -429,11 +418,8 @@ class ChannelController {
   bool estopped_ = false;      // an emergency stop: a reset does not undo it
   std::size_t lost_axis_ = 0;  // axis index + 1
   bool halted_ = false;        // an alarm or emergency stop ended the run
-  std::vector<QueuedBlock> queued_;  // a ring: the planner's window and a little more
-  std::size_t queued_head_ = 0;
-  std::size_t queued_count_ = 0;
-  std::size_t queued_started_ = 0;  // 1 when the oldest queued block had its start event
-  interp::Command end_{};           // the program end, once pulled
+  BlockQueue queued_;          // the blocks the planner took, until their end event
+  interp::Command end_{};      // the program end, once pulled
   bool end_pulled_ = false;
   bool end_started_ = false;
   std::optional<interp::ProgramAlarm> source_alarm_;  // raised when the blocks before it ran

@@ -22,13 +22,17 @@
 #include <string>
 #include <vector>
 
-namespace mcnc::channel {
+namespace mcnc::coordination {
 
-// Readable states in failure messages (found by argument-dependent lookup).
+// Readable states in failure messages (found by argument-dependent lookup in the namespace of
+// ChannelState).
 static void PrintTo(ChannelState state, std::ostream* os) {
   *os << to_string(state);
 }
 
+}  // namespace mcnc::coordination
+
+namespace mcnc::channel {
 namespace {
 
 using interp::Command;

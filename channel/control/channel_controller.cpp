@@ -476,12 +476,12 @@ void ChannelController::fill() noexcept {
         source_alarm_ = interp::ProgramAlarm{a.number, a.text.data(), "", c->line, 0};
         return;
       }
-      const StopRules rules{setup_.channel_id,
-                            setup_.slots,
-                            setup_.plc,
-                            setup_.spindle_may_follow,
-                            setup_.speed_arrival_timeout_s,
-                            setup_.cycle_s};
+      const StopRules rules{
+          setup_.channel_id,
+          setup_.slots,
+          setup_.plc,
+          setup_.spindle_may_follow,
+          {setup_.speed_arrival_rpm, setup_.speed_arrival_timeout_s, setup_.cycle_s}};
       held_ = read_ahead_stop(*c, rules, spindle_queued_, source_alarm_);
       if (holds_block()) {
         begin_held();
@@ -1023,59 +1023,24 @@ void ChannelController::run(SkipStop& b, std::uint64_t /*cycle*/,
 void ChannelController::run(WaitStop& b, std::uint64_t /*cycle*/,
                             std::span<const AxisFeedbackView> /*feedback*/) noexcept {
   start_held(b.block);
-  const interp::Command& c = b.command;
-  bool holds = false;
-  char text[160];
-  if (c.op == interp::Op::wait_input) {
-    const auto port = static_cast<std::size_t>(c.input);
-    const int bit = port < setup_.input_ports.size() ? setup_.input_ports[port] : -1;
-    if (bit < 0 || bit > 63 || aux_.plc_gone()) {
-      std::snprintf(
-          text, sizeof text, "G04 I%s%d: %s", c.input_on ? "" : "-", c.input,
-          aux_.plc_gone() ? "the PLC node is gone" : "the PLC has no input with this port");
-      raise(interp::alarm::kInputPort, text, b.block.line, 0, 0);
+  const coordination::ConditionSpec& c = b.condition.spec();
+  coordination::ConditionInputs in;
+  const auto port = static_cast<std::size_t>(c.port);
+  in.input_bit = c.input && port < setup_.input_ports.size() ? setup_.input_ports[port] : -1;
+  in.plc_inputs = plc_inputs_;
+  in.plc_gone = aux_.plc_gone();
+  const std::size_t view = setup_.axis_count + static_cast<std::size_t>(c.spindle) - 1;
+  in.spindle_present = !c.input && c.spindle >= 1 &&
+                       static_cast<std::size_t>(c.spindle) <= setup_.spindle_count &&
+                       view < received_.size() && received_[view].present;
+  in.spindle_vel = in.spindle_present ? received_[view].vel : 0.0;
+  switch (b.condition.step(in)) {
+    case coordination::ConditionStep::waiting:
       return;
-    }
-    holds = (((plc_inputs_ >> bit) & 1U) != 0) == c.input_on;
-  } else {
-    const std::size_t view = setup_.axis_count + static_cast<std::size_t>(c.spindle) - 1;
-    if (c.spindle < 1 || static_cast<std::size_t>(c.spindle) > setup_.spindle_count ||
-        view >= received_.size() || !received_[view].present) {
-      std::snprintf(text, sizeof text, "G04 PS%d=: no feedback of spindle %d in this channel",
-                    c.spindle, c.spindle);
-      raise(interp::alarm::kNoSuchSpindle, text, b.block.line, 0, 0);
+    case coordination::ConditionStep::alarm:
+      raise(b.condition.alarm(), b.block.line);
       return;
-    }
-    // degrees per second to revolutions per minute; the direction does not count.
-    constexpr double kRpmPerDegreePerSecond = 60.0 / 360.0;
-    const double rpm = std::fabs(received_[view].vel) * kRpmPerDegreePerSecond;
-    holds = std::fabs(rpm - c.rpm) <= setup_.speed_arrival_rpm;
-  }
-  switch (b.wait.step(holds)) {
-    case coordination::WaitOutcome::waiting:
-      return;
-    case coordination::WaitOutcome::timed_out:
-      // With a dwell time the time ends the block (spec [AMBIGUOUS], decision 68); without
-      // one, an input or a speed that never comes is an alarm, as M01 I/J's (L6045-6049).
-      if (c.dwell_s < 0.0) {
-        if (c.op == interp::Op::wait_input) {
-          std::snprintf(text, sizeof text, "G04 I%s%d: input %d not %s within %.3f s (J)",
-                        c.input_on ? "" : "-", c.input, c.input, c.input_on ? "on" : "off",
-                        c.timeout_s);
-          raise(kAlarmInputTimeout, text, b.block.line, 0, 0);
-        } else {
-          std::snprintf(text, sizeof text,
-                        "G04 PS%d=%.0f: spindle %d not within %.0f rpm of it after %.3f s "
-                        "(speed_arrival, parameters 1057/1059)",
-                        c.spindle, c.rpm, c.spindle, setup_.speed_arrival_rpm,
-                        setup_.speed_arrival_timeout_s);
-          raise(kAlarmSpeedTimeout, text, b.block.line, 0, 0);
-        }
-        return;
-      }
-      break;
-    case coordination::WaitOutcome::met:
-    case coordination::WaitOutcome::dwell_over:
+    case coordination::ConditionStep::done:
       break;
   }
   end_held(b.block);

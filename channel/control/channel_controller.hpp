@@ -7,7 +7,7 @@
 // M18/M17, G31, G04 I/PS) is held until the blocks before it ended, then run by the
 // coordination state machine it composes for it: SyncMark (around SyncBarrier), SubCall,
 // AxisExchange (which also keeps what the channel does with each axis slot), AuxHandshake,
-// CouplingRequest, SpindleMode, SkipProbe and ConditionWait; the controller maps their step
+// CouplingRequest, SpindleMode, SkipProbe and ConditionBlock; the controller maps their step
 // outcomes to events, state changes and outputs. Pure and deterministic: inputs and cycle
 // number in, outputs out.
 #include "channel/control/block_queue.hpp"
@@ -209,18 +209,18 @@ using coordination::kAlarmCallCycle;
 using coordination::kAlarmCallFailed;
 using coordination::kAlarmCallRefused;
 using coordination::kAlarmCallTimeout;
+using coordination::kAlarmInputTimeout;
 using coordination::kAlarmNotOwner;
 using coordination::kAlarmProbeNotArmed;
 using coordination::kAlarmRequestRefused;
 using coordination::kAlarmSlaveSpindle;
+using coordination::kAlarmSpeedTimeout;
 using coordination::kAlarmSpindleNotAtRest;
 using coordination::kAlarmSyncDeadlock;
 using coordination::kAlarmSyncGroup;
 using coordination::kAlarmSyncMismatch;
 using coordination::kAlarmSyncPartnerLost;
 using coordination::kAlarmSyncTableFull;
-inline constexpr int kAlarmInputTimeout = 1271;  // G04 I: the input did not come within J
-inline constexpr int kAlarmSpeedTimeout = 1272;  // G04 PS: the speed not reached (param 1059)
 
 class ChannelController {
  public:

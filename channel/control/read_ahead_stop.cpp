@@ -98,12 +98,15 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                           static_cast<std::uint32_t>(c.slave)};
     case Op::wait_input:
     case Op::wait_spindle: {
-      const bool input = c.op == Op::wait_input;
-      coordination::ConditionWaitLimits limits;
-      limits.width_s = input ? c.width_s : -1.0;
-      limits.dwell_s = c.dwell_s;
-      limits.timeout_s = input ? c.timeout_s : rules.speed_arrival_timeout_s;
-      return WaitStop{held(c), c, coordination::ConditionWait(limits, rules.cycle_s)};
+      const coordination::ConditionSpec spec{c.op == Op::wait_input,
+                                             c.input,
+                                             c.input_on,
+                                             c.timeout_s,
+                                             c.width_s,
+                                             c.spindle,
+                                             c.rpm,
+                                             c.dwell_s};
+      return WaitStop{held(c), coordination::ConditionBlock(spec, rules.conditions)};
     }
     default:
       break;

@@ -5,11 +5,11 @@
 // before it ended, then run by its coordination machine; nothing after it is read meanwhile.
 // "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the one place
 // that says which commands are one and what each carries. Pure: no allocation beyond the
-// command copies the G31 and G04 blocks keep (made while reading ahead, as before), nothing
+// command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
 // throws but a copy of a command.
 #include "channel/coordination/aux_handshake.hpp"
 #include "channel/coordination/axis_exchange.hpp"
-#include "channel/coordination/condition_wait.hpp"
+#include "channel/coordination/condition_block.hpp"
 #include "channel/coordination/coupling_request.hpp"
 #include "channel/coordination/sub_call.hpp"
 #include "channel/coordination/sync_barrier.hpp"
@@ -87,8 +87,7 @@ struct SkipStop {
 // out.
 struct WaitStop {
   HeldBlock block;
-  interp::Command command;
-  coordination::ConditionWait wait;
+  coordination::ConditionBlock condition;
 };
 
 // The block held, std::monostate when none.
@@ -101,8 +100,7 @@ struct StopRules {
   std::span<const coordination::AxisSlot> slots;  // G140/G141 name a slot by its address
   bool plc = false;                               // M and T codes go to a PLC node
   bool spindle_may_follow = false;                // the first spindle may follow (G114.1 slave)
-  double speed_arrival_timeout_s = 10.0;          // G04 PS times out after this long
-  double cycle_s = 0.001;
+  coordination::ConditionSetup conditions{};      // G04 PS: speed arrival width and timeout
 };
 
 // The stop that command `c` (pulled in program order) makes, or std::monostate when it goes to

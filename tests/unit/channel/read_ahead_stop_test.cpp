@@ -21,7 +21,7 @@ interp::Command command(interp::Op op) {
 struct Rules {
   std::array<coordination::AxisSlot, 2> slots{coordination::AxisSlot{'X'},
                                               coordination::AxisSlot{'A', true, 2}};
-  StopRules rules{3, slots, true, false, 10.0, 0.001};
+  StopRules rules{3, slots, true, false, {}};
   int spindle = 0;
   std::optional<interp::ProgramAlarm> alarm;
   ReadAheadStop stop(const interp::Command& c) { return read_ahead_stop(c, rules, spindle, alarm); }

@@ -149,6 +149,13 @@ struct InterpreterConfig {
   // G31 without L, K or I skips on this input going on (param 5510; 0: such a G31 is alarm
   // 1157).
   int skip_input = 0;
+  // Inclined-axis control (spec dafeng §2.9, L4653-4767): param 5680.1 on when both axes are
+  // named; 5691 the inclined axis, 5692 the orthogonal axis it is compensated on, 5690 the angle
+  // in degrees (|angle| < 90). The program works in the Cartesian coordinates; every move leaves
+  // in the machine's inclined ones.
+  char inclined_axis = 0;
+  char inclined_orthogonal = 0;
+  double inclined_degrees = 0.0;
   std::array<bool, 10> block_skip{};  // switch of `/` (level 1) .. `/9`
   int max_tool = 99;                  // param 1511
   int max_subprogram_nesting = 16;    // M98 (spec L6335)

@@ -76,6 +76,9 @@ inline constexpr int kStrokeLimit = 1156;
 inline constexpr int kSkipInput = 1157;
 // G04 I: the input port the block names is no input of the machine's PLC (port of plc.signals).
 inline constexpr int kInputPort = 1158;
+// Inclined-axis control: its inclined or orthogonal axis exchanged (G140/G141) or made a G51.4
+// slave, or an arc thread to be made on them (spec dafeng L4653-4767).
+inline constexpr int kInclinedAxisRestriction = 1159;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

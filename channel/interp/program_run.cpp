@@ -3,6 +3,7 @@
 #include "channel/interp/program/program_format_alarms.hpp"
 #include "channel/interp/program/program_store.hpp"
 #include "channel/interp/program_alarms.hpp"
+#include "channel/interp/transform/inclined_axis.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -62,10 +63,29 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
       normal_axis_ = static_cast<int>(i);
     }
   }
+  released_at_ = machine_;  // the machine's position, inclined
+  for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
+    const bool linear = !config_.axes[i].rotary && config_.axes[i].spindle == 0;
+    if (linear && config_.inclined_axis != 0 && config_.axes[i].name == config_.inclined_axis) {
+      inclined_axes_[0] = static_cast<int>(i);
+    }
+    if (linear && config_.inclined_orthogonal != 0 &&
+        config_.axes[i].name == config_.inclined_orthogonal) {
+      inclined_axes_[1] = static_cast<int>(i);
+    }
+  }
+  // The configuration's loaders refuse an incomplete or impossible pair; here it stays off.
+  if (inclined_axes_[0] >= 0 && inclined_axes_[1] >= 0 && inclined_axes_[0] != inclined_axes_[1] &&
+      std::fabs(config_.inclined_degrees) < 90.0) {
+    inclined_.then(
+        transform::InclinedAxis{inclined_axes_[0], inclined_axes_[1], config_.inclined_degrees});
+    machine_ = from_inclined(machine_);
+  } else {
+    inclined_axes_ = {-1, -1};
+  }
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
-  released_at_ = machine_;
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   extended_thread_.angle = config_.cycles.thread_angle;
   extended_thread_.min_depth = config_.cycles.thread_min_depth;
@@ -304,6 +324,7 @@ void ProgramRun::release_block() {
   release_through_lookahead();
   expand_modes(ready_, from);
   split_chip_breaking(from);
+  expand_inclined(ready_, from);
   check_stroke(from);
   if (ended_) {
     end_polar();  // the end resets the modes, after their last moves went out

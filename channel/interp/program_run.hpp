@@ -297,11 +297,31 @@ class ProgramRun final : public macro::VariableProvider {
                                            const std::array<int, 2>& axes,
                                            const std::array<double, 2>& shift);
 
+  // ---- inclined-axis control (program_run_inclined.cpp)
+  bool inclined_on() const { return !inclined_.identity(); }
+  // The machine's inclined coordinates of a Cartesian machine position and back; the identity
+  // without inclined-axis control.
+  AxisVector to_inclined(const AxisVector& cartesian) const;
+  AxisVector from_inclined(const AxisVector& inclined) const;
+  // False after alarm 1159 when `axis` (a channel axis) is the inclined or the orthogonal axis,
+  // which `what` may not take (spec L4653-4767: no exchange, no G51.4 slave).
+  bool inclined_allows(int axis, const std::string& what, int column);
+  // The commands list[from..] from the Cartesian machine (after the look-ahead and the polar or
+  // cylindrical expansion) to the inclined one: end points mapped, every arc as chords within
+  // polar_tolerance of it, F and the thread lead scaled so that each move takes as long (or as
+  // many revolutions) as the programmed one.
+  void expand_inclined(std::vector<Command>& list, std::size_t from);
+
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
   bool run_flexible_tap(int column);  // G33 (GSK)
   bool thread_lead(double& lead, int column);
   bool thread_start_angle(double& angle);
+  // The start angle that puts the groove of the thread from `start` to `end` (machine points
+  // on `axes`) through the recorded position: false after alarm 1160 (its Z not on the thread,
+  // or the thread longer along X).
+  bool thread_repair_angle(const std::array<double, 2>& start, const std::array<double, 2>& end,
+                           const std::array<int, 2>& axes, double lead, double& angle, int column);
   bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);
   // Emits the moves of a plane path from the current position; the other axes stay. Its
   // threads are interpolated at `thread_rpm` when > 0 (G92.1).
@@ -583,6 +603,12 @@ class ProgramRun final : public macro::VariableProvider {
   int cylinder_axis_ = -1;
   double cylinder_radius_ = 0.0;
   AxisVector cylinder_from_{};  // where the next expanded move starts (as machine_)
+  // Inclined-axis control (params 5680.1, 5690-5692): the last link from the Cartesian machine
+  // (machine_ through frame_, which everything else works in) to the inclined machine axes;
+  // the identity when off. released_at_ and what the channel sees (machine(), set_machine())
+  // are inclined.
+  transform::TransformChain inclined_;
+  std::array<int, 2> inclined_axes_{-1, -1};                // inclined, orthogonal (channel axes)
   std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
   std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
   std::array<double, kMaxChannelAxes> shift_{};             // G50 shift

@@ -1751,6 +1751,9 @@ bool ProgramRun::run_axis_exchange(GFunction f, int column) {
                       std::to_string(config_.channel),
                   w.column);
     }
+    if (!inclined_allows(axis, "it cannot be exchanged", w.column)) {
+      return false;
+    }
     const int own = config_.axes[static_cast<std::size_t>(axis)].exchange;
     if (own != 0 && own != exchange) {
       return fail(alarm::kBadWordValue,
@@ -1794,6 +1797,15 @@ bool ProgramRun::run_axis_sync(GFunction f, int column) {
         (!whole_number(p->value, master) || master < 1 || master > 255 || master == slave)) {
       return fail(alarm::kBadWordValue, "G51.4 P needs a master axis number other than Q",
                   p->column);
+    }
+  }
+  if (f == GFunction::axis_sync_on) {
+    for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+      if (config_.axes[i].id == slave &&
+          !inclined_allows(static_cast<int>(i), "it cannot be a G51.4 slave (it may be the master)",
+                           q->column)) {
+        return false;
+      }
     }
   }
   Command& c = emit(f == GFunction::axis_sync_on ? Op::axis_couple : Op::axis_decouple);

@@ -83,7 +83,7 @@ void ProgramRun::split_chip_breaking(std::size_t from) {
   }
   std::vector<Command> split;
   split.reserve((ready_.size() - from) * 4);
-  AxisVector at = released_at_;
+  AxisVector at = from_inclined(released_at_);  // the moves are still Cartesian here
   for (std::size_t k = from; k < ready_.size(); ++k) {
     const Command& c = ready_[k];
     if (c.chip_rev_length > 0.0) {

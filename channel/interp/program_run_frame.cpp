@@ -47,11 +47,12 @@ AxisVector ProgramRun::machine() const {
     const auto rot = static_cast<std::size_t>(cylinder_axis_);
     m[rot] = transform::CylindricalInterpolation(cylinder_radius_).to_degrees(m[rot]);
   }
-  return m;
+  return to_inclined(m);
 }
 
-void ProgramRun::set_machine(const AxisVector& at) {
-  released_at_ = at;
+void ProgramRun::set_machine(const AxisVector& inclined) {
+  released_at_ = inclined;
+  const AxisVector at = from_inclined(inclined);  // what the modes below work in
   machine_ = transform::to_vector(frame_.to_program(transform::to_point(at)));
   if (polar_) {
     // In polar interpolation the two axes stand for a point of the polar plane.

@@ -251,14 +251,15 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
   if (ok && polar_coords_ && !machine_coordinates && !polar_coordinate_target(target, given)) {
     return false;
   }
-  if (ok && machine_coordinates && frame_active()) {
-    // G53 is neither turned nor mirrored (spec L4387-4421): the named axes go to machine
-    // positions, the others stay where they are on the machine.
+  if (ok && machine_coordinates && (frame_active() || inclined_on())) {
+    // G53 is neither turned nor mirrored (spec L4387-4421) nor inclined (L4653-4767): the
+    // named axes go to machine positions, the others stay where they are on the machine.
     AxisVector on_machine = machine();
     for (std::size_t i = 0; i < config_.axes.size(); ++i) {
       on_machine[i] = given[i] ? target[i] : on_machine[i];
     }
-    target = transform::to_vector(frame_.to_program(transform::to_point(on_machine)));
+    target =
+        transform::to_vector(frame_.to_program(transform::to_point(from_inclined(on_machine))));
   }
   return ok;
 }
@@ -639,13 +640,16 @@ bool ProgramRun::run_reference_return(GFunction f, int column) {
     return false;
   }
   bool any = false;
-  AxisVector home = via;
+  // The reference points are machine positions, not inclined (L4653-4767): the axes not named
+  // stay where they are on the machine.
+  AxisVector home = to_inclined(via);
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
     if (given[i]) {
       any = true;
       home[i] = config_.axes[i].reference[static_cast<std::size_t>(point - 1)];
     }
   }
+  home = from_inclined(home);
   if (!any) {
     (void)column;
     return true;

@@ -23,12 +23,13 @@ bool ProgramRun::run_reference_check(int column) {
   }
   // The point reached must be the first reference point of every named axis. The interpreter
   // knows where it will be, so the alarm comes before the block moves (docs/alarms.md).
+  const AxisVector reached = to_inclined(target);
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
     const double home = config_.axes[i].reference[0];
-    if (given[i] && std::fabs(target[i] - home) > kAtReference) {
+    if (given[i] && std::fabs(reached[i] - home) > kAtReference) {
       return fail(alarm::kReferencePoint,
                   std::string("G27: ") + config_.axes[i].name + " would end at machine " +
-                      path::mm_text(target[i]) + ", not at its reference point " +
+                      path::mm_text(reached[i]) + ", not at its reference point " +
                       path::mm_text(home),
                   column);
     }

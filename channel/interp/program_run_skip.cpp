@@ -108,7 +108,8 @@ void ProgramRun::set_skip_result(bool skipped, const AxisVector& skip_at,
 
 void ProgramRun::record_skip(bool skipped, const AxisVector& skip_at) {
   // #5061.. as #5001 reads a position: in the work system with the offsets in force.
-  const AxisVector at = transform::to_vector(frame_.to_program(transform::to_point(skip_at)));
+  const AxisVector at =
+      transform::to_vector(frame_.to_program(transform::to_point(from_inclined(skip_at))));
   for (std::size_t a = 0; a < config_.axes.size(); ++a) {
     const int axis = static_cast<int>(a);
     skip_position_[a] = to_programmed(axis, at[a] - offset_sum(axis) - tool_offset(axis));

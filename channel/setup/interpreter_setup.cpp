@@ -31,6 +31,9 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.cylindrical_parallel = channel.cylindrical_parallel;
   c.normal_axis = channel.normal_axis;
   c.normal_feed = channel.normal_feed;
+  c.inclined_axis = channel.inclined_axis;
+  c.inclined_orthogonal = channel.inclined_orthogonal;
+  c.inclined_degrees = channel.inclined_degrees;
   c.skip_input = channel.skip_input;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {

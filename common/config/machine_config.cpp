@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -232,7 +233,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
                             std::vector<YamlValue>& spindle_refs) {
   const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
                                  "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
-                                 "skip_input", "speed_arrival"});
+                                 "inclined", "skip_input", "speed_arrival"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -299,6 +300,20 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     channel.normal_axis = read_address(n.required("axis"), "ABC");
     if (auto feed = n.optional("feed")) {
       channel.normal_feed = feed->positive_number();
+    }
+  }
+  if (auto inclined = map.optional("inclined")) {
+    // Both are checked with the channel's program axes (check_interpolation_axes).
+    const YamlMap n = inclined->map({"axis", "orthogonal", "angle"});
+    channel.inclined_axis = read_address(n.required("axis"), "XYZ");
+    channel.inclined_orthogonal = read_address(n.required("orthogonal"), "XYZ");
+    const YamlValue angle = n.required("angle");
+    channel.inclined_degrees = angle.number();
+    if (!(std::fabs(channel.inclined_degrees) < 90.0)) {
+      angle.fail("angle must be more than -90 and less than 90 degrees");
+    }
+    if (channel.inclined_axis == channel.inclined_orthogonal) {
+      n.required("orthogonal").fail("orthogonal must be another axis than axis");
     }
   }
   if (auto skip = map.optional("skip_input")) {
@@ -899,7 +914,8 @@ void check_program_axis(const MachineConfig& config, const ChannelConfig& channe
 
 // `polar` names a linear and a rotary axis the channel programs: G12.1 turns the work on the
 // one while the tool moves on the other. `normal` names a rotary axis it programs: G41.1 keeps
-// it normal to the path.
+// it normal to the path. `inclined` names two linear axes it programs: the inclined one and
+// the one it is compensated on.
 void check_interpolation_axes(const MachineConfig& config, const ChannelConfig& channel,
                               const YamlValue& value) {
   if (channel.polar_linear != 0) {
@@ -911,6 +927,12 @@ void check_interpolation_axes(const MachineConfig& config, const ChannelConfig& 
   if (channel.normal_axis != 0) {
     check_program_axis(config, channel, value.child("normal").child("axis"), channel.normal_axis,
                        AxisType::rotary, "rotary");
+  }
+  if (channel.inclined_axis != 0) {
+    check_program_axis(config, channel, value.child("inclined").child("axis"),
+                       channel.inclined_axis, AxisType::linear, "linear");
+    check_program_axis(config, channel, value.child("inclined").child("orthogonal"),
+                       channel.inclined_orthogonal, AxisType::linear, "linear");
   }
 }
 

@@ -158,6 +158,11 @@ struct ChannelConfig {
   // blocks, degrees per minute.
   char normal_axis = 0;
   double normal_feed = 3600.0;
+  // Inclined-axis control (params 5680.1, 5690-5692, `inclined`): the addresses of the inclined
+  // axis and of the orthogonal axis it is compensated on (0: off), and the angle in degrees.
+  char inclined_axis = 0;
+  char inclined_orthogonal = 0;
+  double inclined_degrees = 0.0;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
   // G04 PS: the actual speed is reached within this many rpm (param 1057), and not reaching it

@@ -18,7 +18,8 @@
 //          docs/canonical-commands.md (T -> O9010, G120 -> O9010, M60 -> O9001, M78 -> O9030,
 //          G200-G298 -> O9200-, M500-M598 -> O9500-, M800-M898 -> O9800-)
 //   bit 5  channel 2 (else 1)
-//   bit 6  power-on G99 (feed per revolution), arc_check off, dwell in revolutions with G99
+//   bit 6  power-on G99 (feed per revolution), arc_check off, dwell in revolutions with G99,
+//          inclined-axis control of X on Z at -30 degrees
 //   bit 7  least increment 0.0001 mm, 4 call levels fewer (max_subprogram_nesting 12)
 //
 // Bounds: M99 in a main program loops forever by design, and a pull may evaluate up to
@@ -81,7 +82,7 @@ InterpreterConfig make_config(std::uint8_t flags) {
     c.axes = {x, z, cax, y};
     c.polar_linear = 'X';
     c.polar_rotary = 'C';
-    c.normal_axis = 'C';  // G41.1/G42.1 turn C outside polar interpolation
+    c.normal_axis = 'C';              // G41.1/G42.1 turn C outside polar interpolation
     c.axes[1].stroke_minus = -400.0;  // G22 without words: Z -400..-350
     c.axes[1].stroke_plus = -350.0;
     c.calls.t_program = 9010;
@@ -108,6 +109,9 @@ InterpreterConfig make_config(std::uint8_t flags) {
     c.power_on_feed_mode = FeedMode::per_rev;
     c.arc_check = false;
     c.dwell_in_revs_with_g99 = true;
+    c.inclined_axis = 'X';
+    c.inclined_orthogonal = 'Z';
+    c.inclined_degrees = -30.0;
   }
   if (flags & 0x80) {
     c.least_increment = 0.0001;

@@ -5,9 +5,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <utility>
 
 namespace mcnc::tools {
 
@@ -209,6 +212,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "polar",
              "cylindrical_parallel",
              "normal",
+             "inclined",
              "cycles",
              "block_skip",
              "max_tool",
@@ -409,6 +413,29 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     }
     if (c.axes.empty() || c.axes.size() > interp::kMaxChannelAxes) {
       bad("axes", "1-8 axes");
+    }
+  }
+  if (root["inclined"]) {
+    // Inclined-axis control (params 5680.1, 5690-5692): two linear axes of `axes` and the angle.
+    const YAML::Node& n = root["inclined"];
+    only_keys(n, "inclined", {"axis", "orthogonal", "angle"});
+    c.inclined_axis = axis_letter(get<std::string>(n["axis"], "inclined.axis"), "inclined.axis");
+    c.inclined_orthogonal = axis_letter(get<std::string>(n["orthogonal"], "inclined.orthogonal"),
+                                        "inclined.orthogonal");
+    c.inclined_degrees = get<double>(n["angle"], "inclined.angle");
+    for (const auto& [key, name] : {std::pair{"inclined.axis", c.inclined_axis},
+                                    std::pair{"inclined.orthogonal", c.inclined_orthogonal}}) {
+      const auto axis = std::find_if(c.axes.begin(), c.axes.end(),
+                                     [&](const interp::AxisConfig& a) { return a.name == name; });
+      if (axis == c.axes.end() || axis->rotary) {
+        bad(key, "a linear axis of axes");
+      }
+    }
+    if (c.inclined_axis == c.inclined_orthogonal) {
+      bad("inclined.orthogonal", "another axis than inclined.axis");
+    }
+    if (!(std::fabs(c.inclined_degrees) < 90.0)) {
+      bad("inclined.angle", "more than -90 and less than 90 degrees");
     }
   }
   if (root["work_offsets"]) {

@@ -447,6 +447,34 @@ TEST(MachineConfig, NormalDirectionAxisOfAChannel) {
             "channels[0].normal.feed");
 }
 
+// Inclined-axis control (params 5680.1, 5690-5692), per channel: two linear axes it programs
+// and an angle within -90..90.
+TEST(MachineConfig, InclinedAxisControlOfAChannel) {
+  const std::string base = kMillTurn;
+  const std::string two = "  - {name: B, axes: [X2], spindles: [S2]}\n";
+  const std::string a = "channels:\n  - {name: A, axes: [X1, Z1, C1], inclined: ";
+  const MachineConfig plain =
+      parse_machine_yaml(base + "channels:\n  - {name: A, axes: [X1, Z1, C1]}\n" + two);
+  EXPECT_EQ(plain.channels[0].inclined_axis, 0);  // off
+  const MachineConfig set =
+      parse_machine_yaml(base + a + "{axis: X, orthogonal: Z, angle: -30}}\n" + two);
+  EXPECT_EQ(set.channels[0].inclined_axis, 'X');
+  EXPECT_EQ(set.channels[0].inclined_orthogonal, 'Z');
+  EXPECT_DOUBLE_EQ(set.channels[0].inclined_degrees, -30.0);
+  std::string what;
+  EXPECT_EQ(rejection_path(base + a + "{axis: X, orthogonal: C, angle: 30}}\n" + two, &what),
+            "channels[0].inclined.orthogonal");
+  EXPECT_EQ(rejection_path(base + a + "{axis: Y, orthogonal: Z, angle: 30}}\n" + two, &what),
+            "channels[0].inclined.axis");
+  EXPECT_NE(what.find("channel A programs no axis Y"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(base + a + "{axis: X, orthogonal: X, angle: 30}}\n" + two),
+            "channels[0].inclined.orthogonal");
+  EXPECT_EQ(rejection_path(base + a + "{axis: X, orthogonal: Z, angle: 90}}\n" + two),
+            "channels[0].inclined.angle");
+  EXPECT_EQ(rejection_path(base + a + "{axis: X, orthogonal: Z}}\n" + two),
+            "channels[0].inclined.angle");
+}
+
 // A linear axis under a rotary address (a lathe's linear B) is no polar rotary axis.
 TEST(MachineConfig, PolarRotaryAxisMustBeRotary) {
   std::string what;

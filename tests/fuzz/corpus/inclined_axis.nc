@@ -1,0 +1,17 @@
+pO0001 (inclined-axis control: the spec table, a line, an arc, a thread, G28, G22)
+G98
+G53 X0 Z0
+G53 X-100 Z-50
+T0001
+G00 X10 Z0
+G00 X-10 Z5
+G01 X20 Z-10 F100
+G02 X40 Z-20 R10
+G03 U10 W-5 I5 K0 F50
+G32 X30 Z-40 F2
+G92 X28 Z-30 F1.5
+G28 U0
+G28 W0
+G22
+G140 X1
+M30

@@ -119,6 +119,14 @@ struct InterpreterConfig {
   bool arc_check = true;                            // param 2203.1
   double arc_tolerance = 0.01;                      // mm, param 2210
   bool dwell_in_revs_with_g99 = false;
+  // GSK thread repair, G92 P1 / G92.1 P1 (gsk A.6.41): status param №174.4 switches it on
+  // (off: P1 is ignored). What the "record thread repair position" soft key of the position
+  // page recorded, with the tool tip in the groove: Z in the work coordinates as the absolute
+  // page shows it (mm) and the spindle's angle then (degrees); not recorded: P1 is an alarm.
+  bool thread_repair = false;
+  bool thread_repair_recorded = false;
+  double thread_repair_z = 0.0;
+  double thread_repair_degrees = 0.0;
   // G92 chamfer-out without J/K, in leads along Z and X at 45 degrees (Dafeng param 5012,
   // GSK №19); 0: the thread runs to the end point and the tool leaves at rapid.
   double thread_chamfer_leads = 0.0;

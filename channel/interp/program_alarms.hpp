@@ -79,6 +79,8 @@ inline constexpr int kInputPort = 1158;
 // Inclined-axis control: its inclined or orthogonal axis exchanged (G140/G141) or made a G51.4
 // slave, or an arc thread to be made on them (spec dafeng L4653-4767).
 inline constexpr int kInclinedAxisRestriction = 1159;
+// GSK G92 P1 / G92.1 P1 thread repair: no position recorded, or its Z outside the thread.
+inline constexpr int kThreadRepair = 1160;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

@@ -317,6 +317,9 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_flexible_tap(int column);  // G33 (GSK)
   bool thread_lead(double& lead, int column);
   bool thread_start_angle(double& angle);
+  // GSK G92/G92.1 P (gsk A.6.41): whether this block and the modal blocks after it repair a
+  // thread, into cycle_repair_ (false after an alarm).
+  bool thread_repair_word(const std::string& code, bool cycle_code_in_block, int column);
   // The start angle that puts the groove of the thread from `start` to `end` (machine points
   // on `axes`) through the recorded position: false after alarm 1160 (its Z not on the thread,
   // or the thread longer along X).
@@ -529,6 +532,7 @@ class ProgramRun final : public macro::VariableProvider {
   // blocks that follow without the G code keep unless they give new ones.
   AxisVector cycle_end_{};
   double cycle_taper_ = 0.0;
+  bool cycle_repair_ = false;  // GSK G92/G92.1 P1: the modal thread cycle repairs (gsk A.6.41)
 
   // Spindles of this channel (1-9), the reference spindle (SP) and G96 data.
   std::array<double, 10> rpm_{};

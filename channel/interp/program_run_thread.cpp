@@ -2,9 +2,11 @@
 // single cycles G90/G92/G94 (dafeng §2.5 L2199-2376, gsk A.6.26-A.6.28), and the emission of
 // plane paths that every cycle shares.
 #include "channel/interp/cycles/single_cycles.hpp"
+#include "channel/interp/path/path_text.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -54,6 +56,68 @@ bool ProgramRun::thread_lead(double& lead, int column) {
                 f != nullptr ? f->column : column);
   }
   thread_lead_ = lead;
+  return true;
+}
+
+bool ProgramRun::thread_repair_word(const std::string& code, bool cycle_code_in_block, int column) {
+  BlockWord* p = word('P');
+  if (p != nullptr) {
+    p->used = true;
+  }
+  if (!config_.thread_repair) {
+    cycle_repair_ = false;  // the function is off (№174.4 = 0): P1 is ignored (rule 1)
+    return true;
+  }
+  if (p != nullptr && p->value != 0.0 && p->value != 1.0) {
+    return fail(alarm::kBadWordValue, code + " P must be 0 (no repair) or 1 (thread repair)",
+                p->column);
+  }
+  // A block with the code repairs with P1 only (rule 2); the blocks that repeat the modal
+  // cycle keep what its first block said (rule 4: P1 only in the first).
+  if (cycle_code_in_block || p != nullptr) {
+    cycle_repair_ = p != nullptr && p->value == 1.0;
+  }
+  if (cycle_repair_ && !config_.thread_repair_recorded) {
+    return fail(alarm::kThreadRepair,
+                code +
+                    " P1: no thread repair position is recorded (gsk A.6.41 rule 3: record it "
+                    "on the position page with the tool tip in the groove)",
+                p != nullptr ? p->column : column);
+  }
+  return true;
+}
+
+bool ProgramRun::thread_repair_angle(const std::array<double, 2>& start,
+                                     const std::array<double, 2>& end,
+                                     const std::array<int, 2>& axes, double lead, double& angle,
+                                     int column) {
+  // The recorded position is the long axis's (rule 5), Z of a turning thread.
+  const int along = std::fabs(end[0] - start[0]) >= std::fabs(end[1] - start[1]) ? 0 : 1;
+  const int axis = axes[static_cast<std::size_t>(along)];
+  if (config_.axes[static_cast<std::size_t>(axis)].name != 'Z') {
+    return fail(alarm::kThreadRepair,
+                "thread repair records Z: a thread longer along " +
+                    std::string(1, config_.axes[static_cast<std::size_t>(axis)].name) +
+                    " than along Z cannot be repaired (gsk A.6.41 rule 5)",
+                column);
+  }
+  const double z =
+      to_physical(axis, config_.thread_repair_z) + offset_sum(axis) + tool_offset(axis);
+  const double from = start[static_cast<std::size_t>(along)];
+  const double to = end[static_cast<std::size_t>(along)];
+  if (z < std::min(from, to) - 1e-9 || z > std::max(from, to) + 1e-9) {
+    return fail(alarm::kThreadRepair,
+                "the recorded thread repair position Z" + path::mm_text(config_.thread_repair_z) +
+                    " is not between the thread's start and end (gsk A.6.41 rule 5)",
+                column);
+  }
+  // The groove passes the recorded Z at the recorded angle: the thread starts as many
+  // revolutions before it as the tool travels from the start to there.
+  const double revolutions = std::fabs(z - from) / lead;
+  angle = std::fmod(config_.thread_repair_degrees - 360.0 * revolutions, 360.0);
+  if (angle < 0.0) {
+    angle += 360.0;
+  }
   return true;
 }
 
@@ -402,14 +466,18 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
       return false;
     }
     const bool gsk = config_.dialect == Dialect::gsk;
-    if (BlockWord* p = word('P')) {
-      const std::string code = f == GFunction::thread_cycle_interpolated ? "G92.1" : "G92";
-      return fail(alarm::kNotInThisVersion,
-                  gsk ? code +
-                            " P (thread repair) needs a recorded repair position, not yet "
-                            "available"
-                      : "G92 P (thread feed start height) is not implemented",
-                  p->column);
+    const std::string code = f == GFunction::thread_cycle_interpolated ? "G92.1" : "G92";
+    if (!gsk) {
+      if (BlockWord* p = word('P')) {
+        return fail(alarm::kNotInThisVersion, "G92 P (thread feed start height) is not implemented",
+                    p->column);
+      }
+    } else if (!thread_repair_word(code, cycle_code_in_block, column)) {
+      return false;
+    }
+    if (cycle_repair_ && !thread_repair_angle({machine_[a], machine_[b]}, {target[a], target[b]},
+                                              axes, c.lead, c.start_angle, column)) {
+      return false;
     }
     if (BlockWord* l = word('L')) {
       l->used = true;

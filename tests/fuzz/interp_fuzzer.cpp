@@ -9,7 +9,8 @@
 // gsk, '4' increment, '8' block skip, '@' axes and call tables, 'P' channel 2, 'p' per rev:
 //   bit 0  system B (else A)
 //   bit 1  dialect gsk, with the GSK macro ranges (#1-#33, #100-#199, GSK vacant ordering);
-//          with bit 0 ('3'): the mill dialect fanuc-mill (its system B and axes X Y Z)
+//          and thread repair on with a groove recorded at Z-10, 90 degrees; with bit 0
+//          ('3'): the mill dialect fanuc-mill (its system B and axes X Y Z)
 //   bit 2  decimal_point increment (else calculator)
 //   bit 3  block skip levels 1 and 3 switched on
 //   bit 4  axes X Z C Y with exchange numbers, X and C as the polar interpolation's axes (G12.1,
@@ -59,6 +60,11 @@ InterpreterConfig make_config(std::uint8_t flags) {
     select_dialect(c, Dialect::fanuc_mill);
   } else if (flags & 0x02) {
     select_dialect(c, Dialect::gsk);
+    // Thread repair on (№174.4) with a recorded groove, so that G92/G92.1 P1 get past it.
+    c.thread_repair = true;
+    c.thread_repair_recorded = true;
+    c.thread_repair_z = -10.0;
+    c.thread_repair_degrees = 90.0;
   }
   if (flags & 0x04) {
     c.decimal_point = DecimalPoint::increment;

@@ -206,6 +206,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "arc_tolerance",
              "dwell_in_revs_with_g99",
              "thread_chamfer_leads",
+             "thread_repair",
              "chamfer_is_length",
              "compensation_idle_blocks",
              "stroke_inside_forbidden",
@@ -317,6 +318,18 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     c.cylindrical_parallel =
         axis_letter(get<std::string>(root["cylindrical_parallel"], "cylindrical_parallel"),
                     "cylindrical_parallel");
+  }
+  if (root["thread_repair"]) {
+    // GSK thread repair (№174.4 on) and what the position page's soft key recorded: Z in the
+    // work coordinates (mm) and the spindle's angle (degrees), both or neither.
+    const YAML::Node& n = root["thread_repair"];
+    only_keys(n, "thread_repair", {"z", "angle"});
+    c.thread_repair = true;
+    if (n["z"] || n["angle"]) {
+      c.thread_repair_recorded = true;
+      c.thread_repair_z = get<double>(n["z"], "thread_repair.z");
+      c.thread_repair_degrees = get<double>(n["angle"], "thread_repair.angle");
+    }
   }
   if (root["thread_chamfer_leads"]) {
     c.thread_chamfer_leads = get<double>(root["thread_chamfer_leads"], "thread_chamfer_leads");

@@ -158,11 +158,54 @@ TEST(InterpSingleCycles, GskG92_1Alarms) {
       {"G00 X60 Z5\nG92.1 X48 Z-30 F-2 S300\nM30\n", alarm::kNotInThisVersion, 2},
       {"G00 X60 Z5\nG92.1 X48 Z-30 F2\nM30\n", alarm::kWordNotAllowed, 2},
       {"G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 K3\nM30\n", alarm::kWordNotAllowed, 2},
-      {"G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 P1\nM30\n", alarm::kNotInThisVersion, 2},
   };
   expect_alarms(cases, gsk());
   // The Dafeng manual has no G92.1 in system A (its G92.1 is system B's G50.3).
   run_alarm("G00 X60 Z5\nG92.1 X48 Z-30 F2 S300\nM30\n", alarm::kUnsupportedG, 2);
+}
+
+// GSK thread repair (gsk A.6.41, L1279-1312): the pass starts at the angle that puts the groove
+// through the recorded Z and spindle angle.
+InterpreterConfig gsk_repair(double z, double degrees) {
+  InterpreterConfig c = gsk();
+  c.thread_repair = true;
+  c.thread_repair_recorded = true;
+  c.thread_repair_z = z;
+  c.thread_repair_degrees = degrees;
+  return c;
+}
+
+TEST(InterpSingleCycles, GskThreadRepairPutsTheGrooveThroughTheRecordedPoint) {
+  // From Z5 to the recorded Z-10.5 are 15.5 mm, 7.75 revolutions of lead 2: the thread starts
+  // three quarters of a turn before the recorded 30 degrees.
+  RunResult r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nX47\nM30\n", gsk_repair(-10.5, 30.0));
+  std::vector<Command> t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 2u);
+  EXPECT_NEAR(t[0].start_angle, 120.0, 1e-9);
+  EXPECT_NEAR(t[1].start_angle, 120.0, 1e-9);  // P1 only in the first block (rule 4)
+  InterpreterConfig shifted = gsk_repair(-10.5, 30.0);
+  // The recorded Z is a work coordinate (the absolute page's): a work offset moves it with the
+  // program, and the phase stays (read as a machine Z it would be 210 degrees).
+  shifted.work_offsets[1][1] = -0.5;
+  r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", shifted);
+  EXPECT_NEAR(r.of(Op::thread)[0].start_angle, 120.0, 1e-9);
+  // Off (no №174.4), P1 is ignored (rule 1).
+  r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", gsk());
+  EXPECT_NEAR(r.of(Op::thread)[0].start_angle, 0.0, 1e-9);
+}
+
+TEST(InterpSingleCycles, GskThreadRepairAlarms) {
+  InterpreterConfig none = gsk();
+  none.thread_repair = true;  // on, nothing recorded (rule 3)
+  run_alarm("G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 P1\nM30\n", alarm::kThreadRepair, 2, -1, none);
+  const ExpectedAlarm cases[] = {
+      {"G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", alarm::kThreadRepair, 2},  // Z-40: rule 5
+      {"G00 X60 Z5\nG92 X48 Z-30 F2 P2\nM30\n", alarm::kBadWordValue, 2},
+  };
+  expect_alarms(cases, gsk_repair(-40.0, 0.0));
+  // A face thread (longer along X): the recorded coordinate is Z's.
+  run_alarm("G00 X100 Z5\nG92 X20 Z2 F2 P1\nM30\n", alarm::kThreadRepair, 2, -1,
+            gsk_repair(3.0, 0.0));
 }
 
 // The four quadrants (spec L2230-2240): the signs of U/W/R relative to the start decide the

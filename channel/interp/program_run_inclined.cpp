@@ -9,10 +9,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace mcnc::interp {
 
 namespace {
+
+// An arc's chords under inclined-axis control: as polar interpolation's steps are bounded, so
+// that a huge arc with a tight tolerance is an alarm and not the read-ahead thread's memory.
+constexpr std::size_t kMaxChords = 1'000'000;
 
 double distance(const AxisVector& a, const AxisVector& b, std::size_t axes) {
   double sum = 0.0;
@@ -112,7 +117,17 @@ void ProgramRun::expand_inclined(std::vector<Command>& list, std::size_t from) {
     }
     const double total = std::sqrt(plane_length * plane_length + others);
     const std::vector<double> ends =
-        transform::CylindricalInterpolation::chord_ends(piece, config_.polar_tolerance);
+        transform::CylindricalInterpolation::chord_ends(piece, config_.polar_tolerance, kMaxChords);
+    if (ends.empty()) {
+      if (!alarm_) {
+        alarm_ = ProgramAlarm{alarm::kInclinedAxisRestriction,
+                              "the arc needs more than " + std::to_string(kMaxChords) +
+                                  " chords within the tolerance under inclined-axis control "
+                                  "(spec L4653-4767): split it or widen polar.tolerance",
+                              c.file != nullptr ? *c.file : std::string(), c.line, 0};
+      }
+      return;
+    }
     AxisVector chord_start = to_inclined(start);
     double before = 0.0;
     for (std::size_t k = 0; k < ends.size(); ++k) {

@@ -14,8 +14,8 @@ double CylindricalInterpolation::to_length(double degrees) const {
   return degrees * std::numbers::pi * radius_ / 180.0;
 }
 
-std::vector<double> CylindricalInterpolation::chord_ends(const PlanePiece& piece,
-                                                         double tolerance) {
+std::vector<double> CylindricalInterpolation::chord_ends(const PlanePiece& piece, double tolerance,
+                                                         std::size_t max_chords) {
   if (!piece.arc) {
     return {1.0};
   }
@@ -29,7 +29,11 @@ std::vector<double> CylindricalInterpolation::chord_ends(const PlanePiece& piece
   const double widest =
       std::min(std::numbers::pi / 2.0, 2.0 * std::acos(std::max(-1.0, 1.0 - tolerance / r)));
   const double sweep = piece.length() / (0.5 * (r0 + r1));
-  const auto n = static_cast<std::size_t>(std::max(1.0, std::ceil(sweep / widest - 1e-12)));
+  const double chords = std::max(1.0, std::ceil(sweep / widest - 1e-12));
+  if (!(chords <= static_cast<double>(max_chords))) {
+    return {};
+  }
+  const auto n = static_cast<std::size_t>(chords);
   std::vector<double> ends;
   ends.reserve(n);
   for (std::size_t k = 1; k <= n; ++k) {

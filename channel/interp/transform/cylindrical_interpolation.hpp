@@ -6,6 +6,8 @@
 // becomes chords that stay within `tolerance` of it.
 #include "channel/interp/transform/polar_interpolation.hpp"
 
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace mcnc::interp::transform {
@@ -17,8 +19,10 @@ class CylindricalInterpolation {
   double to_degrees(double length) const;
   double to_length(double degrees) const;
   // Where the chords of `piece` end, as fractions of it (the last is 1): one for a line, for an
-  // arc as many as keep every chord within `tolerance` of the circle (at least 4 a turn).
-  static std::vector<double> chord_ends(const PlanePiece& piece, double tolerance);
+  // arc as many as keep every chord within `tolerance` of the circle (at least 4 a turn); none
+  // when that would be more than `max_chords`.
+  static std::vector<double> chord_ends(const PlanePiece& piece, double tolerance,
+                                        std::size_t max_chords = SIZE_MAX);
 
  private:
   double radius_ = 0.0;

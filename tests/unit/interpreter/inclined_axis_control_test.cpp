@@ -191,6 +191,14 @@ TEST(InterpInclinedAxis, AnArcThreadIsRefused) {
             inclined_lathe());
 }
 
+TEST(InterpInclinedAxis, AnArcOfTooManyChordsIsAnAlarm) {
+  // A full circle of radius 500 m within 1 um: about 1.6 million chords.
+  InterpreterConfig c = inclined_lathe();
+  c.polar_tolerance = 1e-6;
+  run_alarm("G00 X0 Z0\nG02 X0 Z0 K-500000 F100\nM30\n", alarm::kInclinedAxisRestriction, 2, -1, c);
+  run_ok("G00 X0 Z0\nG02 X0 Z0 K-50 F100\nM30\n", c);
+}
+
 TEST(InterpInclinedAxis, TheStrokeCheckLimitsAreOnTheMachine) {
   // Z's + limit 0 on the machine: at X20 (radius 10) the Cartesian Z0 is machine Z -5.77, so Z5
   // is machine -0.77, inside; Z6 is machine 0.23, beyond it.

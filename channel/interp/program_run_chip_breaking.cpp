@@ -1,6 +1,7 @@
 // G98.1 / G99.1 automatic chip breaking (spec dafeng L2548-2604): the mode, the cutting moves it
 // marks, and their split at the breaks as they leave (channel/interp/cycles/chip_breaking.hpp).
 #include "channel/interp/cycles/chip_breaking.hpp"
+#include "channel/interp/path/path_text.hpp"
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
@@ -87,7 +88,16 @@ void ProgramRun::split_chip_breaking(std::size_t from) {
   for (std::size_t k = from; k < ready_.size(); ++k) {
     const Command& c = ready_[k];
     if (c.chip_rev_length > 0.0) {
-      cycles::split_for_chip_breaking(c, at, config_.axes.size(), chip_revs_, split);
+      if (!cycles::split_for_chip_breaking(c, at, config_.axes.size(), chip_revs_, split)) {
+        // Before the move leaves: nothing of it or after it goes out.
+        alarm_ = ProgramAlarm{alarm::kCycleValue,
+                              "chip breaking would break this move more than 100000 times (Q " +
+                                  path::mm_text(c.chip_every) +
+                                  " revolutions of a feed this small): raise the feed or Q",
+                              c.file != nullptr ? *c.file : std::string(), c.line, 0};
+        ready_.resize(from);
+        return;
+      }
     } else {
       split.push_back(c);
     }

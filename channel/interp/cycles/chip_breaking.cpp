@@ -90,14 +90,17 @@ MovePath path_of(const Command& c, const AxisVector& from, std::size_t axes) {
 
 }  // namespace
 
-void split_for_chip_breaking(const Command& c, const AxisVector& from, std::size_t axes,
+bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size_t axes,
                              double& revs, std::vector<Command>& out) {
   const MovePath m = path_of(c, from, axes);
   if (c.chip_rev_length <= 0.0 || c.chip_every <= 0.0 || m.length <= 0.0) {
     out.push_back(c);
-    return;
+    return true;
   }
   const double move_revs = m.length / c.chip_rev_length;
+  if (!((revs + move_revs) / c.chip_every <= kMaxChipBreaks)) {
+    return false;  // the pieces alone would be gigabytes (found by the fuzzer: S50810, F0.2)
+  }
   double done = 0.0;  // fraction of the move cut so far
   while (revs + (1.0 - done) * move_revs >= c.chip_every - 1e-9) {
     const double t = std::min(1.0, done + (c.chip_every - revs) / move_revs);
@@ -130,6 +133,7 @@ void split_for_chip_breaking(const Command& c, const AxisVector& from, std::size
   } else {
     out.back().barrier = out.back().barrier || c.barrier;
   }
+  return true;
 }
 
 }  // namespace mcnc::interp::cycles

@@ -14,8 +14,10 @@ namespace mcnc::interp::cycles {
 // starts at `from`, with the breaks between them. `revs` is the count of revolutions of feed
 // since the last break, before and after the move. Pieces keep c's fields; only the last keeps
 // its exact stop and barrier. A move back never goes back beyond the move's own start. The
-// axes beside an arc's plane move in proportion (helical).
-void split_for_chip_breaking(const Command& c, const AxisVector& from, std::size_t axes,
+// axes beside an arc's plane move in proportion (helical). False, with nothing appended, when
+// the move would break more than kMaxChipBreaks times (a feed far below the spindle's turn).
+inline constexpr double kMaxChipBreaks = 100'000;
+bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size_t axes,
                              double& revs, std::vector<Command>& out);
 
 }  // namespace mcnc::interp::cycles

@@ -65,6 +65,10 @@ TEST(InterpChipBreaking, Alarms) {
       // Per minute the spindle's speed makes the revolutions: none, or G96's changing one.
       {"G98.1 P1 Q5\nG01 W-5 F100\nM30\n", alarm::kCycleWordMissing, 2},
       {"G98.1 P1 Q5\nG96 S100 M03\nG01 W-5 F100\nM30\n", alarm::kNotInThisVersion, 3},
+      // F0.2 mm/min at 50810 rpm is 0.000004 mm a revolution: G94's 20 mm cut would break
+      // a million times every 5 revolutions. An alarm, not gigabytes of pieces (the fuzzer's
+      // input, tests/fuzz/crashes/chip_breaking_tiny_feed.nc).
+      {"G98.1 P-1.5 Q5\nM03 S50810\nG94 X40 W-5 F0.2\nM30\n", alarm::kCycleValue, 3},
   };
   expect_alarms(cases);
 }

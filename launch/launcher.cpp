@@ -550,7 +550,6 @@ LaunchResult Launcher::run(
     }
     // Realtime: cycle 0 a little in the future so every process starts on the same tick.
     send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
-    note_run_shm();  // every endpoint is made by now: ready means discovered
     std::uint64_t operator_seq = 0;
     for (const auto& c : options_.operator_script) {
       OperatorCommand cmd;
@@ -563,6 +562,9 @@ LaunchResult Launcher::run(
       cmd.origin("launch");
       operator_writer.write(cmd);
     }
+    // After the operator's script: a lockstep machine runs from RUN_START as fast as it can,
+    // and a scripted command must be on its way before its cycle comes.
+    note_run_shm();  // every endpoint is made by now: ready means discovered
     const bool any_program = !options_.programs.empty();
     const bool realtime = options_.clock == REALTIME_CLOCK;
     if (realtime) {

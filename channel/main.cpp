@@ -95,11 +95,13 @@ int main(int argc, char** argv) {
   if (!program_dir.empty()) {
     interp_config.program_dir = program_dir;
   }
-  if (!interp_config.program_dir.empty()) {
-    // One index of the directory for the program checks and the runs.
-    interp_config.program_store =
-        std::make_shared<interp::program::ProgramStore>(interp_config.program_dir);
-  }
+  // The directory's index, kept across runs; the checks on the loader's thread keep their own.
+  const auto index_of_directory = [&] {
+    return interp_config.program_dir.empty()
+               ? nullptr
+               : std::make_shared<interp::program::ProgramStore>(interp_config.program_dir);
+  };
+  interp_config.program_store = index_of_directory();
   // A command's block text is kept while the controller may show it: in the read-ahead's
   // window, the planner's and the few blocks the controller holds besides.
   const motion::MotionConfig motion_config = channel::motion_config_for(machine, *ch);
@@ -113,7 +115,9 @@ int main(int argc, char** argv) {
     load_alarm = interpreter.load_file(program_path, program_name);
   }
   // Programs the operator selects and MDI blocks are checked off the cycle.
-  channel::ProgramLoader loader(interp_config);
+  interp::InterpreterConfig loader_config = interp_config;
+  loader_config.program_store = index_of_directory();
+  channel::ProgramLoader loader(loader_config);
   motion::MotionPlanner planner(motion_config, interp::AxisVector{});
   setup.shared_writes = &shared_writes;
   read_ahead.start(interpreter);

@@ -179,8 +179,8 @@ struct InterpreterConfig {
   macro::VariableStore* shared_variables = nullptr;
   macro::SharedWriteSink* shared_sink = nullptr;
   std::filesystem::path program_dir;  // searched by O number after the programs of the file
-  // The index of program_dir, shared by whoever reads it (the channel's program checks and its
-  // runs); null: each interpreter keeps one of its own.
+  // The index of program_dir, kept across the interpreters of one thread (the channel's runs,
+  // or its program checks: each has its own); null: each interpreter keeps one of its own.
   std::shared_ptr<program::ProgramStore> program_store;
 
   // Initial tables (what G10 writes).

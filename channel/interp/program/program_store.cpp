@@ -46,7 +46,6 @@ ProgramStore::~ProgramStore() {
 }
 
 std::uint64_t ProgramStore::files_read() const {
-  std::lock_guard<std::mutex> lock(mutex_);
   return files_read_;
 }
 
@@ -138,11 +137,10 @@ ProgramResult ProgramStore::find(int number) {
                    "program number " + std::to_string(number) + " is not within 0-9999", dir);
     return result;
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  return find_locked(number, false);
+  return find_indexed(number, false);
 }
 
-ProgramResult ProgramStore::find_locked(int number, bool retried) {
+ProgramResult ProgramStore::find_indexed(int number, bool retried) {
   ProgramResult result;
   const std::string dir = directory_.string();
   if (auto bad = refresh()) {
@@ -196,7 +194,7 @@ ProgramResult ProgramStore::find_locked(int number, bool retried) {
   if (program.text &&
       static_cast<std::int64_t>(program.text->size()) != found.front().first->size && !retried) {
     indexed_ = false;  // written since it was indexed: index it again
-    return find_locked(number, true);
+    return find_indexed(number, true);
   }
   if (!program.text) {
     indexed_ = false;  // it went: read the directory again next time

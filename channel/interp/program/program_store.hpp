@@ -7,14 +7,13 @@
 // and where, read when first asked and read again, file by file, when the directory changes
 // (inotify; where that is not available, each lookup compares the files' sizes and times). A
 // lookup of an unchanged directory reads no file, so a program that calls subprograms in a
-// loop does not read the directory each time. One store may serve several threads (the
-// program checks and the read-ahead): lookups take its lock; neither is the channel's cycle.
+// loop does not read the directory each time. A store serves one thread: the channel gives its
+// program checks and its runs one each, so that this core unit needs no lock.
 #include "channel/interp/program/program_text.hpp"
 
 #include <cstdint>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,15 +58,14 @@ class ProgramStore {
     std::vector<Program> programs;
     std::optional<ProgramAlarm> alarm;
   };
-  // find() under the lock; `retried`: the index was read again for it once already.
-  ProgramResult find_locked(int number, bool retried);
+  // find(); `retried`: the index was read again for it once already.
+  ProgramResult find_indexed(int number, bool retried);
   // Brings the index up to date; the directory's alarm when it cannot be read.
   std::optional<ProgramAlarm> refresh();
   // Whether the directory changed since the last refresh (always true without inotify).
   bool changed();
 
   std::filesystem::path directory_;
-  mutable std::mutex mutex_;
   std::map<std::string, IndexedFile> files_;  // by path: sorted, so alarms do not depend on
                                               // the order of the directory
   bool indexed_ = false;

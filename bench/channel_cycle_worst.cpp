@@ -125,7 +125,7 @@ int main(int argc, char** argv) {
       controller.request_start();
     }
     const std::int64_t t0 = clock::monotonic_ns();
-    const channel::ChannelOutput& out = controller.cycle(cycle, feedback);
+    const channel::CycleOutput& out = controller.cycle(cycle, feedback);
     took.push_back(clock::monotonic_ns() - t0);
     for (std::size_t a = 0; a < 2; ++a) {
       if (out.setpoints[a].valid) {

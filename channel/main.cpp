@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
       if (plc) {
         plc->apply(cycle, lockstep, controller);
       }
-      const channel::ChannelOutput& out = controller.cycle(cycle, views);
+      const channel::CycleOutput& out = controller.cycle(cycle, views);
       outputs.publish(cycle, controller, out, views,
                       static_cast<std::uint32_t>(read_ahead.block_count()),
                       read_ahead.has_program());

@@ -73,7 +73,7 @@ void ChannelController::on_call_release(const CallRelease& release) noexcept {
   calls_.on_release(release);
 }
 
-void ChannelController::on_aux_answer(const AuxAnswer& answer) noexcept {
+void ChannelController::on_aux_answer(const PlcAnswer& answer) noexcept {
   aux_.on_answer(answer);  // an answer to a request a reset abandoned is ignored
 }
 
@@ -126,7 +126,7 @@ void ChannelController::set_state(ChannelState state) noexcept {
 }
 
 void ChannelController::push_event(const ChannelEvent& event) noexcept {
-  if (out_.event_count < ChannelOutput::kMaxEvents) {
+  if (out_.event_count < CycleOutput::kMaxEvents) {
     out_.events[out_.event_count++] = event;
   }
 }
@@ -179,7 +179,7 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
 
 void ChannelController::hold_outputs(bool valid) noexcept {
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
-    out_.setpoints[i] = AxisSetpointOut{commanded_[i], 0.0, 0.0, valid};
+    out_.setpoints[i] = CommandedAxis{commanded_[i], 0.0, 0.0, valid};
   }
 }
 
@@ -216,8 +216,8 @@ void ChannelController::finish_reset() noexcept {
   set_state(ChannelState::reset);
 }
 
-const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
-                                              std::span<const AxisFeedbackView> feedback) noexcept {
+const CycleOutput& ChannelController::cycle(std::uint64_t cycle,
+                                            std::span<const AxisFeedbackView> feedback) noexcept {
   out_.event_count = 0;
   out_.arrival_due = false;
   out_.call_due = false;
@@ -261,7 +261,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
     // Position control ended in this cycle (M17, the end, a reset): C's last position still
     // goes out, so the spindle stands where the program put it, not a sample short.
     out_.spindle_position = true;
-    out_.setpoints[*c] = AxisSetpointOut{commanded_[*c] + c_base, 0.0, 0.0, true};
+    out_.setpoints[*c] = CommandedAxis{commanded_[*c] + c_base, 0.0, 0.0, true};
   }
   const auto requests = exchange_.requests();
   std::copy(requests.begin(), requests.end(), out_.axis_requests.begin());
@@ -269,7 +269,7 @@ const ChannelOutput& ChannelController::cycle(std::uint64_t cycle,
   return out_;
 }
 
-const ChannelOutput& ChannelController::run_cycle(
+const CycleOutput& ChannelController::run_cycle(
     std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept {
   if (out_.state != ChannelState::hold && out_.state != ChannelState::waiting) {
     out_.spindle_rpm = 0.0;  // running sets it again; a feed hold keeps the spindle turning
@@ -338,7 +338,7 @@ const ChannelOutput& ChannelController::run_cycle(
     const motion::MotionOutput& m = planner_.step(motion::CycleInput{});
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
       commanded_[i] = m.sample.pos[i];
-      out_.setpoints[i] = AxisSetpointOut{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
+      out_.setpoints[i] = CommandedAxis{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
     }
     if (!planner_.idle() && m.state != motion::MotionState::fault) {
       return out_;
@@ -534,7 +534,7 @@ bool ChannelController::queue_command(const interp::Command& c) noexcept {
 void ChannelController::block_events(const motion::MotionOutput& m,
                                      std::span<const AxisFeedbackView> feedback) noexcept {
   constexpr std::size_t kKeepFree = 4;  // for a program end in the same cycle
-  while (out_.event_count + kKeepFree < ChannelOutput::kMaxEvents) {
+  while (out_.event_count + kKeepFree < CycleOutput::kMaxEvents) {
     const BlockQueue::Due due = queued_.due(m, planner_.idle());
     const QueuedBlock& q = queued_.front();
     if (due == BlockQueue::Due::none ||
@@ -580,7 +580,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
     commanded_[i] = m.sample.pos[i];
-    out_.setpoints[i] = AxisSetpointOut{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
+    out_.setpoints[i] = CommandedAxis{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
   }
   if (m.block != 0) {
     out_.block = m.block;
@@ -724,7 +724,7 @@ void ChannelController::run(SyncStop& b, std::uint64_t /*cycle*/,
 }
 
 void ChannelController::push_release(const CallRelease& release) noexcept {
-  if (out_.release_count < ChannelOutput::kMaxReleases) {
+  if (out_.release_count < CycleOutput::kMaxReleases) {
     out_.releases[out_.release_count++] = release;
   }
   ChannelEvent event;

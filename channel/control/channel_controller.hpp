@@ -43,7 +43,6 @@ using interp::AxisVector;
 using interp::kMaxChannelAxes;
 
 // The coordination state machines' vocabulary, as the channel's adapters and tests name it.
-using coordination::AuxAnswer;
 using coordination::AuxKind;
 using coordination::AuxOutcome;
 using coordination::AuxRequestOut;
@@ -59,12 +58,13 @@ using coordination::ChannelState;
 using coordination::MachineAxis;
 using coordination::MachineAxisKind;
 using coordination::PartnerStatus;
+using coordination::PlcAnswer;
 using coordination::ProbeSeen;
 using coordination::SpindleGroupSetup;
 using coordination::SpindleSyncOut;
 using coordination::to_string;
 
-struct AxisSetpointOut {
+struct CommandedAxis {
   double pos = 0.0;
   double vel = 0.0;
   double acc = 0.0;
@@ -79,9 +79,9 @@ enum class ChannelEventKind : std::uint8_t {
   alarm,          // alarm_number / alarm text via last_alarm()
   program_end,    // end_code
   mdi_end,        // MDI blocks ended (end_code: 0 at their text's end, else 30, 2 or 99)
-  sync_arrive,    // G04.1 P: the channel arrived at the mark (ChannelOutput::arrival)
+  sync_arrive,    // G04.1 P: the channel arrived at the mark (CycleOutput::arrival)
   sync_release,   // every participant arrived: the channel goes on
-  subcall,        // G144: this channel sent ChannelOutput::call
+  subcall,        // G144: this channel sent CycleOutput::call
   subcall_release,  // this channel released the caller of the call it runs (call_id)
 };
 
@@ -107,8 +107,8 @@ struct ChannelAlarm {
   int axis = 0;  // channel axis index + 1 when an axis is concerned
 };
 
-struct ChannelOutput {
-  std::array<AxisSetpointOut, kMaxChannelAxes> setpoints{};
+struct CycleOutput {
+  std::array<CommandedAxis, kMaxChannelAxes> setpoints{};
   ChannelState state = ChannelState::reset;
   std::size_t block = 0;
   int line = 0;
@@ -307,15 +307,15 @@ class ChannelController {
   void on_call_release(const CallRelease& release) noexcept;
   // The PLC's answer to an aux request of this channel (applied from the cycle after it was
   // sent, as every event).
-  void on_aux_answer(const AuxAnswer& answer) noexcept;
+  void on_aux_answer(const PlcAnswer& answer) noexcept;
   // The PLC node is gone: a request waiting for it, and every later one, is refused.
   void plc_lost() noexcept;
   // The PLC's inputs as its status stamped N-1 reports them (bit k: signal k on): G04 I.
   void set_plc_inputs(std::uint64_t inputs) noexcept { plc_inputs_ = inputs; }
 
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
-  const ChannelOutput& cycle(std::uint64_t cycle,
-                             std::span<const AxisFeedbackView> feedback) noexcept;
+  const CycleOutput& cycle(std::uint64_t cycle,
+                           std::span<const AxisFeedbackView> feedback) noexcept;
   // G140/G141/G142: whether the channel commands axis `slot` now (owns it and took over its
   // position); a slot it does not command is a virtual axis or with another channel.
   [[nodiscard]] bool commands_axis(std::size_t slot) const noexcept {
@@ -365,8 +365,8 @@ class ChannelController {
   }
 
  private:
-  const ChannelOutput& run_cycle(std::uint64_t cycle,
-                                 std::span<const AxisFeedbackView> feedback) noexcept;
+  const CycleOutput& run_cycle(std::uint64_t cycle,
+                               std::span<const AxisFeedbackView> feedback) noexcept;
   void set_state(ChannelState state) noexcept;
   void push_event(const ChannelEvent& event) noexcept;
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
@@ -394,7 +394,7 @@ class ChannelController {
   ChannelSetup setup_;
   interp::CommandSource& source_;
   motion::MotionPlanner& planner_;
-  ChannelOutput out_{};
+  CycleOutput out_{};
   ChannelAlarm alarm_{};
   std::size_t alarm_count_ = 0;
   AxisVector commanded_{};

@@ -16,7 +16,7 @@ void AuxHandshake::abandon() noexcept {
   answered_ = false;
 }
 
-void AuxHandshake::on_answer(const AuxAnswer& answer) noexcept {
+void AuxHandshake::on_answer(const PlcAnswer& answer) noexcept {
   if (active_ && sent_ && request_.id == answer.id) {
     answer_ = answer;
     answered_ = true;
@@ -40,7 +40,7 @@ AuxStep AuxHandshake::step(const AuxInputs& in) noexcept {
     return AuxStep::send;
   }
   if (!answered_ && plc_lost_) {
-    answer_ = AuxAnswer{request_.id, AuxOutcome::refused, {}};
+    answer_ = PlcAnswer{request_.id, AuxOutcome::refused, {}};
     std::snprintf(answer_.reason.data(), answer_.reason.size(), "the PLC node is gone");
     answered_ = true;
   }

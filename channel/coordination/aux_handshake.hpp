@@ -19,7 +19,7 @@ struct AuxRequestOut {
   int code = 0;
 };
 enum class AuxOutcome : std::uint8_t { done, refused, timed_out };
-struct AuxAnswer {
+struct PlcAnswer {
   std::uint64_t id = 0;
   AuxOutcome outcome = AuxOutcome::done;
   std::array<char, 96> reason{};
@@ -46,7 +46,7 @@ class AuxHandshake {
   // One cycle of the block under way.
   AuxStep step(const AuxInputs& in) noexcept;
   // The PLC's answer; one to another request (abandoned by a reset) is ignored.
-  void on_answer(const AuxAnswer& answer) noexcept;
+  void on_answer(const PlcAnswer& answer) noexcept;
   // The PLC node is gone: the request waiting for it, and every later one, is refused.
   void plc_lost() noexcept { plc_lost_ = true; }
   // No block under way any more (reset, new run): a late answer is ignored.
@@ -68,7 +68,7 @@ class AuxHandshake {
   bool spindle_ = false;
   bool sent_ = false;
   bool answered_ = false;
-  AuxAnswer answer_{};
+  PlcAnswer answer_{};
   CoordinationAlarm alarm_{};
 };
 

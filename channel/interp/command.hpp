@@ -5,7 +5,8 @@
 // Positions are machine coordinates of the channel's axes, in the channel's axis order: mm for
 // linear axes (diameter axes already halved to the physical radius), degrees for rotary axes.
 // Work offsets, G52/G50 shifts, the facing-turret mirror and the tool offset are applied.
-#include "channel/interp/canonical_command.hpp"
+#include "channel/interp/axis_vector.hpp"
+#include "channel/interp/program_alarm.hpp"
 
 #include <array>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 // What a straight move allows the path: the per-axis limits of the machine projected on its
 // direction. The look-ahead takes its line limits from here. Pure math.
-#include "channel/interp/canonical_command.hpp"
+#include "channel/interp/axis_vector.hpp"
 #include "channel/motion/jerk_limited_profile.hpp"
 
 #include <cstddef>

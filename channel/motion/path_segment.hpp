@@ -3,7 +3,7 @@
 // (with a linear part: a helix; with a changing radius: the spiral that closes an arc whose end
 // lies a little off its circle). Parametrised by path length s; position(length()) is exactly
 // the programmed end point, so chained pieces never drift. Pure math, no allocation.
-#include "channel/interp/canonical_command.hpp"
+#include "channel/interp/axis_vector.hpp"
 
 #include <cstddef>
 

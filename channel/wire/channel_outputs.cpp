@@ -73,7 +73,7 @@ const char* ChannelOutputs::channel_name(std::uint32_t id) const {
 }
 
 void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& controller,
-                             const ChannelOutput& out, std::span<const AxisFeedbackView> views,
+                             const CycleOutput& out, std::span<const AxisFeedbackView> views,
                              std::uint32_t block_total, bool program_loaded) {
   // Shared variable writes first: a partner that sees this cycle's arrival has them.
   writes_.drain(
@@ -179,7 +179,7 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.cycle(cycle);
     sp.event_seq(event_seq_);
     if (i == 0 && out.spindle_position && c_slot_ < axes_.size()) {
-      const AxisSetpointOut& c = out.setpoints[c_slot_];  // M18: C, in the spindle's degrees
+      const CommandedAxis& c = out.setpoints[c_slot_];  // M18: C, in the spindle's degrees
       sp.pos(c.pos);
       sp.vel(c.vel);
       sp.acc(c.acc);

@@ -30,7 +30,7 @@ class ChannelOutputs {
   // Publishes this cycle's setpoints (axes in position, spindles in velocity: the first turns
   // as the program commands, the others stand) and status and records its events. `views` is the
   // feedback the controller saw (for the act of block-end positions).
-  void publish(std::uint64_t cycle, const ChannelController& controller, const ChannelOutput& out,
+  void publish(std::uint64_t cycle, const ChannelController& controller, const CycleOutput& out,
                std::span<const AxisFeedbackView> views, std::uint32_t block_total,
                bool program_loaded);
   // Other channels matched on the coordination event topic, for discovery.

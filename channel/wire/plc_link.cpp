@@ -41,7 +41,7 @@ void PlcLink::apply(std::uint64_t cycle, bool lockstep, ChannelController& contr
       controller.set_plc_inputs(status->inputs());
     }
     answers_.take_due(cycle, [&](const ::mcnc::AuxAck& ack) {
-      AuxAnswer answer;
+      PlcAnswer answer;
       answer.id = ack.aux_id();
       answer.outcome = static_cast<AuxOutcome>(static_cast<int>(ack.outcome()));
       std::snprintf(answer.reason.data(), answer.reason.size(), "%s", ack.reason().c_str());

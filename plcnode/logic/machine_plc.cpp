@@ -94,7 +94,7 @@ void MachinePlc::answer(const AuxRequest& r, AuxOutcome outcome, const char* rea
   if (out_.answer_count == out_.answers.size()) {
     return;  // more than a cycle holds: cannot happen with one request per channel
   }
-  AuxAnswer& a = out_.answers[out_.answer_count++];
+  AuxResult& a = out_.answers[out_.answer_count++];
   a.request = r;
   a.outcome = outcome;
   std::snprintf(a.reason.data(), a.reason.size(), "%s", reason != nullptr ? reason : "");

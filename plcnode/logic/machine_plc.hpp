@@ -28,7 +28,7 @@ struct AuxRequest {
   std::uint64_t sent_cycle = 0;
 };
 
-struct AuxAnswer {
+struct AuxResult {
   AuxRequest request;
   AuxOutcome outcome = AuxOutcome::done;
   std::array<char, 96> reason{};  // why it was refused or timed out
@@ -46,7 +46,7 @@ struct PlcOutput {
   static constexpr std::size_t kMaxEvents = 64;
   std::array<AuxRequest, kMaxEvents> started{};  // requests taken this cycle (trace `aux`)
   std::size_t started_count = 0;
-  std::array<AuxAnswer, kMaxEvents> answers{};  // requests ended this cycle
+  std::array<AuxResult, kMaxEvents> answers{};  // requests ended this cycle
   std::size_t answer_count = 0;
   std::uint64_t outputs = 0;  // bit k: signal k (an output) on
   std::uint64_t inputs = 0;   // bit k: signal k (an input) on

@@ -38,7 +38,7 @@ void PlcOutputs::publish(std::uint64_t cycle, const PlcOutput& out) {
                  machine_.channels[r.channel - 1].name.c_str(), code);
   }
   for (std::size_t i = 0; i < out.answer_count; ++i) {
-    const AuxAnswer& a = out.answers[i];
+    const AuxResult& a = out.answers[i];
     ::mcnc::AuxAck ack;
     ack.seq(++ack_seq_);
     ack.cycle(cycle);

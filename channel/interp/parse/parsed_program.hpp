@@ -7,9 +7,9 @@
 // the partners of the structure lines. The parsed lines themselves are kept for a window of
 // kWindowChunks chunks, and parsed again from the file when the run comes back to a chunk that
 // left the window: memory is bounded by the window, not by the program.
-#include "channel/interp/canonical_command.hpp"
 #include "channel/interp/parse/statement.hpp"
 #include "channel/interp/program/program_text.hpp"
+#include "channel/interp/program_alarm.hpp"
 
 #include <cstdint>
 #include <memory>

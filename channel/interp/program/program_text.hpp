@@ -4,8 +4,8 @@
 // program. Blocks are passed on untouched, with their 1-based line numbers in the file, so that
 // the interpreter's alarms point into the file. Rules and decisions: docs/dialect.md, "Program
 // format". The file is read line by line (TextSource): a program is a range of it, not a copy.
-#include "channel/interp/canonical_command.hpp"
 #include "channel/interp/program/text_source.hpp"
+#include "channel/interp/program_alarm.hpp"
 
 #include <memory>
 #include <optional>

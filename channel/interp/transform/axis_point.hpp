@@ -2,7 +2,7 @@
 // The types every link of the coordinate chain is written in: a point with one coordinate per
 // channel axis (in the channel's axis order, physical units: mm, degrees) and an affine map of
 // such points. Axes a link does not name keep their coordinate exactly (identity rows).
-#include "channel/interp/canonical_command.hpp"
+#include "channel/interp/axis_vector.hpp"
 
 #include <Eigen/Geometry>
 

@@ -61,7 +61,7 @@ class ExchangeRig : public ChannelRig {
     owner_ = {kSelf, 1};
   }
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     // The nodes: last cycle's requests decided now, shown in this cycle's feedback.
     for (const AxisRequestOut& r : pending_) {
       for (std::size_t a = 0; a < 2; ++a) {
@@ -102,7 +102,7 @@ class ExchangeRig : public ChannelRig {
       }
     }
     const std::array<std::uint32_t, 2> seen{feedback_[0].owner, feedback_[1].owner};
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     pending_.assign(out.axis_requests.begin(), out.axis_requests.begin() + out.axis_request_count);
     requests.insert(requests.end(), pending_.begin(), pending_.end());
     for (std::size_t a = 0; a < 2; ++a) {
@@ -155,8 +155,7 @@ TEST(AxisExchange, AVirtualAxisMovesNothingAndAnAcquiredOneStartsWhereItStands) 
   rig.load("G00 A-90\nG141 A14\nG00 A[#5002+10]\nM30\n");
   rig.ctl().request_start();
   // The virtual A-90 runs in the channel only; the acquire waits for channel 1's release.
-  ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::waiting; }));
   ASSERT_EQ(rig.requests.size(), 1U);
   EXPECT_EQ(rig.requests[0].kind, AxisRequestKind::acquire);
   EXPECT_EQ(rig.requests[0].slot, 1U);
@@ -166,7 +165,7 @@ TEST(AxisExchange, AVirtualAxisMovesNothingAndAnAcquiredOneStartsWhereItStands) 
   }
   EXPECT_DOUBLE_EQ(rig.feedback()[1].cmd, 20.0);
   rig.take_away_from_channel_1();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_DOUBLE_EQ(rig.feedback()[1].cmd, 30.0);  // 20 (channel 1's) + 10
   EXPECT_EQ(rig.foreign_setpoints, 0);
   EXPECT_TRUE(rig.alarms.empty());
@@ -177,7 +176,7 @@ TEST(AxisExchange, ReleasingAnAxisTheChannelDoesNotOwnIsAnAlarm) {
   ExchangeRig rig;
   rig.load("G140 A14\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }));
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmNotOwner}));
   EXPECT_TRUE(rig.requests.empty());
 }
@@ -186,8 +185,7 @@ TEST(AxisExchange, AResetWhileWaitingForAnAxisWithdrawsTheRequest) {
   ExchangeRig rig;
   rig.load("G141 A14\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::waiting; }));
   rig.ctl().request_reset();
   rig.step();
   rig.step();
@@ -204,7 +202,7 @@ TEST(AxisExchange, G142GivesTheAxisBackAndTheSlotIsVirtualAgain) {
   ExchangeRig rig;
   rig.load("G141 A14 P1\nG00 A45\nG142\nG00 A-90\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   ASSERT_EQ(rig.requests.size(), 2U);
   EXPECT_TRUE(rig.requests[0].force);
   EXPECT_EQ(rig.requests[1].kind, AxisRequestKind::restore);
@@ -221,7 +219,7 @@ TEST(AxisExchange, MovingAnOwnAxisAnotherChannelHasIsAnAlarmBeforeItMoves) {
   rig.step();
   rig.load("G00 A5\nG00 X10\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }));
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmAxisAway}));
   EXPECT_EQ(rig.ctl().last_alarm().line, 2);
   EXPECT_DOUBLE_EQ(rig.feedback()[0].cmd, 0.0);
@@ -235,7 +233,7 @@ TEST(AxisExchange, AnAcquireTheNodeCannotKeepIsAnAlarmNotAWaitForEver) {
   rig.full_line = true;
   rig.load("G141 A14\nG00 A10\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }));
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmRequestRefused}));
   EXPECT_EQ(rig.ctl().last_alarm().line, 1);
   EXPECT_EQ(rig.ctl().last_alarm().axis, 2);
@@ -250,9 +248,9 @@ TEST(AxisExchange, AReleaseTheNodeRefusesIsAnAlarm) {
   ExchangeRig rig;
   rig.load("G140 X7\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.axis_request_count > 0; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.axis_request_count > 0; }));
   rig.take_x_for(3);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }));
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmRequestRefused}));
   EXPECT_NE(std::string(rig.ctl().last_alarm().text.data()).find("G140 X: the axis node refused"),
             std::string::npos);

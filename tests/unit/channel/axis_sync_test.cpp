@@ -62,8 +62,8 @@ class SyncRig : public ChannelRig {
     feedback_[2].cmd = feedback_[2].act = 0.25;  // the beam's skew
   }
 
-  const ChannelOutput& step() override {
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+  const CycleOutput& step() override {
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     std::array<std::uint32_t, kAxes> seen{};  // what the channel knew this cycle
     for (std::size_t a = 0; a < kAxes; ++a) {
       seen[a] = feedback_[a].coupled_to;
@@ -170,9 +170,9 @@ TEST(AxisSync, AnAxisFoundFollowingIsNoLongerTheProgramsToMove) {
   SyncRig rig;
   rig.load("G01 X10 F600\nG01 Y3\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.feedback()[0].cmd > 1.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.feedback()[0].cmd > 1.0; }));
   rig.node_couples(1, 1);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }));
   EXPECT_EQ(rig.alarms, (std::vector<int>{kAlarmAxisFollows}));
   EXPECT_EQ(rig.alarm_lines, (std::vector<int>{2}));
   EXPECT_FALSE(rig.ctl().commands_axis(1));

@@ -153,13 +153,13 @@ class Rig {
         << alarm->number << " " << alarm->text << " line " << alarm->line;
   }
 
-  const ChannelOutput& step() {
+  const CycleOutput& step() {
     if (act_override) {
       act_override(feedback_);
     }
-    const ChannelOutput& out = ctl_.cycle(cycle_, feedback_);
-    EXPECT_LE(out.event_count, ChannelOutput::kMaxEvents);
-    for (std::size_t e = 0; e < out.event_count && e < ChannelOutput::kMaxEvents; ++e) {
+    const CycleOutput& out = ctl_.cycle(cycle_, feedback_);
+    EXPECT_LE(out.event_count, CycleOutput::kMaxEvents);
+    for (std::size_t e = 0; e < out.event_count && e < CycleOutput::kMaxEvents; ++e) {
       events.push_back({cycle_, out.events[e]});
     }
     last = out;
@@ -175,7 +175,7 @@ class Rig {
   }
 
   // Steps until `done` holds after a cycle or `limit` cycles passed; true when it held.
-  bool run_until(const std::function<bool(const ChannelOutput&)>& done, int limit = 200000) {
+  bool run_until(const std::function<bool(const CycleOutput&)>& done, int limit = 200000) {
     for (int i = 0; i < limit; ++i) {
       if (done(step())) {
         return true;
@@ -185,7 +185,7 @@ class Rig {
   }
 
   bool run_to_end(int limit = 200000) {
-    return run_until([](const ChannelOutput& o) { return o.program_end; }, limit);
+    return run_until([](const CycleOutput& o) { return o.program_end; }, limit);
   }
 
   std::vector<ChannelEvent> events_of(ChannelEventKind kind) const {
@@ -215,12 +215,12 @@ class Rig {
   bool follow = true;
   std::function<void(std::vector<AxisFeedbackView>&)> act_override;
   std::vector<LoggedEvent> events;
-  std::vector<ChannelOutput> outputs;
-  ChannelOutput last{};
+  std::vector<CycleOutput> outputs;
+  CycleOutput last{};
 };
 
 // The largest per-cycle setpoint change of each axis over the recorded outputs.
-void expect_no_jumps(const std::vector<ChannelOutput>& outputs) {
+void expect_no_jumps(const std::vector<CycleOutput>& outputs) {
   for (std::size_t k = 1; k < outputs.size(); ++k) {
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& a = outputs[k - 1].setpoints[i];
@@ -402,7 +402,7 @@ TEST(ChannelController, OutputLineAndBlockFollowTheRunningBlock) {
   rig.step();
   EXPECT_EQ(rig.last.line, 1);
   EXPECT_EQ(rig.last.block, 1u);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 3; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.line == 3; }));
   EXPECT_EQ(rig.last.block, 2u);
   ASSERT_TRUE(rig.run_to_end());
   EXPECT_EQ(rig.last.line, 4);
@@ -414,12 +414,12 @@ TEST(ChannelController, BlockEndsOnlyWhenEveryAxisIsInPosition) {
   rig.load("G00 X20 Z10\nG00 Z0\nM30\n");
   rig.ctl_.request_start();
   // Half way, the axes stop following: Z lags outside its width, X is in.
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.setpoints[1].pos >= 5.0; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.setpoints[1].pos >= 5.0; }));
   rig.follow = false;
   rig.feedback_[0].act = 10.0;
   rig.feedback_[1].act = 10.0 - 5 * kInPos;
   // Until the planner has reached the end point of block 1: the block must not end.
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) {
     return o.setpoints[0].pos == 10.0 && o.setpoints[1].pos == 10.0;
   }));
   EXPECT_TRUE(rig.events_of(ChannelEventKind::block_ended).empty());
@@ -608,7 +608,7 @@ TEST(ChannelController, AxisAlarmDuringRunStopsMotion) {
   Rig rig;
   rig.load("G00 X10\nG00 X40 Z80\nM30\n");
   rig.ctl_.request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 2; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.line == 2; }));
   for (int i = 0; i < 30; ++i) {
     rig.step();
   }
@@ -759,7 +759,7 @@ TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
   Rig rig(&source);
   rig.ctl_.request_start();
   ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 10000));
+      rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }, 10000));
   EXPECT_EQ(source.rewinds_, 1);
   EXPECT_EQ(rig.ctl_.last_alarm().number, 1101);
   EXPECT_EQ(rig.ctl_.last_alarm().line, 12);
@@ -803,7 +803,7 @@ TEST(ChannelController, SourceEndingWithoutProgramEndGives1200) {
   Rig rig(&source);
   rig.ctl_.request_start();
   ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 10000));
+      rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }, 10000));
   EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmPlannerRejected);
   EXPECT_EQ(rig.last.setpoints[1].pos, 1.0);
   EXPECT_FALSE(rig.last.program_end);
@@ -826,7 +826,7 @@ TEST(ChannelController, AllEventsOfABusyCycleFitAndKeepTheirOrder) {
   rig.load("M30\n");
   rig.ctl_.request_start();
   const auto& out = rig.step();
-  ASSERT_LE(out.event_count, ChannelOutput::kMaxEvents);
+  ASSERT_LE(out.event_count, CycleOutput::kMaxEvents);
   std::vector<ChannelEventKind> kinds;
   for (std::size_t e = 0; e < out.event_count; ++e) {
     kinds.push_back(out.events[e].kind);
@@ -1000,8 +1000,7 @@ TEST(ChannelController, ASecondRunReportsItsOwnBlocks) {
   const std::size_t first_run = rig.events.size();
   rig.ctl_.request_start();
   const std::uint64_t start = rig.cycle_;
-  ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::running; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::running; }));
   ASSERT_TRUE(rig.run_to_end());
   std::size_t ended_in_first_cycles = 0;
   for (std::size_t i = first_run; i < rig.events.size(); ++i) {
@@ -1020,7 +1019,7 @@ TEST(ChannelController, ResetAfterAnAxisAlarmWaitsForTheAxesThenRunsTheProgramAg
   Rig rig;
   rig.load("G00 X10\nG00 X40 Z80\nM30\n");
   rig.ctl_.request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.line == 2; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.line == 2; }));
   rig.feedback_[1].alarm = true;
   rig.feedback_[1].enabled = false;
   rig.step();
@@ -1066,13 +1065,13 @@ TEST(ChannelController, ResetWhileMovingRampsDownThenRewinds) {
   rig.ctl_.request_reset();
   // Reset, and at once idle again (the axes are enabled without alarms).
   ASSERT_TRUE(
-      rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }, 5000));
+      rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }, 5000));
   const auto changes = rig.events_of(ChannelEventKind::state_changed);
   ASSERT_GE(changes.size(), 2u);
   EXPECT_EQ(changes[changes.size() - 2].state, ChannelState::reset);
   // The ramp: no jump and more than a few cycles from full feed to rest.
-  std::vector<ChannelOutput> ramp(rig.outputs.begin() + static_cast<long>(from) - 1,
-                                  rig.outputs.end());
+  std::vector<CycleOutput> ramp(rig.outputs.begin() + static_cast<long>(from) - 1,
+                                rig.outputs.end());
   expect_no_jumps(ramp);
   EXPECT_GT(ramp.size(), 10u);
   const double stopped = rig.last.setpoints[1].pos;
@@ -1092,7 +1091,7 @@ TEST(ChannelController, TheSpindleTurnsAsTheBlocksRunAndStopsWithoutAProgram) {
   EXPECT_EQ(rig.step().spindle_direction, 0);  // idle: stopped
   rig.ctl_.request_start();
   std::vector<std::pair<double, int>> seen;  // (rpm, direction) as they change
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) {
     if (o.state == ChannelState::running &&
         (seen.empty() || seen.back() != std::pair{o.spindle_rpm, o.spindle_direction})) {
       seen.emplace_back(o.spindle_rpm, o.spindle_direction);
@@ -1240,7 +1239,7 @@ struct SyncRig {
     rig.ctl_.request_start();
   }
   bool run_to_arrival() {
-    return rig.run_until([](const ChannelOutput& o) { return o.arrival_due; });
+    return rig.run_until([](const CycleOutput& o) { return o.arrival_due; });
   }
   interp::InterpreterSource interp;
   CountingSource counting;
@@ -1250,7 +1249,7 @@ struct SyncRig {
 TEST(ChannelSync, ArrivesWhenTheBlocksBeforeEndedAndReadsNothingAfterTheMarkUntilReleased) {
   SyncRig s("G01 X10 Z5 F300\nG04.1 P1 Q12\n#100=7\nG01 Z[#100]\nM30\n");
   ASSERT_TRUE(s.run_to_arrival());
-  const ChannelOutput& at = s.rig.last;
+  const CycleOutput& at = s.rig.last;
   EXPECT_EQ(at.state, ChannelState::waiting);
   EXPECT_EQ(at.arrival.p, 1);
   EXPECT_EQ(at.arrival.generation, 1U);
@@ -1263,7 +1262,7 @@ TEST(ChannelSync, ArrivesWhenTheBlocksBeforeEndedAndReadsNothingAfterTheMarkUnti
   EXPECT_EQ(s.counting.last_line, 2);
   const std::uint64_t arrived = s.rig.cycle_ - 1;
   for (int i = 0; i < 50; ++i) {
-    const ChannelOutput& o = s.rig.step();
+    const CycleOutput& o = s.rig.step();
     EXPECT_EQ(o.state, ChannelState::waiting);
     EXPECT_FALSE(o.arrival_due);  // arrives once
     EXPECT_TRUE(o.setpoints[1].valid);
@@ -1294,11 +1293,11 @@ TEST(ChannelSync, APartnerThatArrivedFirstReleasesAtOnce) {
 TEST(ChannelSync, WithoutPTheMarkOnlyStopsReadAhead) {
   SyncRig s("G01 Z3 F300\nG04.1\n#100=9\nG01 Z[#100]\nM30\n");
   // While the move before runs, nothing after the mark is evaluated.
-  ASSERT_TRUE(s.rig.run_until([&](const ChannelOutput& o) { return o.setpoints[1].pos > 1.0; }));
+  ASSERT_TRUE(s.rig.run_until([&](const CycleOutput& o) { return o.setpoints[1].pos > 1.0; }));
   EXPECT_EQ(s.counting.last_line, 2);
   ASSERT_TRUE(s.rig.run_to_end());
   EXPECT_TRUE(s.rig.events_of(ChannelEventKind::sync_arrive).empty());
-  for (const ChannelOutput& o : s.rig.outputs) {
+  for (const CycleOutput& o : s.rig.outputs) {
     EXPECT_NE(o.state, ChannelState::waiting);
   }
   EXPECT_GT(*s.rig.first_cycle_of(ChannelEventKind::block_started, 2),
@@ -1319,8 +1318,8 @@ TEST(ChannelSync, WaitsInACircleAndMismatchesAreAlarms) {
   {
     SyncRig s("G04.1 P1 Q12\nM30\n");
     s.rig.ctl_.on_arrival(partner_arrival(2, 1, {1, 2, 3}));
-    ASSERT_TRUE(s.rig.run_until(
-        [](const ChannelOutput& o) { return o.state == ChannelState::alarm; }, 100));
+    ASSERT_TRUE(
+        s.rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::alarm; }, 100));
     EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncMismatch);
   }
 }
@@ -1342,7 +1341,7 @@ TEST(ChannelSync, ResetWhileWaitingEndsTheWaitAndTheNextRunArrivesInTheNextRound
   ASSERT_TRUE(s.run_to_arrival());
   s.rig.ctl_.request_reset();
   ASSERT_TRUE(
-      s.rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }, 100));
+      s.rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }, 100));
   EXPECT_FALSE(s.rig.ctl_.sync().waiting());
   s.rig.ctl_.request_start();
   ASSERT_TRUE(s.run_to_arrival());
@@ -1356,7 +1355,7 @@ TEST(ChannelSync, TheSpindleKeepsTurningWhileTheChannelWaits) {
   SyncRig s("M03 S800\nG04.1 P1 Q12\nM05\nM30\n", 1);
   ASSERT_TRUE(s.run_to_arrival());
   for (int i = 0; i < 20; ++i) {
-    const ChannelOutput& o = s.rig.step();
+    const CycleOutput& o = s.rig.step();
     EXPECT_EQ(o.state, ChannelState::waiting);
     EXPECT_EQ(o.spindle_direction, 1);
     EXPECT_EQ(o.spindle_rpm, 800.0);
@@ -1456,7 +1455,7 @@ struct TwoChannels {
     motion::MotionPlanner planner;
     ChannelController ctl;
     std::array<AxisFeedbackView, 2> feedback{};
-    ChannelOutput last{};
+    CycleOutput last{};
     std::vector<LoggedEvent> events;
   };
   void step() {
@@ -1465,7 +1464,7 @@ struct TwoChannels {
       PartnerStatus p{true, other.last.state, other.ctl.serving_call(), other.ctl.serving_caller()};
       ch[i]->ctl.set_partner(static_cast<std::uint32_t>(2 - i), p);
     }
-    std::array<ChannelOutput, 2> outs;
+    std::array<CycleOutput, 2> outs;
     for (int i = 0; i < 2; ++i) {
       Node& n = *ch[i];
       outs[i] = n.ctl.cycle(cycle, n.feedback);
@@ -1499,7 +1498,7 @@ struct TwoChannels {
     return std::nullopt;
   }
   ChannelController& ctl(int c) { return ch[c - 1]->ctl; }
-  ChannelOutput& last(int c) { return ch[c - 1]->last; }
+  CycleOutput& last(int c) { return ch[c - 1]->last; }
 
   CallableSource src1;
   CallableSource src2;
@@ -1676,7 +1675,7 @@ TEST(ChannelSync, TheChannelArrivesOnlyOnceItsSharedWritesAreOut) {
   log.on_shared_write(500, interp::macro::MacroValue::of(1.0));  // not sent yet
   std::uint64_t cycle = 1;
   int starts = 0;  // the mark's block starts once, however long it waits for the writes
-  auto count = [&](const ChannelOutput& o) {
+  auto count = [&](const CycleOutput& o) {
     for (std::size_t e = 0; e < o.event_count; ++e) {
       starts += o.events[e].kind == ChannelEventKind::block_started ? 1 : 0;
     }

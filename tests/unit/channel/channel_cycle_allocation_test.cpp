@@ -77,9 +77,9 @@ class CountedRig : public ChannelRig {
 
   // One cycle, its allocations counted: what the channel process's cycle thread does with the
   // controller (a call from another channel arrives in the cycle too).
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     const std::uint64_t before = test::allocations();
-    const ChannelOutput* out = nullptr;
+    const CycleOutput* out = nullptr;
     {
       test::CountAllocations counting;
       if (call_ && cycle_ == call_at_) {
@@ -114,14 +114,14 @@ TEST(ChannelCycle, NeverAllocatesOverM98G71MacroLoopsAFeedHoldAndAG144Call) {
   rig.load(main_program());
   rig.ctl().request_start();
   // Halfway through the G71 (the roughing passes go below Z-40): a feed hold of 300 cycles.
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.z() < -40.0; }, 400000));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.z() < -40.0; }, 400000));
   rig.ctl().request_feed_hold();
   for (int i = 0; i < 300; ++i) {
     EXPECT_NE(rig.step().state, ChannelState::running);
   }
   rig.ctl().request_start();
   ASSERT_TRUE(rig.run_until(
-      [](const ChannelOutput& o) { return o.program_end || o.state == ChannelState::alarm; },
+      [](const CycleOutput& o) { return o.program_end || o.state == ChannelState::alarm; },
       1000000));
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
   const std::uint64_t program_cycles = rig.cycles();
@@ -141,7 +141,7 @@ TEST(ChannelCycle, NeverAllocatesOverM98G71MacroLoopsAFeedHoldAndAG144Call) {
   rig.call_at(rig.cycles() + 1, call);
   bool called = false;
   ASSERT_TRUE(rig.run_until(
-      [&](const ChannelOutput& o) {
+      [&](const CycleOutput& o) {
         called = called || o.state == ChannelState::running;
         return called && (o.state == ChannelState::idle || o.state == ChannelState::alarm);
       },

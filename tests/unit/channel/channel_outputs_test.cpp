@@ -86,7 +86,7 @@ TEST(ChannelOutputs, EachCyclesSetpointsAndStatusGoOutAndEachBlockStartIsTraced)
   std::uint64_t cycle = 0;
   std::uint64_t end_cycle = 0;
   for (; cycle < 20000 && end_cycle == 0; ++cycle) {
-    const ChannelOutput& out = controller.cycle(cycle, views);
+    const CycleOutput& out = controller.cycle(cycle, views);
     outputs.publish(cycle, controller, out, views, 3, true);
     for (std::size_t a = 0; a < layout.axes.size(); ++a) {
       if (out.setpoints[a].valid) {

@@ -84,10 +84,10 @@ class PeersRig : public ChannelRig {
     load(program);
   }
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     ++cycle_;
     peers_.apply(cycle_, true, ctl());
-    const ChannelOutput& out = channel_cycle(cycle_, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_, feedback_);
     follow_setpoints(out, feedback_, 2);
     for (std::size_t e = 0; e < out.event_count; ++e) {
       if (out.events[e].kind == ChannelEventKind::sync_release && !released_) {
@@ -144,7 +144,7 @@ TEST(ChannelPeers, AnArrivalReachesTheControllerInTheCycleAfterTheOneItWasSentIn
   ASSERT_TRUE(eventually([&] { return ch1.peers_.discovered() && ch2.matched(); }, kWait, 5ms));
   ch1.ctl().request_start();
   ASSERT_TRUE(
-      ch1.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }, 2000));
+      ch1.run_until([](const CycleOutput& o) { return o.state == ChannelState::waiting; }, 2000));
   // CH2 arrives in its cycle `sent`, a few cycles ahead of CH1's.
   const std::uint64_t sent = ch1.cycle_ + 5;
   ch2.arrival(sent, 1);
@@ -169,7 +169,7 @@ TEST(ChannelPeers, APeerWhoseProcessIsGoneIsLostToTheControllerWaitingForIt) {
                          kWait, 5ms));
   ch1.ctl().request_start();
   ASSERT_TRUE(
-      ch1.run_until([](const ChannelOutput& o) { return o.state == ChannelState::waiting; }, 2000));
+      ch1.run_until([](const CycleOutput& o) { return o.state == ChannelState::waiting; }, 2000));
   ch2.reset();  // CH2's process ends: its writers leave
   ASSERT_TRUE(eventually(
       [&] {

@@ -49,7 +49,7 @@ inline std::vector<AxisFeedbackView> standing_feedback(std::size_t count, std::u
 }
 
 // The first `axes` axis nodes follow every valid setpoint within the cycle.
-inline void follow_setpoints(const ChannelOutput& out, std::vector<AxisFeedbackView>& feedback,
+inline void follow_setpoints(const CycleOutput& out, std::vector<AxisFeedbackView>& feedback,
                              std::size_t axes) {
   for (std::size_t a = 0; a < axes; ++a) {
     if (out.setpoints[a].valid) {
@@ -102,9 +102,9 @@ class ChannelRig {
   }
 
   // One cycle of the channel and of the rig's axis nodes.
-  virtual const ChannelOutput& step() = 0;
+  virtual const CycleOutput& step() = 0;
 
-  bool run_until(const std::function<bool(const ChannelOutput&)>& done, int limit = 20000) {
+  bool run_until(const std::function<bool(const CycleOutput&)>& done, int limit = 20000) {
     for (int i = 0; i < limit; ++i) {
       if (done(step())) {
         return true;
@@ -117,7 +117,7 @@ class ChannelRig {
   bool run_to_end() {
     ctl_.request_start();
     return run_until(
-        [](const ChannelOutput& o) { return o.program_end || o.state == ChannelState::alarm; });
+        [](const CycleOutput& o) { return o.program_end || o.state == ChannelState::alarm; });
   }
 
   ChannelController& ctl() { return ctl_; }
@@ -130,9 +130,9 @@ class ChannelRig {
 
  protected:
   // The cycle of the channel, its alarms noted.
-  const ChannelOutput& channel_cycle(std::uint64_t cycle,
-                                     std::span<const AxisFeedbackView> feedback) {
-    const ChannelOutput& out = ctl_.cycle(cycle, feedback);
+  const CycleOutput& channel_cycle(std::uint64_t cycle,
+                                   std::span<const AxisFeedbackView> feedback) {
+    const CycleOutput& out = ctl_.cycle(cycle, feedback);
     for (std::size_t e = 0; e < out.event_count; ++e) {
       if (out.events[e].kind == ChannelEventKind::alarm) {
         alarms.push_back(out.events[e].alarm_number);

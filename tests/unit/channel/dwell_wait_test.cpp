@@ -53,11 +53,11 @@ class WaitRig : public ChannelRig {
     }
   }
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     // The PLC input comes on at cycle `input_on_at` (its status stamped the cycle before).
     ctl().set_plc_inputs(cycle_ >= input_on_at ? 1ULL << kSignal : 0);
     feedback_[kAxes].vel = velocity_;
-    const ChannelOutput& out = channel_cycle(cycle_, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_, feedback_);
     for (std::size_t a = 0; a < kAxes; ++a) {
       if (out.setpoints[a].valid) {
         if (feedback_[a].act != out.setpoints[a].pos && first_move == 0) {
@@ -140,7 +140,7 @@ TEST(ChannelDwellWait, G04PsEndsWhenTheActualSpeedIsReached) {
   rig.load("M03 S3000\nG04 PS3000\nG98 G01 W-1 F600\nM05\nG04 PS0\nM30\n");
   std::uint64_t reached = 0;
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) {
     if (reached == 0 && rig.rpm() >= 2990.0) {
       reached = rig.cycle_;
     }

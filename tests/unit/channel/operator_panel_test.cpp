@@ -34,8 +34,8 @@ class PanelRig : public ChannelRig {
  public:
   PanelRig() : ChannelRig(xz_channel(), xz_motion(), xz_spindle_setup(kDt)) {}
 
-  const ChannelOutput& step() override {
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+  const CycleOutput& step() override {
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     follow_setpoints(out, feedback_, 2);
     return out;
   }
@@ -60,7 +60,7 @@ TEST(OperatorPanel, FeedHoldStopsThePathWhereItIsAndACycleStartGoesOn) {
   PanelRig rig;
   rig.load("G01 X100 F6000\nM30\n");  // 100 mm/s for a second
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 30.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.x() > 30.0; }));
   rig.ctl().request_feed_hold();
   EXPECT_EQ(rig.step().state, ChannelState::hold);
   // It decelerates along the path (1000 mm/s^2 from 100 mm/s: 5 mm and more for the jerk) and
@@ -77,7 +77,7 @@ TEST(OperatorPanel, FeedHoldStopsThePathWhereItIsAndACycleStartGoesOn) {
   EXPECT_DOUBLE_EQ(rig.x(), stood);
   rig.ctl().request_start();
   EXPECT_EQ(rig.step().state, ChannelState::running);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_DOUBLE_EQ(rig.x(), 100.0);
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
 }
@@ -93,7 +93,7 @@ TEST(OperatorPanel, FeedHoldOutsideARunAndAStartWhileRunningDoNothing) {
   EXPECT_EQ(rig.step().state, ChannelState::running);
   rig.ctl().request_start();  // again: no second start, no hold
   EXPECT_EQ(rig.step().state, ChannelState::running);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_DOUBLE_EQ(rig.x(), 10.0);
 }
 
@@ -101,13 +101,13 @@ TEST(OperatorPanel, AResetInFeedHoldEndsTheProgram) {
   PanelRig rig;
   rig.load("G01 X100 F6000\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 30.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.x() > 30.0; }));
   rig.ctl().request_feed_hold();
   for (int i = 0; i < 100; ++i) {
     rig.step();  // still decelerating
   }
   rig.ctl().request_reset();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   const double stood = rig.x();
   for (int i = 0; i < 100; ++i) {
     EXPECT_EQ(rig.step().state, ChannelState::idle);
@@ -119,7 +119,7 @@ TEST(OperatorPanel, AResetInFeedHoldEndsTheProgram) {
 // Runs until the channel stops in hold (single block) or ends; the state it stopped in.
 ChannelState run_to_stop(PanelRig& rig) {
   ChannelState state = ChannelState::running;
-  EXPECT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  EXPECT_TRUE(rig.run_until([&](const CycleOutput& o) {
     state = o.state;
     return o.state == ChannelState::hold || o.program_end;
   }));
@@ -145,7 +145,7 @@ TEST(OperatorPanel, SingleBlockStopsOnEachBlocksEndPointAndACycleStartRunsTheNex
     rig.ctl().request_start();
   }
   // The last block's end is the program's end.
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_DOUBLE_EQ(rig.x(), 20.0);
   EXPECT_DOUBLE_EQ(rig.z(), 10.0);
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
@@ -160,7 +160,7 @@ TEST(OperatorPanel, SingleBlockStopsBeforeABlockThatMovesNothing) {
   ASSERT_EQ(run_to_stop(rig), ChannelState::hold);
   EXPECT_DOUBLE_EQ(rig.x(), 10.0);
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_DOUBLE_EQ(rig.x(), 20.0);
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
 }
@@ -169,7 +169,7 @@ TEST(OperatorPanel, SingleBlockOnMidRunStopsAtTheNextReachableBlockEndAndOffRuns
   PanelRig rig;
   rig.load("G01 X10 F3000\nZ10\nX20\nZ20\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 2.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.x() > 2.0; }));
   rig.ctl().set_single_block(true);
   ASSERT_EQ(run_to_stop(rig), ChannelState::hold);
   // At a block's end as the path runs: the blocks already blended end where their line meets
@@ -217,7 +217,7 @@ TEST(OperatorPanel, TheSpindleOverrideScalesTheCommandedSpeedWithinItsRange) {
   PanelRig rig;
   rig.load("M03 S1000\nG04 X1\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.spindle_rpm > 0.0; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.spindle_rpm > 0.0; }));
   EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 1000.0);
   rig.ctl().set_spindle_override(120);
   EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 1200.0);
@@ -229,7 +229,7 @@ TEST(OperatorPanel, TheSpindleOverrideScalesTheCommandedSpeedWithinItsRange) {
   EXPECT_DOUBLE_EQ(rig.step().spindle_rpm, 500.0);  // not a number: ignored
   rig.ctl().set_feed_override(std::nan(""));
   rig.ctl().set_rapid_override(std::nan(""));
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
 }
 
@@ -238,7 +238,7 @@ TEST(OperatorPanel, TheSpindleOverrideUnderG96StaysWithinTheG50Limit) {
   // 100 m/min at a radius of 20 mm is 796 rpm; 120 % of it would be 955, G50 S800 limits it.
   rig.load("G00 X20\nG50 S800\nG96 S100 M03\nG04 X1\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.spindle_rpm > 0.0; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.spindle_rpm > 0.0; }));
   const double base = rig.step().spindle_rpm;
   EXPECT_LT(base, 800.0);
   rig.ctl().set_spindle_override(120);
@@ -257,7 +257,7 @@ void prepare_mdi(PanelRig& rig, const std::string& blocks) {
 std::vector<ChannelEventKind> run_back_to_idle(PanelRig& rig) {
   std::vector<ChannelEventKind> kinds;
   bool ran = false;
-  EXPECT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  EXPECT_TRUE(rig.run_until([&](const CycleOutput& o) {
     for (std::size_t e = 0; e < o.event_count; ++e) {
       kinds.push_back(o.events[e].kind);
     }
@@ -270,7 +270,7 @@ std::vector<ChannelEventKind> run_back_to_idle(PanelRig& rig) {
 TEST(OperatorPanel, MdiBlocksRunFromIdleAndEndWithoutAProgramEnd) {
   PanelRig rig;
   rig.load("G01 X100 F6000\nM30\n");
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   prepare_mdi(rig, "G01 X10 Z5 F6000");
   ASSERT_TRUE(rig.ctl().may_change_program());
   rig.ctl().request_mdi();
@@ -293,11 +293,11 @@ TEST(OperatorPanel, MdiIsIgnoredWhileTheProgramRuns) {
   PanelRig rig;
   rig.load("G01 X50 F6000\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 10.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.x() > 10.0; }));
   EXPECT_FALSE(rig.ctl().may_change_program());
   prepare_mdi(rig, "G00 Z30");
   rig.ctl().request_mdi();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_NEAR(rig.x(), 50.0, 1e-9);
   for (int i = 0; i < 200; ++i) {
     EXPECT_EQ(rig.step().state, ChannelState::idle);
@@ -308,7 +308,7 @@ TEST(OperatorPanel, MdiIsIgnoredWhileTheProgramRuns) {
 TEST(OperatorPanel, ACycleStartWaitsForAProgramBeingCheckedThenRunsIt) {
   PanelRig rig;
   rig.load("G01 X50 F6000\nM30\n");
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   rig.ctl().set_program_pending(true);
   rig.ctl().request_start();
   for (int i = 0; i < 100; ++i) {
@@ -317,7 +317,7 @@ TEST(OperatorPanel, ACycleStartWaitsForAProgramBeingCheckedThenRunsIt) {
   rig.source().adopt(
       interp::InterpreterSource::check(xz_channel(), "G01 Z20 F6000\nM30\n", "NEW.nc", false));
   rig.ctl().set_program_pending(false);
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.program_end; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.program_end; }));
   EXPECT_NEAR(rig.z(), 20.0, 1e-9);
   EXPECT_NEAR(rig.x(), 0.0, 1e-9);  // the program selected before never ran
 }
@@ -325,7 +325,7 @@ TEST(OperatorPanel, ACycleStartWaitsForAProgramBeingCheckedThenRunsIt) {
 TEST(OperatorPanel, TheRunEpochCountsRunStartsAndResetsSoThatStaleMdiIsDropped) {
   PanelRig rig;
   rig.load("G01 X10 F6000\nM30\n");
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   const std::uint64_t idle = rig.ctl().run_epoch();
   for (int i = 0; i < 50; ++i) {
     rig.step();
@@ -334,19 +334,19 @@ TEST(OperatorPanel, TheRunEpochCountsRunStartsAndResetsSoThatStaleMdiIsDropped) 
   ASSERT_TRUE(rig.run_to_end());
   EXPECT_EQ(rig.ctl().run_epoch(), idle + 1);  // the start; the end is no new epoch
   rig.ctl().request_reset();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   EXPECT_EQ(rig.ctl().run_epoch(), idle + 2);
 }
 
 TEST(OperatorPanel, AResetDuringMdiBlocksLeavesTheChannelsProgramToRun) {
   PanelRig rig;
   rig.load("G01 Z10 F6000\nM30\n");
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   prepare_mdi(rig, "G01 X100 F600");
   rig.ctl().request_mdi();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput&) { return rig.x() > 1.0; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput&) { return rig.x() > 1.0; }));
   rig.ctl().request_reset();
-  ASSERT_TRUE(rig.run_until([](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   EXPECT_LT(rig.x(), 100.0);
   ASSERT_TRUE(rig.run_to_end());
   EXPECT_NEAR(rig.z(), 10.0, 1e-9);

@@ -73,10 +73,10 @@ class PlcRig : public ChannelRig {
     load(program);
   }
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     ++cycle_;
     link_.apply(cycle_, true, ctl());
-    const ChannelOutput& out = channel_cycle(cycle_, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_, feedback_);
     follow_setpoints(out, feedback_, 2);
     if (out.aux_due) {
       aux_id_ = out.aux.id;
@@ -116,7 +116,7 @@ class PlcRig : public ChannelRig {
 // Runs `ch1` until its M08 is sent to the PLC.
 void run_to_request(PlcRig& ch1) {
   ch1.ctl().request_start();
-  ASSERT_TRUE(ch1.run_until([&](const ChannelOutput&) { return ch1.aux_id_ != 0; }, 2000));
+  ASSERT_TRUE(ch1.run_until([&](const CycleOutput&) { return ch1.aux_id_ != 0; }, 2000));
 }
 
 // Steps `ch1` until it is in alarm (what the PLC's answer, or its absence, brings about).

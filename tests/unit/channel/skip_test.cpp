@@ -52,8 +52,8 @@ class SkipRig : public ChannelRig {
     }
   }
 
-  const ChannelOutput& step() override {
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+  const CycleOutput& step() override {
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     const double before = feedback_[kZ].act;
     for (std::size_t a = 0; a < kAxes; ++a) {
       if (out.setpoints[a].valid) {

@@ -60,10 +60,10 @@ class SpindleRig : public ChannelRig {
     spindle_ = 1000.0;  // where the spindle stands at power-on, degrees
   }
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     feedback_[kC].cmd = feedback_[kC].act = spindle_;
     feedback_[kAxes] = feedback_[kC];
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     for (std::size_t a = 0; a < 2; ++a) {
       if (out.setpoints[a].valid) {
         feedback_[a].cmd = feedback_[a].act = out.setpoints[a].pos;
@@ -126,7 +126,7 @@ TEST(SpindleControl, M18WaitsUntilTheSpindleStands) {
   rig.load("M03 S100\nG04 X0.5\nM05\nM18\nG00 C0\nM30\n");
   rig.ctl().request_start();
   bool moving_under_position = false;
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) {
     moving_under_position = moving_under_position || (o.spindle_position && rig.velocity() != 0.0);
     return o.program_end || o.state == ChannelState::alarm;
   }));
@@ -175,7 +175,7 @@ TEST(SpindleControl, ASpindleThatDoesNotComeToRestIsAnAlarmAfterTenSeconds) {
   rig.load("M18\nG00 C0\nM30\n");
   int cycles = 0;
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) {
     ++cycles;
     return o.program_end || o.state == ChannelState::alarm;
   }));
@@ -194,13 +194,13 @@ TEST(SpindleControl, TheProgramEndAndAResetEndPositionControl) {
   // Again, reset while C moves: the ramp down under position control, then speed control.
   rig.load("M18\nG01 C3000 F600\nM30\n");
   rig.ctl().request_start();
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) {
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) {
     return o.spindle_position && std::fmod(rig.spindle(), 360.0) > 100.0;
   }));
   rig.ctl().request_reset();
   // The reset ends in the cycle the ramp does; the channel is idle again at once (the axes
   // stayed enabled).
-  ASSERT_TRUE(rig.run_until([&](const ChannelOutput& o) { return o.state == ChannelState::idle; }));
+  ASSERT_TRUE(rig.run_until([&](const CycleOutput& o) { return o.state == ChannelState::idle; }));
   const double stood = rig.spindle();
   EXPECT_FALSE(rig.step().spindle_position);
   EXPECT_DOUBLE_EQ(rig.spindle(), stood);

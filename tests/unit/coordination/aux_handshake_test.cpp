@@ -12,8 +12,8 @@ namespace {
 
 constexpr AuxInputs kPlc{true, false};
 
-AuxAnswer answer(std::uint64_t id, AuxOutcome outcome, const char* reason = "") {
-  AuxAnswer a;
+PlcAnswer answer(std::uint64_t id, AuxOutcome outcome, const char* reason = "") {
+  PlcAnswer a;
   a.id = id;
   a.outcome = outcome;
   std::strncpy(a.reason.data(), reason, a.reason.size() - 1);

@@ -50,7 +50,7 @@ class PlcRig {
     plc_.request(AuxRequest{channel, ++id_, kind, code, spindle, cycle_});
   }
   // Steps until an answer comes; the cycles it took.
-  int until_answer(AuxAnswer& got, int limit = 5000) {
+  int until_answer(AuxResult& got, int limit = 5000) {
     for (int i = 0; i < limit; ++i) {
       const PlcOutput& out = plc_.cycle(++cycle_, spindles_);
       if (out.answer_count > 0) {
@@ -81,7 +81,7 @@ TEST(MachinePlc, AnMCodeEndsWhenItsInputFollowsTheOutput) {
   PlcRig rig;
   EXPECT_TRUE(rig.signal("chuck1_closed"));  // clamped at power-on
   rig.ask(1, 11);
-  AuxAnswer a;
+  AuxResult a;
   const int took = rig.until_answer(a);
   EXPECT_EQ(a.outcome, AuxOutcome::done);
   EXPECT_GE(took, 200);  // the sensor's 200 ms
@@ -96,7 +96,7 @@ TEST(MachinePlc, AnMCodeEndsWhenItsInputFollowsTheOutput) {
 TEST(MachinePlc, ACodeWithoutFinConditionEndsAtOnce) {
   PlcRig rig;
   rig.ask(2, 8);
-  AuxAnswer a;
+  AuxResult a;
   EXPECT_EQ(rig.until_answer(a), 1);
   EXPECT_EQ(a.outcome, AuxOutcome::done);
   EXPECT_EQ(a.request.channel, 2U);
@@ -107,7 +107,7 @@ TEST(MachinePlc, InterlocksRefuseAndChangeNothing) {
   PlcRig rig;
   rig.spindles_[0].turning = true;
   rig.ask(1, 11);  // no chuck open while the spindle turns
-  AuxAnswer a;
+  AuxResult a;
   rig.until_answer(a);
   EXPECT_EQ(a.outcome, AuxOutcome::refused);
   EXPECT_NE(std::string(a.reason.data()).find("turns"), std::string::npos);
@@ -127,7 +127,7 @@ TEST(MachinePlc, AChuckOpensWhileItsSpindleTurnsInPhaseWithAnother) {
   // S1 (axis 2) turns; a slave (axis 9) follows it, not yet in phase: refused.
   rig.spindles_ = {{2, true, 0, false}, {9, true, 2, false}};
   rig.ask(1, 11);
-  AuxAnswer a;
+  AuxResult a;
   rig.until_answer(a);
   EXPECT_EQ(a.outcome, AuxOutcome::refused);
   rig.spindles_[1].locked = true;  // in phase: the part turns with both spindles
@@ -139,7 +139,7 @@ TEST(MachinePlc, AChuckOpensWhileItsSpindleTurnsInPhaseWithAnother) {
 TEST(MachinePlc, ASpindleStartsOnlyWithTheChuckClosed) {
   PlcRig rig;
   rig.ask(1, 3, AuxKind::m_code, 2);
-  AuxAnswer a;
+  AuxResult a;
   rig.until_answer(a);
   EXPECT_EQ(a.outcome, AuxOutcome::done);
   // Just started, its feedback still says it stands: the chuck stays closed all the same.
@@ -158,7 +158,7 @@ TEST(MachinePlc, ASpindleStartsOnlyWithTheChuckClosed) {
 TEST(MachinePlc, NoFinInTimeIsATimeOut) {
   PlcRig rig;
   rig.ask(1, 50);
-  AuxAnswer a;
+  AuxResult a;
   const int took = rig.until_answer(a);
   EXPECT_EQ(a.outcome, AuxOutcome::timed_out);
   EXPECT_EQ(took, 1 + 100);  // taken in the cycle after it was sent, then 100 ms
@@ -169,7 +169,7 @@ TEST(MachinePlc, TCodesWaitForTheTurretAndRequestsAreTakenInOrder) {
   PlcRig rig;
   rig.ask(2, 101, AuxKind::t_code);
   rig.ask(1, 202, AuxKind::t_code);  // same cycle: channel 1 first
-  AuxAnswer a;
+  AuxResult a;
   EXPECT_EQ(rig.until_answer(a), 1 + 50);
   EXPECT_EQ(a.request.channel, 1U);
   EXPECT_EQ(a.request.code, 202);

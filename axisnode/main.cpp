@@ -10,6 +10,7 @@
 #include "axisnode/setup/axis_node_setup.hpp"
 #include "axisnode/wire/axis_inputs.hpp"
 #include "axisnode/wire/axis_outputs.hpp"
+#include "axisnode/wire/input_wait_log.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
 #include "common/process/process_node.hpp"
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
   app.add_option("--trace-pos-every", trace_pos_every, "pos event every K cycles")
       ->check(CLI::PositiveNumber);
   app.add_option("--lockstep-stall-ms", stall_ms,
-                 "lockstep: warn when the bus keeps a cycle waiting this long");
+                 "lockstep: warn when the bus or the inputs keep a cycle waiting this long");
   CLI11_PARSE(app, argc, argv);
 
   const config::MachineConfig machine = process::load_machine_or_exit(shell.machine_path);
@@ -97,6 +98,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     const bool lockstep = loop.lockstep();
+    loop.on_slow_wait(std::chrono::milliseconds(stall_ms), [&](std::uint64_t c) {
+      if (const auto wait = core.input_wait(c)) {
+        spdlog::warn("{}", axisnode::input_wait_text(*wait, c, machine));
+      }
+    });
     axisnode::DriveActivation activation;
     activation.lockstep = lockstep;
     if (sync_producer && !lockstep) {

@@ -17,6 +17,7 @@
 #include "common/cycle/lockstep_gate.hpp"
 #include "common/log/logging.hpp"
 #include "common/process/cycle_loop.hpp"
+#include "common/process/lockstep_wait_log.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
 #include "common/trace/trace_writer.hpp"
@@ -171,6 +172,17 @@ int main(int argc, char** argv) {
     }
     const bool lockstep = loop.lockstep();
     read_ahead.set_lockstep(lockstep);
+    // A slow lockstep wait says whose input it waits for (the gate's layout is the one above).
+    const std::vector<std::string> others = config::other_channels(machine, *ch);
+    loop.on_slow_wait(std::chrono::seconds(2), [&](std::uint64_t c) {
+      if (const auto wait = gate.wait(c)) {
+        const std::size_t i = wait->input;
+        const std::string whose = i < fed.size()  ? fed[i]->name + "'s feedback"
+                                  : i < plc_input ? others[i - fed.size()] + "'s status"
+                                                  : std::string("the PLC's status");
+        spdlog::warn("{}", process::lockstep_wait_text(c, whose, *wait));
+      }
+    });
     if (load_alarm) {
       controller.report_alarm(*load_alarm);
     } else if (!program_path.empty() && !manual_start) {

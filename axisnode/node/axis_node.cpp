@@ -158,6 +158,33 @@ bool AxisNode::ready(std::uint64_t cycle) const noexcept {
          master_history_.at(m, cycle - 1).lookup != coupling::MasterHistory::Lookup::not_yet;
 }
 
+std::optional<AxisNode::InputWait> AxisNode::input_wait(std::uint64_t cycle) const noexcept {
+  if (cycle == 0) {
+    return std::nullopt;
+  }
+  if (const auto g = gate_.wait(cycle)) {
+    InputWait w;
+    w.gate = *g;
+    if (g->input < roles_.candidates.size()) {
+      w.id = roles_.candidates[g->input];
+    } else if (g->input == roles_.candidates.size()) {
+      w.from = InputWait::From::coupling_channel;
+      w.id = roles_.sync_channel;
+    } else {
+      w.from = InputWait::From::master;
+      w.id = roles_.sync_master;
+    }
+    return w;
+  }
+  if (ready(cycle)) {
+    return std::nullopt;
+  }
+  InputWait w;
+  w.from = InputWait::From::leader;
+  w.id = axis_master_at(cycle);
+  return w;
+}
+
 const SetpointSample* AxisNode::setpoint_of(std::uint32_t channel, std::uint64_t cycle,
                                             bool lockstep) const noexcept {
   const int k = candidate_of(channel);

@@ -25,6 +25,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace mcnc::axisnode {
@@ -150,6 +151,16 @@ class AxisNode {
 
   // Lockstep: every input of `cycle` is in.
   [[nodiscard]] bool ready(std::uint64_t cycle) const noexcept;
+  // What keeps lockstep cycle `cycle` waiting, for a log line when the wait is slow: whose input
+  // (a candidate channel's setpoints and events, the G114.1 coupling channel's status, the master
+  // spindle's or a G51.4 leader's feedback) and how far it came.
+  struct InputWait {
+    enum class From : std::uint8_t { channel, coupling_channel, master, leader };
+    From from = From::channel;
+    std::uint32_t id = 0;            // the channel's id, or the master's or leader's axis id
+    cycle::LockstepGate::Wait gate;  // a leader: no gate input (only the cycle waited for)
+  };
+  [[nodiscard]] std::optional<InputWait> input_wait(std::uint64_t cycle) const noexcept;
   // The owner's setpoint writer has left (its axis goes to its safe state).
   [[nodiscard]] bool owner_lost() const noexcept { return owner_lost_; }
 

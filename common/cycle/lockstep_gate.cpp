@@ -63,6 +63,23 @@ std::optional<std::size_t> LockstepGate::first_missing(std::uint64_t cycle) cons
   return std::nullopt;
 }
 
+std::optional<LockstepGate::Wait> LockstepGate::wait(std::uint64_t cycle) const noexcept {
+  const std::optional<std::size_t> input = first_missing(cycle);
+  if (!input) {
+    return std::nullopt;
+  }
+  const Input& in = inputs_[*input];
+  Wait w;
+  w.input = *input;
+  const std::uint64_t* announced = in.announced.at(cycle - 1);
+  w.sample_missing = announced == nullptr;
+  w.any_sample = !in.announced.empty();
+  w.latest_cycle = in.announced.latest_cycle();
+  w.events_announced = announced != nullptr ? *announced : 0;
+  w.events_received = in.events_contiguous;
+  return w;
+}
+
 std::uint64_t LockstepGate::events_received(std::size_t input) const noexcept {
   return input < inputs_.size() ? inputs_[input].events_contiguous : 0;
 }

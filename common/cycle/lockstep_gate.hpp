@@ -28,6 +28,18 @@ class LockstepGate {
   // The first expected input that keeps cycle `cycle` from running.
   [[nodiscard]] std::optional<std::size_t> first_missing(std::uint64_t cycle) const noexcept;
   [[nodiscard]] std::uint64_t events_received(std::size_t input) const noexcept;
+  // Why cycle `cycle` cannot run, for a log line when a wait is slow: the first expected input
+  // that keeps it, the latest cycle that input has a sample of, and the events the sample
+  // stamped cycle-1 announces against those received in order.
+  struct Wait {
+    std::size_t input = 0;
+    bool sample_missing = false;  // no sample stamped cycle-1 (else: its events are missing)
+    bool any_sample = false;      // a sample of any cycle arrived
+    std::uint64_t latest_cycle = 0;
+    std::uint64_t events_announced = 0;
+    std::uint64_t events_received = 0;
+  };
+  [[nodiscard]] std::optional<Wait> wait(std::uint64_t cycle) const noexcept;
   [[nodiscard]] std::size_t size() const noexcept { return inputs_.size(); }
 
  private:

@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
 
 namespace mcnc::process {
 
@@ -39,13 +40,16 @@ class CycleLoop {
   bool next(std::uint64_t& cycle, Ready ready, Gone feed_gone) {
     Wakeup& wake = node_.wakeup();
     if (lockstep_ && !degraded_) {
-      wake.wait_for(
-          [&] {
-            const RunCommand cmd = node_.run_control().command;
-            return ready(cycle) || feed_gone() || cmd == RUN_STOP || cmd == RUN_ESTOP ||
-                   g_stop_signal != 0;
-          },
-          std::chrono::hours(24));
+      const auto may_go = [&] {
+        const RunCommand cmd = node_.run_control().command;
+        return ready(cycle) || feed_gone() || cmd == RUN_STOP || cmd == RUN_ESTOP ||
+               g_stop_signal != 0;
+      };
+      // A slow wait is told once per cycle (decision 7: lockstep waits never give up).
+      if (!wake.wait_for(may_go, on_slow_ ? slow_ : std::chrono::hours(24)) && on_slow_) {
+        wake.with_lock([&] { on_slow_(cycle); });
+        wake.wait_for(may_go, std::chrono::hours(24));
+      }
     }
     const RunControlView rc = node_.run_control();
     if (rc.command == RUN_STOP || g_stop_signal != 0) {
@@ -82,6 +86,13 @@ class CycleLoop {
     due_ns_ = origin_ns_ + static_cast<std::int64_t>(cycle) * period_ns_;
   }
 
+  // Lockstep: `on_slow(cycle)` runs (under the wake-up lock) once a cycle has waited `after` for
+  // its inputs, to say what it waits for.
+  void on_slow_wait(std::chrono::milliseconds after, std::function<void(std::uint64_t)> on_slow) {
+    slow_ = after;
+    on_slow_ = std::move(on_slow);
+  }
+
   [[nodiscard]] bool lockstep() const noexcept { return lockstep_; }
   // Stepping on its own: lockstep without a feed, paced to real time.
   [[nodiscard]] bool degraded() const noexcept { return degraded_; }
@@ -103,6 +114,8 @@ class CycleLoop {
   bool estop_ = false;
   std::int64_t due_ns_ = 0;
   std::int64_t woke_ns_ = 0;
+  std::chrono::milliseconds slow_{0};
+  std::function<void(std::uint64_t)> on_slow_;
 };
 
 }  // namespace mcnc::process

@@ -68,6 +68,30 @@ TEST(LockstepGate, LostInputIsNoLongerAwaited) {
   EXPECT_TRUE(gate.may_run(1));
 }
 
+// A slow wait says what it waits for: whose input, the latest cycle it has, the events it lacks.
+TEST(LockstepGate, AWaitNamesTheInputAndHowFarItCame) {
+  LockstepGate gate(2);
+  gate.on_sample(0, 4, 0);
+  gate.on_sample(1, 2, 0);
+  auto w = gate.wait(5);
+  ASSERT_TRUE(w.has_value());
+  EXPECT_EQ(w->input, 1U);
+  EXPECT_TRUE(w->sample_missing);
+  EXPECT_TRUE(w->any_sample);
+  EXPECT_EQ(w->latest_cycle, 2U);
+  gate.on_sample(1, 4, 3);  // announces events 1..3, of which only 1 came
+  gate.on_event(1, 1);
+  w = gate.wait(5);
+  ASSERT_TRUE(w.has_value());
+  EXPECT_FALSE(w->sample_missing);
+  EXPECT_EQ(w->events_announced, 3U);
+  EXPECT_EQ(w->events_received, 1U);
+  gate.on_event(1, 2);
+  gate.on_event(1, 3);
+  EXPECT_FALSE(gate.wait(5).has_value());
+  EXPECT_FALSE(LockstepGate(1).wait(1)->any_sample);
+}
+
 TEST(CycleBuffer, FindsByStampAndForgetsOverwritten) {
   CycleBuffer<int, 4> buffer;
   EXPECT_TRUE(buffer.empty());

@@ -2,196 +2,24 @@
 // The channel's cyclic core: the channel state machine (reset / idle / running / hold / waiting
 // / alarm) that pulls canonical commands from its CommandSource as far as its look-ahead planner
 // takes them, steps the planner once per cycle, holds every exact stop until the axes are in
-// position, and yields one setpoint per axis per cycle plus the events of that cycle. A block
-// that stops read-ahead (read_ahead_stop.hpp: G04.1, G144/G145, G140-G142, aux codes, couplings,
-// M18/M17, G31, G04 I/PS) is held until the blocks before it ended, then run by the
-// coordination state machine it composes for it: SyncMark (around SyncBarrier), SubCall,
-// AxisExchange (which also keeps what the channel does with each axis slot), AuxHandshake,
-// CouplingRequest, SpindleMode, SkipProbe and ConditionBlock; the controller maps their step
-// outcomes to events, state changes and outputs. Pure and deterministic: inputs and cycle
-// number in, outputs out.
+// position, and yields one setpoint per axis per cycle plus the events of that cycle
+// (cycle_output.hpp). A block that stops read-ahead (read_ahead_stop.hpp: G04.1, G144/G145,
+// G140-G142, aux codes, couplings, M18/M17, G31, G04 I/PS) is handed to the channel's
+// coordination (channel_coordination.hpp), which runs it on its state machine once the blocks
+// before it ended. Pure and deterministic: inputs and cycle number in, outputs out.
 #include "channel/control/block_queue.hpp"
-#include "channel/control/read_ahead_stop.hpp"
-#include "channel/control/shared_write_log.hpp"
-#include "channel/coordination/aux_handshake.hpp"
-#include "channel/coordination/axis_exchange.hpp"
-#include "channel/coordination/channel_axes.hpp"
-#include "channel/coordination/channel_state.hpp"
-#include "channel/coordination/condition_wait.hpp"
-#include "channel/coordination/coupling_request.hpp"
-#include "channel/coordination/skip_probe.hpp"
-#include "channel/coordination/spindle_mode.hpp"
-#include "channel/coordination/sub_call.hpp"
-#include "channel/coordination/sync_barrier.hpp"
-#include "channel/coordination/sync_mark.hpp"
+#include "channel/control/channel_coordination.hpp"
+#include "channel/control/channel_setup.hpp"
+#include "channel/control/cycle_output.hpp"
 #include "channel/interp/command_source.hpp"
 #include "channel/motion/motion_planner.hpp"
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <string>
-#include <string_view>
-#include <variant>
-#include <vector>
 
 namespace mcnc::channel {
-
-using interp::AxisVector;
-using interp::kMaxChannelAxes;
-
-// The coordination state machines' vocabulary, as the channel's adapters and tests name it.
-using coordination::AuxKind;
-using coordination::AuxOutcome;
-using coordination::AuxRequestOut;
-using coordination::AxisFeedbackView;
-using coordination::AxisRequestKind;
-using coordination::AxisRequestOut;
-using coordination::AxisSlot;
-using coordination::AxisSyncOut;
-using coordination::CallOutcome;
-using coordination::CallRelease;
-using coordination::CallRequest;
-using coordination::ChannelState;
-using coordination::MachineAxis;
-using coordination::MachineAxisKind;
-using coordination::PartnerStatus;
-using coordination::PlcAnswer;
-using coordination::ProbeSeen;
-using coordination::SpindleGroupSetup;
-using coordination::SpindleSyncOut;
-using coordination::to_string;
-
-struct CommandedAxis {
-  double pos = 0.0;
-  double vel = 0.0;
-  double acc = 0.0;
-  bool valid = false;              // false: the axis node holds its position
-  ProbeArm probe = ProbeArm::off;  // G31: arm the drive's touch probe
-};
-
-enum class ChannelEventKind : std::uint8_t {
-  state_changed,
-  block_started,  // command.line / command.block
-  block_ended,    // the path passed the block's end (an exact stop: and every axis is in position)
-  alarm,          // alarm_number / alarm text via last_alarm()
-  program_end,    // end_code
-  mdi_end,        // MDI blocks ended (end_code: 0 at their text's end, else 30, 2 or 99)
-  sync_arrive,    // G04.1 P: the channel arrived at the mark (CycleOutput::arrival)
-  sync_release,   // every participant arrived: the channel goes on
-  subcall,        // G144: this channel sent CycleOutput::call
-  subcall_release,  // this channel released the caller of the call it runs (call_id)
-};
-
-struct ChannelEvent {
-  ChannelEventKind kind = ChannelEventKind::state_changed;
-  ChannelState state = ChannelState::reset;
-  int line = 0;
-  const std::string* file = nullptr;  // the block's file (nullptr: the main program's)
-  std::string_view text;              // block_started: the block's line as written (the file's)
-  std::size_t block = 0;
-  int end_code = 0;
-  int alarm_number = 0;
-  AxisVector pos{};           // block_ended: the commanded end point of the block
-  std::uint64_t call_id = 0;  // subcall_release
-  CallOutcome call_outcome = CallOutcome::released;
-};
-
-struct ChannelAlarm {
-  int number = 0;
-  std::array<char, 192> text{};  // fixed: alarms are raised from the cyclic path
-  int line = 0;
-  int column = 0;
-  int axis = 0;  // channel axis index + 1 when an axis is concerned
-};
-
-struct CycleOutput {
-  std::array<CommandedAxis, kMaxChannelAxes> setpoints{};
-  ChannelState state = ChannelState::reset;
-  std::size_t block = 0;
-  int line = 0;
-  interp::ModalState modal;  // of the block under way (of the last one, between runs)
-  bool program_end = false;
-  int end_code = -1;
-  std::uint64_t run_start_cycle = 0;  // cycle the program started (valid once it has run)
-  std::uint64_t end_cycle = 0;        // cycle of its program end (valid when program_end)
-  // The channel's spindle (S1) as its program commands it: speed and direction (+1 M03,
-  // -1 M04, 0 stopped). Stopped whenever no program runs (reset, idle, alarm, end).
-  double spindle_rpm = 0.0;
-  int spindle_direction = 0;
-  // The spindle is under position control (M18): its setpoint is setpoints[spindle_c_slot],
-  // in the spindle's degrees.
-  bool spindle_position = false;
-  // A G04.1 arrival to send to every other channel this cycle (sync_arrive event).
-  bool arrival_due = false;
-  coordination::SyncArrival arrival{};
-  // A G144 call to send this cycle (subcall event), and the releases of calls to send.
-  bool call_due = false;
-  CallRequest call{};
-  static constexpr std::size_t kMaxReleases = 8;
-  std::array<CallRelease, kMaxReleases> releases{};
-  std::size_t release_count = 0;
-  // G140/G141/G142 requests to send to the axis nodes this cycle.
-  static constexpr std::size_t kMaxAxisRequests = coordination::AxisExchange::kMaxRequests;
-  std::array<AxisRequestOut, kMaxAxisRequests> axis_requests{};
-  std::size_t axis_request_count = 0;
-  // An M or T code for the PLC node, sent this cycle.
-  bool aux_due = false;
-  AuxRequestOut aux{};
-  // G114.1 / G113 to the slave spindles' axis nodes, sent this cycle.
-  bool spindle_sync_due = false;
-  SpindleSyncOut spindle_sync{};
-  // G51.4 / G50.4 to a slave axis's node, sent this cycle.
-  bool axis_sync_due = false;
-  AxisSyncOut axis_sync{};
-  static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
-  std::array<ChannelEvent, kMaxEvents> events{};
-  std::size_t event_count = 0;
-};
-
-struct ChannelSetup {
-  std::size_t axis_count = 0;
-  std::vector<double> in_position;  // per axis, units
-  double cycle_s = 0.001;
-  std::size_t pulls_per_cycle = 64;  // commands pulled into the look-ahead per cycle at most
-  // Spindles whose feedback follows the axes' in cycle()'s `feedback`: their alarms stop the
-  // channel too, and a channel comes to idle only with them enabled.
-  std::size_t spindle_count = 0;
-  std::uint32_t channel_id = 1;  // the channel's number (CHn), as G04.1 Q names it
-  // The writes to shared variables not yet sent (null: none kept): the channel arrives at a
-  // G04.1 and calls with G144 only once they are out.
-  const SharedWriteLog* shared_writes = nullptr;
-  // Per axis: what the channel may do with it (G140/G141/G142). Empty: every axis is the
-  // channel's own for good (no exchange; feedback owner not looked at).
-  std::vector<AxisSlot> slots{};
-  // A PLC node runs M and T codes: each is a block that ends with its answer; a spindle
-  // start (M03/M04) waits for the PLC's consent.
-  bool plc = false;
-  // G114.1 groups this channel commands (its spindle is their master).
-  std::vector<SpindleGroupSetup> spindle_groups{};
-  // G144: how many cycles a call waits for its target to become free (0: as long as it takes).
-  std::uint64_t call_wait_cycles = 0;
-  // The channel's first spindle is the slave of a G114.1 group: a start waits until the blocks
-  // before it ended and is an alarm while the spindle follows its master.
-  bool spindle_may_follow = false;
-  // Every axis of the machine, by system number - 1: what G51.4 P may name.
-  std::vector<MachineAxis> machine_axes{};
-  // The slot of the first spindle's C axis (C1 mode), if it has one: its feedback is the
-  // spindle's, and it is commanded only while M18 (GSK M14) holds the spindle under position
-  // control.
-  std::optional<std::size_t> spindle_c_slot{};
-  // Per axis: the skip input its drive's touch probe is wired to (G31; 0: none). Empty: none.
-  std::vector<int> probe_inputs{};
-  // G31: a touch probe that does not report itself armed within this many cycles is an alarm.
-  std::uint64_t probe_arm_cycles = 200;
-  // G04 I: per input port (the index), the bit of the PLC's inputs it reads (-1: none).
-  std::vector<int> input_ports{};
-  // G04 PS: reached within this many rpm (param 1057); an alarm after this long (param 1059).
-  double speed_arrival_rpm = 10.0;
-  double speed_arrival_timeout_s = 10.0;
-};
 
 // Alarm numbers the channel itself raises (program alarms come from the interpreter).
 inline constexpr int kAlarmPlannerRejected = 1200;
@@ -222,7 +50,7 @@ using coordination::kAlarmSyncMismatch;
 using coordination::kAlarmSyncPartnerLost;
 using coordination::kAlarmSyncTableFull;
 
-class ChannelController {
+class ChannelController : private ChannelHost {
  public:
   ChannelController(ChannelSetup setup, interp::CommandSource& source,
                     motion::MotionPlanner& planner);
@@ -295,23 +123,29 @@ class ChannelController {
   // the order sent), the channels in automatic operation as their status stamped N-1 says
   // (running, feed hold, waiting) and those stopped by an alarm, and a channel whose process is
   // gone.
-  void on_arrival(const coordination::SyncArrival& arrival) noexcept;
-  void set_partner(std::uint32_t channel, const PartnerStatus& status) noexcept;
-  void partner_lost(std::uint32_t channel) noexcept;
+  void on_arrival(const coordination::SyncArrival& arrival) noexcept {
+    coordination_.on_arrival(arrival);
+  }
+  void set_partner(std::uint32_t channel, const PartnerStatus& status) noexcept {
+    coordination_.set_partner(channel, status);
+  }
+  void partner_lost(std::uint32_t channel) noexcept { coordination_.partner_lost(channel); }
   // Events from another channel did not fit this channel's receive queue: what the channels
   // share can no longer be trusted (an alarm).
-  void coordination_lost() noexcept { coordination_lost_ = true; }
+  void coordination_lost() noexcept { coordination_.coordination_lost(); }
   // G144 calls addressed to this channel (run when it is idle, else refused), and the end of a
   // call this channel made.
-  void on_call(const CallRequest& call) noexcept;
-  void on_call_release(const CallRelease& release) noexcept;
+  void on_call(const CallRequest& call) noexcept { coordination_.on_call(call); }
+  void on_call_release(const CallRelease& release) noexcept {
+    coordination_.on_call_release(release);
+  }
   // The PLC's answer to an aux request of this channel (applied from the cycle after it was
   // sent, as every event).
-  void on_aux_answer(const PlcAnswer& answer) noexcept;
+  void on_aux_answer(const PlcAnswer& answer) noexcept { coordination_.on_aux_answer(answer); }
   // The PLC node is gone: a request waiting for it, and every later one, is refused.
-  void plc_lost() noexcept;
+  void plc_lost() noexcept { coordination_.plc_lost(); }
   // The PLC's inputs as its status stamped N-1 reports them (bit k: signal k on): G04 I.
-  void set_plc_inputs(std::uint64_t inputs) noexcept { plc_inputs_ = inputs; }
+  void set_plc_inputs(std::uint64_t inputs) noexcept { coordination_.set_plc_inputs(inputs); }
 
   // One cycle. `feedback` holds one entry per channel axis, then one per spindle.
   const CycleOutput& cycle(std::uint64_t cycle,
@@ -319,7 +153,7 @@ class ChannelController {
   // G140/G141/G142: whether the channel commands axis `slot` now (owns it and took over its
   // position); a slot it does not command is a virtual axis or with another channel.
   [[nodiscard]] bool commands_axis(std::size_t slot) const noexcept {
-    return slot < kMaxChannelAxes && exchange_.use(slot) == coordination::SlotUse::commanded;
+    return slot < kMaxChannelAxes && coordination_.commands_axis(slot);
   }
 
   [[nodiscard]] ChannelState state() const noexcept { return out_.state; }
@@ -327,24 +161,29 @@ class ChannelController {
   [[nodiscard]] std::size_t alarm_count() const noexcept { return alarm_count_; }
   [[nodiscard]] const AxisVector& commanded() const noexcept { return commanded_; }
   // The spindle's position at C = 0 (whole turns) of the last position control (0: none yet).
-  [[nodiscard]] double spindle_c_base() const noexcept { return spindle_mode_.c_base(); }
+  [[nodiscard]] double spindle_c_base() const noexcept { return coordination_.spindle_c_base(); }
   // The G04.1 marks as this channel sees them: the mark it waits at and whom it misses.
-  [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept { return mark_.barrier(); }
+  [[nodiscard]] const coordination::SyncBarrier& sync() const noexcept {
+    return coordination_.sync();
+  }
   // The G144 call this channel runs for another channel: its id (0: none) and caller.
-  [[nodiscard]] std::uint64_t serving_call() const noexcept { return calls_.serving_call(); }
-  [[nodiscard]] std::uint32_t serving_caller() const noexcept { return calls_.serving_caller(); }
+  [[nodiscard]] std::uint64_t serving_call() const noexcept {
+    return coordination_.calls().serving_call();
+  }
+  [[nodiscard]] std::uint32_t serving_caller() const noexcept {
+    return coordination_.calls().serving_caller();
+  }
   // The operator panel's overrides as applied, as fractions (1.0: 100 %).
   [[nodiscard]] double feed_override() const noexcept { return feed_override_; }
   [[nodiscard]] double rapid_override() const noexcept { return rapid_override_; }
   [[nodiscard]] double spindle_override() const noexcept { return spindle_override_; }
   // G144 H1: the channel this one's sent call waits for, 0 when none.
   [[nodiscard]] std::uint32_t waiting_for_call() const noexcept {
-    return std::holds_alternative<CallStop>(held_) ? calls_.waiting_for() : 0;
+    return coordination_.waiting_for_call();
   }
   // The M or T code whose answer (FIN) from the PLC the channel waits for, or nullptr.
   [[nodiscard]] const AuxRequestOut* waiting_for_fin() const noexcept {
-    return std::holds_alternative<AuxStop>(held_) && aux_.sent() && in_run() ? &aux_.request()
-                                                                             : nullptr;
+    return coordination_.waiting_for_fin();
   }
   // The axis exchange the channel waits for: its G code (140, 141, 142; 0: none) and the slot
   // (AxisRequestOut::kAllSlots for G142).
@@ -353,10 +192,8 @@ class ChannelController {
     std::size_t slot = 0;
   };
   [[nodiscard]] ExchangeWait waiting_for_exchange() const noexcept {
-    if (!std::holds_alternative<ExchangeStop>(held_) || exchange_.waiting_g() == 0 || !in_run()) {
-      return {};
-    }
-    return {exchange_.waiting_g(), exchange_.waiting_slot()};
+    const int g = coordination_.waiting_g();
+    return g == 0 ? ExchangeWait{} : ExchangeWait{g, coordination_.waiting_slot()};
   }
   // A run is under way (not stopped by an alarm or a reset): what it waits for is real.
   [[nodiscard]] bool in_run() const noexcept {
@@ -365,10 +202,20 @@ class ChannelController {
   }
 
  private:
+  // What the coordination asks of the channel (ChannelHost).
+  void set_state(ChannelState state) noexcept override;
+  void raise(int number, const char* text, int line, int axis) noexcept override {
+    raise(number, text, line, 0, axis);
+  }
+  bool queue_command(const interp::Command& c) noexcept override;
+  void restart_at_commanded() noexcept override;
+  void stop_move() noexcept override { planner_.reset(); }
+  void skip_result(bool skipped, const AxisVector& where) noexcept override {
+    source_.skip_result(skipped, where, commanded_);
+  }
+
   const CycleOutput& run_cycle(std::uint64_t cycle,
                                std::span<const AxisFeedbackView> feedback) noexcept;
-  void set_state(ChannelState state) noexcept;
-  void push_event(const ChannelEvent& event) noexcept;
   void raise(int number, const char* text, int line, int column, int axis) noexcept;
   void raise(const coordination::CoordinationAlarm& alarm, int line) noexcept {
     raise(alarm.number, alarm.text.data(), line, 0, alarm.axis);
@@ -378,6 +225,8 @@ class ChannelController {
   // Every axis's actual position within its in-position width of `at`.
   bool in_position(std::span<const AxisFeedbackView> feedback, const AxisVector& at) const noexcept;
   void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
+  // The program's end block, once everything before it ran: its events, then idle.
+  void end_program(std::uint64_t cycle, bool in_pos) noexcept;
   void fill() noexcept;
   void block_events(const motion::MotionOutput& m,
                     std::span<const AxisFeedbackView> feedback) noexcept;
@@ -387,9 +236,6 @@ class ChannelController {
   // Starts (or repeats) the program of the call this channel serves.
   void start_served_call(std::uint64_t cycle) noexcept;
   void take_calls(std::uint64_t cycle) noexcept;
-  // Ends the served call's hold on its caller (once).
-  void release_caller(CallOutcome outcome) noexcept;
-  void push_release(const CallRelease& release) noexcept;
 
   ChannelSetup setup_;
   interp::CommandSource& source_;
@@ -425,86 +271,11 @@ class ChannelController {
   std::optional<interp::ProgramAlarm> source_alarm_;  // raised when the blocks before it ran
   std::optional<interp::ProgramAlarm> pending_alarm_;
   bool first_cycle_ = true;
-
-  // The block's event of `kind`, with the channel's position.
-  [[nodiscard]] ChannelEvent block_event(const HeldBlock& b, ChannelEventKind kind) const noexcept;
-  // The block is the channel's current one: its start event, once.
-  void start_held(HeldBlock& b) noexcept;
-  // The held block ends: its end event, and read-ahead goes on.
-  void end_held(const HeldBlock& b) noexcept;
-
-  // The block that stops read-ahead, pulled and not passed yet (std::monostate: none). Each
-  // kind runs once every block before it ended; the coordination machines hold what outlives it.
-  ReadAheadStop held_;
-  [[nodiscard]] bool holds_block() const noexcept {
-    return !std::holds_alternative<std::monostate>(held_);
-  }
-  void begin_held() noexcept;  // the held block's machine starts on it
-  // One cycle of the held block, once every block before it ended.
-  void run(std::monostate& /*none*/, std::uint64_t /*cycle*/,
-           std::span<const AxisFeedbackView> /*feedback*/) noexcept {}
-  void run(SyncStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(CallStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ReleaseStop& b, std::uint64_t cycle,
-           std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ExchangeStop& b, std::uint64_t cycle,
-           std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(AuxStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(CouplingStop& b, std::uint64_t cycle,
-           std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(ModeStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(SkipStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-  void run(WaitStop& b, std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
-
-  // G04.1 (the barrier) and G144 / G145 (calls made and served).
-  coordination::SyncMark mark_;
-  coordination::SubCall calls_;
-  coordination::ChannelSet active_;
-  coordination::ChannelSet halted_partners_;
-  coordination::ChannelSet lost_partners_;
-  bool coordination_lost_ = false;
-  std::uint64_t writes_lost_seen_ = 0;
-  [[nodiscard]] bool writes_pending() const noexcept {
-    return setup_.shared_writes != nullptr && setup_.shared_writes->size() > 0;
-  }
-
-  // G140/G141/G142 and what the channel does with each slot.
-  coordination::AxisExchange exchange_;
-  [[nodiscard]] bool exchanges() const noexcept { return exchange_.exchanges(); }
-  // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
-  // `s`, which the channel no longer commands: "<address> <why>".
-  void raise_if_queued_moves(std::size_t s, const char* why) noexcept;
-  void build_views(std::span<const AxisFeedbackView> received) noexcept;
-  void settle_slots() noexcept { exchange_.settle(received_, commanded_); }
-  void sync_positions() noexcept;  // the interpreter and the planner stand at commanded_
-  void withdraw_waits() noexcept { exchange_.withdraw(); }
-  static constexpr std::size_t kMaxViews = kMaxChannelAxes + 8;  // axes, then spindles
-  std::array<AxisFeedbackView, kMaxViews> views_{};
-  std::span<const AxisFeedbackView> received_;  // this cycle's feedback as it came
-
-  // M/S/T codes, couplings, the spindle's mode.
-  coordination::AuxHandshake aux_;
   int spindle_queued_ = 0;  // the first spindle's direction as the pulled blocks leave it
-  coordination::CouplingRequest coupling_;
-  coordination::SpindleMode spindle_mode_;
-  void leave_position_control() noexcept;  // no program runs: speed control, at rest
-  [[nodiscard]] bool under_position_control() const noexcept {
-    return setup_.spindle_c_slot &&
-           exchange_.use(*setup_.spindle_c_slot) == coordination::SlotUse::commanded;
-  }
-
-  // G31 and G04 I / G04 PS.
-  std::uint64_t plc_inputs_ = 0;
-  coordination::SkipProbe skip_;
-  // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
-  [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
-  [[nodiscard]] bool skip_in(coordination::SkipPhase phase) const noexcept {
-    return std::holds_alternative<SkipStop>(held_) && skip_.phase() == phase;
-  }
-  void watch_skip(std::span<const AxisFeedbackView> feedback) noexcept;  // moving: a latch
-  // Hands a command to the planner and the block queue; false (and a source alarm) when the
-  // planner refuses it.
-  bool queue_command(const interp::Command& c) noexcept;
+  // G04.1, G144/G145, G140-G142, aux codes, couplings, M18/M17, G31, G04 I/PS: the block that
+  // stops read-ahead and the machines that run it (after queued_ and commanded_, which it
+  // reads).
+  ChannelCoordination coordination_;
 };
 
 }  // namespace mcnc::channel

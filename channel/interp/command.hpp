@@ -99,11 +99,13 @@ struct Command {
   // starts (degrees). continuous: starts without waiting for the one-revolution signal (the
   // next block of a continuous thread, or NQ1). rpm > 0: interpolated thread (G32.1, G32.2 S):
   // the spindle is a position-controlled axis turning at rpm. The reference spindle is
-  // `spindle`.
+  // `spindle`. left_hand: an interpolated thread whose spindle turns the negative way (GSK
+  // G92.1 F < 0): the start angle counts that way too.
   double lead = 0.0;
   double lead_change = 0.0;
   double start_angle = 0.0;
   bool continuous = false;
+  bool left_hand = false;
   bool thread_arc = false;
 
   // dwell: seconds, or spindle revolutions when in_revs.

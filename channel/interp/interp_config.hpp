@@ -89,6 +89,7 @@ struct CycleDefaults {
   double thread_min_depth = 0.1;    // G76 Q(dmin), param 5030
   double thread_allowance = 0.0;    // G76 R(d), param 5031
   bool thread_alternating = false;  // param 5035 = 1: alternating flanks
+  double thread_chip_break = 0.0;   // Dafeng G76 PQ, mm of thread between breaks (0: none)
   bool drill_high_speed = true;     // param 5100.1: G83 = G83.5 (true) or G83.6
   double drill_retract = 0.5;       // high-speed back-off r, param 5110
   double drill_clearance = 0.5;     // deep-hole clearance c, param 5111

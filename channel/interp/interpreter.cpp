@@ -35,6 +35,10 @@ std::optional<InterpResult> Interpreter::next() {
   return run_->next();
 }
 
+std::vector<ProgramAlarm> Interpreter::take_warnings() {
+  return run_->take_warnings();
+}
+
 macro::VariableStore& Interpreter::variables() {
   return run_->variables();
 }

@@ -63,6 +63,10 @@ class Interpreter {
   // The next command; or an alarm (the program stops there, later pulls return nullopt); or
   // nullopt once the program has ended.
   std::optional<InterpResult> next();
+  // What the program asked for that the control ignores, with where (number 0), since the last
+  // call: a word the spec's decision list says to ignore with a warning (Dafeng G92 P). At
+  // most the first 100 of a run are kept.
+  std::vector<ProgramAlarm> take_warnings();
 
   macro::VariableStore& variables();
   // Physical machine position of each channel axis after the last pulled command.

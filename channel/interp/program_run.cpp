@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <utility>
 
 namespace mcnc::interp {
 
@@ -802,6 +803,20 @@ bool ProgramRun::fail(int number, std::string text, int column) {
                         line_ != nullptr ? line_->line : 0, column};
   save_retained();
   return false;
+}
+
+void ProgramRun::warn(std::string text, int column) {
+  // A program that repeats the block in a loop must not grow the list without end: nobody
+  // needs the ten-thousandth copy of a warning.
+  constexpr std::size_t kMaxWarnings = 100;
+  if (warning_count_++ < kMaxWarnings) {
+    warnings_.push_back(ProgramAlarm{0, std::move(text), file_ != nullptr ? *file_ : std::string(),
+                                     line_ != nullptr ? line_->line : 0, column});
+  }
+}
+
+std::vector<ProgramAlarm> ProgramRun::take_warnings() {
+  return std::exchange(warnings_, {});
 }
 
 bool ProgramRun::fail_macro(const macro::MacroAlarm& a) {

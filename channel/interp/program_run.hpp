@@ -60,6 +60,7 @@ class ProgramRun final : public macro::VariableProvider {
   // M30, M02 and an M99 at their top level.
   std::optional<ProgramAlarm> start_mdi(std::string text);
   std::optional<InterpResult> next();
+  std::vector<ProgramAlarm> take_warnings();
 
   macro::VariableStore& variables() { return vars_; }
   // The machine position (machine_ turned and mirrored by the frame).
@@ -315,7 +316,10 @@ class ProgramRun final : public macro::VariableProvider {
   // ---- threading and single cycles (program_run_thread.cpp)
   bool run_thread(GFunction f, int column);
   bool run_flexible_tap(int column);  // G33 (GSK)
+  // The lead from F or I (or the last one). GSK G92.1 and G32.1 take a signed F (gsk A.6.29,
+  // A.6.39): < 0 is a left-hand thread, which sets left_hand_thread_ (modal with the lead).
   bool thread_lead(double& lead, int column);
+  bool signed_lead() const;
   bool thread_start_angle(double& angle);
   // GSK G92/G92.1 P (gsk A.6.41): whether this block and the modal blocks after it repair a
   // thread, into cycle_repair_ (false after an alarm).
@@ -327,7 +331,8 @@ class ProgramRun final : public macro::VariableProvider {
                            const std::array<int, 2>& axes, double lead, double& angle, int column);
   bool run_single_cycle(GFunction f, bool cycle_code_in_block, int column);
   // Emits the moves of a plane path from the current position; the other axes stay. Its
-  // threads are interpolated at `thread_rpm` when > 0 (G92.1).
+  // threads are interpolated at `thread_rpm` when > 0 (G92.1), turning the spindle the
+  // negative way with left_hand_thread_.
   void emit_plane_path(const path::PlanePath& moves, const std::array<int, 2>& axes, double feed,
                        double thread_rpm = 0.0);
   // A cycle's alarm; an error of a contour element names the contour block's line.
@@ -399,6 +404,7 @@ class ProgramRun final : public macro::VariableProvider {
   void release_block();
   void release_through_lookahead();
   bool fail(int number, std::string text, int column);
+  void warn(std::string text, int column);  // the block goes on; Interpreter::take_warnings
   bool fail_macro(const macro::MacroAlarm& a);
   BlockWord* word(char letter);
   BlockWord* word(char a, char b);
@@ -437,6 +443,8 @@ class ProgramRun final : public macro::VariableProvider {
   bool mdi_ = false;     // MDI blocks: their end and M99 end them
   bool ended_ = false;
   std::optional<ProgramAlarm> alarm_;
+  std::vector<ProgramAlarm> warnings_;
+  std::size_t warning_count_ = 0;  // of the run: the first kMaxWarnings are kept
   bool alarm_reported_ = false;
 
   // The block being executed.
@@ -481,6 +489,7 @@ class ProgramRun final : public macro::VariableProvider {
     int starts = 1;
     double runout_rise = -1.0;
     double runout_length = -1.0;
+    double screw_in = 0.0;  // E, radius
   };
   ExtendedThread extended_thread_;
   // The modal hole cycle (group 10): its code and the amounts later blocks keep.
@@ -526,8 +535,9 @@ class ProgramRun final : public macro::VariableProvider {
     double feed = 0.0;
     int idle_blocks = 0;
   };
-  AngleStart angle_start_;    // the last command emitted: a thread after a thread continues it
-  double thread_lead_ = 0.0;  // the last thread lead (mm/rev): G32 blocks may omit F
+  AngleStart angle_start_;         // the last command emitted: a thread after a thread continues it
+  double thread_lead_ = 0.0;       // the last thread lead (mm/rev): G32 blocks may omit F
+  bool left_hand_thread_ = false;  // the last lead was a negative F of G92.1/G32.1 (GSK)
   // The modal single cycle (G90/G92/G94): its end point (machine), taper and lead, which the
   // blocks that follow without the G code keep unless they give new ones.
   AxisVector cycle_end_{};

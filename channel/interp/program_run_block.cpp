@@ -637,17 +637,12 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
   }
   if (BlockWord* f = word('F'); f != nullptr && !f->used) {
-    if (f->value < 0.0 && motion_ == GFunction::thread_cycle_interpolated) {
-      return fail(alarm::kNotInThisVersion,
-                  "G92.1 F < 0 (a left-hand thread) needs the spindle's direction in the thread "
-                  "command, not yet available",
-                  f->column);
-    }
     f->used = true;
-    if (f->value < 0.0) {
+    // A signed lead's sign is the thread's hand (thread_lead), not a direction of the feed.
+    if (f->value < 0.0 && !signed_lead()) {
       return fail(alarm::kNegativeFeed, "feed F must not be negative", f->column);
     }
-    feed_ = f->value * (metric_ ? 1.0 : 25.4);
+    feed_ = std::fabs(f->value) * (metric_ ? 1.0 : 25.4);
   }
 
   // Spindles, tool and the M codes that go out before the motion.

@@ -343,8 +343,13 @@ bool ProgramRun::run_multiple_thread(int column) {
       m.thread_alternating = j->value != 0.0;
     }
     if (BlockWord* pq = word('P', 'Q')) {
-      return fail(alarm::kNotInThisVersion, "G76 PQ (chip breaking) is not implemented",
-                  pq->column);
+      // The chip-break interval, mm along the thread (dafeng L1795); PQ0 ends it.
+      pq->used = true;
+      if (length_of(*pq) < 0.0) {
+        return fail(alarm::kCycleValue, "G76 PQ (chip-break interval) must not be negative",
+                    pq->column);
+      }
+      m.thread_chip_break = length_of(*pq);
     }
     return true;
   }
@@ -356,6 +361,7 @@ bool ProgramRun::run_multiple_thread(int column) {
   t.finish_allowance = m.thread_allowance;
   t.infeed =
       m.thread_alternating ? cycles::ThreadInfeed::alternating : cycles::ThreadInfeed::single_flank;
+  t.chip_break = m.thread_chip_break;
   if (!thread_second_block(t, column)) {
     return false;
   }
@@ -415,13 +421,13 @@ bool ProgramRun::run_extended_thread(int column) {
       r->used = true;
       m.allowance = std::fabs(length_of(*r));
     }
-    if (BlockWord* e = word('E'); e != nullptr && e->value != 0.0) {
-      return fail(alarm::kNotInThisVersion,
-                  "G78 E (the screw-in along X) is not implemented: its path is a figure the "
-                  "manual does not give",
-                  e->column);
-    } else if (e != nullptr) {
+    if (BlockWord* e = word('E')) {
+      // The screw-in along X, radius (gsk A.6.33); E0 ends it.
       e->used = true;
+      if (length_of(*e) < 0.0) {
+        return fail(alarm::kCycleValue, "G78 E (screw-in) must not be negative", e->column);
+      }
+      m.screw_in = length_of(*e);
     }
     for (const char w : {'D', 'L'}) {
       if (BlockWord* x = word(w)) {
@@ -459,6 +465,7 @@ bool ProgramRun::run_extended_thread(int column) {
   t.finish_allowance = m.allowance;
   t.starts = m.starts;
   t.constant_depth = m.constant_depth;
+  t.screw_in = m.screw_in;
   // Left (r = 1) and right (r = 2) name the flank of the groove the tool goes in along, the
   // one towards -Z and the one towards +Z as the ZX plane is drawn (decision 61): the flank
   // behind the cut is the single-flank infeed's, the one ahead the leading flank's.

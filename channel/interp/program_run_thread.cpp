@@ -39,15 +39,19 @@ bool ProgramRun::thread_lead(double& lead, int column) {
     return fail(alarm::kWordNotAllowed, "a thread takes the lead F or threads per inch I, not both",
                 i->column);
   }
+  bool left_hand = left_hand_thread_;
   if (f != nullptr) {
     f->used = true;
     lead = f->value * (metric_ ? 1.0 : 25.4);
+    left_hand = lead < 0.0 && signed_lead();
+    lead = left_hand ? -lead : lead;
   } else if (i != nullptr) {
     i->used = true;
     if (i->value <= 0.0) {
       return fail(alarm::kThreadLead, "threads per inch I must be greater than 0", i->column);
     }
     lead = 25.4 / i->value;
+    left_hand = false;
   } else {
     lead = thread_lead_;  // continuous threading may omit the lead (spec L908-913)
   }
@@ -56,7 +60,13 @@ bool ProgramRun::thread_lead(double& lead, int column) {
                 f != nullptr ? f->column : column);
   }
   thread_lead_ = lead;
+  left_hand_thread_ = left_hand;
   return true;
+}
+
+bool ProgramRun::signed_lead() const {
+  return config_.dialect == Dialect::gsk && (motion_ == GFunction::thread_cycle_interpolated ||
+                                             motion_ == GFunction::thread_interpolated);
 }
 
 bool ProgramRun::thread_repair_word(const std::string& code, bool cycle_code_in_block, int column) {
@@ -113,8 +123,10 @@ bool ProgramRun::thread_repair_angle(const std::array<double, 2>& start,
   }
   // The groove passes the recorded Z at the recorded angle: the thread starts as many
   // revolutions before it as the tool travels from the start to there.
+  // A left-hand thread's spindle turns the negative way, its angle counting down.
   const double revolutions = std::fabs(z - from) / lead;
-  angle = std::fmod(config_.thread_repair_degrees - 360.0 * revolutions, 360.0);
+  const double turn = left_hand_thread_ && signed_lead() ? -1.0 : 1.0;
+  angle = std::fmod(config_.thread_repair_degrees - turn * 360.0 * revolutions, 360.0);
   if (angle < 0.0) {
     angle += 360.0;
   }
@@ -238,6 +250,7 @@ bool ProgramRun::run_thread(GFunction f, int column) {
     c.spindle = reference_spindle_;
     c.continuous = joins;
     c.rpm = rpm;
+    c.left_hand = rpm > 0.0 && left_hand_thread_ && signed_lead();
     if (arc) {
       c.thread_arc = true;
       c.plane = plane_;
@@ -387,6 +400,7 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
         c.spindle = reference_spindle_;
         c.continuous = after_thread;  // a chamfer-out continues its thread
         c.rpm = thread_rpm;
+        c.left_hand = thread_rpm > 0.0 && left_hand_thread_ && signed_lead();
         break;
       }
       case path::MoveKind::dwell: {
@@ -469,8 +483,12 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
     const std::string code = f == GFunction::thread_cycle_interpolated ? "G92.1" : "G92";
     if (!gsk) {
       if (BlockWord* p = word('P')) {
-        return fail(alarm::kNotInThisVersion, "G92 P (thread feed start height) is not implemented",
-                    p->column);
+        // The manual says no more than its name (dafeng L2285): the spec's decision D29 is to
+        // ignore it with a warning (decision 343).
+        p->used = true;
+        warn("G92 P" + path::mm_text(length_of(*p)) +
+                 " (thread feed start height) is ignored: the manual does not say what it does",
+             p->column);
       }
     } else if (!thread_repair_word(code, cycle_code_in_block, column)) {
       return false;

@@ -143,7 +143,14 @@ int execute_interp(const InterpArguments& args) {
     flush(out);
     finish(1);
   }
+  const auto print_warnings = [&] {
+    for (const interp::ProgramAlarm& w : interpreter.take_warnings()) {
+      std::fprintf(stderr, "warning: %s:%d:%d: %s\n", w.program.c_str(), w.line, w.column,
+                   w.text.c_str());
+    }
+  };
   while (auto result = interpreter.next()) {
+    print_warnings();
     if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*result)) {
       interp::output::append_json(out, *alarm);
       flush(out);
@@ -154,6 +161,7 @@ int execute_interp(const InterpArguments& args) {
       flush(out);
     }
   }
+  print_warnings();
   flush(out);
   finish(0);
 }

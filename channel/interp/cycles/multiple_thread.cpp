@@ -47,6 +47,10 @@ PathResult check_amounts(const MultipleThread& c) {
                        mm_text(c.finish_allowance) + " and chamfer " + mm_text(c.chamfer) +
                        " must not be negative");
   }
+  if (c.screw_in < 0.0 || c.chip_break < 0.0) {
+    return value_error("screw-in " + mm_text(c.screw_in) + " and chip break interval " +
+                       mm_text(c.chip_break) + " must not be negative");
+  }
   if (c.finish_allowance >= c.height) {
     return value_error("finishing allowance R" + mm_text(c.finish_allowance) +
                        " leaves nothing to rough of the height P" + mm_text(c.height));
@@ -114,7 +118,11 @@ double infeed_shift(const MultipleThread& c, double depth, std::size_t pass) {
 struct Pass {
   double depth;
   double start_a;
+  double lift = 0.0;  // a chip break's rise: this pass's depth less the last one's; 0: none
 };
+
+// Chip breaks of all passes together: the bound of the other cycles' pecks.
+constexpr std::size_t kMaxBreaks = 100000;
 
 // The lead along a after `distance` of thread: lead + change * revolutions, with distance =
 // lead * rev + change * rev^2 / 2.
@@ -129,6 +137,12 @@ PathResult check_pass(const MultipleThread& c, const ThreadLine& t, const Pass& 
                               mm_text(p.start_a) + ", not before the end of its thread at Z" +
                               mm_text(chamfer_start) + " (chamfer " + mm_text(c.chamfer) + ")");
   }
+  if (c.screw_in > 0.0 && t.along * (chamfer_start - p.start_a) - c.screw_in <= kTolerance) {
+    return value_error(c, "screw-in E" + mm_text(c.screw_in) + " of the pass at depth " +
+                              mm_text(p.depth) + " from Z" + mm_text(p.start_a) +
+                              " does not end before the end of its thread at Z" +
+                              mm_text(chamfer_start));
+  }
   const double length = std::fabs(t.end.a - p.start_a);
   if (c.lead * c.lead + 2.0 * c.lead_change * length <= kTolerance) {
     return PathError{alarm::kThreadLead,
@@ -140,28 +154,75 @@ PathResult check_pass(const MultipleThread& c, const ThreadLine& t, const Pass& 
   return std::nullopt;
 }
 
-void emit_pass(const MultipleThread& c, const ThreadLine& t, const Pass& p, double start_angle,
-               PlanePath& out) {
-  const double chamfer_start = t.end.a - t.along * c.chamfer;
-  out.push_back(rapid_to({p.start_a, t.at_depth(p.start_a, p.depth)}));
-  PlaneMove thread;
-  thread.kind = path::MoveKind::thread;
-  thread.to = {chamfer_start, t.at_depth(chamfer_start, p.depth)};
-  thread.lead = c.lead;
-  thread.lead_change = c.lead_change;
-  thread.start_angle = start_angle;
-  out.push_back(thread);
-  if (c.chamfer > 0.0) {
-    // Out at 45 degrees: as far along b as along a.
-    PlaneMove chamfer = thread;
-    chamfer.to = {t.end.a,
-                  thread.to.b + t.outward * (c.chamfer_rise >= 0.0 ? c.chamfer_rise : c.chamfer)};
-    chamfer.lead = lead_after(c, std::fabs(chamfer_start - p.start_a));
-    out.push_back(chamfer);
+// The thread moves of one pass, from its rapid in to its rapid back to A.
+class PassBuilder {
+ public:
+  PassBuilder(const MultipleThread& c, const ThreadLine& t, const Pass& p, double start_angle,
+              PlanePath& out)
+      : c_(c), t_(t), p_(p), start_angle_(start_angle), out_(out) {}
+
+  // Returns the number of chip breaks made, at most `budget` + 1 (then the pass is unfinished:
+  // the caller refuses the cycle).
+  std::size_t build(std::size_t budget) {
+    const double chamfer_start = t_.end.a - t_.along * c_.chamfer;
+    at_ = {p_.start_a, t_.at_depth(p_.start_a, p_.depth - c_.screw_in)};
+    out_.push_back(rapid_to(at_));
+    if (c_.screw_in > 0.0) {
+      const double a = p_.start_a + t_.along * c_.screw_in;
+      thread_to({a, t_.at_depth(a, p_.depth)});
+    }
+    std::size_t breaks = 0;
+    if (c_.chip_break > 0.0 && p_.lift > 0.0) {
+      // Each break: up at 45 degrees to the depth of the pass before, down again, as far
+      // along a as it rises each way.
+      while (breaks <= budget) {
+        const double up = at_.a + t_.along * c_.chip_break;
+        const double top = up + t_.along * p_.lift;
+        const double down = top + t_.along * p_.lift;
+        if (t_.along * (chamfer_start - down) <= kTolerance) {
+          break;
+        }
+        thread_to({up, t_.at_depth(up, p_.depth)});
+        thread_to({top, t_.at_depth(top, p_.depth - p_.lift)});
+        thread_to({down, t_.at_depth(down, p_.depth)});
+        ++breaks;
+      }
+    }
+    thread_to({chamfer_start, t_.at_depth(chamfer_start, p_.depth)});
+    if (c_.chamfer > 0.0) {
+      // Out at 45 degrees: as far along b as along a (J/K of G78: its own rise).
+      thread_to(
+          {t_.end.a, at_.b + t_.outward * (c_.chamfer_rise >= 0.0 ? c_.chamfer_rise : c_.chamfer)});
+    }
+    out_.push_back(rapid_to({t_.end.a, t_.start.b}));
+    out_.push_back(rapid_to(t_.start));
+    return breaks;
   }
-  out.push_back(rapid_to({t.end.a, t.start.b}));
-  out.push_back(rapid_to(t.start));
-}
+
+ private:
+  void thread_to(Point2 to) {
+    PlaneMove m;
+    m.kind = path::MoveKind::thread;
+    m.to = to;
+    const double along_a = std::fabs(to.a - at_.a);
+    const double along_b = std::fabs(to.b - at_.b);
+    // The lead (and its change) is counted along the longer axis; at 45 degrees a stays it,
+    // whatever the rounding of b says.
+    const double longer = along_b > along_a + kTolerance && along_a > 0.0 ? along_b / along_a : 1.0;
+    m.lead = lead_after(c_, std::fabs(at_.a - p_.start_a)) * longer;
+    m.lead_change = c_.lead_change * longer;
+    m.start_angle = start_angle_;
+    out_.push_back(m);
+    at_ = to;
+  }
+
+  const MultipleThread& c_;
+  const ThreadLine& t_;
+  const Pass& p_;
+  double start_angle_;
+  PlanePath& out_;
+  Point2 at_{};
+};
 
 }  // namespace
 
@@ -222,8 +283,10 @@ path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread
                        ", " + std::to_string(starts) + " starts)");
   }
   std::vector<Pass> passes;
+  double last_depth = 0.0;
   for (double depth : roughing) {
-    passes.push_back({depth, 0.0});
+    passes.push_back({depth, 0.0, depth - last_depth});
+    last_depth = depth;
   }
   // The first finishing pass removes the allowance, the others are spring passes.
   passes.insert(passes.end(), finishing, Pass{cycle.height, 0.0});
@@ -234,11 +297,19 @@ path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread
     }
   }
 
+  PlanePath moves;
+  std::size_t breaks = 0;
   for (const Pass& p : passes) {
-    for (std::size_t s = 0; s < starts; ++s) {
-      emit_pass(cycle, line, p, 360.0 * static_cast<double>(s) / static_cast<double>(starts), out);
+    for (std::size_t s = 0; s < starts && breaks <= kMaxBreaks; ++s) {
+      const double angle = 360.0 * static_cast<double>(s) / static_cast<double>(starts);
+      breaks += PassBuilder(cycle, line, p, angle, moves).build(kMaxBreaks - breaks);
     }
   }
+  if (breaks > kMaxBreaks) {
+    return value_error("needs more than " + std::to_string(kMaxBreaks) + " chip breaks (every " +
+                       mm_text(cycle.chip_break) + ")");
+  }
+  out.insert(out.end(), moves.begin(), moves.end());
   return std::nullopt;
 }
 

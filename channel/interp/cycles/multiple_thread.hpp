@@ -38,6 +38,13 @@ struct MultipleThread {
   // own rise along b (< 0: as far as `chamfer`, 45 degrees); `code` names the cycle in alarms.
   bool constant_depth = false;
   double chamfer_rise = -1.0;
+  // GSK G78 E (decision 340): every pass screws in, its thread starting this far (radius)
+  // outside the pass's depth and reaching it at 45 degrees, as far along a.
+  double screw_in = 0.0;
+  // Dafeng G76 PQ (decision 341): after every `chip_break` of thread along a, a roughing pass
+  // lifts out of its chip to the depth of the pass before (the crest for the first) and goes
+  // back in, each at 45 degrees on the thread; 0: none. Finishing passes do not break.
+  double chip_break = 0.0;
   const char* code = "G76";
 };
 
@@ -47,6 +54,11 @@ struct MultipleThread {
 // degrees: `chamfer` along a and along b; its lead is the one reached there with lead_change),
 // a rapid back to A's b, a rapid to A. Without a chamfer the first thread move ends at end.a.
 // With several starts, each pass is repeated per start with start_angle 360 * s / starts.
+// A screw-in makes the rapid end `screw_in` outside the infeed point and adds a first thread
+// move from there to the pass's depth; a chip break is three thread moves in place of one:
+// up, down, and on (only a break that ends before the chamfer start is made). Every thread
+// move's lead is the lead along its longer axis (the one reached at its start with
+// lead_change), so a move that rises more than it advances keeps the thread's lead along a.
 //
 // Infeed point of the pass at `depth` (t = tan(tool_angle / 2), along the cutting direction
 // from A): single_flank depth * t, so that the tool's trailing flank stays on the finished
@@ -57,8 +69,9 @@ struct MultipleThread {
 // Alarms (nothing is appended): 1143 height, first depth or lead <= 0, first depth > height,
 // finish_allowance >= height, a negative minimum depth, allowance or chamfer, finish_passes or
 // tool_angle outside 0-99, starts < 1, end.a = start.a, A on or inside the thread, a pass whose
-// infeed point is not before the chamfer start, more than 20000 passes (all starts); 1146 a lead
-// that reaches 0 with lead_change.
+// infeed point (or the end of its screw-in) is not before the chamfer start, a negative screw-in
+// or chip break, more than 20000 passes (all starts) or 100000 chip breaks; 1146 a lead that
+// reaches 0 with lead_change.
 path::PathResult expand_multiple_thread(path::Point2 start, const MultipleThread& cycle,
                                         path::PlanePath& out);
 

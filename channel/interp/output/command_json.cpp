@@ -245,6 +245,10 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
         key(out, "rpm");
         number(out, c.rpm);
       }
+      if (c.left_hand) {
+        key(out, "left_hand");
+        out += "true";
+      }
       if (c.thread_arc) {
         arc_fields(out, c, axes);
       }

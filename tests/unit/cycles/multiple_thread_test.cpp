@@ -339,6 +339,78 @@ TEST(MultipleThread, PropertiesOfGeneratedCycles) {
   }
 }
 
+// The cycle's moves from `start`; none when it is refused (which fails the test).
+PlanePath expanded(const MultipleThread& c, Point2 start) {
+  PlanePath out;
+  const path::PathResult r = expand_multiple_thread(start, c, out);
+  EXPECT_FALSE(r) << r->text;
+  return out;
+}
+
+// GSK G78 E (decision 340): each pass starts E outside its depth and screws in at 45 degrees;
+// with a lead change the thread after the screw-in has the lead reached there.
+TEST(MultipleThread, ScrewInEntersEveryPassAtFortyFiveDegrees) {
+  MultipleThread c = dafeng_example();
+  c.infeed = ThreadInfeed::radial;
+  c.screw_in = 0.5;
+  c.lead_change = 0.01;
+  const PlanePath out = expanded(c, {50.0, 34.0});
+  ASSERT_EQ(out.size(), 5u * 5u);
+  const double crest = 30.2 + 3.68;
+  const double depths[] = {1.8, 1.8 * std::sqrt(2.0), 1.8 * std::sqrt(3.0), 3.48, 3.68};
+  for (std::size_t p = 0; p < 5; ++p) {
+    const PlaneMove* m = &out[5 * p];
+    expect_move(m[0], MoveKind::rapid, 50.0, crest - depths[p] + 0.5);
+    expect_move(m[1], MoveKind::thread, 49.5, crest - depths[p]);
+    EXPECT_NEAR(m[1].lead, 6.0, kEps);
+    expect_move(m[2], MoveKind::thread, 25.0, crest - depths[p]);
+    EXPECT_NEAR(m[2].lead, std::sqrt(36.0 + 2.0 * 0.01 * 0.5), kEps);
+  }
+}
+
+// Dafeng G76 PQ (decision 341) on a steep inside taper: each lift reaches the depth of the pass
+// before, the finishing pass does not break, and a lift that rises more along X than it
+// advances carries its lead along X so that Z keeps 1.5 per revolution.
+TEST(MultipleThread, ChipBreaksLiftToThePassBeforeOnRoughingPassesOnly) {
+  MultipleThread c{.end = {-20.0, 15.0},
+                   .taper = -4.0,  // root from 11 to 15 over 22 mm
+                   .height = 1.0,
+                   .first_depth = 0.5,
+                   .tool_angle = 0.0,
+                   .lead = 1.5,
+                   .infeed = ThreadInfeed::radial,
+                   .chip_break = 4.0};
+  const PlanePath out = expanded(c, {2.0, 9.0});
+  ASSERT_FALSE(out.empty());
+  const double slope = 4.0 / 22.0;
+  const auto root = [&](double a) { return 15.0 - slope * (a + 20.0); };
+  // Pass 1 (depth 0.5, crest 1 inside the root): a break after 4 mm rises to the crest.
+  expect_move(out[0], MoveKind::rapid, 2.0, root(2.0) - 0.5);
+  expect_move(out[1], MoveKind::thread, -2.0, root(-2.0) - 0.5);
+  expect_move(out[2], MoveKind::thread, -2.5, root(-2.5) - 1.0);
+  expect_move(out[3], MoveKind::thread, -3.0, root(-3.0) - 0.5);
+  // Down the lift X falls 0.5 + 0.5 * slope over 0.5 of Z: X is the longer axis.
+  const double down_b = 0.5 + 0.5 * slope;
+  EXPECT_NEAR(out[3].lead, 1.5 * down_b / 0.5, kEps);
+  EXPECT_NEAR(out[2].lead, 1.5, kEps);  // up: X rises 0.5 - 0.5 * slope, less than Z
+  // Count the breaks of each pass: every pass but the last (the finishing one) has some, each
+  // lift ends at the depth of the pass before.
+  std::vector<std::size_t> threads_per_pass;
+  for (const PlaneMove& m : out) {
+    if (m.kind == MoveKind::rapid && std::fabs(m.to.a - 2.0) < kEps && m.to.b > 9.5) {
+      threads_per_pass.push_back(0);
+    } else if (m.kind == MoveKind::thread) {
+      ++threads_per_pass.back();
+    }
+  }
+  ASSERT_EQ(threads_per_pass.size(), 5u);  // 0.5, 0.707, 0.866, 1.0, then finishing at 1.0
+  for (std::size_t p = 0; p + 1 < threads_per_pass.size(); ++p) {
+    EXPECT_GT(threads_per_pass[p], 1u) << p;
+    EXPECT_EQ(threads_per_pass[p] % 3, 1u) << p;  // 3 moves a break, and the last cut
+  }
+  EXPECT_EQ(threads_per_pass.back(), 1u);
+}
+
 struct AlarmCase {
   const char* what;
   void (*change)(MultipleThread&, Point2&);
@@ -408,6 +480,18 @@ INSTANTIATE_TEST_SUITE_P(
                   [](MultipleThread& c, Point2&) {
                     c.first_depth = 0.001;
                     c.min_depth = 0.0;
+                  },
+                  alarm::kCycleValue},
+        AlarmCase{"negative screw-in", [](MultipleThread& c, Point2&) { c.screw_in = -0.1; },
+                  alarm::kCycleValue},
+        AlarmCase{"negative chip break", [](MultipleThread& c, Point2&) { c.chip_break = -1.0; },
+                  alarm::kCycleValue},
+        AlarmCase{"screw-in reaching the chamfer",
+                  [](MultipleThread& c, Point2&) { c.screw_in = 31.0; }, alarm::kCycleValue},
+        AlarmCase{"too many chip breaks",
+                  [](MultipleThread& c, Point2& s) {
+                    s.a = 6000.0;  // a 6 m thread broken every micron
+                    c.chip_break = 0.001;
                   },
                   alarm::kCycleValue},
         AlarmCase{"lead reaching 0 (G34-like K)",

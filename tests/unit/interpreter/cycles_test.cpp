@@ -3,6 +3,8 @@
 // themselves are tested in tests/unit/cycles/.
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
+#include <cmath>
+
 namespace mcnc::interp::test {
 namespace {
 
@@ -105,11 +107,85 @@ TEST(InterpCycles, GskG78Alarms) {
       {"G00 X32 Z3\nG78 P020060\nM30\n", alarm::kCycleValue, 2},  // m 2
       {"G00 X32 Z3\nG78 P000460\nM30\n", alarm::kCycleValue, 2},  // r 4
       {"G00 X32 Z3\nG78 P010060 L0\nM30\n", alarm::kCycleValue, 2},
-      {"G00 X32 Z3\nG78 P010060 E2\nM30\n", alarm::kNotInThisVersion, 2},
+      {"G00 X32 Z3\nG78 P010060 E-0.5\nM30\n", alarm::kCycleValue, 2},
+      // A screw-in as long as the thread leaves it nothing to cut at its depth.
+      {"G00 X32 Z3\nG78 P010060 E33\nG78 X27.6 Z-30 P1200 Q400 F2\nM30\n", alarm::kCycleValue, 3},
       {"G00 X32 Z3\nG78 X27.6 Z-30 P1200 F2\nM30\n", alarm::kCycleWordMissing, 2},
   };
   expect_alarms(cases, gsk());
   run_alarm("G00 X32 Z3\nG78 P010060\nM30\n", alarm::kUnsupportedG, 2);  // not Dafeng's
+}
+
+// GSK G78 E (gsk A.6.33, decision 340): every pass screws in, its thread starting E (radius)
+// outside its depth and reaching it at 45 degrees; E0 in a later first block ends it.
+TEST(InterpCycles, GskG78ScrewInStartsEachPassOutsideItsDepth) {
+  const std::string second = "G78 X27.6 Z-30 P1200 Q400 F2\n";
+  RunResult r = run_ok("G00 X32 Z3\nG78 P010060 Q100 R0.1 E0.5\n" + second +
+                           "G00 X32 Z3\nG78 E0\n" + second + "M30\n",
+                       gsk());
+  const auto first = r.at_line(3);
+  ASSERT_GE(first.size(), 3u);
+  // The crest lies at 15 (radius), the first pass 0.4 below it; centre entry (r = 0).
+  EXPECT_EQ(first[0].op, Op::rapid);
+  EXPECT_AT(first[0], 15.1, 3);
+  EXPECT_EQ(first[1].op, Op::thread);
+  EXPECT_AT(first[1], 14.6, 2.5);
+  EXPECT_DOUBLE_EQ(first[1].lead, 2.0);
+  EXPECT_FALSE(first[1].continuous);  // it waits for the one-revolution signal
+  EXPECT_EQ(first[2].op, Op::thread);
+  EXPECT_AT(first[2], 14.6, -30);
+  EXPECT_TRUE(first[2].continuous);
+  std::size_t passes = 0;
+  for (const Command& c : first) {
+    if (c.op == Op::rapid && c.to[1] == 3.0 && c.to[0] < 16.0) {
+      ++passes;
+      EXPECT_GT(c.to[0], 13.8 + 0.5 - 1e-9);  // no infeed point below the root plus E
+    }
+  }
+  const auto second_run = r.at_line(6);
+  const auto threads = [](const std::vector<Command>& v) {
+    std::size_t n = 0;
+    for (const Command& c : v) {
+      n += c.op == Op::thread ? 1 : 0;
+    }
+    return n;
+  };
+  EXPECT_EQ(threads(first), 2 * passes);   // a screw-in and the thread in every pass
+  EXPECT_EQ(threads(second_run), passes);  // E0: the thread alone
+}
+
+// Dafeng G76 PQ (dafeng L1795, decision 341): the spec's example with PQ5. Every 5 mm of
+// thread a roughing pass lifts out of its chip to the pass before at 45 degrees and back in;
+// the finishing pass cuts through.
+TEST(InterpCycles, DafengG76PqBreaksTheChipOfRoughingPasses) {
+  RunResult r = run_ok("G00 X68 Z50\nG76 P010060 R0.2 PQ5\nG76 X60.4 Z25 P3.68 Q1.8 F6\nM30\n");
+  const auto t = r.of(Op::thread);
+  const double tan30 = std::tan(30.0 * 3.14159265358979323846 / 180.0);
+  // Pass 1 at depth 1.8 (crest 33.88, radius), from Z50 - 1.8 tan 30: two breaks up to the
+  // crest, then on to Z25 (r = 00: no chamfer).
+  const double z0 = 50.0 - 1.8 * tan30;
+  ASSERT_GE(t.size(), 7u);
+  EXPECT_AT(t[0], 32.08, z0 - 5.0);
+  EXPECT_AT(t[1], 33.88, z0 - 6.8);
+  EXPECT_AT(t[2], 32.08, z0 - 8.6);
+  EXPECT_AT(t[3], 32.08, z0 - 13.6);
+  EXPECT_AT(t[4], 33.88, z0 - 15.4);
+  EXPECT_AT(t[5], 32.08, z0 - 17.2);
+  EXPECT_AT(t[6], 32.08, 25.0);
+  EXPECT_FALSE(t[0].continuous);
+  for (std::size_t i = 1; i < 7; ++i) {
+    EXPECT_TRUE(t[i].continuous) << i;
+    EXPECT_DOUBLE_EQ(t[i].lead, 6.0) << i;
+  }
+  // Pass 2 (depth 1.8 sqrt 2) lifts to pass 1's depth only.
+  EXPECT_NEAR(t[8].to[0], 32.08, 1e-9);
+  // The finishing pass: one thread move at the full height.
+  EXPECT_AT(t.back(), 30.2, 25.0);
+  EXPECT_NE(t[t.size() - 2].to[0], 30.2);
+  // Without PQ the same cycle cuts each pass in one move.
+  RunResult plain = run_ok("G00 X68 Z50\nG76 P010060 R0.2\nG76 X60.4 Z25 P3.68 Q1.8 F6\nM30\n");
+  EXPECT_EQ(plain.of(Op::thread).size(), 5u);
+  run_alarm("G00 X68 Z50\nG76 P010060 R0.2 PQ-1\nM30\n", alarm::kCycleValue, 2);
 }
 
 TEST(InterpCycles, G76NeedsHeightAndFirstDepth) {

@@ -131,7 +131,6 @@ TEST(InterpSingleCycles, G92ChamferOutFromParameterAndJ) {
 TEST(InterpSingleCycles, G92Alarms) {
   run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 J40\nM30\n", alarm::kCycleValue, 2);
   run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 L0\nM30\n", alarm::kCycleValue, 2);
-  run_alarm("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", alarm::kNotInThisVersion, 2);
   run_alarm("G00 X60 Z5\nG92 X48 Z-30\nM30\n", alarm::kThreadLead, 2);
 }
 
@@ -153,15 +152,60 @@ TEST(InterpSingleCycles, GskG92_1InterpolatesTheSpindle) {
   EXPECT_AT(t[2], 23.5, -30);  // the modal block X47
 }
 
+// gsk A.6.29: F < 0 is a left-hand thread: the same moves at the lead |F|, the interpolated
+// spindle turning the negative way. The hand is modal with the lead, and a positive F ends it.
+TEST(InterpSingleCycles, GskG92_1NegativeLeadCutsALeftHandThread) {
+  RunResult r =
+      run_ok("G00 X60 Z5\nG92.1 X48 Z-30 F-2 L2 S300\nX47\nX46.5 F2\nG01 X60 F0.2\nM30\n", gsk());
+  const auto t = r.of(Op::thread);
+  ASSERT_EQ(t.size(), 4u);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_NEAR(t[i].lead, 2, 1e-12) << i;
+    EXPECT_NEAR(t[i].rpm, 300, 1e-12) << i;
+    EXPECT_EQ(t[i].left_hand, i < 3) << i;  // the block with F2 is right-hand again
+  }
+  EXPECT_AT(t[0], 24, -30);
+  EXPECT_DOUBLE_EQ(t[1].start_angle, 180.0);
+  EXPECT_AT(t[2], 23.5, -30);
+  // G32.1 takes the signed F too (gsk A.6.39); G92 (the encoder follows the spindle) and G01 do
+  // not.
+  r = run_ok("G00 X20 Z5\nG32.1 W-20 F-1.5 S30\nM30\n", gsk());
+  ASSERT_EQ(r.of(Op::thread).size(), 1u);
+  EXPECT_TRUE(r.of(Op::thread)[0].left_hand);
+  EXPECT_NEAR(r.of(Op::thread)[0].lead, 1.5, 1e-12);
+  run_alarm("G00 X60 Z5\nG92 X48 Z-30 F-2\nM30\n", alarm::kNegativeFeed, 2, -1, gsk());
+  run_alarm("G00 X60 Z5\nG01 X48 Z-30 F-2\nM30\n", alarm::kNegativeFeed, 2, -1, gsk());
+}
+
 TEST(InterpSingleCycles, GskG92_1Alarms) {
   const ExpectedAlarm cases[] = {
-      {"G00 X60 Z5\nG92.1 X48 Z-30 F-2 S300\nM30\n", alarm::kNotInThisVersion, 2},
       {"G00 X60 Z5\nG92.1 X48 Z-30 F2\nM30\n", alarm::kWordNotAllowed, 2},
       {"G00 X60 Z5\nG92.1 X48 Z-30 F2 S300 K3\nM30\n", alarm::kWordNotAllowed, 2},
   };
   expect_alarms(cases, gsk());
   // The Dafeng manual has no G92.1 in system A (its G92.1 is system B's G50.3).
   run_alarm("G00 X60 Z5\nG92.1 X48 Z-30 F2 S300\nM30\n", alarm::kUnsupportedG, 2);
+}
+
+// Dafeng G92 P, "thread feed start height" (dafeng L2285): the spec's decision D29 ignores it
+// with a warning (decision 343). The cycle is G92's without P, and the warning says where.
+TEST(InterpSingleCycles, DafengG92PIsIgnoredWithAWarning) {
+  Interpreter in(lathe());
+  ASSERT_FALSE(in.start("G00 X60 Z5\nG92 X48 Z-30 F2 P1.5\nX47\nM30\n", "test.nc"));
+  RunResult with_p = drain(in);
+  ASSERT_FALSE(with_p.alarm.has_value()) << with_p.alarm->text;
+  const std::vector<ProgramAlarm> warnings = in.take_warnings();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0].line, 2);
+  EXPECT_EQ(warnings[0].column, 17);
+  EXPECT_NE(warnings[0].text.find("G92 P1.5"), std::string::npos) << warnings[0].text;
+  EXPECT_TRUE(in.take_warnings().empty());  // taken once
+  RunResult without = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2\nX47\nM30\n");
+  ASSERT_EQ(with_p.commands.size(), without.commands.size());
+  for (std::size_t i = 0; i < without.commands.size(); ++i) {
+    EXPECT_EQ(with_p.commands[i].op, without.commands[i].op) << i;
+    EXPECT_EQ(with_p.commands[i].to, without.commands[i].to) << i;
+  }
 }
 
 // GSK thread repair (gsk A.6.41, L1279-1312): the pass starts at the angle that puts the groove
@@ -192,6 +236,15 @@ TEST(InterpSingleCycles, GskThreadRepairPutsTheGrooveThroughTheRecordedPoint) {
   // Off (no №174.4), P1 is ignored (rule 1).
   r = run_ok("G00 X60 Z5\nG92 X48 Z-30 F2 P1\nM30\n", gsk());
   EXPECT_NEAR(r.of(Op::thread)[0].start_angle, 0.0, 1e-9);
+}
+
+// A left-hand thread's spindle turns the other way: the groove reaches the recorded Z 7.75
+// turns after the start, counting down, so the start lies 270 degrees above the recorded 30.
+TEST(InterpSingleCycles, GskThreadRepairOfALeftHandThreadCountsTheAngleDown) {
+  RunResult r = run_ok("G00 X60 Z5\nG92.1 X48 Z-30 F-2 S300 P1\nM30\n", gsk_repair(-10.5, 30.0));
+  ASSERT_EQ(r.of(Op::thread).size(), 1u);
+  EXPECT_NEAR(r.of(Op::thread)[0].start_angle, 300.0, 1e-9);
+  EXPECT_TRUE(r.of(Op::thread)[0].left_hand);
 }
 
 TEST(InterpSingleCycles, GskThreadRepairAlarms) {

@@ -484,7 +484,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
     if (!gsk) {
       if (BlockWord* p = word('P')) {
         // The manual says no more than its name (dafeng L2285): the spec's decision D29 is to
-        // ignore it with a warning (decision 343).
+        // ignore it with a warning (decision 87).
         p->used = true;
         warn("G92 P" + path::mm_text(length_of(*p)) +
                  " (thread feed start height) is ignored: the manual does not say what it does",

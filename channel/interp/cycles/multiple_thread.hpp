@@ -38,10 +38,10 @@ struct MultipleThread {
   // own rise along b (< 0: as far as `chamfer`, 45 degrees); `code` names the cycle in alarms.
   bool constant_depth = false;
   double chamfer_rise = -1.0;
-  // GSK G78 E (decision 340): every pass screws in, its thread starting this far (radius)
+  // GSK G78 E (decision 84): every pass screws in, its thread starting this far (radius)
   // outside the pass's depth and reaching it at 45 degrees, as far along a.
   double screw_in = 0.0;
-  // Dafeng G76 PQ (decision 341): after every `chip_break` of thread along a, a roughing pass
+  // Dafeng G76 PQ (decision 85): after every `chip_break` of thread along a, a roughing pass
   // lifts out of its chip to the depth of the pass before (the crest for the first) and goes
   // back in, each at 45 degrees on the thread; 0: none. Finishing passes do not break.
   double chip_break = 0.0;

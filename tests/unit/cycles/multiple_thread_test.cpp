@@ -347,7 +347,7 @@ PlanePath expanded(const MultipleThread& c, Point2 start) {
   return out;
 }
 
-// GSK G78 E (decision 340): each pass starts E outside its depth and screws in at 45 degrees;
+// GSK G78 E (decision 84): each pass starts E outside its depth and screws in at 45 degrees;
 // with a lead change the thread after the screw-in has the lead reached there.
 TEST(MultipleThread, ScrewInEntersEveryPassAtFortyFiveDegrees) {
   MultipleThread c = dafeng_example();
@@ -368,7 +368,7 @@ TEST(MultipleThread, ScrewInEntersEveryPassAtFortyFiveDegrees) {
   }
 }
 
-// Dafeng G76 PQ (decision 341) on a steep inside taper: each lift reaches the depth of the pass
+// Dafeng G76 PQ (decision 85) on a steep inside taper: each lift reaches the depth of the pass
 // before, the finishing pass does not break, and a lift that rises more along X than it
 // advances carries its lead along X so that Z keeps 1.5 per revolution.
 TEST(MultipleThread, ChipBreaksLiftToThePassBeforeOnRoughingPassesOnly) {

@@ -116,7 +116,7 @@ TEST(InterpCycles, GskG78Alarms) {
   run_alarm("G00 X32 Z3\nG78 P010060\nM30\n", alarm::kUnsupportedG, 2);  // not Dafeng's
 }
 
-// GSK G78 E (gsk A.6.33, decision 340): every pass screws in, its thread starting E (radius)
+// GSK G78 E (gsk A.6.33, decision 84): every pass screws in, its thread starting E (radius)
 // outside its depth and reaching it at 45 degrees; E0 in a later first block ends it.
 TEST(InterpCycles, GskG78ScrewInStartsEachPassOutsideItsDepth) {
   const std::string second = "G78 X27.6 Z-30 P1200 Q400 F2\n";
@@ -154,7 +154,7 @@ TEST(InterpCycles, GskG78ScrewInStartsEachPassOutsideItsDepth) {
   EXPECT_EQ(threads(second_run), passes);  // E0: the thread alone
 }
 
-// Dafeng G76 PQ (dafeng L1795, decision 341): the spec's example with PQ5. Every 5 mm of
+// Dafeng G76 PQ (dafeng L1795, decision 85): the spec's example with PQ5. Every 5 mm of
 // thread a roughing pass lifts out of its chip to the pass before at 45 degrees and back in;
 // the finishing pass cuts through.
 TEST(InterpCycles, DafengG76PqBreaksTheChipOfRoughingPasses) {

@@ -188,7 +188,7 @@ TEST(InterpSingleCycles, GskG92_1Alarms) {
 }
 
 // Dafeng G92 P, "thread feed start height" (dafeng L2285): the spec's decision D29 ignores it
-// with a warning (decision 343). The cycle is G92's without P, and the warning says where.
+// with a warning (decision 87). The cycle is G92's without P, and the warning says where.
 TEST(InterpSingleCycles, DafengG92PIsIgnoredWithAWarning) {
   Interpreter in(lathe());
   ASSERT_FALSE(in.start("G00 X60 Z5\nG92 X48 Z-30 F2 P1.5\nX47\nM30\n", "test.nc"));

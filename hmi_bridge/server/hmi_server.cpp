@@ -47,7 +47,8 @@ HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machin
       feed_(feed),
       origins_(allowed_origins(config_.listen, config_.extra_origins)) {
   mg_init_library(0);
-  const std::string threads = std::to_string(config_.threads);
+  // Each open WebSocket holds a thread; two stay for the pages' files.
+  const std::string threads = std::to_string(config_.room.seats + 2);
   // The page only talks to its own server, and is never framed by another site's.
   const std::string headers =
       "Content-Security-Policy: default-src 'self'; connect-src 'self'; img-src 'self' data:\r\n"
@@ -55,8 +56,9 @@ HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machin
       "X-Content-Type-Options: nosniff";
   // A write to a client that stopped reading gives up after request_timeout_ms, and the
   // client goes; a browser that only listens answers civetweb's pings, and stays.
+  // Only the relay connects to it (on_connect refuses a socket the relay did not admit).
   const char* options[] = {"listening_ports",
-                           config_.listen.c_str(),
+                           "127.0.0.1:0",
                            "document_root",
                            config_.web_dir.c_str(),
                            "num_threads",
@@ -75,22 +77,31 @@ HmiServer::HmiServer(HmiServerConfig config, const config::MachineConfig& machin
   mg_callbacks callbacks{};
   callbacks.log_message = log_trampoline;
   ctx_ = mg_start(&callbacks, this, options);
-  if (ctx_ == nullptr) {
-    mg_exit_library();
-    throw std::runtime_error("mcnc-hmi: cannot listen on " + config_.listen +
-                             " (address in use, or not an address of this host)");
-  }
   mg_server_port ports[4] = {};
-  if (mg_get_server_ports(ctx_, 4, ports) > 0) {
-    port_ = ports[0].port;
+  if (ctx_ == nullptr || mg_get_server_ports(ctx_, 4, ports) < 1) {
+    if (ctx_ != nullptr) {
+      mg_stop(ctx_);
+    }
+    mg_exit_library();
+    throw std::runtime_error("mcnc-hmi: cannot start its web server on a loopback port");
   }
-  if (port_ != 0 && config_.listen.ends_with(":0")) {
-    // A port chosen by the system: the page's own origin has that port.
-    const std::string host = config_.listen.substr(0, config_.listen.size() - 2);
-    origins_ = allowed_origins(host + ":" + std::to_string(port_), config_.extra_origins);
+  try {
+    relay_ = std::make_unique<ConnectionRelay>(
+        config_.listen, ports[0].port,
+        ConnectionRoom(config_.room, access_.initial_role() == Role::none));
+  } catch (const std::exception&) {
+    mg_stop(ctx_);
+    mg_exit_library();
+    throw;
   }
+  // Set once the relay is there: a socket's handler asks it.
   mg_set_websocket_handler(ctx_, "/ws", connect_trampoline, ready_trampoline, data_trampoline,
                            close_trampoline, this);
+  if (config_.listen.ends_with(":0")) {
+    // A port chosen by the system: the page's own origin has that port.
+    const std::string host = config_.listen.substr(0, config_.listen.size() - 2);
+    origins_ = allowed_origins(host + ":" + std::to_string(relay_->port()), config_.extra_origins);
+  }
   publisher_ = std::thread([this] { publish_loop(); });
 }
 
@@ -100,12 +111,13 @@ HmiServer::~HmiServer() {
     publisher_.join();
   }
   mg_stop(ctx_);
+  relay_.reset();  // after civetweb: its handlers ask the relay
   mg_exit_library();
 }
 
 std::string HmiServer::address() const {
   const std::size_t colon = config_.listen.rfind(':');
-  return "http://" + config_.listen.substr(0, colon) + ":" + std::to_string(port_) + "/";
+  return "http://" + config_.listen.substr(0, colon) + ":" + std::to_string(relay_->port()) + "/";
 }
 
 HmiCounters HmiServer::counters() const {
@@ -114,16 +126,17 @@ HmiCounters HmiServer::counters() const {
 }
 
 int HmiServer::on_connect(const mg_connection* conn) {
+  const mg_request_info* request = mg_get_request_info(conn);
+  if (request == nullptr || !relay_->admitted_socket(request->remote_port)) {
+    spdlog::warn("WebSocket refused: it did not come through the HMI's listen address");
+    return 1;  // the relay keeps the room; nothing else may take a seat
+  }
   const char* origin = mg_get_header(conn, "Origin");
   std::lock_guard<std::mutex> lock(mutex_);
   if (!origin_allowed(origin != nullptr ? origin : "", origins_)) {
     ++counters_.origin_refused;
     spdlog::warn("WebSocket from origin {} refused (allowed: this server's own pages)", origin);
     return 1;  // closed before the handshake
-  }
-  if (clients_.size() + 2 >= static_cast<std::size_t>(config_.threads)) {
-    spdlog::warn("WebSocket refused: {} are open, the most this server keeps", clients_.size());
-    return 1;  // every socket holds a thread: two stay for the page's files
   }
   return 0;
 }
@@ -137,7 +150,8 @@ std::shared_ptr<HmiServer::Client> HmiServer::client_of(const mg_connection* con
 void HmiServer::on_ready(mg_connection* conn) {
   auto client = std::make_shared<Client>();
   client->conn = conn;
-  client->connected = std::chrono::steady_clock::now();
+  const mg_request_info* request = mg_get_request_info(conn);
+  client->relay_port = request != nullptr ? request->remote_port : 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     clients_[conn] = client;
@@ -229,6 +243,7 @@ bool HmiServer::handle_text(Client& client, std::string_view text) {
       send(client, error_message("unknown token"));
       return false;  // closed: every guess costs a new connection
     }
+    relay_->shown(client.relay_port, role);  // a token shown: the relay keeps its seat
     set_role(client, role);
     return true;
   }
@@ -274,16 +289,10 @@ void HmiServer::publish_loop() {
         clients.push_back(client);
       }
     }
-    const auto now = std::chrono::steady_clock::now();
     for (const std::shared_ptr<Client>& client : clients) {
       std::lock_guard<std::mutex> lock(client->write);
       if (client->role == Role::none) {
-        if (client->open && !client->closing && now - client->connected > config_.auth_within) {
-          // No token shown in time: the connection ends when the client answers the close.
-          mg_websocket_write(client->conn, MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE, "", 0);
-          client->closing = true;
-        }
-        continue;
+        continue;  // the relay closes it when no token comes in time
       }
       for (const std::string& m : news) {
         write_locked(*client, m);

@@ -1,11 +1,15 @@
 #pragma once
 // mcnc-hmi's web server (civetweb): the static HMI from a folder, and one WebSocket at /ws that
-// carries the protocol of docs/hmi.md. A connection starts with AccessPolicy's initial role and
-// changes it with an auth message; commands need the operator role; an upgrade from a foreign
-// Origin is refused before the socket opens. Every browser that views gets the state at `rate`
-// per second and the news (alarms, programs) as they come.
+// carries the protocol of docs/hmi.md. Clients reach it only through the ConnectionRelay on the
+// listen address (civetweb itself listens on a loopback port of its own), which keeps room for
+// the operator. A connection starts with AccessPolicy's initial role and changes it with an
+// auth message; commands need the operator role; an upgrade from a foreign Origin is refused
+// before the socket opens. Every browser that views gets the state at `rate` per second and the
+// news (alarms, programs) as they come.
 #include "common/config/machine_config.hpp"
 #include "hmi_bridge/core/access_policy.hpp"
+#include "hmi_bridge/core/connection_room.hpp"
+#include "hmi_bridge/server/connection_relay.hpp"
 #include "hmi_bridge/server/machine_feed.hpp"
 
 #include <atomic>
@@ -28,9 +32,7 @@ struct HmiServerConfig {
   std::string web_dir;                     // the static files
   std::vector<std::string> extra_origins;  // besides the listen address's own
   double rate_hz = 25.0;                   // state messages per second
-  int threads = 16;                        // each open WebSocket holds one; two stay for pages
-  // A socket that has shown no token by then is closed (when viewing needs one).
-  std::chrono::milliseconds auth_within{10000};
+  RoomLimits room;                         // who keeps a connection
 };
 
 struct HmiCounters {
@@ -68,8 +70,7 @@ class HmiServer {
     std::mutex write;
     bool open = true;        // under write
     Role role = Role::none;  // under write
-    bool closing = false;    // under write: asked to close (no token in time)
-    std::chrono::steady_clock::time_point connected;
+    int relay_port = 0;      // the relay's end of it: how the relay knows it
   };
   [[nodiscard]] std::shared_ptr<Client> client_of(const mg_connection* conn) const;
   // Writes `text` unless the client closed; the caller holds client.write.
@@ -87,7 +88,7 @@ class HmiServer {
   MachineFeed& feed_;
   std::vector<std::string> origins_;
   mg_context* ctx_ = nullptr;
-  int port_ = 0;
+  std::unique_ptr<ConnectionRelay> relay_;
   mutable std::mutex mutex_;  // clients_ and counters_
   std::map<const mg_connection*, std::shared_ptr<Client>> clients_;
   HmiCounters counters_;

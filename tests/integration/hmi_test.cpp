@@ -1,10 +1,17 @@
-// mcnc-hmi on a running machine: who may command it, what it does with garbage, and (with
-// Debian's Chromium driven by playwright-core) an operator running the twin-turret part
-// transfer from the page.
+// mcnc-hmi on a running machine: who may command it, what it does with garbage, that idle and
+// half-open connections and oversized frames do not keep the operator out, and (with Debian's
+// Chromium driven by playwright-core) an operator running the twin-turret part transfer from
+// the page.
 #include "harness.hpp"
 #include "ws_client.hpp"
 
 #include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -104,6 +111,117 @@ std::string ch1_state(WsClient& client) {
 
 constexpr const char* kViewerToken = "viewer-token-for-the-tests";
 
+// `op`, connected, shows the operator token and starts CH1's program (waiting for its cycle
+// start): the start is answered ok.
+void operator_starts_ch1(WsClient& op, const HmiAddress& hmi) {
+  op.send(R"({"type":"auth","token":")" + hmi.token + "\"}");
+  ASSERT_TRUE(shows_role(op, "operator"));
+  ASSERT_TRUE(eventually([&] { return ch1_state(op) == "idle"; }, 60s));
+  op.send(command(1, "cycle_start", "CH1"));
+  const nlohmann::json ok = op.wait_for(reply_to(1), 5s);
+  ASSERT_FALSE(ok.is_null());
+  EXPECT_EQ(ok["ok"], true) << ok;
+}
+
+// The run of xz_move.nc ended well, started once by the operator.
+void ch1_ran_to_its_end_once_started(Background& launch, const TestMachine& machine) {
+  EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
+  const auto trace = read_trace(machine.file("trace.jsonl"));
+  const auto ops = events(trace, "operator", "CH1");
+  ASSERT_EQ(ops.size(), 1U);
+  EXPECT_EQ(ops[0]["action"], "cycle_start");
+  ASSERT_FALSE(trace.empty());
+  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+}
+
+// A raw TCP connection to the HMI from `source`, an address of the loopback net (the server sees
+// each such address as a peer of its own); -1 when it cannot connect.
+int raw_connect(int port, const std::string& source) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in from{};
+  from.sin_family = AF_INET;
+  ::inet_pton(AF_INET, source.c_str(), &from.sin_addr);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&from), sizeof from) != 0 ||
+      ::connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  const timeval two_seconds{2, 0};
+  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &two_seconds, sizeof two_seconds);
+  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &two_seconds, sizeof two_seconds);
+  return fd;
+}
+
+// Asks for the WebSocket on `fd` and reads the answer's head: true when it is switched.
+bool raw_upgrade(int fd) {
+  const std::string request =
+      "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+  if (::send(fd, request.data(), request.size(), MSG_NOSIGNAL) !=
+      static_cast<ssize_t>(request.size())) {
+    return false;
+  }
+  std::string answer;
+  char c = 0;
+  while (answer.find("\r\n\r\n") == std::string::npos && ::recv(fd, &c, 1, 0) == 1) {
+    answer += c;
+  }
+  return answer.starts_with("HTTP/1.1 101");
+}
+
+// Whether the server ends `fd` (end of stream, or reset) within `within`; what it sends before is
+// read and dropped.
+bool ended_by_server(int fd, std::chrono::milliseconds within) {
+  const auto until = std::chrono::steady_clock::now() + within;
+  std::array<char, 65536> buffer{};
+  while (std::chrono::steady_clock::now() < until) {
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 100) == 1) {
+      const ssize_t n = ::recv(fd, buffer.data(), buffer.size(), MSG_DONTWAIT);
+      if (n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK)) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The largest resident set `pid` has had, in bytes (VmHWM of /proc/PID/status).
+std::uint64_t peak_resident_bytes(pid_t pid) {
+  const std::string status = slurp("/proc/" + std::to_string(pid) + "/status");
+  std::smatch m;
+  if (!std::regex_search(status, m, std::regex(R"(VmHWM:\s+([0-9]+) kB)"))) {
+    return 0;
+  }
+  return std::stoull(m[1]) * 1024;
+}
+
+// The pid of the mcnc-hmi that runs `machine`, or -1.
+pid_t hmi_pid(const TestMachine& machine) {
+  for (const pid_t pid : pids_with_arg(machine.path())) {
+    if (slurp("/proc/" + std::to_string(pid) + "/comm").starts_with("mcnc-hmi")) {
+      return pid;
+    }
+  }
+  return -1;
+}
+
+// Closes the descriptors it holds when it goes.
+struct RawSockets {
+  std::vector<int> fds;
+  ~RawSockets() {
+    for (const int fd : fds) {
+      if (fd >= 0) {
+        ::close(fd);
+      }
+    }
+  }
+};
+
 }  // namespace
 
 TEST(Hmi, CommandsWithoutTheOperatorTokenOrFromAForeignPageChangeNothing) {
@@ -199,20 +317,8 @@ TEST(Hmi, TenThousandMalformedMessagesLeaveItServingAndTheOperatorStartsTheProgr
   // Still serving: the operator connects and starts the program; it runs to its end.
   WsClient op("127.0.0.1", hmi.port, "http://localhost:" + std::to_string(hmi.port));
   ASSERT_TRUE(op.connected()) << op.error();
-  op.send(R"({"type":"auth","token":")" + hmi.token + "\"}");
-  ASSERT_TRUE(shows_role(op, "operator"));
-  ASSERT_TRUE(eventually([&] { return ch1_state(op) == "idle"; }, 60s));
-  op.send(command(1, "cycle_start", "CH1"));
-  const nlohmann::json ok = op.wait_for(reply_to(1), 5s);
-  ASSERT_FALSE(ok.is_null());
-  EXPECT_EQ(ok["ok"], true) << ok;
-  EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
-  const auto trace = read_trace(machine.file("trace.jsonl"));
-  const auto ops = events(trace, "operator", "CH1");
-  ASSERT_EQ(ops.size(), 1U);
-  EXPECT_EQ(ops[0]["action"], "cycle_start");
-  ASSERT_FALSE(trace.empty());
-  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+  ASSERT_NO_FATAL_FAILURE(operator_starts_ch1(op, hmi));
+  ASSERT_NO_FATAL_FAILURE(ch1_ran_to_its_end_once_started(launch, machine));
 }
 
 TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {
@@ -367,4 +473,95 @@ TEST(Hmi, AnOperatorRunsMdiBlocksThenSelectsAnotherProgramAndRunsIt) {
   EXPECT_TRUE(mdi_end_seen);
   ASSERT_FALSE(trace.empty());
   EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
+}
+
+TEST(Hmi, FiftyIdleAndHalfOpenConnectionsDoNotKeepTheOperatorOut) {
+  TestMachine machine("small_lathe.yaml", 187);
+  Background launch(hmi_run(machine, {"CH1=" + source("launch/programs/xz_move.nc")}), -1,
+                    machine.file("launch"));
+  const HmiAddress hmi = wait_for_hmi(machine.file("launch.out"));
+  ASSERT_NE(hmi.port, 0) << slurp(machine.file("launch.out"));
+
+  // 12 sockets that never show a token, each from an address of its own: viewers (no viewer
+  // token is configured), on every seat that viewers may take.
+  RawSockets viewers;
+  for (int i = 1; i <= 12; ++i) {
+    viewers.fds.push_back(raw_connect(hmi.port, "127.0.1." + std::to_string(i)));
+    ASSERT_TRUE(raw_upgrade(viewers.fds.back())) << i;
+  }
+  // 13 more from the operator's own address, and 25 that connect and say nothing.
+  RawSockets idle;
+  for (int i = 1; i <= 13; ++i) {
+    idle.fds.push_back(raw_connect(hmi.port, "127.0.0.1"));
+    raw_upgrade(idle.fds.back());
+  }
+  RawSockets half_open;
+  for (int i = 1; i <= 25; ++i) {
+    half_open.fds.push_back(raw_connect(hmi.port, "127.0.2." + std::to_string(i)));
+    ASSERT_GE(half_open.fds.back(), 0) << i;
+  }
+
+  // The operator gets in while they are held, and is obeyed.
+  WsClient op("127.0.0.1", hmi.port, "");
+  ASSERT_TRUE(op.connected()) << op.error();
+  ASSERT_NO_FATAL_FAILURE(operator_starts_ch1(op, hmi));
+
+  // The server ended the half-open connections and the sockets beyond the viewers' seats.
+  for (std::size_t i = 0; i < half_open.fds.size(); ++i) {
+    EXPECT_TRUE(ended_by_server(half_open.fds[i], 10s)) << "half-open " << i;
+  }
+  for (std::size_t i = 0; i < idle.fds.size(); ++i) {
+    EXPECT_TRUE(ended_by_server(idle.fds[i], 10s)) << "idle socket " << i;
+  }
+
+  ASSERT_NO_FATAL_FAILURE(ch1_ran_to_its_end_once_started(launch, machine));
+}
+
+TEST(Hmi, AGigabyteFrameAnnouncedWithoutATokenIsRefusedBeforeItIsRead) {
+  TestMachine machine("small_lathe.yaml", 196);
+  std::ofstream(machine.path(), std::ios::app)
+      << "\nhmi:\n  viewer_token: " << kViewerToken << "\n";
+  Background launch(hmi_run(machine, {"CH1=" + source("launch/programs/xz_move.nc")}), -1,
+                    machine.file("launch"));
+  const HmiAddress hmi = wait_for_hmi(machine.file("launch.out"));
+  ASSERT_NE(hmi.port, 0) << slurp(machine.file("launch.out"));
+  const pid_t server = hmi_pid(machine);
+  ASSERT_GT(server, 0);
+  std::cout << "mcnc-hmi's peak resident set before: " << peak_resident_bytes(server) / 1024
+            << " kB\n";
+
+  RawSockets raw;
+  raw.fds.push_back(raw_connect(hmi.port, "127.0.0.1"));
+  ASSERT_TRUE(raw_upgrade(raw.fds[0]));
+  // A masked text frame announcing 1 GiB, then its payload for as long as the server takes it.
+  std::string header = "\x81\xff";
+  for (int shift = 56; shift >= 0; shift -= 8) {
+    header += static_cast<char>(((1ULL << 30) >> shift) & 0xFF);
+  }
+  header += "\x01\x02\x03\x04";
+  ASSERT_EQ(::send(raw.fds[0], header.data(), header.size(), MSG_NOSIGNAL),
+            static_cast<ssize_t>(header.size()));
+  const std::string mebibyte(1 << 20, 'x');
+  std::uint64_t sent = 0;
+  constexpr std::uint64_t kOffered = 160ULL << 20;
+  while (sent < kOffered) {
+    const ssize_t n = ::send(raw.fds[0], mebibyte.data(), mebibyte.size(), MSG_NOSIGNAL);
+    if (n <= 0) {
+      break;  // the server closed it (or stopped reading for 2 s)
+    }
+    sent += static_cast<std::uint64_t>(n);
+  }
+  EXPECT_LT(sent, kOffered) << "the server read on";
+  EXPECT_TRUE(ended_by_server(raw.fds[0], 5s));
+  const std::uint64_t peak = peak_resident_bytes(server);
+  EXPECT_GT(peak, 0U);
+  EXPECT_LT(peak, 100ULL << 20) << "mcnc-hmi's peak resident set " << peak / 1024 << " kB";
+
+  // Still serving: the operator gets in.
+  WsClient op("127.0.0.1", hmi.port, "");
+  ASSERT_TRUE(op.connected()) << op.error();
+  op.send(R"({"type":"auth","token":")" + hmi.token + "\"}");
+  EXPECT_TRUE(shows_role(op, "operator"));
+  launch.kill(SIGINT);
+  launch.wait(60s);
 }

@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
     node.announce(PHASE_STARTING);
 
     // Lockstep inputs: every channel's status N-1 with the events it announces (the requests),
-    // and the feedback N-1 of the spindles an interlock looks at.
+    // and the feedback N-1 of the axes it watches (spindles, the axes of position inputs).
     plc::PlcInputs inputs(node, machine);
     plc::PlcOutputs outputs(node, machine, tracer);
 
@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     const bool lockstep = loop.lockstep();
 
     plc::MachinePlc plc(machine.plc, machine.cycle_us);
-    std::vector<plc::SpindleView> views(inputs.spindles().size());
+    std::vector<plc::AxisView> views(inputs.axes().size());
     for (std::uint64_t cycle = 0; loop.next(
              cycle, [&](std::uint64_t c) { return inputs.may_run(c); }, [] { return false; });
          ++cycle) {

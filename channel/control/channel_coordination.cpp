@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <utility>
 #include <type_traits>
+#include <utility>
 
 namespace mcnc::channel {
 
@@ -141,7 +141,8 @@ void ChannelCoordination::end_cycle() noexcept {
   }
   // G31: the probes on the block's input stay armed while it arms and moves.
   const auto* skip = std::get_if<SkipStop>(&held_);
-  if (skip != nullptr && skip_.phase() != coordination::SkipPhase::stopping && in_run()) {
+  if (skip != nullptr && skip->command.skip_signal == 0 &&
+      skip_.phase() != coordination::SkipPhase::stopping && in_run()) {
     const std::uint32_t probes = probe_axes(skip->command.input);
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
       if (((probes >> i) & 1U) != 0) {
@@ -184,7 +185,11 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   } else if (const auto* s = std::get_if<ModeStop>(&held_)) {
     spindle_mode_.begin(s->position);
   } else if (const auto* s = std::get_if<SkipStop>(&held_)) {
-    skip_.begin(s->command.input);
+    if (s->command.skip_signal != 0) {
+      skip_.begin_signal(s->command.skip_signal);
+    } else {
+      skip_.begin(s->command.input);
+    }
   }
   return holds();
 }
@@ -284,9 +289,25 @@ std::uint32_t ChannelCoordination::probe_axes(int input) const noexcept {
   return probes;
 }
 
+bool ChannelCoordination::skip_signal_on(int signal) const noexcept {
+  const int bit = setup_.skip_signals[static_cast<std::size_t>(signal - 1)];
+  return bit >= 0 && bit < 64 && ((plc_inputs_ >> bit) & 1U) != 0;
+}
+
+bool ChannelCoordination::skip_signal_gone(int signal) const noexcept {
+  return aux_.plc_gone() || setup_.skip_signals[static_cast<std::size_t>(signal - 1)] < 0;
+}
+
 void ChannelCoordination::watch_skip(std::span<const AxisFeedbackView> feedback) noexcept {
   const auto* skip = std::get_if<SkipStop>(&held_);
-  if (skip != nullptr && skip_.watch(feedback, probe_axes(skip->command.input))) {
+  if (skip == nullptr) {
+    return;
+  }
+  const int signal = skip->command.skip_signal;
+  const bool stop =
+      signal != 0 ? skip_.watch_signal(feedback, skip_signal_on(signal), skip_signal_gone(signal))
+                  : skip_.watch(feedback, probe_axes(skip->command.input));
+  if (stop) {
     host_.stop_move();  // and drop the rest of the move
   }
 }
@@ -512,7 +533,9 @@ void ChannelCoordination::run(ModeStop& b, std::uint64_t /*cycle*/,
 void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
                               std::span<const AxisFeedbackView> feedback) noexcept {
   if (skip_.phase() == coordination::SkipPhase::arming) {
-    switch (skip_.arm(feedback, probe_axes(b.command.input))) {
+    const int signal = b.command.skip_signal;
+    switch (signal != 0 ? skip_.arm_signal(skip_signal_on(signal), skip_signal_gone(signal))
+                        : skip_.arm(feedback, probe_axes(b.command.input))) {
       case coordination::SkipArming::waiting:
         return;
       case coordination::SkipArming::alarm:
@@ -526,6 +549,10 @@ void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
     } else {
       held_ = std::monostate{};  // the planner refused it: its alarm (source_alarm_) comes next
     }
+    return;
+  }
+  if (skip_.lost()) {  // the PLC went away under a G31 P: stopped, with its alarm
+    raise(skip_.alarm(), b.command.line);
     return;
   }
   // The move ended (its end reached without the signal, or stopped at it) and its block too.

@@ -141,6 +141,9 @@ class ChannelCoordination {
   }
   // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
   [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
+  // G31 P: skip signal `signal` (1-8) on in the PLC's status; the PLC gone (or without it).
+  [[nodiscard]] bool skip_signal_on(int signal) const noexcept;
+  [[nodiscard]] bool skip_signal_gone(int signal) const noexcept;
   // Alarm (1231, or 1261 for an axis that follows) at the first queued block that moves slot
   // `s`, which the channel no longer commands: "<address> <why>".
   void raise_if_queued_moves(std::size_t s, const char* why) noexcept;

@@ -6,6 +6,7 @@
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coupling_request.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -50,6 +51,8 @@ struct ChannelSetup {
   std::uint64_t probe_arm_cycles = 200;
   // G04 I: per input port (the index), the bit of the PLC's inputs it reads (-1: none).
   std::vector<int> input_ports{};
+  // G31 P1-P8: per skip signal P-1 (G0014.0-7), the bit of the PLC's inputs it is (-1: none).
+  std::array<int, 8> skip_signals{-1, -1, -1, -1, -1, -1, -1, -1};
   // G04 PS: reached within this many rpm (param 1057); an alarm after this long (param 1059).
   double speed_arrival_rpm = 10.0;
   double speed_arrival_timeout_s = 10.0;

@@ -6,10 +6,53 @@ namespace mcnc::coordination {
 
 void SkipProbe::begin(int input) noexcept {
   input_ = input;
+  signal_ = 0;
   phase_ = SkipPhase::arming;
   waited_ = 0;
   skipped_ = false;
+  lost_ = false;
   skip_at_ = {};
+}
+
+void SkipProbe::begin_signal(int signal) noexcept {
+  begin(0);
+  signal_ = signal;
+}
+
+SkipArming SkipProbe::arm_signal(bool on, bool gone) noexcept {
+  if (gone) {
+    alarm_.set(interp::alarm::kSkipInput, "G31 P%d: the PLC node is gone", signal_);
+    return SkipArming::alarm;
+  }
+  if (!on) {
+    return SkipArming::armed;
+  }
+  if (++waited_ > arm_cycles_) {
+    alarm_.set(kAlarmProbeNotArmed, "G31 P%d: the PLC's skip signal G0014.%d is on before the move",
+               signal_, signal_ - 1);
+    return SkipArming::alarm;
+  }
+  return SkipArming::waiting;
+}
+
+bool SkipProbe::watch_signal(std::span<const AxisFeedbackView> feedback, bool on,
+                             bool gone) noexcept {
+  if (phase_ != SkipPhase::moving || !(on || gone)) {
+    return false;
+  }
+  // Where every axis stood when the signal was seen: the signal crossed the PLC's cycle and
+  // DDS on its way, so this is later than where it came by that travel (decision 360).
+  for (std::size_t j = 0; j < axis_count_ && j < feedback.size() && j < kMaxAxes; ++j) {
+    skip_at_[j] = feedback[j].act;
+  }
+  if (gone) {
+    lost_ = true;
+    alarm_.set(interp::alarm::kSkipInput, "G31 P%d: the PLC node is gone", signal_);
+  } else {
+    skipped_ = true;
+  }
+  phase_ = SkipPhase::stopping;
+  return true;
 }
 
 SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,

@@ -3,8 +3,11 @@
 // probe on the block's skip input reports itself armed (an alarm if none is on that input, or
 // one does not arm in time), then runs; the first probe that latches stops it, and the skip
 // position is where that drive latched, the other axes where the same feedback shows them. A
-// move that ends without the signal ends where it was programmed to. Pure: one call per cycle
-// with the feedback of that cycle; no allocation, nothing throws.
+// move that ends without the signal ends where it was programmed to.
+// G31 P1-P8 skips on a PLC signal (G0014.0-7) instead: the move starts once the signal is seen
+// off (a signal already on would skip where the move starts), and the skip position is where
+// the axes' feedback stood in the cycle the signal is seen on, not a drive's latch (decision
+// 360). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
@@ -36,6 +39,15 @@ class SkipProbe {
   // Moving, one cycle: true when a probe latched now (the move must stop at once).
   bool watch(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
 
+  // G31 P `signal` (1-8) reached the front.
+  void begin_signal(int signal) noexcept;
+  // Arming on a PLC signal, one cycle: `on` the signal as the PLC's status shows it, `gone` the
+  // PLC node is gone.
+  SkipArming arm_signal(bool on, bool gone) noexcept;
+  // Moving on a PLC signal, one cycle: true when the signal is on now (the move must stop at
+  // once); `gone` stops it too, with the alarm.
+  bool watch_signal(std::span<const AxisFeedbackView> feedback, bool on, bool gone) noexcept;
+
   [[nodiscard]] SkipPhase phase() const noexcept { return phase_; }
   [[nodiscard]] bool skipped() const noexcept { return skipped_; }
   // Where the skip happened, or `end` (where the move ended) without the signal.
@@ -43,14 +55,18 @@ class SkipProbe {
     return skipped_ ? skip_at_ : end;
   }
   [[nodiscard]] const CoordinationAlarm& alarm() const noexcept { return alarm_; }
+  // The PLC node went away during a G31 P move: the move stopped and this alarm is to raise.
+  [[nodiscard]] bool lost() const noexcept { return lost_; }
 
  private:
   std::size_t axis_count_;
   std::uint64_t arm_cycles_;
   int input_ = 0;
+  int signal_ = 0;  // G31 P: the PLC's skip signal (1-8); 0: touch probes
   SkipPhase phase_ = SkipPhase::arming;
   std::uint64_t waited_ = 0;  // cycles arming
   bool skipped_ = false;
+  bool lost_ = false;
   Position skip_at_{};
   CoordinationAlarm alarm_{};
 };

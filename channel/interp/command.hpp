@@ -135,6 +135,18 @@ struct Command {
   // linear with skip (G31): the move ends where skip input `input` goes on (input_on) or off;
   // the channel then hands the skip position back (CommandSource::skip_result).
   bool skip = false;
+  // G31 P1-P8: the skip signal is the PLC's G0014.(skip_signal - 1) going on, not a probe
+  // input (`input` is then 0); 0: a touch probe's input.
+  int skip_signal = 0;
+  // G31.8 (multi_skip): the move goes on past each signal, up to max_signals of them.
+  bool multi_skip = false;
+  int max_signals = 0;
+  // G160 (torque_skip): the axis's torque limited to torque_limit percent of the motor's rated
+  // torque (-1: the limit cancelled, no skip); it skips when the torque reaches it and the
+  // following error exceeds `deviation` (mm, physical).
+  bool torque_skip = false;
+  double torque_limit = 0.0;
+  double deviation = 0.0;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

@@ -188,6 +188,9 @@ GCodeInfo common_code(int code10) {
     case 310:
       return {GFunction::skip, 0};
     case 318:
+      return {GFunction::multi_skip, 0};
+    case 1600:
+      return {GFunction::torque_skip, 0};
     case 502:
     case 512:
     case 508:
@@ -196,7 +199,6 @@ GCodeInfo common_code(int code10) {
     case 804:
     case 811:
     case 814:
-    case 1600:
       return not_yet(kOther);
     default:
       return {};

@@ -31,6 +31,8 @@ enum class GFunction : std::uint8_t {
   normal_left,               // G41.1
   normal_right,              // G42.1
   skip,                      // G31
+  multi_skip,                // G31.8
+  torque_skip,               // G160
   plane_xy,
   plane_zx,
   plane_yz,

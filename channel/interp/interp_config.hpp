@@ -23,6 +23,8 @@ enum class Dialect : std::uint8_t { dafeng, gsk, fanuc_mill };
 // Numbers without a decimal point: whole units (calculator type, spec D1) or least increments.
 enum class DecimalPoint : std::uint8_t { calculator, increment };
 
+// G31.8: the most signals one block stores (its Q; without Q, as many; decision 361).
+inline constexpr int kMaxMultiSkipSignals = 100;
 inline constexpr int kMaxToolOffsets = 64;                     // offset numbers 1-64 (spec L3626)
 inline constexpr int kExtendedWorkSystems = 99;                // G54.1 P1-P99
 inline constexpr int kWorkSystems = 6 + kExtendedWorkSystems;  // G54-G59, then P1-P99
@@ -113,6 +115,9 @@ struct InterpreterConfig {
   bool plc = false;       // a PLC node runs M codes and T codes (else they are not executable)
   // G04 I: the input ports of the PLC's inputs (`port` in plc.signals); others are an alarm.
   std::vector<int> input_ports{};
+  // G31 P1-P8: the PLC has an input for skip signal P (G0014.(P-1), `skip` in plc.signals);
+  // others are an alarm.
+  std::array<bool, 8> skip_signals{};
   std::vector<AxisConfig> axes{AxisConfig{'X', true}, AxisConfig{'Z', false}};
   DecimalPoint decimal_point = DecimalPoint::calculator;
   double least_increment = 0.001;                   // mm (param 0013)
@@ -158,6 +163,10 @@ struct InterpreterConfig {
   // G31 without L, K or I skips on this input going on (param 5510; 0: such a G31 is alarm
   // 1157).
   int skip_input = 0;
+  // G160 without P / Q: the torque limit in percent of the rated torque (param 5515; 0: such a
+  // G160 is alarm 1152) and the following error it skips beyond, mm (param 5516).
+  double torque_skip_percent = 0.0;
+  double torque_skip_deviation = 0.0;
   // Inclined-axis control (spec dafeng §2.9, L4653-4767): param 5680.1 on when both axes are
   // named; 5691 the inclined axis, 5692 the orthogonal axis it is compensated on, 5690 the angle
   // in degrees (|angle| < 90). The program works in the Cartesian coordinates; every move leaves

@@ -44,6 +44,9 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
 // A G31's input is the input of a drive's touch probe of the channel (touch_probe in the machine
 // file).
 bool skip_wired(const Command& c, const InterpreterConfig& config) {
+  if (c.skip_signal != 0) {  // G31 P: an input of the PLC
+    return config.skip_signals[static_cast<std::size_t>(c.skip_signal - 1)];
+  }
   for (const AxisConfig& a : config.axes) {
     if (a.probe_input == c.input) {
       return true;
@@ -55,6 +58,9 @@ bool skip_wired(const Command& c, const InterpreterConfig& config) {
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
+  if (c.multi_skip || c.torque_skip) {
+    return alarm::kNotInThisVersion;
+  }
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
   }
@@ -321,9 +327,21 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
           std::to_string(c.spindle) + " whose actual speed it reads (spindles in the machine file)";
     return false;
   }
+  if (c.multi_skip || c.torque_skip) {
+    why = c.multi_skip ? "G31.8 (the multi-skip) needs the touch probe's continuous latching, not "
+                         "in this version"
+                       : "G160 (the torque-limited skip) needs the drive's torque limit, not in "
+                         "this version";
+    return false;
+  }
   if (c.skip && !skip_wired(c, config)) {
-    why = "G31: no touch probe of this channel's axes is wired to input " +
-          std::to_string(c.input) + " (touch_probe of an axis in the machine file)";
+    why = c.skip_signal != 0
+              ? "G31 P" + std::to_string(c.skip_signal) +
+                    ": the machine's PLC has no input for G0014." +
+                    std::to_string(c.skip_signal - 1) + " (skip " + std::to_string(c.skip_signal) +
+                    " of an input in plc.signals)"
+              : "G31: no touch probe of this channel's axes is wired to input " +
+                    std::to_string(c.input) + " (touch_probe of an axis in the machine file)";
     return false;
   }
   if (const char* missing = what_is_missing(c.op, c.feed_mode, c.in_revs)) {

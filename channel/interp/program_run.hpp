@@ -222,8 +222,23 @@ class ProgramRun final : public macro::VariableProvider {
   // ---- G40.1 / G41.1 / G42.1 normal direction control (program_run_normal.cpp)
   bool run_normal_direction(GFunction f, int column);
   bool run_skip(int column);
+  bool run_multi_skip(int column);   // G31.8
+  bool run_torque_skip(int column);  // G160
+  // What G31, G31.8 and G160 share (`code` names the block's code in an alarm): not in polar or
+  // cylindrical interpolation nor under G41/G42; the input of L, K, I or param 5510; the
+  // variable a word names (0 without the word); the feed move (`one_axis`: exactly one axis
+  // named), a read-ahead barrier with exact stop (nullptr after an alarm).
+  bool skip_move_allowed(const char* code, int column);
+  bool read_skip_input(const char* code, int column, int& input, bool& on);
+  bool read_result_variable(char letter, const char* code, const char* what,
+                            std::int64_t& variable);
+  Command* emit_skip_move(const char* code, bool one_axis, int column);
   // #5061.. from `skip_at` (machine) and the R variable of the last G31.
   void record_skip(bool skipped, const AxisVector& skip_at);
+  // G31.8: the machine positions of its axis at each signal into #P.., their count into #R.
+  bool record_multi_skip(std::span<const double> at, int column);
+  // An axis's machine position in programmed units, as #5021 reads it (X as a diameter).
+  double machine_reading(std::size_t axis, double physical) const;
   // The block's moves (out_) with the rotary axis turned normal to the path: a rotation of that
   // axis alone before each cutting move that starts in another direction, an arc turning it as
   // it goes (false after an alarm).
@@ -596,6 +611,11 @@ class ProgramRun final : public macro::VariableProvider {
   AxisVector skip_position_{};
   bool skip_known_ = false;
   std::int64_t skip_flag_variable_ = 0;
+  // G31.8: the first variable of the positions (P), that of the count (R, 0: none) and the axis
+  // whose positions they are.
+  std::int64_t multi_skip_first_ = 0;
+  std::int64_t multi_skip_count_variable_ = 0;
+  int multi_skip_axis_ = 0;
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

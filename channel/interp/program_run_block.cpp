@@ -122,6 +122,8 @@ bool takes_p(GFunction f) {
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
     case GFunction::skip:
+    case GFunction::multi_skip:
+    case GFunction::torque_skip:
       return true;
     default:
       return false;
@@ -1426,6 +1428,10 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
       return run_normal_direction(f, column);
     case GFunction::skip:
       return run_skip(column);
+    case GFunction::multi_skip:
+      return run_multi_skip(column);
+    case GFunction::torque_skip:
+      return run_torque_skip(column);
     case GFunction::reference_return:
     case GFunction::reference_2_4:
       return run_reference_return(f, column);

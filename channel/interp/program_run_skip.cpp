@@ -1,102 +1,292 @@
 // G31 skip (spec dafeng L5210-5316, gsk A.6.20): a feed move that ends where a skip input
 // switches. The interpreter emits the move and stops reading ahead there (a barrier, L6907);
 // the channel runs it, stops it at the signal and tells where (Interpreter::skip_result).
+// G31.8 (L5317-5354) stores where each of several signals came; G160 (L5355-5428) skips where
+// the axis, its torque limited, is held back.
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
 #include <cmath>
+#include <span>
+#include <string>
 
 namespace mcnc::interp {
 
-bool ProgramRun::run_skip(int column) {
+bool ProgramRun::skip_move_allowed(const char* code, int column) {
   if (interpolation_mode()) {
-    return fail(alarm::kInterpolationModeRestriction,
-                "G31 is not a move of polar or cylindrical interpolation (spec L612-849)", column);
+    return fail(
+        alarm::kInterpolationModeRestriction,
+        std::string(code) + " is not a move of polar or cylindrical interpolation (spec L612-849)",
+        column);
   }
   if (compensation_ != Command::Compensation::off) {
-    return fail(alarm::kWordNotAllowed,
-                "G31 with nose radius compensation: cancel it (G40) first (gsk A.6.20)", column);
+    return fail(
+        alarm::kWordNotAllowed,
+        std::string(code) + " with nose radius compensation: cancel it (G40) first (gsk A.6.20)",
+        column);
   }
-  // The input: L (on) / K (off) / I (signed) name its port, else param 5510 (on); P names a
-  // PLC signal (P1-P8) or the torque (P98/P99).
+  return true;
+}
+
+bool ProgramRun::read_skip_input(const char* code, int column, int& input, bool& on) {
+  // L (on) / K (off) / I (signed) name the input's port, else param 5510 (on).
   BlockWord* l = word('L');
   BlockWord* k = word('K');
   BlockWord* i = word('I');
-  BlockWord* p = word('P');
-  const int ways = (l != nullptr) + (k != nullptr) + (i != nullptr) + (p != nullptr);
-  if (ways > 1) {
-    BlockWord* second = p != nullptr ? p : (i != nullptr ? i : k);
-    return fail(alarm::kWordNotAllowed, "G31 takes one of L, K, I and P", second->column);
-  }
-  if (p != nullptr) {
-    p->used = true;
-    const bool torque = p->value == 98.0 || p->value == 99.0;
-    if (!torque && !(p->value >= 1.0 && p->value <= 8.0 && p->value == std::floor(p->value))) {
-      return fail(alarm::kBadWordValue, "G31 P must be 1-8, 98 or 99", p->column);
-    }
-    return fail(alarm::kNotInThisVersion,
-                torque ? "G31 P98/P99 (the torque skip) needs the drive's torque limit, not in "
-                         "this version"
-                       : "G31 P1-P8 (the PLC's skip signals G0014) is not in this version: wire "
-                         "the probe to a drive and name its input with L, K or I",
-                p->column);
-  }
-  int input = config_.skip_input;
-  bool on = true;
+  input = config_.skip_input;
+  on = true;
   if (BlockWord* w = l != nullptr ? l : (k != nullptr ? k : i)) {
     w->used = true;
     const double v = w == i ? std::fabs(w->value) : w->value;
     if (!(v >= 1.0 && v <= 99.0 && v == std::floor(v))) {
       return fail(alarm::kBadWordValue,
-                  std::string("G31 ") + w->address.first + " must name an input 1-99", w->column);
+                  std::string(code) + " " + w->address.first + " must name an input 1-99",
+                  w->column);
     }
     input = static_cast<int>(v);
     on = w == l || (w == i && w->value > 0.0);
   } else if (input == 0) {
     return fail(alarm::kSkipInput,
-                "G31 without L, K or I skips on the input of param 5510, which is 0 "
-                "(skip_input in the machine file)",
+                std::string(code) +
+                    " without L, K or I skips on the input of param 5510, which is 0 "
+                    "(skip_input in the machine file)",
                 column);
   }
-  std::int64_t flag = 0;
-  if (BlockWord* r = word('R')) {
-    r->used = true;
-    if (!(r->value >= 1.0 && r->value == std::floor(r->value))) {
-      return fail(alarm::kBadWordValue, "G31 R names the variable that receives the result",
-                  r->column);
+  return true;
+}
+
+bool ProgramRun::read_result_variable(char letter, const char* code, const char* what,
+                                      std::int64_t& variable) {
+  variable = 0;
+  if (BlockWord* w = word(letter)) {
+    w->used = true;
+    if (!(w->value >= 1.0 && w->value == std::floor(w->value))) {
+      return fail(alarm::kBadWordValue,
+                  std::string(code) + " " + letter + " names the variable that receives " + what,
+                  w->column);
     }
-    flag = static_cast<std::int64_t>(r->value);
+    variable = static_cast<std::int64_t>(w->value);
   }
+  return true;
+}
+
+Command* ProgramRun::emit_skip_move(const char* code, bool one_axis, int column) {
   AxisVector target{};
   std::array<bool, kMaxChannelAxes> given{};
   if (!read_axis_targets(target, given, false)) {
-    return false;
+    return nullptr;
   }
   bool any = false;
+  int named = 0;
   for (std::size_t a = 0; a < config_.axes.size(); ++a) {
     any = any || (given[a] && target[a] != machine_[a]);
+    named += given[a] ? 1 : 0;
+  }
+  if (one_axis && named > 1) {
+    fail(alarm::kWordNotAllowed, std::string(code) + " takes exactly one axis", column);
+    return nullptr;
   }
   if (!any) {
-    return fail(alarm::kWordNotAllowed, "G31 needs an end point to move to", column);
+    fail(alarm::kWordNotAllowed, std::string(code) + " needs an end point to move to", column);
+    return nullptr;
   }
   if (!check_feed(column)) {
-    return false;
+    return nullptr;
   }
   Command& c = emit(Op::linear);
   c.to = target;
   c.feed = feed_;
   c.feed_mode = feed_mode_;
   c.exact_stop = true;
-  c.skip = true;
-  c.input = input;
-  c.input_on = on;
-  block_barrier_ = true;
+  block_barrier_ = true;  // the next block needs where it ended (L6907)
   machine_ = target;
   block_moved_ = true;
+  return &c;
+}
+
+bool ProgramRun::run_skip(int column) {
+  if (!skip_move_allowed("G31", column)) {
+    return false;
+  }
+  // The input: L, K, I or param 5510; P names a PLC signal (P1-P8: G0014.0-7, going on, L5233)
+  // or the torque (P98/P99).
+  BlockWord* p = word('P');
+  const int ways =
+      (word('L') != nullptr) + (word('K') != nullptr) + (word('I') != nullptr) + (p != nullptr);
+  if (ways > 1) {
+    BlockWord* second = p != nullptr ? p : (word('I') != nullptr ? word('I') : word('K'));
+    return fail(alarm::kWordNotAllowed, "G31 takes one of L, K, I and P", second->column);
+  }
+  int signal = 0;
+  if (p != nullptr) {
+    p->used = true;
+    const bool torque = p->value == 98.0 || p->value == 99.0;
+    if (!torque && !(p->value >= 1.0 && p->value <= 8.0 && p->value == std::floor(p->value))) {
+      return fail(alarm::kBadWordValue, "G31 P must be 1-8, 98 or 99", p->column);
+    }
+    if (torque) {
+      return fail(alarm::kNotInThisVersion,
+                  "G31 P98/P99 (the torque skip) needs the drive's torque limit, not in this "
+                  "version",
+                  p->column);
+    }
+    signal = static_cast<int>(p->value);
+  }
+  int input = 0;  // P: not a probe input but the PLC's signal
+  bool on = true;
+  if (signal == 0 && !read_skip_input("G31", column, input, on)) {
+    return false;
+  }
+  std::int64_t flag = 0;
+  if (!read_result_variable('R', "G31", "the result", flag)) {
+    return false;
+  }
+  Command* c = emit_skip_move("G31", false, column);
+  if (c == nullptr) {
+    return false;
+  }
+  c->skip = true;
+  c->input = input;
+  c->input_on = on;
+  c->skip_signal = signal;
   // Until the channel says otherwise (a dry run, `mcnc interp`): skipped at the end point, so
   // a program that checks the signal runs its checked branch.
   skip_flag_variable_ = flag;
   record_skip(true, transform::to_vector(frame_.to_machine(transform::to_point(machine_))));
+  return true;
+}
+
+bool ProgramRun::run_multi_skip(int column) {
+  if (!skip_move_allowed("G31.8", column)) {
+    return false;
+  }
+  const int ways = (word('L') != nullptr) + (word('K') != nullptr) + (word('I') != nullptr);
+  if (ways > 1) {
+    return fail(alarm::kWordNotAllowed, "G31.8 takes one of L, K and I", column);
+  }
+  int input = 0;
+  bool on = true;
+  if (!read_skip_input("G31.8", column, input, on)) {
+    return false;
+  }
+  // P: the first variable of the stored positions, mandatory (L5344).
+  std::int64_t first = 0;
+  if (!read_result_variable('P', "G31.8", "the first position", first)) {
+    return false;
+  }
+  if (first == 0) {
+    return fail(alarm::kCycleWordMissing,
+                "G31.8 needs P, the first variable of the positions it stores (spec L5344)",
+                column);
+  }
+  int most = 0;  // Q: at most this many signals (0: no limit but the variables')
+  if (BlockWord* q = word('Q')) {
+    q->used = true;
+    if (!(q->value >= 1.0 && q->value <= kMaxMultiSkipSignals &&
+          q->value == std::floor(q->value))) {
+      return fail(alarm::kBadWordValue,
+                  "G31.8 Q (the most signals) must be 1-" + std::to_string(kMaxMultiSkipSignals),
+                  q->column);
+    }
+    most = static_cast<int>(q->value);
+  }
+  std::int64_t count_variable = 0;
+  if (!read_result_variable('R', "G31.8", "the number of signals", count_variable)) {
+    return false;
+  }
+  const AxisVector from = machine_;
+  Command* c = emit_skip_move("G31.8", true, column);
+  if (c == nullptr) {
+    return false;
+  }
+  c->skip = true;
+  c->input = input;
+  c->input_on = on;
+  c->max_signals = most == 0 ? kMaxMultiSkipSignals : most;
+  c->multi_skip = true;
+  multi_skip_first_ = first;
+  multi_skip_count_variable_ = count_variable;
+  multi_skip_axis_ = 0;
+  for (std::size_t a = 0; a < config_.axes.size(); ++a) {
+    multi_skip_axis_ = machine_[a] != from[a] ? static_cast<int>(a) : multi_skip_axis_;
+  }
+  // Without the channel (a dry run, `mcnc interp`): Q signals (one without Q) evenly along the
+  // move, the last at its end, so that a program that counts them runs through (decision 361).
+  std::array<double, kMaxMultiSkipSignals> at{};
+  const int n = most == 0 ? 1 : most;
+  const auto axis = static_cast<std::size_t>(multi_skip_axis_);
+  const AxisVector start_m = transform::to_vector(frame_.to_machine(transform::to_point(from)));
+  const AxisVector end_m = transform::to_vector(frame_.to_machine(transform::to_point(machine_)));
+  for (int k = 1; k <= n; ++k) {
+    at[static_cast<std::size_t>(k - 1)] =
+        start_m[axis] + (end_m[axis] - start_m[axis]) * static_cast<double>(k) / n;
+  }
+  return record_multi_skip(std::span<const double>(at.data(), static_cast<std::size_t>(n)), column);
+}
+
+bool ProgramRun::record_multi_skip(std::span<const double> at, int column) {
+  // #P.. the machine positions (D27: machine, as the text says), as #5021 reads them; R the
+  // count.
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const macro::MacroAlarm a = vars_.write(
+        multi_skip_first_ + static_cast<std::int64_t>(k),
+        macro::MacroValue::of(machine_reading(static_cast<std::size_t>(multi_skip_axis_), at[k])));
+    if (a.number != 0) {
+      return fail(alarm::kBadWordValue,
+                  "G31.8 P: #" + std::to_string(multi_skip_first_ + static_cast<std::int64_t>(k)) +
+                      " cannot hold a position: " + std::string(a.text()),
+                  column);
+    }
+  }
+  if (multi_skip_count_variable_ != 0) {
+    (void)vars_.write(multi_skip_count_variable_,
+                      macro::MacroValue::of(static_cast<double>(at.size())));
+  }
+  return true;
+}
+
+bool ProgramRun::run_torque_skip(int column) {
+  if (!skip_move_allowed("G160", column)) {
+    return false;
+  }
+  // P: the torque limit in percent of the motor's rated torque (param 5515 without it); -1
+  // cancels it. Q: the following error beyond which it skips, mm (param 5516 without it).
+  double limit = config_.torque_skip_percent;
+  if (BlockWord* p = word('P')) {
+    p->used = true;
+    if (!(p->value == -1.0 || (p->value > 0.0 && p->value <= 1000.0))) {
+      return fail(alarm::kBadWordValue,
+                  "G160 P (the torque limit, % of the rated torque) must be above 0 and up to "
+                  "1000, or -1 to cancel it",
+                  p->column);
+    }
+    limit = p->value;
+  } else if (limit <= 0.0) {
+    return fail(alarm::kCycleWordMissing,
+                "G160 without P takes the torque limit of param 5515, which is 0 "
+                "(torque_skip.limit)",
+                column);
+  }
+  double deviation = config_.torque_skip_deviation;
+  if (BlockWord* q = word('Q')) {
+    q->used = true;
+    if (!(q->value >= 0.0)) {
+      return fail(alarm::kBadWordValue, "G160 Q (the following error, mm) must be 0 or more",
+                  q->column);
+    }
+    deviation = length_of(*q);
+  }
+  Command* c = emit_skip_move("G160", true, column);
+  if (c == nullptr) {
+    return false;
+  }
+  c->torque_skip = true;
+  c->torque_limit = limit;
+  c->deviation = deviation;
+  skip_flag_variable_ = 0;
+  if (limit > 0.0) {  // P-1 only moves, with the limit cancelled (decision 362)
+    record_skip(true, transform::to_vector(frame_.to_machine(transform::to_point(machine_))));
+  }
   return true;
 }
 

@@ -159,11 +159,8 @@ VariableRead ProgramRun::read(std::int64_t n) const {
       case 0:  // #5001: workpiece position at the end of the block
       case 2:  // #5041: current workpiece position (decision D20)
         return value(program_position(axis));
-      case 1: {  // #5021: machine position, in programmed units (X as a diameter)
-        const AxisConfig& a = config_.axes[i];
-        double v = machine()[i] * (a.diameter ? 2.0 : 1.0);
-        return value(!a.rotary && !metric_ ? v / 25.4 : v);
-      }
+      case 1:  // #5021: machine position, in programmed units (X as a diameter)
+        return value(machine_reading(i, machine()[i]));
       case 3:  // #5061: the last G31's skip position (null before the first)
         return skip_known_ ? value(skip_position_[i]) : VariableRead{};
       case 6:  // #5121: handwheel interrupt
@@ -239,6 +236,12 @@ MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
   }
   return macro::make_alarm(macro::alarm::kReadOnlyVariable, 0, "variable #%lld is read-only",
                            static_cast<long long>(n));
+}
+
+double ProgramRun::machine_reading(std::size_t axis, double physical) const {
+  const AxisConfig& a = config_.axes[axis];
+  const double v = physical * (a.diameter ? 2.0 : 1.0);
+  return !a.rotary && !metric_ ? v / 25.4 : v;
 }
 
 }  // namespace mcnc::interp

@@ -45,6 +45,9 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
           -1);
       setup.input_ports[static_cast<std::size_t>(s.port)] = s.index;
     }
+    if (!s.output && s.skip > 0) {
+      setup.skip_signals[static_cast<std::size_t>(s.skip - 1)] = s.index;
+    }
   }
   setup.speed_arrival_rpm = ch.speed_arrival_rpm;
   setup.speed_arrival_timeout_s = ch.speed_arrival_timeout_s;

@@ -23,6 +23,9 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     if (!s.output && s.port > 0) {
       c.input_ports.push_back(s.port);
     }
+    if (!s.output && s.skip > 0) {
+      c.skip_signals[static_cast<std::size_t>(s.skip - 1)] = true;
+    }
   }
   c.program_dir = machine.program_dir;
   c.polar_linear = channel.polar_linear;

@@ -656,7 +656,8 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
       signals->fail("at most " + std::to_string(kMaxPlcSignals) + " signals");
     }
     for (const YamlValue& v : list) {
-      const YamlMap s = v.map({"name", "type", "follows", "invert", "delay_ms", "initial", "port"});
+      const YamlMap s = v.map(
+          {"name", "type", "follows", "invert", "delay_ms", "initial", "port", "skip", "position"});
       PlcSignal signal;
       signal.name = read_name(s.required("name"));
       const YamlValue type = s.required("type");
@@ -696,6 +697,37 @@ void parse_plc(const YamlValue& value, MachineConfig& config) {
             port->fail("port " + std::to_string(signal.port) + " is " + other.name + "'s already");
           }
         }
+      }
+      if (auto skip = s.optional("skip")) {
+        if (signal.output) {
+          skip->fail("an output is no skip signal: G31 P skips on inputs");
+        }
+        signal.skip = read_int(*skip, 1, 8);
+        for (const PlcSignal& other : plc.signals) {
+          if (other.skip == signal.skip) {
+            skip->fail("skip signal " + std::to_string(signal.skip) + " is " + other.name +
+                       "'s already");
+          }
+        }
+      }
+      if (auto position = s.optional("position")) {
+        if (signal.output || !signal.follows.empty()) {
+          position->fail("only an input that follows no output is on at an axis's position");
+        }
+        const YamlMap p = position->map({"axis", "at", "on"});
+        const YamlValue axis = p.required("axis");
+        const AxisConfig* a = config.find_axis(axis.string());
+        if (a == nullptr || a->type == AxisType::spindle) {
+          axis.fail(axis.string() + " is not a linear or rotary axis of this machine");
+        }
+        signal.at_axis = a->id;
+        signal.at = p.required("at").number();
+        const YamlValue on = p.required("on");
+        const std::string side = on.string();
+        if (side != "above" && side != "below") {
+          on.fail("the input is on above or below its position, got '" + side + "'");
+        }
+        signal.at_side = side == "above" ? 1 : -1;
       }
       signal.index = static_cast<int>(plc.signals.size());
       plc.signals.push_back(signal);

@@ -25,6 +25,13 @@ struct PlcSignal {
   int index = 0;  // position in `signals`
   // An input: the port number G04 I names it by (1-99; 0: none).
   int port = 0;
+  // An input: the skip signal G31 P names it by, 1-8 for G0014.0-G0014.7 (0: none).
+  int skip = 0;
+  // An input of the simulated machine that is on while axis `at_axis` (its id; 0: none) stands
+  // at or beyond `at` on the side `at_side` (+1 above, -1 below): a sensor the axis reaches.
+  int at_axis = 0;
+  int at_side = 0;
+  double at = 0.0;
 };
 
 // `name` or `name=1`: the signal on; `name=0`: off.

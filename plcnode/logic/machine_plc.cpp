@@ -45,8 +45,8 @@ void MachinePlc::request(const AuxRequest& request) noexcept {
   }
 }
 
-bool MachinePlc::synchronised(int spindle, std::span<const SpindleView> spindles) noexcept {
-  for (const SpindleView& v : spindles) {
+bool MachinePlc::synchronised(int spindle, std::span<const AxisView> spindles) noexcept {
+  for (const AxisView& v : spindles) {
     if (v.locked && v.coupled_to != 0 && (v.axis == spindle || v.coupled_to == spindle)) {
       return true;
     }
@@ -55,13 +55,13 @@ bool MachinePlc::synchronised(int spindle, std::span<const SpindleView> spindles
 }
 
 bool MachinePlc::turning(int spindle, std::uint64_t cycle,
-                         std::span<const SpindleView> spindles) const noexcept {
+                         std::span<const AxisView> spindles) const noexcept {
   for (const Start& s : starts_) {
     if (s.spindle == spindle && cycle < s.cycle + kStartBridgeCycles) {
       return true;
     }
   }
-  for (const SpindleView& v : spindles) {
+  for (const AxisView& v : spindles) {
     if (v.axis == spindle) {
       return v.turning;
     }
@@ -100,22 +100,36 @@ void MachinePlc::answer(const AuxRequest& r, AuxOutcome outcome, const char* rea
   std::snprintf(a.reason.data(), a.reason.size(), "%s", reason != nullptr ? reason : "");
 }
 
-void MachinePlc::update_inputs(std::uint64_t cycle) noexcept {
+void MachinePlc::update_inputs(std::uint64_t cycle, std::span<const AxisView> axes) noexcept {
+  const auto set = [&](int index, bool on) {
+    state_ = on ? state_ | (std::uint64_t{1} << index) : state_ & ~(std::uint64_t{1} << index);
+  };
   for (const config::PlcSignal& s : config_.signals) {
-    if (s.output || s.follows_index < 0) {
+    if (s.output) {
+      continue;
+    }
+    if (s.at_axis != 0) {
+      // A sensor the axis reaches: on at or beyond `at`; an axis not heard of keeps it as it was.
+      for (const AxisView& v : axes) {
+        if (v.axis == s.at_axis && v.known) {
+          const bool beyond = s.at_side > 0 ? v.position >= s.at : v.position <= s.at;
+          set(s.index, beyond != s.invert);
+        }
+      }
+      continue;
+    }
+    if (s.follows_index < 0) {
       continue;
     }
     const auto k = static_cast<std::size_t>(s.follows_index);
     if (cycle >= changed_at_[k] + cycles_of(s.delay_ms, cycle_us_)) {
-      const bool on = signal(s.follows_index) != s.invert;
-      state_ =
-          on ? state_ | (std::uint64_t{1} << s.index) : state_ & ~(std::uint64_t{1} << s.index);
+      set(s.index, signal(s.follows_index) != s.invert);
     }
   }
 }
 
 void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
-                       std::span<const SpindleView> spindles) noexcept {
+                       std::span<const AxisView> spindles) noexcept {
   // A channel waits for one request at a time: one still running is one a reset abandoned.
   std::size_t kept = 0;
   for (std::size_t i = 0; i < active_count_; ++i) {
@@ -188,15 +202,14 @@ void MachinePlc::start(const AuxRequest& r, std::uint64_t cycle,
   }
 }
 
-const PlcOutput& MachinePlc::cycle(std::uint64_t cycle,
-                                   std::span<const SpindleView> spindles) noexcept {
+const PlcOutput& MachinePlc::cycle(std::uint64_t cycle, std::span<const AxisView> axes) noexcept {
   out_.started_count = 0;
   out_.answer_count = 0;
   for (std::size_t i = 0; i < overflow_count_; ++i) {
     answer(overflow_[i], AuxOutcome::refused, "the PLC's request queue is full");
   }
   overflow_count_ = 0;
-  update_inputs(cycle);
+  update_inputs(cycle, axes);
   // Requests sent before this cycle start now, in order.
   std::size_t taken = 0;
   while (taken < queue_count_ && queue_[taken].sent_cycle < cycle) {
@@ -204,7 +217,7 @@ const PlcOutput& MachinePlc::cycle(std::uint64_t cycle,
     if (out_.started_count < out_.started.size()) {
       out_.started[out_.started_count++] = r;
     }
-    start(r, cycle, spindles);
+    start(r, cycle, axes);
   }
   for (std::size_t i = taken; i < queue_count_; ++i) {
     queue_[i - taken] = queue_[i];

@@ -34,12 +34,15 @@ struct AuxResult {
   std::array<char, 96> reason{};  // why it was refused or timed out
 };
 
-// A spindle as the PLC sees it (its feedback stamped N-1).
-struct SpindleView {
+// An axis the PLC watches, as its feedback (stamped N-1) shows it: a spindle an interlock looks
+// at, or an axis a sensor input of the simulated machine is switched by.
+struct AxisView {
   int axis = 0;         // axis id
   bool turning = true;  // unknown (no feedback): counts as turning
   int coupled_to = 0;   // G114.1: the master this slave follows (axis id), 0: none
   bool locked = false;  // ... in phase
+  bool known = false;   // its feedback is there: `position` is its actual position
+  double position = 0.0;
 };
 
 struct PlcOutput {
@@ -66,9 +69,10 @@ class MachinePlc {
   // A spindle allowed to start counts as turning for this many cycles even before its feedback
   // says so (the start reaches the drive and comes back as feedback a few cycles later).
   static constexpr std::uint64_t kStartBridgeCycles = 16;
-  // One cycle: the simulated inputs follow the outputs, queued requests start (or are refused),
-  // running ones end on their FIN condition or time out.
-  const PlcOutput& cycle(std::uint64_t cycle, std::span<const SpindleView> spindles) noexcept;
+  // One cycle: the simulated inputs follow the outputs or the axes they watch, queued requests
+  // start (or are refused), running ones end on their FIN condition or time out. `axes`: the
+  // watched axes (spindles and the axes of position inputs).
+  const PlcOutput& cycle(std::uint64_t cycle, std::span<const AxisView> axes) noexcept;
   [[nodiscard]] const PlcOutput& output() const noexcept { return out_; }
   [[nodiscard]] bool signal(int index) const noexcept { return (state_ >> index) & 1U; }
 
@@ -78,14 +82,13 @@ class MachinePlc {
     const config::PlcMCode* entry = nullptr;  // nullptr: a T code
     std::uint64_t started = 0;
   };
-  void start(const AuxRequest& r, std::uint64_t cycle,
-             std::span<const SpindleView> spindles) noexcept;
+  void start(const AuxRequest& r, std::uint64_t cycle, std::span<const AxisView> spindles) noexcept;
   void answer(const AuxRequest& r, AuxOutcome outcome, const char* reason) noexcept;
   [[nodiscard]] bool holds(std::span<const config::PlcCondition> conditions) const noexcept;
   // The first condition that does not hold, as text ("chuck1_closed=1"), or nullptr.
   [[nodiscard]] const char* unmet(std::span<const config::PlcCondition> conditions,
                                   std::array<char, 64>& text) const noexcept;
-  void update_inputs(std::uint64_t cycle) noexcept;
+  void update_inputs(std::uint64_t cycle, std::span<const AxisView> axes) noexcept;
 
   const config::PlcConfig& config_;
   int cycle_us_;
@@ -104,10 +107,9 @@ class MachinePlc {
   };
   std::array<Start, 16> starts_{};  // the last start allowed per spindle
   [[nodiscard]] bool turning(int spindle, std::uint64_t cycle,
-                             std::span<const SpindleView> spindles) const noexcept;
+                             std::span<const AxisView> spindles) const noexcept;
   // Master or slave of a G114.1 pair in phase: a part held by both chucks turns with both.
-  [[nodiscard]] static bool synchronised(int spindle,
-                                         std::span<const SpindleView> spindles) noexcept;
+  [[nodiscard]] static bool synchronised(int spindle, std::span<const AxisView> spindles) noexcept;
   PlcOutput out_{};
 };
 

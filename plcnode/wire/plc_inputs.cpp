@@ -8,25 +8,28 @@
 
 namespace mcnc::plc {
 
-std::vector<int> PlcInputs::watched_spindles(const config::MachineConfig& machine) {
-  std::vector<int> spindles;
+std::vector<int> PlcInputs::watched_axes(const config::MachineConfig& machine) {
+  std::vector<int> axes;
   auto watch = [&](int id) {
-    if (id != 0 && std::find(spindles.begin(), spindles.end(), id) == spindles.end()) {
-      spindles.push_back(id);
+    if (id != 0 && std::find(axes.begin(), axes.end(), id) == axes.end()) {
+      axes.push_back(id);
     }
   };
   for (const config::PlcMCode& m : machine.plc.m_codes) {
     watch(m.spindle_stopped);
   }
+  for (const config::PlcSignal& s : machine.plc.signals) {
+    watch(s.at_axis);  // a sensor the axis reaches
+  }
   // A pair in phase may open a chuck while it turns.
   for (const config::SpindleSyncGroup& g : machine.spindle_sync) {
-    if (std::find(spindles.begin(), spindles.end(), g.master) != spindles.end() ||
-        std::find(spindles.begin(), spindles.end(), g.slave) != spindles.end()) {
+    if (std::find(axes.begin(), axes.end(), g.master) != axes.end() ||
+        std::find(axes.begin(), axes.end(), g.slave) != axes.end()) {
       watch(g.master);
       watch(g.slave);
     }
   }
-  return spindles;
+  return axes;
 }
 
 namespace {
@@ -45,11 +48,11 @@ std::vector<std::string> axis_names(const config::MachineConfig& machine,
 PlcInputs::PlcInputs(process::ProcessNode& node, const config::MachineConfig& machine)
     : node_(node),
       channels_(machine.channels.size()),
-      spindles_(watched_spindles(machine)),
-      gate_(channels_ + spindles_.size()),
+      axes_(watched_axes(machine)),
+      gate_(channels_ + axes_.size()),
       // Made before the readers, whose callbacks may come at once.
       status_(cycle::tracked_inputs<::mcnc::ChannelStatus>(0, channels_)),
-      feedback_(cycle::tracked_inputs<::mcnc::AxisFeedback>(channels_, spindles_.size())),
+      feedback_(cycle::tracked_inputs<::mcnc::AxisFeedback>(channels_, axes_.size())),
       status_reader_(
           node.participant(), dds::Keys::of(config::channel_names(machine)),
           [this](const ::mcnc::ChannelStatus& s, const dds::WriterId& writer) {
@@ -92,10 +95,10 @@ PlcInputs::PlcInputs(process::ProcessNode& node, const config::MachineConfig& ma
                       });
                     }),
       feedback_reader_(
-          node.participant(), dds::Keys::of(axis_names(machine, spindles_)),
+          node.participant(), dds::Keys::of(axis_names(machine, axes_)),
           [this](const ::mcnc::AxisFeedback& fb, const dds::WriterId& writer) {
-            for (std::size_t k = 0; k < spindles_.size(); ++k) {
-              if (static_cast<int>(fb.axis()) == spindles_[k]) {
+            for (std::size_t k = 0; k < axes_.size(); ++k) {
+              if (static_cast<int>(fb.axis()) == axes_[k]) {
                 node_.wakeup().update(
                     [&] { feedback_[k].on_sample(fb, fb.cycle(), 0, writer, gate_); });
               }
@@ -115,7 +118,7 @@ bool PlcInputs::discovered() const noexcept {
   const int channels = static_cast<int>(channels_);
   return status_reader_.matched_writers() >= channels &&
          event_reader_.matched_writers() >= channels &&
-         feedback_reader_.matched_writers() >= static_cast<int>(spindles_.size());
+         feedback_reader_.matched_writers() >= static_cast<int>(axes_.size());
 }
 
 bool PlcInputs::may_run(std::uint64_t cycle) const noexcept {
@@ -123,21 +126,24 @@ bool PlcInputs::may_run(std::uint64_t cycle) const noexcept {
 }
 
 void PlcInputs::apply(std::uint64_t cycle, bool lockstep, MachinePlc& plc,
-                      std::span<SpindleView> views) {
+                      std::span<AxisView> views) {
   node_.wakeup().with_lock([&] {
     for (std::size_t i = 0; i < queued_; ++i) {
       plc.request(requests_[i]);
     }
     queued_ = 0;
-    for (std::size_t k = 0; k < spindles_.size() && k < views.size(); ++k) {
+    for (std::size_t k = 0; k < axes_.size() && k < views.size(); ++k) {
       const cycle::TrackedInput<::mcnc::AxisFeedback>& input = feedback_[k];
       const ::mcnc::AxisFeedback* fb = input.for_cycle(cycle, lockstep);
       // Turning: more than a tenth of a revolution per second either way; without feedback
       // (or with its node gone) not known to stand.
       const bool known = fb != nullptr && !input.lost();
-      views[k] = SpindleView{spindles_[k], !known || std::abs(fb->vel()) > 36.0,
-                             known ? static_cast<int>(fb->coupled_to()) : 0,
-                             known && fb->coupling_locked()};
+      views[k] = AxisView{axes_[k],
+                          !known || std::abs(fb->vel()) > 36.0,
+                          known ? static_cast<int>(fb->coupled_to()) : 0,
+                          known && fb->coupling_locked(),
+                          known,
+                          known ? fb->act() : 0.0};
     }
   });
 }

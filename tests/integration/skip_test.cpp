@@ -9,18 +9,33 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace mcnc::test {
 namespace {
 
 // small_lathe.yaml with Z1's probe, at a 2 ms cycle (its three full PDOs keep the bus under
 // 70 %).
-void add_probe(const TestMachine& machine) {
+std::string machine_text(const TestMachine& machine) {
   std::ifstream in(machine.path());
   std::stringstream text;
   text << in.rdbuf();
-  in.close();
-  std::string yaml = text.str();
+  return text.str();
+}
+
+// Where the channel's blocks left Z1, in order.
+std::vector<double> z_block_ends(const std::vector<nlohmann::json>& trace) {
+  std::vector<double> z_ends;
+  for (const auto& p : events(trace, "pos", "CH1")) {
+    if (p["axis"] == "Z1") {
+      z_ends.push_back(p["cmd"].get<double>());
+    }
+  }
+  return z_ends;
+}
+
+void add_probe(const TestMachine& machine) {
+  std::string yaml = machine_text(machine);
   const auto replace = [&](const std::string& what, const std::string& with) {
     const std::size_t at = yaml.find(what);
     ASSERT_NE(at, std::string::npos) << what;
@@ -33,29 +48,56 @@ void add_probe(const TestMachine& machine) {
   std::ofstream(machine.path()) << yaml;
 }
 
+// Runs `program` (Z probes down from 0 to a face at -12.5, goes 1 up, then to 2 above the skip
+// position it read, #5062 + 2 with R's 1) and checks where the blocks left Z: the G31 stopped
+// past the face within `reaction` mm, far from its programmed end at -50; W1 went on from
+// there; #5062 was past the face by at most `reading_error` mm, before Z stopped.
+void expect_probed_face(const TestMachine& machine, const std::string& program, double reaction,
+                        double reading_error) {
+  const auto trace = run_to_clean_end(machine, program);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  // The channel's block ends, in order: G00 (line 2), G31 (3), G00 W1 (5), G00 Z (6).
+  const std::vector<double> z_ends = z_block_ends(trace);
+  ASSERT_GE(z_ends.size(), 4U);
+  const double stop = z_ends[1];
+  EXPECT_LT(stop, -12.5);
+  EXPECT_GT(stop, -12.5 - reaction);
+  EXPECT_NEAR(z_ends[2], stop + 1.0, 1e-6);
+  EXPECT_LE(z_ends[3], -10.5 + 1e-6);
+  EXPECT_GE(z_ends[3], -10.5 - reading_error - 1e-6);
+  EXPECT_GT(z_ends[3] - 2.0, stop);
+}
+
 TEST(Skip, G31StopsAtTheDrivesTouchProbeAndTheProgramReadsTheLatchedPosition) {
   TestMachine machine("small_lathe.yaml", 147);
   add_probe(machine);
-  const auto trace = run_to_clean_end(machine, "tests/integration/programs/g31/probe.nc");
-  EXPECT_TRUE(events(trace, "alarm").empty());
-  // The channel's block ends, in order: G00 (line 2), G31 (3), G00 W1 (5), G00 Z (6).
-  std::vector<double> z_ends;
-  for (const auto& p : events(trace, "pos", "CH1")) {
-    if (p["axis"] == "Z1") {
-      z_ends.push_back(p["cmd"].get<double>());
-    }
-  }
-  ASSERT_GE(z_ends.size(), 4U);
-  // G31 stopped past the face within the reaction (the latch reaches the channel three or four
-  // 2 ms cycles later: under 0.08 mm at 10 mm/s) and the jerk-limited braking (v^2/2a + v a/2j
-  // at 1500 mm/s^2 and 75000 mm/s^3: 0.13 mm), far from its programmed end at -50.
-  const double stop = z_ends[1];
-  EXPECT_LT(stop, -12.5);
-  EXPECT_GT(stop, -12.75);
-  // W1 went on from where it stopped.
-  EXPECT_NEAR(z_ends[2], stop + 1.0, 1e-6);
-  // #5062 = -12.5 (the drive's latch) and #100 = 1: Z[#101+#100*2] = -10.5.
-  EXPECT_NEAR(z_ends[3], -10.5, 1e-6);
+  // The reaction: the latch reaches the channel three or four 2 ms cycles later (under 0.08 mm
+  // at 10 mm/s), then the jerk-limited braking (v^2/2a + v a/2j at 1500 mm/s^2 and
+  // 75000 mm/s^3: 0.13 mm). #5062 is the drive's latch: -12.5 exactly.
+  expect_probed_face(machine, "tests/integration/programs/g31/probe.nc", 0.25, 0.0);
+}
+
+// small_lathe.yaml with a PLC whose input `touch` is skip signal 2 (G0014.1) and comes on where
+// Z1's feedback passes -12.5 (a sensor of the simulated machine).
+void add_plc_skip_signal(const TestMachine& machine) {
+  std::string yaml = machine_text(machine);
+  yaml +=
+      "\nplc:\n"
+      "  signals:\n"
+      "    - {name: touch, type: input, skip: 2, position: {axis: Z1, at: -12.5, on: below}}\n";
+  std::ofstream(machine.path()) << yaml;
+}
+
+// G31 P2 (decision 360): the channel stops the move where the PLC's status shows the signal on,
+// and #5062 is where Z's feedback stood then.
+TEST(Skip, G31PStopsWhereThePlcsSkipSignalComesOn) {
+  TestMachine machine("small_lathe.yaml", 197);
+  add_plc_skip_signal(machine);
+  // The reaction: the signal's way (Z's feedback to the PLC, its status to the channel: two or
+  // three 1 ms cycles, 0.03 mm at 10 mm/s), the drive's following error (v tau: 0.04 mm) and
+  // the braking (0.13 mm). #5062 is Z's actual position when the channel saw the signal: past
+  // the face by the signal's way, at most five cycles' travel (0.05 mm).
+  expect_probed_face(machine, "tests/integration/programs/g31/plc_signal.nc", 0.25, 0.05);
 }
 
 }  // namespace

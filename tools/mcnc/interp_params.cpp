@@ -210,6 +210,8 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
              "chamfer_is_length",
              "compensation_idle_blocks",
              "stroke_inside_forbidden",
+             "skip_input",
+             "torque_skip",
              "polar",
              "cylindrical_parallel",
              "normal",
@@ -283,6 +285,28 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
   if (root["stroke_inside_forbidden"]) {
     c.stroke_inside_forbidden =
         get<bool>(root["stroke_inside_forbidden"], "stroke_inside_forbidden");
+  }
+  if (root["skip_input"]) {  // G31 / G31.8 without L, K or I (param 5510)
+    c.skip_input = get<int>(root["skip_input"], "skip_input");
+    if (c.skip_input < 0 || c.skip_input > 99) {
+      bad("skip_input", "0 to 99");
+    }
+  }
+  if (root["torque_skip"]) {  // G160 without P / Q (params 5515, 5516)
+    const YAML::Node& t = root["torque_skip"];
+    only_keys(t, "torque_skip", {"limit", "deviation"});
+    if (t["limit"]) {
+      c.torque_skip_percent = get<double>(t["limit"], "torque_skip.limit");
+      if (!(c.torque_skip_percent >= 0.0 && c.torque_skip_percent <= 1000.0)) {
+        bad("torque_skip.limit", "0 to 1000 %");
+      }
+    }
+    if (t["deviation"]) {
+      c.torque_skip_deviation = get<double>(t["deviation"], "torque_skip.deviation");
+      if (!(c.torque_skip_deviation >= 0.0)) {
+        bad("torque_skip.deviation", "0 mm or more");
+      }
+    }
   }
   if (root["arc_tolerance"]) {
     c.arc_tolerance = get<double>(root["arc_tolerance"], "arc_tolerance");

@@ -211,9 +211,27 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
       feed(out, c);
       if (c.skip) {  // G31: the move ends where this input switches
         key(out, "skip");
-        out += "{\"input\":";
-        integer(out, c.input);
-        out += c.input_on ? ",\"state\":\"on\"}" : ",\"state\":\"off\"}";
+        if (c.skip_signal != 0) {  // G31 P: the PLC's signal G0014.(P-1)
+          out += "{\"plc_signal\":";
+          integer(out, c.skip_signal);
+        } else {
+          out += "{\"input\":";
+          integer(out, c.input);
+        }
+        out += c.input_on ? ",\"state\":\"on\"" : ",\"state\":\"off\"";
+        if (c.multi_skip) {  // G31.8: on past each signal, up to this many
+          out += ",\"max_signals\":";
+          integer(out, c.max_signals);
+        }
+        out += '}';
+      }
+      if (c.torque_skip) {  // G160: the axis's torque limit (-1: cancelled) and the skip's error
+        key(out, "torque_skip");
+        out += "{\"limit\":";
+        number(out, c.torque_limit);
+        out += ",\"deviation\":";
+        number(out, c.deviation);
+        out += '}';
       }
       break;
     case Op::arc:

@@ -34,6 +34,23 @@ TEST(InterpSkip, EmitsAFeedMoveOnItsInputThatStopsTheReadAhead) {
   EXPECT_FALSE(moves[2].input_on);  // I < 0: off
 }
 
+// G31 P1-P8 (format 4, L5233): the PLC's signal G0014.(P-1) going on, whatever param 5510 says.
+TEST(InterpSkip, PNamesThePlcsSkipSignal) {
+  const RunResult r = run_ok("G98 G00 X20 Z5\nG31 W-30 F300 P3 R7\nG31 U4 P8\nM30\n");
+  const auto moves = r.of(Op::linear);
+  ASSERT_EQ(moves.size(), 2u);
+  EXPECT_TRUE(moves[0].skip);
+  EXPECT_TRUE(moves[0].barrier);
+  EXPECT_EQ(moves[0].skip_signal, 3);
+  EXPECT_EQ(moves[0].input, 0);  // no probe input
+  EXPECT_TRUE(moves[0].input_on);
+  EXPECT_NEAR(moves[0].to[kZ], -25.0, 1e-12);
+  EXPECT_EQ(moves[1].skip_signal, 8);
+  // The G31's P is the signal, never the `S_ P` spindle address.
+  const RunResult s = run_ok("G98 S500 G31 W-3 F300 P2\nM30\n");
+  EXPECT_EQ(s.of(Op::linear).at(0).skip_signal, 2);
+}
+
 TEST(InterpSkip, WithoutAWordTheInputOfParam5510) {
   InterpreterConfig c = lathe();
   c.skip_input = 4;
@@ -102,11 +119,129 @@ TEST(InterpSkip, Alarms) {
   const ExpectedAlarm cases[] = {
       {"G98 G31 W-5 F100 L13 K13\nM30\n", alarm::kWordNotAllowed, 1},
       {"G98 G31 W-5 F100 L0\nM30\n", alarm::kBadWordValue, 1},
-      {"G98 G31 W-5 F100 P3\nM30\n", alarm::kNotInThisVersion, 1},
+      {"G98 G31 W-5 F100 P3 L13\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G98 G31 W-5 F100 P0\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G31 W-5 F100 P2.5\nM30\n", alarm::kBadWordValue, 1},
       {"G98 G31 W-5 F100 P98\nM30\n", alarm::kNotInThisVersion, 1},
       {"G98 G31 W-5 F100 P20\nM30\n", alarm::kBadWordValue, 1},
       {"G98 G31 F100 L13\nM30\n", alarm::kWordNotAllowed, 1},
       {"G98 G31 W-5 F100 L13 R0.5\nM30\n", alarm::kBadWordValue, 1},
+  };
+  expect_alarms(cases);
+}
+
+InterpreterConfig lathe_with_a() {
+  InterpreterConfig c = lathe();
+  c.axes.push_back(AxisConfig{'A', false, true});
+  return c;
+}
+
+// G31.8 (L5317-5354): a feed move that goes on past each signal of its input; the example's
+// tooth count (L5346-5354) without the runtime: Q signals evenly along the move, the last at its
+// end, their machine positions in #500-#504 and the count in #1 (decision 361).
+TEST(InterpMultiSkip, StoresQPositionsAndTheCountWithoutTheRuntime) {
+  Interpreter in(lathe_with_a());
+  ASSERT_FALSE(in.start("G98 G00 X20 Z0 A0\nG31.8 UA360 F100 I1 P500 Q5 R1\n#2=#1\nM30\n", "t.nc"));
+  const auto moves = drain(in).of(Op::linear);
+  ASSERT_EQ(moves.size(), 1u);
+  const Command& g = moves[0];
+  EXPECT_EQ(g.op, Op::linear);
+  EXPECT_TRUE(g.skip);
+  EXPECT_TRUE(g.multi_skip);
+  EXPECT_TRUE(g.barrier);
+  EXPECT_EQ(g.input, 1);
+  EXPECT_TRUE(g.input_on);
+  EXPECT_EQ(g.max_signals, 5);
+  EXPECT_NEAR(g.to[2], 360.0, 1e-12);
+  for (int k = 0; k < 5; ++k) {
+    EXPECT_NEAR(number_of(in, 500 + k), 72.0 * (k + 1), 1e-9) << k;
+  }
+  EXPECT_NEAR(number_of(in, 2), 5.0, 0.0);
+}
+
+// The positions are machine positions (D27), as #5021 reads them: X as a diameter, without the
+// coordinate system G50 set. Without Q: one signal, at the end; the command may take up to 100.
+TEST(InterpMultiSkip, MachinePositionsAndNoQ) {
+  Interpreter in(lathe());
+  ASSERT_FALSE(
+      in.start("G98 G50 X20 Z0\nG50 U-4\nG31.8 U10 F100 L3 P500 Q2\n"
+               "G31.8 W-6 F100 K3 P510\nM30\n",
+               "t.nc"));
+  const auto cmds = drain(in);
+  (void)cmds;
+  // X programmed 16 -> 26 (diameter) in the system G50 set where the machine stands at 0: the
+  // machine goes 0 -> 10, the signals at 5 and 10 (the work positions would be 21 and 26).
+  EXPECT_NEAR(number_of(in, 500), 5.0, 1e-9);
+  EXPECT_NEAR(number_of(in, 501), 10.0, 1e-9);
+  EXPECT_NEAR(number_of(in, 510), -6.0, 1e-9);
+  EXPECT_TRUE(in.variables().read(511).value.is_null());
+  const RunResult r = run_ok("G98 G31.8 W-6 F100 K3 P510\nM30\n");
+  ASSERT_EQ(r.of(Op::linear).size(), 1u);
+  EXPECT_EQ(r.of(Op::linear)[0].max_signals, kMaxMultiSkipSignals);
+  EXPECT_FALSE(r.of(Op::linear)[0].input_on);
+}
+
+TEST(InterpMultiSkip, Alarms) {
+  const ExpectedAlarm cases[] = {
+      {"G98 G31.8 W-5 F100 L1 Q5\nM30\n", alarm::kCycleWordMissing, 1},  // no P (L5344)
+      {"G98 G31.8 U2 W-5 F100 L1 P500\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G98 G31.8 W-5 F100 L1 I1 P500\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G98 G31.8 W-5 F100 L1 P500 Q0\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G31.8 W-5 F100 L1 P500 Q101\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G31.8 W-5 F100 L1 P0.5\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G31.8 W-5 F100 P500\nM30\n", alarm::kSkipInput, 1},  // param 5510 = 0
+      {"G98 G31.8 F100 L1 P500\nM30\n", alarm::kWordNotAllowed, 1},
+  };
+  expect_alarms(cases);
+}
+
+// G160 (L5355-5428): the probe example (L5396-5404) without the runtime: the skip at the end
+// point, #5061 the X there (a diameter).
+TEST(InterpTorqueSkip, TheProbeExampleEmitsATorqueLimitedFeedMove) {
+  Interpreter in(lathe());
+  ASSERT_FALSE(
+      in.start("G98 G00 X50 Z100\nG160 X40 P80 F20\n#100=#5061\n"
+               "G160 X50 P80 F500\nM30\n",
+               "t.nc"));
+  const auto moves = drain(in).of(Op::linear);
+  ASSERT_EQ(moves.size(), 2u);
+  const Command& g = moves[0];
+  EXPECT_EQ(g.op, Op::linear);
+  EXPECT_TRUE(g.torque_skip);
+  EXPECT_FALSE(g.skip);  // no input: the torque and the following error
+  EXPECT_TRUE(g.barrier);
+  EXPECT_NEAR(g.torque_limit, 80.0, 0.0);
+  EXPECT_NEAR(g.deviation, 0.0, 0.0);  // param 5516's default
+  EXPECT_NEAR(g.to[kX], 20.0, 1e-12);
+  EXPECT_NEAR(g.feed, 20.0, 1e-12);
+  EXPECT_NEAR(number_of(in, 100), 40.0, 1e-12);
+}
+
+TEST(InterpTorqueSkip, ParamsStandInForPAndQAndPMinusOneCancels) {
+  InterpreterConfig c = lathe();
+  c.torque_skip_percent = 50.0;
+  c.torque_skip_deviation = 0.5;
+  const RunResult r = run_ok("G98 G160 W-5 F100\nG160 W-5 Q2 F100\nG160 W5 P-1\nM30\n", c);
+  const auto moves = r.of(Op::linear);
+  ASSERT_EQ(moves.size(), 3u);
+  EXPECT_NEAR(moves[0].torque_limit, 50.0, 0.0);
+  EXPECT_NEAR(moves[0].deviation, 0.5, 0.0);
+  EXPECT_NEAR(moves[1].deviation, 2.0, 0.0);
+  EXPECT_NEAR(moves[2].torque_limit, -1.0, 0.0);
+  // Group 00: G01 after G160 is no torque skip.
+  const RunResult g01 = run_ok("G98 G160 W-5 P50 F100\nG01 W-1\nM30\n");
+  ASSERT_EQ(g01.of(Op::linear).size(), 2u);
+  EXPECT_FALSE(g01.of(Op::linear)[1].torque_skip);
+}
+
+TEST(InterpTorqueSkip, Alarms) {
+  const ExpectedAlarm cases[] = {
+      {"G98 G160 U2 W-5 P50 F100\nM30\n", alarm::kWordNotAllowed, 1},  // one axis only
+      {"G98 G160 W-5 F100\nM30\n", alarm::kCycleWordMissing, 1},       // param 5515 = 0
+      {"G98 G160 W-5 P0 F100\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G160 W-5 P-2 F100\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G160 W-5 P50 Q-1 F100\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G160 P50 F100\nM30\n", alarm::kWordNotAllowed, 1},
   };
   expect_alarms(cases);
 }

@@ -42,6 +42,16 @@ plc:
 )");
 }
 
+// The key path a machine file is refused at, or "accepted".
+std::string key_rejected(const std::string& yaml) {
+  try {
+    (void)config::parse_machine_yaml(yaml);
+  } catch (const config::ConfigError& e) {
+    return e.key_path();
+  }
+  return "accepted";
+}
+
 class PlcRig {
  public:
   PlcRig() : config_(machine()), plc_(config_.plc, config_.cycle_us) {}
@@ -63,7 +73,7 @@ class PlcRig {
   bool signal(const std::string& name) const {
     return plc_.signal(config_.plc.find_signal(name)->index);
   }
-  std::vector<SpindleView> spindles_{{2, false}};
+  std::vector<AxisView> spindles_{{2, false}};
   void run_cycles(int n) {
     for (int i = 0; i < n; ++i) {
       plc_.cycle(++cycle_, spindles_);
@@ -184,14 +194,7 @@ channels: [{name: CH1, axes: [X1]}]
 plc:
   signals: [{name: v, type: output}, {name: s, type: input, follows: v}]
 )";
-  auto rejected = [&](const std::string& tail) {
-    try {
-      (void)config::parse_machine_yaml(head + tail);
-    } catch (const config::ConfigError& e) {
-      return e.key_path();
-    }
-    return std::string("accepted");
-  };
+  auto rejected = [&](const std::string& tail) { return key_rejected(head + tail); };
   EXPECT_EQ(rejected("  m_codes: [{code: 10, set: [s]}]\n"), "plc.m_codes[0].set[0]");  // an input
   EXPECT_EQ(rejected("  m_codes: [{code: 10, wait: [v]}]\n"), "plc.m_codes[0].wait[0]");
   EXPECT_EQ(rejected("  m_codes: [{code: 10, set: [w]}]\n"), "plc.m_codes[0].set[0]");
@@ -201,6 +204,57 @@ plc:
   EXPECT_EQ(rejected("  m_codes: [{code: 10, spindle_stopped: X1}]\n"),
             "plc.m_codes[0].spindle_stopped");
   EXPECT_EQ(rejected("  m_codes: [{code: 10, channels: [CH1], set: [v=0], wait: [s=0]}]\n"),
+            "accepted");
+}
+
+// G31 P's skip signals (decision 360): a sensor input of the simulated machine that X1 switches
+// where it reaches a position, from the axis's feedback; one the PLC has not heard of keeps its
+// state.
+// One axis X1 and a PLC with one output; the signals that follow are appended.
+constexpr const char* kOneAxisPlc = R"(
+machine: {name: m}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+axes: [{name: X1, address: X, bus: b, node_id: 1}]
+channels: [{name: CH1, axes: [X1]}]
+plc:
+  signals:
+    - {name: v, type: output}
+)";
+
+TEST(MachinePlc, APositionInputIsOnWhereItsAxisStandsBeyondIt) {
+  const config::MachineConfig m = config::parse_machine_yaml(std::string(kOneAxisPlc) + R"(
+    - {name: touch, type: input, skip: 2, position: {axis: X1, at: -12.5, on: below}}
+    - {name: clear, type: input, invert: true, position: {axis: X1, at: 5, on: above}}
+)");
+  ASSERT_EQ(m.plc.signals[1].skip, 2);
+  MachinePlc plc(m.plc, m.cycle_us);
+  const auto step = [&](bool known, double x) {
+    const AxisView view{1, false, 0, false, known, x};
+    return plc.cycle(1, std::span<const AxisView>(&view, 1)).inputs;
+  };
+  EXPECT_EQ(step(true, 0.0), 0b100U);    // touch off, clear on (inverted)
+  EXPECT_EQ(step(true, -12.5), 0b110U);  // at the position: on
+  EXPECT_EQ(step(false, 10.0), 0b110U);  // not heard of: as it was
+  EXPECT_EQ(step(true, 5.0), 0b000U);    // clear goes off at 5
+  EXPECT_EQ(step(true, -13.0), 0b110U);
+}
+
+TEST(MachinePlc, SkipSignalsAndPositionInputsAreChecked) {
+  auto rejected = [&](const std::string& tail) { return key_rejected(kOneAxisPlc + tail); };
+  EXPECT_EQ(rejected("    - {name: s, type: input, skip: 9}\n"), "plc.signals[1].skip");
+  EXPECT_EQ(rejected("    - {name: s, type: output, skip: 1}\n"), "plc.signals[1].skip");
+  EXPECT_EQ(rejected("    - {name: s, type: input, skip: 1}\n    - {name: t, type: input, "
+                     "skip: 1}\n"),
+            "plc.signals[2].skip");
+  EXPECT_EQ(rejected("    - {name: s, type: input, position: {axis: Q1, at: 1, on: below}}\n"),
+            "plc.signals[1].position.axis");
+  EXPECT_EQ(rejected("    - {name: s, type: input, position: {axis: X1, at: 1, on: left}}\n"),
+            "plc.signals[1].position.on");
+  EXPECT_EQ(rejected("    - {name: s, type: input, follows: v, position: {axis: X1, at: 1, "
+                     "on: below}}\n"),
+            "plc.signals[1].position");
+  EXPECT_EQ(rejected("    - {name: s, type: input, skip: 1, position: {axis: X1, at: 1, "
+                     "on: below}}\n"),
             "accepted");
 }
 

@@ -1,0 +1,4 @@
+O1001 (spec L5358: G160 takes exactly one axis)
+G98 G00 X50 Z100
+G160 X40 Z90 P80 F20
+M30

@@ -1,0 +1,6 @@
+O1002 (spec L5384-5387: without P and Q, params 5515 and 5516; P-1 cancels the limit)
+G98 G00 X0 Z10
+G160 W-210 F300
+G160 W-200 Q2 P50 F300
+G160 W200 P-1 F1000
+M30

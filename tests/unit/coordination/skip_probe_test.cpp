@@ -83,5 +83,50 @@ TEST(SkipProbe, WithoutTheSignalTheMoveEndsWhereItWasProgrammed) {
   EXPECT_EQ(skip.where(end), end);
 }
 
+// G31 P (decision 360): the PLC's skip signal. It must be seen off before the move starts; the
+// first cycle it is on stops the move where the feedback stands; the PLC gone stops it too,
+// with an alarm and no skip.
+TEST(SkipProbe, APlcSignalStopsTheMoveWhereTheFeedbackStandsWhenItIsSeen) {
+  SkipProbe skip(3, 2);
+  skip.begin_signal(3);
+  auto f = feedback();
+  EXPECT_EQ(skip.arm_signal(true, false), SkipArming::waiting);
+  EXPECT_EQ(skip.arm_signal(true, false), SkipArming::waiting);
+  ASSERT_EQ(skip.arm_signal(true, false), SkipArming::alarm);
+  EXPECT_EQ(skip.alarm().number, kAlarmProbeNotArmed);
+  EXPECT_STREQ(skip.alarm().text.data(),
+               "G31 P3: the PLC's skip signal G0014.2 is on before the move");
+  skip.begin_signal(3);
+  ASSERT_EQ(skip.arm_signal(false, false), SkipArming::armed);
+  skip.start_moving();
+  EXPECT_FALSE(skip.watch_signal(f, false, false));
+  f[1].act = -12.5;
+  ASSERT_TRUE(skip.watch_signal(f, true, false));
+  EXPECT_EQ(skip.phase(), SkipPhase::stopping);
+  EXPECT_TRUE(skip.skipped());
+  EXPECT_FALSE(skip.lost());
+  const SkipProbe::Position at = skip.where(SkipProbe::Position{});
+  EXPECT_EQ(at[0], 10.0);
+  EXPECT_EQ(at[1], -12.5);
+  EXPECT_EQ(at[2], 30.0);
+  EXPECT_EQ(at[3], 0.0);                            // not an axis of the channel
+  EXPECT_FALSE(skip.watch_signal(f, true, false));  // once
+}
+
+TEST(SkipProbe, ThePlcGoneUnderAG31PStopsItWithAnAlarm) {
+  SkipProbe skip(3, 200);
+  skip.begin_signal(1);
+  ASSERT_EQ(skip.arm_signal(false, true), SkipArming::alarm);
+  EXPECT_EQ(skip.alarm().number, interp::alarm::kSkipInput);
+  skip.begin_signal(1);
+  ASSERT_EQ(skip.arm_signal(false, false), SkipArming::armed);
+  skip.start_moving();
+  ASSERT_TRUE(skip.watch_signal(feedback(), false, true));
+  EXPECT_TRUE(skip.lost());
+  EXPECT_FALSE(skip.skipped());
+  EXPECT_EQ(skip.alarm().number, interp::alarm::kSkipInput);
+  EXPECT_STREQ(skip.alarm().text.data(), "G31 P1: the PLC node is gone");
+}
+
 }  // namespace
 }  // namespace mcnc::coordination

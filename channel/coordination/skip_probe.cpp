@@ -41,7 +41,7 @@ bool SkipProbe::watch_signal(std::span<const AxisFeedbackView> feedback, bool on
     return false;
   }
   // Where every axis stood when the signal was seen: the signal crossed the PLC's cycle and
-  // DDS on its way, so this is later than where it came by that travel (decision 360).
+  // DDS on its way, so this is later than where it came by that travel (decision 92).
   for (std::size_t j = 0; j < axis_count_ && j < feedback.size() && j < kMaxAxes; ++j) {
     skip_at_[j] = feedback[j].act;
   }

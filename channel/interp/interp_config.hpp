@@ -23,7 +23,7 @@ enum class Dialect : std::uint8_t { dafeng, gsk, fanuc_mill };
 // Numbers without a decimal point: whole units (calculator type, spec D1) or least increments.
 enum class DecimalPoint : std::uint8_t { calculator, increment };
 
-// G31.8: the most signals one block stores (its Q; without Q, as many; decision 361).
+// G31.8: the most signals one block stores (its Q; without Q, as many; decision 93).
 inline constexpr int kMaxMultiSkipSignals = 100;
 inline constexpr int kMaxToolOffsets = 64;                     // offset numbers 1-64 (spec L3626)
 inline constexpr int kExtendedWorkSystems = 99;                // G54.1 P1-P99

@@ -211,7 +211,7 @@ bool ProgramRun::run_multi_skip(int column) {
     multi_skip_axis_ = machine_[a] != from[a] ? static_cast<int>(a) : multi_skip_axis_;
   }
   // Without the channel (a dry run, `mcnc interp`): Q signals (one without Q) evenly along the
-  // move, the last at its end, so that a program that counts them runs through (decision 361).
+  // move, the last at its end, so that a program that counts them runs through (decision 93).
   std::array<double, kMaxMultiSkipSignals> at{};
   const int n = most == 0 ? 1 : most;
   const auto axis = static_cast<std::size_t>(multi_skip_axis_);
@@ -284,7 +284,7 @@ bool ProgramRun::run_torque_skip(int column) {
   c->torque_limit = limit;
   c->deviation = deviation;
   skip_flag_variable_ = 0;
-  if (limit > 0.0) {  // P-1 only moves, with the limit cancelled (decision 362)
+  if (limit > 0.0) {  // P-1 only moves, with the limit cancelled (decision 94)
     record_skip(true, transform::to_vector(frame_.to_machine(transform::to_point(machine_))));
   }
   return true;

@@ -88,7 +88,7 @@ void add_plc_skip_signal(const TestMachine& machine) {
   std::ofstream(machine.path()) << yaml;
 }
 
-// G31 P2 (decision 360): the channel stops the move where the PLC's status shows the signal on,
+// G31 P2 (decision 92): the channel stops the move where the PLC's status shows the signal on,
 // and #5062 is where Z's feedback stood then.
 TEST(Skip, G31PStopsWhereThePlcsSkipSignalComesOn) {
   TestMachine machine("small_lathe.yaml", 197);

@@ -163,7 +163,7 @@ TEST(ChannelSkip, AnInputNoProbeIsWiredToIsRefusedBeforeTheProgramRuns) {
   EXPECT_EQ(alarm->line, 2);
 }
 
-// G31 P2 (the PLC's G0014.1, decision 360): the PLC's input bit 5 is skip signal 2; the PLC's
+// G31 P2 (the PLC's G0014.1, decision 92): the PLC's input bit 5 is skip signal 2; the PLC's
 // status shows it on a cycle after Z's feedback passed kTrigger (the status of cycle N-1), or
 // from the start (`on_from_start`).
 class SignalRig : public ChannelRig {

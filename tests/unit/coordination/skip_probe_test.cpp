@@ -83,7 +83,7 @@ TEST(SkipProbe, WithoutTheSignalTheMoveEndsWhereItWasProgrammed) {
   EXPECT_EQ(skip.where(end), end);
 }
 
-// G31 P (decision 360): the PLC's skip signal. It must be seen off before the move starts; the
+// G31 P (decision 92): the PLC's skip signal. It must be seen off before the move starts; the
 // first cycle it is on stops the move where the feedback stands; the PLC gone stops it too,
 // with an alarm and no skip.
 TEST(SkipProbe, APlcSignalStopsTheMoveWhereTheFeedbackStandsWhenItIsSeen) {

@@ -138,7 +138,7 @@ InterpreterConfig lathe_with_a() {
 
 // G31.8 (L5317-5354): a feed move that goes on past each signal of its input; the example's
 // tooth count (L5346-5354) without the runtime: Q signals evenly along the move, the last at its
-// end, their machine positions in #500-#504 and the count in #1 (decision 361).
+// end, their machine positions in #500-#504 and the count in #1 (decision 93).
 TEST(InterpMultiSkip, StoresQPositionsAndTheCountWithoutTheRuntime) {
   Interpreter in(lathe_with_a());
   ASSERT_FALSE(in.start("G98 G00 X20 Z0 A0\nG31.8 UA360 F100 I1 P500 Q5 R1\n#2=#1\nM30\n", "t.nc"));

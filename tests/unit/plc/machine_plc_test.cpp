@@ -207,7 +207,7 @@ plc:
             "accepted");
 }
 
-// G31 P's skip signals (decision 360): a sensor input of the simulated machine that X1 switches
+// G31 P's skip signals (decision 92): a sensor input of the simulated machine that X1 switches
 // where it reaches a position, from the axis's feedback; one the PLC has not heard of keeps its
 // state.
 // One axis X1 and a PLC with one output; the signals that follow are appended.

@@ -49,6 +49,14 @@ bool OperatorInbox::put(const OperatorRequest& request) noexcept {
   return true;
 }
 
+std::size_t OperatorInbox::count_due_after_next(std::uint64_t cycle) const noexcept {
+  std::size_t later = 0;
+  for (std::size_t i = 0; i < count_; ++i) {
+    later += process::due_after_next(slots_[i].cycle, cycle) ? 1 : 0;
+  }
+  return later;
+}
+
 void OperatorInbox::remove(std::size_t index) noexcept {
   for (std::size_t i = index + 1; i < count_; ++i) {
     slots_[i - 1] = slots_[i];

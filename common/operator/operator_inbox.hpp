@@ -45,6 +45,11 @@ struct OperatorRequest {
   }
 };
 
+// A command stamped `stamp` waits past the next cycle after `cycle` (the last one run).
+[[nodiscard]] constexpr bool due_after_next(std::uint64_t stamp, std::uint64_t cycle) noexcept {
+  return stamp > cycle && stamp - cycle > 1;
+}
+
 class OperatorInbox {
  public:
   static constexpr std::size_t kSlots = 32;
@@ -54,6 +59,8 @@ class OperatorInbox {
   // another run are dropped on the way.
   std::optional<OperatorRequest> take_due(std::uint64_t cycle, std::uint64_t generation) noexcept;
   [[nodiscard]] std::size_t size() const noexcept { return count_; }
+  // How many are due only after the next cycle after `cycle` (due_after_next).
+  [[nodiscard]] std::size_t count_due_after_next(std::uint64_t cycle) const noexcept;
 
  private:
   void remove(std::size_t index) noexcept;

@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
                               dds::LocalTransport::shared_memory, std::move(identity));
     trace::TraceWriter tracer(trace_path, axis->name);
     node.announce(PHASE_STARTING);
+    node.serve_operator_commands(
+        process::OperatorScope::of_axis_node(),
+        process::AdmissionLimits::for_cycle_us(static_cast<std::uint32_t>(machine.cycle_us)));
 
     const canopen::NodeStartupConfig startup = axisnode::drive_startup_of(*axis);
     axisnode::AxisNode core(axisnode::roles_of(machine, *axis, startup));

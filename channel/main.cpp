@@ -136,6 +136,9 @@ int main(int argc, char** argv) {
                               dds::LocalTransport::shared_memory, std::move(identity));
     trace::TraceWriter tracer(trace_path, ch->name);
     node.announce(PHASE_STARTING);
+    node.serve_operator_commands(
+        process::OperatorScope::of_channel(static_cast<std::uint32_t>(ch->id)),
+        process::AdmissionLimits::for_cycle_us(static_cast<std::uint32_t>(machine.cycle_us)));
 
     // The lockstep gate over the feedback of the nodes the channel commands, the other
     // channels and the PLC: a node runs cycle N on the channel's setpoint N-1, so the channel

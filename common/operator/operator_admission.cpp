@@ -4,6 +4,13 @@
 
 namespace mcnc::process {
 
+std::optional<OperatorRefusal> refusal_numbered(int number) noexcept {
+  if (number < 0 || number > static_cast<int>(OperatorRefusal::text_too_long)) {
+    return std::nullopt;
+  }
+  return static_cast<OperatorRefusal>(number);
+}
+
 const char* code_of(OperatorRefusal refusal) noexcept {
   switch (refusal) {
     case OperatorRefusal::none:
@@ -39,7 +46,7 @@ const char* reason_of(OperatorRefusal refusal) noexcept {
     case OperatorRefusal::earlier_run:
       return "it belongs to a run that is over";
     case OperatorRefusal::unknown_origin:
-      return "its origin is not one that commands (launch, hmi)";
+      return "its origin is not one that commands (launch, hmi, cli)";
     case OperatorRefusal::unknown_action:
       return "an action this build does not know";
     case OperatorRefusal::text_too_long:
@@ -62,7 +69,7 @@ bool OperatorScope::covers(std::uint32_t command_channel, int action) const noex
 }
 
 bool commanding_origin(std::string_view origin) noexcept {
-  return origin == "launch" || origin == "hmi";
+  return origin == "launch" || origin == "hmi" || origin == "cli";
 }
 
 OperatorRefusal admit(const ArrivingCommand& command, const AdmissionState& now,

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace mcnc::process {
@@ -23,6 +24,8 @@ enum class OperatorRefusal : std::uint8_t {
   text_too_long
 };
 
+// The refusal numbered `number` on the wire; nullopt for a number this build does not know.
+std::optional<OperatorRefusal> refusal_numbered(int number) noexcept;
 // A short code for programs ("inbox_full"), and a sentence for people.
 const char* code_of(OperatorRefusal refusal) noexcept;
 const char* reason_of(OperatorRefusal refusal) noexcept;
@@ -67,8 +70,9 @@ struct OperatorScope {
   static OperatorScope of_axis_node() noexcept { return {0, true}; }
 };
 
-// The origins that command a machine (OperatorCommand.origin): the launcher's script and the
-// HMI. Under DDS Security the permissions, not this name, say who may write a command.
+// The origins that command a machine, as OperatorCommand.origin names them: the launcher's
+// script, the HMI and a command-line tool. Under DDS Security the permissions, not this name, say
+// who may write a command.
 bool commanding_origin(std::string_view origin) noexcept;
 
 // none when the process takes the command; else the first reason found, looking at the command

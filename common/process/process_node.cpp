@@ -61,31 +61,8 @@ ProcessNode::ProcessNode(int domain, std::string name, dds::CyclicClock clock,
                               rc_generation_.store(rc.generation());
                             });
                           }),
-      operator_reader_(
-          participant_,
-          [this](const OperatorCommand& c, const dds::WriterId&) {
-            OperatorRequest r;
-            r.seq = c.seq();
-            r.generation = c.generation();
-            r.cycle = c.cycle();
-            r.channel = c.channel();
-            r.value = c.value();
-            // The wire's actions and the inbox's kinds are in the same order.
-            static_assert(static_cast<int>(OperatorActionKind::alarm_ack) == OP_ALARM_ACK);
-            if (c.action() <= OP_NONE || c.action() > OP_ALARM_ACK ||
-                c.text().size() >= r.text.size()) {
-              operator_dropped_.fetch_add(
-                  1);  // an action this build does not know, a text too long
-              return;
-            }
-            r.action = static_cast<OperatorActionKind>(c.action());
-            std::copy(c.text().begin(), c.text().end(), r.text.begin());
-            wakeup_.update([&] {
-              if (!operator_inbox_.put(r)) {
-                operator_dropped_.fetch_add(1);
-              }
-            });
-          }),
+      operator_reader_(participant_, [this](const OperatorCommand& c,
+                                            const dds::WriterId&) { on_operator_command(c); }),
       host_(resolve_host()) {
   if (host_.empty()) {
     clock_known_.store(true);
@@ -135,7 +112,75 @@ RunControlView ProcessNode::run_control() const noexcept {
   return view;
 }
 
+void ProcessNode::serve_operator_commands(OperatorScope scope, AdmissionLimits limits) {
+  operator_scope_ = scope;
+  admission_limits_ = limits;
+  answer_writer_.emplace(participant_);
+  serving_.store(true, std::memory_order_release);
+}
+
+void ProcessNode::on_operator_command(const OperatorCommand& c) {
+  // The wire's actions and refusals are in the same order as the inbox's and the rule's.
+  static_assert(static_cast<int>(OperatorActionKind::alarm_ack) == OP_ALARM_ACK);
+  static_assert(static_cast<int>(OperatorRefusal::text_too_long) == OPR_TEXT_TOO_LONG);
+  if (!serving_.load(std::memory_order_acquire) ||
+      !operator_scope_.covers(c.channel(), static_cast<int>(c.action()))) {
+    return;  // not this process's to take, nor to answer
+  }
+  ArrivingCommand arriving;
+  arriving.generation = c.generation();
+  arriving.cycle = c.cycle();
+  arriving.channel = c.channel();
+  arriving.action = static_cast<int>(c.action());
+  arriving.origin = c.origin();
+  arriving.text_size = c.text().size();
+  const std::uint64_t now = operator_cycle_.load();
+  OperatorRefusal refusal = OperatorRefusal::none;
+  wakeup_.update([&] {
+    AdmissionState state;
+    state.cycle = now;
+    state.generation = rc_generation_.load();
+    state.queued = operator_inbox_.size();
+    state.queued_later = operator_inbox_.count_due_after_next(now);
+    refusal = admit(arriving, state, admission_limits_);
+    if (refusal != OperatorRefusal::none) {
+      return;
+    }
+    OperatorRequest r;
+    r.seq = c.seq();
+    r.generation = c.generation();
+    r.cycle = c.cycle();
+    r.channel = c.channel();
+    r.value = c.value();
+    r.action = static_cast<OperatorActionKind>(c.action());
+    std::copy(c.text().begin(), c.text().end(), r.text.begin());
+    operator_inbox_.put(r);  // admit() saw the room
+  });
+  if (refusal != OperatorRefusal::none) {
+    // A flood is logged by its first refusals and then every thousandth.
+    const std::uint64_t refused = operator_refused_.fetch_add(1) + 1;
+    if (refused <= 10 || refused % 1000 == 0) {
+      spdlog::warn(
+          "operator command (action {}) from {} (seq {}, cycle {}) refused at cycle {}: {} ({} "
+          "refused so far)",
+          static_cast<int>(c.action()), c.origin(), c.seq(), c.cycle(), now, reason_of(refusal),
+          refused);
+    }
+  }
+  OperatorAnswer answer;
+  answer.process(name_);
+  answer.sender(c.sender());
+  answer.seq(c.seq());
+  answer.origin(c.origin());
+  answer.taken(refusal == OperatorRefusal::none);
+  answer.refusal(static_cast<::mcnc::OperatorRefusal>(refusal));
+  answer.reason(refusal == OperatorRefusal::none ? "" : reason_of(refusal));
+  answer.cycle(now);
+  answer_writer_->write(answer);
+}
+
 std::optional<OperatorRequest> ProcessNode::take_operator_request(std::uint64_t cycle) noexcept {
+  operator_cycle_.store(cycle);
   std::optional<OperatorRequest> due;
   const std::uint64_t generation = rc_generation_.load();
   wakeup_.with_lock([&] { due = operator_inbox_.take_due(cycle, generation); });

@@ -2,6 +2,7 @@
 // What every mcnc process that speaks DDS has: its participant, its ProcessState announcement,
 // the run control from mcnc-launch, the alarm writer, and one wake-up that DDS callbacks and
 // other receive threads signal so that the cyclic loop can wait for "something arrived".
+#include "common/operator/operator_admission.hpp"
 #include "common/operator/operator_inbox.hpp"
 #include "common/process/wakeup.hpp"
 #include "idl/dds_participant.hpp"
@@ -84,11 +85,17 @@ class ProcessNode {
   bool raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle, int channel = 0,
                    int axis = 0, int line = 0) noexcept;
   [[nodiscard]] std::uint64_t alarms_lost() const noexcept { return alarms_lost_.load(); }
-  // The oldest operator command due at `cycle` of the current run (OperatorInbox). Short lock,
-  // no allocation: callable from the cyclic loop.
+  // This process serves the operator commands of `scope`: from now on each one it serves is
+  // taken into its OperatorInbox or refused (operator_admission.hpp) as it arrives, and answered
+  // on OperatorAnswer either way. A process that serves none ignores them. Call before it
+  // announces READY; once only.
+  void serve_operator_commands(OperatorScope scope, AdmissionLimits limits);
+  // The oldest operator command due at `cycle` of the current run (OperatorInbox); `cycle` is
+  // also the machine's cycle that arriving commands are judged by. Short lock, no allocation:
+  // callable from the cyclic loop.
   std::optional<OperatorRequest> take_operator_request(std::uint64_t cycle) noexcept;
-  [[nodiscard]] std::uint64_t operator_requests_dropped() const noexcept {
-    return operator_dropped_.load();
+  [[nodiscard]] std::uint64_t operator_requests_refused() const noexcept {
+    return operator_refused_.load();
   }
   ~ProcessNode();
 
@@ -105,8 +112,15 @@ class ProcessNode {
   std::atomic<std::int64_t> rc_start_ns_{0};
   std::atomic<bool> rc_pace_{false};
   dds::Reader<RunControl> run_control_reader_;
+  void on_operator_command(const OperatorCommand& command);
   OperatorInbox operator_inbox_;  // under wakeup_'s lock
-  std::atomic<std::uint64_t> operator_dropped_{0};
+  std::atomic<std::uint64_t> operator_refused_{0};
+  std::atomic<std::uint64_t> operator_cycle_{0};  // the last cycle taken from the inbox
+  // Set once by serve_operator_commands, before `serving_`.
+  OperatorScope operator_scope_;
+  AdmissionLimits admission_limits_;
+  std::optional<dds::Writer<OperatorAnswer>> answer_writer_;
+  std::atomic<bool> serving_{false};
   dds::Reader<OperatorCommand> operator_reader_;
   std::string host_;
   std::atomic<bool> clock_known_{false};

@@ -37,6 +37,7 @@ Identity channel_identity(const config::MachineConfig& machine,
   Identity identity{channel.name, Role::channel, process_topics()};
   add_once(identity.publishes, topic_of<ChannelStatus>(channel.name));
   add_once(identity.publishes, topic<CoordinationEvent>());
+  add_once(identity.publishes, topic<OperatorAnswer>());  // answers the operator's commands
   // The setpoints of the axes it may own: its own, those it may take with G141, its spindles'
   // C axes (on the spindle's node) and its spindles.
   std::vector<std::string> commanded = channel.program_axes();
@@ -86,6 +87,7 @@ std::vector<Identity> machine_identities(const config::MachineConfig& machine) {
   for (const config::AxisConfig& axis : machine.axes) {
     Identity identity{axis.name, Role::axis_node, process_topics()};
     add_once(identity.publishes, topic_of<AxisFeedback>(config::node_key(axis)));
+    add_once(identity.publishes, topic<OperatorAnswer>());  // answers the operator's resets
     identities.push_back(std::move(identity));
   }
   if (machine.plc.present) {

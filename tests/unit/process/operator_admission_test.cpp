@@ -73,10 +73,10 @@ TEST(OperatorAdmission, ACommandOfAnEarlierRunIsRefusedOneOfThisOrTheNextTaken) 
   EXPECT_EQ(admit(c, at(10), limits), OperatorRefusal::none);
 }
 
-TEST(OperatorAdmission, OnlyTheLauncherAndTheHmiCommand) {
+TEST(OperatorAdmission, OnlyTheLauncherTheHmiAndTheCommandLineCommand) {
   const AdmissionLimits limits = AdmissionLimits::for_cycle_us(1000);
   ArrivingCommand c = command(0);
-  for (const char* origin : {"launch", "hmi"}) {
+  for (const char* origin : {"launch", "hmi", "cli"}) {
     c.origin = origin;
     EXPECT_EQ(admit(c, at(10), limits), OperatorRefusal::none) << origin;
   }
@@ -127,6 +127,15 @@ TEST(OperatorAdmission, TheInboxCountsTheCommandsDueOnlyAfterTheNextCycle) {
   }
   EXPECT_EQ(inbox.count_due_after_next(10), 2U);  // 12 and 4000
   EXPECT_EQ(inbox.count_due_after_next(0), 5U);   // 5 on
+}
+
+TEST(OperatorAdmission, RefusalsAreNumberedAsOnTheWireAndUnknownNumbersAreNone) {
+  EXPECT_EQ(refusal_numbered(0), OperatorRefusal::none);
+  EXPECT_EQ(refusal_numbered(3), OperatorRefusal::too_far_ahead);
+  EXPECT_EQ(refusal_numbered(7), OperatorRefusal::text_too_long);
+  EXPECT_FALSE(refusal_numbered(8).has_value());
+  EXPECT_FALSE(refusal_numbered(-1).has_value());
+  EXPECT_STREQ(code_of(OperatorRefusal::stale), "stale");
 }
 
 TEST(OperatorScope, AChannelServesItsOwnAndTheMachinesCommandsAnAxisNodeOnlyResets) {

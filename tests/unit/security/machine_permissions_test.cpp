@@ -76,10 +76,11 @@ TEST(MachinePermissions, AChannelWritesItsStatusItsCoordinationAndTheSetpointsOf
   EXPECT_EQ(writers_of(all, "mcnc/ChannelStatus/CH3"), std::vector<std::string>{"CH3"});
 }
 
-TEST(MachinePermissions, AnAxisNodeWritesItsOwnFeedbackOnly) {
+TEST(MachinePermissions, AnAxisNodeWritesItsOwnFeedbackAndItsAnswersOnly) {
   const auto all = security::machine_identities(twin_turret());
   EXPECT_EQ(identity(all, "X1").publishes,
-            (std::vector<std::string>{"mcnc/ProcessState", "mcnc/Alarm", "mcnc/AxisFeedback/X1"}));
+            (std::vector<std::string>{"mcnc/ProcessState", "mcnc/Alarm", "mcnc/AxisFeedback/X1",
+                                      "mcnc/OperatorAnswer"}));
   EXPECT_EQ(writers_of(all, "mcnc/AxisFeedback/S2"), std::vector<std::string>{"S2"});
 }
 
@@ -89,6 +90,18 @@ TEST(MachinePermissions, OnlyTheHmiAndTheLauncherCommandAndTheViewerWritesNothin
   EXPECT_EQ(writers_of(all, "mcnc/RunControl"), std::vector<std::string>{"launch"});
   EXPECT_THAT(identity(all, "viewer").publishes, IsEmpty());
   EXPECT_EQ(writers_of(all, "mcnc/AuxAck"), std::vector<std::string>{"PLC"});
+}
+
+TEST(MachinePermissions, TheProcessesThatServeOperatorCommandsAnswerThemAndNoOneElse) {
+  const auto machine = twin_turret();
+  const auto all = security::machine_identities(machine);
+  const auto answering = writers_of(all, "mcnc/OperatorAnswer");
+  EXPECT_EQ(answering.size(), machine.channels.size() + machine.axes.size());
+  EXPECT_THAT(answering, Contains("CH1"));
+  EXPECT_THAT(answering, Contains("X1"));
+  for (const char* other : {"hmi", "launch", "viewer", "PLC"}) {
+    EXPECT_THAT(answering, Not(Contains(other))) << other;
+  }
 }
 
 TEST(MachinePermissions, AMachineOfSeveralHostsHasALauncherIdentityPerHost) {

@@ -3,6 +3,7 @@
 #include "channel/control/channel_controller.hpp"
 #include "common/clock/cycle_clock.hpp"
 #include "common/config/cyclic_routes.hpp"
+#include "common/process/command_answers.hpp"
 #include "common/process/exit_deadline.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
@@ -208,6 +209,49 @@ LaunchResult Launcher::run(
   }
   dds::Writer<RunControl> control_writer(node.participant());
   dds::Writer<OperatorCommand> operator_writer(node.participant());
+  // The scripted operator's commands go out before the run starts, and the run starts once every
+  // process they concern has taken them: one refused, or not answered within
+  // kScriptAnswerLimit, fails the run before anything moves (docs/operations.md "Operator
+  // commands").
+  process::CommandAnswers script_answers(node.participant(), machine_);
+  auto send_script = [&](std::uint64_t run_generation) -> std::string {
+    std::vector<std::pair<std::uint64_t, std::string>> sent;  // seq, ACTION[:CHANNEL]@CYCLE
+    std::uint64_t seq = 0;
+    for (const auto& c : options_.operator_script) {
+      OperatorCommand cmd;
+      cmd.seq(++seq);
+      cmd.generation(run_generation);
+      cmd.cycle(c.cycle);
+      cmd.channel(c.channel);
+      cmd.action(c.action);
+      cmd.value(c.value);
+      cmd.origin("launch");
+      cmd.sender(script_answers.sender());
+      script_answers.expect(cmd.seq(), cmd.channel(), static_cast<int>(cmd.action()));
+      std::string label =
+          process::to_string(static_cast<process::OperatorActionKind>(static_cast<int>(c.action)));
+      if (c.channel >= 1 && c.channel <= machine_.channels.size()) {
+        label += ":" + machine_.channels[c.channel - 1].name;
+      }
+      sent.emplace_back(cmd.seq(), label + "@" + std::to_string(c.cycle));
+      operator_writer.write(cmd);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + kScriptAnswerLimit;
+    for (const auto& [command_seq, label] : sent) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+          deadline - std::chrono::steady_clock::now());
+      const process::CommandAnswers::Standing answer =
+          script_answers.wait(command_seq, std::max(left, std::chrono::milliseconds(0)));
+      if (answer.outcome == process::AnswerTally::Outcome::refused) {
+        return "operator command " + label + " " + answer.why;
+      }
+      if (answer.outcome == process::AnswerTally::Outcome::pending) {
+        return "operator command " + label + ": " + answer.why + " within " +
+               std::to_string(kScriptAnswerLimit.count()) + " s";
+      }
+    }
+    return {};
+  };
   std::uint64_t script_end = 0;    // the last scripted command's cycle
   std::uint64_t alarms_after = 0;  // alarms from this cycle on stop the run
   for (const auto& c : options_.operator_script) {
@@ -548,22 +592,15 @@ LaunchResult Launcher::run(
                   hc.host().c_str(), static_cast<long long>(hc.offset_ns()),
                   static_cast<long long>(hc.error_ns()), hc.samples());
     }
-    // Realtime: cycle 0 a little in the future so every process starts on the same tick.
-    send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
-    std::uint64_t operator_seq = 0;
-    for (const auto& c : options_.operator_script) {
-      OperatorCommand cmd;
-      cmd.seq(++operator_seq);
-      cmd.generation(generation);
-      cmd.cycle(c.cycle);
-      cmd.channel(c.channel);
-      cmd.action(c.action);
-      cmd.value(c.value);
-      cmd.origin("launch");
-      operator_writer.write(cmd);
+    // The script belongs to the run that starts next (send_control numbers it so).
+    failure = send_script(std::max(generation, node.run_control().generation) + 1);
+    const bool started = failure.empty();
+    if (started) {
+      // Realtime: cycle 0 a little in the future so every process starts on the same tick.
+      send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
+    } else {
+      spdlog::error("not started: {}", failure);  // nothing moved: no E-stop
     }
-    // After the operator's script: a lockstep machine runs from RUN_START as fast as it can,
-    // and a scripted command must be on its way before its cycle comes.
     note_run_shm();  // every endpoint is made by now: ready means discovered
     const bool any_program = !options_.programs.empty();
     const bool realtime = options_.clock == REALTIME_CLOCK;
@@ -587,7 +624,7 @@ LaunchResult Launcher::run(
     auto last_progress = std::chrono::steady_clock::now() - 1s;
     std::optional<std::chrono::steady_clock::time_point> alarm_since;
     std::uint64_t alarm_cycle = 0;
-    for (;;) {
+    while (failure.empty()) {
       // Ends, alarms and exits are noticed within this period. Each look costs system calls,
       // which are dear in an emulated machine (about 40 us each under the user-mode Linux the
       // socketcan tests once ran in): polling every 2 ms made their machine a fifth slower
@@ -719,7 +756,7 @@ LaunchResult Launcher::run(
         std::this_thread::sleep_for(20ms);
       }
     }
-    if (!failure.empty()) {
+    if (!failure.empty() && started) {
       // E-stop: channels reset, drives quick stop; wait until the drives are at rest.
       estopped = true;
       spdlog::error("E-stop: {}", failure);

@@ -23,6 +23,9 @@ namespace mcnc::launch {
 // timeout, an interrupt and the stop that follows still work on such a host.
 inline constexpr int kSupervisorPriority = clock::kAxisCyclePriority + 2;
 inline constexpr std::chrono::seconds kMachineSilentLimit{5};
+// How long the processes may take to answer the scripted operator's commands (they answer as a
+// command arrives, not at its cycle).
+inline constexpr std::chrono::seconds kScriptAnswerLimit{5};
 
 // An operator command the launcher sends at a given cycle (`mcnc run --operator`): a scripted
 // operator, deterministic in lockstep.

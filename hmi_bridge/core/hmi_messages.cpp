@@ -253,8 +253,16 @@ std::string meeting_message(const config::MachineConfig& machine, const Meeting&
                {"time_s", static_cast<double>(meeting.cycle) * machine.cycle_s()}});
 }
 
-std::string reply_message(std::int64_t id, bool ok, std::string_view reason) {
-  return dump({{"type", "reply"}, {"id", id}, {"ok", ok}, {"reason", reason}});
+std::string reply_message(std::int64_t id, bool ok, std::string_view reason,
+                          std::string_view refusal, std::string_view process) {
+  Json reply = {{"type", "reply"}, {"id", id}, {"ok", ok}, {"reason", reason}};
+  if (!refusal.empty()) {
+    reply["refusal"] = refusal;
+  }
+  if (!process.empty()) {
+    reply["process"] = process;
+  }
+  return dump(reply);
 }
 
 std::string error_message(std::string_view reason) {

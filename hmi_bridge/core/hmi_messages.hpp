@@ -26,7 +26,10 @@ std::string alarms_message(const config::MachineConfig& machine, const AlarmLog&
 std::string alarm_message(const config::MachineConfig& machine, const AlarmEntry& entry);
 // A G04.1 meeting: its mark, its channels and when (machine time), for the timeline.
 std::string meeting_message(const config::MachineConfig& machine, const Meeting& meeting);
-std::string reply_message(std::int64_t id, bool ok, std::string_view reason);
+// A refused command's reply also names the refusal's code (OperatorRefusal's, or "unanswered")
+// and the process that refused it, when there are such.
+std::string reply_message(std::int64_t id, bool ok, std::string_view reason,
+                          std::string_view refusal = {}, std::string_view process = {});
 std::string error_message(std::string_view reason);
 
 }  // namespace mcnc::hmi

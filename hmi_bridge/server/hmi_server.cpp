@@ -253,12 +253,12 @@ bool HmiServer::handle_text(Client& client, std::string_view text) {
     std::lock_guard<std::mutex> lock(client.write);
     role = client.role;
   }
-  std::string reason;
+  CommandRefusal refusal;
   if (role != Role::operator_) {
-    reason = role == Role::viewer ? "a viewer cannot command: show the operator token"
-                                  : "commands need the operator token";
+    refusal.reason = role == Role::viewer ? "a viewer cannot command: show the operator token"
+                                          : "commands need the operator token";
   }
-  if (reason.empty() && feed_.send(command, reason)) {
+  if (refusal.reason.empty() && feed_.send(command, refusal)) {
     count(&HmiCounters::commands);
     spdlog::info("operator command {} {}", process::to_string(command.action),
                  command.channel == 0 ? std::string("(machine)")
@@ -267,7 +267,10 @@ bool HmiServer::handle_text(Client& client, std::string_view text) {
     return true;
   }
   count(&HmiCounters::refused);
-  send(client, reply_message(command.id, false, reason));
+  if (!refusal.code.empty()) {
+    spdlog::warn("operator command {} {}", process::to_string(command.action), refusal.reason);
+  }
+  send(client, reply_message(command.id, false, refusal.reason, refusal.code, refusal.process));
   return true;
 }
 

@@ -23,6 +23,7 @@ MachineFeed::MachineFeed(const config::MachineConfig& machine, int domain,
                    process::resolve_middleware(machine, "HMI"), dds::LocalTransport::shared_memory,
                    std::move(security)),
       commands_(participant_),
+      answers_(participant_, machine),
       // Reliable: a run's end is in its last few samples (docs/decisions.md 26).
       channels_(participant_, dds::Keys::of(config::channel_names(machine)),
                 [this](const ::mcnc::ChannelStatus& s, const dds::WriterId&) {
@@ -186,7 +187,7 @@ std::vector<std::string> MachineFeed::welcome() {
   return messages;
 }
 
-bool MachineFeed::send(const CommandMessage& command, std::string& reason) {
+bool MachineFeed::send(const CommandMessage& command, CommandRefusal& refusal) {
   ::mcnc::OperatorCommand c;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -197,8 +198,8 @@ bool MachineFeed::send(const CommandMessage& command, std::string& reason) {
           it != snapshot_.channels.end() && (it->second.state == status::ChannelState::reset ||
                                              it->second.state == status::ChannelState::idle);
       if (!stands) {
-        reason = std::string(process::to_string(command.action)) +
-                 ": the channel must stand in reset or idle";
+        refusal.reason = std::string(process::to_string(command.action)) +
+                         ": the channel must stand in reset or idle";
         return false;
       }
     }
@@ -211,11 +212,30 @@ bool MachineFeed::send(const CommandMessage& command, std::string& reason) {
   c.origin("hmi");
   c.value(command.value);
   c.text(command.text);
+  c.sender(answers_.sender());
+  answers_.expect(c.seq(), c.channel(), static_cast<int>(c.action()));
   if (!commands_.write(c)) {
-    reason = "the command could not be sent (DDS write failed)";
+    answers_.forget(c.seq());
+    refusal.reason = "the command could not be sent (DDS write failed)";
     return false;
   }
-  return true;
+  const process::CommandAnswers::Standing answer = answers_.wait(c.seq(), kAnswerLimit);
+  answers_.forget(c.seq());
+  switch (answer.outcome) {
+    case process::AnswerTally::Outcome::taken:
+      return true;
+    case process::AnswerTally::Outcome::refused:
+      refusal.reason = answer.why;
+      refusal.code = process::code_of(answer.refusal);
+      refusal.process = answer.refused_by;
+      return false;
+    case process::AnswerTally::Outcome::pending:
+      refusal.reason = answer.why + " within " + std::to_string(kAnswerLimit.count()) +
+                       " ms: the command may or may not take effect";
+      refusal.code = "unanswered";
+      return false;
+  }
+  return false;
 }
 
 bool MachineFeed::all_heard() {

@@ -3,6 +3,7 @@
 // browsers as the HMI's messages, and the operator commands it sends. Thread-safe: DDS
 // callbacks fill it, the server's threads read it.
 #include "common/config/machine_config.hpp"
+#include "common/process/command_answers.hpp"
 #include "hmi_bridge/core/alarm_log.hpp"
 #include "hmi_bridge/core/client_message.hpp"
 #include "hmi_bridge/core/meeting_tracker.hpp"
@@ -10,12 +11,25 @@
 #include "idl/topics.hpp"
 #include "tools/status/status_lines.hpp"
 
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <string>
 #include <vector>
 
 namespace mcnc::hmi {
+
+// Why a command was not taken: for people, and for programs the refusal's code and the process
+// that refused (both empty when the HMI itself refused).
+struct CommandRefusal {
+  std::string reason;
+  std::string code;
+  std::string process;
+};
+
+// How long the HMI waits for the machine's answers to a command before it tells the operator
+// that none came. The processes answer as a command arrives, not when it takes effect.
+inline constexpr std::chrono::milliseconds kAnswerLimit{2000};
 
 class MachineFeed {
  public:
@@ -32,10 +46,12 @@ class MachineFeed {
   std::vector<std::string> take_news();
   // What a browser that starts viewing gets first: the alarm history and every program known.
   std::vector<std::string> welcome();
-  // Sends the command as a DDS operator command; false with the reason when it cannot go out,
-  // or when it asks for a program or MDI blocks while the channel does not stand in reset or
-  // idle (the channel would refuse it too).
-  bool send(const CommandMessage& command, std::string& reason);
+  // Sends the command as a DDS operator command and waits (kAnswerLimit at most) for every
+  // process that serves it to take it: true once they all did. False with the refusal when a
+  // process refused it, none answered in time, it cannot go out, or it asks for a program or
+  // MDI blocks while the channel does not stand in reset or idle (the channel would refuse it
+  // too). Blocks the calling thread only.
+  bool send(const CommandMessage& command, CommandRefusal& refusal);
   // Whether every channel and axis has been heard (for start-up logs).
   [[nodiscard]] bool all_heard();
 
@@ -64,6 +80,7 @@ class MachineFeed {
   std::uint64_t seq_ = 0;
   dds::Participant participant_;
   dds::Writer<::mcnc::OperatorCommand> commands_;
+  process::CommandAnswers answers_;
   dds::Reader<::mcnc::ChannelStatus> channels_;
   dds::Reader<::mcnc::AxisFeedback> axes_;
   dds::Reader<::mcnc::Alarm> alarm_reader_;

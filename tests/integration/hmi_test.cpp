@@ -16,8 +16,10 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <regex>
+#include <sstream>
 #include <thread>
 
 using namespace std::chrono_literals;
@@ -319,6 +321,86 @@ TEST(Hmi, TenThousandMalformedMessagesLeaveItServingAndTheOperatorStartsTheProgr
   ASSERT_TRUE(op.connected()) << op.error();
   ASSERT_NO_FATAL_FAILURE(operator_starts_ch1(op, hmi));
   ASSERT_NO_FATAL_FAILURE(ch1_ran_to_its_end_once_started(launch, machine));
+}
+
+// The machine's answers to a rogue's flood, as its last "answers" line says: by refusal code.
+std::map<std::string, int> rogue_answers(const std::string& out) {
+  std::map<std::string, int> answers;
+  const auto at = out.rfind("answers");
+  if (at == std::string::npos) {
+    return answers;
+  }
+  std::istringstream line(out.substr(at + 7, out.find('\n', at) - at - 7));
+  std::string code;
+  int n = 0;
+  while (line >> code >> n) {
+    answers[code] = n;
+  }
+  return answers;
+}
+
+// Issue 25: a participant floods the machine with feed holds stamped for cycle 2^64-1, for a
+// cycle long past and for one far ahead but within the hour a process keeps commands for. The
+// machine refuses each with its reason, which reaches the flooder; the ones it keeps fill only
+// the slots left to commands for later. The operator's RESET and CYCLE START through the HMI are
+// then answered ok because every process took them, and obeyed: the program runs to its end
+// and no feed hold ever takes effect.
+TEST(Hmi, AFloodOfStampedCommandsIsRefusedWithReasonsAndTheOperatorIsStillTakenAndObeyed) {
+  TestMachine machine("small_lathe.yaml", 183);
+  Background launch(hmi_run(machine, {"CH1=" + source("launch/programs/xz_move.nc")}), -1,
+                    machine.file("launch"));
+  const HmiAddress hmi = wait_for_hmi(machine.file("launch.out"));
+  ASSERT_NE(hmi.port, 0) << slurp(machine.file("launch.out")) << slurp(machine.file("launch.err"));
+  WsClient op("127.0.0.1", hmi.port, "");
+  ASSERT_TRUE(op.connected()) << op.error();
+  op.send(R"({"type":"auth","token":")" + hmi.token + "\"}");
+  ASSERT_TRUE(shows_role(op, "operator"));
+  // Past cycle 2500: a stamp of 1 is more than a second (1000 cycles) old.
+  ASSERT_TRUE(eventually(
+      [&] {
+        const auto states = op.of_type("state");
+        return ch1_state(op) == "idle" && states.back()["cycle"].get<std::uint64_t>() > 2500;
+      },
+      60s));
+
+  const std::string rogue_log = machine.file("rogue");
+  Background rogue({bin("mcnc_rogue"), "--domain", std::to_string(machine.domain()), "--flood",
+                    "18446744073709551615", "--flood", "1", "--flood", "2000000", "--count", "40"},
+                   -1, rogue_log);
+  // CH1 answers all 120 (an axis node serves only resets).
+  ASSERT_TRUE(eventually(
+      [&] {
+        int total = 0;
+        for (const auto& [code, n] : rogue_answers(slurp(rogue_log + ".out"))) {
+          total += n;
+        }
+        return total >= 120;
+      },
+      30s))
+      << slurp(rogue_log + ".out") << slurp(rogue_log + ".err");
+  const std::map<std::string, int> answers = rogue_answers(slurp(rogue_log + ".out"));
+  EXPECT_EQ(answers, (std::map<std::string, int>{
+                         {"too_far_ahead", 40}, {"stale", 40}, {"taken", 24}, {"inbox_full", 16}}));
+
+  // The operator's commands, answered by CH1 (and a reset by the axis nodes too).
+  for (const auto& [id, action] : {std::pair{1, "reset"}, std::pair{2, "cycle_start"}}) {
+    op.send(command(id, action, "CH1"));
+    const nlohmann::json reply = op.wait_for(reply_to(id), 10s);
+    ASSERT_FALSE(reply.is_null()) << action;
+    EXPECT_EQ(reply, nlohmann::json::parse(R"({"type":"reply","id":)" + std::to_string(id) +
+                                           R"(,"ok":true,"reason":""})"))
+        << action;
+  }
+  EXPECT_EQ(launch.wait(120s), 0) << slurp(machine.file("launch.out"));
+  rogue.kill(SIGTERM);
+  rogue.wait(20s);
+  const auto trace = read_trace(machine.file("trace.jsonl"));
+  const auto ops = events(trace, "operator", "CH1");
+  ASSERT_EQ(ops.size(), 2U);
+  EXPECT_EQ(ops[0]["action"], "reset");
+  EXPECT_EQ(ops[1]["action"], "cycle_start");
+  ASSERT_FALSE(trace.empty());
+  EXPECT_EQ(trace.back()["channels"]["CH1"]["end"], 30);
 }
 
 TEST(Hmi, AnOperatorRunsThePartTransferFromTheBrowser) {

@@ -231,6 +231,34 @@ TEST(Run, ABadScriptedOperatorCommandExits2AndStartsNothing) {
   }
 }
 
+// A scripted command the machine cannot take (here stamped beyond the hour ahead that a process
+// keeps commands for) is refused by the channel before the run starts: mcnc run names the
+// command, who refused it and why, exits 1, and nothing moved (issue 25).
+TEST(Run, AScriptedCommandTheMachineRefusesFailsTheRunBeforeAnythingMovesAndSaysWhy) {
+  TestMachine machine("small_lathe.yaml", 184);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("launch/programs/xz_move.nc"), "--operator",
+                           "feed_hold:CH1@4000000", "--trace", trace_file},
+                          -1, 120s);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE((r.out + r.err)
+                .find("operator command feed_hold:CH1@4000000 refused by CH1 (too_far_ahead): "
+                      "its cycle lies too far beyond the machine's"),
+            std::string::npos)
+      << r.out << r.err;
+  const auto trace = read_trace(trace_file);
+  EXPECT_TRUE(events(trace, "block", "CH1").empty());
+  std::map<std::string, double> first_act;  // by axis: where it stood
+  for (const auto& e : trace) {
+    if (e.value("ev", "") == "pos") {
+      const auto at = first_act.emplace(e["axis"], e["act"].get<double>()).first;
+      EXPECT_EQ(e["act"].get<double>(), at->second) << e;
+    }
+  }
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty());
+}
+
 TEST(Run, SubprogramsComeFromTheProgramDirectory) {
   // M98 P22001: O2001 twice, found by number in the directory --progdir names (the machine
   // file names none). Without it the program is rejected before anything starts.

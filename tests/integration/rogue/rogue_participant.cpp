@@ -7,6 +7,10 @@
 // would share a grant.
 // Prints "writers N" once its writers are made (those its own access control allows) and
 // "rounds N" at its end.
+// With --flood it only fills the machine's operator inboxes as in issue 25: `--count` feed holds
+// stamped with each cycle of --flood, once, then it waits; at its end it prints how the machine
+// answered them ("answers taken N too_far_ahead N ..."), counted over every answering process.
+#include "common/operator/operator_admission.hpp"
 #include "common/security/identity_files.hpp"
 #include "idl/dds_participant.hpp"
 
@@ -15,8 +19,11 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <thread>
+#include <vector>
 
 using namespace mcnc;
 
@@ -38,8 +45,33 @@ class Rogue {
     make(events_);
     make(setpoints_, "X1");
     make(feedback_, "X1");
+    answer_reader_.emplace(participant_, [this](const OperatorAnswer& a, const dds::WriterId&) {
+      if (a.sender() == kFloodSender) {
+        const auto refusal = process::refusal_numbered(static_cast<int>(a.refusal()));
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++answers_[refusal ? process::code_of(*refusal) : "unknown"];
+      }
+    });
   }
   [[nodiscard]] int writers() const { return writers_; }
+
+  // Feed holds for the whole machine stamped `cycle`, as an HMI would send them.
+  void flood(std::uint64_t cycle, int count) {
+    for (int i = 0; i < count; ++i) {
+      OperatorCommand c;
+      c.seq(++flood_seq_);
+      c.cycle(cycle);
+      c.action(OP_FEED_HOLD);
+      c.origin("hmi");
+      c.sender(kFloodSender);
+      write(commands_, c);
+    }
+  }
+  // The machine's answers to the flood so far, by refusal code ("taken" when taken).
+  std::map<std::string, int> flood_answers() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return answers_;
+  }
 
   void publish_round(std::uint64_t seq) {
     for (OperatorAction action :
@@ -113,6 +145,11 @@ class Rogue {
   std::optional<dds::Writer<AxisSetpoint>> setpoints_;
   std::optional<dds::Writer<AxisFeedback>> feedback_;
   int writers_ = 0;
+  static constexpr std::uint64_t kFloodSender = 0x726f677565;
+  std::uint64_t flood_seq_ = 0;
+  std::mutex mutex_;
+  std::map<std::string, int> answers_;
+  std::optional<dds::Reader<OperatorAnswer>> answer_reader_;
 };
 
 }  // namespace
@@ -131,6 +168,10 @@ int main(int argc, char** argv) {
   app.add_option("--permissions-ca", permissions_ca, "instead of the directory's");
   app.add_option("--governance", governance, "instead of the directory's");
   app.add_option("--permissions", permissions, "instead of the directory's");
+  std::vector<std::uint64_t> flood;
+  int count = 40;
+  app.add_option("--flood", flood, "only send --count operator commands stamped with each cycle");
+  app.add_option("--count", count);
   CLI11_PARSE(app, argc, argv);
   std::optional<security::IdentityFiles> files;
   if (!certs.empty()) {
@@ -150,9 +191,31 @@ int main(int argc, char** argv) {
     std::printf("writers %d\n", rogue.writers());
     std::fflush(stdout);
     std::uint64_t rounds = 0;
+    for (const std::uint64_t cycle : flood) {
+      rogue.flood(cycle, count);
+    }
+    int answered = 0;
     while (g_stop == 0) {
-      rogue.publish_round(1000 + rounds);
-      ++rounds;
+      if (flood.empty()) {
+        rogue.publish_round(1000 + rounds);
+        ++rounds;
+      } else {
+        // Each time more answers came: all of them so far.
+        const std::map<std::string, int> answers = rogue.flood_answers();
+        int total = 0;
+        for (const auto& [code, n] : answers) {
+          total += n;
+        }
+        if (total != answered) {
+          answered = total;
+          std::printf("answers");
+          for (const auto& [code, n] : answers) {
+            std::printf(" %s %d", code.c_str(), n);
+          }
+          std::printf("\n");
+          std::fflush(stdout);
+        }
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     std::printf("rounds %llu\n", static_cast<unsigned long long>(rounds));

@@ -152,6 +152,21 @@ TEST(HmiMessages, AlarmsAndProgramTextsThatAreNotUtf8StillMakeJson) {
   EXPECT_EQ(p["lines"].size(), 2U);
 }
 
+TEST(HmiMessages, ATakenCommandsReplyIsAsBeforeARefusedOneNamesItsCodeAndProcess) {
+  EXPECT_EQ(reply_message(4, true, ""), R"({"id":4,"ok":true,"reason":"","type":"reply"})");
+  EXPECT_EQ(reply_message(5, false, "commands need the operator token"),
+            R"({"id":5,"ok":false,"reason":"commands need the operator token","type":"reply"})");
+  const auto refused = nlohmann::json::parse(
+      reply_message(6, false, "refused by CH1 (inbox_full): why", "inbox_full", "CH1"));
+  EXPECT_EQ(refused["ok"], false);
+  EXPECT_EQ(refused["refusal"], "inbox_full");
+  EXPECT_EQ(refused["process"], "CH1");
+  const auto unanswered =
+      nlohmann::json::parse(reply_message(7, false, "no answer from CH1", "unanswered"));
+  EXPECT_EQ(unanswered["refusal"], "unanswered");
+  EXPECT_FALSE(unanswered.contains("process"));
+}
+
 TEST(AlarmLog, AnAlarmIsKeptOnceAndAcknowledgedOnce) {
   AlarmLog log;
   AlarmEntry e;

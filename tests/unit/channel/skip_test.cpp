@@ -37,7 +37,7 @@ ChannelSetup xz_setup(bool probe) {
 }
 
 // The block ends of a cycle's output, added to `ends`.
-void note_ends(const ChannelOutput& out, std::vector<ChannelEvent>& ends) {
+void note_ends(const CycleOutput& out, std::vector<ChannelEvent>& ends) {
   for (std::size_t e = 0; e < out.event_count; ++e) {
     if (out.events[e].kind == ChannelEventKind::block_ended) {
       ends.push_back(out.events[e]);
@@ -174,10 +174,10 @@ class SignalRig : public ChannelRig {
         on_from_start_(on_from_start),
         feedback_(standing_feedback(kAxes, 1)) {}
 
-  const ChannelOutput& step() override {
+  const CycleOutput& step() override {
     const bool on = on_from_start_ || feedback_[kZ].act <= kTrigger;
     ctl().set_plc_inputs(on ? std::uint64_t{1} << kBit : 0);
-    const ChannelOutput& out = channel_cycle(cycle_++, feedback_);
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     follow_setpoints(out, feedback_, kAxes);
     for (std::size_t a = 0; a < kAxes; ++a) {
       probe_asked = probe_asked || out.setpoints[a].probe != ProbeArm::off;

@@ -144,13 +144,17 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 // share a RouDi and never each other's samples. Multicast only for discovery, as Fast DDS does:
 // a sample sent to a multicast group reaches every participant of the domain on every host,
 // each of which wakes to drop what it does not read; sent to each matched reader it wakes only
-// those (decision 54). CYCLONEDDS_URI, when set, is read after it.
+// those (decision 54). A writer's heartbeats stay 100 ms apart while a reader lacks a sample:
+// Cyclone DDS doubles the interval, up to 8 s, after five heartbeats without a write, and a
+// lockstep writer writes nothing until that reader's answer comes (decision 91).
+// CYCLONEDDS_URI, when set, is read after it.
 std::string domain_config(int domain, bool shared_memory) {
   std::string config =
       "<CycloneDDS><Domain id=\"any\">"
       "<General><AllowMulticast>spdp</AllowMulticast></General>"
       "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>1s</SPDPInterval>"
       "</Discovery>"
+      "<Internal><HeartbeatInterval max=\"100 ms\">100 ms</HeartbeatInterval></Internal>"
       "<SharedMemory><Enable>" +
       std::string(shared_memory ? "true" : "false") + "</Enable><Prefix>mcnc_d" +
       std::to_string(domain) +

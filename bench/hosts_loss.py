@@ -10,7 +10,8 @@ launcher's standstill limit), the time from the start to the end, and how many t
 process logged that a cycle waited 2 s or more for an input. A run's logs are kept in the
 build tree when it fails.
 
-usage: bench/hosts_loss.py [--runs N] [--percent P] [--heal-after S] [--build DIR]  (root)
+usage: bench/hosts_loss.py [--runs N] [--percent P] [--heal-after S] [--machine FILE]
+                          [--build DIR]  (root; FILE: a cell_3ncu.yaml, e.g. on another middleware)
 """
 import argparse
 import os
@@ -40,7 +41,7 @@ def one_run(k, args, mcnc, work):
         procs = {}
         for host in HOSTS:
             argv = [sys.executable, HOSTNET, "exec", "--prefix", prefix, host, "--", mcnc, "run",
-                    "launch/machines/cell_3ncu.yaml", *PROGRAMS, "--trace",
+                    args.machine, *PROGRAMS, "--trace",
                     work + "/trace.jsonl", "--log-level", "info", "--timeout", "600", "--host",
                     host]
             procs[host] = subprocess.Popen(argv, stdout=subprocess.DEVNULL,
@@ -78,6 +79,7 @@ def main():
     parser.add_argument("--percent", type=float, default=10)
     parser.add_argument("--heal-after", type=float, default=8,
                         help="seconds of the run under loss (-1: all of it)")
+    parser.add_argument("--machine", default="launch/machines/cell_3ncu.yaml")
     parser.add_argument("--build", default=os.path.join(SOURCE, "build"))
     args = parser.parse_args()
     mcnc = os.path.join(args.build, "bin", "mcnc")

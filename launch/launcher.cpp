@@ -230,8 +230,8 @@ LaunchResult Launcher::run(
       script_answers.expect(cmd.seq(), cmd.channel(), static_cast<int>(cmd.action()));
       std::string label =
           process::to_string(static_cast<process::OperatorActionKind>(static_cast<int>(c.action)));
-      if (c.channel >= 1 && c.channel <= machine_.channels.size()) {
-        label += ":" + machine_.channels[c.channel - 1].name;
+      if (const config::ChannelConfig* channel = machine_.channel_by_id(c.channel)) {
+        label += ":" + channel->name;
       }
       sent.emplace_back(cmd.seq(), label + "@" + std::to_string(c.cycle));
       operator_writer.write(cmd);
@@ -261,6 +261,8 @@ LaunchResult Launcher::run(
     }
   }
   std::uint64_t generation = 0;
+  // The generation the next RunControl this launcher sends carries: past every one heard.
+  auto next_generation = [&] { return std::max(generation, node.run_control().generation) + 1; };
   // A follower whose coordinator is gone E-stops and stops its own host's processes.
   bool host_alone = false;
   auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
@@ -268,8 +270,8 @@ LaunchResult Launcher::run(
       return;  // the coordinator runs the machine
     }
     RunControl rc;
-    generation = std::max(generation, node.run_control().generation);
-    rc.generation(++generation);
+    generation = next_generation();
+    rc.generation(generation);
     rc.command(command);
     rc.clock(options_.clock);
     // This launcher keeps no host clock offset: the start it read is machine time, as it was
@@ -593,7 +595,7 @@ LaunchResult Launcher::run(
                   static_cast<long long>(hc.error_ns()), hc.samples());
     }
     // The script belongs to the run that starts next (send_control numbers it so).
-    failure = send_script(std::max(generation, node.run_control().generation) + 1);
+    failure = send_script(next_generation());
     const bool started = failure.empty();
     if (started) {
       // Realtime: cycle 0 a little in the future so every process starts on the same tick.

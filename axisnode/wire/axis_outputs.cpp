@@ -33,11 +33,13 @@ bool AxisOutputs::discovered() const {
 }
 
 const char* AxisOutputs::channel_name(std::uint32_t id) const noexcept {
-  return id >= 1 && id <= machine_.channels.size() ? machine_.channels[id - 1].name.c_str() : "";
+  const config::ChannelConfig* channel = machine_.channel_by_id(id);
+  return channel != nullptr ? channel->name.c_str() : "";
 }
 
 const char* AxisOutputs::axis_name(std::uint32_t id) const noexcept {
-  return id >= 1 && id <= machine_.axes.size() ? machine_.axes[id - 1].name.c_str() : "";
+  const config::AxisConfig* axis = machine_.axis_by_id(id);
+  return axis != nullptr ? axis->name.c_str() : "";
 }
 
 void AxisOutputs::trace_start(const AxisNode& core) noexcept {

@@ -80,4 +80,14 @@ std::vector<std::string> channel_names(const MachineConfig& machine) {
   return names;
 }
 
+std::string channel_name(const MachineConfig& machine, std::uint64_t id) {
+  const ChannelConfig* channel = machine.channel_by_id(id);
+  return channel != nullptr ? channel->name : "channel " + std::to_string(id);
+}
+
+std::string axis_name(const MachineConfig& machine, std::uint64_t id) {
+  const AxisConfig* axis = machine.axis_by_id(id);
+  return axis != nullptr ? axis->name : "axis " + std::to_string(id);
+}
+
 }  // namespace mcnc::config

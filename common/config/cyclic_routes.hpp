@@ -35,4 +35,9 @@ namespace mcnc::config {
 // The names of every channel (whose status the PLC reads).
 [[nodiscard]] std::vector<std::string> channel_names(const MachineConfig& machine);
 
+// The name of the channel or axis a wire id names (decision 1), for a person to read: "channel
+// 7" or "axis 12" when the id is not in the machine file.
+[[nodiscard]] std::string channel_name(const MachineConfig& machine, std::uint64_t id);
+[[nodiscard]] std::string axis_name(const MachineConfig& machine, std::uint64_t id);
+
 }  // namespace mcnc::config

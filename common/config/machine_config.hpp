@@ -231,6 +231,14 @@ struct MachineConfig {
   [[nodiscard]] const AxisConfig* find_axis(const std::string& name) const noexcept;
   [[nodiscard]] const ChannelConfig* find_channel(const std::string& name) const noexcept;
   [[nodiscard]] const BusConfig* find_bus(const std::string& name) const noexcept;
+  // By the ids the wire carries (1-based positions in the file, decision 1); nullptr when out
+  // of range.
+  [[nodiscard]] const ChannelConfig* channel_by_id(std::uint64_t id) const noexcept {
+    return id >= 1 && id <= channels.size() ? &channels[id - 1] : nullptr;
+  }
+  [[nodiscard]] const AxisConfig* axis_by_id(std::uint64_t id) const noexcept {
+    return id >= 1 && id <= axes.size() ? &axes[id - 1] : nullptr;
+  }
   // The DDS implementation the machine file names for a process (a channel, an axis node, PLC,
   // HMI; anything else, the launcher and `mcnc status` among them, gets the machine's); empty
   // when it names none.

@@ -1,5 +1,7 @@
 #include "common/operator/operator_admission.hpp"
 
+#include "common/config/machine_config.hpp"
+
 #include <algorithm>
 
 namespace mcnc::process {
@@ -56,9 +58,9 @@ const char* reason_of(OperatorRefusal refusal) noexcept {
 }
 
 AdmissionLimits AdmissionLimits::for_cycle_us(std::uint32_t cycle_us) noexcept {
-  const std::uint64_t per_second = 1'000'000 / (cycle_us == 0 ? 1 : cycle_us);
+  const int us = cycle_us == 0 ? 1 : static_cast<int>(cycle_us);
   AdmissionLimits limits;
-  limits.late_cycles = per_second == 0 ? 1 : per_second;
+  limits.late_cycles = config::cycles_of(1000, us);
   limits.ahead_cycles = 3600 * limits.late_cycles;
   return limits;
 }

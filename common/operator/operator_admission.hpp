@@ -45,7 +45,6 @@ struct AdmissionLimits {
 struct ArrivingCommand {
   std::uint64_t generation = 0;  // 0: whichever run goes on
   std::uint64_t cycle = 0;       // 0: the next cycle
-  std::uint32_t channel = 0;     // 0: the whole machine
   int action = 0;                // the wire's OperatorAction
   std::string_view origin;
   std::size_t text_size = 0;

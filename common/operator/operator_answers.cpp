@@ -14,8 +14,8 @@ std::vector<std::string> answering_processes(const config::MachineConfig& machin
       names.push_back(ch.name);
     }
   }
-  for (const config::AxisConfig& axis : machine.axes) {
-    if (OperatorScope::of_axis_node().covers(channel, action)) {
+  if (OperatorScope::of_axis_node().covers(channel, action)) {  // the same for every node
+    for (const config::AxisConfig& axis : machine.axes) {
       names.push_back(axis.name);
     }
   }

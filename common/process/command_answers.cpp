@@ -70,11 +70,6 @@ CommandAnswers::Standing CommandAnswers::standing_locked(std::uint64_t seq) {
   return standing;
 }
 
-CommandAnswers::Standing CommandAnswers::standing(std::uint64_t seq) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return standing_locked(seq);
-}
-
 CommandAnswers::Standing CommandAnswers::wait(std::uint64_t seq, std::chrono::milliseconds limit) {
   std::unique_lock<std::mutex> lock(mutex_);
   Standing standing;

@@ -36,8 +36,7 @@ class CommandAnswers {
     OperatorRefusal refusal = OperatorRefusal::none;
     std::string refused_by;
   };
-  Standing standing(std::uint64_t seq);
-  // As standing(), waiting up to `limit` for the command to be decided.
+  // How command `seq` stands once decided, waiting up to `limit` for that (pending after it).
   Standing wait(std::uint64_t seq, std::chrono::milliseconds limit);
   // Forgets command `seq` (decided, or given up).
   void forget(std::uint64_t seq);

@@ -130,7 +130,6 @@ void ProcessNode::on_operator_command(const OperatorCommand& c) {
   ArrivingCommand arriving;
   arriving.generation = c.generation();
   arriving.cycle = c.cycle();
-  arriving.channel = c.channel();
   arriving.action = static_cast<int>(c.action());
   arriving.origin = c.origin();
   arriving.text_size = c.text().size();

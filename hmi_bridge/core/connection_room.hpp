@@ -66,7 +66,6 @@ class ConnectionRoom {
   std::vector<Closing> due(std::chrono::steady_clock::time_point now);
 
   [[nodiscard]] std::size_t open() const noexcept { return entries_.size(); }
-  [[nodiscard]] const RoomLimits& limits() const noexcept { return limits_; }
 
  private:
   enum class Phase : std::uint8_t { head, page, socket };

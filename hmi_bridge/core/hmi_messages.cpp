@@ -11,17 +11,13 @@ namespace {
 using Json = nlohmann::json;
 
 Json channel_name(const config::MachineConfig& machine, std::uint64_t id) {
-  if (id >= 1 && id <= machine.channels.size()) {
-    return machine.channels[id - 1].name;
-  }
-  return nullptr;
+  const config::ChannelConfig* channel = machine.channel_by_id(id);
+  return channel != nullptr ? Json(channel->name) : Json(nullptr);
 }
 
 Json axis_name(const config::MachineConfig& machine, std::uint64_t id) {
-  if (id >= 1 && id <= machine.axes.size()) {
-    return machine.axes[id - 1].name;
-  }
-  return nullptr;
+  const config::AxisConfig* axis = machine.axis_by_id(id);
+  return axis != nullptr ? Json(axis->name) : Json(nullptr);
 }
 
 // The channels of a mask, bit c-1 for channel c.

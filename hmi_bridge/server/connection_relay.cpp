@@ -26,6 +26,7 @@ namespace {
 constexpr std::size_t kToUpstreamBytes = 65536;
 constexpr std::size_t kToClientBytes = 262144;
 constexpr int kTickMs = 100;  // the deadlines' resolution
+constexpr std::chrono::milliseconds kTick{kTickMs};
 
 void set_nonblocking(int fd) {
   ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL, 0) | O_NONBLOCK);
@@ -158,6 +159,7 @@ void ConnectionRelay::loop() {
   std::vector<pollfd> fds;
   std::vector<ConnectionId> owners;  // per entry of fds past the first two
   std::vector<Closing> closing;
+  std::chrono::steady_clock::time_point last_due{};
   while (!stop_) {
     fds.clear();
     owners.clear();
@@ -224,9 +226,11 @@ void ConnectionRelay::loop() {
         closing.push_back({c.id, reason.value_or("")});
       }
     }
-    {
+    // The deadlines once a tick, not at every wake of a busy relay.
+    if (const auto now = std::chrono::steady_clock::now(); now - last_due >= kTick) {
+      last_due = now;
       std::lock_guard<std::mutex> lock(mutex_);
-      for (Closing& c : room_.due(std::chrono::steady_clock::now())) {
+      for (Closing& c : room_.due(now)) {
         closing.push_back(std::move(c));
       }
     }

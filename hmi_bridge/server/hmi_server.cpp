@@ -1,5 +1,7 @@
 #include "hmi_bridge/server/hmi_server.hpp"
 
+#include "common/config/cyclic_routes.hpp"
+
 #include "hmi_bridge/core/client_message.hpp"
 #include "hmi_bridge/core/hmi_messages.hpp"
 
@@ -262,7 +264,7 @@ bool HmiServer::handle_text(Client& client, std::string_view text) {
     count(&HmiCounters::commands);
     spdlog::info("operator command {} {}", process::to_string(command.action),
                  command.channel == 0 ? std::string("(machine)")
-                                      : machine_.channels[command.channel - 1].name);
+                                      : config::channel_name(machine_, command.channel));
     send(client, reply_message(command.id, true, ""));
     return true;
   }

@@ -1,6 +1,7 @@
 #include "tools/status/status_lines.hpp"
 
 #include "canopen/cia402/cia402_state.hpp"
+#include "common/config/cyclic_routes.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -16,16 +17,6 @@ const char* drive_state_name(std::uint8_t drive_state) noexcept {
 
 namespace {
 
-std::string channel_name(const config::MachineConfig& machine, std::uint32_t id) {
-  return id >= 1 && id <= machine.channels.size() ? machine.channels[id - 1].name
-                                                  : "channel " + std::to_string(id);
-}
-
-std::string axis_name(const config::MachineConfig& machine, std::uint32_t id) {
-  return id >= 1 && id <= machine.axes.size() ? machine.axes[id - 1].name
-                                              : "axis " + std::to_string(id);
-}
-
 std::string padded(const std::string& text, std::size_t width) {
   return text + std::string(width > text.size() ? width - text.size() : 0, ' ');
 }
@@ -40,13 +31,13 @@ std::string channel_line(const config::MachineConfig& machine, const ChannelView
     std::string whom;
     for (std::uint32_t ch = 1; ch <= 64; ++ch) {
       if ((c.sync_waiting_for >> (ch - 1) & 1U) != 0) {
-        whom += (whom.empty() ? "" : ", ") + channel_name(machine, ch);
+        whom += (whom.empty() ? "" : ", ") + config::channel_name(machine, ch);
       }
     }
     out += whom.empty() ? "" : " for " + whom;
   }
   if (c.call_caller != 0) {
-    out += "  runs a call of " + channel_name(machine, c.call_caller);
+    out += "  runs a call of " + config::channel_name(machine, c.call_caller);
   }
   if (c.program_end) {
     out += "  ended";
@@ -59,9 +50,9 @@ std::string channel_line(const config::MachineConfig& machine, const ChannelView
 
 std::string axis_line(const config::MachineConfig& machine, const config::AxisConfig& a,
                       const AxisView& v) {
-  std::string owner = v.owner == 0 ? "released" : channel_name(machine, v.owner);
+  std::string owner = v.owner == 0 ? "released" : config::channel_name(machine, v.owner);
   if (v.released_by != 0) {
-    owner += " (from " + channel_name(machine, v.released_by) + ")";
+    owner += " (from " + config::channel_name(machine, v.released_by) + ")";
   }
   char body[160];
   if (a.type == config::AxisType::spindle) {
@@ -73,7 +64,7 @@ std::string axis_line(const config::MachineConfig& machine, const config::AxisCo
   }
   std::string out = padded(owner, 8) + "  " + body;
   if (v.coupled_to != 0) {
-    out += "  follows " + axis_name(machine, v.coupled_to) +
+    out += "  follows " + config::axis_name(machine, v.coupled_to) +
            (a.type == config::AxisType::spindle
                 ? (v.coupling_locked ? " (in phase)" : " (catching up)")
                 : "");

@@ -244,6 +244,8 @@ void secure(dds_qos_t* qos, const security::IdentityFiles& files) {
   set("dds.sec.access.permissions", "file:" + files.permissions);
 }
 
+class CycloneWriter;
+
 class CycloneParticipant final : public detail::ParticipantImpl {
  public:
   CycloneParticipant(int domain, const std::string& name, bool shared_memory,
@@ -283,6 +285,19 @@ class CycloneParticipant final : public detail::ParticipantImpl {
                                              const Partitions& partitions,
                                              detail::ReaderCallbacks callbacks) override;
   [[nodiscard]] std::chrono::nanoseconds lease() const override { return std::chrono::seconds(3); }
+  void announce_latest_cyclic() noexcept override;
+
+  // The cyclic writers, for announce_latest_cyclic(): a writer enlists when made and leaves when
+  // deleted.
+  void enlist(CycloneWriter* writer) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cyclic_writers_.push_back(writer);
+  }
+  void delist(CycloneWriter* writer) noexcept {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cyclic_writers_.erase(std::remove(cyclic_writers_.begin(), cyclic_writers_.end(), writer),
+                          cyclic_writers_.end());
+  }
 
   dds_entity_t topic(const char* name, const dds_topic_descriptor_t* descriptor) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -332,6 +347,7 @@ class CycloneParticipant final : public detail::ParticipantImpl {
   std::map<std::string, dds_entity_t> topics_;
   std::map<std::string, dds_entity_t> publishers_;
   std::map<std::string, dds_entity_t> subscribers_;
+  std::vector<CycloneWriter*> cyclic_writers_;
 };
 
 class CycloneWriter final : public detail::WriterImpl {
@@ -351,8 +367,17 @@ class CycloneWriter final : public detail::WriterImpl {
     }
     loans_ = dds_is_loan_available(writer_);
     payload_.reserve(std::max<std::uint32_t>(fast_->m_typeSize, 64));
+    if (kind == QosKind::cyclic) {
+      participant_ = &participant;
+      participant.enlist(this);
+    }
   }
-  ~CycloneWriter() override { dds_delete(writer_); }
+  ~CycloneWriter() override {
+    if (participant_ != nullptr) {
+      participant_->delist(this);
+    }
+    dds_delete(writer_);
+  }
   CycloneWriter(const CycloneWriter&) = delete;
   CycloneWriter& operator=(const CycloneWriter&) = delete;
 
@@ -369,8 +394,33 @@ class CycloneWriter final : public detail::WriterImpl {
       }
     }
     if (payload_.length < kHeader || payload_.data[1] != kCdrLe[1]) {
+      payload_.length = 0;
       return false;  // not the little-endian plain CDR both sides speak
     }
+    return send_payload();
+  }
+
+  // Writes the latest sample again, as a sample of its own: its data and the heartbeat that
+  // goes with it reach every matched reader. Cyclone DDS 0.10 sends a writer's periodic
+  // heartbeat to one reader alone when one reliable reader lacks samples, and it may pick a
+  // best-effort one (an observer) instead of that reader: the reader that lost the last
+  // sample never hears of it (decision 98).
+  void repeat_latest() noexcept {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (payload_.length >= kHeader) {
+      (void)send_payload();
+    }
+  }
+
+  [[nodiscard]] int matched_readers() const noexcept override {
+    dds_publication_matched_status_t status{};
+    dds_get_publication_matched_status(writer_, &status);
+    return static_cast<int>(status.current_count);
+  }
+
+ private:
+  // Writes the sample serialized in payload_ (under mutex_).
+  bool send_payload() noexcept {
     void* c_sample = sample_.data();
     if (loans_ && dds_loan_sample(writer_, &c_sample) != DDS_RETCODE_OK) {
       return false;
@@ -386,13 +436,7 @@ class CycloneWriter final : public detail::WriterImpl {
     return rc == DDS_RETCODE_OK;
   }
 
-  [[nodiscard]] int matched_readers() const noexcept override {
-    dds_publication_matched_status_t status{};
-    dds_get_publication_matched_status(writer_, &status);
-    return static_cast<int>(status.current_count);
-  }
-
- private:
+  CycloneParticipant* participant_ = nullptr;  // a cyclic writer's, where it is enlisted
   std::unique_ptr<fdds::TopicDataType> fast_;
   const dds_topic_descriptor_t* descriptor_;
   dds_entity_t writer_ = 0;
@@ -401,6 +445,13 @@ class CycloneWriter final : public detail::WriterImpl {
   SerializedPayload_t payload_;
   std::vector<std::max_align_t> sample_;  // the C sample, when no loan is available
 };
+
+void CycloneParticipant::announce_latest_cyclic() noexcept {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (CycloneWriter* writer : cyclic_writers_) {
+    writer->repeat_latest();
+  }
+}
 
 class CycloneReader final : public detail::ReaderImpl {
  public:

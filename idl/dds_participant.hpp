@@ -85,6 +85,9 @@ class ParticipantImpl {
                                              ReaderRole role, const Partitions& partitions,
                                              ReaderCallbacks callbacks) = 0;
   [[nodiscard]] virtual std::chrono::nanoseconds lease() const = 0;
+  // Makes sure every reliable reader of this participant's cyclic writers learns of their
+  // latest sample, for a lockstep process that waits (Participant::announce_latest_cyclic).
+  virtual void announce_latest_cyclic() noexcept = 0;
 };
 
 // The key of a set of partitions, by which an implementation keeps one publisher or subscriber
@@ -120,6 +123,12 @@ class Participant {
   Participant& operator=(const Participant&) = delete;
 
   [[nodiscard]] Middleware middleware() const noexcept { return middleware_; }
+  // For a lockstep process that has waited a while for its inputs: every reliable reader of
+  // its cyclic writers learns of their latest sample, so one that lost it asks for it again.
+  // A lockstep writer writes nothing new until its inputs come, so without this a reader that
+  // lost the last sample and missed the writer's heartbeats would wait for ever (decision 98).
+  // Call it from the thread that writes the cyclic samples, not under the wake-up lock.
+  void announce_latest_cyclic() noexcept { impl_->announce_latest_cyclic(); }
   detail::ParticipantImpl& impl() noexcept { return *impl_; }
   [[nodiscard]] const detail::ParticipantImpl& impl() const noexcept { return *impl_; }
 

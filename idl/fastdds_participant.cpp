@@ -151,6 +151,9 @@ class FastParticipant final : public detail::ParticipantImpl {
         participant_->get_qos().wire_protocol().builtin.discovery_config.leaseDuration;
     return std::chrono::seconds(lease.seconds) + std::chrono::nanoseconds(lease.nanosec);
   }
+  // Nothing to do: a Fast DDS writer's periodic heartbeat goes to every matched reader while
+  // one lacks samples, and that reader then asks for what it lost (decision 98).
+  void announce_latest_cyclic() noexcept override {}
 
   // The topic of that name, created (and its type registered) on first use. Takes ownership of
   // `pubsub_type` (a new'd Fast DDS TopicDataType).

@@ -8,6 +8,7 @@
 #include "common/process/process_node.hpp"
 #include "common/process/startup.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -45,11 +46,7 @@ class CycleLoop {
         return ready(cycle) || feed_gone() || cmd == RUN_STOP || cmd == RUN_ESTOP ||
                g_stop_signal != 0;
       };
-      // A slow wait is told once per cycle (decision 7: lockstep waits never give up).
-      if (!wake.wait_for(may_go, on_slow_ ? slow_ : std::chrono::hours(24)) && on_slow_) {
-        wake.with_lock([&] { on_slow_(cycle); });
-        wake.wait_for(may_go, std::chrono::hours(24));
-      }
+      wait_in_lockstep(cycle, may_go);
     }
     const RunControlView rc = node_.run_control();
     if (rc.command == RUN_STOP || g_stop_signal != 0) {
@@ -93,6 +90,11 @@ class CycleLoop {
     on_slow_ = std::move(on_slow);
   }
 
+  // How soon a lockstep wait announces the process's latest cyclic samples again, and the
+  // longest time between two announcements (decision 98).
+  static constexpr std::chrono::milliseconds kFirstAnnounce{250};
+  static constexpr std::chrono::milliseconds kLongestAnnounce{2000};
+
   [[nodiscard]] bool lockstep() const noexcept { return lockstep_; }
   // Stepping on its own: lockstep without a feed, paced to real time.
   [[nodiscard]] bool degraded() const noexcept { return degraded_; }
@@ -104,6 +106,36 @@ class CycleLoop {
   [[nodiscard]] std::int64_t woke_ns() const noexcept { return woke_ns_; }
 
  private:
+  // Lockstep waits never give up (decision 7). While one lasts, the process announces its
+  // latest cyclic samples again, after kFirstAnnounce and then at doubling intervals up to
+  // kLongestAnnounce: a reader that lost the last sample a process wrote before it waits
+  // learns of it and asks for it (decision 98). A slow wait is told once per cycle.
+  template <class MayGo>
+  void wait_in_lockstep(std::uint64_t cycle, const MayGo& may_go) {
+    using std::chrono::milliseconds;
+    Wakeup& wake = node_.wakeup();
+    milliseconds waited{0};
+    milliseconds interval = kFirstAnnounce;
+    milliseconds announce_at = kFirstAnnounce;
+    bool told = !on_slow_;
+    for (;;) {
+      const milliseconds until = told ? announce_at : std::min(announce_at, slow_);
+      if (wake.wait_for(may_go, until - waited)) {
+        return;
+      }
+      waited = until;
+      if (waited >= announce_at) {
+        node_.participant().announce_latest_cyclic();  // not under the wake-up lock
+        interval = std::min(interval * 2, kLongestAnnounce);
+        announce_at += interval;
+      }
+      if (!told && waited >= slow_) {
+        wake.with_lock([&] { on_slow_(cycle); });
+        told = true;
+      }
+    }
+  }
+
   ProcessNode& node_;
   std::int64_t period_ns_;
   int cycle_priority_;

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <vector>
 
 namespace {
@@ -145,26 +146,39 @@ INSTANTIATE_TEST_SUITE_P(BothWays, Middlewares,
                                   "_to_" + mcnc::dds::middleware_name(info.param.second);
                          });
 
+// Two Cyclone DDS participants on `domain`: one writes the setpoints of X1 and Z1, the other
+// reads each into an inbox of its own. Both writers and readers are matched once made.
+struct TwoRoutedKeys {
+  explicit TwoRoutedKeys(int domain)
+      : writing(domain, "writing", mcnc::dds::CyclicClock::lockstep, Middleware::cyclonedds),
+        reading(domain, "reading", mcnc::dds::CyclicClock::lockstep, Middleware::cyclonedds),
+        x1_reader(reading, Keys::of({"X1"}),
+                  [this](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { x1.put(sp); }),
+        z1_reader(reading, Keys::of({"Z1"}),
+                  [this](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { z1.put(sp); }),
+        to_x1(writing, "X1"),
+        to_z1(writing, "Z1") {}
+  [[nodiscard]] bool matched() const {
+    return wait_matched(to_x1, x1_reader) && wait_matched(to_z1, z1_reader);
+  }
+
+  Participant writing;
+  Participant reading;
+  Inbox<mcnc::AxisSetpoint> x1;
+  Inbox<mcnc::AxisSetpoint> z1;
+  mcnc::dds::Reader<mcnc::AxisSetpoint> x1_reader;
+  mcnc::dds::Reader<mcnc::AxisSetpoint> z1_reader;
+  mcnc::dds::Writer<mcnc::AxisSetpoint> to_x1;
+  mcnc::dds::Writer<mcnc::AxisSetpoint> to_z1;
+};
+
 // Over shared memory Cyclone DDS 0.10 matches by topic: with a topic per key, a reader of X1's
 // setpoints never receives Z1's (and, were a chunk of another writer ever handed to it, the
 // reader keeps only the samples of the writers it matched, as over RTPS).
 TEST(CycloneDds, ARoutedReaderNeverHearsAnotherKey) {
-  Participant writing(kDomain + 2, "writing", mcnc::dds::CyclicClock::lockstep,
-                      Middleware::cyclonedds);
-  Participant reading(kDomain + 2, "reading", mcnc::dds::CyclicClock::lockstep,
-                      Middleware::cyclonedds);
-  Inbox<mcnc::AxisSetpoint> x1;
-  Inbox<mcnc::AxisSetpoint> z1;
-  mcnc::dds::Reader<mcnc::AxisSetpoint> x1_reader(
-      reading, Keys::of({"X1"}),
-      [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { x1.put(sp); });
-  mcnc::dds::Reader<mcnc::AxisSetpoint> z1_reader(
-      reading, Keys::of({"Z1"}),
-      [&](const mcnc::AxisSetpoint& sp, const mcnc::dds::WriterId&) { z1.put(sp); });
-  mcnc::dds::Writer<mcnc::AxisSetpoint> to_x1(writing, "X1");
-  mcnc::dds::Writer<mcnc::AxisSetpoint> to_z1(writing, "Z1");
-  ASSERT_TRUE(wait_matched(to_x1, x1_reader));
-  ASSERT_TRUE(wait_matched(to_z1, z1_reader));
+  TwoRoutedKeys keys(kDomain + 2);
+  auto [x1, z1, to_x1, to_z1] = std::tie(keys.x1, keys.z1, keys.to_x1, keys.to_z1);
+  ASSERT_TRUE(keys.matched());
   EXPECT_EQ(to_x1.matched_readers(), 1);
   // One sample a cycle, each awaited, as a lockstep consumer takes them.
   for (std::uint64_t cycle = 1; cycle <= 20; ++cycle) {
@@ -177,6 +191,40 @@ TEST(CycloneDds, ARoutedReaderNeverHearsAnotherKey) {
   EXPECT_EQ(x1.size(), 20U);
   ASSERT_EQ(z1.size(), 1U);
   EXPECT_EQ(z1.samples[0].cycle(), 1000U);
+}
+
+// A lockstep process that waits announces its latest cyclic samples again (decision 98): each
+// cyclic writer writes its last sample once more, so a reader that lost it learns of it. A
+// writer that wrote nothing and the state and event topics send nothing.
+TEST(CycloneDds, AnnouncingTheLatestCyclicSamplesWritesEachOnceMoreAndNothingElse) {
+  TwoRoutedKeys keys(kDomain + 1);  // Z1's writer writes nothing
+  auto [x1, z1, to_x1, writing] = std::tie(keys.x1, keys.z1, keys.to_x1, keys.writing);
+  Inbox<mcnc::RunControl> run;
+  mcnc::dds::Reader<mcnc::RunControl> run_reader(
+      keys.reading, [&](const mcnc::RunControl& rc, const mcnc::dds::WriterId&) { run.put(rc); });
+  mcnc::dds::Writer<mcnc::RunControl> run_writer(writing);
+  ASSERT_TRUE(keys.matched());
+  ASSERT_TRUE(wait_matched(run_writer, run_reader));
+  ASSERT_TRUE(to_x1.write(setpoint(41)));
+  ASSERT_TRUE(to_x1.write(setpoint(42)));
+  mcnc::RunControl rc;
+  rc.generation(5);
+  ASSERT_TRUE(run_writer.write(rc));
+  ASSERT_TRUE(x1.wait_for(2));
+  ASSERT_TRUE(run.wait_for(1));
+
+  writing.announce_latest_cyclic();
+  ASSERT_TRUE(x1.wait_for(3));
+  writing.announce_latest_cyclic();
+  ASSERT_TRUE(x1.wait_for(4));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  std::lock_guard<std::mutex> lock(x1.mutex);
+  ASSERT_EQ(x1.samples.size(), 4U);
+  EXPECT_EQ(x1.samples[2].cycle(), 42U);  // the latest, as written
+  EXPECT_EQ(x1.samples[3].cycle(), 42U);
+  EXPECT_EQ(x1.samples[3].pos(), -12.345678901234);
+  EXPECT_EQ(z1.size(), 0U);
+  EXPECT_EQ(run.size(), 1U);
 }
 
 TEST(CycloneDds, TheMiddlewareIsNamedByMcncMiddleware) {

@@ -1,12 +1,72 @@
 #include "channel/interp/output/command_json.hpp"
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 namespace mcnc::interp::output {
 
 namespace {
+
+constexpr std::array<double, 10> kPowersOfTen{1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+// The text std::to_chars(first, last, v) writes (shortest round trip, fixed unless scientific
+// is shorter), found without its general algorithm for what programs print most: |v| below
+// 1e12 with at most 9 decimals. Such a v is N / 10^k for one integer N at the smallest k that
+// divides back to v: below 1e13 the values that round to v span less than 1/100 at that scale,
+// so no other N of as few digits exists. nullptr: not such a value, or scientific is shorter.
+char* fixed_shortest(char* out, double v) {
+  const double a = std::fabs(v);
+  if (!(a < 1e12)) {
+    return nullptr;
+  }
+  for (std::size_t k = 0; k < kPowersOfTen.size(); ++k) {
+    const double scaled = std::nearbyint(a * kPowersOfTen[k]);
+    if (scaled >= 1e13) {
+      return nullptr;
+    }
+    if (scaled / kPowersOfTen[k] != a) {
+      continue;
+    }
+    char digits[16];
+    const auto end =
+        std::to_chars(digits, digits + sizeof digits, static_cast<std::uint64_t>(scaled));
+    const int length = static_cast<int>(end.ptr - digits);
+    const int decimals = static_cast<int>(k);
+    int significant = length;  // without an integer's trailing zeros
+    while (significant > 1 && digits[significant - 1] == '0') {
+      --significant;
+    }
+    const int exponent = length - 1 - decimals;  // of the leading digit
+    const int magnitude = exponent < 0 ? -exponent : exponent;
+    const int scientific = significant + (significant > 1 ? 1 : 0) + 2 + (magnitude >= 100 ? 3 : 2);
+    const int fixed = exponent < 0 ? 1 - exponent + length : length + (decimals > 0 ? 1 : 0);
+    if (scientific < fixed) {
+      return nullptr;
+    }
+    if (v < 0.0) {
+      *out++ = '-';
+    }
+    if (exponent < 0) {
+      *out++ = '0';
+      *out++ = '.';
+      for (int z = -1; z > exponent; --z) {
+        *out++ = '0';
+      }
+      return std::copy(digits, digits + length, out);
+    }
+    out = std::copy(digits, digits + length - decimals, out);
+    if (decimals > 0) {
+      *out++ = '.';
+      out = std::copy(digits + length - decimals, digits + length, out);
+    }
+    return out;
+  }
+  return nullptr;
+}
 
 // Shortest round-trip form, after rounding to 1e-9 so that binary noise (0.30000000000000004)
 // does not reach the output; -0 prints as 0.
@@ -16,8 +76,11 @@ void number(std::string& out, double v) {
     r = 0.0;
   }
   char buf[40];
-  const auto res = std::to_chars(buf, buf + sizeof buf, r);
-  out.append(buf, res.ptr);
+  char* end = fixed_shortest(buf, r);
+  if (end == nullptr) {
+    end = std::to_chars(buf, buf + sizeof buf, r).ptr;
+  }
+  out.append(buf, end);
 }
 
 void integer(std::string& out, long long v) {

@@ -5,8 +5,10 @@
 
 #include <array>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <string_view>
 #include <system_error>
 
 namespace mcnc::interp::parse {
@@ -36,6 +38,29 @@ bool is_two_letter_address(char a, char b) {
     }
   }
   return false;
+}
+
+// A number of at most 15 digits is an integer below 10^15 over a power of ten up to 10^15, both
+// exact doubles, so their quotient is the correctly rounded value std::from_chars gives, without
+// its general algorithm (most words of a program are such numbers).
+constexpr int kExactDigits = 15;
+constexpr std::array<double, kExactDigits + 1> kPowersOfTen{
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+
+// `text`: digits with at most one '.', at most kExactDigits of them.
+double exact_decimal(std::string_view text) {
+  std::uint64_t mantissa = 0;
+  std::size_t decimals = 0;
+  bool after_point = false;
+  for (const char c : text) {
+    if (c == '.') {
+      after_point = true;
+      continue;
+    }
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+    decimals += after_point ? 1 : 0;
+  }
+  return static_cast<double>(mantissa) / kPowersOfTen[decimals];
 }
 
 std::string describe_char(char c) {
@@ -471,16 +496,20 @@ class LineParser {
         return;
       }
       double magnitude = 0.0;
-      const auto [ptr, ec] = std::from_chars(text_.data() + begin, text_.data() + i, magnitude);
-      if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
-        fail_at_column(alarm::kValueOutOfRange, "value of " + name_of(w.address) + " out of range",
-                       w.column);
-        return;
-      }
-      if (ec != std::errc() || ptr != text_.data() + i) {
-        fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
-                       w.column);
-        return;
+      if (digits <= kExactDigits) {
+        magnitude = exact_decimal(std::string_view(text_).substr(begin, i - begin));
+      } else {
+        const auto [ptr, ec] = std::from_chars(text_.data() + begin, text_.data() + i, magnitude);
+        if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
+          fail_at_column(alarm::kValueOutOfRange,
+                         "value of " + name_of(w.address) + " out of range", w.column);
+          return;
+        }
+        if (ec != std::errc() || ptr != text_.data() + i) {
+          fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
+                         w.column);
+          return;
+        }
       }
       w.literal = true;
       w.value = negative ? -magnitude : magnitude;

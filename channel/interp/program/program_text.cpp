@@ -4,6 +4,7 @@
 #include "channel/interp/program_chars.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <map>
 
@@ -32,11 +33,27 @@ struct LineShape {
   std::optional<std::size_t> o_word;
 };
 
+// Most characters of a line matter to the shape only as its first executable one: the others
+// (comment and bracket marks, program-number words, blanks) are looked at one by one.
+constexpr std::array<bool, 256> kShapeMarks = [] {
+  std::array<bool, 256> marks{};
+  for (const char c : {';', '/', '(', '[', ']', ':', 'O', 'o', ' ', '\t'}) {
+    marks[static_cast<unsigned char>(c)] = true;
+  }
+  return marks;
+}();
+
 LineShape shape_of(std::string_view line) {
   LineShape shape;
   int depth = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];
+    if (!kShapeMarks[static_cast<unsigned char>(c)]) {
+      if (!shape.first_exec) {
+        shape.first_exec = i;
+      }
+      continue;
+    }
     if (c == ';' || (c == '/' && i + 1 < line.size() && line[i + 1] == '/')) {
       break;
     }

@@ -6,10 +6,63 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <string_view>
 
 namespace mcnc::interp::output {
 
 namespace {
+
+// One JSON object built in a local buffer and appended to the caller's string in a few pieces:
+// std::string's append costs more than the few bytes of most pieces. A piece longer than the
+// buffer (a long message) goes straight through.
+class Writer {
+ public:
+  explicit Writer(std::string& text) : text_(text) {}
+  ~Writer() { flush(); }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  Writer& operator+=(char c) {
+    if (used_ == kSize) {
+      flush();
+    }
+    buffer_[used_++] = c;
+    return *this;
+  }
+  Writer& operator+=(std::string_view s) {
+    append(s.data(), s.size());
+    return *this;
+  }
+  Writer& operator+=(const char* s) { return *this += std::string_view(s); }
+  Writer& operator+=(const std::string& s) { return *this += std::string_view(s); }
+  void append(const char* s, std::size_t n) {
+    if (n > kSize - used_) {
+      flush();
+      if (n > kSize) {
+        text_.append(s, n);
+        return;
+      }
+    }
+    std::memcpy(buffer_.data() + used_, s, n);
+    used_ += n;
+  }
+  void append(std::string_view s) { append(s.data(), s.size()); }
+  void append(const char* begin, const char* end) {
+    append(begin, static_cast<std::size_t>(end - begin));
+  }
+
+ private:
+  static constexpr std::size_t kSize = 512;
+  void flush() {
+    text_.append(buffer_.data(), used_);
+    used_ = 0;
+  }
+
+  std::string& text_;
+  std::array<char, kSize> buffer_;
+  std::size_t used_ = 0;
+};
 
 constexpr std::array<double, 10> kPowersOfTen{1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 
@@ -70,7 +123,7 @@ char* fixed_shortest(char* out, double v) {
 
 // Shortest round-trip form, after rounding to 1e-9 so that binary noise (0.30000000000000004)
 // does not reach the output; -0 prints as 0.
-void number(std::string& out, double v) {
+void number(Writer& out, double v) {
   double r = std::round(v * 1e9) / 1e9;
   if (r == 0.0 || !std::isfinite(r)) {
     r = 0.0;
@@ -83,13 +136,13 @@ void number(std::string& out, double v) {
   out.append(buf, end);
 }
 
-void integer(std::string& out, long long v) {
+void integer(Writer& out, long long v) {
   char buf[24];
   const auto res = std::to_chars(buf, buf + sizeof buf, v);
   out.append(buf, res.ptr);
 }
 
-void string(std::string& out, const std::string& s) {
+void string(Writer& out, const std::string& s) {
   out += '"';
   for (const char c : s) {
     switch (c) {
@@ -120,19 +173,19 @@ void string(std::string& out, const std::string& s) {
 
 // `,"k":` with the length of `k` known at compile time (this runs a few times per command).
 template <std::size_t N>
-void key(std::string& out, const char (&k)[N]) {
+void key(Writer& out, const char (&k)[N]) {
   out.append(",\"", 2);
   out.append(k, N - 1);
   out.append("\":", 2);
 }
 
-void key(std::string& out, std::string_view k) {
+void key(Writer& out, std::string_view k) {
   out.append(",\"", 2);
   out.append(k);
   out.append("\":", 2);
 }
 
-void positions(std::string& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
+void positions(Writer& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
   out += '{';
   for (std::size_t i = 0; i < axes.size(); ++i) {
     if (i > 0) {
@@ -146,7 +199,7 @@ void positions(std::string& out, const AxisVector& v, const std::vector<AxisConf
   out += '}';
 }
 
-void feed(std::string& out, const Command& c) {
+void feed(Writer& out, const Command& c) {
   key(out, "feed");
   number(out, c.feed);
   key(out, "feed_mode");
@@ -158,7 +211,7 @@ void feed(std::string& out, const Command& c) {
 }
 
 // center, dir and plane of an arc (or arc thread).
-void arc_fields(std::string& out, const Command& c, const std::vector<AxisConfig>& axes) {
+void arc_fields(Writer& out, const Command& c, const std::vector<AxisConfig>& axes) {
   key(out, "center");
   out += "{\"";
   out += axes[static_cast<std::size_t>(c.center_axes[0])].name;
@@ -249,8 +302,9 @@ const char* direction_name(SpindleDirection d) {
 
 }  // namespace
 
-void append_json(std::string& out, const Command& c, const std::vector<AxisConfig>& axes,
+void append_json(std::string& text, const Command& c, const std::vector<AxisConfig>& axes,
                  const std::string& main_file) {
+  Writer out(text);
   out += "{\"n\":";
   integer(out, static_cast<long long>(c.n));
   key(out, "line");
@@ -530,7 +584,8 @@ void append_json(std::string& out, const Command& c, const std::vector<AxisConfi
   out += "}\n";
 }
 
-void append_json(std::string& out, const ProgramAlarm& a) {
+void append_json(std::string& text, const ProgramAlarm& a) {
+  Writer out(text);
   out += "{\"op\":\"alarm\",\"number\":";
   integer(out, a.number);
   key(out, "text");

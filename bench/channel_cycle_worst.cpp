@@ -3,7 +3,9 @@
 // over a program with M98 calls into a directory of 500 programs, macro loops, G71 over a
 // 100-element contour and a feed hold. Each cycle's duration (the controller's cycle() alone:
 // no DDS, no trace) is recorded; the percentiles come at the end. `--in-cycle` pulls the
-// interpreter inside the cycle, as the channel did before the read-ahead thread.
+// interpreter inside the cycle, as the channel did before the read-ahead thread. `--slowest N`
+// tells what the slowest cycles did; `--free-run --dump FILE` runs the cycles back to back and
+// writes each, so that several runs tell a cycle's own work from the host's stalls.
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/loading/read_ahead.hpp"
@@ -60,6 +62,40 @@ std::string program(int repeats) {
   return p.str();
 }
 
+// The bench's own view of what a cycle took from the source: a pass-through that counts pulls.
+class CountingSource final : public interp::CommandSource {
+ public:
+  explicit CountingSource(interp::CommandSource& source) : source_(source) {}
+  void rewind(const interp::AxisVector& current) override { source_.rewind(current); }
+  std::optional<interp::PullResult> next() override {
+    ++pulls;
+    return source_.next();
+  }
+  bool ready() noexcept override { return source_.ready(); }
+  std::size_t block_count() const noexcept override { return source_.block_count(); }
+  void adopt_position(const interp::AxisVector& at) override { source_.adopt_position(at); }
+  void skip_result(bool skipped, const interp::AxisVector& skip_at,
+                   const interp::AxisVector& stop_at) override {
+    source_.skip_result(skipped, skip_at, stop_at);
+  }
+  void abandon() noexcept override { source_.abandon(); }
+  bool has_program() const noexcept override { return source_.has_program(); }
+
+  std::size_t pulls = 0;
+
+ private:
+  interp::CommandSource& source_;
+};
+
+// One cycle as the report of the slowest shows it.
+struct CycleRecord {
+  std::int64_t ns = 0;
+  std::uint64_t cycle = 0;
+  std::size_t pulls = 0;
+  int line = 0;
+  std::size_t events = 0;
+};
+
 double percentile(std::vector<std::int64_t>& ns, double q) {
   std::sort(ns.begin(), ns.end());
   return static_cast<double>(ns[static_cast<std::size_t>(q * static_cast<double>(ns.size() - 1))]) /
@@ -73,10 +109,18 @@ int main(int argc, char** argv) {
   int cycle_us = 1000;
   int repeats = 3;
   bool in_cycle = false;
+  std::size_t slowest = 0;
+  bool free_run = false;
+  std::string dump;
   app.add_option("--cycle-us", cycle_us, "cycle")->check(CLI::Range(250, 10000));
   app.add_option("--repeats", repeats, "times the program's pattern is repeated")
       ->check(CLI::Range(1, 100));
   app.add_flag("--in-cycle", in_cycle, "pull the interpreter inside the cycle (as before)");
+  app.add_option("--slowest", slowest, "print the N slowest cycles: pulls, line, events");
+  app.add_flag("--free-run", free_run,
+               "cycles back to back, no sleep: with --in-cycle the same cycles every run, so the "
+               "least of several runs is a cycle's work without the host's stalls");
+  app.add_option("--dump", dump, "write every cycle (cycle, ns, pulls, line) to this file");
   CLI11_PARSE(app, argc, argv);
   std::printf("%s\n", clock::prepare_realtime_process());
 
@@ -103,8 +147,9 @@ int main(int argc, char** argv) {
   }
   motion::MotionPlanner planner(motion, interp::AxisVector{});
   channel::ChannelSetup setup{2, {0.001, 0.001}, motion.cycle_s};
-  channel::ChannelController controller(
-      setup, in_cycle ? static_cast<interp::CommandSource&>(interpreter) : read_ahead, planner);
+  CountingSource counted(in_cycle ? static_cast<interp::CommandSource&>(interpreter)
+                                  : static_cast<interp::CommandSource&>(read_ahead));
+  channel::ChannelController controller(setup, counted, planner);
   std::array<channel::AxisFeedbackView, 2> feedback{};
   for (auto& f : feedback) {
     f.enabled = true;
@@ -115,18 +160,28 @@ int main(int argc, char** argv) {
 
   std::vector<std::int64_t> took;
   took.reserve(4'000'000);
+  std::vector<CycleRecord> records;
+  const bool record = slowest > 0 || !dump.empty();
+  records.reserve(record ? 4'000'000 : 0);
   const std::int64_t period = static_cast<std::int64_t>(cycle_us) * 1000;
   const std::int64_t origin = clock::monotonic_ns() + 10'000'000;
   bool held = false;
   std::uint64_t hold_until = 0;
   for (std::uint64_t cycle = 0;; ++cycle) {
-    clock::sleep_until_ns(origin + static_cast<std::int64_t>(cycle) * period);
+    if (!free_run) {
+      clock::sleep_until_ns(origin + static_cast<std::int64_t>(cycle) * period);
+    }
     if (cycle == 1) {
       controller.request_start();
     }
+    const std::size_t pulls_before = counted.pulls;
     const std::int64_t t0 = clock::monotonic_ns();
     const channel::CycleOutput& out = controller.cycle(cycle, feedback);
     took.push_back(clock::monotonic_ns() - t0);
+    if (record) {
+      records.push_back(
+          CycleRecord{took.back(), cycle, counted.pulls - pulls_before, out.line, out.event_count});
+    }
     for (std::size_t a = 0; a < 2; ++a) {
       if (out.setpoints[a].valid) {
         feedback[a].cmd = feedback[a].act = out.setpoints[a].pos;
@@ -150,6 +205,29 @@ int main(int argc, char** argv) {
     }
   }
   std::filesystem::remove_all(dir);
+  if (!dump.empty()) {
+    std::FILE* f = std::fopen(dump.c_str(), "w");
+    for (const CycleRecord& r : records) {
+      std::fprintf(f, "%llu %lld %zu %d\n", static_cast<unsigned long long>(r.cycle),
+                   static_cast<long long>(r.ns), r.pulls, r.line);
+    }
+    std::fclose(f);
+  }
+  if (slowest > 0) {
+    std::sort(records.begin(), records.end(),
+              [](const CycleRecord& a, const CycleRecord& b) { return a.ns > b.ns; });
+    std::size_t pulled_cycles = 0;
+    for (const CycleRecord& r : records) {
+      pulled_cycles += r.pulls > 0 ? 1 : 0;
+    }
+    std::printf("cycles that pulled commands: %zu of %zu\n", pulled_cycles, records.size());
+    for (std::size_t k = 0; k < std::min(slowest, records.size()); ++k) {
+      const CycleRecord& r = records[k];
+      std::printf("  %.1f us: cycle %llu, %zu pulls, line %d, %zu events\n",
+                  static_cast<double>(r.ns) / 1000.0, static_cast<unsigned long long>(r.cycle),
+                  r.pulls, r.line, r.events);
+    }
+  }
   const auto over = [&](std::int64_t ns) {
     return std::count_if(took.begin(), took.end(), [&](std::int64_t t) { return t > ns; });
   };

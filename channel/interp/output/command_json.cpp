@@ -13,13 +13,12 @@ namespace mcnc::interp::output {
 
 namespace {
 
-// One JSON object built in a local buffer and appended to the caller's string in a few pieces:
-// std::string's append costs more than the few bytes of most pieces. A piece longer than the
-// buffer (a long message) goes straight through.
+// One JSON object built in a local buffer and appended to the caller's string in a few pieces
+// (flush() at its end): std::string's append costs more than the few bytes of most pieces. A
+// piece longer than the buffer (a long message) goes straight through.
 class Writer {
  public:
   explicit Writer(std::string& text) : text_(text) {}
-  ~Writer() { flush(); }
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
@@ -51,13 +50,13 @@ class Writer {
   void append(const char* begin, const char* end) {
     append(begin, static_cast<std::size_t>(end - begin));
   }
-
- private:
-  static constexpr std::size_t kSize = 512;
   void flush() {
     text_.append(buffer_.data(), used_);
     used_ = 0;
   }
+
+ private:
+  static constexpr std::size_t kSize = 512;
 
   std::string& text_;
   std::array<char, kSize> buffer_;
@@ -582,6 +581,7 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
     out += "true";
   }
   out += "}\n";
+  out.flush();
 }
 
 void append_json(std::string& text, const ProgramAlarm& a) {
@@ -597,6 +597,7 @@ void append_json(std::string& text, const ProgramAlarm& a) {
   key(out, "col");
   integer(out, a.column);
   out += "}\n";
+  out.flush();
 }
 
 }  // namespace mcnc::interp::output

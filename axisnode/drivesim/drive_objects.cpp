@@ -38,7 +38,7 @@ std::uint32_t expect_size(std::size_t size, std::size_t wanted) noexcept {
 bool mappable(bool receive, std::uint16_t index) noexcept {
   if (receive) {
     return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060 ||
-           index == 0x60B8;
+           index == 0x60B8 || index == 0x6072;
   }
   return index == 0x6041 || index == 0x6064 || index == 0x606C || index == 0x60F4 ||
          index == 0x6061 || index == 0x6077 || index == 0x60B9 || index == 0x60BA ||
@@ -111,6 +111,10 @@ void RpdoValues::merge(const RpdoValues& other) noexcept {
     touch_probe = other.touch_probe;
     has_touch_probe = true;
   }
+  if (other.has_max_torque) {
+    max_torque = other.max_torque;
+    has_max_torque = true;
+  }
 }
 
 bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
@@ -139,6 +143,10 @@ bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
       case 0x60B8:
         out.touch_probe = static_cast<std::uint16_t>(raw);
         out.has_touch_probe = true;
+        break;
+      case 0x6072:
+        out.max_torque = static_cast<std::uint16_t>(raw);
+        out.has_max_torque = true;
         break;
       default:
         break;
@@ -302,6 +310,8 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::int32_t>(out, target_velocity_);
     case 0x60B8:
       return put<std::uint16_t>(out, touch_probe_);
+    case 0x6072:
+      return put<std::uint16_t>(out, max_torque_);
     case 0x60B9:
       return put<std::uint16_t>(out, live.touch_probe_status);
     case 0x60BA:
@@ -354,6 +364,12 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
         return e;
       }
       touch_probe_ = static_cast<std::uint16_t>(value);
+      return 0;
+    case 0x6072:
+      if (const std::uint32_t e = expect_size(size, 2)) {
+        return e;
+      }
+      max_torque_ = static_cast<std::uint16_t>(value);
       return 0;
     case 0x1017:
       if (const std::uint32_t e = expect_size(size, 2)) {

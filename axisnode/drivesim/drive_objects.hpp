@@ -36,11 +36,13 @@ struct RpdoValues {
   std::int32_t target_velocity = 0;  // counts/s (0x60FF)
   std::int8_t mode = 0;              // 0x6060
   std::uint16_t touch_probe = 0;     // 0x60B8
+  std::uint16_t max_torque = 0;      // 0x6072, per mille of the rated torque
   bool has_controlword = false;
   bool has_target_position = false;
   bool has_target_velocity = false;
   bool has_mode = false;
   bool has_touch_probe = false;
+  bool has_max_torque = false;
   // Takes what `other` carries, keeps the rest.
   void merge(const RpdoValues& other) noexcept;
 };
@@ -82,6 +84,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   [[nodiscard]] std::int8_t mode() const noexcept { return mode_; }
   // 0x60B8, the touch probe function (by SDO or in an RPDO).
   [[nodiscard]] std::uint16_t touch_probe() const noexcept { return touch_probe_; }
+  // 0x6072, the max torque (by SDO or in an RPDO), per mille of the rated torque.
+  [[nodiscard]] std::uint16_t max_torque() const noexcept { return max_torque_; }
   [[nodiscard]] std::int32_t home_offset() const noexcept { return home_offset_; }
   [[nodiscard]] std::int8_t homing_method() const noexcept { return homing_method_; }
   [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
@@ -108,6 +112,7 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::uint32_t quick_stop_dec_ = 0;
   std::uint16_t controlword_ = 0;
   std::uint16_t touch_probe_ = 0;
+  std::uint16_t max_torque_ = 0;
   std::int32_t target_position_ = 0;
   std::int32_t target_velocity_ = 0;
   std::uint16_t refused_index_ = 0;

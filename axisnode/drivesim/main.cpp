@@ -94,6 +94,8 @@ int main(int argc, char** argv) {
     params.velocity_bandwidth_hz = axis.drive.velocity_bandwidth_hz;
     params.probe_side = axis.drive.probe_side;
     params.probe_at = axis.drive.probe_at;
+    params.contact_side = axis.drive.contact_side;
+    params.contact_at = axis.drive.contact_at;
     for (const config::DriveObjectDefault& o : axis.drive.objects) {
       params.objects[params.object_count++] = drivesim::ObjectDefault{
           static_cast<std::uint16_t>(o.index), static_cast<std::uint8_t>(o.sub), o.value};

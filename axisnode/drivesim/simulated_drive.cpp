@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 namespace mcnc::drivesim {
@@ -46,11 +47,17 @@ std::uint32_t SimulatedDrive::apply_defaults(ObjectDefault* failed) noexcept {
   const double counts = params_.quick_stop_decel * params_.counts_per_unit;
   const ObjectDefault decel{0x6085, 0,
                             static_cast<std::int64_t>(std::clamp(counts, 1.0, 4294967295.0))};
-  if (const std::uint32_t e = write(decel)) {
-    if (failed != nullptr) {
-      *failed = decel;
+  // 0x6072: the drive's peak torque, until a master limits it.
+  const double peak = params_.torque_limit / std::max(params_.rated_torque, 1e-9) * 1000.0;
+  const ObjectDefault max_torque{0x6072, 0,
+                                 static_cast<std::int64_t>(std::clamp(peak, 0.0, 65535.0))};
+  for (const ObjectDefault& d : {decel, max_torque}) {
+    if (const std::uint32_t e = write(d)) {
+      if (failed != nullptr) {
+        *failed = d;
+      }
+      return e;
     }
-    return e;
   }
   for (std::size_t i = 0; i < params_.object_count && i < params_.objects.size(); ++i) {
     if (const std::uint32_t e = write(params_.objects[i])) {
@@ -165,6 +172,11 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
                                             static_cast<std::uint8_t>(latched_.touch_probe >> 8)};
     (void)objects_.write(0x60B8, 0, value.data(), value.size());
   }
+  if (latched_.has_max_torque && rpdo_since_sync_) {
+    const std::array<std::uint8_t, 2> value{static_cast<std::uint8_t>(latched_.max_torque & 0xFFU),
+                                            static_cast<std::uint8_t>(latched_.max_torque >> 8)};
+    (void)objects_.write(0x6072, 0, value.data(), value.size());
+  }
 
   const std::int8_t mode = objects_.mode();
   const bool homing_bit = (latched_.controlword & 0x0010U) != 0;
@@ -272,7 +284,8 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
   const double kv = j * kTwoPi * params_.velocity_bandwidth_hz;  // N m per rad/s
   const double ki = kv * kTwoPi * params_.velocity_bandwidth_hz / 4.0;
   const double kp = 1.0 / std::max(params_.time_constant_s, dt);
-  const double t_max = params_.torque_limit;
+  const double t_max = std::min(params_.torque_limit, static_cast<double>(objects_.max_torque()) /
+                                                          1000.0 * params_.rated_torque);
   for (int i = 0; i < steps; ++i) {
     double command = 0.0;       // units/s
     double feed_forward = 0.0;  // N m: the torque a known acceleration takes
@@ -312,6 +325,11 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
     const double w_next = w + (torque - params_.friction * w) / j * h;
     velocity_ = w_next / rad_per_unit;
     position_ += velocity_ * h;
+    if (params_.contact_side != 0 &&
+        (position_ - params_.contact_at) * params_.contact_side > 0.0) {
+      position_ = params_.contact_at;  // the contact holds the load: it stands there
+      velocity_ = 0.0;
+    }
   }
 }
 

@@ -47,6 +47,11 @@ struct DriveParams {
   // part there; 0: the drive has no probe input.
   int probe_side = 0;
   double probe_at = 0.0;
+  // A contact (a part, a centre the tailstock presses against): the load cannot pass
+  // `contact_at` (units) going to the side `contact_side` (+1 above, -1 below; 0: none). There
+  // the motor stands while the position loop's torque rises to its limit (G160).
+  int contact_side = 0;
+  double contact_at = 0.0;
   // Object defaults from the machine file (drive.objects), applied after the built-in ones.
   std::array<ObjectDefault, 16> objects{};
   std::size_t object_count = 0;
@@ -66,8 +71,10 @@ struct DriveParams {
 //    +-max_velocity; CSV the target velocity, clamped; quick stop and fault reaction a ramp
 //    from the velocity at its start to 0 at quick_stop_decel.
 //  - a PI velocity loop (gain J * 2 pi f, integral with anti-windup) gives the torque, limited
-//    to torque_limit; the mechanics J w' = T - B w move the motor, and the load by
-//    units_per_rev per revolution.
+//    to torque_limit and to the max torque 0x6072 (per mille of rated_torque; its default is
+//    torque_limit, by SDO or in an RPDO); the mechanics J w' = T - B w move the motor, and the load
+//    by units_per_rev per revolution.
+//  - a contact stops the load where it is (a rigid stop, no rebound).
 //  - the fault reaction ends in fault at standstill; in every other state the brake holds:
 //    v = 0 and pos stays.
 // The target is taken from RPDOs received after the SYNC that enabled operation; until then

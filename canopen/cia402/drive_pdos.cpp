@@ -73,6 +73,11 @@ void add_touch_probe(PdoLayout& layout) noexcept {
   layout.tpdo2.objects[layout.tpdo2.count++] = MappedObject{0x60BB, 0, 32};
 }
 
+void add_torque_limit(PdoLayout& layout) noexcept {
+  layout.rpdo2.objects[layout.rpdo2.count++] = MappedObject{0x6072, 0, 16};
+  layout.tpdo2.objects[layout.tpdo2.count++] = MappedObject{0x6077, 0, 16};
+}
+
 bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& command,
                   can::CanFrame& out) noexcept {
   const auto value_of = [&](std::uint16_t index, std::uint8_t) -> std::uint32_t {
@@ -87,6 +92,8 @@ bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& 
         return static_cast<std::uint8_t>(command.mode);
       case 0x60B8:
         return command.touch_probe;
+      case 0x6072:
+        return command.max_torque;
       default:
         return 0;  // an object the master does not command: zeros, as the mapping's length asks
     }

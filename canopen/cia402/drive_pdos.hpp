@@ -30,6 +30,13 @@ PdoLayout homing_axis_pdos() noexcept;
 // status 0x60B9 (8 bytes), TPDO2 the positive and negative edge positions 0x60BA and 0x60BB
 // (8 bytes). One frame more per cycle, and only on the axes that have a probe.
 void add_touch_probe(PdoLayout& layout) noexcept;
+// An axis layout (axis_pdos) with the torque limit that G160 sets (docs/drives.md): RPDO2 the
+// max torque 0x6072 (2 bytes), TPDO2 the torque actual value 0x6077 (2 bytes, after what it
+// maps already), both per mille of the motor's rated torque. One frame more per cycle.
+void add_torque_limit(PdoLayout& layout) noexcept;
+// 0x6072 with no limit asked: 1000 % of the rated torque, above any drive's peak, so that the
+// drive's own limit applies.
+inline constexpr std::uint16_t kNoTorqueLimit = 10000;
 
 // Touch probe 1's bits in its function 0x60B8 and status 0x60B9 (CiA 402): enable, sample the
 // first event only, sample the positive / negative edge; the status says enabled and which
@@ -45,11 +52,12 @@ inline constexpr std::uint16_t kNegativeStored = 1U << 2;
 
 // What a master sends its drive in a cycle; an RPDO carries what its mapping names of it.
 struct DriveCommand {
-  std::uint16_t controlword = 0;     // 0x6040
-  std::int32_t target_position = 0;  // 0x607A, counts
-  std::int32_t target_velocity = 0;  // 0x60FF, counts/s
-  std::int8_t mode = 8;              // 0x6060
-  std::uint16_t touch_probe = 0;     // 0x60B8, touch probe function
+  std::uint16_t controlword = 0;              // 0x6040
+  std::int32_t target_position = 0;           // 0x607A, counts
+  std::int32_t target_velocity = 0;           // 0x60FF, counts/s
+  std::int8_t mode = 8;                       // 0x6060
+  std::uint16_t touch_probe = 0;              // 0x60B8, touch probe function
+  std::uint16_t max_torque = kNoTorqueLimit;  // 0x6072, per mille of the rated torque
 };
 // What a drive's TPDOs said; a TPDO sets what its mapping names, the rest stays.
 struct DriveFeedback {

@@ -327,10 +327,25 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   return channel;
 }
 
+// A position of the simulated drive and the side it acts on: `{at, <side_key>: above|below}`;
+// side +1 above, -1 below.
+void read_drive_position(const YamlValue& value, const char* side_key, const std::string& what,
+                         double& at, int& side) {
+  const YamlMap m = value.map({"at", side_key});
+  at = m.required("at").number();
+  const YamlValue key = m.required(side_key);
+  const std::string name = key.string();
+  if (name != "above" && name != "below") {
+    key.fail(what + " above or below its position, got '" + name + "'");
+  }
+  side = name == "above" ? 1 : -1;
+}
+
 DriveSimConfig parse_drive(const YamlValue& value) {
-  const YamlMap map = value.map({"time_constant_s", "max_velocity", "quick_stop_decel",
-                                 "units_per_rev", "inertia", "friction", "torque_limit",
-                                 "rated_torque", "velocity_bandwidth_hz", "objects", "probe"});
+  const YamlMap map =
+      value.map({"time_constant_s", "max_velocity", "quick_stop_decel", "units_per_rev", "inertia",
+                 "friction", "torque_limit", "rated_torque", "velocity_bandwidth_hz", "objects",
+                 "probe", "contact"});
   DriveSimConfig drive;
   read_optional_positive(map, "time_constant_s", drive.time_constant_s);
   read_optional_positive(map, "max_velocity", drive.max_velocity);
@@ -342,14 +357,11 @@ DriveSimConfig parse_drive(const YamlValue& value) {
   read_optional_positive(map, "rated_torque", drive.rated_torque);
   read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
   if (auto probe = map.optional("probe")) {
-    const YamlMap p = probe->map({"at", "on"});
-    drive.probe_at = p.required("at").number();
-    const YamlValue on = p.required("on");
-    const std::string side = on.string();
-    if (side != "above" && side != "below") {
-      on.fail("the probe's input is on above or below its position, got '" + side + "'");
-    }
-    drive.probe_side = side == "above" ? 1 : -1;
+    read_drive_position(*probe, "on", "the probe's input is on", drive.probe_at, drive.probe_side);
+  }
+  if (auto contact = map.optional("contact")) {
+    read_drive_position(*contact, "blocks", "the contact blocks the load", drive.contact_at,
+                        drive.contact_side);
   }
   if (auto objects = map.optional("objects")) {
     const std::vector<YamlValue> list = objects->list();
@@ -400,6 +412,7 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "quick_stop_deceleration",
                                  "tpdo2",
                                  "touch_probe",
+                                 "torque_skip",
                                  "exchange",
                                  "axis_sync",
                                  "c_axis",
@@ -512,6 +525,19 @@ AxisConfig parse_axis(const YamlValue& value) {
       probe->fail(
           "a touch probe is on a linear or rotary axis without homing and without tpdo2 (its "
           "objects take those PDOs' room)");
+    }
+  }
+  if (auto torque = map.optional("torque_skip")) {
+    axis.torque_skip = torque->boolean();
+    // RPDO2 takes 0x6072 and TPDO2 0x6077 (canopen::add_torque_limit).
+    if (axis.torque_skip &&
+        (axis.type == AxisType::spindle || axis.tpdo2_torque || tpdo2_bytes(axis) > 8)) {
+      torque->fail(
+          "torque_skip is on a linear or rotary axis whose tpdo2 leaves room for torque_actual "
+          "(it maps 0x6077 itself)");
+    }
+    if (axis.torque_skip && axis.probe_input > 0) {
+      torque->fail("torque_skip and touch_probe do not fit one TPDO2");
     }
   }
   if (auto homing = map.optional("homing")) {
@@ -1389,7 +1415,7 @@ int bus_bits_per_cycle(int axis_count, int spindle_count) noexcept {
 
 int tpdo2_bytes(const AxisConfig& axis) noexcept {
   return (axis.tpdo2_velocity ? 4 : 0) + (axis.tpdo2_following_error ? 4 : 0) +
-         (axis.tpdo2_torque ? 2 : 0);
+         (axis.tpdo2_torque || axis.torque_skip ? 2 : 0);
 }
 
 int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
@@ -1401,7 +1427,8 @@ int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
   if (axis.type == AxisType::spindle) {
     return 2 * can_frame_bits(7) + can_frame_bits(4) + tpdo2;
   }
-  return 2 * can_frame_bits(axis.has_homing ? 7 : 6) + tpdo2;
+  const int rpdo2 = axis.torque_skip ? can_frame_bits(2) : 0;  // 0x6072
+  return 2 * can_frame_bits(axis.has_homing ? 7 : 6) + tpdo2 + rpdo2;
 }
 
 double bus_load(int axis_count, int bitrate, int cycle_us, int spindle_count) noexcept {

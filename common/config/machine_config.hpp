@@ -49,6 +49,10 @@ struct DriveSimConfig {
   // the side probe_side (+1 above, -1 below), a part the stylus touches there; 0: no probe.
   int probe_side = 0;
   double probe_at = 0.0;
+  // `contact`: the load cannot pass `contact_at` going to the side contact_side (+1 above, -1
+  // below), a part or a centre the axis presses against (G160); 0: none.
+  int contact_side = 0;
+  double contact_at = 0.0;
   std::vector<DriveObjectDefault> objects;  // at most 16
 };
 
@@ -91,6 +95,9 @@ struct AxisConfig {
   // `touch_probe`: the drive's touch probe 1 is wired to skip input `probe_input` (G31 L/K/I,
   // param 5510; 0: none). Its objects take TPDO2 (0x60BA/0x60BB) and a word of RPDO1 and TPDO1.
   int probe_input = 0;
+  // `torque_skip: true`: the drive's max torque 0x6072 is in RPDO2 and its torque 0x6077 in
+  // TPDO2 (canopen::add_torque_limit), so that G160 can limit the torque and skip on it.
+  bool torque_skip = false;
   // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
   bool has_homing = false;
   int homing_method = 0;

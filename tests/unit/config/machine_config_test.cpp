@@ -509,6 +509,53 @@ TEST(MachineConfig, HomingKeysAndTheirWeightOnTheBus) {
             "axes[0].homing.speed");
 }
 
+// G160: an axis's torque limit on the bus (torque_skip) and the simulated drive's contact.
+TEST(MachineConfig, TorqueSkipAndTheDrivesContact) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][1]["torque_skip"] = true;
+    r["axes"][1]["drive"]["contact"]["at"] = -150.0;
+    r["axes"][1]["drive"]["contact"]["blocks"] = "below";
+  }));
+  const AxisConfig& z = config.axes[1];
+  EXPECT_TRUE(z.torque_skip);
+  EXPECT_FALSE(config.axes[0].torque_skip);
+  EXPECT_DOUBLE_EQ(z.drive.contact_at, -150.0);
+  EXPECT_EQ(z.drive.contact_side, -1);
+  EXPECT_EQ(config.axes[0].drive.contact_side, 0);
+  // RPDO2 (0x6072) and TPDO2 (0x6077), 2 bytes each, beside the axis's two PDOs.
+  EXPECT_EQ(tpdo2_bytes(z), 2);
+  EXPECT_EQ(axis_bits_per_cycle(z), 2 * can_frame_bits(6) + 2 * can_frame_bits(2));
+  // Not on a spindle, beside a touch probe or a tpdo2 that maps the torque or leaves no room.
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["axes"][1]["tpdo2"].push_back("torque_actual");
+              r["axes"][1]["torque_skip"] = true;
+            })),
+            "axes[1].torque_skip");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["axes"][1]["tpdo2"].push_back("velocity_actual");
+              r["axes"][1]["tpdo2"].push_back("following_error_actual");
+              r["axes"][1]["torque_skip"] = true;
+            })),
+            "axes[1].torque_skip");
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["axes"][1]["touch_probe"]["input"] = 13;
+              r["axes"][1]["torque_skip"] = true;
+            })),
+            "axes[1].torque_skip");
+  std::string what;
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+                             r["axes"][1]["drive"]["contact"]["at"] = 1.0;
+                             r["axes"][1]["drive"]["contact"]["blocks"] = "left";
+                           }),
+                           &what),
+            "axes[1].drive.contact.blocks");
+  EXPECT_NE(what.find("the contact blocks the load above or below its position"), std::string::npos)
+      << what;
+  EXPECT_EQ(rejection_path(mutated(
+                [](YAML::Node& r) { r["axes"][1]["drive"]["contact"]["blocks"] = "below"; })),
+            "axes[1].drive.contact.at");
+}
+
 TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["axes"][0]["heartbeat_ms"] = 50;

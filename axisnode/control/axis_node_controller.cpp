@@ -275,8 +275,12 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     // (enabling, homing) is told to stay where it is, whatever mode it switches to next.
     out_.cmd = out_.act;
   }
+  if (in.have_setpoint) {  // G160's limit stands as long as the owner sends it, holding or not
+    torque_limit_ = setup_.torque_skip ? in.torque_limit : 0.0;
+    skip_deviation_ = torque_limit_ > 0.0 ? in.skip_deviation : 0.0;
+  }
   if (following_ && !velocity_mode && !out_.quick_stop && setup_.following_error_limit > 0.0 &&
-      std::abs(out_.cmd - out_.act) > setup_.following_error_limit) {
+      std::abs(out_.cmd - out_.act) > following_error_allowed()) {
     raise(AxisAlarm::following_error);
   }
   if (out_.quick_stop || !following_) {
@@ -304,6 +308,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   }
   out_.enabled = operating && !out_.quick_stop;
   probe_cycle(in);
+  torque_cycle(in);
   // The target in the drive's 32-bit counts, wrapping as the drive's position does.
   const auto target = static_cast<std::int64_t>(std::llround(out_.cmd * setup_.counts_per_unit));
   out_.target_counts = static_cast<std::int32_t>(
@@ -329,12 +334,51 @@ void AxisNodeController::probe_cycle(const AxisNodeInput& in) noexcept {
                                             static_cast<std::uint32_t>(last_counts_));
     out_.probe_pos = stored ? static_cast<double>(counts) / setup_.counts_per_unit : 0.0;
   }
-  const bool asked = out_.enabled && in.probe != ProbeRequest::off;
+  const bool asked =
+      out_.enabled && (in.probe == ProbeRequest::rising || in.probe == ProbeRequest::falling);
   out_.touch_probe =
       asked ? static_cast<std::uint16_t>(
                   tp::kEnable |
                   (in.probe == ProbeRequest::rising ? tp::kPositiveEdge : tp::kNegativeEdge))
             : std::uint16_t{0};
+}
+
+void AxisNodeController::torque_cycle(const AxisNodeInput& in) noexcept {
+  const std::uint16_t sent = out_.max_torque;
+  out_.max_torque =
+      torque_limit_ > 0.0
+          ? static_cast<std::uint16_t>(std::clamp(std::lround(torque_limit_ * 10.0), 1L,
+                                                  static_cast<long>(canopen::kNoTorqueLimit)))
+          : canopen::kNoTorqueLimit;
+  const bool asked =
+      setup_.torque_skip && out_.enabled && in.probe == ProbeRequest::torque && torque_limit_ > 0.0;
+  if (!asked) {
+    torque_latched_ = false;
+  } else if (sent == out_.max_torque) {
+    // The drive ran its last SYNC under this limit: the skip is armed. It latches where the
+    // axis stands once it is held back (L5370-5374): the torque at the limit (within 3 %, as a
+    // drive's torque actual value ripples) and the following error beyond the deviation, both
+    // the way the owner moves the axis, so that a G160 away from what holds it (the retract of
+    // L5406 and L5426) does not skip where it starts.
+    const double error = sent_cmd_ - out_.act;
+    const double torque = static_cast<double>(in.torque_actual);
+    const bool held_back = in.setpoint_vel * error > 0.0 && torque * error > 0.0 &&
+                           std::abs(torque) >= 0.97 * static_cast<double>(sent) &&
+                           std::abs(error) > skip_deviation_;
+    if (!torque_latched_ && held_back) {
+      torque_latched_ = true;
+      out_.probe_pos = out_.act;
+    }
+    out_.probe = torque_latched_ ? ProbeState::latched : ProbeState::armed;
+    if (!torque_latched_) {
+      out_.probe_pos = 0.0;
+    }
+  }
+  sent_cmd_ = out_.cmd;
+}
+
+double AxisNodeController::following_error_allowed() const noexcept {
+  return setup_.following_error_limit + (torque_limit_ > 0.0 ? skip_deviation_ : 0.0);
 }
 
 bool AxisNodeController::drive_at_rest() const noexcept {

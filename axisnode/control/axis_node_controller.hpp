@@ -3,6 +3,7 @@
 // to operation enabled, and goes to quick stop when the owner's setpoints stop (deadline), the
 // owner is gone, or the machine is E-stopped (ARCHITECTURE.md §6). Pure and deterministic.
 #include "canopen/cia402/cia402_state.hpp"
+#include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/heartbeat.hpp"
 
 #include <array>
@@ -39,6 +40,9 @@ struct AxisNodeSetup {
   // the axis is not enabled for its owner. Needs the PDOs with the modes (homing_axis_pdos).
   bool homing = false;
   int homing_timeout_cycles = 60000;  // from the drive's enable in homing mode
+  // G160: the drive's max torque 0x6072 is in its RPDO2 and its torque 0x6077 in its TPDO2
+  // (canopen::add_torque_limit).
+  bool torque_skip = false;
 };
 
 inline constexpr std::int8_t kModeHoming = 6;
@@ -49,8 +53,9 @@ inline constexpr std::int8_t kModeCsp = 8;
 inline constexpr std::int8_t kModeCsv = 9;
 
 // G31 skip: the owner asks the drive's touch probe to latch the position where its input goes
-// on (rising) or off (falling); what the node reports of it.
-enum class ProbeRequest : std::uint8_t { off = 0, rising = 1, falling = 2 };
+// on (rising) or off (falling); G160: to latch where the torque is at its limit and the
+// following error beyond the skip deviation (torque). What the node reports of it.
+enum class ProbeRequest : std::uint8_t { off = 0, rising = 1, falling = 2, torque = 3 };
 enum class ProbeState : std::uint8_t { off = 0, armed = 1, latched = 2 };
 
 struct AxisNodeInput {
@@ -72,6 +77,11 @@ struct AxisNodeInput {
   std::uint16_t touch_probe_status = 0;    // 0x60B9
   std::int32_t probe_positive = 0;         // 0x60BA, counts
   std::int32_t probe_negative = 0;         // 0x60BB, counts
+  // G160, the owner's while it commands the axis: the torque limit in percent of the rated
+  // torque (0: none) and the following error beyond which the torque skip latches (units).
+  double torque_limit = 0.0;
+  double skip_deviation = 0.0;
+  std::int16_t torque_actual = 0;  // 0x6077, per mille of the rated torque (torque_skip)
 };
 
 enum class AxisAlarm : std::uint8_t {
@@ -115,6 +125,8 @@ struct AxisNodeOutput {
   // or latched at probe_pos (units).
   ProbeState probe = ProbeState::off;
   double probe_pos = 0.0;
+  // 0x6072 to send (torque_skip): the owner's limit, per mille of the rated torque, or none.
+  std::uint16_t max_torque = canopen::kNoTorqueLimit;
 };
 
 class AxisNodeController {
@@ -141,6 +153,11 @@ class AxisNodeController {
   [[nodiscard]] bool drive_at_rest() const noexcept;
   // Touch probe 1: the function to send and what the drive reports of the last one sent.
   void probe_cycle(const AxisNodeInput& in) noexcept;
+  // G160: the max torque to send, and the torque skip while the owner asks for it.
+  void torque_cycle(const AxisNodeInput& in) noexcept;
+  // The following error allowed now: the limit, and while a torque limit stands its skip
+  // deviation besides (the axis presses against what holds it, decision 200).
+  [[nodiscard]] double following_error_allowed() const noexcept;
 
   AxisNodeSetup setup_;
   AxisNodeOutput out_{};
@@ -166,6 +183,12 @@ class AxisNodeController {
   bool homing_started_ = false;           // in operation in homing mode: bit 4 goes up next
   std::uint64_t start_sent_cycle_ = 0;    // the cycle bit 4 first went out (0: not yet)
   canopen::HeartbeatConsumer heartbeat_;  // in cycles
+  // G160: the owner's torque limit (percent, 0: none) and skip deviation, from its last
+  // setpoint; the command the drive followed at its last SYNC; a torque skip latched.
+  double torque_limit_ = 0.0;
+  double skip_deviation_ = 0.0;
+  double sent_cmd_ = 0.0;
+  bool torque_latched_ = false;
 };
 
 }  // namespace mcnc::axisnode

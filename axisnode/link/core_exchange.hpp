@@ -19,12 +19,13 @@ inline DriveReadings readings_of(const DriveSample& sample) noexcept {
   drive.touch_probe_status = sample.feedback.touch_probe_status;
   drive.probe_positive = sample.feedback.probe_positive;
   drive.probe_negative = sample.feedback.probe_negative;
+  drive.torque_actual = sample.feedback.torque_actual;
   return drive;
 }
 
 inline canopen::DriveCommand command_of(const AxisNodeOutput& out) noexcept {
   return canopen::DriveCommand{out.controlword, out.target_counts, out.target_velocity_counts,
-                               out.mode, out.touch_probe};
+                               out.mode,        out.touch_probe,   out.max_torque};
 }
 
 }  // namespace mcnc::axisnode

@@ -252,6 +252,8 @@ ownership::OwnershipChange AxisNode::decide_owner(std::uint64_t cycle, bool lock
   in_.setpoint_valid = sp.valid && !change.changed && owner_now_ != 0;
   in_.setpoint_velocity = sp.velocity;
   in_.probe = in_.setpoint_valid ? sp.probe : ProbeRequest::off;
+  in_.torque_limit = sp.torque_limit;
+  in_.skip_deviation = sp.skip_deviation;
   in_.owner_lost = owner_lost_;
   return change;
 }
@@ -362,6 +364,7 @@ const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& d
   in_.touch_probe_status = drive.touch_probe_status;
   in_.probe_positive = drive.probe_positive;
   in_.probe_negative = drive.probe_negative;
+  in_.torque_actual = drive.torque_actual;
   in_.emergency_stop = emergency_stop;
   return controller_.cycle(cycle, in_);
 }

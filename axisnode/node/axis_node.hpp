@@ -60,7 +60,11 @@ struct SetpointSample {
   double acc = 0.0;
   bool valid = false;                      // the channel commands the axis (false: hold)
   bool velocity = false;                   // a spindle in velocity mode
-  ProbeRequest probe = ProbeRequest::off;  // G31: the touch probe to arm
+  ProbeRequest probe = ProbeRequest::off;  // G31: the touch probe to arm; G160: the torque skip
+  // G160: the torque limit (percent of the rated torque, 0: none) and the skip deviation
+  // (units), sent for as long as the limit stands.
+  double torque_limit = 0.0;
+  double skip_deviation = 0.0;
 };
 
 // A coordination event from a channel, as far as an axis node reads it.
@@ -91,6 +95,7 @@ struct DriveReadings {
   std::uint16_t touch_probe_status = 0;  // 0x60B9
   std::int32_t probe_positive = 0;       // 0x60BA
   std::int32_t probe_negative = 0;       // 0x60BB
+  std::int16_t torque_actual = 0;        // 0x6077, per mille of the rated torque
 };
 
 // What happened in a cycle that the trace tells, in the order it happened.

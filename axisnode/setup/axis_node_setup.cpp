@@ -35,6 +35,9 @@ canopen::NodeStartupConfig drive_startup_of(const config::AxisConfig& axis) {
   if (axis.probe_input > 0) {
     canopen::add_touch_probe(startup.pdos);
   }
+  if (axis.torque_skip) {
+    canopen::add_torque_limit(startup.pdos);
+  }
   return startup;
 }
 
@@ -85,6 +88,7 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
           : std::max(1, static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us));
   setup.spindle = axis.type == config::AxisType::spindle;
   setup.homing = axis.has_homing;
+  setup.torque_skip = axis.torque_skip;
   roles.spindle_coupling =
       coupling::SpindleCouplingSetup{machine.cycle_s(), axis.acceleration, 0.05, 1.0};
   return roles;

@@ -127,8 +127,9 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   fb.following_error(axis_.tpdo2_following_error ? tpdo.following_error / axis_.counts_per_unit
                                                  : out.cmd - out.act);
   fb.last_emcy(last_emcy);
-  fb.load_known(axis_.tpdo2_torque);
-  fb.load(axis_.tpdo2_torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
+  const bool torque = axis_.tpdo2_torque || axis_.torque_skip;  // 0x6077 in TPDO2
+  fb.load_known(torque);
+  fb.load(torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
   fb.mode_display(out.mode_display);
   fb.alarm(out.alarm != AxisAlarm::none);
   fb.probe(static_cast<std::uint8_t>(out.probe));

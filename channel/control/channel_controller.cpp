@@ -99,8 +99,10 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
     if (i >= feedback.size()) {
       return false;
     }
+    // Under a G160 torque limit the axis may press against what holds it, its command beyond
+    // by up to Q: it stands where it is held (decision 201).
     const double width = i < setup_.in_position.size() ? setup_.in_position[i] : 0.0;
-    if (std::fabs(feedback[i].act - at[i]) > width) {
+    if (coordination_.torque_limit(i) == 0.0 && std::fabs(feedback[i].act - at[i]) > width) {
       return false;
     }
   }
@@ -396,6 +398,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
       event.file = q.file;
       event.text = q.text;
       out_.modal = q.modal;
+      coordination_.block_started(q);
       queued_.started();
     } else {
       event.kind = ChannelEventKind::block_ended;

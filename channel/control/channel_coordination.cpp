@@ -139,16 +139,21 @@ void ChannelCoordination::end_cycle() noexcept {
       out_.setpoints[i].valid = false;
     }
   }
-  // G31: the probes on the block's input stay armed while it arms and moves.
+  // G31: the probes on the block's input stay armed while it arms and moves; G160: its axis's
+  // torque skip.
   const auto* skip = std::get_if<SkipStop>(&held_);
   if (skip != nullptr && skip->command.skip_signal == 0 &&
       skip_.phase() != coordination::SkipPhase::stopping && in_run()) {
-    const std::uint32_t probes = probe_axes(skip->command.input);
+    const std::uint32_t probes = skip_axes(*skip);
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
       if (((probes >> i) & 1U) != 0) {
         out_.setpoints[i].probe = skip->arm;
       }
     }
+  }
+  for (std::size_t i = 0; i < setup_.axis_count && i < torque_.size(); ++i) {
+    out_.setpoints[i].torque_limit = torque_[i].limit;
+    out_.setpoints[i].skip_deviation = torque_[i].deviation;
   }
   out_.spindle_position = false;
   const double c_base = spindle_mode_.c_base();
@@ -289,6 +294,21 @@ std::uint32_t ChannelCoordination::probe_axes(int input) const noexcept {
   return probes;
 }
 
+std::uint32_t ChannelCoordination::torque_axes(const SkipStop& s) const noexcept {
+  const std::size_t i = s.torque_axis;
+  const bool wired = i < setup_.axis_count && i < setup_.torque_axes.size() &&
+                     setup_.torque_axes[i] && (!exchanges() || commands_axis(i));
+  return wired ? 1U << i : 0U;
+}
+
+void ChannelCoordination::block_started(const QueuedBlock& b) noexcept {
+  for (std::size_t i = 0; i < setup_.axis_count && i < torque_.size(); ++i) {
+    if (((b.moves >> i) & 1U) != 0 && !b.sets_torque_limit) {
+      torque_[i] = TorqueLimit{};
+    }
+  }
+}
+
 bool ChannelCoordination::skip_signal_on(int signal) const noexcept {
   const int bit = setup_.skip_signals[static_cast<std::size_t>(signal - 1)];
   return bit >= 0 && bit < 64 && ((plc_inputs_ >> bit) & 1U) != 0;
@@ -306,7 +326,7 @@ void ChannelCoordination::watch_skip(std::span<const AxisFeedbackView> feedback)
   const int signal = skip->command.skip_signal;
   const bool stop =
       signal != 0 ? skip_.watch_signal(feedback, skip_signal_on(signal), skip_signal_gone(signal))
-                  : skip_.watch(feedback, probe_axes(skip->command.input));
+                  : skip_.watch(feedback, skip_axes(*skip));
   if (stop) {
     host_.stop_move();  // and drop the rest of the move
   }
@@ -532,10 +552,18 @@ void ChannelCoordination::run(ModeStop& b, std::uint64_t /*cycle*/,
 
 void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
                               std::span<const AxisFeedbackView> feedback) noexcept {
+  if (b.arm == ProbeArm::torque && b.torque_axis == interp::kMaxChannelAxes) {
+    // G160 at the front: its limit stands from here on.
+    b.torque_axis = b.command.skip_axis;
+    skip_.begin_torque(b.torque_axis);
+    if (torque_axes(b) != 0) {
+      torque_[b.torque_axis] = TorqueLimit{b.command.torque_limit, b.command.deviation};
+    }
+  }
   if (skip_.phase() == coordination::SkipPhase::arming) {
     const int signal = b.command.skip_signal;
     switch (signal != 0 ? skip_.arm_signal(skip_signal_on(signal), skip_signal_gone(signal))
-                        : skip_.arm(feedback, probe_axes(b.command.input))) {
+                        : skip_.arm(feedback, skip_axes(b))) {
       case coordination::SkipArming::waiting:
         return;
       case coordination::SkipArming::alarm:

@@ -101,6 +101,11 @@ class ChannelCoordination {
   [[nodiscard]] bool skip_stopping() const noexcept {
     return skip_in(coordination::SkipPhase::stopping);
   }
+  // A queued block starts: a move of an axis under a G160 torque limit other than a G160 that
+  // sets one cancels it (L5382), and so does G160 P-1.
+  void block_started(const QueuedBlock& b) noexcept;
+  // G160: axis i's torque limit (percent of the rated torque, 0: none) and skip deviation.
+  [[nodiscard]] double torque_limit(std::size_t i) const noexcept { return torque_[i].limit; }
 
   // --- Runs and their end.
   void settle_slots() noexcept { exchange_.settle(received_, commanded_); }
@@ -141,6 +146,12 @@ class ChannelCoordination {
   }
   // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
   [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
+  // Bit of a G160's axis, when the channel commands it and its drive takes a torque limit.
+  [[nodiscard]] std::uint32_t torque_axes(const SkipStop& s) const noexcept;
+  // The probes that a G31 or G160 arms and watches.
+  [[nodiscard]] std::uint32_t skip_axes(const SkipStop& s) const noexcept {
+    return s.arm == ProbeArm::torque ? torque_axes(s) : probe_axes(s.command.input);
+  }
   // G31 P: skip signal `signal` (1-8) on in the PLC's status; the PLC gone (or without it).
   [[nodiscard]] bool skip_signal_on(int signal) const noexcept;
   [[nodiscard]] bool skip_signal_gone(int signal) const noexcept;
@@ -210,6 +221,13 @@ class ChannelCoordination {
   coordination::SpindleMode spindle_mode_;
   std::uint64_t plc_inputs_ = 0;
   coordination::SkipProbe skip_;
+  // G160's torque limits, per channel axis: they stay after the skip (a tailstock keeps
+  // pressing) until a move of the axis cancels them (decision 200).
+  struct TorqueLimit {
+    double limit = 0.0;  // percent of the rated torque, 0: none
+    double deviation = 0.0;
+  };
+  std::array<TorqueLimit, interp::kMaxChannelAxes> torque_{};
 };
 
 }  // namespace mcnc::channel

@@ -47,6 +47,8 @@ struct ChannelSetup {
   std::optional<std::size_t> spindle_c_slot{};
   // Per axis: the skip input its drive's touch probe is wired to (G31; 0: none). Empty: none.
   std::vector<int> probe_inputs{};
+  // Per axis: its drive takes a torque limit and reports its torque (G160; torque_skip).
+  std::vector<bool> torque_axes{};
   // G31: a touch probe that does not report itself armed within this many cycles is an alarm.
   std::uint64_t probe_arm_cycles = 200;
   // G04 I: per input port (the index), the bit of the PLC's inputs it reads (-1: none).

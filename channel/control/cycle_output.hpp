@@ -52,7 +52,11 @@ struct CommandedAxis {
   double vel = 0.0;
   double acc = 0.0;
   bool valid = false;              // false: the axis node holds its position
-  ProbeArm probe = ProbeArm::off;  // G31: arm the drive's touch probe
+  ProbeArm probe = ProbeArm::off;  // G31: arm the drive's touch probe; G160: the torque skip
+  // G160: the drive's torque limit (percent of the rated torque, 0: none) and the following
+  // error beyond which the torque skip latches (units), for as long as the limit stands.
+  double torque_limit = 0.0;
+  double skip_deviation = 0.0;
 };
 
 enum class ChannelEventKind : std::uint8_t {

@@ -26,7 +26,9 @@ namespace mcnc::channel {
 
 // G31 skip: the touch probe the channel asks an axis's drive to arm (latch where its input
 // goes on, or off); what the axis node says of it is ProbeSeen (the values the wire carries).
-enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2 };
+// G160 (torque): the axis node latches where the axis's torque is at its limit and its
+// following error beyond the skip deviation.
+enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2, torque = 3 };
 
 // Where a block that stops read-ahead stands in the program.
 struct HeldBlock {
@@ -82,6 +84,8 @@ struct ModeStop {  // M18 / M17
 struct SkipStop {
   interp::Command command;  // the move, queued once the probes are armed
   ProbeArm arm = ProbeArm::rising;
+  // G160: the channel axis it moves, found when it reaches the front (kMaxChannelAxes: not yet).
+  std::size_t torque_axis = interp::kMaxChannelAxes;
 };
 // G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
 // out.

@@ -11,7 +11,14 @@ void SkipProbe::begin(int input) noexcept {
   waited_ = 0;
   skipped_ = false;
   lost_ = false;
+  torque_ = false;
   skip_at_ = {};
+}
+
+void SkipProbe::begin_torque(std::size_t axis) noexcept {
+  begin(0);
+  torque_ = true;
+  torque_axis_ = axis;
 }
 
 void SkipProbe::begin_signal(int signal) noexcept {
@@ -65,16 +72,28 @@ SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
       armed = armed && feedback[i].probe == ProbeSeen::armed;
     }
   }
+  const int axis = static_cast<int>(torque_axis_) + 1;
   if (!any) {
-    alarm_.set(interp::alarm::kSkipInput,
-               "G31: no axis this channel commands has its touch probe on input %d", input_);
+    if (torque_) {
+      alarm_.set(interp::alarm::kSkipInput,
+                 "G160: the channel does not command axis %d, or its drive takes no torque limit "
+                 "(torque_skip)",
+                 axis);
+    } else {
+      alarm_.set(interp::alarm::kSkipInput,
+                 "G31: no axis this channel commands has its touch probe on input %d", input_);
+    }
     return SkipArming::alarm;
   }
   if (armed) {
     return SkipArming::armed;
   }
   if (++waited_ > arm_cycles_) {
-    alarm_.set(kAlarmProbeNotArmed, "G31: the touch probe on input %d did not arm", input_);
+    if (torque_) {
+      alarm_.set(kAlarmProbeNotArmed, "G160: the torque limit of axis %d did not arm", axis);
+    } else {
+      alarm_.set(kAlarmProbeNotArmed, "G31: the touch probe on input %d did not arm", input_);
+    }
     return SkipArming::alarm;
   }
   return SkipArming::waiting;

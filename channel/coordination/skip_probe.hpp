@@ -7,7 +7,10 @@
 // G31 P1-P8 skips on a PLC signal (G0014.0-7) instead: the move starts once the signal is seen
 // off (a signal already on would skip where the move starts), and the skip position is where
 // the axes' feedback stood in the cycle the signal is seen on, not a drive's latch (decision
-// 360). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing throws.
+// 360). G160 skips where its axis's node reports the torque at the limit and the following
+// error beyond the deviation, a latch as a touch probe's, at the axis's actual position then
+// (decision 200). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing
+// throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
@@ -33,6 +36,8 @@ class SkipProbe {
 
   // A G31 block on skip input `input` reached the front.
   void begin(int input) noexcept;
+  // G160 of channel axis `axis` reached the front; arm() and watch() take the axis's bit.
+  void begin_torque(std::size_t axis) noexcept;
   // Arming, one cycle. `probes`: bit i, the touch probe of axis i is on the block's input.
   SkipArming arm(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
   void start_moving() noexcept { phase_ = SkipPhase::moving; }
@@ -62,7 +67,9 @@ class SkipProbe {
   std::size_t axis_count_;
   std::uint64_t arm_cycles_;
   int input_ = 0;
-  int signal_ = 0;  // G31 P: the PLC's skip signal (1-8); 0: touch probes
+  int signal_ = 0;       // G31 P: the PLC's skip signal (1-8); 0: touch probes
+  bool torque_ = false;  // G160: the torque skip of axis torque_axis_
+  std::size_t torque_axis_ = 0;
   SkipPhase phase_ = SkipPhase::arming;
   std::uint64_t waited_ = 0;  // cycles arming
   bool skipped_ = false;

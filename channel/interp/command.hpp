@@ -147,6 +147,7 @@ struct Command {
   bool torque_skip = false;
   double torque_limit = 0.0;
   double deviation = 0.0;
+  std::size_t skip_axis = 0;  // G160: the channel axis it moves (index into the channel's axes)
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

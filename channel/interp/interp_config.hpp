@@ -53,6 +53,8 @@ struct AxisConfig {
   double stroke_plus = std::numeric_limits<double>::infinity();
   // G31: the skip input its drive's touch probe is wired to (0: none).
   int probe_input = 0;
+  // G160: its drive takes a torque limit and reports its torque (torque_skip).
+  bool torque_skip = false;
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.

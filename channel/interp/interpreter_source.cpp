@@ -58,8 +58,11 @@ bool skip_wired(const Command& c, const InterpreterConfig& config) {
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
-  if (c.multi_skip || c.torque_skip) {
+  if (c.multi_skip) {
     return alarm::kNotInThisVersion;
+  }
+  if (c.torque_skip) {
+    return alarm::kSkipInput;
   }
   if (c.op == Op::sync) {
     return alarm::kSyncForm;
@@ -327,11 +330,15 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
           std::to_string(c.spindle) + " whose actual speed it reads (spindles in the machine file)";
     return false;
   }
-  if (c.multi_skip || c.torque_skip) {
-    why = c.multi_skip ? "G31.8 (the multi-skip) needs the touch probe's continuous latching, not "
-                         "in this version"
-                       : "G160 (the torque-limited skip) needs the drive's torque limit, not in "
-                         "this version";
+  if (c.multi_skip) {
+    why = "G31.8 (the multi-skip) needs the touch probe's continuous latching, not in this version";
+    return false;
+  }
+  if (c.torque_skip && c.torque_limit > 0.0 &&
+      !(c.skip_axis < config.axes.size() && config.axes[c.skip_axis].torque_skip)) {
+    why = "G160: the drive of axis " +
+          std::string(1, c.skip_axis < config.axes.size() ? config.axes[c.skip_axis].name : '?') +
+          " takes no torque limit (torque_skip of the axis in the machine file)";
     return false;
   }
   if (c.skip && !skip_wired(c, config)) {

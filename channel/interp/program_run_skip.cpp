@@ -276,9 +276,13 @@ bool ProgramRun::run_torque_skip(int column) {
     }
     deviation = length_of(*q);
   }
+  const AxisVector from = machine_;
   Command* c = emit_skip_move("G160", true, column);
   if (c == nullptr) {
     return false;
+  }
+  for (std::size_t a = 0; a < config_.axes.size(); ++a) {
+    c->skip_axis = machine_[a] != from[a] ? a : c->skip_axis;
   }
   c->torque_skip = true;
   c->torque_limit = limit;

@@ -17,6 +17,7 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
     axes.push_back(a);
     setup.in_position.push_back(a->in_position);
     setup.probe_inputs.push_back(a->probe_input);
+    setup.torque_axes.push_back(a->torque_skip);
     const bool exchange_slot = axes.size() > ch.axes.size() && a->spindle.empty();
     setup.slots.push_back(AxisSlot{
         a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),

@@ -169,6 +169,8 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.acc(out.setpoints[i].acc);
     sp.valid(out.setpoints[i].valid);
     sp.probe(static_cast<std::uint8_t>(out.setpoints[i].probe));
+    sp.torque_limit(out.setpoints[i].torque_limit);
+    sp.skip_deviation(out.setpoints[i].skip_deviation);
     axis_setpoints_[i]->write(sp);
   }
   const double rpm = out.spindle_rpm * out.spindle_direction;

@@ -4,6 +4,7 @@
 // (controlword 0x0002), then the drive's statusword "quick stop active, halted" with its
 // position standing, and only then the disable (controlword without "enable voltage", or NMT
 // pre-operational). Every kill test also finds /dev/shm as it was before the run.
+#include "bus_recorder.hpp"
 #include "common/can/can_bus.hpp"
 #include "harness.hpp"
 
@@ -45,39 +46,6 @@ std::int32_t position(const mcnc::can::CanFrame& f) {
                                    (static_cast<std::uint32_t>(f.data[4]) << 16) |
                                    (static_cast<std::uint32_t>(f.data[5]) << 24));
 }
-
-// Every frame on the bus, in the order they came, from a listener of its own on the bus.
-class BusRecorder {
- public:
-  explicit BusRecorder(const std::string& uri) : bus_(mcnc::can::open_can_bus(uri)) {
-    thread_ = std::thread([this] {
-      mcnc::can::CanFrame frame;
-      while (!stop_) {
-        if (bus_->receive(frame, 50ms) == mcnc::can::BusResult::ok) {
-          std::lock_guard<std::mutex> lock(mutex_);
-          frames_.push_back(frame);
-        }
-      }
-    });
-  }
-  ~BusRecorder() {
-    stop_ = true;
-    thread_.join();
-  }
-  BusRecorder(const BusRecorder&) = delete;
-  BusRecorder& operator=(const BusRecorder&) = delete;
-  [[nodiscard]] std::vector<mcnc::can::CanFrame> frames() const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return frames_;
-  }
-
- private:
-  std::unique_ptr<mcnc::can::CanBus> bus_;
-  mutable std::mutex mutex_;
-  std::vector<mcnc::can::CanFrame> frames_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 // What the bus said of one drive's stop.
 struct DriveStopOnTheBus {

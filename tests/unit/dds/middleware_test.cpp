@@ -76,6 +76,9 @@ mcnc::AxisSetpoint setpoint(std::uint64_t cycle) {
   sp.acc(-2.25);
   sp.valid(true);
   sp.mode(mcnc::SP_VELOCITY);
+  sp.probe(3);  // G160's torque skip, with its limit and deviation
+  sp.torque_limit(50.0);
+  sp.skip_deviation(2.25);
   return sp;
 }
 
@@ -89,6 +92,9 @@ void expect_same(const mcnc::AxisSetpoint& got, const mcnc::AxisSetpoint& sent) 
   EXPECT_EQ(got.acc(), sent.acc());
   EXPECT_EQ(got.valid(), sent.valid());
   EXPECT_EQ(got.mode(), sent.mode());
+  EXPECT_EQ(got.probe(), sent.probe());
+  EXPECT_EQ(got.torque_limit(), sent.torque_limit());
+  EXPECT_EQ(got.skip_deviation(), sent.skip_deviation());
 }
 
 class Middlewares : public ::testing::TestWithParam<std::pair<Middleware, Middleware>> {};

@@ -156,7 +156,7 @@ class AxisNodeController {
   // G160: the max torque to send, and the torque skip while the owner asks for it.
   void torque_cycle(const AxisNodeInput& in) noexcept;
   // The following error allowed now: the limit, and while a torque limit stands its skip
-  // deviation besides (the axis presses against what holds it, decision 200).
+  // deviation besides (the axis presses against what holds it, decision 100).
   [[nodiscard]] double following_error_allowed() const noexcept;
 
   AxisNodeSetup setup_;

@@ -100,7 +100,7 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
       return false;
     }
     // Under a G160 torque limit the axis may press against what holds it, its command beyond
-    // by up to Q: it stands where it is held (decision 201).
+    // by up to Q: it stands where it is held (decision 101).
     const double width = i < setup_.in_position.size() ? setup_.in_position[i] : 0.0;
     if (coordination_.torque_limit(i) == 0.0 && std::fabs(feedback[i].act - at[i]) > width) {
       return false;

@@ -222,7 +222,7 @@ class ChannelCoordination {
   std::uint64_t plc_inputs_ = 0;
   coordination::SkipProbe skip_;
   // G160's torque limits, per channel axis: they stay after the skip (a tailstock keeps
-  // pressing) until a move of the axis cancels them (decision 200).
+  // pressing) until a move of the axis cancels them (decision 100).
   struct TorqueLimit {
     double limit = 0.0;  // percent of the rated torque, 0: none
     double deviation = 0.0;

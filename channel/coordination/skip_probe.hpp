@@ -9,7 +9,7 @@
 // the axes' feedback stood in the cycle the signal is seen on, not a drive's latch (decision
 // 360). G160 skips where its axis's node reports the torque at the limit and the following
 // error beyond the deviation, a latch as a touch probe's, at the axis's actual position then
-// (decision 200). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing
+// (decision 100). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing
 // throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"

@@ -1,4 +1,4 @@
-// G160 as a channel runs it (decision 200): the axis's torque limit and skip deviation go out
+// G160 as a channel runs it (decision 100): the axis's torque limit and skip deviation go out
 // with its setpoints from the block on, the move starts once the axis node reports the torque
 // skip armed, stops at the planner's reset deceleration once it latched, and the program reads
 // the latched position (#5061..). The limit stays after the skip, while other axes move, until

@@ -8,6 +8,7 @@
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
 #include "common/process/startup.hpp"
+#include "common/text/program_place.hpp"
 #include "common/trace/trace_merge.hpp"
 #include "common/trace/trace_writer.hpp"
 #include "idl/dds_participant.hpp"
@@ -857,7 +858,19 @@ LaunchResult Launcher::run(
   {
     std::lock_guard<std::mutex> lock(seen.mutex);
     for (const auto& a : seen.alarms) {
-      result.alarms.push_back(a.src() + " " + std::to_string(a.number()) + " " + a.text());
+      // Where in a program, as the check before the run says it: the main program by the path
+      // it was given, a called program by the path the channel read.
+      std::string file = a.program();
+      const config::ChannelConfig* ch =
+          machine_.channel_by_id(static_cast<std::uint64_t>(std::max(a.channel(), 0)));
+      const auto given = ch == nullptr ? options_.programs.end() : options_.programs.find(ch->name);
+      if (given != options_.programs.end() && !file.empty() &&
+          fs::path(given->second).filename() == file) {
+        file = given->second;
+      }
+      const std::string place = text::program_place(file, a.line(), a.column());
+      result.alarms.push_back(a.src() + " " + std::to_string(a.number()) + " " + a.text() +
+                              (place.empty() ? "" : " (" + place + ")"));
     }
   }
   bool ok = failure.empty() && !estopped;

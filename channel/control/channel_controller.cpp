@@ -62,10 +62,16 @@ void ChannelController::set_state(ChannelState state) noexcept {
   out_.add_event(event);
 }
 
-void ChannelController::raise(int number, const char* text, int line, int column,
-                              int axis) noexcept {
+void ChannelController::raise(int number, const char* text, int line, int column, int axis,
+                              std::string_view file) noexcept {
   alarm_.number = number;
   std::snprintf(alarm_.text.data(), alarm_.text.size(), "%s", text);
+  if (file.empty()) {
+    alarm_.file = out_.file;
+  } else {
+    std::snprintf(alarm_.file.data(), alarm_.file.size(), "%.*s", static_cast<int>(file.size()),
+                  file.data());
+  }
   alarm_.line = line;
   alarm_.column = column;
   alarm_.axis = axis;
@@ -81,7 +87,7 @@ void ChannelController::raise(int number, const char* text, int line, int column
 }
 
 void ChannelController::raise_program_alarm(const interp::ProgramAlarm& alarm) noexcept {
-  raise(alarm.number, alarm.text.c_str(), alarm.line, alarm.column, 0);
+  raise(alarm.number, alarm.text.c_str(), alarm.line, alarm.column, 0, alarm.program);
 }
 
 bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) const noexcept {
@@ -124,6 +130,7 @@ void ChannelController::forget_program_run() noexcept {
   end_pulled_ = false;
   end_started_ = false;
   source_alarm_.reset();
+  out_.keep_file(nullptr);  // no block of the run has started
   out_.program_end = false;
   out_.end_code = -1;
 }

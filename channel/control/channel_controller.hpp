@@ -216,7 +216,9 @@ class ChannelController : private ChannelHost {
 
   const CycleOutput& run_cycle(std::uint64_t cycle,
                                std::span<const AxisFeedbackView> feedback) noexcept;
-  void raise(int number, const char* text, int line, int column, int axis) noexcept;
+  // `file`: the file the alarm is in; without it, that of the block under way.
+  void raise(int number, const char* text, int line, int column, int axis,
+             std::string_view file = {}) noexcept;
   void raise(const coordination::CoordinationAlarm& alarm, int line) noexcept {
     raise(alarm.number, alarm.text.data(), line, 0, alarm.axis);
   }

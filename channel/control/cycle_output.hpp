@@ -14,6 +14,7 @@
 #include "channel/interp/axis_vector.hpp"
 #include "channel/interp/command.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -86,9 +87,15 @@ struct ChannelEvent {
   CallOutcome call_outcome = CallOutcome::released;
 };
 
+// A file name as the cycle keeps it: fixed, so that keeping it never allocates.
+using FileName = std::array<char, 128>;
+
 struct ChannelAlarm {
   int number = 0;
   std::array<char, 192> text{};  // fixed: alarms are raised from the cyclic path
+  // The file the alarm is in (a called program's, an MDI's, ...) as the interpreter names it;
+  // empty: the main program's.
+  FileName file{};
   int line = 0;
   int column = 0;
   int axis = 0;  // channel axis index + 1 when an axis is concerned
@@ -99,6 +106,7 @@ struct CycleOutput {
   ChannelState state = ChannelState::reset;
   std::size_t block = 0;
   int line = 0;
+  FileName file{};           // the file of the block under way (empty: the main program's)
   interp::ModalState modal;  // of the block under way (of the last one, between runs)
   bool program_end = false;
   int end_code = -1;
@@ -138,9 +146,19 @@ struct CycleOutput {
   std::size_t event_count = 0;
   // Events beyond kMaxEvents are dropped (the controller keeps room for a program end).
   void add_event(const ChannelEvent& event) noexcept {
+    if (event.kind == ChannelEventKind::block_started) {
+      keep_file(event.file);
+    }
     if (event_count < kMaxEvents) {
       events[event_count++] = event;
     }
+  }
+  void keep_file(const std::string* name) noexcept {
+    const std::size_t n = name == nullptr ? 0 : std::min(name->size(), file.size() - 1);
+    if (n > 0) {
+      std::copy_n(name->data(), n, file.begin());
+    }
+    file[n] = '\0';
   }
 };
 

@@ -305,17 +305,32 @@ void ChannelOutputs::record(std::uint64_t cycle, const ChannelController& contro
                                        : index - axes_.size() < spindles_.size()
                                            ? spindles_[index - axes_.size()]
                                            : nullptr;
+      // An alarm in a program names its file as a block does (`prog`), and its column when
+      // known; the wire carries the file as the channel read it (a called program's path).
+      const char* file = alarm.file[0] != '\0' ? alarm.file.data() : program_name_.c_str();
+      const std::string_view name(file);
+      char place[sizeof escaped_name_ + 48] = {};
+      if (alarm.line > 0) {
+        trace::json_escape(name.substr(std::min(name.size(), name.find_last_of('/') + 1)),
+                           escaped_name_, sizeof escaped_name_);
+        const int used = std::snprintf(place, sizeof place, ",\"prog\":\"%s\"", escaped_name_);
+        if (alarm.column > 0 && used > 0 && static_cast<std::size_t>(used) < sizeof place) {
+          std::snprintf(place + used, sizeof place - static_cast<std::size_t>(used), ",\"col\":%d",
+                        alarm.column);
+        }
+      }
       // The alarm's source is the event's own "src".
       if (axis != nullptr) {
         tracer_.emit(cycle, "alarm",
-                     "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d",
-                     alarm.number, escaped_, ch, axis->name.c_str(), alarm.line);
+                     "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"axis\":\"%s\",\"line\":%d%s",
+                     alarm.number, escaped_, ch, axis->name.c_str(), alarm.line, place);
       } else {
-        tracer_.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d",
-                     alarm.number, escaped_, ch, alarm.line);
+        tracer_.emit(cycle, "alarm", "\"number\":%d,\"text\":\"%s\",\"ch\":\"%s\",\"line\":%d%s",
+                     alarm.number, escaped_, ch, alarm.line, place);
       }
       node_.raise_alarm(static_cast<std::uint32_t>(alarm.number), alarm.text.data(), cycle,
-                        channel_.id, axis != nullptr ? axis->id : 0, alarm.line);
+                        channel_.id, axis != nullptr ? axis->id : 0, alarm.line, alarm.column,
+                        alarm.line > 0 ? file : nullptr);
       break;
     }
     case ChannelEventKind::sync_arrive: {

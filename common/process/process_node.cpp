@@ -4,6 +4,7 @@
 #include "common/process/exit_deadline.hpp"
 #include "common/process/startup.hpp"
 #include "common/process/thread_name.hpp"
+#include "common/text/program_place.hpp"
 
 #include <unistd.h>
 
@@ -195,7 +196,8 @@ bool ProcessNode::stop_arrives_within(std::chrono::milliseconds grace) {
 }
 
 bool ProcessNode::raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle,
-                              int channel, int axis, int line) noexcept {
+                              int channel, int axis, int line, int column,
+                              const char* file) noexcept {
   const std::uint64_t head = alarm_head_.load(std::memory_order_relaxed);
   if (head - alarm_tail_.load(std::memory_order_acquire) >= kAlarmSlots) {
     alarms_lost_.fetch_add(1);
@@ -205,6 +207,8 @@ bool ProcessNode::raise_alarm(std::uint32_t number, const char* text, std::uint6
   record.number = number;
   std::snprintf(record.text.data(), record.text.size(), "%s", text);
   record.cycle = cycle;
+  record.column = column;
+  std::snprintf(record.file.data(), record.file.size(), "%s", file == nullptr ? "" : file);
   record.channel = channel;
   record.axis = axis;
   record.line = line;
@@ -233,14 +237,17 @@ void ProcessNode::publish_alarms() {
       alarm.src(name_);
       alarm.number(record.number);
       alarm.text(record.text.data());
+      alarm.column(record.column);
+      alarm.program(record.file.data());
       alarm.channel(record.channel);
       alarm.axis(record.axis);
       alarm.line(record.line);
+      const std::string place = text::program_place(record.file.data(), record.line, record.column);
       alarm.cycle(record.cycle);
       alarm.seq(++seq);
       alarm_writer_.write(alarm);
       spdlog::error("alarm {}: {}{}", record.number, record.text.data(),
-                    record.line > 0 ? " (line " + std::to_string(record.line) + ")" : "");
+                    place.empty() ? place : " (" + place + ")");
       alarm_tail_.store(tail + 1, std::memory_order_release);
     }
   }

@@ -81,9 +81,10 @@ class ProcessNode {
   // Raises an alarm from this process: copies it into a fixed-size queue and returns; a thread
   // of this node publishes it (sequence numbered) and logs it. Safe in the per-cycle path: no
   // allocation, no blocking, no logging there. One thread raises alarms. Text longer than the
-  // record is cut; a full queue drops the alarm and counts it in alarms_lost().
+  // record is cut; a full queue drops the alarm and counts it in alarms_lost(). A program
+  // alarm says where: `file` (nullptr: none), `line` and `column` (0: not known).
   bool raise_alarm(std::uint32_t number, const char* text, std::uint64_t cycle, int channel = 0,
-                   int axis = 0, int line = 0) noexcept;
+                   int axis = 0, int line = 0, int column = 0, const char* file = nullptr) noexcept;
   [[nodiscard]] std::uint64_t alarms_lost() const noexcept { return alarms_lost_.load(); }
   // This process serves the operator commands of `scope`: from now on each one it serves is
   // taken into its OperatorInbox or refused (operator_admission.hpp) as it arrives, and answered
@@ -134,6 +135,8 @@ class ProcessNode {
     int channel = 0;
     int axis = 0;
     int line = 0;
+    int column = 0;
+    std::array<char, 128> file{};
   };
   void publish_alarms();
   static constexpr std::size_t kAlarmSlots = 64;

@@ -17,6 +17,8 @@ struct AlarmEntry {
   std::int32_t channel = 0;  // channel id, 0: none
   std::int32_t axis = 0;
   std::int32_t line = 0;
+  std::string program;      // the file `line` is in (a called program's), empty: none
+  std::int32_t column = 0;  // 0: not known
   std::uint64_t cycle = 0;
   bool acknowledged = false;
 };

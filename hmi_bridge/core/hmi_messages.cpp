@@ -157,6 +157,8 @@ Json alarm_json(const config::MachineConfig& machine, const AlarmEntry& e) {
                                     : Json(nullptr)},
           {"axis", e.axis},
           {"line", e.line},
+          {"program", e.program},
+          {"column", e.column},
           {"cycle", e.cycle},
           {"acknowledged", e.acknowledged}};
 }

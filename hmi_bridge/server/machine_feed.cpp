@@ -78,6 +78,8 @@ void MachineFeed::on_alarm(const ::mcnc::Alarm& a) {
   e.channel = a.channel();
   e.axis = a.axis();
   e.line = a.line();
+  e.program = a.program();
+  e.column = a.column();
   e.cycle = a.cycle();
   std::lock_guard<std::mutex> lock(mutex_);
   if (alarms_.add(e)) {

@@ -49,8 +49,12 @@ export class AlarmList {
     const acknowledged = alarm.acknowledged === true;
     const number = asNumber(alarm.number);
     const line = asNumber(alarm.line);
+    const column = asNumber(alarm.column);
+    const program = asString(alarm.program);
     const cycle = asNumber(alarm.cycle);
-    const where = [line ? `line ${line}` : '', cycle === null ? '' : `cycle ${cycle}`].filter(Boolean).join(' · ');
+    // As `mcnc run` says it: FILE:LINE:COL when the alarm names its file.
+    const place = !line ? '' : program ? [program, line, column || null].filter(Boolean).join(':') : `line ${line}`;
+    const where = [place, cycle === null ? '' : `cycle ${cycle}`].filter(Boolean).join(' · ');
     const item = el('li', { class: acknowledged ? 'alarm' : 'alarm unacknowledged', 'data-seq': seq },
       el('span', { class: 'alarm-src' }, asString(alarm.src) || '—'),
       el('span', { class: 'alarm-number' }, number === null ? '—' : String(number)),

@@ -440,6 +440,29 @@ TEST(MultiChannel, AProgramForAnotherChannelIsAnAlarmBeforeItMoves) {
   EXPECT_EQ(events(called.trace, "subcall_release", "CH3").at(0)["outcome"], "failed");
 }
 
+// An alarm raised while a channel runs a called program (G144 into O2000 of the program
+// directory, which the check before the run does not read) names that program's file, line and
+// column: in `mcnc run`'s report, in the trace and on the wire (issue 25).
+TEST(MultiChannel, AnAlarmInAProgramCalledByG144NamesItsFileLineAndColumn) {
+  TestMachine machine("three_channel.yaml", 226);
+  const std::string dir = machine.file("programs");
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/O2000.nc") << "O2000\nG00 X10\nG01 X12 Q#\nM99\n";
+  const std::string caller = write_program(machine, "call.nc", "G00 X20\nG144 N3 P2000 H1\nM30\n");
+  const MultiRun r = run_channels(machine, {{"CH1", caller}}, {"--progdir", dir});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto in_ch3 = events(r.trace, "alarm", "CH3");
+  ASSERT_EQ(in_ch3.size(), 1U) << r.output;
+  EXPECT_EQ(in_ch3[0]["number"], 3105);
+  EXPECT_EQ(in_ch3[0]["prog"], "O2000.nc");
+  EXPECT_EQ(in_ch3[0]["line"], 3);
+  EXPECT_EQ(in_ch3[0]["col"], 10);
+  EXPECT_TRUE(events(r.trace, "pos", "CH3").empty());  // nothing of it moved
+  EXPECT_NE(r.output.find("alarm: CH3 3105 "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(" + dir + "/O2000.nc:3:10)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("call.nc:3"), std::string::npos) << r.output;
+}
+
 // CT-CHN-01 (spec dafeng §3.6): one subprogram, CHN picks each channel's own move.
 TEST(MultiChannel, OneSubprogramMovesEachChannelByItsNumber) {
   const MultiRun r = run_store(59, "tests/integration/programs/chn/",

@@ -764,6 +764,7 @@ TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
   EXPECT_EQ(rig.ctl_.last_alarm().number, 1101);
   EXPECT_EQ(rig.ctl_.last_alarm().line, 12);
   EXPECT_EQ(rig.ctl_.last_alarm().column, 4);
+  EXPECT_STREQ(rig.ctl_.last_alarm().file.data(), "S.nc");
   EXPECT_STREQ(rig.ctl_.last_alarm().text.data(), "G02 is not supported yet");
   const auto alarms = rig.events_of(ChannelEventKind::alarm);
   ASSERT_EQ(alarms.size(), 1u);
@@ -778,6 +779,24 @@ TEST(ChannelController, ScriptedSourceAlarmMidProgram) {
     EXPECT_EQ(rig.last.setpoints[1].pos, 5.0);
   }
   EXPECT_TRUE(rig.events_of(ChannelEventKind::program_end).empty());
+}
+
+// An alarm that names no file (an axis's, raised by the channel) is in the file of the block
+// under way: here a called program's, not the main program's.
+TEST(ChannelController, AnAlarmWithoutAFileIsInTheFileOfTheBlockUnderWay) {
+  const std::string called = "progs/O2000.nc";
+  Command in_called = command(Op::rapid, xz(0, 80), 3, 1);
+  in_called.file = &called;
+  ScriptedSource source({interp::PullResult{in_called}, interp::PullResult{program_end(4, 2)}});
+  Rig rig(&source);
+  rig.ctl_.request_start();
+  ASSERT_TRUE(rig.run_until([](const CycleOutput& o) { return o.line == 3; }));
+  EXPECT_STREQ(rig.last.file.data(), "progs/O2000.nc");
+  rig.feedback_[1].alarm = true;
+  EXPECT_EQ(rig.step().state, ChannelState::alarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisAlarm);
+  EXPECT_EQ(rig.ctl_.last_alarm().line, 3);
+  EXPECT_STREQ(rig.ctl_.last_alarm().file.data(), "progs/O2000.nc");
 }
 
 TEST(ChannelController, PlannerRejectingABlockGives1200) {

@@ -197,4 +197,21 @@ TEST(AlarmLog, TheOldestGoFirst) {
 }
 
 }  // namespace
+// An alarm in a called program names its file and column beside the line (issue 25).
+TEST(HmiMessages, AnAlarmNamesTheFileAndColumnOfItsLine) {
+  AlarmEntry e;
+  e.src = "CH3";
+  e.seq = 2;
+  e.number = 3105;
+  e.text = "bad address";
+  e.channel = 3;
+  e.line = 3;
+  e.program = "progs/O2000.nc";
+  e.column = 10;
+  const auto j = nlohmann::json::parse(alarm_message(twin(), e));
+  EXPECT_EQ(j["line"], 3);
+  EXPECT_EQ(j["program"], "progs/O2000.nc");
+  EXPECT_EQ(j["column"], 10);
+}
+
 }  // namespace mcnc::hmi

@@ -107,7 +107,8 @@ LaunchResult Launcher::run(
   // On a machine of several hosts, a launcher other than the first host's follows the run.
   const bool follower = is_follower(machine_, options_.host);
   // Children end with the launcher, even when it is killed (see process::die_with_parent()).
-  std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain), "MCNC_DIE_WITH_PARENT=1"};
+  std::vector<std::string> env{"MCNC_DOMAIN=" + std::to_string(domain), "MCNC_DIE_WITH_PARENT=1",
+                               "MCNC_LAUNCHER_PID=" + std::to_string(::getpid())};
   if (!options_.host.empty()) {
     env.push_back("MCNC_HOST=" + options_.host);  // its processes keep machine time
   }

@@ -2,6 +2,7 @@
 // parse the command line, load the machine file, open the bus, pump frames through the
 // DriveBusSimulator until SIGTERM/SIGINT.
 #include "axisnode/drivesim/drive_bus_simulator.hpp"
+#include "axisnode/drivesim/launcher_loss.hpp"
 #include "canopen/bus_filters.hpp"
 #include "canopen/sdo_abort.hpp"
 #include "common/can/can_bus.hpp"
@@ -113,7 +114,7 @@ int main(int argc, char** argv) {
     drives.push_back(params);
   }
 
-  process::start_process("drivesim-" + bus_name, shell);
+  process::start_process("drivesim-" + bus_name, shell, process::WhenLauncherDies::outlive);
   const bool lockstep = shell.clock == "lockstep";
   if (!lockstep) {
     // The simulator stands for the drives' own hardware, which no host's load delays: its frame
@@ -210,10 +211,16 @@ int main(int argc, char** argv) {
       send_all(simulator.handle(*held_sync, out));
       held_sync.reset();
     };
+    drivesim::LauncherLoss launcher_loss(std::chrono::seconds(1), std::chrono::seconds(20));
     while (process::g_stop_signal == 0) {
       canopen::CanFrame frame;
       const can::BusResult result =
           bus->receive(frame, std::chrono::milliseconds(held_sync ? 10 : 100));
+      if (launcher_loss.leave(std::chrono::steady_clock::now(), process::launcher_gone(),
+                              result == can::BusResult::ok)) {
+        spdlog::warn("the launcher is gone and the bus's masters are quiet: leaving");
+        break;
+      }
       send_all(simulator.heartbeats_out_of_operation(
           static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(
                                          std::chrono::steady_clock::now().time_since_epoch())

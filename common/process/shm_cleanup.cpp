@@ -1,9 +1,11 @@
 #include "common/process/shm_cleanup.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -161,14 +163,71 @@ std::set<std::string> files_in_use(const std::string& dir) noexcept {
 }
 
 RunShmFootprint::RunShmFootprint(int domain, std::string dir)
-    : domain_(domain), dir_(std::move(dir)), before_(dds_shm_files(dir_)) {}
+    : domain_(domain), dir_(std::move(dir)) {
+  remove_killed_run();
+  before_ = dds_shm_files(dir_);
+}
 
-void RunShmFootprint::note_process(pid_t pid) noexcept {
+std::string RunShmFootprint::record_path() const {
+  return dir_ + "mcnc_run_domain" + std::to_string(domain_);
+}
+
+void RunShmFootprint::remove_killed_run() noexcept {
+  try {
+    std::ifstream record(record_path());
+    pid_t launcher = 0;
+    if (!(record >> launcher)) {
+      return;  // no record: the last run of the domain ended cleanly (or never kept one)
+    }
+    // A launcher of the domain that still runs keeps its record and its files.
+    if (launcher > 0 && (::kill(launcher, 0) == 0 || errno == EPERM)) {
+      return;
+    }
+    for (std::string name; record >> name;) {
+      used_by_run_.insert(name);
+    }
+    const std::set<std::string> in_use = files_in_use(dir_);
+    for (const std::string& name : dds_shm_files(dir_)) {
+      if (!of_this_run(name) || in_use.count(dir_ + name) > 0) {
+        continue;
+      }
+      std::error_code rm;
+      if (fs::remove(dir_ + name, rm)) {
+        removed_at_start_.insert(name);
+      }
+    }
+    used_by_run_.clear();
+    std::error_code rm;
+    fs::remove(record_path(), rm);
+  } catch (...) {
+  }
+}
+
+void RunShmFootprint::write_record() const noexcept {
+  try {
+    const std::string path = record_path();
+    {
+      std::ofstream record(path + ".new");
+      record << ::getpid() << "\n";
+      for (const std::string& name : used_by_run_) {
+        record << name << "\n";
+      }
+    }
+    std::error_code ec;
+    fs::rename(path + ".new", path, ec);  // whole or not at all
+  } catch (...) {
+  }
+}
+
+void RunShmFootprint::note_process(pid_t pid, bool keep_record) noexcept {
   try {
     for (const std::string& path : files_used_by(pid, dir_)) {
       used_by_run_.insert(path.substr(dir_.size()));
     }
   } catch (...) {
+  }
+  if (keep_record) {
+    write_record();
   }
 }
 
@@ -211,6 +270,8 @@ std::size_t RunShmFootprint::remove_left_over(const std::set<std::string>& in_us
         ++removed;
       }
     }
+    std::error_code rm;
+    fs::remove(record_path(), rm);
   } catch (...) {
   }
   return removed;

@@ -43,12 +43,13 @@ void require_roudi_or_exit(const config::MachineConfig& machine, const std::stri
   }
 }
 
-void start_process(const std::string& process_name, const ShellOptions& options) {
+void start_process(const std::string& process_name, const ShellOptions& options,
+                   WhenLauncherDies when) {
   log::setup(process_name, options.log_level);
   if (options.clock == "realtime") {
     spdlog::info("realtime clock: {}", clock::prepare_realtime_process());
   }
-  install_stop_signals();
+  install_stop_signals(when);
 }
 
 volatile std::sig_atomic_t g_stop_signal = 0;
@@ -88,21 +89,33 @@ namespace {
 void on_stop_signal(int /*signal*/) {
   g_stop_signal = 1;
 }
+pid_t g_launcher_pid = 0;  // 0: not started by a launcher
 }  // namespace
 
-void install_stop_signals() {
+void install_stop_signals(WhenLauncherDies when) {
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   const char* die = std::getenv("MCNC_DIE_WITH_PARENT");
-  if (die != nullptr && std::string(die) == "1") {
+  if (die == nullptr || std::string(die) != "1") {
+    return;
+  }
+  // The launcher's pid, or the parent's when it did not say (an older launcher): a launcher
+  // that died before this line leaves a parent that is not it, whoever adopted the process.
+  const char* launcher = std::getenv("MCNC_LAUNCHER_PID");
+  g_launcher_pid = launcher != nullptr ? static_cast<pid_t>(std::atol(launcher)) : getppid();
+  if (when == WhenLauncherDies::stop) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (getppid() == 1) {  // the parent died before we got here
+    if (launcher_gone()) {
       g_stop_signal = 1;
     }
   }
+}
+
+bool launcher_gone() noexcept {
+  return g_launcher_pid > 0 && getppid() != g_launcher_pid;
 }
 
 }  // namespace mcnc::process

@@ -26,10 +26,17 @@ void add_shell_options(CLI::App& app, ShellOptions& options);
 // The heartbeat its clock asks of the process's cyclic writers (dds::CyclicClock).
 dds::CyclicClock cyclic_clock(const ShellOptions& options);
 
+// What a process does when the launcher that started it dies (a `kill -9` of it included).
+enum class WhenLauncherDies {
+  stop,     // it gets SIGTERM, as from the launcher: it stops as safely as it would then
+  outlive,  // it goes on and watches launcher_gone() (a simulated drive: the hardware stays)
+};
+
 // The first things a process does once it knows its name: its logger, real-time scheduling
 // when the clock is realtime (before any thread starts, so that all inherit it), and the stop
 // signals.
-void start_process(const std::string& process_name, const ShellOptions& options);
+void start_process(const std::string& process_name, const ShellOptions& options,
+                   WhenLauncherDies when = WhenLauncherDies::stop);
 
 // Loads and validates the machine file; on error prints "<path>: <key path>: <reason>" to
 // stderr and exits with code 2 (bad input: nothing is started).
@@ -54,8 +61,12 @@ std::optional<std::string> security_problem(const config::MachineConfig& machine
 
 // SIGINT/SIGTERM set this flag (installed by install_stop_signals()). When MCNC_DIE_WITH_PARENT
 // is set (mcnc-launch sets it for its children), the process also gets SIGTERM when its parent
-// dies, so a killed launcher leaves nothing running.
+// dies (`WhenLauncherDies::stop`), so a killed launcher leaves nothing running.
 extern volatile std::sig_atomic_t g_stop_signal;
-void install_stop_signals();
+void install_stop_signals(WhenLauncherDies when = WhenLauncherDies::stop);
+// True once the launcher that started this process is gone: its parent is no longer the
+// process MCNC_LAUNCHER_PID names (a service manager that adopts orphans is not pid 1). False
+// for a process no launcher started.
+bool launcher_gone() noexcept;
 
 }  // namespace mcnc::process

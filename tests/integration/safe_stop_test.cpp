@@ -129,6 +129,7 @@ class MovingLathe {
     return slurp(machine_.file("launch.out")) + slurp(machine_.file("launch.err"));
   }
   [[nodiscard]] std::vector<nlohmann::json> trace() const { return read_trace(trace_); }
+  [[nodiscard]] const TestMachine& machine() const { return machine_; }
 
  private:
   static TestMachine isolated(int domain) {
@@ -204,5 +205,38 @@ TEST(SafeStop, AChildKilledOnFastDdsLeavesNothingInDevShm) {
   ASSERT_EQ(::kill(z1, SIGKILL), 0);
   EXPECT_EQ(lathe.wait_end(), 1) << lathe.output();
   EXPECT_EQ(shm_listing(), lathe.shm_before()) << lathe.output();
+  ::unsetenv("MCNC_MIDDLEWARE");
+}
+
+// kill -9 of the launcher while Z moves at feed, on Fast DDS (no RouDi; its processes keep
+// shared memory in /dev/shm): its processes are not left running unsupervised. Each gets
+// SIGTERM from the kernel as the launcher dies, as from the launcher: the axis nodes quick-stop
+// their drives and disable them at rest, while the drive simulator, standing for the drives'
+// hardware, answers them until their bus is quiet. Nothing of the machine is left running, and
+// the next run of the machine on that host removes what the killed run left in /dev/shm.
+TEST(SafeStop, AKill9OfTheLauncherQuickStopsTheMovingDriveAndTheNextRunCleansUp) {
+  ASSERT_EQ(::setenv("MCNC_MIDDLEWARE", "fastdds", 1), 0);
+  MovingLathe lathe(227);
+  ASSERT_TRUE(lathe.z_moves()) << lathe.output();
+  ASSERT_FALSE(pids_with_arg(lathe.machine().path()).empty());
+  const std::size_t from = lathe.frames().size();
+  ASSERT_EQ(::kill(lathe.launcher(), SIGKILL), 0);
+  EXPECT_EQ(lathe.wait_end(), -SIGKILL);
+  EXPECT_TRUE(eventually([&] { return pids_with_arg(lathe.machine().path()).empty(); }, 30s))
+      << "left running after the launcher was killed";
+  expect_quick_stop_then_rest_then_disable(lathe.frames(), from, lathe.output());
+  // Z stood short of the program's end point (Z-200), where the quick stop left it.
+  EXPECT_GT(last_cmd(lathe.machine().file("trace.jsonl") + ".parts/Z1.jsonl", "Z1"), -199.0);
+
+  std::size_t left = 0;
+  for (const auto& name : shm_listing()) {
+    left += lathe.shm_before().count(name) == 0 ? 1 : 0;
+  }
+  std::cout << left << " files the killed run left in /dev/shm\n";
+  const RunResult next = run({bin("mcnc"), "run", lathe.machine().path(), "--clock", "lockstep",
+                              "--program", "CH1=" + source("launch/programs/xz_move.nc")},
+                             -1, 120s);
+  EXPECT_EQ(next.exit_code, 0) << next.out << next.err;
+  EXPECT_EQ(shm_listing(), lathe.shm_before()) << next.out << next.err;
   ::unsetenv("MCNC_MIDDLEWARE");
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -81,5 +82,62 @@ TEST(ShmCleanup, ARunRemovesOnlyWhatItLeftAndNoLongerUses) {
   EXPECT_TRUE(fs::exists(d + "fastrtps_port57650")) << "domain 201's";
   EXPECT_TRUE(fs::exists(d + "fast_datasharing_01.0f.bb_0.0.1.3")) << "not the run's";
   EXPECT_TRUE(fs::exists(d + "unrelated_new"));
+  fs::remove_all(dir);
+}
+
+// A launcher killed with `kill -9` removes nothing: the record of its run's footprint it kept
+// lets the next run of the same domain remove what it left (its recorded files and the domain's
+// ports that no process uses), and nothing of another run's.
+TEST(ShmCleanup, TheNextRunOfTheDomainRemovesWhatAKilledRunLeft) {
+  const fs::path dir = fs::temp_directory_path() / ("mcnc_shm_kill_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  const auto touch = [&](const std::string& name) { std::ofstream(d + name) << "x"; };
+  const std::string own = "fast_datasharing_01.0f.aa_0.0.1.3";
+  const std::string others = "fast_datasharing_01.0f.bb_0.0.1.3";
+  touch(own);
+  touch(others);
+  touch("fastrtps_port57410");  // domain 200's
+  touch("fastrtps_port57650");  // domain 201's
+  {
+    // The killed run: its launcher noted its files, then was killed (its record stays and
+    // names a launcher that is gone).
+    mcnc::process::RunShmFootprint killed(200, d);
+    const int fd = ::open((d + own).c_str(), O_RDONLY);
+    ASSERT_GE(fd, 0);
+    killed.note_process(getpid());
+    ::close(fd);
+  }
+  ASSERT_TRUE(fs::exists(d + "mcnc_run_domain200"));
+  // A pid no process has (above the kernel's pid limit): the killed launcher's.
+  {
+    std::ifstream in(d + "mcnc_run_domain200");
+    std::string pid;
+    std::stringstream rest;
+    in >> pid;
+    rest << in.rdbuf();
+    std::ofstream(d + "mcnc_run_domain200") << "99999999" << rest.str();
+  }
+  // Another domain's next run touches nothing of it.
+  { mcnc::process::RunShmFootprint other(201, d); }
+  EXPECT_TRUE(fs::exists(d + own));
+  mcnc::process::RunShmFootprint next(200, d);
+  EXPECT_EQ(next.removed_at_start(), (std::set<std::string>{own, "fastrtps_port57410"}));
+  EXPECT_FALSE(fs::exists(d + "mcnc_run_domain200"));
+  EXPECT_TRUE(fs::exists(d + others)) << "not the killed run's";
+  EXPECT_TRUE(fs::exists(d + "fastrtps_port57650")) << "domain 201's";
+  fs::remove_all(dir);
+}
+
+// A record whose launcher still runs is another launcher's run in progress: left alone.
+TEST(ShmCleanup, ARecordOfALauncherThatStillRunsIsLeftAlone) {
+  const fs::path dir = fs::temp_directory_path() / ("mcnc_shm_live_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  std::ofstream(d + "fastrtps_port57410") << "x";
+  std::ofstream(d + "mcnc_run_domain200") << getpid() << "\nfastrtps_port57410\n";
+  mcnc::process::RunShmFootprint next(200, d);
+  EXPECT_TRUE(next.removed_at_start().empty());
+  EXPECT_TRUE(fs::exists(d + "fastrtps_port57410"));
   fs::remove_all(dir);
 }

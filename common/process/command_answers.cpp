@@ -40,12 +40,8 @@ void CommandAnswers::on_answer(const ::mcnc::OperatorAnswer& answer) {
       return;
     }
     // A refusal this build does not know still refuses.
-    OperatorRefusal refusal = OperatorRefusal::none;
-    if (!answer.taken()) {
-      refusal = process::refusal_numbered(static_cast<int>(answer.refusal()))
-                    .value_or(OperatorRefusal::unknown_action);
-      refusal = refusal == OperatorRefusal::none ? OperatorRefusal::unknown_action : refusal;
-    }
+    const OperatorRefusal refusal = process::refusal_numbered(static_cast<int>(answer.refusal()))
+                                        .value_or(OperatorRefusal::unknown_action);
     it->second.add(answer.process(), refusal, answer.reason());
   }
   answered_.notify_all();

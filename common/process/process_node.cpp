@@ -171,11 +171,8 @@ void ProcessNode::on_operator_command(const OperatorCommand& c) {
   answer.process(name_);
   answer.sender(c.sender());
   answer.seq(c.seq());
-  answer.origin(c.origin());
-  answer.taken(refusal == OperatorRefusal::none);
   answer.refusal(static_cast<::mcnc::OperatorRefusal>(refusal));
   answer.reason(refusal == OperatorRefusal::none ? "" : reason_of(refusal));
-  answer.cycle(now);
   answer_writer_->write(answer);
 }
 
@@ -207,11 +204,11 @@ bool ProcessNode::raise_alarm(std::uint32_t number, const char* text, std::uint6
   record.number = number;
   std::snprintf(record.text.data(), record.text.size(), "%s", text);
   record.cycle = cycle;
-  record.column = column;
-  std::snprintf(record.file.data(), record.file.size(), "%s", file == nullptr ? "" : file);
   record.channel = channel;
   record.axis = axis;
   record.line = line;
+  record.column = column;
+  std::snprintf(record.file.data(), record.file.size(), "%s", file == nullptr ? "" : file);
   alarm_head_.store(head + 1, std::memory_order_release);
   alarm_signal_.fetch_add(1, std::memory_order_release);
   alarm_signal_.notify_one();
@@ -237,15 +234,15 @@ void ProcessNode::publish_alarms() {
       alarm.src(name_);
       alarm.number(record.number);
       alarm.text(record.text.data());
-      alarm.column(record.column);
-      alarm.program(record.file.data());
       alarm.channel(record.channel);
       alarm.axis(record.axis);
       alarm.line(record.line);
-      const std::string place = text::program_place(record.file.data(), record.line, record.column);
+      alarm.column(record.column);
+      alarm.program(record.file.data());
       alarm.cycle(record.cycle);
       alarm.seq(++seq);
       alarm_writer_.write(alarm);
+      const std::string place = text::program_place(record.file.data(), record.line, record.column);
       spdlog::error("alarm {}: {}{}", record.number, record.text.data(),
                     place.empty() ? place : " (" + place + ")");
       alarm_tail_.store(tail + 1, std::memory_order_release);

@@ -11,12 +11,15 @@ and Z, about 3 600 cycles at 2 ms. For each N it runs the machine with `mcnc run
     it took, and its alarms (a deadline missed ends in a quick stop, alarm 2006). The realtime
     program dwells after its moves so that the run lasts --realtime-s seconds (default 60);
     every axis still gets its setpoint every cycle while it dwells.
-Each N runs on every middleware named (`machine.middleware`), one after the other, so that
-their rows are side by side in one go. On Cyclone DDS the launcher starts the host's RouDi
+Each N runs on every middleware named (`machine.middleware`), and with every DDS Security
+protection named (--protection: `off`, or `mcnc certs --protection` access, sign, encrypt), one
+after the other, so that their rows are side by side in one go. Each run has a DDS domain of
+its own from 60 on, or --domain D's (D in lockstep, D + 1 in realtime) for every run. On Cyclone DDS the launcher starts the host's RouDi
 unless one answers (its start is in the whole run, not in the run phase).
 Figures, not a test: bench/README.md has them with this command.
 
 Usage: bench/scale.py [--build DIR] [--no-realtime] [--middleware fastdds,cyclonedds]
+                      [--protection off,access,sign,encrypt] [--domain D]
                       [--axes 2|4] [--cycle-us US] [--axes-per-bus K] [--realtime-s S]
                       [N ...]
        (default N: 1 2 4 8 16)
@@ -45,13 +48,22 @@ G01 X0 Z0 F720
 """
 
 
-def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwell_s):
+def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwell_s,
+        protection="off"):
     with tempfile.TemporaryDirectory() as tmp:
         machine = os.path.join(tmp, "m.yaml")
         with open(machine, "w") as f:
             f.write(machine_yaml(f"scale_{channels}", channels, axes, cycle_us, domain,
                                  deadline_cycles=10, middleware=middleware,
                                  axes_per_bus=per_bus))
+        if protection != "off":
+            subprocess.run([os.path.join(build, "bin", "mcnc"), "certs", machine,
+                            os.path.join(tmp, "certs"), "--protection", protection],
+                           check=True, stdout=subprocess.DEVNULL)
+            with open(machine) as f:
+                text = f.read()
+            with open(machine, "w") as f:
+                f.write(text.replace("machine:\n", "machine:\n  security_dir: certs\n", 1))
         prog = os.path.join(tmp, "p.nc")
         with open(prog, "w") as f:
             f.write(PROGRAM.format(dwell=f"G04 X{dwell_s:.1f}\n" if dwell_s > 0 else ""))
@@ -92,6 +104,8 @@ def main():
     ap.add_argument("--build", default=os.path.join(HERE, "..", "build"))
     ap.add_argument("--no-realtime", action="store_true")
     ap.add_argument("--middleware", default="fastdds,cyclonedds")
+    ap.add_argument("--protection", default="off")
+    ap.add_argument("--domain", type=int, default=None)
     ap.add_argument("--axes", type=int, choices=[2, 4], default=2)
     ap.add_argument("--cycle-us", type=int, default=2000)
     ap.add_argument("--axes-per-bus", type=int, default=4)
@@ -101,32 +115,34 @@ def main():
     cycle_us = args.cycle_us
     # The moves take about 7.2 s; the dwell makes up the rest of the realtime run.
     dwell_s = max(0.0, args.realtime_s - 7.2)
-    print(f"| N channels × {args.axes} axes | middleware | cycles | lockstep: times real time "
+    print(f"| N channels × {args.axes} axes | middleware | protection | cycles | lockstep: times real time "
           f"(whole run / run phase) | CPU per machine cycle | per channel "
           f"| realtime {cycle_us / 1000:g} ms, {args.realtime_s:g} s |")
-    print("|---|---|---|---|---|---|---|")
-    for i, (n, mw) in enumerate((n, mw) for n in args.channels
-                                for mw in args.middleware.split(",")):
-        lock = run(args.build, n, "lockstep", 60 + 2 * i, mw, args.axes, cycle_us,
-                   args.axes_per_bus, 0.0)
+    print("|---|---|---|---|---|---|---|---|")
+    for i, (n, mw, pr) in enumerate((n, mw, pr) for n in args.channels
+                                    for mw in args.middleware.split(",")
+                                    for pr in args.protection.split(",")):
+        domain = 60 + 2 * i if args.domain is None else args.domain
+        lock = run(args.build, n, "lockstep", domain, mw, args.axes, cycle_us,
+                   args.axes_per_bus, 0.0, pr)
         if lock["code"] != 0 or lock["cycles"] == 0:
-            print(f"| {n} | {mw} | the lockstep run failed (exit {lock['code']}) | | | | |",
-                  flush=True)
+            print(f"| {n} | {mw} | {pr} | the lockstep run failed (exit {lock['code']}) "
+                  f"| | | | |", flush=True)
             print(lock["tail"], file=sys.stderr)
             continue
         machine_s = lock["cycles"] * cycle_us / 1e6
         per_cycle = lock["cpu"] / lock["cycles"] * 1e6
         realtime = "not run"
         if not args.no_realtime:
-            rt = run(args.build, n, "realtime", 61 + 2 * i, mw, args.axes, cycle_us,
-                     args.axes_per_bus, dwell_s)
+            rt = run(args.build, n, "realtime", domain + 1, mw, args.axes, cycle_us,
+                     args.axes_per_bus, dwell_s, pr)
             share = 100 * rt["cpu"] / rt["wall"]
             if rt["code"] == 0:
                 realtime = f"runs, {share:.0f} % of one core"
             else:
                 realtime = (f"fails after {rt['cycles']} cycles (alarms {', '.join(rt['alarms'])}),"
                             f" {share:.0f} % of one core")
-        print(f"| {n} | {mw} | {lock['cycles']} | {machine_s / lock['wall']:.2f} × / "
+        print(f"| {n} | {mw} | {pr} | {lock['cycles']} | {machine_s / lock['wall']:.2f} × / "
               f"{machine_s / lock['run']:.2f} × | {per_cycle:.0f} µs | {per_cycle / n:.0f} µs "
               f"| {realtime} |", flush=True)
 

@@ -168,23 +168,39 @@ RunShmFootprint::RunShmFootprint(int domain, std::string dir)
   before_ = dds_shm_files(dir_);
 }
 
+std::string RunShmFootprint::record_prefix() const {
+  return "mcnc_run_domain" + std::to_string(domain_) + "_";
+}
+
 std::string RunShmFootprint::record_path() const {
-  return dir_ + "mcnc_run_domain" + std::to_string(domain_);
+  return dir_ + record_prefix() + std::to_string(::getpid());
 }
 
 void RunShmFootprint::remove_killed_run() noexcept {
   try {
-    std::ifstream record(record_path());
-    pid_t launcher = 0;
-    if (!(record >> launcher)) {
-      return;  // no record: the last run of the domain ended cleanly (or never kept one)
+    // One record per launcher (several hosts of a machine may share a /dev/shm): each names
+    // its launcher's pid. A launcher that still runs keeps its record and its files.
+    const std::string prefix = record_prefix();
+    std::vector<std::string> records;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir_, ec)) {
+      const std::string name = entry.path().filename();
+      if (starts_with(name, prefix.c_str()) &&
+          name.find_first_not_of("0123456789", prefix.size()) == std::string::npos) {
+        const long launcher = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+        if (launcher > 0 && ::kill(static_cast<pid_t>(launcher), 0) != 0 && errno == ESRCH) {
+          records.push_back(name);
+        }
+      }
     }
-    // A launcher of the domain that still runs keeps its record and its files.
-    if (launcher > 0 && (::kill(launcher, 0) == 0 || errno == EPERM)) {
-      return;
+    if (records.empty()) {
+      return;  // the last runs of the domain ended cleanly (or still run)
     }
-    for (std::string name; record >> name;) {
-      used_by_run_.insert(name);
+    for (const std::string& record_name : records) {
+      std::ifstream record(dir_ + record_name);
+      for (std::string name; record >> name;) {
+        used_by_run_.insert(name);
+      }
     }
     const std::set<std::string> in_use = files_in_use(dir_);
     for (const std::string& name : dds_shm_files(dir_)) {
@@ -197,8 +213,10 @@ void RunShmFootprint::remove_killed_run() noexcept {
       }
     }
     used_by_run_.clear();
-    std::error_code rm;
-    fs::remove(record_path(), rm);
+    for (const std::string& record_name : records) {
+      std::error_code rm;
+      fs::remove(dir_ + record_name, rm);
+    }
   } catch (...) {
   }
 }
@@ -208,7 +226,6 @@ void RunShmFootprint::write_record() const noexcept {
     const std::string path = record_path();
     {
       std::ofstream record(path + ".new");
-      record << ::getpid() << "\n";
       for (const std::string& name : used_by_run_) {
         record << name << "\n";
       }

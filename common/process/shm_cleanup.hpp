@@ -9,7 +9,7 @@
 //    domain, or a file one of its processes mapped) and that no process still maps or holds
 //    open.
 //    While the run lasts its launcher keeps a record of that footprint in the directory
-//    (mcnc_run_domain<N>: its pid, then the names), so that when it is killed (`kill -9`) the
+//    (mcnc_run_domain<N>_<launcher pid>: the names), so that when it is killed (`kill -9`) the
 //    next run of the same domain on the host removes what it left: the recorded files and the
 //    domain's port files that no process uses.
 #include <sys/types.h>
@@ -39,8 +39,8 @@ std::set<std::string> files_in_use(const std::string& dir = "/dev/shm/") noexcep
 // files its processes were seen to use.
 class RunShmFootprint {
  public:
-  // First removes what a killed run of `domain` left (its record, when the launcher that kept
-  // it is gone), then notes what the directory holds.
+  // First removes what killed runs of `domain` left (the records whose launcher is gone), then
+  // notes what the directory holds.
   explicit RunShmFootprint(int domain, std::string dir = "/dev/shm/");
   // Notes the files that process `pid` (one of the run's) uses now; with `keep_record`, also
   // writes the record of the run's footprint so far.
@@ -59,6 +59,7 @@ class RunShmFootprint {
 
  private:
   [[nodiscard]] bool of_this_run(const std::string& name) const noexcept;
+  [[nodiscard]] std::string record_prefix() const;
   [[nodiscard]] std::string record_path() const;
   void remove_killed_run() noexcept;
   void write_record() const noexcept;

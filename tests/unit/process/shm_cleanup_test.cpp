@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -108,22 +107,17 @@ TEST(ShmCleanup, TheNextRunOfTheDomainRemovesWhatAKilledRunLeft) {
     killed.note_process(getpid());
     ::close(fd);
   }
-  ASSERT_TRUE(fs::exists(d + "mcnc_run_domain200"));
-  // A pid no process has (above the kernel's pid limit): the killed launcher's.
-  {
-    std::ifstream in(d + "mcnc_run_domain200");
-    std::string pid;
-    std::stringstream rest;
-    in >> pid;
-    rest << in.rdbuf();
-    std::ofstream(d + "mcnc_run_domain200") << "99999999" << rest.str();
-  }
+  const std::string record = d + "mcnc_run_domain200_" + std::to_string(getpid());
+  ASSERT_TRUE(fs::exists(record));
+  // The killed launcher's: a pid no process has (above the kernel's pid limit).
+  const std::string killed_record = d + "mcnc_run_domain200_99999999";
+  fs::rename(record, killed_record);
   // Another domain's next run touches nothing of it.
   { mcnc::process::RunShmFootprint other(201, d); }
   EXPECT_TRUE(fs::exists(d + own));
   mcnc::process::RunShmFootprint next(200, d);
   EXPECT_EQ(next.removed_at_start(), (std::set<std::string>{own, "fastrtps_port57410"}));
-  EXPECT_FALSE(fs::exists(d + "mcnc_run_domain200"));
+  EXPECT_FALSE(fs::exists(killed_record));
   EXPECT_TRUE(fs::exists(d + others)) << "not the killed run's";
   EXPECT_TRUE(fs::exists(d + "fastrtps_port57650")) << "domain 201's";
   fs::remove_all(dir);
@@ -135,7 +129,7 @@ TEST(ShmCleanup, ARecordOfALauncherThatStillRunsIsLeftAlone) {
   fs::create_directories(dir);
   const std::string d = dir.string() + "/";
   std::ofstream(d + "fastrtps_port57410") << "x";
-  std::ofstream(d + "mcnc_run_domain200") << getpid() << "\nfastrtps_port57410\n";
+  std::ofstream(d + "mcnc_run_domain200_" + std::to_string(getpid())) << "fastrtps_port57410\n";
   mcnc::process::RunShmFootprint next(200, d);
   EXPECT_TRUE(next.removed_at_start().empty());
   EXPECT_TRUE(fs::exists(d + "fastrtps_port57410"));

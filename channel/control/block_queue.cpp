@@ -11,11 +11,13 @@ void BlockQueue::push(const interp::Command& c, const interp::AxisVector& start)
   // A spindle command takes effect where the planner reaches it; as a block it does not move and
   // passes at once.
   const bool spindle = c.op == interp::Op::spindle;
+  // G80.1 ends once the oscillating axis stands at its end position.
+  const bool ends_at_rest = c.op == interp::Op::oscillate_end;
   blocks_[(head_ + count_) % blocks_.size()] = QueuedBlock{
       c.n,
       c.line,
       c.op == interp::Op::dwell || spindle ? start : c.to,
-      c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell,
+      c.exact_stop || c.op == interp::Op::rapid || c.op == interp::Op::dwell || ends_at_rest,
       spindle || ((c.op == interp::Op::rapid || c.op == interp::Op::linear) && c.to == start),
       c.file,
       c.block_text,

@@ -101,9 +101,14 @@ bool ChannelController::all_enabled(std::span<const AxisFeedbackView> feedback) 
 
 bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
                                     const AxisVector& at) const noexcept {
+  // An oscillating axis (G81.1) never stands still: its stroke is not the path's to wait for.
+  const std::uint32_t oscillating = planner_.output().oscillating;
   for (std::size_t i = 0; i < setup_.axis_count; ++i) {
     if (i >= feedback.size()) {
       return false;
+    }
+    if ((oscillating >> i) & 1U) {
+      continue;
     }
     // Under a G160 torque limit the axis may press against what holds it, its command beyond
     // by up to Q: it stands where it is held (decision 101).
@@ -209,7 +214,7 @@ const CycleOutput& ChannelController::run_cycle(
     hold_requested_ = false;
     resume_requested_ = false;
     if ((out_.state == ChannelState::running || out_.state == ChannelState::hold) &&
-        !planner_.idle()) {
+        !planner_.at_rest()) {
       planner_.reset();  // ramp down first
       resetting_ = true;
     } else {
@@ -222,7 +227,7 @@ const CycleOutput& ChannelController::run_cycle(
       commanded_[i] = m.sample.pos[i];
       out_.setpoints[i] = CommandedAxis{m.sample.pos[i], m.sample.vel[i], m.sample.acc[i], true};
     }
-    if (!planner_.idle() && m.state != motion::MotionState::fault) {
+    if (!planner_.at_rest() && m.state != motion::MotionState::fault) {
       return out_;
     }
     finish_reset();
@@ -572,7 +577,7 @@ void ChannelController::start_served_call(std::uint64_t cycle) noexcept {
 
 void ChannelController::restart_at_commanded() noexcept {
   source_.adopt_position(commanded_);
-  planner_.restart(commanded_);
+  planner_.restart(commanded_, true);  // an oscillating axis goes on
   hold_outputs(true);  // this cycle's setpoints came from the planner before it knew
 }
 

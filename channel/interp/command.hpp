@@ -43,6 +43,10 @@ enum class Op : std::uint8_t {
   thread,
   spindle_mode,  // M18 / M17 (GSK M14 / M15): `spindle` to position or speed control
   wait_spindle,  // G04 PSn=: until spindle `spindle`'s actual speed is `rpm` (or `dwell_s`)
+  // G81.1: axis `oscillating` strokes between `top` and `bottom` by itself.
+  oscillate,
+  // G80.1: it ends its stroke at a dead point, then goes to `to`.
+  oscillate_end,
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -184,6 +188,15 @@ struct Command {
 
   // message (#3006)
   std::string text;
+
+  // oscillate (G81.1): channel axis `oscillating` moves from where it stands to its top dead
+  // point, then between `top` and `bottom` (machine, physical), each stroke half a sine whose
+  // top speed is `feed` (units/min, whatever the feed mode and override), while the blocks after
+  // it run. oscillate_end (G80.1): the stroke under way ends at its dead point, then one stroke
+  // to `to` (every other axis keeps its position); the block ends there.
+  int oscillating = 0;
+  double top = 0.0;
+  double bottom = 0.0;
 
   // What the block asks of the look-ahead that follows the interpreter's blocks (not printed:
   // the look-ahead consumes them): the corner to insert after this move (,C ,R / L D) and the

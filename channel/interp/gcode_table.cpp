@@ -191,13 +191,15 @@ GCodeInfo common_code(int code10) {
       return {GFunction::multi_skip, 0};
     case 1600:
       return {GFunction::torque_skip, 0};
+    case 811:
+      return {GFunction::oscillation_on, 0};
+    case 801:
+      return {GFunction::oscillation_off, 0};
     case 502:
     case 512:
     case 508:
     case 518:
-    case 801:
     case 804:
-    case 811:
     case 814:
       return not_yet(kOther);
     default:

@@ -30,6 +30,8 @@ enum class GFunction : std::uint8_t {
   normal_off,                // G40.1 (a private group, 19 here)
   normal_left,               // G41.1
   normal_right,              // G42.1
+  oscillation_on,            // G81.1 (sine-profile oscillation of an axis)
+  oscillation_off,           // G80.1
   skip,                      // G31
   multi_skip,                // G31.8
   torque_skip,               // G160

@@ -55,6 +55,8 @@ struct AxisConfig {
   int probe_input = 0;
   // G160: its drive takes a torque limit and reports its torque (torque_skip).
   bool torque_skip = false;
+  // Param 5700.1: G81.1 may oscillate it.
+  bool oscillation = false;
 };
 
 // Tool offset values as programmed: X as a diameter on a diameter axis.

@@ -360,6 +360,8 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     case Op::linear:
     case Op::arc:
     case Op::dwell:
+    case Op::oscillate:
+    case Op::oscillate_end:
     case Op::end:
       return true;
     default:

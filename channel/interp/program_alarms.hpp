@@ -81,6 +81,10 @@ inline constexpr int kInputPort = 1158;
 inline constexpr int kInclinedAxisRestriction = 1159;
 // GSK G92 P1 / G92.1 P1 thread repair: no position recorded, or its Z outside the thread.
 inline constexpr int kThreadRepair = 1160;
+// G81.1 / G80.1 oscillation: an axis not enabled for it (param 5700.1), an oscillating axis
+// programmed, G81.1 on an axis that oscillates, G80.1 on one that does not, the program's end
+// while an axis oscillates.
+inline constexpr int kOscillation = 1161;
 
 // #3000 = n (text): alarm 3000 + n (n = 0-200), as the FANUC 0i numbers macro alarms. 3101-3121
 // are also the interpreter's own macro alarms (macro_alarms.hpp); the text tells them apart.

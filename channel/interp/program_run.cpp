@@ -327,6 +327,7 @@ void ProgramRun::release_block() {
   split_chip_breaking(from);
   expand_inclined(ready_, from);
   check_stroke(from);
+  check_oscillation(from);
   if (ended_) {
     end_polar();  // the end resets the modes, after their last moves went out
     end_cylindrical();
@@ -377,6 +378,9 @@ bool ProgramRun::step() {
     file_ = &p.file;
     line_ = p.line(p.size() - 1);
     if (f.kind == CallKind::main && frames_.size() == 1 && mdi_) {
+      if (!oscillation_ended()) {
+        return false;
+      }
       end_program(0);  // MDI blocks end with their text
       return true;
     }
@@ -684,6 +688,9 @@ bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column
     return contour_forbids("M99", column);
   }
   if (frames_.size() == 1 && (called_ || mdi_)) {
+    if (!oscillation_ended()) {
+      return false;
+    }
     end_program(99);  // a program called by G144 ends at its M99 (spec dafeng §3.4 decide 4)
     return true;
   }

@@ -221,6 +221,12 @@ class ProgramRun final : public macro::VariableProvider {
 
   // ---- G40.1 / G41.1 / G42.1 normal direction control (program_run_normal.cpp)
   bool run_normal_direction(GFunction f, int column);
+  // ---- G81.1 / G80.1 oscillation (program_run_oscillation.cpp)
+  bool run_oscillation(GFunction f, int column);
+  // No released move may take an oscillating axis away from where G81.1 left it.
+  void check_oscillation(std::size_t from);
+  // False after alarm 1161 when an axis still oscillates at the program's end.
+  bool oscillation_ended();
   bool run_skip(int column);
   bool run_multi_skip(int column);   // G31.8
   bool run_torque_skip(int column);  // G160
@@ -588,6 +594,12 @@ class ProgramRun final : public macro::VariableProvider {
   // G41.1 (+1) / G42.1 (-1) / G40.1 (0), and the channel axis it turns (-1: none configured).
   int normal_side_ = 0;
   int normal_axis_ = -1;
+  // G81.1: the axes that oscillate as the blocks run, and as the released commands leave
+  // (the look-ahead may still hold moves from before G81.1), each held at its machine position
+  // of then.
+  std::array<bool, kMaxChannelAxes> oscillating_{};
+  std::array<bool, kMaxChannelAxes> released_oscillating_{};
+  AxisVector oscillation_hold_{};
   AxisVector block_start_{};  // machine_ when the executing block began (its moves start there)
 
   // Tool

@@ -473,7 +473,9 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
         g.info.function == GFunction::stroke_check_on ||
         g.info.function == GFunction::stroke_check_off ||
         g.info.function == GFunction::normal_off || g.info.function == GFunction::normal_left ||
-        g.info.function == GFunction::normal_right;
+        g.info.function == GFunction::normal_right ||
+        g.info.function == GFunction::oscillation_on ||
+        g.info.function == GFunction::oscillation_off;
     if (g.info.group == 0 || frame_code) {
       if (primary != GFunction::unknown && (frame_code || frame_primary)) {
         // G68.1, G51.1 and G22 take the axis words as their data: no other code may want them.
@@ -638,7 +640,8 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
       }
     }
   }
-  if (BlockWord* f = word('F'); f != nullptr && !f->used) {
+  // G81.1's F is the oscillation's speed, not the path's feed (L2460).
+  if (BlockWord* f = word('F'); f != nullptr && !f->used && primary != GFunction::oscillation_on) {
     f->used = true;
     // A signed lead's sign is the thread's hand (thread_lead), not a direction of the feed.
     if (f->value < 0.0 && !signed_lead()) {
@@ -1299,6 +1302,9 @@ bool ProgramRun::run_m_codes(bool after_motion) {
                           " has no end point before the program end",
                       w.column);
         }
+        if (!oscillation_ended()) {
+          return false;
+        }
         end_program(static_cast<int>(m));
         return true;
       case 98: {
@@ -1426,6 +1432,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::normal_left:
     case GFunction::normal_right:
       return run_normal_direction(f, column);
+    case GFunction::oscillation_on:
+    case GFunction::oscillation_off:
+      return run_oscillation(f, column);
     case GFunction::skip:
       return run_skip(column);
     case GFunction::multi_skip:
@@ -1754,6 +1763,11 @@ bool ProgramRun::run_axis_exchange(GFunction f, int column) {
     }
     if (!inclined_allows(axis, "it cannot be exchanged", w.column)) {
       return false;
+    }
+    if (oscillating_[static_cast<std::size_t>(axis)]) {
+      return fail(alarm::kOscillation,
+                  std::string(1, letter) + " oscillates (G81.1): G80.1 before it is exchanged",
+                  w.column);
     }
     const int own = config_.axes[static_cast<std::size_t>(axis)].exchange;
     if (own != 0 && own != exchange) {

@@ -10,6 +10,7 @@
 // pass), and replans the run under way when the window grows, the override changes or a feed
 // hold comes. docs/motion.md gives the rules and the reasons.
 #include "channel/interp/command.hpp"
+#include "channel/motion/axis_oscillation.hpp"
 #include "channel/motion/path_limits.hpp"
 #include "channel/motion/path_segment.hpp"
 #include "channel/motion/speed_transition.hpp"
@@ -96,13 +97,17 @@ struct MotionOutput {
   double spindle_rpm = 0.0;   // commanded speed (G96 computed from the current position)
   int spindle_direction = 0;  // +1 M03 (clockwise), -1 M04, 0 stopped (M05, M19)
   bool css = false;
+  // Bit i: axis i oscillates (G81.1) and its setpoint is the oscillation's, not the path's.
+  std::uint32_t oscillating = 0;
 };
 
 class MotionPlanner {
  public:
   MotionPlanner(const MotionConfig& config, const AxisVector& start);
 
-  // Queues a rapid, linear, arc, thread or dwell; a spindle command sets the speed the
+  // Queues a rapid, linear, arc, thread, dwell or oscillation (G81.1 / G80.1: it starts when
+  // the blocks before it ended, then runs beside the path until its G80.1 ended it at its end
+  // position; the path keeps the axis where it stood); a spindle command sets the speed the
   // following blocks command (G96 included). Never moves anything by itself. The backward pass
   // over what was queued runs once, at the next step() or update_lookahead().
   PushResult push(const interp::Command& command) noexcept;
@@ -119,13 +124,18 @@ class MotionPlanner {
   // within the limits), and go on at resume().
   void set_single_block(bool on) noexcept;
   void resume() noexcept { resume_requested_ = true; }
-  // Stops with the reset deceleration and forgets the queue. Done when idle().
+  // Stops with the reset deceleration and forgets the queue; an oscillation decelerates at its
+  // axis's acceleration times the reset scale. Done when at_rest().
   void reset() noexcept { reset_requested_ = true; }
   // Forgets everything at once and stands at `at` (the axes' position when a program starts,
-  // or after an emergency stop, where the drives stopped on their own).
-  void restart(const AxisVector& at) noexcept;
+  // or after an emergency stop, where the drives stopped on their own). keep_oscillations: an
+  // axis that oscillates goes on (the program goes on from a position taken over in its run).
+  void restart(const AxisVector& at, bool keep_oscillations = false) noexcept;
 
+  // Nothing queued and the path at rest (an axis may still oscillate beside it).
   [[nodiscard]] bool idle() const noexcept { return out_.state == MotionState::idle; }
+  // Idle and no axis oscillates.
+  [[nodiscard]] bool at_rest() const noexcept { return idle() && out_.oscillating == 0; }
   [[nodiscard]] bool accepts() const noexcept;
   [[nodiscard]] std::size_t queued_blocks() const noexcept { return item_count_; }
   [[nodiscard]] std::size_t window_blocks() const noexcept { return config_.lookahead_blocks; }
@@ -134,7 +144,7 @@ class MotionPlanner {
 
  private:
   enum class Feed : std::uint8_t { per_min, per_rev, rapid };
-  enum class ItemKind : std::uint8_t { path, rapid_axes, dwell, thread };
+  enum class ItemKind : std::uint8_t { path, rapid_axes, dwell, thread, oscillation };
 
   struct SpindleCommand {
     bool css = false;
@@ -184,6 +194,12 @@ class MotionPlanner {
     double thread_rpm = 0.0;
     bool continuous = false;
     bool ramp_out = true;
+    // oscillation: G81.1 starts axis `axis` between top and bottom at `programmed` units/s;
+    // ending (G80.1) ends it at `to`.
+    std::size_t axis = 0;
+    double top = 0.0;
+    double bottom = 0.0;
+    bool ending = false;
     std::uint64_t block = 0;
     int line = 0;
     SpindleCommand spindle;
@@ -211,6 +227,7 @@ class MotionPlanner {
   PushResult push_thread(const interp::Command& c) noexcept;
   PushResult push_dwell(const interp::Command& c) noexcept;
   PushResult push_rapid_axes(const interp::Command& c) noexcept;
+  PushResult push_oscillation(const interp::Command& c) noexcept;
   void set_segment_limits(Segment& s) const noexcept;
   double junction_cap(Segment& prev, Segment& next, bool prev_open) const noexcept;
   bool try_blend(std::size_t prev_index, Segment& next) noexcept;
@@ -223,7 +240,11 @@ class MotionPlanner {
   void backward_pass(bool all) noexcept;
 
   // interpolation
+  void step_items(const CycleInput& input) noexcept;
   void step_path(double dt) noexcept;
+  void step_oscillation_item() noexcept;
+  // The oscillating axes' setpoints over the path's.
+  void step_oscillations(double dt) noexcept;
   void step_rapid_axes(double dt) noexcept;
   bool plan_rapid_axes(const Item& it) noexcept;
   void step_dwell(double dt) noexcept;
@@ -296,6 +317,7 @@ class MotionPlanner {
   double thread_next_angle0_ = 0.0;
   bool thread_chain_ = false;
   double prev_angle_ = 0.0;
+  std::array<AxisOscillation, interp::kMaxChannelAxes> oscillations_{};
   MotionOutput out_{};
 };
 

@@ -64,7 +64,7 @@ PushResult MotionPlanner::push(const interp::Command& c) noexcept {
     return PushResult::accepted;
   }
   if (c.op != Op::rapid && c.op != Op::linear && c.op != Op::arc && c.op != Op::thread &&
-      c.op != Op::dwell) {
+      c.op != Op::dwell && c.op != Op::oscillate && c.op != Op::oscillate_end) {
     return PushResult::not_a_motion;
   }
   if (!accepts()) {
@@ -85,6 +85,9 @@ PushResult MotionPlanner::push(const interp::Command& c) noexcept {
       return push_thread(c);
     case Op::dwell:
       return push_dwell(c);
+    case Op::oscillate:
+    case Op::oscillate_end:
+      return push_oscillation(c);
     default:
       return PushResult::not_a_motion;
   }
@@ -505,6 +508,35 @@ PushResult MotionPlanner::push_rapid_axes(const interp::Command& c) noexcept {
   it.line = c.line;
   it.spindle = spindle_;
   tail_pos_ = c.to;
+  return PushResult::accepted;
+}
+
+PushResult MotionPlanner::push_oscillation(const interp::Command& c) noexcept {
+  if (c.oscillating < 0 || static_cast<std::size_t>(c.oscillating) >= config_.axis_count) {
+    return PushResult::bad_target;
+  }
+  const bool ending = c.op == interp::Op::oscillate_end;
+  if (!ending && (!std::isfinite(c.top) || !std::isfinite(c.bottom) || c.top == c.bottom)) {
+    return PushResult::bad_target;
+  }
+  if (!ending && !(c.feed > 0.0 && std::isfinite(c.feed))) {
+    return PushResult::bad_feed;
+  }
+  Item& it = new_item(ItemKind::oscillation);
+  it.count = 0;
+  it.axis = static_cast<std::size_t>(c.oscillating);
+  it.ending = ending;
+  it.top = c.top;
+  it.bottom = c.bottom;
+  it.programmed = c.feed / 60.0;  // units/min, whatever the feed mode (L2484)
+  it.block = c.n;
+  it.line = c.line;
+  it.spindle = spindle_;
+  if (ending) {
+    tail_pos_[it.axis] = c.to[it.axis];  // the path goes on from where G80.1 leaves the axis
+  }
+  it.to = tail_pos_;
+  touch(item_head_ + item_count_ - 1);
   return PushResult::accepted;
 }
 

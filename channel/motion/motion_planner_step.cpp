@@ -26,7 +26,11 @@ ProfileSample MotionPlanner::Piece::at(double t) const noexcept {
   return ProfileSample{head.s + p.s, p.v, p.a};
 }
 
-void MotionPlanner::restart(const AxisVector& at) noexcept {
+void MotionPlanner::restart(const AxisVector& at, bool keep_oscillations) noexcept {
+  if (!keep_oscillations) {
+    oscillations_.fill(AxisOscillation{});
+    out_.oscillating = 0;
+  }
   resetting_ = false;
   stopping_ = false;
   held_ = false;
@@ -651,7 +655,54 @@ void MotionPlanner::step_thread() noexcept {
   }
 }
 
+// G81.1 starts the oscillation where the axis stands and is done; G80.1 lasts until the
+// oscillation ended at the block's end position.
+void MotionPlanner::step_oscillation_item() noexcept {
+  Item& it = item(item_head_);
+  AxisOscillation& o = oscillations_[it.axis];
+  out_.block = it.block;
+  out_.line = it.line;
+  write_rest(out_.sample.pos);
+  if (!it.ending) {
+    const std::size_t k = it.axis;
+    (void)o.start(out_.sample.pos[k], it.top, it.bottom, it.programmed, config_.axes[k]);
+  } else if (!active_) {
+    active_ = true;
+    it.frozen = true;
+    o.finish_at(it.to[it.axis]);
+  }
+  if (it.ending && o.active()) {
+    out_.state = MotionState::moving;
+    return;
+  }
+  finish_item();
+  out_.state = item_count_ == 0 ? MotionState::idle : MotionState::moving;
+}
+
+void MotionPlanner::step_oscillations(double dt) noexcept {
+  out_.oscillating = 0;
+  for (std::size_t k = 0; k < config_.axis_count; ++k) {
+    AxisOscillation& o = oscillations_[k];
+    if (!o.active()) {
+      continue;
+    }
+    const OscillationSample s = o.step(dt);
+    out_.sample.pos[k] = s.pos;
+    out_.sample.vel[k] = s.vel;
+    out_.sample.acc[k] = s.acc;
+    if (o.active()) {
+      out_.oscillating |= 1U << k;
+    }
+  }
+}
+
 const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
+  step_items(input);
+  step_oscillations(config_.cycle_s);
+  return out_;
+}
+
+void MotionPlanner::step_items(const CycleInput& input) noexcept {
   in_ = input;
   const double dt = config_.cycle_s;
   const double feed = std::clamp(input.feed_override, 0.0, 2.0);
@@ -668,7 +719,7 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
   }
   update_lookahead();
   if (out_.state == MotionState::fault) {
-    return out_;
+    return;
   }
   if (reset_requested_) {
     reset_requested_ = false;
@@ -680,6 +731,10 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     } else {
       stopping_ = false;
     }
+    for (std::size_t k = 0; k < config_.axis_count; ++k) {
+      oscillations_[k].stop(config_.axes[k].acceleration *
+                            std::max(config_.reset_deceleration_scale, 1e-3));
+    }
   }
   if (resetting_) {
     const bool axes = item_count_ > 0 && active_ && item(item_head_).kind == ItemKind::rapid_axes;
@@ -688,10 +743,10 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     } else if (axes && !held_) {
       step_rapid_axes(dt);  // each axis stops on its own ramp
     }
-    if (!stopping_ && (!axes || held_)) {
+    if (!stopping_ && (!axes || held_) && out_.oscillating == 0) {
       restart(out_.sample.pos);  // the next block starts from where the axes stand
     }
-    return out_;
+    return;
   }
   const bool resume = resume_requested_;
   resume_requested_ = false;
@@ -705,13 +760,13 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     // wait) takes effect now, not with the next move.
     out_.spindle_rpm = spindle_rpm_at(spindle_, out_.sample.pos);
     out_.spindle_direction = spindle_.direction;
-    return out_;
+    return;
   }
   const Item& head = item(item_head_);
   if (!active_ && v_ <= kTiny && !input.in_position) {
     write_rest(out_.sample.pos);  // an exact stop: the next block waits for in-position
     out_.state = MotionState::moving;
-    return out_;
+    return;
   }
   switch (head.kind) {
     case ItemKind::path: {
@@ -733,12 +788,12 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
       if (input.feed_hold && !active_) {
         write_rest(out_.sample.pos);
         out_.state = MotionState::held;
-        return out_;
+        return;
       }
       if (block_stopped_ && !active_) {
         write_rest(out_.sample.pos);
         out_.state = MotionState::block_stop;
-        return out_;
+        return;
       }
       step_path(dt);
       break;
@@ -752,8 +807,10 @@ const MotionOutput& MotionPlanner::step(const CycleInput& input) noexcept {
     case ItemKind::thread:
       step_thread();
       break;
+    case ItemKind::oscillation:
+      step_oscillation_item();
+      break;
   }
-  return out_;
 }
 
 }  // namespace mcnc::motion

@@ -415,6 +415,7 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "torque_skip",
                                  "exchange",
                                  "axis_sync",
+                                 "oscillation",
                                  "c_axis",
                                  "middleware"});
   AxisConfig axis;
@@ -489,6 +490,12 @@ AxisConfig parse_axis(const YamlValue& value) {
     if (auto at_power_on = s.optional("at_power_on")) {
       axis.sync_at_power_on = at_power_on->boolean();
     }
+  }
+  if (auto oscillation = map.optional("oscillation")) {
+    if (axis.type == AxisType::spindle) {
+      oscillation->fail("a spindle does not oscillate (G81.1)");
+    }
+    axis.oscillation = oscillation->boolean();
   }
   if (auto decel = map.optional("quick_stop_deceleration")) {
     axis.quick_stop_deceleration = decel->positive_number();

@@ -72,6 +72,8 @@ struct AxisConfig {
   bool sync_slave = false;
   int sync_master = 0;
   bool sync_at_power_on = false;
+  // Param 5700.1: G81.1 may oscillate the axis.
+  bool oscillation = false;
   std::string bus;                   // bus name
   int node_id = 0;                   // CANopen node id 1..127
   double counts_per_unit = 10000.0;  // drive increments per mm or degree

@@ -46,6 +46,18 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
+bool insert_in_machine_file(const TestMachine& machine, const std::string& after,
+                            const std::string& text) {
+  std::string yaml = slurp(machine.path());
+  const std::size_t at = yaml.find(after);
+  if (at == std::string::npos) {
+    return false;
+  }
+  yaml.insert(at + after.size(), text);
+  std::ofstream(machine.path()) << yaml;
+  return true;
+}
+
 namespace {
 
 pid_t spawn(const std::vector<std::string>& argv, int domain, const std::string& out_path,

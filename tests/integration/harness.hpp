@@ -75,6 +75,11 @@ class Background {
 // The whole content of a file ("" when it cannot be read).
 std::string slurp(const std::string& path);
 
+// Inserts `text` into the machine file of `machine` after the first occurrence of `after` (whole
+// lines, with their newlines). False, and the file unchanged, when `after` is not there.
+bool insert_in_machine_file(const TestMachine& machine, const std::string& after,
+                            const std::string& text);
+
 // Every JSON line of a trace file (or trace part).
 std::vector<nlohmann::json> read_trace(const std::string& path);
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,

@@ -8,7 +8,6 @@
 
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -16,12 +15,8 @@ namespace mcnc::test {
 namespace {
 
 void add_inclined_axis(const TestMachine& machine) {
-  std::string yaml = slurp(machine.path());
-  const std::string channel = "    axes: [X1, Z1]\n";
-  const std::size_t at = yaml.find(channel);
-  ASSERT_NE(at, std::string::npos);
-  yaml.insert(at + channel.size(), "    inclined: {axis: X, orthogonal: Z, angle: -30}\n");
-  std::ofstream(machine.path()) << yaml;
+  ASSERT_TRUE(insert_in_machine_file(machine, "    axes: [X1, Z1]\n",
+                                     "    inclined: {axis: X, orthogonal: Z, angle: -30}\n"));
 }
 
 TEST(InclinedAxis, TheAxesAreCommandedTheSpecsMachineColumn) {

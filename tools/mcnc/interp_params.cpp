@@ -403,9 +403,9 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
     int i = 0;
     for (const auto& a : root["axes"]) {
       const std::string k = "axes[" + std::to_string(i++) + "]";
-      only_keys(
-          a, k,
-          {"name", "diameter", "rotary", "start", "reference", "exchange", "approach", "stroke"});
+      only_keys(a, k,
+                {"name", "diameter", "rotary", "start", "reference", "exchange", "approach",
+                 "stroke", "oscillation"});
       interp::AxisConfig ax;
       ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
       for (const auto& other : c.axes) {
@@ -431,6 +431,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       if (a["exchange"]) {
         ax.exchange = get<int>(a["exchange"], k + ".exchange");
       }
+      ax.oscillation = a["oscillation"] && get<bool>(a["oscillation"], k + ".oscillation");
       if (a["approach"]) {
         ax.approach = get<double>(a["approach"], k + ".approach") / unit;
       }

@@ -184,6 +184,14 @@ void key(Writer& out, std::string_view k) {
   out.append("\":", 2);
 }
 
+// The `axis` field: an axis's letter.
+void axis_name(Writer& out, char axis) {
+  key(out, "axis");
+  out += '"';
+  out += axis;
+  out += '"';
+}
+
 void positions(Writer& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
   out += '{';
   for (std::size_t i = 0; i < axes.size(); ++i) {
@@ -279,6 +287,10 @@ const char* op_name(Op op) {
       return "thread";
     case Op::spindle_mode:
       return "spindle_mode";
+    case Op::oscillate:
+      return "oscillate";
+    case Op::oscillate_end:
+      return "oscillate_end";
   }
   return "?";
 }
@@ -509,16 +521,27 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       break;
     case Op::axis_release:
     case Op::axis_acquire:
-      key(out, "axis");
-      out += '"';
-      out += c.axis;
-      out += '"';
+      axis_name(out, c.axis);
       key(out, "exchange");
       integer(out, c.exchange);
       if (c.op == Op::axis_acquire) {
         key(out, "force");
         out += c.force ? "true" : "false";
       }
+      break;
+    case Op::oscillate:
+      axis_name(out, c.axis);
+      key(out, "top");
+      number(out, c.top);
+      key(out, "bottom");
+      number(out, c.bottom);
+      key(out, "feed");
+      number(out, c.feed);
+      break;
+    case Op::oscillate_end:
+      axis_name(out, c.axis);
+      key(out, "to");
+      positions(out, c.to, axes);
       break;
     case Op::axis_couple:
       if (c.master != 0) {

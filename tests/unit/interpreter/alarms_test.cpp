@@ -48,7 +48,7 @@ INSTANTIATE_TEST_SUITE_P(
                       AlarmCase{"G04 X-1", alarm::kNegativeDwell, 5},
                       AlarmCase{"G04 U-1", alarm::kNegativeDwell, 5},
                       AlarmCase{"G04 X1 U2", alarm::kDwellTimeTwice, 8},
-                      AlarmCase{"G81.1 Z0 Q10 F100", alarm::kNotInThisVersion, 1},
+                      AlarmCase{"G51.2 P1 Q1", alarm::kNotInThisVersion, 1},
                       AlarmCase{"G71 P10 F100", alarm::kContourMissing, 0},
                       AlarmCase{"G74 X20 Z-5 Q1 F1", alarm::kCycleWordMissing, 0},
                       AlarmCase{"G02 X20 Z1 R3 F100", alarm::kArcGeometry, 0},

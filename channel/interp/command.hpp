@@ -216,6 +216,14 @@ struct Command {
   double chip_rev_length = 0.0;
   double chip_every = 0.0;
   double chip_break = 0.0;
+  // G98.1 under G96: the spindle's speed follows the radius, and so do the revolutions a mm of
+  // path takes. The surface speed (m/min; 0: a constant speed, chip_rev_length holds), the G50 S
+  // limit (rpm), the axis whose distance from chip_centre (machine, physical) is the radius,
+  // and `feed` (mm/min) make the speed at each point; chip_rev_length is then the shortest.
+  double chip_surface = 0.0;
+  double chip_max_rpm = 0.0;
+  int chip_radius_axis = 0;
+  double chip_centre = 0.0;
 
   // rapid, linear, arc or thread: the command moves the axes to `to`.
   bool moves() const {

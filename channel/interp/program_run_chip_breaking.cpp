@@ -53,14 +53,26 @@ bool ProgramRun::mark_chip_breaking() {
       continue;
     }
     double per_rev = c.feed;  // mm of path per spindle revolution
-    if (c.feed_mode == FeedMode::per_min) {
-      const double rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
-      if (css_) {
-        return fail(alarm::kNotInThisVersion,
-                    "G98.1 counts the spindle's revolutions at a constant speed: under G96 use "
-                    "G99.1, whose revolutions follow the feed",
+    if (c.feed_mode == FeedMode::per_min && css_) {
+      // G96: the speed at each point of the move follows its radius (decision 203).
+      int x = -1;
+      for (std::size_t i = 0; i < config_.axes.size(); ++i) {
+        x = config_.axes[i].name == 'X' ? static_cast<int>(i) : x;
+      }
+      if (x < 0 || clamp_rpm_ <= 0.0 || surface_ <= 0.0) {
+        return fail(alarm::kCycleWordMissing,
+                    "G98.1 under G96 counts the revolutions of a speed that follows the X "
+                    "radius: it needs X, a surface speed S and the speed limit G50 S (the speed "
+                    "at the centre)",
                     0);
       }
+      c.chip_surface = surface_;
+      c.chip_max_rpm = clamp_rpm_;
+      c.chip_radius_axis = x;
+      c.chip_centre = offset_sum(x) + tool_offset(x);  // where the X radius is 0
+      per_rev = c.feed / clamp_rpm_;
+    } else if (c.feed_mode == FeedMode::per_min) {
+      const double rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
       if (rpm <= 0.0) {
         return fail(alarm::kCycleWordMissing,
                     "G98.1 counts the spindle's revolutions: the spindle needs a speed S", 0);

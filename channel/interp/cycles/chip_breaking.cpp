@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace mcnc::interp::cycles {
 
@@ -88,6 +89,60 @@ MovePath path_of(const Command& c, const AxisVector& from, std::size_t axes) {
   return m;
 }
 
+// The revolutions of feed from the move's start to its fraction t: in proportion to the path
+// at a constant speed, else (G96) summed along the path from the speed at each point.
+class RevCount {
+ public:
+  RevCount(const MovePath& m, const Command& c) {
+    if (c.chip_surface <= 0.0) {
+      total_ = m.length / c.chip_rev_length;
+      return;
+    }
+    // Steps of at most 0.01 mm (at least 64, at most 4096 a move): the speed changes little
+    // along one, and the midpoint's speed counts for it.
+    const auto steps =
+        static_cast<std::size_t>(std::clamp(std::ceil(m.length / 0.01), 64.0, 4096.0));
+    const auto axis = static_cast<std::size_t>(c.chip_radius_axis);
+    const double k = 1000.0 * c.chip_surface / (2.0 * path::kPi);  // rpm times radius (mm)
+    table_.resize(steps + 1);
+    table_[0] = 0.0;
+    for (std::size_t i = 0; i < steps; ++i) {
+      const double t = (static_cast<double>(i) + 0.5) / static_cast<double>(steps);
+      const double r = std::fabs(m.at(t)[axis] - c.chip_centre);
+      const double rpm = r * c.chip_max_rpm > k ? k / r : c.chip_max_rpm;
+      table_[i + 1] = table_[i] + m.length / static_cast<double>(steps) * rpm / c.feed;
+    }
+    total_ = table_.back();
+  }
+  [[nodiscard]] double total() const { return total_; }
+  [[nodiscard]] double at(double t) const {
+    if (table_.empty()) {
+      return t * total_;
+    }
+    const double x = std::clamp(t, 0.0, 1.0) * static_cast<double>(table_.size() - 1);
+    const auto i = std::min(static_cast<std::size_t>(x), table_.size() - 2);
+    return table_[i] + (x - static_cast<double>(i)) * (table_[i + 1] - table_[i]);
+  }
+  // The fraction where the count reaches `revs` (0 <= revs <= total()).
+  [[nodiscard]] double fraction(double revs) const {
+    if (table_.empty()) {
+      return total_ > 0.0 ? revs / total_ : 1.0;
+    }
+    const auto hi = std::lower_bound(table_.begin() + 1, table_.end(), revs);
+    if (hi == table_.end()) {
+      return 1.0;
+    }
+    const auto i = static_cast<std::size_t>(hi - table_.begin()) - 1;
+    const double span = table_[i + 1] - table_[i];
+    const double within = span > 0.0 ? (revs - table_[i]) / span : 0.0;
+    return (static_cast<double>(i) + within) / static_cast<double>(table_.size() - 1);
+  }
+
+ private:
+  double total_ = 0.0;
+  std::vector<double> table_;  // the count at step ends (G96), empty at a constant speed
+};
+
 }  // namespace
 
 bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size_t axes,
@@ -97,13 +152,15 @@ bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size
     out.push_back(c);
     return true;
   }
-  const double move_revs = m.length / c.chip_rev_length;
-  if (!((revs + move_revs) / c.chip_every <= kMaxChipBreaks)) {
+  // At most the shortest revolution's count, before the table of a G96 count is made.
+  if (!((revs + m.length / c.chip_rev_length) / c.chip_every <= kMaxChipBreaks)) {
     return false;  // the pieces alone would be gigabytes (found by the fuzzer: S50810, F0.2)
   }
+  const RevCount count(m, c);
+  const double move_revs = count.total();
   double done = 0.0;  // fraction of the move cut so far
-  while (revs + (1.0 - done) * move_revs >= c.chip_every - 1e-9) {
-    const double t = std::min(1.0, done + (c.chip_every - revs) / move_revs);
+  while (revs + move_revs - count.at(done) >= c.chip_every - 1e-9) {
+    const double t = std::min(1.0, count.fraction(count.at(done) + c.chip_every - revs));
     out.push_back(m.piece(done, t));
     if (c.chip_break > 0.0) {
       Command& d = out.emplace_back();
@@ -114,9 +171,9 @@ bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size
       d.seconds = c.chip_break;
       d.in_revs = true;
     } else {
-      const double back = std::min(t, -c.chip_break / move_revs);
-      out.push_back(m.piece(t, t - back));
-      out.push_back(m.piece(t - back, t));
+      const double back_to = count.fraction(std::max(0.0, count.at(t) + c.chip_break));
+      out.push_back(m.piece(t, back_to));
+      out.push_back(m.piece(back_to, t));
     }
     revs = 0.0;
     done = t;
@@ -129,7 +186,7 @@ bool split_for_chip_breaking(const Command& c, const AxisVector& from, std::size
     last.exact_stop = c.exact_stop;
     last.barrier = c.barrier;
     out.push_back(last);
-    revs += (1.0 - done) * move_revs;
+    revs += move_revs - count.at(done);
   } else {
     out.back().barrier = out.back().barrier || c.barrier;
   }

@@ -55,6 +55,32 @@ TEST(InterpChipBreaking, WorksInsideTheSingleCyclesAndEndsWithG98OrG99) {
       "IF[#4005 NE 99] #3000=3\nG98\nIF[#4013 NE 0] #3000=4\nM30\n");
 }
 
+TEST(InterpChipBreaking, PerMinuteUnderG96CountsTheSpeedAtEachRadius) {
+  // G96 S100: 100 m/min, rpm = 100000 / (2 pi r). Along Z at X50 (r 25): 636.62 rpm, at F100
+  // 0.15708 mm a revolution, Q5 = 0.785398 mm between the dwells of P1.
+  RunResult r = run_ok("G50 S3000\nG98.1 P1 Q5\nG96 S100 M03\nG00 X50 Z0\nG01 W-2 F100\nM30\n");
+  const auto cuts = r.of(Op::linear);
+  ASSERT_EQ(cuts.size(), 3u);
+  const double q = 5.0 * 100.0 * 2.0 * M_PI * 25.0 / 100000.0;
+  EXPECT_NEAR(cuts[0].to[1], -q, 1e-9);
+  EXPECT_NEAR(cuts[1].to[1], -2.0 * q, 1e-9);
+  EXPECT_NEAR(cuts[2].to[1], -2.0, 1e-12);
+  EXPECT_EQ(r.of(Op::dwell).size(), 2u);
+  // Facing from X50 to X10: the speed rises as the radius falls. From r 25 the count is
+  // (100000 / (2 pi F)) ln(25 / r): 5 revolutions at r = 25 exp(-5 F 2 pi / 100000), 10 at
+  // 25 exp(-10 ...); below r = 5.305 (G50 S3000) the speed stays 3000.
+  RunResult f = run_ok("G50 S3000\nG98.1 P1 Q5\nG96 S100 M03\nG00 X50 Z0\nG01 U-40 F100\nM30\n");
+  const auto faces = f.of(Op::linear);
+  ASSERT_GT(faces.size(), 10u);
+  const double k = 2.0 * M_PI * 100.0 / 100000.0;  // F / (rpm r), per revolution
+  EXPECT_NEAR(faces[0].to[0], 25.0 * std::exp(-5.0 * k), 1e-6);
+  EXPECT_NEAR(faces[1].to[0], 25.0 * std::exp(-10.0 * k), 1e-6);
+  // At the clamp: 3000 rpm, 1/30 mm a revolution, 1/6 mm between the last breaks.
+  const std::size_t n = faces.size();
+  EXPECT_NEAR(faces[n - 1].to[0], 5.0, 1e-12);
+  EXPECT_NEAR(faces[n - 3].to[0] - faces[n - 2].to[0], 5.0 / 30.0, 1e-5);
+}
+
 TEST(InterpChipBreaking, Alarms) {
   const ExpectedAlarm cases[] = {
       {"G98.1 P1\nM30\n", alarm::kCycleWordMissing, 1},
@@ -64,7 +90,8 @@ TEST(InterpChipBreaking, Alarms) {
       {"G98.1 P1 Q5 X10\nM30\n", alarm::kWordNotAllowed, 1},
       // Per minute the spindle's speed makes the revolutions: none, or G96's changing one.
       {"G98.1 P1 Q5\nG01 W-5 F100\nM30\n", alarm::kCycleWordMissing, 2},
-      {"G98.1 P1 Q5\nG96 S100 M03\nG01 W-5 F100\nM30\n", alarm::kNotInThisVersion, 3},
+      // G96 needs the speed limit G50 S: at X0 its speed would have none.
+      {"G98.1 P1 Q5\nG96 S100 M03\nG01 W-5 F100\nM30\n", alarm::kCycleWordMissing, 3},
       // F0.2 mm/min at 50810 rpm is 0.000004 mm a revolution: G94's 20 mm cut would break
       // a million times every 5 revolutions. An alarm, not gigabytes of pieces (the fuzzer's
       // input, tests/fuzz/crashes/chip_breaking_tiny_feed.nc).

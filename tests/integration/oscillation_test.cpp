@@ -61,15 +61,20 @@ TEST(Oscillation, TheAxisTurnsAtItsDeadPointsAndG801EndsItAtItsPosition) {
     EXPECT_GE(p.cmd, -1e-4);
     EXPECT_LE(p.cmd, 20.0 + 1e-4);
   }
-  // It oscillated while X1 fed: Z1 moved between X1's first and last feed sample.
+  // It oscillated while X1 fed from 25.5 (X51, after the rapid there) to 25 (X50), before
+  // G00 X100 took it away.
   std::uint64_t feed_start = 0;
   std::uint64_t feed_end = 0;
-  for (std::size_t i = 1; i < x.size(); ++i) {
-    if (x[i].cmd < 25.5 - 1e-6 && x[i].cmd > 25.0 - 1e-6 && feed_start == 0) {
-      feed_start = x[i].cycle;
+  bool at_x51 = false;
+  bool at_x50 = false;
+  for (const Point& p : x) {
+    at_x51 = at_x51 || std::fabs(p.cmd - 25.5) < 1e-9;
+    if (at_x51 && feed_start == 0 && p.cmd < 25.5 - 1e-6) {
+      feed_start = p.cycle;
     }
-    if (x[i].cmd > 25.0 + 1e-6 && x[i - 1].cmd <= 25.0 + 1e-6 && feed_start != 0 && feed_end == 0) {
-      feed_end = x[i].cycle;  // G00 X100 leaves X50
+    at_x50 = at_x50 || (feed_start != 0 && std::fabs(p.cmd - 25.0) < 1e-9);
+    if (at_x50 && feed_end == 0 && p.cmd > 25.0 + 1e-6) {
+      feed_end = p.cycle;
     }
   }
   ASSERT_GT(feed_start, 0U);
@@ -89,10 +94,12 @@ TEST(Oscillation, TheAxisTurnsAtItsDeadPointsAndG801EndsItAtItsPosition) {
     }
   }
   ASSERT_GT(z_rest, feed_end);
-  // G00 X60 (line 8) starts after that: X1 leaves 50 only once Z1 stands at 0.
+  // G00 X60 (line 7) starts after that: X1 leaves 50 only once Z1 stands at 0.
   std::uint64_t x_leaves_50 = 0;
+  bool at_x100 = false;
   for (const Point& p : x) {
-    if (p.cycle > feed_end && x_leaves_50 == 0 && p.cmd < 50.0 - 1e-6) {
+    at_x100 = at_x100 || (p.cycle > feed_end && std::fabs(p.cmd - 50.0) < 1e-9);
+    if (at_x100 && x_leaves_50 == 0 && p.cmd < 50.0 - 1e-6) {
       x_leaves_50 = p.cycle;
     }
   }
@@ -100,7 +107,7 @@ TEST(Oscillation, TheAxisTurnsAtItsDeadPointsAndG801EndsItAtItsPosition) {
   EXPECT_GT(x_leaves_50, z_rest);
   bool after_g801 = false;
   for (const auto& b : events(trace, "block", "CH1")) {
-    if (b["line"] == 8) {
+    if (b["line"] == 7) {
       after_g801 = true;
       EXPECT_GE(b["cycle"].get<std::uint64_t>(), z_rest);
     }

@@ -103,7 +103,8 @@ TEST(ChannelOscillation, AResetRampsTheStrokeDownBeforeTheChannelResets) {
   // It slowed down at the axis's 1000 mm/s^2, never turned back, and stands.
   const std::size_t ramp = rig.z.size() - at_reset;
   EXPECT_GE(ramp, static_cast<std::size_t>(v / 1000.0 / kDt) - 2);
-  for (std::size_t i = at_reset; i < rig.z.size(); ++i) {
+  // (The last cycle, idle again, holds where the axis node says it stands: a cycle behind.)
+  for (std::size_t i = at_reset; i + 1 < rig.z.size(); ++i) {
     EXPECT_GE(rig.z[i], rig.z[i - 1]);
   }
   const double stood = rig.z.back();

@@ -1,5 +1,4 @@
-O1000 (G81.1 / G80.1, spec L2491-2501 with Q20: Z strokes between 0 and 20 while X feeds)
-T0001
+O1000 (G81.1 / G80.1, spec L2491-2501 with Q20 and no T: Z strokes between 0 and 20 while X feeds)
 G00 X51 Z0
 G81.1 Z0 Q20 F2000
 G01 X50 F10

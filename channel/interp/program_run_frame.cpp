@@ -50,7 +50,13 @@ AxisVector ProgramRun::machine() const {
   return to_inclined(m);
 }
 
-void ProgramRun::set_machine(const AxisVector& inclined) {
+void ProgramRun::set_machine(const AxisVector& where) {
+  // An oscillating axis (G81.1) stands anywhere in its stroke: the program keeps it where G81.1
+  // found it, as the planner's path does.
+  AxisVector inclined = where;
+  for (std::size_t i = 0; i < config_.axes.size() && i < kMaxChannelAxes; ++i) {
+    inclined[i] = oscillating_[i] ? machine_[i] : inclined[i];
+  }
   released_at_ = inclined;
   const AxisVector at = from_inclined(inclined);  // what the modes below work in
   machine_ = transform::to_vector(frame_.to_program(transform::to_point(at)));

@@ -27,9 +27,14 @@ ProfileSample MotionPlanner::Piece::at(double t) const noexcept {
 }
 
 void MotionPlanner::restart(const AxisVector& at, bool keep_oscillations) noexcept {
+  AxisVector tail = at;
   if (!keep_oscillations) {
     oscillations_.fill(AxisOscillation{});
     out_.oscillating = 0;
+  }
+  for (std::size_t k = 0; k < config_.axis_count; ++k) {
+    // The path keeps an oscillating axis where G81.1 found it, not where its stroke is now.
+    tail[k] = oscillations_[k].active() ? tail_pos_[k] : tail[k];
   }
   resetting_ = false;
   stopping_ = false;
@@ -45,7 +50,7 @@ void MotionPlanner::restart(const AxisVector& at, bool keep_oscillations) noexce
   thread_drop_ramp_out_ = false;
   first_changed_ = kNoneChanged;
   backward_pending_ = false;
-  tail_pos_ = at;
+  tail_pos_ = tail;
   rapid_stopping_ = false;
   write_rest(at);
   out_.state = MotionState::idle;

@@ -74,6 +74,28 @@ TEST(InterpOscillation, ADiameterAxisTakesItsValuesAsDiameters) {
   EXPECT_DOUBLE_EQ(r.of(Op::oscillate_end)[0].to[kX], 25.0);
 }
 
+TEST(InterpOscillation, APositionTakenOverKeepsTheOscillatingAxisWhereG811FoundIt) {
+  // The channel hands the interpreter where its axes stand (after G141, M18, G31): Z is then
+  // anywhere in its stroke, and the blocks after still keep it where G81.1 found it.
+  Interpreter in(oscillating_z());
+  ASSERT_FALSE(in.start("G00 X20 Z1\nG81.1 Z1 Q5 F600\nG01 X30 F100\nG80.1 Z1\nM30\n", "T.nc"));
+  std::vector<Command> got;
+  while (auto r = in.next()) {
+    ASSERT_TRUE(std::holds_alternative<Command>(*r)) << std::get<ProgramAlarm>(*r).text;
+    got.push_back(std::get<Command>(*r));
+    if (got.back().op == Op::oscillate) {
+      in.set_machine_position(AxisVector{10.0, 3.7});
+    }
+    if (got.back().op == Op::end) {
+      break;
+    }
+  }
+  ASSERT_EQ(got.size(), 5U);
+  EXPECT_EQ(got[2].op, Op::linear);
+  EXPECT_DOUBLE_EQ(got[2].to[kZ], 1.0);
+  EXPECT_DOUBLE_EQ(got[2].to[kX], 15.0);
+}
+
 TEST(InterpOscillation, Alarms) {
   const ExpectedAlarm cases[] = {
       // The oscillating axis belongs to the oscillation until G80.1.

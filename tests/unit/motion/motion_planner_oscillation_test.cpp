@@ -157,6 +157,24 @@ TEST(MotionPlannerOscillation, AResetStopsItAtTheAxissDeceleration) {
   EXPECT_EQ(p.output().oscillating, 0U);
 }
 
+TEST(MotionPlannerOscillation, ARestartInTheRunKeepsItAndThePathsHold) {
+  // A position taken over in the run (G141, M18): the stroke goes on, and the path goes on
+  // from where G81.1 found Z, not from where the stroke is.
+  MotionPlanner p(test_machine(2), AxisVector{});
+  ASSERT_EQ(p.push(oscillate(kZ, 0.0, 5.0, 600.0, AxisVector{}, 1)), PushResult::accepted);
+  for (int i = 0; i < 200; ++i) {
+    p.step(CycleInput{});
+  }
+  const AxisVector here = p.output().sample.pos;
+  ASSERT_GT(here[kZ], 0.5);
+  p.restart(here, true);
+  EXPECT_EQ(p.queue_end()[kZ], 0.0);
+  ASSERT_EQ(p.push(line_to(AxisVector{1.0, 0.0}, 600.0, 2)), PushResult::accepted);
+  const MotionOutput& m = p.step(CycleInput{});
+  EXPECT_NE(m.oscillating, 0U);
+  EXPECT_GT(m.sample.pos[kZ], here[kZ]);  // still on its way to 5
+}
+
 TEST(MotionPlannerOscillation, BadOscillationsAreRefused) {
   MotionPlanner p(test_machine(2), AxisVector{});
   EXPECT_EQ(p.push(oscillate(kZ, 5.0, 5.0, 600.0, AxisVector{}, 1)), PushResult::bad_target);

@@ -4,6 +4,7 @@
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -13,6 +14,17 @@ namespace {
 
 std::string axis_text(char name) {
   return std::string(1, name);
+}
+
+// The stretch of axis `axis` from `a` to `b`, the other axes at `at`, as a move G22 can check.
+Command stretch(const AxisVector& at, std::size_t axis, double a, double b, AxisVector& from) {
+  from = at;
+  from[axis] = a;
+  Command c;
+  c.op = Op::linear;
+  c.to = at;
+  c.to[axis] = b;
+  return c;
 }
 
 }  // namespace
@@ -58,6 +70,26 @@ bool ProgramRun::run_oscillation(GFunction f, int column) {
   const auto i = static_cast<std::size_t>(axis);
   const AxisConfig& a = config_.axes[i];
   const double physical = to_physical(axis, at) + offset_sum(axis) + tool_offset(axis);
+  // G22: every point the axis may stand at (where it is, the dead points or G80.1's end) must
+  // lie outside the forbidden area.
+  auto oscillation_allowed = [&](double from_a, double to_b) {
+    if (!stroke_on_) {
+      return true;
+    }
+    const AxisVector here = machine();
+    const double lo = std::min({here[i], from_a, to_b});
+    const double hi = std::max({here[i], from_a, to_b});
+    AxisVector from;
+    const Command c = stretch(here, i, lo, hi, from);
+    if (limits::forbidden(stroke_zone_, from, config_.axes.size()) ||
+        limits::enters(stroke_zone_, from, c, config_.axes.size())) {
+      return fail(alarm::kStrokeLimit,
+                  "the oscillation of " + axis_text(a.name) +
+                      " would enter the area G22 forbids (" + stroke_limits_text() + ")",
+                  column);
+    }
+    return true;
+  };
   if (!on) {
     for (const BlockWord& w : words_) {
       if (!w.used && w.column != column && !w.address.is('N')) {
@@ -67,6 +99,9 @@ bool ProgramRun::run_oscillation(GFunction f, int column) {
     if (!oscillating_[i]) {
       return fail(alarm::kOscillation, "G80.1: " + axis_text(a.name) + " does not oscillate",
                   column);
+    }
+    if (!oscillation_allowed(physical, physical)) {
+      return false;
     }
     oscillating_[i] = false;
     machine_[i] = physical;
@@ -120,12 +155,16 @@ bool ProgramRun::run_oscillation(GFunction f, int column) {
       return fail(alarm::kWordNotAllowed, "G81.1 takes its axis, Q and F only", w.column);
     }
   }
+  const double bottom = to_physical(axis, at + distance) + offset_sum(axis) + tool_offset(axis);
+  if (!oscillation_allowed(physical, bottom)) {
+    return false;
+  }
   oscillating_[i] = true;
   Command& c = emit(Op::oscillate);
   c.oscillating = axis;
   c.axis = a.name;
   c.top = physical;
-  c.bottom = to_physical(axis, at + distance) + offset_sum(axis) + tool_offset(axis);
+  c.bottom = bottom;
   // Units per minute, not per revolution (L2484): a length in inch becomes mm.
   c.feed = fw->value * (a.rotary || metric_ ? 1.0 : 25.4);
   c.feed_mode = FeedMode::per_min;

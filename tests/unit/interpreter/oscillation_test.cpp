@@ -120,6 +120,9 @@ TEST(InterpOscillation, Alarms) {
       {"G81.1 Z0 Q10 F100\nG80.1 X0\nM30\n", alarm::kOscillation, 2},
       {"G04 G81.1 Z0 Q10 F100\nM30\n", alarm::kGroupConflict, 1},
       {"G68.1 Z0 X0 R30\nG81.1 Z0 Q10 F100\nM30\n", alarm::kFrameRestriction, 2},
+      // G22: the strokes and G80.1's end stay out of the forbidden area (Z 30..50 here).
+      {"G22 X100 Z50 I-100 K30\nG81.1 Z0 Q40 F100\nM30\n", alarm::kStrokeLimit, 2},
+      {"G22 X100 Z50 I-100 K30\nG81.1 Z0 Q20 F100\nG80.1 Z45\nM30\n", alarm::kStrokeLimit, 3},
       // It stays in this channel while it oscillates.
       {"G81.1 Z0 Q10 F100\nG140 Z1\nM30\n", alarm::kOscillation, 2},
   };
@@ -127,6 +130,7 @@ TEST(InterpOscillation, Alarms) {
   // An axis that param 5700.1 does not enable.
   run_alarm("G81.1 X0 Q10 F100\nM30\n", alarm::kOscillation, 1, -1, oscillating_z());
   run_alarm("G81.1 Z0 Q10 F100\nM30\n", alarm::kOscillation, 1);
+  run_ok("G22 X100 Z50 I-100 K30\nG81.1 Z0 Q20 F100\nG80.1 Z25\nM30\n", oscillating_z());
   // The blocks before the bad move run; the move never leaves.
   RunResult r = run("G00 X10\nG81.1 Z0 Q10 F100\nG01 Z5 F100\nM30\n", oscillating_z());
   ASSERT_TRUE(r.alarm.has_value());

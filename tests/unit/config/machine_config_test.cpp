@@ -253,6 +253,25 @@ axes:
   - {name: S1, type: spindle, bus: b, node_id: 2, counts_per_unit: 1000}
 )";
 
+// G81.1 (param 5700.1): an axis oscillates only when its `oscillation` says so; a spindle never.
+TEST(MachineConfig, OscillationEnablesAnAxisForG811) {
+  const MachineConfig config = parse_machine_yaml(R"(
+machine: {name: m, cycle_us: 1000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X}]
+axes:
+  - {name: X, address: X, bus: b, node_id: 1}
+  - {name: Z, address: Z, bus: b, node_id: 2, oscillation: true}
+channels: [{name: C, axes: [X, Z]}]
+)");
+  EXPECT_FALSE(config.find_axis("X")->oscillation);
+  EXPECT_TRUE(config.find_axis("Z")->oscillation);
+  std::string spindle = kAxisAndSpindle;
+  const std::string s1 = "counts_per_unit: 1000}";
+  spindle.replace(spindle.find(s1), s1.size(), "counts_per_unit: 1000, oscillation: true}");
+  EXPECT_EQ(rejection_path(spindle + "channels: [{name: C, axes: [X], spindles: [S1]}]\n"),
+            "axes[1].oscillation");
+}
+
 TEST(MachineConfig, SpindlesBelongToAChannelAndWeighMoreOnTheBus) {
   const std::string base = kAxisAndSpindle;
   const MachineConfig config =

@@ -54,7 +54,7 @@ bool ProgramRun::mark_chip_breaking() {
     }
     double per_rev = c.feed;  // mm of path per spindle revolution
     if (c.feed_mode == FeedMode::per_min && css_) {
-      // G96: the speed at each point of the move follows its radius (decision 203).
+      // G96: the speed at each point of the move follows its radius (decision 108).
       int x = -1;
       for (std::size_t i = 0; i < config_.axes.size(); ++i) {
         x = config_.axes[i].name == 'X' ? static_cast<int>(i) : x;

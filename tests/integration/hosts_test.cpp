@@ -20,6 +20,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -154,6 +155,113 @@ TEST(Hosts, TheCellRunsAcrossThreeHostsWithALauncherOnEachAsOnOneHost) {
   expect_same_trace(one_host, trace_until_end(read_trace(cell.trace())));
 }
 
+namespace {
+
+// hostnet.py's verbs on the cell's hosts (cut, loss, heal).
+RunResult hostnet(const CellOnThreeHosts& cell, const std::vector<std::string>& verb) {
+  std::vector<std::string> argv{source("tests/hosts/hostnet.py"), verb.front(), "--prefix",
+                                "mhc" + std::to_string(cell.domain())};
+  argv.insert(argv.end(), verb.begin() + 1, verb.end());
+  return run(argv, -1, 30s);
+}
+
+// The processes running on a simulated host (in its mount namespace), but the keeper that holds
+// its namespaces (hostnet.py's) and this probe: pid and command line. Empty, and a failure, when
+// the probe is not inside the host: a host's list is what a test may kill.
+std::map<pid_t, std::string> processes_on(const SimulatedHosts& hosts, const std::string& host) {
+  const RunResult r =
+      run(hosts.on(host, {"/bin/sh", "-c",
+                          "[ \"$(readlink /proc/$$/ns/mnt)\" != "
+                          "\"$(readlink /proc/1/ns/mnt)\" ] || exit 3; "
+                          "echo $PPID; exec /usr/bin/pgrep -a --nslist mnt --ns $$"}),
+          -1, 30s);
+  std::map<pid_t, std::string> found;
+  if (r.exit_code != 0 && r.exit_code != 1) {  // pgrep: 1 when nothing matched
+    ADD_FAILURE() << "no process list of " << host << ": " << r.err;
+    return found;
+  }
+  std::istringstream lines(r.out);
+  std::string probe;  // nsenter, the probe's parent inside the host
+  std::getline(lines, probe);
+  for (std::string line; std::getline(lines, line);) {
+    const std::size_t space = line.find(' ');
+    if (space != std::string::npos && line.substr(0, space) != probe &&
+        line.find("hostnet.py") == std::string::npos) {
+      found[std::stoi(line.substr(0, space))] = line.substr(space + 1);
+    }
+  }
+  return found;
+}
+
+// Every host of `hosts` runs no process of the machine any more (within `timeout`: a drive
+// simulator outlives its launcher until its bus is quiet).
+void expect_nothing_runs_on(const SimulatedHosts& hosts, const std::vector<std::string>& names,
+                            std::chrono::seconds timeout) {
+  for (const std::string& host : names) {
+    std::map<pid_t, std::string> left;
+    EXPECT_TRUE(eventually(
+        [&] {
+          left = processes_on(hosts, host);
+          return left.empty();
+        },
+        timeout))
+        << host << " still runs " << left.begin()->second;
+  }
+}
+
+// What a partition leaves: both sides E-stopped, every launcher ended, every drive at rest at
+// the end. `cut` is the host cut off from the two others.
+void expect_partition_stops_both_sides(const CellOnThreeHosts& cell, const std::string& cut,
+                                       Background& ncu1, Background& ncu2, Background& ncu3) {
+  std::map<std::string, Background*> launchers{{"ncu1", &ncu1}, {"ncu2", &ncu2}, {"ncu3", &ncu3}};
+  for (const auto& [host, launcher] : launchers) {
+    EXPECT_EQ(launcher->wait(120s), 1) << host << " E-stopped its side\n"
+                                       << slurp(cell.log(host) + ".err");
+  }
+  const std::string coordinator = slurp(cell.log("ncu1") + ".err");
+  if (cut == "ncu1") {
+    for (const std::string host : {"ncu2", "ncu3"}) {
+      EXPECT_NE(slurp(cell.log(host) + ".err").find("the coordinator on host ncu1 is gone"),
+                std::string::npos)
+          << host;
+    }
+    EXPECT_NE(coordinator.find("its launcher is gone"), std::string::npos) << coordinator;
+  } else {
+    EXPECT_NE(coordinator.find("host " + cut + ": its launcher is gone"), std::string::npos)
+        << coordinator;
+    EXPECT_NE(slurp(cell.log(cut) + ".err").find("the coordinator on host ncu1 is gone"),
+              std::string::npos)
+        << slurp(cell.log(cut) + ".err");
+  }
+}
+
+// A link axis whose channel is lost (its host down or cut off) quick-stops: no setpoint within
+// the deadline (2001) or its owner's writer gone (2002), whichever comes first.
+void expect_link_axis_quick_stopped(const std::vector<nlohmann::json>& trace,
+                                    const std::string& axis) {
+  bool stopped = false;
+  for (const nlohmann::json& e : events(trace, "alarm", axis)) {
+    stopped = stopped || e["number"] == 2002 || e["number"] == 2001;
+  }
+  EXPECT_TRUE(stopped) << axis << " quick-stopped: its owner is lost";
+}
+
+// Every axis named stands still at the end of its part of the trace: its last two positions
+// (K cycles apart) are the same. The merge happens on the coordinator's side, so only its
+// side's parts are surely complete.
+void expect_axes_at_rest_at_the_end(const std::vector<nlohmann::json>& trace,
+                                    const std::vector<std::string>& axes) {
+  for (const std::string& axis : axes) {
+    const std::vector<nlohmann::json> pos = events(trace, "pos", axis);
+    ASSERT_GE(pos.size(), 2U) << axis;
+    const double last = pos.back()["act"].get<double>();
+    const double before = pos[pos.size() - 2]["act"].get<double>();
+    EXPECT_NEAR(last, before, 1e-4) << axis << " still moved at cycle " << pos.back()["cycle"];
+  }
+}
+
+}  // namespace
+
 // A process that dies on one host E-stops the machine on every host: its host's launcher
 // reports it (alarm 3001), the coordinator E-stops and stops the run, and every launcher ends.
 TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
@@ -178,20 +286,50 @@ TEST(Hosts, AnAxisNodeKilledOnOneHostEStopsTheMachineOnEveryHost) {
   EXPECT_FALSE(events(read_trace(cell.trace()), "alarm", "launch").empty());
 }
 
-// A host that goes down during the run (its launcher killed, and its processes with it):
-// the coordinator notices its launcher gone when its DDS lease runs out, and E-stops the rest.
+// A host that goes down during the run: every process on ncu3 (its launcher, RouDi, CH3, X3 and
+// X3's drive) killed at once. The coordinator notices ncu3's launcher gone when its DDS lease
+// runs out and E-stops the rest, naming the host; Z3, on ncu2 and commanded by CH3, quick-stops
+// when its owner is lost. The axes of ncu1 and ncu2 stand still at the end, and no process of
+// the machine is left on any host.
 TEST(Hosts, AHostThatGoesDownDuringTheRunEStopsTheRest) {
   const CellOnThreeHosts cell(167);
   Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
   Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
   Background ncu1(cell.launcher("ncu1"), cell.domain(), cell.log("ncu1"));
   ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
-  ncu3.kill(SIGKILL);
+  std::map<pid_t, std::string> on_ncu3 = processes_on(cell.hosts(), "ncu3");
+  const auto runs = [&](const std::string& what) {
+    return std::any_of(on_ncu3.begin(), on_ncu3.end(),
+                       [&](const auto& p) { return p.second.find(what) != std::string::npos; });
+  };
+  ASSERT_TRUE(runs("--host ncu3") && runs("mcnc-channel") && runs("mcnc-axisnode") &&
+              runs("mcnc-drivesim") && runs("iox-roudi"))
+      << "ncu3 runs a launcher, a channel, an axis node, a drive and a RouDi: "
+      << testing::PrintToString(on_ncu3);
+  // A process started between a listing and the kill (a RouDi check) goes in the next round.
+  for (int round = 0; round < 5 && !on_ncu3.empty(); ++round) {
+    for (const auto& [pid, command] : on_ncu3) {
+      ::kill(pid, SIGKILL);
+    }
+    on_ncu3 = processes_on(cell.hosts(), "ncu3");
+  }
+  ASSERT_TRUE(on_ncu3.empty()) << on_ncu3.begin()->second;
   EXPECT_EQ(ncu3.wait(30s), -SIGKILL);
   EXPECT_EQ(ncu1.wait(120s), 1) << "the coordinator E-stopped the run";
   const std::string out = slurp(cell.log("ncu1") + ".out") + slurp(cell.log("ncu1") + ".err");
   EXPECT_NE(out.find("host ncu3: its launcher is gone"), std::string::npos) << out;
   EXPECT_GE(ncu2.wait(120s), 0) << "ncu2's launcher ends with the run";
+
+  const std::vector<nlohmann::json> trace = read_trace(cell.trace());
+  bool named = false;
+  for (const nlohmann::json& e : events(trace, "alarm", "launch")) {
+    named = named || (e["number"] == 3001 &&
+                      e["text"].get<std::string>().find("host ncu3") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << "the E-stop's alarm names the host";
+  expect_link_axis_quick_stopped(trace, "Z3");
+  expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1", "X2", "Z2", "S2", "Z3"});
+  expect_nothing_runs_on(cell.hosts(), {"ncu1", "ncu2", "ncu3"}, 15s);
 }
 
 // A host whose launcher never answers: the coordinator names it when its start-up time runs
@@ -276,58 +414,6 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
   EXPECT_EQ(misaligned, 0U);
 }
 
-namespace {
-
-// hostnet.py's verbs on the cell's hosts (cut, loss, heal).
-RunResult hostnet(const CellOnThreeHosts& cell, const std::vector<std::string>& verb) {
-  std::vector<std::string> argv{source("tests/hosts/hostnet.py"), verb.front(), "--prefix",
-                                "mhc" + std::to_string(cell.domain())};
-  argv.insert(argv.end(), verb.begin() + 1, verb.end());
-  return run(argv, -1, 30s);
-}
-
-// What a partition leaves: both sides E-stopped, every launcher ended, every drive at rest at
-// the end. `cut` is the host cut off from the two others.
-void expect_partition_stops_both_sides(const CellOnThreeHosts& cell, const std::string& cut,
-                                       Background& ncu1, Background& ncu2, Background& ncu3) {
-  std::map<std::string, Background*> launchers{{"ncu1", &ncu1}, {"ncu2", &ncu2}, {"ncu3", &ncu3}};
-  for (const auto& [host, launcher] : launchers) {
-    EXPECT_EQ(launcher->wait(120s), 1) << host << " E-stopped its side\n"
-                                       << slurp(cell.log(host) + ".err");
-  }
-  const std::string coordinator = slurp(cell.log("ncu1") + ".err");
-  if (cut == "ncu1") {
-    for (const std::string host : {"ncu2", "ncu3"}) {
-      EXPECT_NE(slurp(cell.log(host) + ".err").find("the coordinator on host ncu1 is gone"),
-                std::string::npos)
-          << host;
-    }
-    EXPECT_NE(coordinator.find("its launcher is gone"), std::string::npos) << coordinator;
-  } else {
-    EXPECT_NE(coordinator.find("host " + cut + ": its launcher is gone"), std::string::npos)
-        << coordinator;
-    EXPECT_NE(slurp(cell.log(cut) + ".err").find("the coordinator on host ncu1 is gone"),
-              std::string::npos)
-        << slurp(cell.log(cut) + ".err");
-  }
-}
-
-// Every axis named stands still at the end of its part of the trace: its last two positions
-// (K cycles apart) are the same. The merge happens on the coordinator's side, so only its
-// side's parts are surely complete.
-void expect_axes_at_rest_at_the_end(const std::vector<nlohmann::json>& trace,
-                                    const std::vector<std::string>& axes) {
-  for (const std::string& axis : axes) {
-    const std::vector<nlohmann::json> pos = events(trace, "pos", axis);
-    ASSERT_GE(pos.size(), 2U) << axis;
-    const double last = pos.back()["act"].get<double>();
-    const double before = pos[pos.size() - 2]["act"].get<double>();
-    EXPECT_NEAR(last, before, 1e-4) << axis << " still moved at cycle " << pos.back()["cycle"];
-  }
-}
-
-}  // namespace
-
 // A partition during motion, cut on the loader's side: ncu3 (CH3, X3) no longer hears ncu1 and
 // ncu2. On ncu1's side the coordinator E-stops when ncu3's launcher's lease runs out; Z3, the
 // link axis whose node is on ncu2 and whose channel is on ncu3, quick-stops when its owner is
@@ -342,11 +428,7 @@ TEST(Hosts, APartitionDuringMotionStopsTheMachineOnBothSidesOfTheCut) {
   ASSERT_EQ(hostnet(cell, {"cut", "ncu3"}).exit_code, 0);
   expect_partition_stops_both_sides(cell, "ncu3", ncu1, ncu2, ncu3);
   const std::vector<nlohmann::json> trace = read_trace(cell.trace());
-  bool z3_stopped = false;
-  for (const nlohmann::json& e : events(trace, "alarm", "Z3")) {
-    z3_stopped = z3_stopped || e["number"] == 2002 || e["number"] == 2001;
-  }
-  EXPECT_TRUE(z3_stopped) << "Z3 quick-stopped: its owner CH3 is on the other side";
+  expect_link_axis_quick_stopped(trace, "Z3");
   expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1", "X2", "Z2", "S2", "Z3"});
 }
 
@@ -360,9 +442,14 @@ TEST(Hosts, APartitionThatCutsOffTheCoordinatorStopsEveryHost) {
   ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
   ASSERT_EQ(hostnet(cell, {"cut", "ncu1"}).exit_code, 0);
   expect_partition_stops_both_sides(cell, "ncu1", ncu1, ncu2, ncu3);
-  expect_axes_at_rest_at_the_end(read_trace(cell.trace()), {"X1", "Z1", "A1", "S1"});
+  const std::vector<nlohmann::json> trace = read_trace(cell.trace());
+  expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1"});
 }
 
+// Loss on every link between the hosts (`percent` of the packets each host receives from the
+// others, iptables' statistic match) from before the launchers start, for `lasting` of the run
+// or to its end (0 s): the machine starts and runs on in lockstep, only slower (a lost sample
+// waits for its repair), and its trace is the one-host trace, event for event.
 // Loss on every link between the hosts (10 % of the packets each host receives from the others,
 // iptables' statistic match) from before the launchers start until 8 s into the run: the
 // machine starts and runs on in lockstep, only slower (a lost sample waits for its repair),

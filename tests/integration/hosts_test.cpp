@@ -246,6 +246,17 @@ void expect_link_axis_quick_stopped(const std::vector<nlohmann::json>& trace,
   EXPECT_TRUE(stopped) << axis << " quick-stopped: its owner is lost";
 }
 
+// After the link is back nothing moves again (decision 48: both sides ended their run, and only
+// a new run starts the machine): healed, and given the time a run takes to start, no process of
+// the machine runs on any host and the trace has not one event more.
+void expect_nothing_moves_after_heal(const CellOnThreeHosts& cell,
+                                     const std::vector<nlohmann::json>& trace) {
+  ASSERT_EQ(hostnet(cell, {"heal"}).exit_code, 0);
+  std::this_thread::sleep_for(5s);
+  expect_nothing_runs_on(cell.hosts(), {"ncu1", "ncu2", "ncu3"}, 15s);
+  EXPECT_EQ(read_trace(cell.trace()), trace) << "nothing was written after the heal";
+}
+
 // Every axis named stands still at the end of its part of the trace: its last two positions
 // (K cycles apart) are the same. The merge happens on the coordinator's side, so only its
 // side's parts are surely complete.
@@ -430,6 +441,7 @@ TEST(Hosts, APartitionDuringMotionStopsTheMachineOnBothSidesOfTheCut) {
   const std::vector<nlohmann::json> trace = read_trace(cell.trace());
   expect_link_axis_quick_stopped(trace, "Z3");
   expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1", "X2", "Z2", "S2", "Z3"});
+  expect_nothing_moves_after_heal(cell, trace);
 }
 
 // The same cut on the coordinator's side: ncu1 alone. ncu2's and ncu3's launchers each E-stop
@@ -444,6 +456,7 @@ TEST(Hosts, APartitionThatCutsOffTheCoordinatorStopsEveryHost) {
   expect_partition_stops_both_sides(cell, "ncu1", ncu1, ncu2, ncu3);
   const std::vector<nlohmann::json> trace = read_trace(cell.trace());
   expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1"});
+  expect_nothing_moves_after_heal(cell, trace);
 }
 
 // Loss on every link between the hosts (`percent` of the packets each host receives from the

@@ -267,6 +267,10 @@ LaunchResult Launcher::run(
   auto next_generation = [&] { return std::max(generation, node.run_control().generation) + 1; };
   // A follower whose coordinator is gone E-stops and stops its own host's processes.
   bool host_alone = false;
+  // The run's start, once sent: an E-stop or a stop carries it on. A realtime process takes its
+  // cycles' origin from every RunControl (cycle_loop.hpp), and with 0 its cycle numbers jumped
+  // to the host's uptime in cycles while its drive stopped.
+  std::int64_t run_start_ns = 0;
   auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
     if (follower && !host_alone) {
       return;  // the coordinator runs the machine
@@ -278,7 +282,10 @@ LaunchResult Launcher::run(
     rc.clock(options_.clock);
     // This launcher keeps no host clock offset: the start it read is machine time, as it was
     // sent, and stays the start of the run it ends.
-    rc.start_ns(follower ? node.run_control().start_ns : start_ns);
+    if (command == RUN_START) {
+      run_start_ns = start_ns;
+    }
+    rc.start_ns(follower ? node.run_control().start_ns : run_start_ns);
     rc.pace(options_.pace);
     rc.reason(reason);
     control_writer.write(rc);

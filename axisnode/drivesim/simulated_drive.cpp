@@ -47,10 +47,12 @@ std::uint32_t SimulatedDrive::apply_defaults(ObjectDefault* failed) noexcept {
   const double counts = params_.quick_stop_decel * params_.counts_per_unit;
   const ObjectDefault decel{0x6085, 0,
                             static_cast<std::int64_t>(std::clamp(counts, 1.0, 4294967295.0))};
-  // 0x6072: the drive's peak torque, until a master limits it.
+  // 0x6072: the drive's peak torque, until a master limits it. Rounded up, so that the whole
+  // per mille never limits below torque_limit itself (10 N m at 3 N m rated is 3333.3 per
+  // mille: 3333 would cap the torque at 9.999 N m and change every acceleration at the limit).
   const double peak = params_.torque_limit / std::max(params_.rated_torque, 1e-9) * 1000.0;
-  const ObjectDefault max_torque{0x6072, 0,
-                                 static_cast<std::int64_t>(std::clamp(peak, 0.0, 65535.0))};
+  const ObjectDefault max_torque{
+      0x6072, 0, static_cast<std::int64_t>(std::clamp(std::ceil(peak), 0.0, 65535.0))};
   for (const ObjectDefault& d : {decel, max_torque}) {
     if (const std::uint32_t e = write(d)) {
       if (failed != nullptr) {

@@ -17,7 +17,7 @@ constexpr double kCycle = 0.001;
 constexpr double kCounts = 10000.0;
 
 // Powered, started and enabled at 0, with a contact that holds the load at -12.5 from above:
-// peak torque 10 N m, rated 3 N m (0x6072's default: 3333 per mille).
+// peak torque 10 N m, rated 3 N m (0x6072's default: 3334 per mille, the peak rounded up).
 SimulatedDrive pressing_drive() {
   DriveParams p{1, kCounts, 0.004, 500.0, 5000.0, 0.0};
   p.contact_side = -1;
@@ -58,11 +58,11 @@ void press_down(SimulatedDrive& d, double until, std::uint16_t max_torque) {
 
 TEST(DriveTorqueLimit, WithoutALimitTheContactHoldsTheLoadAtThePeakTorque) {
   SimulatedDrive d = pressing_drive();
-  EXPECT_EQ(d.objects().max_torque(), 3333);  // 10 N m of 3 N m rated
+  EXPECT_EQ(d.objects().max_torque(), 3334);  // 10 N m of 3 N m rated, rounded up
   press_down(d, -13.0, 0);
   EXPECT_DOUBLE_EQ(d.position(), -12.5);
   EXPECT_EQ(d.velocity(), 0.0);
-  EXPECT_NEAR(std::abs(d.torque()), 9.999, 1e-9);  // 0x6072: 3333 per mille of 3 N m
+  EXPECT_DOUBLE_EQ(std::abs(d.torque()), 10.0);  // the peak itself: 0x6072 does not cut it
   EXPECT_EQ(d.objects().live.torque, -3333);
   EXPECT_EQ(d.objects().live.following_error, -5000);  // the target 0.5 below the contact
 }

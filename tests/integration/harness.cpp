@@ -21,6 +21,7 @@
 #include <fstream>
 #include <iostream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -405,6 +406,111 @@ std::vector<nlohmann::json> trace_until_end(const std::vector<nlohmann::json>& t
     }
   }
   return kept;
+}
+
+std::vector<nlohmann::json> run_programs(const std::string& machine_file, int domain,
+                                         const std::map<std::string, std::string>& programs) {
+  TestMachine machine(machine_file, domain);
+  const std::string trace = machine.file("trace.jsonl");
+  std::vector<std::string> argv{bin("mcnc"), "run", machine.path(), "--trace", trace};
+  for (const auto& [channel, program] : programs) {
+    argv.insert(argv.end(), {"--program", channel + "=" + source(program)});
+  }
+  const RunResult r = run(argv, -1, std::chrono::seconds(300));
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  return trace_until_end(read_trace(trace));
+}
+
+std::vector<nlohmann::json> run_programs(const std::string& machine_file, int domain,
+                                         const std::string& ch1, const std::string& ch2) {
+  return run_programs(machine_file, domain, {{"CH1", ch1}, {"CH2", ch2}});
+}
+
+std::string HostsRun::host_of(const std::string& process) const {
+  const mcnc::config::HostConfig* host = machine.host_of(process);
+  return host == nullptr ? "" : host->name;
+}
+
+HostsRun run_across_hosts(const std::string& machine_file, int domain,
+                          const std::vector<HostPart>& hosts,
+                          const std::map<std::string, std::string>& programs) {
+  const TestMachine machine(machine_file, domain);
+  // In the build tree: the hosts share it, each has a /tmp of its own.
+  const std::string dir = std::string(MCNC_BINARY_DIR) + "/hosts-run-" + std::to_string(domain);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string text = slurp(machine.path());
+  text = text.substr(0, text.find("\nhosts:")) + "\nhosts:\n";
+  std::string names;
+  std::string offsets;
+  const std::vector<std::string> offset_ms{"3", "-7", "5", "-2"};
+  for (std::size_t i = 0; i < hosts.size(); ++i) {
+    text += "  - {name: " + hosts[i].name + ", runs: [" + hosts[i].runs + "]}\n";
+    names += (i == 0 ? "" : ",") + hosts[i].name;
+    if (i > 0) {
+      offsets += (i == 1 ? "" : ",") + hosts[i].name + "=" + offset_ms.at(i - 1);
+    }
+  }
+  const std::string machine_path = dir + "/" + machine_file;
+  std::ofstream(machine_path) << text;
+  HostsRun result{{}, mcnc::config::load_machine_file(machine_path)};
+  {
+    const SimulatedHosts simulated("mhx" + std::to_string(domain), names, offsets,
+                                   "10.77." + std::to_string(domain));
+    const auto launcher = [&](const std::string& host) {
+      std::vector<std::string> argv{
+          bin("mcnc"), "run", machine_path, "--trace", dir + "/trace.jsonl",
+          "--timeout", "120", "--host",     host};
+      for (const auto& [channel, program] : programs) {
+        argv.insert(argv.end(), {"--program", channel + "=" + source(program)});
+      }
+      return simulated.on(host, argv);
+    };
+    std::vector<std::unique_ptr<Background>> followers;
+    for (std::size_t i = 1; i < hosts.size(); ++i) {
+      followers.push_back(
+          std::make_unique<Background>(launcher(hosts[i].name), domain, dir + "/" + hosts[i].name));
+    }
+    const RunResult coordinator =
+        run(launcher(hosts.front().name), domain, std::chrono::seconds(240));
+    EXPECT_EQ(coordinator.exit_code, 0) << coordinator.out << coordinator.err;
+    for (std::size_t i = 1; i < hosts.size(); ++i) {
+      EXPECT_EQ(followers[i - 1]->wait(std::chrono::seconds(60)), 0)
+          << slurp(dir + "/" + hosts[i].name + ".err");
+    }
+  }
+  const std::vector<nlohmann::json> trace = read_trace(dir + "/trace.jsonl");
+  std::set<std::string> clocks;
+  for (const nlohmann::json& e : events(trace, "clock", "launch")) {
+    clocks.insert(e["host"].get<std::string>());
+  }
+  EXPECT_EQ(clocks.size(), hosts.size()) << "every host's clock is in the trace";
+  result.trace = trace_until_end(trace);
+  fs::remove_all(dir);
+  return result;
+}
+
+void expect_same_trace(const std::vector<nlohmann::json>& one_host,
+                       std::vector<nlohmann::json> across) {
+  std::erase_if(across, [](const nlohmann::json& e) { return e["ev"] == "clock"; });
+  ASSERT_GT(one_host.size(), 1000U);
+  ASSERT_EQ(one_host.size(), across.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < one_host.size() && differ < 5; ++i) {
+    if (one_host[i] != across[i]) {
+      ++differ;
+      ADD_FAILURE() << "event " << i << "\n" << one_host[i].dump() << "\n" << across[i].dump();
+    }
+  }
+}
+
+std::size_t count(const std::vector<nlohmann::json>& trace, const std::string& ev,
+                  const std::string& key, const std::string& value) {
+  std::size_t n = 0;
+  for (const nlohmann::json& e : trace) {
+    n += e["ev"] == ev && e.value(key, "") == value && e["cycle"] != 0 ? 1 : 0;
+  }
+  return n;
 }
 
 }  // namespace mcnc::test

@@ -5,8 +5,10 @@
 
 #include <sys/types.h>
 #include "../support/eventually.hpp"
+#include "common/config/machine_config.hpp"
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 #include <thread>
@@ -138,6 +140,41 @@ class SimulatedHosts {
  private:
   std::string prefix_;
 };
+
+// `mcnc run` of a machine file of launch/machines/ on this host, with `programs` (channel ->
+// source tree path); expects a clean end and returns the trace up to it.
+std::vector<nlohmann::json> run_programs(const std::string& machine_file, int domain,
+                                         const std::map<std::string, std::string>& programs);
+std::vector<nlohmann::json> run_programs(const std::string& machine_file, int domain,
+                                         const std::string& ch1, const std::string& ch2);
+
+// What one simulated host runs: its name and its `runs:` ("CH1, X1, can0").
+struct HostPart {
+  std::string name;
+  std::string runs;
+};
+
+// A run of a machine file of launch/machines/ with `hosts` as its `hosts:` section, across
+// simulated hosts (the second's clock 3 ms ahead, the third's 7 ms behind), a launcher on each,
+// the first coordinating. Expects every launcher to end cleanly and every host's clock in the
+// trace: the run really spanned them.
+struct HostsRun {
+  std::vector<nlohmann::json> trace;    // merged, up to its end
+  mcnc::config::MachineConfig machine;  // the file as run: where each process was
+  [[nodiscard]] std::string host_of(const std::string& process) const;
+};
+HostsRun run_across_hosts(const std::string& machine_file, int domain,
+                          const std::vector<HostPart>& hosts,
+                          const std::map<std::string, std::string>& programs);
+
+// Two lockstep traces of the same machine and programs, one of them across hosts, are equal
+// event for event (the hosts' clocks, only in a run across hosts, left out).
+void expect_same_trace(const std::vector<nlohmann::json>& one_host,
+                       std::vector<nlohmann::json> across);
+
+// Events `ev` whose `key` is `value`, after cycle 0.
+std::size_t count(const std::vector<nlohmann::json>& trace, const std::string& ev,
+                  const std::string& key, const std::string& value);
 
 // pids of processes whose command line contains `needle`.
 std::vector<pid_t> pids_with_arg(const std::string& needle);

@@ -29,45 +29,6 @@
 using namespace mcnc::test;
 using namespace std::chrono_literals;
 
-namespace {
-
-std::vector<nlohmann::json> run_programs(const std::string& machine_file, int domain,
-                                         const std::string& ch1, const std::string& ch2) {
-  TestMachine machine(machine_file, domain);
-  const std::string trace = machine.file("trace.jsonl");
-  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--trace", trace, "--program",
-                           "CH1=" + source(ch1), "--program", "CH2=" + source(ch2)},
-                          -1, 300s);
-  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
-  return trace_until_end(read_trace(trace));
-}
-
-void expect_same_trace(const std::vector<nlohmann::json>& turret,
-                       std::vector<nlohmann::json> cell) {
-  // Each host's clock is in the trace only of a machine across hosts.
-  std::erase_if(cell, [](const nlohmann::json& e) { return e["ev"] == "clock"; });
-  ASSERT_GT(turret.size(), 1000U);
-  ASSERT_EQ(turret.size(), cell.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < turret.size() && differ < 5; ++i) {
-    if (turret[i] != cell[i]) {
-      ++differ;
-      ADD_FAILURE() << "event " << i << "\n" << turret[i].dump() << "\n" << cell[i].dump();
-    }
-  }
-}
-
-std::size_t count(const std::vector<nlohmann::json>& trace, const std::string& ev,
-                  const std::string& key, const std::string& value) {
-  std::size_t n = 0;
-  for (const nlohmann::json& e : trace) {
-    n += e["ev"] == ev && e.value(key, "") == value && e["cycle"] != 0 ? 1 : 0;
-  }
-  return n;
-}
-
-}  // namespace
-
 TEST(Hosts, TheCellOfThreeHostsOnOneHostRunsAsTheTwinTurret) {
   const std::string ch1 = "launch/programs/part_transfer_ch1.nc";
   const std::string ch2 = "launch/programs/part_transfer_ch2.nc";

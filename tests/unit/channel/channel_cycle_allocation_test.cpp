@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -110,7 +111,10 @@ class CountedRig : public ChannelRig {
 
 TEST(ChannelCycle, NeverAllocatesOverM98G71MacroLoopsAFeedHoldAndAG144Call) {
   const std::filesystem::path dir = program_directory();
-  CountedRig rig(dir);
+  // On the heap: the fixed-capacity parts of a channel (interpreter, planner, controller) no
+  // longer fit a thread's stack together with the test's frames.
+  const auto owned = std::make_unique<CountedRig>(dir);
+  CountedRig& rig = *owned;
   rig.load(main_program());
   rig.ctl().request_start();
   // Halfway through the G71 (the roughing passes go below Z-40): a feed hold of 300 cycles.

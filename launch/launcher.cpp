@@ -267,11 +267,12 @@ LaunchResult Launcher::run(
   auto next_generation = [&] { return std::max(generation, node.run_control().generation) + 1; };
   // A follower whose coordinator is gone E-stops and stops its own host's processes.
   bool host_alone = false;
-  // The run's start, once sent: an E-stop or a stop carries it on. A realtime process takes its
-  // cycles' origin from every RunControl (cycle_loop.hpp), and with 0 its cycle numbers jumped
-  // to the host's uptime in cycles while its drive stopped.
+  // The run's start, set before RUN_START is sent: every RunControl carries it, an E-stop or a
+  // stop too. A realtime process takes its cycles' origin from every RunControl
+  // (cycle_loop.hpp), and with 0 its cycle numbers jumped to the host's uptime in cycles while
+  // its drive stopped.
   std::int64_t run_start_ns = 0;
-  auto send_control = [&](RunCommand command, std::int64_t start_ns, const std::string& reason) {
+  auto send_control = [&](RunCommand command, const std::string& reason) {
     if (follower && !host_alone) {
       return;  // the coordinator runs the machine
     }
@@ -282,9 +283,6 @@ LaunchResult Launcher::run(
     rc.clock(options_.clock);
     // This launcher keeps no host clock offset: the start it read is machine time, as it was
     // sent, and stays the start of the run it ends.
-    if (command == RUN_START) {
-      run_start_ns = start_ns;
-    }
     rc.start_ns(follower ? node.run_control().start_ns : run_start_ns);
     rc.pace(options_.pace);
     rc.reason(reason);
@@ -576,7 +574,7 @@ LaunchResult Launcher::run(
         node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
         host_alone = true;
         estopped = true;
-        send_control(RUN_ESTOP, 0, failure);
+        send_control(RUN_ESTOP, failure);
         wait_drives_at_rest();
         break;
       }
@@ -608,7 +606,8 @@ LaunchResult Launcher::run(
     const bool started = failure.empty();
     if (started) {
       // Realtime: cycle 0 a little in the future so every process starts on the same tick.
-      send_control(RUN_START, clock::monotonic_ns() + 100'000'000, "");
+      run_start_ns = clock::monotonic_ns() + 100'000'000;
+      send_control(RUN_START, "");
     } else {
       spdlog::error("not started: {}", failure);  // nothing moved: no E-stop
     }
@@ -774,7 +773,7 @@ LaunchResult Launcher::run(
       tracer.emit(last_cycle, "alarm", "\"number\":3001,\"text\":\"emergency stop: %s\"",
                   failure.c_str());
       node.raise_alarm(3001, ("emergency stop: " + failure).c_str(), last_cycle);
-      send_control(RUN_ESTOP, 0, failure);
+      send_control(RUN_ESTOP, failure);
       resume_stopped_children();
       wait_drives_at_rest();
     }
@@ -783,7 +782,7 @@ LaunchResult Launcher::run(
   // 3. Stop: ask politely (DDS processes by run control, drive simulators by SIGTERM once
   // their nodes are gone), then insist.
   note_run_shm();
-  send_control(RUN_STOP, 0, failure);
+  send_control(RUN_STOP, failure);
   auto wait_all = [&](std::chrono::milliseconds timeout, bool dds_only = false) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     for (;;) {

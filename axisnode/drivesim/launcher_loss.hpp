@@ -6,7 +6,6 @@
 // and leaves once they have been quiet for `quiet`, or `limit` after it saw the launcher gone.
 // Pure: the caller says what time it is and what came.
 #include <chrono>
-#include <optional>
 
 namespace mcnc::drivesim {
 
@@ -23,20 +22,24 @@ class LauncherLoss {
     if (!launcher_gone) {
       return false;
     }
-    if (!gone_since_) {
+    if (!gone_seen_) {
+      gone_seen_ = true;
       gone_since_ = now;
       last_frame_ = now;
     }
     if (frame_came) {
       last_frame_ = now;
     }
-    return now - last_frame_ >= quiet_ || now - *gone_since_ >= limit_;
+    return now - last_frame_ >= quiet_ || now - gone_since_ >= limit_;
   }
 
  private:
   Clock::duration quiet_;
   Clock::duration limit_;
-  std::optional<Clock::time_point> gone_since_;
+  // A flag beside plain time points, not an optional: GCC 12 at -O2 takes the optional's value
+  // for uninitialised once inlined into the simulator's loop (-Wmaybe-uninitialized).
+  bool gone_seen_ = false;
+  Clock::time_point gone_since_{};
   Clock::time_point last_frame_{};
 };
 

@@ -24,6 +24,16 @@ void ChannelController::axis_lost(std::size_t axis) noexcept {
   }
 }
 
+void ChannelController::tell_lost_axis() noexcept {
+  if (lost_axis_ != 0 && !lost_axis_told_ && out_.state != ChannelState::alarm) {
+    lost_axis_told_ = true;
+    raise(kAlarmAxisLost,
+          lost_axis_ > setup_.axis_count ? "spindle node lost: no feedback"
+                                         : "axis node lost: no feedback",
+          out_.line, 0, static_cast<int>(lost_axis_));
+  }
+}
+
 void ChannelController::set_single_block(bool on) noexcept {
   single_block_ = on;
   planner_.set_single_block(on);
@@ -196,6 +206,14 @@ const CycleOutput& ChannelController::run_cycle(
     raise(kAlarmCoordinationLost, why, out_.line, 0, 0);
   }
 
+  // Across hosts a lost axis or partner and the launchers' E-stop for the host that went come
+  // together, in either order: the loss is still told, which axis or channel went.
+  if (estop_requested_) {
+    coordination_.run_held_if_partner_lost(cycle, feedback);
+  }
+  if (estop_requested_ || estopped_) {
+    tell_lost_axis();
+  }
   if (estop_requested_) {
     // Latched in any state, also before the axes came up: reset, and stay there.
     estop_requested_ = false;
@@ -256,12 +274,7 @@ const CycleOutput& ChannelController::run_cycle(
         break;
       }
     }
-    if (lost_axis_ != 0 && out_.state != ChannelState::alarm) {
-      raise(kAlarmAxisLost,
-            lost_axis_ > setup_.axis_count ? "spindle node lost: no feedback"
-                                           : "axis node lost: no feedback",
-            out_.line, 0, static_cast<int>(lost_axis_));
-    }
+    tell_lost_axis();
   }
   if (out_.state == ChannelState::alarm) {
     hold_outputs(position_known_);

@@ -116,7 +116,8 @@ class ChannelController : private ChannelHost {
   // A program alarm found before the run (e.g. when the program was loaded): raised at the next
   // cycle, so it stands in that cycle's events.
   void report_alarm(const interp::ProgramAlarm& alarm) { pending_alarm_ = alarm; }
-  // An owned axis's node is gone (`axis` counts the spindles after the axes): alarm and hold.
+  // An owned axis's node is gone (`axis` counts the spindles after the axes): alarm and hold,
+  // also after an E-stop (a host cut off: its loss and the E-stop come together).
   void axis_lost(std::size_t axis) noexcept;
 
   // Coordination inputs, given before cycle(): another channel's G04.1 arrival (applied in
@@ -234,6 +235,8 @@ class ChannelController : private ChannelHost {
                     std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;
   void finish_reset() noexcept;
+  // Alarm 1202 for the axis or spindle axis_lost() named, once, unless an alarm stands.
+  void tell_lost_axis() noexcept;
   void forget_program_run() noexcept;  // the queue, the end and the alarms of a program run
   // Starts (or repeats) the program of the call this channel serves.
   void start_served_call(std::uint64_t cycle) noexcept;
@@ -261,13 +264,14 @@ class ChannelController : private ChannelHost {
   double spindle_override_ = 1.0;
   bool estop_requested_ = false;
   bool reset_requested_ = false;
-  bool resetting_ = false;     // ramping down for a reset
-  bool after_reset_ = false;   // reset done, waiting for the axes to be enabled without alarms
-  bool estopped_ = false;      // an emergency stop: a reset does not undo it
-  std::size_t lost_axis_ = 0;  // axis index + 1
-  bool halted_ = false;        // an alarm or emergency stop ended the run
-  BlockQueue queued_;          // the blocks the planner took, until their end event
-  interp::Command end_{};      // the program end, once pulled
+  bool resetting_ = false;       // ramping down for a reset
+  bool after_reset_ = false;     // reset done, waiting for the axes to be enabled without alarms
+  bool estopped_ = false;        // an emergency stop: a reset does not undo it
+  std::size_t lost_axis_ = 0;    // axis index + 1
+  bool lost_axis_told_ = false;  // alarm 1202 raised for it (once: a lost node never returns)
+  bool halted_ = false;          // an alarm or emergency stop ended the run
+  BlockQueue queued_;            // the blocks the planner took, until their end event
+  interp::Command end_{};        // the program end, once pulled
   bool end_pulled_ = false;
   bool end_started_ = false;
   std::optional<interp::ProgramAlarm> source_alarm_;  // raised when the blocks before it ran

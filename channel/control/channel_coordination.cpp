@@ -209,6 +209,18 @@ void ChannelCoordination::run_held(std::uint64_t cycle,
   std::visit([&](auto& b) { run(b, cycle, feedback); }, held_);
 }
 
+void ChannelCoordination::run_held_if_partner_lost(
+    std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept {
+  const std::uint32_t callee = waiting_for_call();
+  const bool waits_for_lost =
+      (std::holds_alternative<SyncStop>(held_) &&
+       (mark_.barrier().missing() & lost_partners_).any()) ||
+      (callee != 0 && callee <= coordination::kMaxChannels && lost_partners_.test(callee));
+  if (waits_for_lost && in_run()) {
+    run_held(cycle, feedback);
+  }
+}
+
 std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
     const interp::AxisVector& from, const interp::Command& c) const {
   const auto away = c.moves() ? exchange_.foreign_slot(from, c.to) : std::nullopt;

@@ -93,6 +93,11 @@ class ChannelCoordination {
   // One cycle of the held block, once every block before it ended.
   void run_held(std::uint64_t cycle,
                 std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  // The held G04.1 or G144 waits for a channel whose process is gone: one cycle of it, which
+  // raises that alarm (1213, 1222). For the cycle an E-stop arrives in, before it ends the wait:
+  // across hosts the loss and the E-stop come together, and the alarm says which partner went.
+  void run_held_if_partner_lost(std::uint64_t cycle,
+                                std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   // A pulled move of an axis the channel does not command from `from`: the alarm it is.
   [[nodiscard]] std::optional<interp::ProgramAlarm> foreign_move(const interp::AxisVector& from,
                                                                  const interp::Command& c) const;

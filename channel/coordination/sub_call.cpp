@@ -173,7 +173,9 @@ CallStep SubCall::step_reached(std::uint64_t cycle, const ChannelSet& lost,
 
 CallStep SubCall::step_sent(const ChannelSet& lost) noexcept {
   if (!ended_ && call_.target <= kMaxChannels && lost.test(call_.target)) {
-    ended_ = CallRelease{call_.call_id, self_, call_.target, CallOutcome::aborted};  // gone
+    alarm_.set(kAlarmCallFailed, "G144: channel %u is gone before it released this channel",
+               call_.target);
+    return CallStep::alarm;
   }
   if (!ended_) {
     return CallStep::pending;  // H1: until the called channel's G145 or end

@@ -664,6 +664,52 @@ TEST(ChannelController, AxisLostRaises1202) {
   }
 }
 
+// Across hosts an owned axis's loss and the launchers' E-stop for the host that went come
+// together, in either order: the channel still says which axis it lost.
+TEST(ChannelController, AnAxisLostWithTheEmergencyStopIsStillTold) {
+  Rig rig;
+  rig.load("G00 Z80\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 40; ++i) {
+    rig.step();
+  }
+  rig.ctl_.axis_lost(1);
+  rig.ctl_.emergency_stop();
+  rig.step();
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisLost);
+  EXPECT_EQ(rig.ctl_.last_alarm().axis, 2);
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+  EXPECT_EQ(rig.last.state, ChannelState::reset);  // the E-stop stands over the alarm
+  EXPECT_FALSE(rig.last.setpoints[1].valid);
+  for (int i = 0; i < 20; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);  // told once
+}
+
+TEST(ChannelController, AnAxisLostAfterTheEmergencyStopIsStillTold) {
+  Rig rig;
+  rig.load("G00 Z80\nM30\n");
+  rig.ctl_.request_start();
+  for (int i = 0; i < 40; ++i) {
+    rig.step();
+  }
+  rig.ctl_.emergency_stop();
+  for (int i = 0; i < 5; ++i) {
+    rig.step();
+  }
+  ASSERT_EQ(rig.ctl_.alarm_count(), 0u);
+  rig.ctl_.axis_lost(0);
+  rig.step();
+  EXPECT_EQ(rig.ctl_.last_alarm().number, kAlarmAxisLost);
+  EXPECT_EQ(rig.ctl_.last_alarm().axis, 1);
+  EXPECT_FALSE(rig.last.setpoints[0].valid);
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_FALSE(rig.step().setpoints[0].valid);
+  }
+  EXPECT_EQ(rig.ctl_.alarm_count(), 1u);
+}
+
 TEST(ChannelController, EmergencyStopGoesToResetAndStays) {
   Rig rig;
   rig.load("G00 Z80\nM30\n");
@@ -1355,6 +1401,27 @@ TEST(ChannelSync, APartnerGoneWhileWaitedForIsAnAlarm) {
   EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncPartnerLost);
 }
 
+TEST(ChannelSync, APartnerGoneWithTheEmergencyStopIsStillTold) {
+  SyncRig s("G04.1 P1 Q12\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  s.rig.ctl_.partner_lost(2);
+  s.rig.ctl_.emergency_stop();
+  s.rig.step();
+  EXPECT_EQ(s.rig.ctl_.last_alarm().number, kAlarmSyncPartnerLost);
+  EXPECT_EQ(s.rig.ctl_.alarm_count(), 1u);
+  EXPECT_EQ(s.rig.last.state, ChannelState::reset);
+}
+
+TEST(ChannelSync, TheEmergencyStopAloneEndsTheWaitWithoutAlarm) {
+  SyncRig s("G04.1 P1 Q12\nM30\n");
+  ASSERT_TRUE(s.run_to_arrival());
+  s.rig.ctl_.partner_lost(3);  // not a participant
+  s.rig.ctl_.emergency_stop();
+  s.rig.step();
+  EXPECT_EQ(s.rig.ctl_.alarm_count(), 0u);
+  EXPECT_EQ(s.rig.last.state, ChannelState::reset);
+}
+
 TEST(ChannelSync, ResetWhileWaitingEndsTheWaitAndTheNextRunArrivesInTheNextRound) {
   SyncRig s("G04.1 P1 Q12\nG01 Z1 F300\nM30\n");
   ASSERT_TRUE(s.run_to_arrival());
@@ -1800,6 +1867,25 @@ TEST(ChannelCall, WaitingForATargetStillBusyWithTheEarlierCallEndsAfterTheTimeou
   }
   EXPECT_TRUE(patient.last(1).program_end);
   EXPECT_EQ(patient.src2.calls.size(), 2U);
+}
+
+// The called channel's process goes while the caller waits for its G145, and the E-stop for
+// its host comes in the same cycle: the caller says which channel went.
+TEST(ChannelCall, ACalledChannelGoneWithTheEmergencyStopIsStillTold) {
+  TwoChannels m({g144(3, 1, 2, 2000, true), program_end(4, 2)}, {}, {{2000, called_program(true)}});
+  m.ctl(1).request_start();
+  for (int i = 0; i < 20; ++i) {
+    m.step();
+  }
+  ASSERT_EQ(m.last(1).state, ChannelState::waiting);
+  m.ctl(1).partner_lost(2);
+  m.ctl(1).emergency_stop();
+  m.step();
+  EXPECT_EQ(m.ctl(1).last_alarm().number, kAlarmCallFailed);
+  EXPECT_NE(std::string(m.ctl(1).last_alarm().text.data()).find("channel 2 is gone"),
+            std::string::npos)
+      << m.ctl(1).last_alarm().text.data();
+  EXPECT_EQ(m.last(1).state, ChannelState::reset);
 }
 
 TEST(ChannelCall, ACallToAChannelWhoseProcessIsGoneIsAnAlarm) {

@@ -47,6 +47,22 @@ std::string slurp(const std::string& path) {
   return s.str();
 }
 
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+    ++n;
+  }
+  return n;
+}
+
+std::string svg_group(const std::string& svg, const std::string& ch) {
+  const auto from = svg.find("<g data-channel=\"" + ch + "\">");
+  if (from == std::string::npos) {
+    return "";
+  }
+  return svg.substr(from, svg.find("\n</g>", from) - from);
+}
+
 bool insert_in_machine_file(const TestMachine& machine, const std::string& after,
                             const std::string& text) {
   std::string yaml = slurp(machine.path());

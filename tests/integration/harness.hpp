@@ -76,6 +76,10 @@ class Background {
 
 // The whole content of a file ("" when it cannot be read).
 std::string slurp(const std::string& path);
+// How many times `what` occurs in `text`.
+std::size_t occurrences(const std::string& text, const std::string& what);
+// The run report timeline's lane of channel `ch` (docs/report.md): its <g data-channel> group.
+std::string svg_group(const std::string& svg, const std::string& ch);
 
 // Inserts `text` into the machine file of `machine` after the first occurrence of `after` (whole
 // lines, with their newlines). False, and the file unchanged, when `after` is not there.

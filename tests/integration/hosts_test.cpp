@@ -110,11 +110,46 @@ TEST(Hosts, TheCellRunsAcrossThreeHostsWithALauncherOnEachAsOnOneHost) {
   const CellOnThreeHosts cell(165);
   Background ncu2(cell.launcher("ncu2"), cell.domain(), cell.log("ncu2"));
   Background ncu3(cell.launcher("ncu3"), cell.domain(), cell.log("ncu3"));
-  const RunResult coordinator = run(cell.launcher("ncu1"), cell.domain(), 240s);
+  const std::string report = cell.log("report");
+  const RunResult coordinator =
+      run(cell.launcher("ncu1", {"--report", report}), cell.domain(), 240s);
   EXPECT_EQ(coordinator.exit_code, 0) << coordinator.out << coordinator.err;
   EXPECT_EQ(ncu2.wait(60s), 0) << slurp(cell.log("ncu2") + ".err");
   EXPECT_EQ(ncu3.wait(60s), 0) << slurp(cell.log("ncu3") + ".err");
   expect_same_trace(one_host, trace_until_end(read_trace(cell.trace())));
+
+  // The coordinator's report is the whole machine's (docs/report.md): a lane per channel, CH3's
+  // from ncu3; the turrets met at both marks; the loader's toolpath joins X3 (ncu3) and Z3
+  // (ncu2); the page names each channel's end.
+  const std::string timeline = slurp(report + "/timeline.svg");
+  for (const std::string ch : {"CH1", "CH2"}) {
+    const std::string lane = svg_group(timeline, ch);
+    EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"1\""), 1U) << ch;
+    EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"2\""), 1U) << ch;
+  }
+  EXPECT_GT(occurrences(svg_group(timeline, "CH3"), "class=\"block\""), 3U) << timeline;
+  EXPECT_EQ(occurrences(slurp(report + "/toolpath-CH3.svg"), "<path class=\"toolpath\""), 1U);
+  const std::string page = slurp(report + "/report.html");
+  EXPECT_NE(page.find("<td>CH1</td><td>M30</td>"), std::string::npos);
+  EXPECT_NE(page.find("<td>CH2</td><td>M30</td>"), std::string::npos);
+  const std::string summary = slurp(report + "/summary.txt");
+  EXPECT_EQ(summary.rfind("machine cell_3ncu: ok, ", 0), 0U) << summary;
+  for (const std::string ch : {"CH1", "CH2", "CH3"}) {  // CH3 ends its called program, M99
+    EXPECT_NE(summary.find("\n" + ch + ": ended M"), std::string::npos) << ch << "\n" << summary;
+  }
+}
+
+// `--host` names a host the machine file does not have: exit 2 with the name and the file,
+// before anything starts (no RouDi, no process of the machine).
+TEST(Hosts, AnUnknownHostExits2AndStartsNothing) {
+  const TestMachine machine("cell_3ncu.yaml", 119);
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source(CellOnThreeHosts::kCh1), "--host", "ncu9"},
+                          machine.domain(), 60s);
+  EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("--host ncu9: " + machine.path() + " names no such host"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "nothing may be started";
 }
 
 namespace {

@@ -54,30 +54,6 @@ std::string variant(const TestMachine& machine, const std::string& program, cons
   return out;
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::size_t occurrences(const std::string& text, const std::string& what) {
-  std::size_t n = 0;
-  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
-    ++n;
-  }
-  return n;
-}
-
-// The run report timeline's lane of channel `ch`: its <g data-channel> group.
-std::string svg_group(const std::string& svg, const std::string& ch) {
-  const auto from = svg.find("<g data-channel=\"" + ch + "\">");
-  if (from == std::string::npos) {
-    return "";
-  }
-  return svg.substr(from, svg.find("\n</g>", from) - from);
-}
-
 // The cycle of the first event `ev` of channel `ch` whose fields match `match`.
 std::uint64_t cycle_of(const Trace& trace, const std::string& ev, const std::string& ch,
                        const nlohmann::json& match = nlohmann::json::object()) {
@@ -651,21 +627,20 @@ TEST(MultiChannel, TwinTurretLoaderAndTurretsInTheirOrder) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // The report (docs/report.md): a lane per channel with both marks where both channels met,
   // and a toolpath per channel with its marks on it.
-  const std::string timeline = read_file(machine.file("report/timeline.svg"));
+  const std::string timeline = slurp(machine.file("report/timeline.svg"));
   for (const std::string ch : {"CH1", "CH2"}) {
     const std::string lane = svg_group(timeline, ch);
     EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"1\""), 1U) << ch;
     EXPECT_EQ(occurrences(lane, "class=\"sync\" data-p=\"2\""), 1U) << ch;
     EXPECT_GT(occurrences(lane, "class=\"block\""), 5U) << ch;
-    const std::string path = read_file(machine.file("report/toolpath-" + ch + ".svg"));
+    const std::string path = slurp(machine.file("report/toolpath-" + ch + ".svg"));
     EXPECT_EQ(occurrences(path, "<path class=\"toolpath\""), 1U) << ch;
     EXPECT_EQ(occurrences(path, "class=\"sync\""), 2U) << ch;
   }
   EXPECT_GE(occurrences(svg_group(timeline, "CH2"), "class=\"wait\""), 2U);  // P1 and P2
-  EXPECT_EQ(
-      occurrences(read_file(machine.file("report/toolpath-CH3.svg")), "<path class=\"toolpath\""),
-      1U);  // the loader's
-  const std::string page = read_file(machine.file("report/report.html"));
+  EXPECT_EQ(occurrences(slurp(machine.file("report/toolpath-CH3.svg")), "<path class=\"toolpath\""),
+            1U);  // the loader's
+  const std::string page = slurp(machine.file("report/report.html"));
   EXPECT_EQ(occurrences(page, "<svg"), 4U);  // the timeline and three toolpaths
   EXPECT_NE(page.find("<td>CH1</td><td>M30</td>"), std::string::npos);
   const Trace& t = r.trace;
@@ -751,7 +726,7 @@ TEST(MultiChannel, AxisExchangeAsTheSpecExample) {
   const Trace& t = r.trace;
   // The report's timeline shows the release on CH1's lane, the take-over on CH2's and the
   // restore on CH1's.
-  const std::string timeline = read_file(machine.file("report/timeline.svg"));
+  const std::string timeline = slurp(machine.file("report/timeline.svg"));
   EXPECT_EQ(occurrences(svg_group(timeline, "CH1"), "class=\"owner\" data-axis=\"A1\""), 2U);
   EXPECT_EQ(occurrences(svg_group(timeline, "CH2"), "class=\"owner\" data-axis=\"A1\""), 1U);
   // A belongs to channel 1, is released, goes to channel 2, and after G142 to channel 1 again.

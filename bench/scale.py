@@ -19,7 +19,7 @@ unless one answers (its start is in the whole run, not in the run phase).
 Figures, not a test: bench/README.md has them with this command.
 
 Usage: bench/scale.py [--build DIR] [--no-realtime] [--middleware fastdds,cyclonedds]
-                      [--protection off,access,sign,encrypt] [--domain D]
+                      [--protection off,access,sign,encrypt] [--domain D] [--start-timeout S]
                       [--axes 2|4] [--cycle-us US] [--axes-per-bus K] [--realtime-s S]
                       [N ...]
        (default N: 1 2 4 8 16)
@@ -49,7 +49,7 @@ G01 X0 Z0 F720
 
 
 def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwell_s,
-        protection="off"):
+        protection="off", start_timeout=None):
     with tempfile.TemporaryDirectory() as tmp:
         machine = os.path.join(tmp, "m.yaml")
         with open(machine, "w") as f:
@@ -70,6 +70,8 @@ def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwe
         trace = os.path.join(tmp, "t.jsonl")
         argv = [os.path.join(build, "bin", "mcnc"), "run", machine, "--clock", clock,
                 "--trace", trace, "--trace-pos-every", "1000", "--timeout", "600"]
+        if start_timeout is not None:
+            argv += ["--start-timeout", str(start_timeout)]
         for c in range(1, channels + 1):
             argv += ["--program", f"CH{c}={prog}"]
         env = dict(os.environ, MCNC_DOMAIN=str(domain))
@@ -96,7 +98,7 @@ def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwe
             cycles = int(m.group(1)) if m else 0
         return {"code": code, "cycles": cycles, "wall": end - start,
                 "run": end - (run_start or start), "cpu": cpu, "alarms": alarms,
-                "tail": text[-1500:]}
+                "tail": text[-1500:], "text": text}
 
 
 def main():
@@ -106,6 +108,7 @@ def main():
     ap.add_argument("--middleware", default="fastdds,cyclonedds")
     ap.add_argument("--protection", default="off")
     ap.add_argument("--domain", type=int, default=None)
+    ap.add_argument("--start-timeout", type=float, default=None)
     ap.add_argument("--axes", type=int, choices=[2, 4], default=2)
     ap.add_argument("--cycle-us", type=int, default=2000)
     ap.add_argument("--axes-per-bus", type=int, default=4)
@@ -124,18 +127,19 @@ def main():
                                     for pr in args.protection.split(",")):
         domain = 60 + 2 * i if args.domain is None else args.domain
         lock = run(args.build, n, "lockstep", domain, mw, args.axes, cycle_us,
-                   args.axes_per_bus, 0.0, pr)
+                   args.axes_per_bus, 0.0, pr, args.start_timeout)
         if lock["code"] != 0 or lock["cycles"] == 0:
             print(f"| {n} | {mw} | {pr} | the lockstep run failed (exit {lock['code']}) "
                   f"| | | | |", flush=True)
-            print(lock["tail"], file=sys.stderr)
+            print("".join(re.findall(r"^failed:.*\n", lock["text"], re.M)) + lock["tail"],
+                  file=sys.stderr)
             continue
         machine_s = lock["cycles"] * cycle_us / 1e6
         per_cycle = lock["cpu"] / lock["cycles"] * 1e6
         realtime = "not run"
         if not args.no_realtime:
             rt = run(args.build, n, "realtime", domain + 1, mw, args.axes, cycle_us,
-                     args.axes_per_bus, dwell_s, pr)
+                     args.axes_per_bus, dwell_s, pr, args.start_timeout)
             share = 100 * rt["cpu"] / rt["wall"]
             if rt["code"] == 0:
                 realtime = f"runs, {share:.0f} % of one core"

@@ -165,6 +165,10 @@ void add_run_options(CLI::App& app, RunArguments& args) {
   app.add_option("--report", args.report_dir, "write a run report into DIR");
   app.add_option("--log-level", args.log_level, "log level of every process");
   app.add_option("--timeout", args.timeout_s, "E-stop the run after this many seconds (0: none)");
+  app.add_option("--start-timeout", args.start_timeout_s,
+                 "give up the start when a process is not ready after this many seconds "
+                 "(default 60; a large secured machine's handshakes may need more)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--drive-fault", args.drive_faults,
                  "fault injection: BUS:NODE:KIND@SYNC, KIND overcurrent, following_error or "
                  "heartbeat_stop (repeatable)");
@@ -223,6 +227,9 @@ std::vector<std::string> run_argv(const RunArguments& args) {
   option("--log-level", args.log_level);
   if (args.timeout_s > 0) {
     option("--timeout", std::to_string(args.timeout_s));
+  }
+  if (args.start_timeout_s != RunArguments{}.start_timeout_s) {
+    option("--start-timeout", std::to_string(args.start_timeout_s));
   }
   each("--drive-fault", args.drive_faults);
   each("--drive-refuse-sdo", args.drive_sdo_refusals);
@@ -309,6 +316,7 @@ int execute_run(const RunArguments& args) {
   options.bin_dir = executable_dir();
   options.log_level = args.log_level;
   options.run_timeout_s = args.timeout_s;
+  options.start_timeout_s = args.start_timeout_s;
   if (!args.program_dir.empty()) {
     options.program_dir = machine.program_dir;
   }

@@ -22,6 +22,7 @@ struct RunArguments {
   std::string report_dir;
   std::string log_level;
   double timeout_s = 0.0;
+  double start_timeout_s = 60.0;                // --start-timeout: every process ready within it
   std::vector<std::string> drive_faults;        // BUS:NODE:KIND@SYNC (fault injection)
   std::vector<std::string> drive_sdo_refusals;  // BUS:NODE:INDEX (fault injection)
   std::vector<std::string> operator_script;     // ACTION[:CHANNEL]@CYCLE (scripted operator)

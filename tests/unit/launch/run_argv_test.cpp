@@ -32,6 +32,7 @@ void expect_same(const RunArguments& a, const RunArguments& b) {
   EXPECT_EQ(a.report_dir, b.report_dir);
   EXPECT_EQ(a.log_level, b.log_level);
   EXPECT_DOUBLE_EQ(a.timeout_s, b.timeout_s);
+  EXPECT_DOUBLE_EQ(a.start_timeout_s, b.start_timeout_s);
   EXPECT_EQ(a.drive_faults, b.drive_faults);
   EXPECT_EQ(a.drive_sdo_refusals, b.drive_sdo_refusals);
   EXPECT_EQ(a.operator_script, b.operator_script);
@@ -69,6 +70,8 @@ TEST(RunArgv, EveryOptionComesBackAsItWasGiven) {
                                 "debug",
                                 "--timeout",
                                 "12.5",
+                                "--start-timeout",
+                                "240",
                                 "--drive-fault",
                                 "can0:1:overcurrent@100",
                                 "--drive-refuse-sdo",
@@ -95,6 +98,7 @@ TEST(RunArgv, EveryOptionComesBackAsItWasGiven) {
 
 TEST(RunArgv, DefaultsStayDefaultsAndTheHmiWithoutAnAddressStaysSo) {
   const RunArguments none = parse({"m.yaml"});
+  EXPECT_DOUBLE_EQ(none.start_timeout_s, 60.0) << "the start-up limit of every machine until now";
   expect_same(none, round_trip(none));
   const RunArguments hmi = parse({"m.yaml", "--hmi"});
   expect_same(hmi, round_trip(hmi));

@@ -6,11 +6,7 @@
 # Usage: [MIDDLEWARES="cyclonedds fastdds"] [PROTECTIONS="off access sign encrypt"]
 #        bench/security_price.sh [BUILD_DIR] [MACHINE CH=PROGRAM...]
 # (default: the twin turret's CT-G1141-01 part transfer; paths relative to the source tree)
-set -euo pipefail
-build=$(cd "${1:-build}" && pwd)
-here=$(cd "$(dirname "$0")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/security_bench.sh"
 machine=${2:-launch/machines/twin_turret.yaml}
 shift $(( $# < 2 ? $# : 2 ))
 programs=()
@@ -28,12 +24,7 @@ printf '%-10s %-11s %7s %8s %14s\n' middleware protection cycles wall "CPU per c
 for middleware in ${MIDDLEWARES:-cyclonedds fastdds}; do
   for protection in ${PROTECTIONS:-off access sign encrypt}; do
     dir="$tmp/$middleware-$protection"
-    mkdir -p "$dir"
-    sed "s|^machine:|machine:\n  middleware: $middleware|" "$tmp/base.yaml" > "$dir/m.yaml"
-    if [ "$protection" != off ]; then
-      "$build/bin/mcnc" certs "$dir/m.yaml" "$dir/certs" --protection "$protection" > /dev/null
-      sed -i "s|^machine:|machine:\n  security_dir: certs|" "$dir/m.yaml"
-    fi
+    secured_machine "$build" "$tmp/base.yaml" "$dir" "$middleware" "$protection"
     times=$( { time MCNC_DOMAIN=76 "$build/bin/mcnc" run "$dir/m.yaml" "${programs[@]}" \
                  --log-level warn > "$dir/out" 2>&1; } 2>&1 ) ||
       { echo "$middleware $protection failed:"; grep -v '^\[' "$dir/out" | tail -5; continue; }

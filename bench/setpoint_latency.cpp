@@ -1,9 +1,12 @@
 // Setpoint latency, channel publish -> drive receipt of the RPDO, in the realtime clock.
-// This program plays the channel (and mcnc-launch): it starts the real drive simulator and
-// axis nodes of a machine, publishes one AxisSetpoint per cycle for the first axis of the first
-// channel whose position encodes the cycle number, and listens on the CAN bus for the axis
-// node's RPDOs. The latency of cycle k is (RPDO with target k received) - (setpoint k written).
-// It includes the designed one-cycle delay (a setpoint stamped N is applied at N+1).
+// This program plays the channel: it starts the real drive simulator and axis nodes of a
+// machine, publishes one AxisSetpoint per cycle for the first axis of the first channel whose
+// position encodes the cycle number, and listens on the CAN bus for the axis node's RPDOs. The
+// latency of cycle k is (RPDO with target k received) - (setpoint k written). It includes the
+// designed one-cycle delay (a setpoint stamped N is applied at N+1).
+// The launcher's part, the run control, is a second process of this program (--run-control):
+// on a secured machine (security_dir) each plays with its own identity, since only the
+// launcher's may write run control and one process holds one identity on a domain.
 #include "canopen/cia402/drive_pdos.hpp"
 #include "canopen/frames.hpp"
 #include "common/can/can_bus.hpp"
@@ -11,7 +14,9 @@
 #include "common/config/machine_config.hpp"
 #include "common/process/process_node.hpp"
 #include "common/process/shm_cleanup.hpp"
+#include "common/process/startup.hpp"
 #include "launch/child_process.hpp"
+#include "launch/host_roudi.hpp"
 #include "launch/self_path.hpp"
 
 #include <fcntl.h>
@@ -27,19 +32,52 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
 using namespace mcnc;
 using namespace std::chrono_literals;
 
+namespace {
+
+// The launcher's part: RUN_START now for `start_ns`, RUN_STOP at `stop_ns` (CLOCK_MONOTONIC,
+// one clock on one host). Run control is reliable and transient-local: an axis node that
+// authenticates late still gets the start.
+int send_run_control(const config::MachineConfig& machine, int domain, std::int64_t start_ns,
+                     std::int64_t stop_ns) {
+  process::ProcessNode node(
+      domain, "launch", dds::CyclicClock::realtime, process::resolve_middleware(machine, "launch"),
+      dds::LocalTransport::network, process::resolve_security_or_exit(machine, "launch"));
+  dds::Writer<RunControl> control(node.participant());
+  RunControl rc;
+  rc.generation(1);
+  rc.command(RUN_START);
+  rc.clock(REALTIME_CLOCK);
+  rc.start_ns(start_ns);
+  control.write(rc);
+  clock::sleep_until_ns(stop_ns);
+  rc.generation(2);
+  rc.command(RUN_STOP);
+  control.write(rc);
+  std::this_thread::sleep_for(500ms);  // delivered before the participant goes
+  return 0;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"setpoint latency: channel publish -> RPDO at the drive (realtime clock)"};
   std::string machine_path;
   int cycles = 10000;
+  std::vector<std::int64_t> run_control;
   app.add_option("machine", machine_path, "machine file")->required();
   app.add_option("--cycles", cycles, "cycles to measure");
+  app.add_option("--run-control", run_control,
+                 "START_NS STOP_NS: be the launcher's part, the second process of this bench")
+      ->expected(2);
   // Across hosts (bench/hosts_setpoint_latency.py): the drive simulator and axis nodes start on
   // another host, and the bus is listened to from inside that host's network namespace, so
   // that both times stay on this process's clock.
@@ -57,7 +95,15 @@ int main(int argc, char** argv) {
   const config::AxisConfig& axis = *machine.find_axis(channel.axes.at(0));
   const config::BusConfig& bus = *machine.find_bus(axis.bus);
   const int domain = process::resolve_domain(machine);
+  if (run_control.size() == 2) {
+    return send_run_control(machine, domain, run_control[0], run_control[1]);
+  }
   const std::string bin = launch::executable_dir();
+  // On Cyclone DDS the cyclic samples go through the host's RouDi: this one, or one started.
+  std::optional<launch::HostRoudi> roudi;
+  if (launch::needs_roudi(machine, false)) {
+    roudi.emplace(machine.axes.size() + 2, false);
+  }
 
   std::vector<std::string> prefix;
   {
@@ -86,7 +132,9 @@ int main(int argc, char** argv) {
 
   clock::prepare_realtime_process();
   process::ProcessNode node(domain, channel.name, dds::CyclicClock::realtime,
-                            process::resolve_middleware(machine, channel.name));
+                            process::resolve_middleware(machine, channel.name),
+                            dds::LocalTransport::shared_memory,
+                            process::resolve_security_or_exit(machine, channel.name));
   std::mutex mutex;
   std::map<std::string, ProcessPhase> phases;
   dds::Reader<ProcessState> states(node.participant(),
@@ -101,7 +149,6 @@ int main(int argc, char** argv) {
   }
   dds::Reader<AxisFeedback> feedback(node.participant(), dds::Keys::of(channel.axes),
                                      [](const AxisFeedback&, const dds::WriterId&) {});
-  dds::Writer<RunControl> control(node.participant());
 
   // Receive RPDOs on the bus: target counts -> receive time.
   const std::int64_t cycle_ns = static_cast<std::int64_t>(machine.cycle_us) * 1000;
@@ -160,19 +207,22 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "axis nodes did not come up\n");
     return 1;
   }
-  const std::int64_t start_ns = clock::monotonic_ns() + 200'000'000;
-  RunControl rc;
-  rc.generation(1);
-  rc.command(RUN_START);
-  rc.clock(REALTIME_CLOCK);
-  rc.start_ns(start_ns);
-  control.write(rc);
+  // Time for the launcher's part to start and (secured) authenticate with the axis nodes.
+  const std::int64_t start_ns = clock::monotonic_ns() + 2'000'000'000;
+  const std::uint64_t total_cycles = static_cast<std::uint64_t>(cycles + warmup);
+  const std::int64_t stop_ns =
+      start_ns + static_cast<std::int64_t>(total_cycles) * cycle_ns + 100'000'000;
+  children.emplace_back(
+      "launch",
+      std::vector<std::string>{bin + "/mcnc_bench_setpoint_latency", machine_path, "--run-control",
+                               std::to_string(start_ns), std::to_string(stop_ns)});
+  children.back().start(env);
 
   // Setpoint k carries position k counts, so the RPDO target identifies it: a creep of one
   // count a cycle from where the axis stands, which its following-error limit allows (a jump
   // to a far position, as this bench once sent, ends in alarm 2009 and a quick stop).
   const double counts = axis.counts_per_unit;
-  const auto total = static_cast<std::uint64_t>(cycles + warmup);
+  const std::uint64_t total = total_cycles;
   for (std::uint64_t cycle = 0; cycle < total; ++cycle) {
     clock::sleep_until_ns(start_ns + static_cast<std::int64_t>(cycle) * cycle_ns);
     for (std::size_t k = 0; k < channel.axes.size(); ++k) {
@@ -189,10 +239,7 @@ int main(int argc, char** argv) {
       setpoints[k]->write(sp);
     }
   }
-  std::this_thread::sleep_for(100ms);
-  rc.generation(2);
-  rc.command(RUN_STOP);
-  control.write(rc);
+  clock::sleep_until_ns(stop_ns);  // the launcher's part stops the run
   stop = true;
   listener.join();
   for (auto& c : children) {

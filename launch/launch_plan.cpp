@@ -1,5 +1,7 @@
 #include "launch/launch_plan.hpp"
 
+#include <algorithm>
+
 namespace mcnc::launch {
 
 std::string trace_part(const std::string& parts_dir, const std::string& name) {
@@ -110,6 +112,24 @@ LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions
   plan.trace_parts = channel_parts;
   plan.trace_parts.insert(plan.trace_parts.end(), other_parts.begin(), other_parts.end());
   return plan;
+}
+
+std::vector<std::vector<std::size_t>> start_waves(const LaunchPlan& plan, bool secured) {
+  std::vector<std::vector<std::size_t>> waves(1);
+  const bool staggered = secured && plan.dds_processes.size() > kUnstaggeredDdsProcesses;
+  std::size_t in_wave = 0;  // DDS processes in the last wave
+  for (std::size_t i = 0; i < plan.children.size(); ++i) {
+    const bool dds = std::find(plan.dds_processes.begin(), plan.dds_processes.end(),
+                               plan.children[i].name) != plan.dds_processes.end();
+    if (staggered && dds && in_wave == kStartWave) {
+      waves.emplace_back();
+      in_wave = 0;
+    }
+    // A child without DDS joins the first wave: it waits for no handshake.
+    (dds ? waves.back() : waves.front()).push_back(i);
+    in_wave += dds ? 1 : 0;
+  }
+  return waves;
 }
 
 }  // namespace mcnc::launch

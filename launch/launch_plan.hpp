@@ -8,6 +8,7 @@
 #include "common/config/machine_config.hpp"
 #include "launch/launcher.hpp"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -35,5 +36,18 @@ std::string trace_part(const std::string& parts_dir, const std::string& name);
 // whose processes to start ("": every process, a machine of one host).
 LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions& options,
                        const std::string& parts_dir, const std::string& host = "");
+
+// A secured machine of more DDS processes than this starts them in waves of kStartWave
+// (decision 200): every pair of participants authenticates, and handshakes all begun at once
+// queue behind each other for longer than Cyclone DDS's one-second resend, which then breaks
+// them. The twin turret (15) and every smaller or unsecured machine start all at once.
+inline constexpr std::size_t kUnstaggeredDdsProcesses = 16;
+inline constexpr std::size_t kStartWave = 8;
+
+// The plan's children in the waves they start in, as indices into plan.children in start
+// order: the first wave holds every child that speaks no DDS (the drive simulators) and the
+// first kStartWave DDS processes, each later wave the next kStartWave. One wave, every child,
+// unless `secured` and the machine has more than kUnstaggeredDdsProcesses DDS processes.
+std::vector<std::vector<std::size_t>> start_waves(const LaunchPlan& plan, bool secured);
 
 }  // namespace mcnc::launch

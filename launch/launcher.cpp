@@ -24,6 +24,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstring>
@@ -53,6 +54,9 @@ constexpr std::chrono::seconds kTraceShippingWait{20};
 // node's first feedback sample (a node not heard by then is gone).
 constexpr std::chrono::seconds kDrivesAtRestWait{5};
 constexpr std::chrono::seconds kDriveHeardWait{2};
+// A wave of a secured machine's start (launch_plan.hpp, start_waves) waits for the last one to
+// be heard at most this long.
+constexpr std::chrono::seconds kStartWaveWait{10};
 // The most one look of the run's supervision counts towards a lockstep machine standing still.
 constexpr std::chrono::milliseconds kLookLateCap{100};
 
@@ -310,10 +314,46 @@ LaunchResult Launcher::run(
       }
     }
   };
-  for (auto& child : children) {
-    child.start(env);
-    spdlog::debug("started {} (pid {})", child.name(), child.pid());
+  // A large secured machine starts in waves (decision 200): the next once this launcher has
+  // heard every DDS process of the last (its participant made, its handshake with this one
+  // done), or after kStartWaveWait. Any other machine starts every child at once, as before.
+  const std::vector<std::vector<std::size_t>> waves =
+      start_waves(plan, !machine_.security_dir.empty());
+  std::size_t next_wave = 0;
+  auto wave_started = std::chrono::steady_clock::now();
+  const auto start_wave = [&] {
+    for (const std::size_t i : waves[next_wave]) {
+      children[i].start(env);
+      spdlog::debug("started {} (pid {})", children[i].name(), children[i].pid());
+    }
+    ++next_wave;
+    wave_started = std::chrono::steady_clock::now();
+  };
+  start_wave();
+  if (waves.size() > 1) {
+    spdlog::info("secured machine of {} DDS processes: starting them in {} waves",
+                 dds_processes.size(), waves.size());
   }
+  // Starts the next wave when the last one has been heard: true once every wave has started.
+  const auto start_next_wave = [&] {
+    if (next_wave == waves.size()) {
+      return true;
+    }
+    bool heard = true;
+    wake.update([&] {
+      for (const std::size_t i : waves[next_wave - 1]) {
+        const std::string& name = children[i].name();
+        const bool dds =
+            std::find(dds_processes.begin(), dds_processes.end(), name) != dds_processes.end();
+        heard = heard && (!dds || seen.phases.count(name) != 0);
+      }
+    });
+    if (heard || std::chrono::steady_clock::now() >= wave_started + kStartWaveWait) {
+      start_wave();
+      note_run_shm();
+    }
+    return next_wave == waves.size();
+  };
   if (!options_.host.empty()) {
     // The coordinator watches the other hosts by it, and they watch the coordinator.
     node.announce(PHASE_RUNNING);
@@ -502,6 +542,7 @@ LaunchResult Launcher::run(
       failure = lost + " during start-up";
       break;
     }
+    const bool all_started = start_next_wave();
     std::string not_ready;  // the processes still starting, for the operator
     wake.update([&] {
       for (const auto& name : dds_processes) {
@@ -519,7 +560,7 @@ LaunchResult Launcher::run(
         not_ready += (not_ready.empty() ? "" : ", ") + machine_.hosts[h].name + "'s clock";
       }
     }
-    if (not_ready.empty()) {
+    if (not_ready.empty() && all_started) {
       break;
     }
     if (std::chrono::steady_clock::now() > start_deadline || process::g_stop_signal != 0) {
@@ -824,6 +865,9 @@ LaunchResult Launcher::run(
   }
   const bool run_failed = !failure.empty();
   for (auto& child : children) {
+    if (child.pid() <= 0) {
+      continue;  // a wave the start never reached
+    }
     ChildExit exit_facts;
     exit_facts.exit_code = child.exit_code();
     exit_facts.killed_by_launcher = sent_kill;

@@ -80,3 +80,61 @@ TEST(LaunchPlan, AHostsLauncherStartsWhatItsHostRunsAndWaitsForEveryProcess) {
 
 }  // namespace
 }  // namespace mcnc::launch
+
+namespace mcnc::launch {
+namespace {
+
+// A plan of `buses` drive simulators and `dds` DDS processes, in start order.
+LaunchPlan plan_of(std::size_t buses, std::size_t dds) {
+  LaunchPlan plan;
+  for (std::size_t b = 0; b < buses; ++b) {
+    plan.children.push_back({"drivesim-can" + std::to_string(b), {}});
+  }
+  for (std::size_t p = 0; p < dds; ++p) {
+    plan.children.push_back({"P" + std::to_string(p), {}});
+    plan.dds_processes.push_back("P" + std::to_string(p));
+  }
+  return plan;
+}
+
+std::vector<std::size_t> all(std::size_t n) {
+  std::vector<std::size_t> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = i;
+  }
+  return out;
+}
+
+TEST(StartWaves, AnUnsecuredOrSmallMachineStartsEveryChildAtOnce) {
+  EXPECT_EQ(start_waves(plan_of(8, 48), false), (std::vector<std::vector<std::size_t>>{all(56)}));
+  // The twin turret's size and one more: all at once, as before.
+  EXPECT_EQ(start_waves(plan_of(2, 15), true), (std::vector<std::vector<std::size_t>>{all(17)}));
+  EXPECT_EQ(start_waves(plan_of(2, kUnstaggeredDdsProcesses), true).size(), 1U);
+}
+
+TEST(StartWaves, ALargeSecuredMachineStartsItsDdsProcessesInWavesInStartOrder) {
+  const LaunchPlan plan = plan_of(8, 48);  // the scale bench at N = 16
+  const auto waves = start_waves(plan, true);
+  ASSERT_EQ(waves.size(), 48 / kStartWave);
+  std::vector<std::size_t> order;
+  for (const auto& wave : waves) {
+    std::size_t dds = 0;
+    for (const std::size_t i : wave) {
+      order.push_back(i);
+      dds += plan.children[i].name.rfind("drivesim-", 0) == 0 ? 0 : 1;
+    }
+    EXPECT_EQ(dds, kStartWave);
+  }
+  EXPECT_EQ(order, all(56)) << "every child once, the drive simulators in the first wave";
+}
+
+TEST(StartWaves, TheLastWaveTakesWhatIsLeft) {
+  const auto waves = start_waves(plan_of(1, kStartWave * 2 + 3), true);
+  ASSERT_EQ(waves.size(), 3U);
+  EXPECT_EQ(waves[0].size(), 1 + kStartWave);
+  EXPECT_EQ(waves[1].size(), kStartWave);
+  EXPECT_EQ(waves[2].size(), 3U);
+}
+
+}  // namespace
+}  // namespace mcnc::launch

@@ -38,7 +38,7 @@ LaunchPlan launch_plan(const config::MachineConfig& machine, const LaunchOptions
                        const std::string& parts_dir, const std::string& host = "");
 
 // A secured machine of more DDS processes than this starts them in waves of kStartWave
-// (decision 200): every pair of participants authenticates, and handshakes all begun at once
+// (decision 112): every pair of participants authenticates, and handshakes all begun at once
 // queue behind each other for longer than Cyclone DDS's one-second resend, which then breaks
 // them. The twin turret (15) and every smaller or unsecured machine start all at once.
 inline constexpr std::size_t kUnstaggeredDdsProcesses = 16;

@@ -314,7 +314,7 @@ LaunchResult Launcher::run(
       }
     }
   };
-  // A large secured machine starts in waves (decision 200): the next once this launcher has
+  // A large secured machine starts in waves (decision 112): the next once this launcher has
   // heard every DDS process of the last (its participant made, its handshake with this one
   // done), or after kStartWaveWait. Any other machine starts every child at once, as before.
   const std::vector<std::vector<std::size_t>> waves =

@@ -43,8 +43,30 @@ constexpr std::array<bool, 256> kShapeMarks = [] {
   return marks;
 }();
 
+// The marks that are not blanks: a line without any (most blocks) has no comment, bracket or
+// program-number word, and its first executable character is its first non-blank one.
+constexpr std::array<bool, 256> kShapeMarksBesidesBlanks = [] {
+  std::array<bool, 256> marks = kShapeMarks;
+  marks[static_cast<unsigned char>(' ')] = false;
+  marks[static_cast<unsigned char>('\t')] = false;
+  return marks;
+}();
+
 LineShape shape_of(std::string_view line) {
   LineShape shape;
+  bool any_mark = false;
+  for (const char c : line) {
+    any_mark |= kShapeMarksBesidesBlanks[static_cast<unsigned char>(c)];
+  }
+  if (!any_mark) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      if (!is_blank(line[i])) {
+        shape.first_exec = i;
+        break;
+      }
+    }
+    return shape;
+  }
   int depth = 0;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];

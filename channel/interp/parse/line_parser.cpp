@@ -47,21 +47,15 @@ constexpr int kExactDigits = 15;
 constexpr std::array<double, kExactDigits + 1> kPowersOfTen{
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
 
-// `text`: digits with at most one '.', at most kExactDigits of them.
-double exact_decimal(std::string_view text) {
-  std::uint64_t mantissa = 0;
-  std::size_t decimals = 0;
-  bool after_point = false;
-  for (const char c : text) {
-    if (c == '.') {
-      after_point = true;
-      continue;
-    }
-    mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
-    decimals += after_point ? 1 : 0;
+// The characters that may start a comment or cut the line (`(`, `;`, `//`); a single '/' (a
+// block skip) is one of them and stays as it is.
+constexpr std::array<bool, 256> kCommentMarks = [] {
+  std::array<bool, 256> marks{};
+  for (const char c : {';', '/', '('}) {
+    marks[static_cast<unsigned char>(c)] = true;
   }
-  return static_cast<double>(mantissa) / kPowersOfTen[decimals];
-}
+  return marks;
+}();
 
 std::string describe_char(char c) {
   const auto byte = static_cast<unsigned char>(c);
@@ -78,8 +72,8 @@ std::string describe_char(char c) {
 // and cut at `;` or `//`.
 class LineParser {
  public:
-  LineParser(const std::string& text, LineParse& out, Arena& arena)
-      : text_(text), out_(out), arena_(arena) {}
+  LineParser(const std::string& text, Line& line, std::optional<ParseError>& error, Arena& arena)
+      : text_(text), line_(line), error_(error), arena_(arena) {}
 
   void run() {
     skip_blanks();
@@ -91,11 +85,11 @@ class LineParser {
     }
     if (peek() == '/') {
       ++pos_;
-      out_.line.skip_level = 1;
+      line_.skip_level = 1;
       if (!at_end() && is_digit(peek())) {
-        out_.line.skip_level = peek() - '0';
+        line_.skip_level = peek() - '0';
         ++pos_;
-        if (out_.line.skip_level == 0) {
+        if (line_.skip_level == 0) {
           fail(alarm::kBadBlockSkip, "block skip level must be 1-9", pos_);
           return;
         }
@@ -123,7 +117,7 @@ class LineParser {
     if (at_end()) {
       return;
     }
-    parse_statement(out_.line.statement);
+    parse_statement(line_.statement);
   }
 
  private:
@@ -135,15 +129,15 @@ class LineParser {
       ++pos_;
     }
   }
-  bool failed() const { return out_.error.has_value(); }
+  bool failed() const { return error_.has_value(); }
   void fail(int number, std::string text, std::size_t index) {
-    if (!out_.error) {
-      out_.error = ParseError{number, std::move(text), column(index)};
+    if (!error_) {
+      error_ = ParseError{number, std::move(text), column(index)};
     }
   }
   void fail_at_column(int number, std::string text, int col) {
-    if (!out_.error) {
-      out_.error = ParseError{number, std::move(text), col};
+    if (!error_) {
+      error_ = ParseError{number, std::move(text), col};
     }
   }
 
@@ -169,8 +163,8 @@ class LineParser {
     }
     std::int64_t n = 0;
     std::from_chars(text_.data() + digits, text_.data() + pos_, n);
-    out_.line.sequence = n;
-    out_.line.sequence_column = column(start);
+    line_.sequence = n;
+    line_.sequence_column = column(start);
     return true;
   }
 
@@ -477,7 +471,10 @@ class LineParser {
     if (i < text_.size() && (is_digit(text_[i]) || text_[i] == '.')) {
       const std::size_t begin = i;
       int digits = 0;
+      int decimals = 0;
+      std::uint64_t mantissa = 0;  // the digits as one integer: exact up to kExactDigits
       while (i < text_.size() && is_digit(text_[i])) {
+        mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
         ++i;
         ++digits;
       }
@@ -485,8 +482,10 @@ class LineParser {
         w.has_point = true;
         ++i;
         while (i < text_.size() && is_digit(text_[i])) {
+          mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
           ++i;
           ++digits;
+          ++decimals;
         }
       }
       if (digits == 0 || (i < text_.size() && (text_[i] == '.' || text_[i] == '#' ||
@@ -497,7 +496,8 @@ class LineParser {
       }
       double magnitude = 0.0;
       if (digits <= kExactDigits) {
-        magnitude = exact_decimal(std::string_view(text_).substr(begin, i - begin));
+        magnitude =
+            static_cast<double>(mantissa) / kPowersOfTen[static_cast<std::size_t>(decimals)];
       } else {
         const auto [ptr, ec] = std::from_chars(text_.data() + begin, text_.data() + i, magnitude);
         if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
@@ -542,7 +542,8 @@ class LineParser {
   }
 
   const std::string& text_;
-  LineParse& out_;
+  Line& line_;
+  std::optional<ParseError>& error_;
   Arena& arena_;
   std::size_t pos_ = 0;
 };
@@ -551,7 +552,13 @@ class LineParser {
 
 LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
   LineParse out;
-  out.line.line = line_number;
+  out.error = parse_line_into(text, line_number, arena, out.line);
+  return out;
+}
+
+std::optional<ParseError> parse_line_into(std::string_view text, int line_number, Arena& arena,
+                                          Line& line) {
+  line.line = line_number;
   if (!text.empty() && text.back() == '\r') {
     text.remove_suffix(1);
   }
@@ -563,6 +570,10 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
   bool have_message = false;
   for (std::size_t i = 0; i < work.size(); ++i) {
     const char c = work[i];
+    if (!kCommentMarks[static_cast<unsigned char>(c)]) {
+      work[i] = to_upper(c);
+      continue;
+    }
     if (c == ';' || (c == '/' && i + 1 < work.size() && work[i + 1] == '/')) {
       end = i;
       break;
@@ -570,13 +581,12 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
     if (c == '(') {
       const std::size_t close = work.find(')', i + 1);
       if (close == std::string::npos) {
-        out.error = ParseError{alarm::kUnclosedComment, "comment '(' not closed on its line",
-                               static_cast<int>(i) + 1};
-        return out;
+        return ParseError{alarm::kUnclosedComment, "comment '(' not closed on its line",
+                          static_cast<int>(i) + 1};
       }
       if (!have_message) {
         arena.messages.emplace_back(text.substr(i + 1, close - i - 1));
-        out.line.message = static_cast<int>(arena.messages.size()) - 1;
+        line.message = static_cast<int>(arena.messages.size()) - 1;
         have_message = true;
       }
       for (std::size_t j = i; j <= close; ++j) {
@@ -585,12 +595,12 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
       i = close;
       continue;
     }
-    work[i] = to_upper(c);
   }
   work.resize(end);
-  LineParser parser(work, out, arena);
+  std::optional<ParseError> error;
+  LineParser parser(work, line, error, arena);
   parser.run();
-  return out;
+  return error;
 }
 
 }  // namespace mcnc::interp::parse

@@ -25,5 +25,9 @@ struct LineParse {
 // `text` without its line terminator (a trailing '\r' is tolerated); `line_number` is stored.
 // Words and expressions go to `arena`; the line refers to them by index.
 LineParse parse_line(std::string_view text, int line_number, Arena& arena);
+// The same into `line`, a default-constructed Line (a loaded program's lines are parsed in
+// place); the parse error, if any (then `line` holds what was parsed before it).
+std::optional<ParseError> parse_line_into(std::string_view text, int line_number, Arena& arena,
+                                          Line& line);
 
 }  // namespace mcnc::interp::parse

@@ -198,14 +198,14 @@ struct ParsedProgramLoader {
   // Adds line `raw` to `chunk`; its parse error, if any.
   static std::optional<ParseError> add(ParsedProgram::Chunk& chunk, const program::RawLine& raw,
                                        std::uint64_t& checksum) {
-    LineParse parsed = parse_line(raw.text, raw.line, chunk.arena);
-    if (parsed.error) {
-      return std::move(parsed.error);
+    Line& line = chunk.lines.emplace_back();
+    if (std::optional<ParseError> error = parse_line_into(raw.text, raw.line, chunk.arena, line)) {
+      chunk.lines.pop_back();
+      return error;
     }
     chunk.text.append(raw.text);
     chunk.text.push_back('\n');
     chunk.lengths.push_back(raw.text.size());
-    chunk.lines.push_back(std::move(parsed.line));
     checksum = checksum_line(checksum, raw.text);
     return std::nullopt;
   }

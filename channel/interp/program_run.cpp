@@ -791,8 +791,10 @@ Command& ProgramRun::emit(Op op) {
   c.block_text = line_ != nullptr ? line_->text : std::string_view();
   c.file = file_;
   for (std::size_t k = 0; k < kShownModalGroups.size(); ++k) {
+    // A G code is >= 0 with at most one decimal: adding a half and truncating rounds it as
+    // std::lround would, without a library call per group and command.
     const double g = modal_codes_[static_cast<std::size_t>(kShownModalGroups[k])];
-    c.modal.g[k] = static_cast<std::uint16_t>(std::lround(g * 10.0));
+    c.modal.g[k] = static_cast<std::uint16_t>(g * 10.0 + 0.5);
   }
   c.modal.feed = feed_;
   c.to = machine_;

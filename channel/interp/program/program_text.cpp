@@ -200,44 +200,6 @@ std::optional<ProgramAlarm> parse_header(std::string_view line, std::size_t o_at
   return std::nullopt;
 }
 
-// The extent of the tape, and whether it has O lines. Dafeng spec L113 (manual L285):
-// everything after `%` is ignored. A `%` with nothing but blank or comment lines before it is
-// the leader of a punched-tape style file (`%` / O… / `%`, GSK and FANUC practice), so the tape
-// starts after it and ends at the next `%` line, or at the end of the file.
-struct Tape {
-  std::uint64_t begin = 0;  // byte offsets
-  std::uint64_t end = 0;
-  int first_line = 1;
-  bool any_o_line = false;
-  bool read = true;  // false: the text could not be read
-};
-
-Tape tape_of(const TextSource& text) {
-  Tape tape;
-  tape.end = text.size();
-  LineReader reader(text, 0, text.size(), 1);
-  RawLine raw;
-  bool leader = true;  // no block yet: a `%` here is the leader
-  while (reader.next(raw)) {
-    if (is_percent_line(raw.text)) {
-      if (leader) {
-        leader = false;
-        tape.begin = raw.next;
-        tape.first_line = raw.line + 1;
-        tape.any_o_line = false;
-        continue;
-      }
-      tape.end = raw.offset;
-      break;
-    }
-    const LineShape shape = shape_of(raw.text);
-    leader = leader && !shape.first_exec;
-    tape.any_o_line = tape.any_o_line || shape.o_word.has_value();
-  }
-  tape.read = !reader.failed();
-  return tape;
-}
-
 }  // namespace
 
 std::string program_label(int number) {
@@ -250,26 +212,35 @@ SplitResult split_programs(std::string_view text, const std::string& file_name) 
   return split_programs(TextSource::of_text(std::string(text)), file_name);
 }
 
+// One pass over the file. Dafeng spec L113 (manual L285): everything after `%` is ignored. A
+// `%` with nothing but blank or comment lines before it is the leader of a punched-tape style
+// file (`%` / O… / `%`, GSK and FANUC practice), so the tape starts after it and ends at the
+// next `%` line, or at the end of the file. A block before the first O line is an alarm when
+// the tape has O lines, and the start of its one program when it has none: which of the two
+// is known at the tape's first O line, or at its end.
 SplitResult split_programs(std::shared_ptr<const TextSource> text, const std::string& file_name) {
   SplitResult result;
-  const Tape tape = tape_of(*text);
-  const auto unreadable = [&] {
-    result.programs.clear();
-    result.alarm = ProgramAlarm{alarm::kFileUnreadable, "cannot read program file " + file_name,
-                                file_name, 0, 0};
-    return result;
-  };
-  if (!tape.read) {
-    return unreadable();
-  }
-
   std::vector<Program> programs;
   std::map<int, int> first_seen;  // O number -> its line, for the duplicate alarm
-  LineReader reader(*text, tape.begin, tape.end, tape.first_line);
+  std::optional<ProgramAlarm> block_before_o;
+  bool leader = true;  // no block yet: a `%` here is the leader
+  LineReader reader(*text, 0, text->size(), 1);
   RawLine raw;
   while (reader.next(raw)) {
+    if (is_percent_line(raw.text)) {
+      if (!leader) {
+        break;  // the end of the tape
+      }
+      leader = false;  // the tape starts after it
+      continue;
+    }
     const LineShape shape = shape_of(raw.text);
+    leader = leader && !shape.first_exec;
     if (shape.o_word) {
+      if (block_before_o) {
+        result.alarm = std::move(block_before_o);
+        return result;
+      }
       if (*shape.o_word != *shape.first_exec) {
         result.alarm = make_alarm(alarm::kProgramNumberNotAtStart,
                                   "program number O must be the first word of its block", file_name,
@@ -299,12 +270,9 @@ SplitResult split_programs(std::shared_ptr<const TextSource> text, const std::st
       if (!shape.first_exec) {
         continue;  // blank and comment lines before the first O line (a file header)
       }
-      if (tape.any_o_line) {
-        result.alarm =
-            make_alarm(alarm::kBlockOutsideProgram, "block before the first program number O",
-                       file_name, raw.line, *shape.first_exec);
-        return result;
-      }
+      block_before_o =
+          make_alarm(alarm::kBlockOutsideProgram, "block before the first program number O",
+                     file_name, raw.line, *shape.first_exec);
       programs.emplace_back();  // a file without O lines is one program, from its first block
     }
     Program& p = programs.back();
@@ -318,7 +286,9 @@ SplitResult split_programs(std::shared_ptr<const TextSource> text, const std::st
     p.end = raw.next;
   }
   if (reader.failed()) {
-    return unreadable();
+    result.alarm = ProgramAlarm{alarm::kFileUnreadable, "cannot read program file " + file_name,
+                                file_name, 0, 0};
+    return result;
   }
   result.programs = std::move(programs);
   return result;

@@ -41,7 +41,7 @@ struct SplitResult {
   std::optional<ProgramAlarm> alarm;  // `program` names the file
 };
 
-// Reads `text` twice, line by line: once for the tape's extent, once to split it.
+// Reads `text` once, line by line.
 SplitResult split_programs(std::shared_ptr<const TextSource> text, const std::string& file_name);
 // The same over a text held in memory.
 SplitResult split_programs(std::string_view text, const std::string& file_name);

@@ -146,6 +146,20 @@ TEST(SplitPrograms, Alarms) {
   expect_alarm("O0001 G00 X0\n", alarm::kWordsAfterProgramNumber, 1, 7);
   expect_alarm("O0001 (a) O0002\n", alarm::kWordsAfterProgramNumber, 1, 11);
   expect_alarm("%\nG00 X1\nO0001\nM30\n%\n", alarm::kBlockOutsideProgram, 2, 1);
+  // The file is read once: a block before the first O line is known to be outside a program
+  // only at that O line, and is still the alarm, ahead of what is wrong with the O line.
+  expect_alarm("(head)\n  G00 X1\nG01 X2\n\nO0001\nM30\n", alarm::kBlockOutsideProgram, 2, 3);
+  expect_alarm("G00 X1\nG01 X2 O5\n", alarm::kBlockOutsideProgram, 1, 1);
+  expect_alarm("G00 X1\nO12345\nO0001\nO0001\n", alarm::kBlockOutsideProgram, 1, 1);
+}
+
+// An O line after the closing `%` does not make the tape's blocks outside a program.
+TEST(SplitPrograms, OLinesAfterTheTapeDoNotCount) {
+  const SplitResult r = split_programs("%\nG00 X1\nM30\n%\nO0002\nM99\n", "f.nc");
+  ASSERT_FALSE(r.alarm) << r.alarm->text;
+  ASSERT_EQ(r.programs.size(), 1u);
+  EXPECT_FALSE(r.programs[0].number);
+  EXPECT_EQ(line_numbers(r.programs[0]), (std::vector<int>{2, 3}));
 }
 
 // ISO code writes the program number with `:` where EIA writes `O` (FANUC programs punched in

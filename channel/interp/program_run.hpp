@@ -430,6 +430,8 @@ class ProgramRun final : public macro::VariableProvider {
   BlockWord* word(char letter);
   BlockWord* word(char a, char b);
   BlockWord* comma_word(char letter);  // ,C ,R ,A
+  void index_word(std::size_t k);      // words_[k] was added
+  void index_words();                  // words_ was replaced
   int count_words(char letter) const;
   // A word's value in the program's unit, a literal without a point counted in increments
   // (`decimal_point: increment`) and a variable's value cut to the increment; `length`: the
@@ -472,6 +474,11 @@ class ProgramRun final : public macro::VariableProvider {
   const parse::Line* line_ = nullptr;
   const std::string* file_ = nullptr;
   std::vector<BlockWord> words_;
+  // Where in words_ the first one-letter word of each letter A-Z is, and the first comma word
+  // (,A ,C ,R), as index + 1 (0: none): word() and comma_word() look there rather than scan the
+  // block, which they do several times per block. Kept by index_word() and index_words().
+  std::array<std::uint32_t, 26> first_letter_word_{};
+  std::array<std::uint32_t, 26> first_comma_word_{};
   std::size_t block_out_start_ = 0;
   bool block_barrier_ = false;
   bool block_moved_ = false;

@@ -141,7 +141,30 @@ struct BlockG {
 // ---------------------------------------------------------------------------------------------
 // Words
 
+void ProgramRun::index_word(std::size_t k) {
+  const parse::Address& a = words_[k].address;
+  if (a.first < 'A' || a.first > 'Z' || (a.second != 0 && !a.comma)) {
+    return;
+  }
+  std::uint32_t& first = (a.comma ? first_comma_word_ : first_letter_word_)[a.first - 'A'];
+  if (first == 0) {
+    first = static_cast<std::uint32_t>(k + 1);
+  }
+}
+
+void ProgramRun::index_words() {
+  first_letter_word_.fill(0);
+  first_comma_word_.fill(0);
+  for (std::size_t k = 0; k < words_.size(); ++k) {
+    index_word(k);
+  }
+}
+
 BlockWord* ProgramRun::word(char letter) {
+  if (letter >= 'A' && letter <= 'Z') {
+    const std::uint32_t first = first_letter_word_[letter - 'A'];
+    return first == 0 ? nullptr : &words_[first - 1];
+  }
   for (BlockWord& w : words_) {
     if (w.address.is(letter)) {
       return &w;
@@ -160,6 +183,10 @@ BlockWord* ProgramRun::word(char a, char b) {
 }
 
 BlockWord* ProgramRun::comma_word(char letter) {
+  if (letter >= 'A' && letter <= 'Z') {
+    const std::uint32_t first = first_comma_word_[letter - 'A'];
+    return first == 0 ? nullptr : &words_[first - 1];
+  }
   for (BlockWord& w : words_) {
     if (w.address.comma && w.address.first == letter) {
       return &w;
@@ -213,6 +240,7 @@ double ProgramRun::scaled_axis_word(int axis, const BlockWord& w) const {
 
 bool ProgramRun::evaluate_words(const parse::Statement& s) {
   words_.clear();
+  index_words();
   const parse::Arena& arena = *line_->arena;
   for (std::uint32_t k = 0; k < s.word_count; ++k) {
     const parse::Word& pw = arena.words[s.first_word + k];
@@ -236,6 +264,7 @@ bool ProgramRun::evaluate_words(const parse::Statement& s) {
       w.has_point = true;
     }
     words_.push_back(w);
+    index_word(words_.size() - 1);
   }
   return true;
 }

@@ -28,6 +28,7 @@ void ProgramRun::restore_block(BlockContext&& b) {
   line_ = b.line;
   file_ = b.file;
   words_ = std::move(b.words);
+  index_words();
   block_out_start_ = b.out_start;
   block_barrier_ = b.barrier;
   block_moved_ = b.moved;

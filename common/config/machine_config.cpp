@@ -233,7 +233,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
                             std::vector<YamlValue>& spindle_refs) {
   const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
                                  "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
-                                 "inclined", "skip_input", "speed_arrival"});
+                                 "inclined", "skip_input", "speed_arrival", "polygon"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -314,6 +314,17 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     }
     if (channel.inclined_axis == channel.inclined_orthogonal) {
       n.required("orthogonal").fail("orthogonal must be another axis than axis");
+    }
+  }
+  if (auto polygon = map.optional("polygon")) {
+    // Which spindles they are is checked with the machine's axes (check_polygon).
+    const YamlMap p = polygon->map({"master", "slave", "max_rpm"});
+    (void)p.required("master");
+    (void)p.required("slave");
+    channel.polygon_master = -1;  // named: check_polygon resolves both
+    channel.polygon_slave = -1;
+    if (auto max_rpm = p.optional("max_rpm")) {
+      channel.polygon_max_rpm = max_rpm->positive_number();
     }
   }
   if (auto skip = map.optional("skip_input")) {
@@ -977,6 +988,46 @@ void check_program_axis(const MachineConfig& config, const ChannelConfig& channe
              " (its axes, exchange_axes and its spindle's c_axis)");
 }
 
+// `polygon` names two spindles of the channel (params 5310/5311): the master that holds the
+// work and the polygon axis, a driven tool that follows it. A spindle that is a G114.1 slave
+// follows its own master already. Without max_rpm (param 5312) the polygon axis may turn as
+// fast as its drive.
+void check_polygon(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
+  if (channel.polygon_master == 0) {
+    return;
+  }
+  const YamlValue polygon = value.child("polygon");
+  const auto channel_spindle = [&](const YamlValue& ref) {
+    const int id = spindle_id(ref, config);
+    const std::string& name = config.axes[static_cast<std::size_t>(id - 1)].name;
+    if (std::find(channel.spindles.begin(), channel.spindles.end(), name) ==
+        channel.spindles.end()) {
+      ref.fail(name + " is not a spindle of channel " + channel.name +
+               " (a rotary axis as the polygon axis is not supported yet)");
+    }
+    return id;
+  };
+  channel.polygon_master = channel_spindle(polygon.child("master"));
+  channel.polygon_slave = channel_spindle(polygon.child("slave"));
+  if (channel.polygon_master == channel.polygon_slave) {
+    polygon.child("slave").fail("a spindle cannot follow itself");
+  }
+  for (const SpindleSyncGroup& g : config.spindle_sync) {
+    if (g.slave == channel.polygon_slave) {
+      polygon.child("slave").fail("the spindle is already the slave of G114.1 group " +
+                                  std::to_string(g.group) + " (spindle_sync)");
+    }
+  }
+  const AxisConfig& slave = config.axes[static_cast<std::size_t>(channel.polygon_slave - 1)];
+  const double drive_rpm = slave.drive.max_velocity / 6.0;
+  if (channel.polygon_max_rpm == 0.0) {
+    channel.polygon_max_rpm = drive_rpm;
+  } else if (channel.polygon_max_rpm > drive_rpm) {
+    polygon.child("max_rpm").fail("max_rpm is above what " + slave.name + "'s drive can turn (" +
+                                  std::to_string(static_cast<int>(drive_rpm)) + " rpm)");
+  }
+}
+
 // `polar` names a linear and a rotary axis the channel programs: G12.1 turns the work on the
 // one while the tool moves on the other. `normal` names a rotary axis it programs: G41.1 keeps
 // it normal to the path. `inclined` names two linear axes it programs: the inclined one and
@@ -1329,6 +1380,9 @@ MachineConfig parse_document(const YAML::Node& root) {
       group.channel = config.find_channel(master.channel)->id;
       config.spindle_sync.push_back(group);
     }
+  }
+  for (std::size_t i = 0; i < config.channels.size(); ++i) {
+    check_polygon(config, config.channels[i], channels[i]);
   }
   return config;
 }

@@ -172,6 +172,13 @@ struct ChannelConfig {
   char inclined_axis = 0;
   char inclined_orthogonal = 0;
   double inclined_degrees = 0.0;
+  // Polygon turning G51.2 (params 5310-5312, `polygon`): the master spindle and the polygon
+  // axis that follows it (axis ids, both spindles of this channel; 0: none, G51.2 is an
+  // alarm), and the fastest the polygon axis may turn, rpm (G51.2 that would need more is an
+  // alarm).
+  int polygon_master = 0;
+  int polygon_slave = 0;
+  double polygon_max_rpm = 0.0;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
   // G04 PS: the actual speed is reached within this many rpm (param 1057), and not reaching it

@@ -1393,3 +1393,53 @@ axes:
 
 }  // namespace
 }  // namespace mcnc::config
+
+namespace mcnc::config {
+namespace {
+
+// Params 5310-5312 (spec dafeng §2.6.6): a channel's polygon axis is one of its spindles that
+// follows another of them, never also a G114.1 slave, no faster than its drive.
+TEST(MachineConfig, PolygonAxisOfAChannel) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+  - {name: b2, uri: "socketcan:can1", sync_producer: X2}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: S1, type: spindle, bus: b, node_id: 2}
+  - {name: T1, type: spindle, bus: b, node_id: 3, drive: {max_velocity: 24000}}
+  - {name: C1, address: C, type: rotary, bus: b2, node_id: 3}
+  - {name: X2, address: X, bus: b2, node_id: 1}
+  - {name: S2, type: spindle, bus: b2, node_id: 2}
+)";
+  const auto with = [&](const std::string& polygon, const std::string& more = "") {
+    return base + "channels: [{name: CH1, axes: [X1, C1], spindles: [S1, T1], polygon: " + polygon +
+           "}, {name: CH2, axes: [X2], spindles: [S2]}]\n" + more;
+  };
+  const MachineConfig config = parse_machine_yaml(with("{master: S1, slave: T1, max_rpm: 3000}"));
+  EXPECT_EQ(config.channels[0].polygon_master, 2);
+  EXPECT_EQ(config.channels[0].polygon_slave, 3);
+  EXPECT_EQ(config.channels[0].polygon_max_rpm, 3000.0);
+  EXPECT_EQ(config.channels[1].polygon_master, 0);  // none
+  // Without max_rpm: as fast as the drive (24000 deg/s).
+  EXPECT_EQ(parse_machine_yaml(with("{master: S1, slave: T1}")).channels[0].polygon_max_rpm,
+            4000.0);
+  std::string what;
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: T1, max_rpm: 5000}"), &what),
+            "channels[0].polygon.max_rpm");
+  EXPECT_NE(what.find("above what T1's drive can turn (4000 rpm)"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: S1}")), "channels[0].polygon.slave");
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: S2}"), &what), "channels[0].polygon.slave");
+  EXPECT_NE(what.find("S2 is not a spindle of channel CH1"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: C1}")), "channels[0].polygon.slave");
+  EXPECT_EQ(rejection_path(with("{master: S1}")), "channels[0].polygon.slave");
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: T1}",
+                                "spindle_sync: [{group: 1, master: S2, slave: T1}]\n"),
+                           &what),
+            "channels[0].polygon.slave");
+  EXPECT_NE(what.find("already the slave of G114.1 group 1"), std::string::npos) << what;
+}
+
+}  // namespace
+}  // namespace mcnc::config

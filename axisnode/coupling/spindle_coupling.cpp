@@ -15,11 +15,17 @@ double wrap_degrees(double angle) noexcept {
   return a;
 }
 
+SpindleCouplingCommand polygon_command(int p, int q, double master_start) noexcept {
+  const double ratio = static_cast<double>(q) / static_cast<double>(p);
+  return SpindleCouplingCommand{p, q, wrap_degrees(-master_start * ratio)};
+}
+
 void SpindleCoupling::couple(const SpindleCouplingCommand& command, double slave_pos,
                              double slave_vel) noexcept {
   command_ = command;
   active_ = true;
   locked_ = false;
+  releasing_ = false;
   pos_ = slave_pos;
   vel_ = slave_vel;
 }
@@ -27,6 +33,9 @@ void SpindleCoupling::couple(const SpindleCouplingCommand& command, double slave
 SlaveTarget SpindleCoupling::step(double master_pos, double master_vel) noexcept {
   if (!active_) {
     return SlaveTarget{pos_, vel_, false};
+  }
+  if (releasing_) {
+    return step_release();
   }
   const double ratio = static_cast<double>(command_.q) / static_cast<double>(command_.p);
   const double want_vel = master_vel * ratio;
@@ -52,6 +61,18 @@ SlaveTarget SpindleCoupling::step(double master_pos, double master_vel) noexcept
     locked_ = true;
   }
   return SlaveTarget{pos_, vel_, locked_};
+}
+
+SlaveTarget SpindleCoupling::step_release() noexcept {
+  const double dv = setup_.max_acceleration * setup_.cycle_s;
+  vel_ = std::fabs(vel_) <= dv ? 0.0 : vel_ - std::copysign(dv, vel_);
+  pos_ += vel_ * setup_.cycle_s;
+  locked_ = false;
+  if (vel_ == 0.0) {
+    active_ = false;  // at rest: the slave is its owner's again
+    releasing_ = false;
+  }
+  return SlaveTarget{pos_, vel_, false};
 }
 
 }  // namespace mcnc::coupling

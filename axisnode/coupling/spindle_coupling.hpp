@@ -4,7 +4,9 @@
 // direction times the sign of Q. From wherever the slave stands (at rest, or turning) it
 // accelerates within its limit until speed and phase match ("dynamic sync"), then follows the
 // master exactly ("locked"). The coupling is the slave node's state: a reset does not end it,
-// only G113 does. Pure: one step per cycle, no allocation, no exceptions.
+// only G113 does. G51.2 polygon turning (§2.6.6) is the same coupling with the phase given at
+// the master (polygon_command), and ends by release(): the slave decelerates to rest.
+// Pure: one step per cycle, no allocation, no exceptions.
 #include <cstdint>
 
 namespace mcnc::coupling {
@@ -35,7 +37,11 @@ class SpindleCoupling {
   // Starts following from where the slave stands now.
   void couple(const SpindleCouplingCommand& command, double slave_pos, double slave_vel) noexcept;
   void decouple() noexcept { active_ = false; }
+  // Stops following: the slave decelerates within its limit and the coupling ends once it
+  // stands (G50.2, spec dafeng L2925-2927).
+  void release() noexcept { releasing_ = active_; }
   [[nodiscard]] bool active() const noexcept { return active_; }
+  [[nodiscard]] bool releasing() const noexcept { return active_ && releasing_; }
   [[nodiscard]] bool locked() const noexcept { return active_ && locked_; }
 
   // One cycle: the master's position and velocity at this cycle (deg, deg/s) in, the slave's
@@ -43,13 +49,21 @@ class SpindleCoupling {
   SlaveTarget step(double master_pos, double master_vel) noexcept;
 
  private:
+  SlaveTarget step_release() noexcept;
+
   SpindleCouplingSetup setup_;
   SpindleCouplingCommand command_{};
   bool active_ = false;
   bool locked_ = false;
+  bool releasing_ = false;
   double pos_ = 0.0;
   double vel_ = 0.0;
 };
+
+// G51.2 P Q R: the slave turns Q/P times the master, and stands at its zero while the master
+// stands at R, its start angle (spec dafeng L2851-2856); as a coupling command, the phase the
+// slave has when the master is at zero.
+SpindleCouplingCommand polygon_command(int p, int q, double master_start) noexcept;
 
 // `angle` folded into (-180, 180].
 double wrap_degrees(double angle) noexcept;

@@ -37,6 +37,8 @@ enum class Op : std::uint8_t {
   axis_decouple,
   spindle_sync,
   spindle_unsync,
+  polygon,      // G51.2: the channel's polygon axis follows its master spindle at sync_q/sync_p
+  polygon_off,  // G50.2: it is released (`wait`: the block ends once it stands)
   subcall,
   subcall_release,
   message,
@@ -174,7 +176,7 @@ struct Command {
   int master = 0;
   int slave = 0;
 
-  // spindle_sync (G114.1): P, Q, K, R.
+  // spindle_sync (G114.1): P, Q, K, R; polygon (G51.2): P, Q, R.
   int sync_p = 1;
   int sync_q = 1;
   int sync_k = 1;

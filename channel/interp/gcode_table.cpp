@@ -196,7 +196,9 @@ GCodeInfo common_code(int code10) {
     case 801:
       return {GFunction::oscillation_off, 0};
     case 502:
+      return {GFunction::polygon_off, 0};
     case 512:
+      return {GFunction::polygon_on, 0};
     case 508:
     case 518:
     case 804:

@@ -76,6 +76,8 @@ enum class GFunction : std::uint8_t {
   axis_sync_off,      // G50.4
   spindle_sync_off,   // G113
   spindle_sync_on,    // G114.1
+  polygon_off,        // G50.2 (group 20)
+  polygon_on,         // G51.2
   axis_release,       // G140
   axis_acquire,       // G141
   axis_restore,       // G142

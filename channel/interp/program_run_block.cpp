@@ -118,6 +118,8 @@ bool takes_p(GFunction f) {
     case GFunction::axis_sync_off:
     case GFunction::axis_acquire:
     case GFunction::spindle_sync_on:
+    case GFunction::polygon_on:
+    case GFunction::polygon_off:
     case GFunction::stroke_check_on:
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
@@ -1498,6 +1500,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::spindle_sync_on:
     case GFunction::spindle_sync_off:
       return run_spindle_sync(f);
+    case GFunction::polygon_on:
+    case GFunction::polygon_off:
+      return run_polygon(f, column);
     case GFunction::finishing_cycle:
       return run_finishing_cycle(column);
     case GFunction::rough_turning:
@@ -1894,6 +1899,57 @@ bool ProgramRun::run_spindle_sync(GFunction f) {
     r->used = true;
     if (r->value < 0.0 || r->value >= 360.0) {
       return fail(alarm::kBadWordValue, "G114.1 R (phase) must be 0-359.999 degrees", r->column);
+    }
+    c.sync_r = r->value;
+  }
+  c.barrier = true;
+  return true;
+}
+
+// G51.2 P Q R / G50.2 P (spec dafeng §2.6.6, L2847-2870): the ratios are whole numbers, P
+// unsigned and Q signed (its sign turns the slave the other way), R the master's start angle.
+bool ProgramRun::run_polygon(GFunction f, int column) {
+  std::int64_t v = 0;
+  if (f == GFunction::polygon_off) {
+    Command& c = emit(Op::polygon_off);
+    if (BlockWord* p = word('P')) {
+      p->used = true;
+      if (!whole_number(p->value, v) || (v != 0 && v != 1)) {
+        return fail(alarm::kBadWordValue,
+                    "G50.2 P must be 0 (do not wait for the polygon axis to stop) or 1 (wait)",
+                    p->column);
+      }
+      c.wait = v == 1;
+    }
+    c.barrier = true;
+    return true;
+  }
+  BlockWord* p = word('P');
+  BlockWord* q = word('Q');
+  if (p == nullptr || q == nullptr) {
+    return fail(alarm::kBadWordValue,
+                "G51.2 needs P (master spindle ratio) and Q (polygon axis ratio)", column);
+  }
+  Command& c = emit(Op::polygon);
+  p->used = true;
+  if (!whole_number(p->value, v) || v < 1 || v > 9999) {
+    return fail(alarm::kBadWordValue, "G51.2 P (master ratio) must be a whole number 1-9999",
+                p->column);
+  }
+  c.sync_p = static_cast<int>(v);
+  q->used = true;
+  if (!whole_number(q->value, v) || v == 0 || v < -9999 || v > 9999) {
+    return fail(alarm::kBadWordValue,
+                "G51.2 Q (polygon axis ratio) must be a non-zero whole number, -9999 to 9999",
+                q->column);
+  }
+  c.sync_q = static_cast<int>(v);
+  c.sync_r = 0.0;
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    if (!(r->value >= 0.0 && r->value <= 360.0)) {
+      return fail(alarm::kBadWordValue, "G51.2 R (master start angle) must be 0-360 degrees",
+                  r->column);
     }
     c.sync_r = r->value;
   }

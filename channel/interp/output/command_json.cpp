@@ -277,6 +277,10 @@ const char* op_name(Op op) {
       return "spindle_sync";
     case Op::spindle_unsync:
       return "spindle_unsync";
+    case Op::polygon:
+      return "polygon";
+    case Op::polygon_off:
+      return "polygon_off";
     case Op::subcall:
       return "subcall";
     case Op::subcall_release:
@@ -556,14 +560,21 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       integer(out, c.slave);
       break;
     case Op::spindle_sync:
+    case Op::polygon:  // a polygon axis has no group K
       key(out, "p");
       integer(out, c.sync_p);
       key(out, "q");
       integer(out, c.sync_q);
-      key(out, "k");
-      integer(out, c.sync_k);
+      if (c.op == Op::spindle_sync) {
+        key(out, "k");
+        integer(out, c.sync_k);
+      }
       key(out, "r");
       number(out, c.sync_r);
+      break;
+    case Op::polygon_off:
+      key(out, "wait");
+      out += c.wait ? "true" : "false";
       break;
     case Op::subcall: {
       key(out, "channel");

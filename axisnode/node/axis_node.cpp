@@ -78,8 +78,11 @@ void AxisNode::on_event(const AxisNodeEvent& e) noexcept {
   }
   if (from_sync_channel) {
     sync_channel_.on_event(e.seq, gate_);
-    if (e.kind == AxisNodeEvent::Kind::spindle_sync &&
-        (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0))) {
+    const bool polygon = e.kind == AxisNodeEvent::Kind::polygon_sync && roles_.polygon;
+    const bool spindle_sync =
+        e.kind == AxisNodeEvent::Kind::spindle_sync && !roles_.polygon &&
+        (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0));
+    if (polygon || spindle_sync) {
       (void)spindle_syncs_.push(SpindleSyncRequest{e.sync_on, e.spindle}, e.cycle);
     }
   }
@@ -259,33 +262,43 @@ ownership::OwnershipChange AxisNode::decide_owner(std::uint64_t cycle, bool lock
 }
 
 void AxisNode::apply_spindle_sync(std::uint64_t cycle, bool lockstep) noexcept {
+  using Kind = AxisNodeHappening::Kind;
   spindle_syncs_.take_due(cycle, [&](const SpindleSyncRequest& r) {
     if (r.on) {
-      spindle_coupling_.couple(r.command, controller_.output().act, controller_.output().vel);
-      happened(AxisNodeHappening{AxisNodeHappening::Kind::spindle_coupled, 0, 0, false,
-                                 roles_.sync_master, r.command});
+      const coupling::SpindleCouplingCommand c =
+          roles_.polygon ? coupling::polygon_command(r.command.p, r.command.q, r.command.r)
+                         : r.command;
+      spindle_coupling_.couple(c, controller_.output().act, controller_.output().vel);
+      happened(AxisNodeHappening{roles_.polygon ? Kind::polygon_coupled : Kind::spindle_coupled, 0,
+                                 0, false, roles_.sync_master, r.command});
+    } else if (roles_.polygon) {
+      spindle_coupling_.release();  // told once the axis stands
     } else if (spindle_coupling_.active()) {
       spindle_coupling_.decouple();
-      happened(AxisNodeHappening{
-          AxisNodeHappening::Kind::spindle_decoupled, 0, 0, false, roles_.sync_master, {}});
+      happened(AxisNodeHappening{Kind::spindle_decoupled, 0, 0, false, roles_.sync_master, {}});
     }
   });
   if (!spindle_coupling_.active()) {
     return;
   }
   // While coupled, the slave follows its master whatever its owner sends; without its master
-  // it holds where it is.
+  // it holds where it is. A polygon axis being released slows down without it.
   const MasterSample* m = master_feedback_.for_cycle(cycle, lockstep);
   const bool have_master = m != nullptr && !master_feedback_.lost();
+  const bool releasing = spindle_coupling_.releasing();
   in_.have_setpoint = true;
-  in_.setpoint_valid = have_master;
+  in_.setpoint_valid = have_master || releasing;
   in_.setpoint_velocity = false;
-  if (have_master) {
+  if (have_master || releasing) {
     // The master's position of this cycle, from its feedback of the last one.
     const coupling::SlaveTarget t =
-        spindle_coupling_.step(m->act + m->vel * roles_.cycle_s, m->vel);
+        have_master ? spindle_coupling_.step(m->act + m->vel * roles_.cycle_s, m->vel)
+                    : spindle_coupling_.step(0.0, 0.0);
     in_.setpoint_pos = t.pos;
     in_.setpoint_vel = t.vel;
+  }
+  if (releasing && !spindle_coupling_.active()) {
+    happened(AxisNodeHappening{Kind::polygon_decoupled, 0, 0, false, roles_.sync_master, {}});
   }
 }
 

@@ -46,6 +46,10 @@ struct AxisNodeRoles {
   std::uint32_t sync_group = 0;
   std::uint32_t sync_master = 0;
   std::uint32_t sync_channel = 0;
+  // The coupling is a channel's polygon axis (G51.2 / G50.2, its `polygon`) instead: sync_master
+  // is the master spindle and sync_channel the channel; G50.2 or the channel's reset brings the
+  // axis to rest before it lets go.
+  bool polygon = false;
   double in_position = 0.0;  // units: the axis stands when command and actual are this close
   double cycle_s = 0.001;
   AxisNodeSetup controller;
@@ -69,7 +73,7 @@ struct SetpointSample {
 
 // A coordination event from a channel, as far as an axis node reads it.
 struct AxisNodeEvent {
-  enum class Kind : std::uint8_t { axis_request, axis_sync, spindle_sync, other };
+  enum class Kind : std::uint8_t { axis_request, axis_sync, spindle_sync, polygon_sync, other };
   Kind kind = Kind::other;
   std::uint32_t channel = 0;
   std::uint64_t seq = 0;    // the sender's event sequence number
@@ -80,6 +84,7 @@ struct AxisNodeEvent {
   bool sync_on = false;           // axis_sync, spindle_sync
   std::uint32_t sync_master = 0;  // axis_sync
   std::uint32_t sync_group = 0;   // spindle_sync (0 with sync_on false: every group)
+  // spindle_sync: P, Q and the slave's phase; polygon_sync: P, Q and the master's start angle.
   coupling::SpindleCouplingCommand spindle{};
 };
 
@@ -105,6 +110,8 @@ struct AxisNodeHappening {
     spindle_decoupled,  // master
     axis_coupled,       // master
     axis_decoupled,     // master
+    polygon_coupled,    // master, spindle (r: the master's start angle)
+    polygon_decoupled,  // master (the polygon axis stands)
     owner,              // channel (0: released), previous (0: none), forced
     follows,            // channel whose valid setpoints the node now applies (0: none)
   };
@@ -200,7 +207,7 @@ class AxisNode {
  private:
   struct SpindleSyncRequest {
     bool on = false;
-    coupling::SpindleCouplingCommand command;
+    coupling::SpindleCouplingCommand command;  // polygon: as programmed (r: the start angle)
   };
   struct AxisSyncRequest {
     bool on = false;

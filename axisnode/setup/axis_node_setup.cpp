@@ -68,6 +68,13 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
       roles.sync_channel = static_cast<std::uint32_t>(g.channel);
     }
   }
+  for (const config::ChannelConfig& ch : machine.channels) {
+    if (ch.polygon_slave == axis.id) {  // never also a G114.1 slave (check_polygon)
+      roles.polygon = true;
+      roles.sync_master = static_cast<std::uint32_t>(ch.polygon_master);
+      roles.sync_channel = static_cast<std::uint32_t>(ch.id);
+    }
+  }
   roles.in_position = axis.in_position;
   roles.cycle_s = machine.cycle_s();
 

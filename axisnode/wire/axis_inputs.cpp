@@ -33,6 +33,9 @@ AxisNodeEvent to_core(const CoordinationEvent& e) {
     case COORD_SPINDLE_SYNC:
       out.kind = AxisNodeEvent::Kind::spindle_sync;
       break;
+    case COORD_POLYGON_SYNC:
+      out.kind = AxisNodeEvent::Kind::polygon_sync;
+      break;
     default:
       out.kind = AxisNodeEvent::Kind::other;
       break;

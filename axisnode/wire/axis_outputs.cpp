@@ -58,13 +58,17 @@ void AxisOutputs::trace_decisions(std::uint64_t cycle, const AxisNode& core) noe
     const AxisNodeHappening& h = core.happenings()[i];
     switch (h.kind) {
       case AxisNodeHappening::Kind::spindle_coupled:
+      case AxisNodeHappening::Kind::polygon_coupled:
         tracer_.emit(cycle, "couple",
-                     "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,\"q\":%d,"
+                     "\"kind\":\"%s\",\"master\":\"%s\",\"slave\":\"%s\",\"p\":%d,\"q\":%d,"
                      "\"r\":%.3f",
+                     h.kind == AxisNodeHappening::Kind::polygon_coupled ? "polygon" : "spindle",
                      axis_name(h.master), self, h.spindle.p, h.spindle.q, h.spindle.r);
         break;
       case AxisNodeHappening::Kind::spindle_decoupled:
-        tracer_.emit(cycle, "decouple", "\"kind\":\"spindle\",\"master\":\"%s\",\"slave\":\"%s\"",
+      case AxisNodeHappening::Kind::polygon_decoupled:
+        tracer_.emit(cycle, "decouple", "\"kind\":\"%s\",\"master\":\"%s\",\"slave\":\"%s\"",
+                     h.kind == AxisNodeHappening::Kind::polygon_decoupled ? "polygon" : "spindle",
                      axis_name(h.master), self);
         break;
       case AxisNodeHappening::Kind::axis_coupled:

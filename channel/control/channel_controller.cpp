@@ -154,6 +154,7 @@ void ChannelController::finish_reset() noexcept {
   resetting_ = false;
   source_.abandon();
   coordination_.stop_serving(CallOutcome::aborted);  // its caller goes on with an alarm
+  coordination_.release_polygon();
   forget_program_run();
   halted_ = estopped_;  // an emergency stop stays
   pending_alarm_.reset();
@@ -224,6 +225,7 @@ const CycleOutput& ChannelController::run_cycle(
     mdi_requested_ = false;
     coordination_.stop_serving(CallOutcome::aborted);
     coordination_.withdraw_waits();
+    coordination_.release_polygon();
     set_state(ChannelState::reset);
     position_known_ = false;  // the drives stop on their own ramps; re-read before moving again
   }

@@ -39,7 +39,7 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
                                             setup.spindle_c_slot}),
       aux_(setup.channel_id),
       coupling_(coordination::CouplingSetup{setup.axis_count, setup.slots, setup.spindle_groups,
-                                            setup.machine_axes}),
+                                            setup.machine_axes, setup.polygon}),
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
       skip_(setup.axis_count, setup.probe_arm_cycles) {}
 
@@ -104,6 +104,7 @@ void ChannelCoordination::begin_cycle(std::span<const AxisFeedbackView> feedback
   out_.aux_due = false;
   out_.spindle_sync_due = false;
   out_.axis_sync_due = false;
+  out_.polygon_sync_due = false;
   was_position_ = under_position_control();
   received_ = feedback;
   for (std::size_t s = 0; s < feedback.size(); ++s) {
@@ -182,7 +183,9 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   } else if (const auto* s = std::get_if<AuxStop>(&held_)) {
     aux_.begin(s->kind, s->code, s->spindle_start);
   } else if (const auto* s = std::get_if<CouplingStop>(&held_)) {
-    if (s->axis) {
+    if (s->polygon) {
+      coupling_.begin_polygon(s->polygon_sync);
+    } else if (s->axis) {
       coupling_.begin_axis(s->on, s->master, s->slave);
     } else {
       coupling_.begin_spindle(s->spindle);
@@ -265,6 +268,13 @@ void ChannelCoordination::push_release(const coordination::CallRelease& release)
 void ChannelCoordination::release_caller(coordination::CallOutcome outcome) noexcept {
   if (const auto release = calls_.release_caller(outcome)) {
     push_release(*release);
+  }
+}
+
+void ChannelCoordination::release_polygon() noexcept {
+  if (const auto off = coupling_.polygon_on_reset(received_)) {
+    out_.polygon_sync = *off;
+    out_.polygon_sync_due = true;
   }
 }
 
@@ -512,7 +522,10 @@ void ChannelCoordination::run(CouplingStop& b, std::uint64_t cycle,
       raise(coupling_.alarm(), b.block.line);
       return;
     case coordination::CouplingStep::send:
-      if (coupling_.axis()) {
+      if (coupling_.kind() == coordination::CouplingKind::polygon) {
+        out_.polygon_sync = coupling_.polygon();
+        out_.polygon_sync_due = true;
+      } else if (coupling_.axis()) {
         out_.axis_sync = coupling_.axis_sync();
         out_.axis_sync_due = true;
       } else {

@@ -34,6 +34,8 @@ struct ChannelSetup {
   bool plc = false;
   // G114.1 groups this channel commands (its spindle is their master).
   std::vector<coordination::SpindleGroupSetup> spindle_groups{};
+  // G51.2: the channel's polygon axis and its master spindle (master 0: none).
+  coordination::PolygonSetup polygon{};
   // G144: how many cycles a call waits for its target to become free (0: as long as it takes).
   std::uint64_t call_wait_cycles = 0;
   // The channel's first spindle is the slave of a G114.1 group: a start waits until the blocks

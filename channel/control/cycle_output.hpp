@@ -43,6 +43,7 @@ using coordination::MachineAxis;
 using coordination::MachineAxisKind;
 using coordination::PartnerStatus;
 using coordination::PlcAnswer;
+using coordination::PolygonOut;
 using coordination::ProbeSeen;
 using coordination::SpindleGroupSetup;
 using coordination::SpindleSyncOut;
@@ -141,6 +142,9 @@ struct CycleOutput {
   // G51.4 / G50.4 to a slave axis's node, sent this cycle.
   bool axis_sync_due = false;
   AxisSyncOut axis_sync{};
+  // G51.2 / G50.2 to the polygon axis's node, sent this cycle.
+  bool polygon_sync_due = false;
+  PolygonOut polygon_sync{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;

@@ -84,7 +84,15 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
     case Op::spindle_unsync: {
       const bool on = c.op == Op::spindle_sync;
       return CouplingStop{held(c), false, {on, on ? c.sync_k : 0, c.sync_p, c.sync_q, c.sync_r},
-                          false,   0,     0};
+                          false,   0,     0,
+                          false,   {}};
+    }
+    case Op::polygon:
+    case Op::polygon_off: {
+      CouplingStop s{held(c), false, {}, false, 0, 0, true, {}};
+      s.polygon_sync = coordination::PolygonOut{c.op == Op::polygon, c.sync_p, c.sync_q, c.sync_r,
+                                                c.op == Op::polygon || c.wait};
+      return s;
     }
     case Op::spindle_mode:
       return ModeStop{held(c), c.position_control};
@@ -95,7 +103,9 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                           {},
                           c.op == Op::axis_couple,
                           static_cast<std::uint32_t>(c.master),
-                          static_cast<std::uint32_t>(c.slave)};
+                          static_cast<std::uint32_t>(c.slave),
+                          false,
+                          {}};
     case Op::wait_input:
     case Op::wait_spindle: {
       const coordination::ConditionSpec spec{c.op == Op::wait_input,

@@ -67,13 +67,15 @@ struct AuxStop {  // an M or T code for the PLC, or a spindle start it must allo
   bool spindle_start = false;
   interp::Command command;  // a spindle start: goes to the planner once allowed
 };
-struct CouplingStop {  // G114.1 / G113 (spindle), G51.4 / G50.4 (axis)
+struct CouplingStop {  // G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 / G50.2 (polygon)
   HeldBlock block;
   bool axis = false;
   coordination::SpindleSyncOut spindle{};
   bool on = false;           // axis: G51.4
   std::uint32_t master = 0;  // axis: P (0: the slave's default)
   std::uint32_t slave = 0;   // axis: Q
+  bool polygon = false;      // G51.2 / G50.2
+  coordination::PolygonOut polygon_sync{};
 };
 struct ModeStop {  // M18 / M17
   HeldBlock block;

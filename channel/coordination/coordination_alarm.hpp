@@ -20,6 +20,7 @@ inline constexpr int kAlarmAuxRefused = 1240;        // the PLC refused an M or 
 inline constexpr int kAlarmAuxTimeout = 1241;        // no FIN from the PLC in time
 inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G114.1 slave
 inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
+inline constexpr int kAlarmPolygon = 1252;           // G51.2 the channel or its axes do not allow
 inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest

@@ -1,39 +1,123 @@
 #include "channel/coordination/coupling_request.hpp"
 
+#include <cmath>
+
 namespace mcnc::coordination {
 
+namespace {
+
+// deg/s: a polygon axis slower than this stands (a tenth of a revolution per minute).
+constexpr double kPolygonAtRest = 0.6;
+
+}  // namespace
+
 void CouplingRequest::begin_spindle(const SpindleSyncOut& sync) noexcept {
-  axis_ = false;
+  kind_ = CouplingKind::spindle;
   spindle_ = sync;
   sent_ = false;
   change_ = {};
 }
 
 void CouplingRequest::begin_axis(bool on, std::uint32_t master, std::uint32_t slave) noexcept {
-  axis_ = true;
+  kind_ = CouplingKind::axis;
   axis_sync_ = AxisSyncOut{on, 0, master};
   slave_ = slave;
   sent_ = false;
   change_ = {};
 }
 
+void CouplingRequest::begin_polygon(const PolygonOut& polygon) noexcept {
+  kind_ = CouplingKind::polygon;
+  polygon_ = polygon;
+  sent_ = false;
+  change_ = {};
+}
+
 CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   if (!sent_) {
-    const Start start = axis_ ? start_axis(in) : start_spindle();
+    const Start start = kind_ == CouplingKind::axis      ? start_axis(in)
+                        : kind_ == CouplingKind::polygon ? start_polygon(in)
+                                                         : start_spindle();
     if (start == Start::refused) {
       return CouplingStep::alarm;
     }
     if (start == Start::send) {
+      polygon_asked_ = kind_ == CouplingKind::polygon ? polygon_.on : polygon_asked_;
       sent_ = true;
       sent_cycle_ = in.cycle;
       return CouplingStep::send;
     }
     return CouplingStep::done;
   }
-  if (!answer_visible(sent_cycle_, in.cycle) || !(axis_ ? axis_done(in) : spindle_done(in))) {
+  if (kind_ == CouplingKind::polygon && !polygon_.on && !polygon_.wait) {
+    return CouplingStep::done;  // G50.2 P0: the program goes on while the axis slows down
+  }
+  const bool done = kind_ == CouplingKind::axis      ? axis_done(in)
+                    : kind_ == CouplingKind::polygon ? polygon_done(in)
+                                                     : spindle_done(in);
+  if (!answer_visible(sent_cycle_, in.cycle) || !done) {
     return CouplingStep::waiting;
   }
   return CouplingStep::done;
+}
+
+CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) noexcept {
+  const PolygonSetup& s = setup_.polygon;
+  const AxisFeedbackView none{};
+  const AxisFeedbackView& slave =
+      s.slave_view < in.feedback.size() ? in.feedback[s.slave_view] : none;
+  if (!polygon_.on) {
+    return s.master != 0 && slave.coupled_to != 0 ? Start::send : Start::nothing_to_do;
+  }
+  if (s.master == 0) {
+    alarm_.set(kAlarmPolygon,
+               "G51.2: this channel has no polygon axis (polygon in the machine file, parameters "
+               "5310/5311)");
+    return Start::refused;
+  }
+  if (slave.coupled_to != 0) {
+    alarm_.set(kAlarmPolygon, "G51.2: the polygon axis follows its master already: G50.2 first");
+    return Start::refused;
+  }
+  if (std::fabs(slave.vel) > kPolygonAtRest) {
+    alarm_.set(kAlarmPolygon,
+               "G51.2: the polygon axis turns at %.0f rpm: stop its spindle (M05) before G51.2",
+               slave.vel / 6.0);
+    return Start::refused;
+  }
+  const AxisFeedbackView& master =
+      s.master_view < in.feedback.size() ? in.feedback[s.master_view] : none;
+  const double speed = std::fabs(master.vel * polygon_.q / polygon_.p);
+  if (speed > s.max_speed) {
+    alarm_.set(kAlarmPolygon,
+               "G51.2 P%d Q%d: the polygon axis would turn at %.0f rpm, above its %.0f rpm "
+               "(parameter 5312: polygon max_rpm)",
+               polygon_.p, polygon_.q, speed / 6.0, s.max_speed / 6.0);
+    return Start::refused;
+  }
+  return Start::send;
+}
+
+bool CouplingRequest::polygon_done(const CouplingInputs& in) const noexcept {
+  const std::size_t v = setup_.polygon.slave_view;
+  if (v >= in.feedback.size()) {
+    return false;
+  }
+  const AxisFeedbackView& slave = in.feedback[v];
+  // G51.2 ends once the axis is in phase (param 5300.5 = 0); G50.2 once it stands free.
+  return polygon_.on ? slave.coupled_to == setup_.polygon.master && slave.coupling_locked
+                     : slave.coupled_to == 0;
+}
+
+std::optional<PolygonOut> CouplingRequest::polygon_on_reset(
+    std::span<const AxisFeedbackView> feedback) noexcept {
+  const PolygonSetup& s = setup_.polygon;
+  const bool follows = s.slave_view < feedback.size() && feedback[s.slave_view].coupled_to != 0;
+  if (s.master == 0 || (!follows && !polygon_asked_)) {
+    return std::nullopt;
+  }
+  polygon_asked_ = false;
+  return PolygonOut{false, 1, 1, 0.0, false};
 }
 
 CouplingRequest::Start CouplingRequest::start_spindle() noexcept {

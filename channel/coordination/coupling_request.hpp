@@ -1,16 +1,19 @@
 #pragma once
-// G114.1 / G113 (spindle synchronisation) and G51.4 / G50.4 (axis synchronisation) as the
-// channel asks them of the slave's axis node, which holds the coupling (ARCHITECTURE.md §5). A
-// request is checked against the machine's set-up first (a group this channel's spindle leads; a
-// slave that may follow, of this channel, not following another master; a master of the same
-// kind that is no slave itself), then sent; the block ends once the slave's feedback shows it in
-// phase (G114.1), free (G113), following its master (G51.4) or this channel's again (G50.4).
+// G114.1 / G113 (spindle synchronisation), G51.4 / G50.4 (axis synchronisation) and G51.2 /
+// G50.2 (polygon turning) as the channel asks them of the slave's axis node, which holds the
+// coupling (ARCHITECTURE.md §5). A request is checked against the machine's set-up first (a
+// group this channel's spindle leads; a slave that may follow, of this channel, not following
+// another master; a master of the same kind that is no slave itself; a polygon axis at rest that
+// the master's speed would not take beyond its limit), then sent; the block ends once the
+// slave's feedback shows it in phase (G114.1, G51.2), free (G113, G50.2: at rest), following its
+// master (G51.4) or this channel's again (G50.4).
 // Pure: one step() per cycle with the feedback of that cycle; no allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -36,11 +39,29 @@ struct AxisSyncOut {
   std::uint32_t master = 0;  // axis id
 };
 
+// G51.2 / G50.2 to the node of the channel's polygon axis.
+struct PolygonOut {
+  bool on = true;    // G51.2; false: G50.2
+  int p = 1;         // master ratio
+  int q = 1;         // polygon axis ratio (sign: direction)
+  double r = 0.0;    // the master's start angle, degrees
+  bool wait = true;  // G50.2: the block ends once the polygon axis stands (P1 or no P)
+};
+// The channel's polygon axis (params 5310-5312): the feedback of its master spindle and of
+// itself, both spindles of the channel.
+struct PolygonSetup {
+  std::uint32_t master = 0;  // the master spindle's axis id; 0: the channel has no polygon axis
+  std::size_t master_view = 0;
+  std::size_t slave_view = 0;
+  double max_speed = 0.0;  // deg/s the polygon axis may turn at most (param 5312)
+};
+
 struct CouplingSetup {
   std::size_t axis_count = 0;
   std::vector<AxisSlot> slots;
   std::vector<SpindleGroupSetup> spindle_groups;
   std::vector<MachineAxis> machine_axes;  // by system number - 1
+  PolygonSetup polygon{};
 };
 
 struct CouplingInputs {
@@ -51,7 +72,7 @@ struct CouplingInputs {
 
 enum class CouplingStep : std::uint8_t {
   waiting,  // for the slave's node
-  send,     // spindle_sync() or axis_sync() (as axis() says) goes out this cycle
+  send,     // spindle_sync(), axis_sync() or polygon() (as kind() says) goes out this cycle
   done,     // the block ends; slot_change() says what became of the slave axis
   alarm,
 };
@@ -63,6 +84,8 @@ struct SlotChange {
   double at = 0.0;  // commanded: where the axis stands (its master took it there)
 };
 
+enum class CouplingKind : std::uint8_t { spindle, axis, polygon };
+
 class CouplingRequest {
  public:
   explicit CouplingRequest(CouplingSetup setup) : setup_(std::move(setup)) {}
@@ -70,11 +93,18 @@ class CouplingRequest {
   void begin_spindle(const SpindleSyncOut& sync) noexcept;
   // G51.4 (`on`) / G50.4 Q`slave` [P`master`, 0: the slave's default master].
   void begin_axis(bool on, std::uint32_t master, std::uint32_t slave) noexcept;
+  void begin_polygon(const PolygonOut& polygon) noexcept;
   CouplingStep step(const CouplingInputs& in) noexcept;
 
-  [[nodiscard]] bool axis() const noexcept { return axis_; }
+  [[nodiscard]] CouplingKind kind() const noexcept { return kind_; }
+  [[nodiscard]] bool axis() const noexcept { return kind_ == CouplingKind::axis; }
   [[nodiscard]] const SpindleSyncOut& spindle_sync() const noexcept { return spindle_; }
   [[nodiscard]] const AxisSyncOut& axis_sync() const noexcept { return axis_sync_; }
+  [[nodiscard]] const PolygonOut& polygon() const noexcept { return polygon_; }
+  // A reset: the polygon axis, if it follows or was asked to, is released (spec dafeng
+  // L2933-2939, param 5300.4 = 1: at once, decelerating); what to send, if anything.
+  [[nodiscard]] std::optional<PolygonOut> polygon_on_reset(
+      std::span<const AxisFeedbackView> feedback) noexcept;
   [[nodiscard]] const SlotChange& slot_change() const noexcept { return change_; }
   [[nodiscard]] const CoordinationAlarm& alarm() const noexcept { return alarm_; }
 
@@ -82,14 +112,18 @@ class CouplingRequest {
   enum class Start : std::uint8_t { send, nothing_to_do, refused };
   Start start_spindle() noexcept;
   Start start_axis(const CouplingInputs& in) noexcept;
+  Start start_polygon(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool spindle_done(const CouplingInputs& in) const noexcept;
   bool axis_done(const CouplingInputs& in) noexcept;
+  [[nodiscard]] bool polygon_done(const CouplingInputs& in) const noexcept;
 
   CouplingSetup setup_;
-  bool axis_ = false;
+  CouplingKind kind_ = CouplingKind::spindle;
   SpindleSyncOut spindle_{};
   AxisSyncOut axis_sync_{};
-  std::uint32_t slave_ = 0;  // G51.4 / G50.4 Q: the slave's system number
+  PolygonOut polygon_{};
+  bool polygon_asked_ = false;  // the last G51.2 / G50.2 sent was a G51.2
+  std::uint32_t slave_ = 0;     // G51.4 / G50.4 Q: the slave's system number
   bool sent_ = false;
   std::uint64_t sent_cycle_ = 0;
   SlotChange change_{};

@@ -31,6 +31,8 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::axis_decouple:
     case Op::spindle_sync:
     case Op::spindle_unsync:
+    case Op::polygon:
+    case Op::polygon_off:
       return "multi-channel commands need the channel coordination runtime";
     case Op::message:
       return "#3006 messages need the HMI";
@@ -250,7 +252,7 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     return true;
   }
   if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
-      c.op == Op::spindle_unsync) {
+      c.op == Op::spindle_unsync || c.op == Op::polygon || c.op == Op::polygon_off) {
     return true;
   }
   if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {

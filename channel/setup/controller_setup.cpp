@@ -68,6 +68,21 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
           SpindleGroupSetup{g.group, axes.size() + ch.spindles.size() + sync_slaves++});
     }
   }
+  // G51.2: the master spindle and the polygon axis are spindles of the channel (check_polygon),
+  // their feedback after the channel's axes.
+  if (ch.polygon_master != 0) {
+    const auto view_of = [&](int id) {
+      for (std::size_t k = 0; k < layout.spindles.size(); ++k) {
+        if (layout.spindles[k]->id == id) {
+          return axes.size() + k;
+        }
+      }
+      return axes.size() + layout.spindles.size();
+    };
+    setup.polygon = coordination::PolygonSetup{static_cast<std::uint32_t>(ch.polygon_master),
+                                               view_of(ch.polygon_master),
+                                               view_of(ch.polygon_slave), ch.polygon_max_rpm * 6.0};
+  }
   return layout;
 }
 

@@ -146,6 +146,14 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     e.sync_r(out.spindle_sync.r);
     events_.write(e);
   }
+  if (out.polygon_sync_due) {
+    CoordinationEvent e = event(cycle, COORD_POLYGON_SYNC);
+    e.sync_on(out.polygon_sync.on);
+    e.sync_p(out.polygon_sync.p);
+    e.sync_q(out.polygon_sync.q);
+    e.sync_r(out.polygon_sync.r);
+    events_.write(e);
+  }
   if (out.axis_sync_due && out.axis_sync.slot < axes_.size()) {
     CoordinationEvent e = event(cycle, COORD_AXIS_SYNC);
     e.axis(static_cast<std::uint32_t>(axes_[out.axis_sync.slot]->id));

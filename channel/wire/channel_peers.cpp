@@ -173,6 +173,7 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e, ChannelController
     case COORD_AUX_REQUEST:
     case COORD_SPINDLE_SYNC:
     case COORD_AXIS_SYNC:
+    case COORD_POLYGON_SYNC:
       break;  // for the axis nodes and the PLC: their answers come on their own topics
   }
 }

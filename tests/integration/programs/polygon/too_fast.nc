@@ -1,0 +1,10 @@
+%
+O1001 (G51.2 P1 Q7 at S500: the disc would turn at 3500 rpm, above its 3000)
+N10 M03 S500
+N20 G00 X50. Z2.
+N30 G04 P200
+N40 G51.2 P1 Q7
+N50 G01 X45. F100
+N60 M05
+N70 M30
+%

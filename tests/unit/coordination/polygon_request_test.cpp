@@ -1,0 +1,130 @@
+// G51.2 / G50.2 (spec dafeng §2.6.6): refused before anything is sent when the channel has no
+// polygon axis, the axis turns or already follows, or the master's speed would take it beyond
+// its limit (L2911); sent once, and ended by what the polygon axis's feedback shows: locked
+// (G51.2), free (G50.2, P1) or at once (G50.2 P0). A reset releases it.
+#include "channel/coordination/coupling_request.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <string>
+
+namespace mcnc::coordination {
+namespace {
+
+// Channel with X and Z, spindles S1 (id 3, view 2, the master) and T1 (id 4, view 3, the
+// polygon axis, at most 3000 rpm).
+CouplingSetup setup(bool polygon = true) {
+  CouplingSetup s;
+  s.axis_count = 2;
+  s.slots = {AxisSlot{'X', false, 1, 1, false, 0, false},
+             AxisSlot{'Z', false, 1, 2, false, 0, false}};
+  s.machine_axes = {
+      MachineAxis{MachineAxisKind::linear, false}, MachineAxis{MachineAxisKind::linear, false},
+      MachineAxis{MachineAxisKind::spindle, false}, MachineAxis{MachineAxisKind::spindle, false}};
+  if (polygon) {
+    s.polygon = PolygonSetup{3, 2, 3, 3000.0 * 6.0};
+  }
+  return s;
+}
+
+struct Rig {
+  explicit Rig(bool polygon = true) : request(setup(polygon)) {}
+  CouplingRequest request;
+  std::array<AxisFeedbackView, 4> feedback{};
+  std::array<SlotUse, 2> uses{SlotUse::commanded, SlotUse::commanded};
+  CouplingStep step(std::uint64_t cycle) {
+    return request.step(CouplingInputs{cycle, feedback, uses});
+  }
+};
+
+TEST(PolygonRequest, G512IsSentOnceAndEndsWhenThePolygonAxisIsInPhase) {
+  Rig r;
+  r.feedback[2].vel = 3000.0;  // S500
+  r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(r.step(10), CouplingStep::send);
+  EXPECT_EQ(r.request.kind(), CouplingKind::polygon);
+  EXPECT_EQ(r.request.polygon().q, 2);
+  r.feedback[3].coupled_to = 3;
+  EXPECT_EQ(r.step(11), CouplingStep::waiting);  // catching up
+  r.feedback[3].coupling_locked = true;
+  EXPECT_EQ(r.step(12), CouplingStep::done);
+}
+
+TEST(PolygonRequest, WithoutAPolygonAxisG512IsAnAlarmAndG502DoesNothing) {
+  Rig r(false);
+  r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(r.step(1), CouplingStep::alarm);
+  EXPECT_EQ(r.request.alarm().number, kAlarmPolygon);
+  EXPECT_STREQ(r.request.alarm().text.data(),
+               "G51.2: this channel has no polygon axis (polygon in the machine file, parameters "
+               "5310/5311)");
+  r.request.begin_polygon(PolygonOut{false, 1, 1, 0.0, true});
+  EXPECT_EQ(r.step(2), CouplingStep::done);
+}
+
+TEST(PolygonRequest, APolygonAxisThatTurnsOrFollowsAlreadyIsRefused) {
+  Rig r;
+  r.feedback[3].vel = -60.0;  // 10 rpm backwards
+  r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(r.step(1), CouplingStep::alarm);
+  EXPECT_STREQ(r.request.alarm().text.data(),
+               "G51.2: the polygon axis turns at -10 rpm: stop its spindle (M05) before G51.2");
+  r.feedback[3].vel = 0.0;
+  r.feedback[3].coupled_to = 3;
+  r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(r.step(2), CouplingStep::alarm);
+  EXPECT_STREQ(r.request.alarm().text.data(),
+               "G51.2: the polygon axis follows its master already: G50.2 first");
+}
+
+TEST(PolygonRequest, ARatioThatWouldExceedTheLimitIsRefusedWithTheSpeeds) {
+  Rig r;
+  r.feedback[2].vel = -3000.0;  // S500 backwards (M04): the limit holds for both directions
+  r.request.begin_polygon(PolygonOut{true, 1, 7, 0.0, true});
+  ASSERT_EQ(r.step(1), CouplingStep::alarm);
+  EXPECT_EQ(r.request.alarm().number, kAlarmPolygon);
+  EXPECT_STREQ(r.request.alarm().text.data(),
+               "G51.2 P1 Q7: the polygon axis would turn at 3500 rpm, above its 3000 rpm "
+               "(parameter 5312: polygon max_rpm)");
+  r.request.begin_polygon(PolygonOut{true, 1, -6, 0.0, true});  // exactly 3000: allowed
+  EXPECT_EQ(r.step(2), CouplingStep::send);
+}
+
+TEST(PolygonRequest, G502WaitsForThePolygonAxisToStandFreeUnlessP0) {
+  Rig r;
+  r.feedback[3].coupled_to = 3;
+  r.request.begin_polygon(PolygonOut{false, 1, 1, 0.0, true});
+  ASSERT_EQ(r.step(20), CouplingStep::send);
+  EXPECT_FALSE(r.request.polygon().on);
+  EXPECT_EQ(r.step(21), CouplingStep::waiting);
+  EXPECT_EQ(r.step(22), CouplingStep::waiting);  // still slowing down
+  r.feedback[3].coupled_to = 0;
+  EXPECT_EQ(r.step(23), CouplingStep::done);
+
+  r.feedback[3].coupled_to = 3;
+  r.request.begin_polygon(PolygonOut{false, 1, 1, 0.0, false});  // G50.2 P0
+  ASSERT_EQ(r.step(30), CouplingStep::send);
+  EXPECT_EQ(r.step(31), CouplingStep::done);
+  // Nothing follows: G50.2 sends nothing.
+  r.feedback[3].coupled_to = 0;
+  r.request.begin_polygon(PolygonOut{false, 1, 1, 0.0, true});
+  EXPECT_EQ(r.step(40), CouplingStep::done);
+}
+
+TEST(PolygonRequest, AResetReleasesAPolygonAxisThatFollowsOrWasAskedTo) {
+  Rig r;
+  EXPECT_FALSE(r.request.polygon_on_reset(r.feedback).has_value());
+  r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(r.step(1), CouplingStep::send);
+  // Reset before the node's answer shows: released all the same, once.
+  const auto off = r.request.polygon_on_reset(r.feedback);
+  ASSERT_TRUE(off.has_value());
+  EXPECT_FALSE(off->on);
+  EXPECT_FALSE(r.request.polygon_on_reset(r.feedback).has_value());
+  r.feedback[3].coupled_to = 3;  // following, whoever asked
+  EXPECT_TRUE(r.request.polygon_on_reset(r.feedback).has_value());
+}
+
+}  // namespace
+}  // namespace mcnc::coordination

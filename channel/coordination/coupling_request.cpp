@@ -81,7 +81,7 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
   }
   if (std::fabs(slave.vel) > kPolygonAtRest) {
     alarm_.set(kAlarmPolygon,
-               "G51.2: the polygon axis turns at %.0f rpm: stop its spindle (M05) before G51.2",
+               "G51.2: the polygon axis turns at %.1f rpm: stop its spindle (M05) before G51.2",
                slave.vel / 6.0);
     return Start::refused;
   }

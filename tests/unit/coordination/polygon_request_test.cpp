@@ -69,7 +69,7 @@ TEST(PolygonRequest, APolygonAxisThatTurnsOrFollowsAlreadyIsRefused) {
   r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
   ASSERT_EQ(r.step(1), CouplingStep::alarm);
   EXPECT_STREQ(r.request.alarm().text.data(),
-               "G51.2: the polygon axis turns at -10 rpm: stop its spindle (M05) before G51.2");
+               "G51.2: the polygon axis turns at -10.0 rpm: stop its spindle (M05) before G51.2");
   r.feedback[3].vel = 0.0;
   r.feedback[3].coupled_to = 3;
   r.request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});

@@ -55,3 +55,21 @@ TEST(AxisNodeSetup, TheSpindlesLoadIsMappedIntoItsSecondTpdo) {
   EXPECT_EQ(s1.pdos.tpdo2.objects[s1.pdos.tpdo2.count - 1].index, 0x6077);
   EXPECT_EQ(s1.pdos.tpdo2.objects[s1.pdos.tpdo2.count - 1].bits, 16);
 }
+
+// polygon_lathe.yaml (params 5310/5311): T1's node holds the polygon coupling to S1, which CH1
+// commands; S1's node follows nobody.
+TEST(AxisNodeSetup, ThePolygonAxisFollowsItsMasterSpindleForItsChannel) {
+  const config::MachineConfig m = config::load_machine_file(std::string(MCNC_SOURCE_DIR) +
+                                                            "/launch/machines/polygon_lathe.yaml");
+  const config::AxisConfig& t1 = *m.find_axis("T1");
+  const axisnode::AxisNodeRoles r = axisnode::roles_of(m, t1, axisnode::drive_startup_of(t1));
+  EXPECT_TRUE(r.polygon);
+  EXPECT_EQ(r.sync_group, 0U);
+  EXPECT_EQ(r.sync_master, static_cast<std::uint32_t>(m.find_axis("S1")->id));
+  EXPECT_EQ(r.sync_channel, static_cast<std::uint32_t>(m.find_channel("CH1")->id));
+  EXPECT_DOUBLE_EQ(r.spindle_coupling.max_acceleration, 7200.0);  // its catch-up and stop
+  const config::AxisConfig& s1 = *m.find_axis("S1");
+  const axisnode::AxisNodeRoles master = axisnode::roles_of(m, s1, axisnode::drive_startup_of(s1));
+  EXPECT_FALSE(master.polygon);
+  EXPECT_EQ(master.sync_master, 0U);
+}

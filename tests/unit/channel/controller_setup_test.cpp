@@ -90,3 +90,26 @@ TEST(ControllerSetup, PlcInputPortsAndSpeedArrivalReachTheChannel) {
 
 }  // namespace
 }  // namespace mcnc::channel
+
+namespace mcnc::channel {
+namespace {
+
+// polygon_lathe.yaml: CH1's polygon axis T1 and its master S1 are its spindles, their feedback
+// right after its axes; 3000 rpm at most.
+TEST(ControllerSetup, ThePolygonAxisAndItsMasterAreTheChannelsSpindles) {
+  const config::MachineConfig m = config::load_machine_file(std::string(MCNC_SOURCE_DIR) +
+                                                            "/launch/machines/polygon_lathe.yaml");
+  const ControllerLayout ch1 = controller_layout_for(m, *m.find_channel("CH1"));
+  ASSERT_EQ(ch1.spindles.size(), 2U);
+  EXPECT_EQ(ch1.setup.polygon.master, static_cast<std::uint32_t>(m.find_axis("S1")->id));
+  EXPECT_EQ(ch1.setup.polygon.master_view, ch1.axes.size());
+  EXPECT_EQ(ch1.setup.polygon.slave_view, ch1.axes.size() + 1);
+  EXPECT_DOUBLE_EQ(ch1.setup.polygon.max_speed, 3000.0 * 6.0);
+  // A machine without: G51.2 has no polygon axis.
+  const config::MachineConfig twin =
+      config::load_machine_file(std::string(MCNC_SOURCE_DIR) + "/launch/machines/twin_turret.yaml");
+  EXPECT_EQ(controller_layout_for(twin, *twin.find_channel("CH1")).setup.polygon.master, 0U);
+}
+
+}  // namespace
+}  // namespace mcnc::channel

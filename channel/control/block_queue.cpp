@@ -26,7 +26,7 @@ void BlockQueue::push(const interp::Command& c, const interp::AxisVector& start)
   for (std::size_t i = 0; i < c.to.size() && i < 32 && c.moves(); ++i) {
     b.moves |= c.to[i] != start[i] ? 1U << i : 0U;
   }
-  b.sets_torque_limit = c.torque_skip && c.torque_limit > 0.0;
+  b.sets_torque_limit = (c.torque_skip && c.torque_limit > 0.0) || c.load_skip;
   ++count_;
 }
 

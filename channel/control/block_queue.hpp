@@ -25,7 +25,8 @@ struct QueuedBlock {
   const std::string* file = nullptr;  // owned by the interpreter
   std::string_view text;              // the line, as the interpreter holds it
   interp::ModalState modal;
-  // Bit i: the block moves channel axis i; a G160 that sets a torque limit (not P-1).
+  // Bit i: the block moves channel axis i; a G160 that sets a torque limit (not P-1), or a
+  // G31 P98/P99 (its load ratios).
   std::uint32_t moves = 0;
   bool sets_torque_limit = false;
 };

@@ -146,9 +146,10 @@ void ChannelCoordination::end_cycle() noexcept {
   if (skip != nullptr && skip->command.skip_signal == 0 &&
       skip_.phase() != coordination::SkipPhase::stopping && in_run()) {
     const std::uint32_t probes = skip_axes(*skip);
+    const std::uint32_t torques = torque_axes(*skip);
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
       if (((probes >> i) & 1U) != 0) {
-        out_.setpoints[i].probe = skip->arm;
+        out_.setpoints[i].probe = ((torques >> i) & 1U) != 0 ? ProbeArm::torque : skip->arm;
       }
     }
   }
@@ -316,11 +317,23 @@ std::uint32_t ChannelCoordination::probe_axes(int input) const noexcept {
   return probes;
 }
 
+ChannelCoordination::TorqueLimit ChannelCoordination::skip_torque_limit(const interp::Command& c,
+                                                                        std::size_t i) noexcept {
+  if (c.torque_skip) {
+    return i == c.skip_axis && c.torque_limit > 0.0 ? TorqueLimit{c.torque_limit, c.deviation}
+                                                    : TorqueLimit{};
+  }
+  // Held back at the ratio is the load reaching it: the skip needs no following error beyond.
+  return c.load_skip && i < c.load_ratio.size() ? TorqueLimit{c.load_ratio[i], 0.0} : TorqueLimit{};
+}
+
 std::uint32_t ChannelCoordination::torque_axes(const SkipStop& s) const noexcept {
-  const std::size_t i = s.torque_axis;
-  const bool wired = i < setup_.axis_count && i < setup_.torque_axes.size() &&
-                     setup_.torque_axes[i] && (!exchanges() || commands_axis(i));
-  return wired ? 1U << i : 0U;
+  std::uint32_t bits = 0;
+  for (std::size_t i = 0; i < setup_.axis_count && i < setup_.torque_axes.size(); ++i) {
+    const bool wired = setup_.torque_axes[i] && (!exchanges() || commands_axis(i));
+    bits |= wired && skip_torque_limit(s.command, i).limit > 0.0 ? 1U << i : 0U;
+  }
+  return bits;
 }
 
 void ChannelCoordination::block_started(const QueuedBlock& b) noexcept {
@@ -577,12 +590,19 @@ void ChannelCoordination::run(ModeStop& b, std::uint64_t /*cycle*/,
 
 void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
                               std::span<const AxisFeedbackView> feedback) noexcept {
-  if (b.arm == ProbeArm::torque && b.torque_axis == interp::kMaxChannelAxes) {
-    // G160 at the front: its limit stands from here on.
-    b.torque_axis = b.command.skip_axis;
-    skip_.begin_torque(b.torque_axis);
-    if (torque_axes(b) != 0) {
-      torque_[b.torque_axis] = TorqueLimit{b.command.torque_limit, b.command.deviation};
+  if (!b.at_front) {
+    // G160 or G31 P98/P99 at the front: its limits stand from here on.
+    b.at_front = true;
+    if (b.command.torque_skip) {
+      skip_.begin_torque(b.command.skip_axis);
+    } else if (b.command.load_skip) {
+      skip_.begin_load(b.command.input, b.command.skip);
+    }
+    const std::uint32_t limited = torque_axes(b);
+    for (std::size_t i = 0; i < setup_.axis_count && i < torque_.size(); ++i) {
+      if (((limited >> i) & 1U) != 0) {
+        torque_[i] = skip_torque_limit(b.command, i);
+      }
     }
   }
   if (skip_.phase() == coordination::SkipPhase::arming) {

@@ -106,8 +106,8 @@ class ChannelCoordination {
   [[nodiscard]] bool skip_stopping() const noexcept {
     return skip_in(coordination::SkipPhase::stopping);
   }
-  // A queued block starts: a move of an axis under a G160 torque limit other than a G160 that
-  // sets one cancels it (L5382), and so does G160 P-1.
+  // A queued block starts: a move of an axis under a G160 (or G31 P98/P99) torque limit other
+  // than one that sets one cancels it (L5382), and so does G160 P-1.
   void block_started(const QueuedBlock& b) noexcept;
   // G160: axis i's torque limit (percent of the rated torque, 0: none) and skip deviation.
   [[nodiscard]] double torque_limit(std::size_t i) const noexcept { return torque_[i].limit; }
@@ -153,11 +153,12 @@ class ChannelCoordination {
   }
   // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
   [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
-  // Bit of a G160's axis, when the channel commands it and its drive takes a torque limit.
+  // Bit i: a G160 or G31 P98/P99 limits axis i's torque (its axis, the axes with a load
+  // ratio), the channel commands the axis and its drive takes a torque limit.
   [[nodiscard]] std::uint32_t torque_axes(const SkipStop& s) const noexcept;
-  // The probes that a G31 or G160 arms and watches.
+  // The probes that a G31 or G160 arms and watches: touch probes on the input and torque skips.
   [[nodiscard]] std::uint32_t skip_axes(const SkipStop& s) const noexcept {
-    return s.arm == ProbeArm::torque ? torque_axes(s) : probe_axes(s.command.input);
+    return (s.arm == ProbeArm::torque ? 0U : probe_axes(s.command.input)) | torque_axes(s);
   }
   // G31 P: skip signal `signal` (1-8) on in the PLC's status; the PLC gone (or without it).
   [[nodiscard]] bool skip_signal_on(int signal) const noexcept;
@@ -228,13 +229,17 @@ class ChannelCoordination {
   coordination::SpindleMode spindle_mode_;
   std::uint64_t plc_inputs_ = 0;
   coordination::SkipProbe skip_;
-  // G160's torque limits, per channel axis: they stay after the skip (a tailstock keeps
-  // pressing) until a move of the axis cancels them (decision 100).
+  // G160's (and G31 P98/P99's) torque limits, per channel axis: they stay after the skip (a
+  // tailstock keeps pressing) until a move of the axis cancels them (decisions 101, 200).
   struct TorqueLimit {
     double limit = 0.0;  // percent of the rated torque, 0: none
     double deviation = 0.0;
   };
   std::array<TorqueLimit, interp::kMaxChannelAxes> torque_{};
+  // The torque limit a G160 or G31 P98/P99 puts on channel axis i (limit 0: none): G160 its P
+  // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 200).
+  [[nodiscard]] static TorqueLimit skip_torque_limit(const interp::Command& c,
+                                                     std::size_t i) noexcept;
 };
 
 }  // namespace mcnc::channel

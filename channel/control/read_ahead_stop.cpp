@@ -136,10 +136,11 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                    c.op == Op::tool ? coordination::AuxKind::t_code : coordination::AuxKind::m_code,
                    code, spindle_start, c};
   }
-  if (c.skip || (c.torque_skip && c.torque_limit > 0.0)) {  // G31, G160 (P-1 only moves)
+  // G31 (P98/P99 on the load too), G160 (P-1 only moves).
+  if (c.skip || c.load_skip || (c.torque_skip && c.torque_limit > 0.0)) {
     SkipStop s;
     s.command = c;
-    s.arm = c.torque_skip ? ProbeArm::torque : c.input_on ? ProbeArm::rising : ProbeArm::falling;
+    s.arm = !c.skip ? ProbeArm::torque : c.input_on ? ProbeArm::rising : ProbeArm::falling;
     return s;
   }
   return std::monostate{};

@@ -83,11 +83,11 @@ struct ModeStop {  // M18 / M17
 };
 // G31: the move waits until the touch probes on its input are armed, runs until one latches
 // (then stops at the planner's reset deceleration) or it ends, and the source learns where.
+// G160 and G31 P98/P99 arm the torque skips of the axes whose torque they limit (`torque`).
 struct SkipStop {
-  interp::Command command;  // the move, queued once the probes are armed
-  ProbeArm arm = ProbeArm::rising;
-  // G160: the channel axis it moves, found when it reaches the front (kMaxChannelAxes: not yet).
-  std::size_t torque_axis = interp::kMaxChannelAxes;
+  interp::Command command;          // the move, queued once the probes are armed
+  ProbeArm arm = ProbeArm::rising;  // the touch probes' edge, or `torque` alone (G160, P98)
+  bool at_front = false;            // its torque limits stand from when it reached the front
 };
 // G04 I / G04 PS: the block waits until its condition holds, its dwell time ends or it times
 // out.

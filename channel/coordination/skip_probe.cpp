@@ -12,6 +12,7 @@ void SkipProbe::begin(int input) noexcept {
   skipped_ = false;
   lost_ = false;
   torque_ = false;
+  load_ = 0;
   skip_at_ = {};
 }
 
@@ -19,6 +20,11 @@ void SkipProbe::begin_torque(std::size_t axis) noexcept {
   begin(0);
   torque_ = true;
   torque_axis_ = axis;
+}
+
+void SkipProbe::begin_load(int input, bool or_input) noexcept {
+  begin(input);
+  load_ = or_input ? 99 : 98;
 }
 
 void SkipProbe::begin_signal(int signal) noexcept {
@@ -74,7 +80,12 @@ SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
   }
   const int axis = static_cast<int>(torque_axis_) + 1;
   if (!any) {
-    if (torque_) {
+    if (load_ != 0) {
+      alarm_.set(interp::alarm::kSkipInput,
+                 "G31 P%d: no axis of the move that this channel commands takes a torque limit "
+                 "(torque_skip)%s",
+                 load_, load_ == 99 ? " or has its touch probe on the input" : "");
+    } else if (torque_) {
       alarm_.set(interp::alarm::kSkipInput,
                  "G160: the channel does not command axis %d, or its drive takes no torque limit "
                  "(torque_skip)",
@@ -89,7 +100,9 @@ SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
     return SkipArming::armed;
   }
   if (++waited_ > arm_cycles_) {
-    if (torque_) {
+    if (load_ != 0) {
+      alarm_.set(kAlarmProbeNotArmed, "G31 P%d: the torque limits of its axes did not arm", load_);
+    } else if (torque_) {
       alarm_.set(kAlarmProbeNotArmed, "G160: the torque limit of axis %d did not arm", axis);
     } else {
       alarm_.set(kAlarmProbeNotArmed, "G31: the touch probe on input %d did not arm", input_);

@@ -9,8 +9,9 @@
 // the axes' feedback stood in the cycle the signal is seen on, not a drive's latch (decision
 // 360). G160 skips where its axis's node reports the torque at the limit and the following
 // error beyond the deviation, a latch as a touch probe's, at the axis's actual position then
-// (decision 100). Pure: one call per cycle with the feedback of that cycle; no allocation, nothing
-// throws.
+// (decision 100). G31 P98/P99 skip where an axis is held back at its load ratio the same way,
+// P99 also on the touch probes of its input (decision 200). Pure: one call per cycle with the
+// feedback of that cycle; no allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
@@ -38,6 +39,9 @@ class SkipProbe {
   void begin(int input) noexcept;
   // G160 of channel axis `axis` reached the front; arm() and watch() take the axis's bit.
   void begin_torque(std::size_t axis) noexcept;
+  // G31 P98 (`or_input` false: the load alone) or P99 (its input or the load) reached the
+  // front; arm() and watch() take the bits of the axes it limits besides the input's probes.
+  void begin_load(int input, bool or_input) noexcept;
   // Arming, one cycle. `probes`: bit i, the touch probe of axis i is on the block's input.
   SkipArming arm(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
   void start_moving() noexcept { phase_ = SkipPhase::moving; }
@@ -69,6 +73,7 @@ class SkipProbe {
   int input_ = 0;
   int signal_ = 0;       // G31 P: the PLC's skip signal (1-8); 0: touch probes
   bool torque_ = false;  // G160: the torque skip of axis torque_axis_
+  int load_ = 0;         // G31 P98 / P99: the load skips of the axes with a load ratio
   std::size_t torque_axis_ = 0;
   SkipPhase phase_ = SkipPhase::arming;
   std::uint64_t waited_ = 0;  // cycles arming

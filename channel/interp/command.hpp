@@ -154,6 +154,12 @@ struct Command {
   double torque_limit = 0.0;
   double deviation = 0.0;
   std::size_t skip_axis = 0;  // G160: the channel axis it moves (index into the channel's axes)
+  // G31 P98/P99 (load_skip): per channel axis that the move moves, the load ratio it skips at,
+  // percent of the rated torque (G10 L14 P6, else param 5511; 0: not watched). The axis's
+  // torque is limited to it and the move skips where the axis is held back at it, as G160's
+  // with deviation 0; P99 (`skip` as well) also on the block's input.
+  bool load_skip = false;
+  std::array<double, kMaxChannelAxes> load_ratio{};
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

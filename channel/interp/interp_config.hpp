@@ -55,6 +55,9 @@ struct AxisConfig {
   int probe_input = 0;
   // G160: its drive takes a torque limit and reports its torque (torque_skip).
   bool torque_skip = false;
+  // Param 5511: the load ratio G31 P98/P99 skip at on this axis, percent of the rated torque,
+  // where no G10 L14 P6 set one (0: none, the axis is not watched).
+  double skip_load = 0.0;
   // Param 5700.1: G81.1 may oscillate it.
   bool oscillation = false;
 };

@@ -57,13 +57,23 @@ bool skip_wired(const Command& c, const InterpreterConfig& config) {
   return false;
 }
 
+// G31 P98/P99: an axis it watches whose drive takes no torque limit (nullptr: none).
+const AxisConfig* unlimited_load_axis(const Command& c, const InterpreterConfig& config) {
+  for (std::size_t a = 0; a < config.axes.size(); ++a) {
+    if (c.load_ratio[a] > 0.0 && !config.axes[a].torque_skip) {
+      return &config.axes[a];
+    }
+  }
+  return nullptr;
+}
+
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
   if (c.multi_skip) {
     return alarm::kNotInThisVersion;
   }
-  if (c.torque_skip) {
+  if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr)) {
     return alarm::kSkipInput;
   }
   if (c.op == Op::sync) {
@@ -342,6 +352,13 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
           std::string(1, c.skip_axis < config.axes.size() ? config.axes[c.skip_axis].name : '?') +
           " takes no torque limit (torque_skip of the axis in the machine file)";
     return false;
+  }
+  if (c.load_skip) {
+    if (const AxisConfig* a = unlimited_load_axis(c, config)) {
+      why = std::string(c.skip ? "G31 P99" : "G31 P98") + ": the drive of axis " + a->name +
+            " takes no torque limit (torque_skip of the axis in the machine file)";
+      return false;
+    }
   }
   if (c.skip && !skip_wired(c, config)) {
     why = c.skip_signal != 0

@@ -231,6 +231,10 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_skip(int column);
   bool run_multi_skip(int column);   // G31.8
   bool run_torque_skip(int column);  // G160
+  bool run_load_ratio(int column);   // G10 L14 P6
+  // G31 P98/P99: the load ratio of each axis the move from `from` moves; an alarm when none
+  // has one.
+  bool set_load_ratios(Command& c, const AxisVector& from, const char* code, int column);
   // What G31, G31.8 and G160 share (`code` names the block's code in an alarm): not in polar or
   // cylindrical interpolation nor under G41/G42; the input of L, K, I or param 5510; the
   // variable a word names (0 without the word); the feed move (`one_axis`: exactly one axis
@@ -636,6 +640,9 @@ class ProgramRun final : public macro::VariableProvider {
   std::int64_t multi_skip_first_ = 0;
   std::int64_t multi_skip_count_variable_ = 0;
   int multi_skip_axis_ = 0;
+  // G10 L14 P6: per channel axis, the load ratio G31 P98/P99 skip at (percent of the rated
+  // torque; 0: param 5511's).
+  AxisVector load_ratio_{};
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

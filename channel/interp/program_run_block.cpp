@@ -1968,10 +1968,14 @@ bool ProgramRun::run_data_input(int column) {
   p->used = true;
   if (l != nullptr) {
     l->used = true;
+    if (whole_number(l->value, lv) && lv == 14) {
+      return run_load_ratio(column);
+    }
     if (!whole_number(l->value, lv) || (lv != 2 && lv != 20)) {
       return fail(alarm::kNotInThisVersion,
                   "G10 L" + std::to_string(lv) +
-                      " is not implemented (work offsets: L2, L20; tool offsets: no L)",
+                      " is not implemented (work offsets: L2, L20; load ratios: L14 P6; tool "
+                      "offsets: no L)",
                   l->column);
     }
     int system = 0;

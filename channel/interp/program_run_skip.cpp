@@ -1,8 +1,9 @@
 // G31 skip (spec dafeng L5210-5316, gsk A.6.20): a feed move that ends where a skip input
 // switches. The interpreter emits the move and stops reading ahead there (a barrier, L6907);
 // the channel runs it, stops it at the signal and tells where (Interpreter::skip_result).
-// G31.8 (L5317-5354) stores where each of several signals came; G160 (L5355-5428) skips where
-// the axis, its torque limited, is held back.
+// G31 P98/P99 (L5246-5252) skip where an axis is held back at its load ratio (G10 L14 P6,
+// param 5511). G31.8 (L5317-5354) stores where each of several signals came; G160
+// (L5355-5428) skips where the axis, its torque limited, is held back.
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
@@ -109,50 +110,114 @@ bool ProgramRun::run_skip(int column) {
     return false;
   }
   // The input: L, K, I or param 5510; P names a PLC signal (P1-P8: G0014.0-7, going on, L5233)
-  // or the torque (P98/P99).
+  // or the load (P98: the load alone, L5246-5249; P99: the input or the load, L5251-5252).
   BlockWord* p = word('P');
-  const int ways =
-      (word('L') != nullptr) + (word('K') != nullptr) + (word('I') != nullptr) + (p != nullptr);
+  const bool or_load = p != nullptr && p->value == 99.0;  // P99 comes beside L, K or I
+  const int ways = (word('L') != nullptr) + (word('K') != nullptr) + (word('I') != nullptr) +
+                   (p != nullptr && !or_load);
   if (ways > 1) {
-    BlockWord* second = p != nullptr ? p : (word('I') != nullptr ? word('I') : word('K'));
+    BlockWord* second =
+        p != nullptr && !or_load ? p : (word('I') != nullptr ? word('I') : word('K'));
     return fail(alarm::kWordNotAllowed, "G31 takes one of L, K, I and P", second->column);
   }
   int signal = 0;
+  bool load = false;
   if (p != nullptr) {
     p->used = true;
-    const bool torque = p->value == 98.0 || p->value == 99.0;
-    if (!torque && !(p->value >= 1.0 && p->value <= 8.0 && p->value == std::floor(p->value))) {
+    load = p->value == 98.0 || or_load;
+    if (!load && !(p->value >= 1.0 && p->value <= 8.0 && p->value == std::floor(p->value))) {
       return fail(alarm::kBadWordValue, "G31 P must be 1-8, 98 or 99", p->column);
     }
-    if (torque) {
-      return fail(alarm::kNotInThisVersion,
-                  "G31 P98/P99 (the torque skip) needs the drive's torque limit, not in this "
-                  "version",
-                  p->column);
-    }
-    signal = static_cast<int>(p->value);
+    signal = load ? 0 : static_cast<int>(p->value);
   }
-  int input = 0;  // P: not a probe input but the PLC's signal
+  const bool input_too = !load || or_load;  // P98 skips on the load alone
+  int input = 0;                            // P1-P8 and P98: no probe input
   bool on = true;
-  if (signal == 0 && !read_skip_input("G31", column, input, on)) {
+  if (signal == 0 && input_too && !read_skip_input("G31", column, input, on)) {
     return false;
   }
   std::int64_t flag = 0;
   if (!read_result_variable('R', "G31", "the result", flag)) {
     return false;
   }
+  const AxisVector from = machine_;
   Command* c = emit_skip_move("G31", false, column);
   if (c == nullptr) {
     return false;
   }
-  c->skip = true;
+  c->skip = input_too;
   c->input = input;
   c->input_on = on;
   c->skip_signal = signal;
+  if (load && !set_load_ratios(*c, from, or_load ? "G31 P99" : "G31 P98", column)) {
+    return false;
+  }
   // Until the channel says otherwise (a dry run, `mcnc interp`): skipped at the end point, so
   // a program that checks the signal runs its checked branch.
   skip_flag_variable_ = flag;
   record_skip(true, transform::to_vector(frame_.to_machine(transform::to_point(machine_))));
+  return true;
+}
+
+bool ProgramRun::set_load_ratios(Command& c, const AxisVector& from, const char* code, int column) {
+  // Each axis the move moves is watched at its ratio of G10 L14 P6, else of param 5511
+  // (L5247); the others cannot be held back by what the move runs into.
+  c.load_skip = true;
+  bool any = false;
+  for (std::size_t a = 0; a < config_.axes.size(); ++a) {
+    const double ratio = load_ratio_[a] > 0.0 ? load_ratio_[a] : config_.axes[a].skip_load;
+    c.load_ratio[a] = machine_[a] != from[a] ? ratio : 0.0;
+    any = any || c.load_ratio[a] > 0.0;
+  }
+  if (!any) {
+    return fail(alarm::kCycleWordMissing,
+                std::string(code) +
+                    " needs the load ratio of an axis it moves: G10 L14 P6 or param 5511 "
+                    "(skip_load of the axis)",
+                column);
+  }
+  return true;
+}
+
+bool ProgramRun::run_load_ratio(int column) {
+  // G10 L14 P6 α (L5246-5247): the load ratios G31 P98/P99 skip at, in percent of the rated
+  // torque, by absolute addresses only (L4773); 0 gives an axis back to param 5511, and the
+  // block without axes all of them (as G10 L14 P1 without axes cancels the checks, L4866). The
+  // other L14 forms (load monitoring P0-P5, P7/P8, the torque limit P9, torque mode P10-P12)
+  // are not implemented.
+  BlockWord* p = word('P');
+  if (p->value != 6.0) {
+    return fail(alarm::kNotInThisVersion,
+                "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
+                    " (load monitoring, torque limit or torque mode) is not implemented; G10 L14 "
+                    "P6 sets the load ratios of G31 P98/P99",
+                p->column);
+  }
+  (void)column;
+  bool any = false;
+  AxisVector ratios = load_ratio_;
+  const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    any = true;
+    if (incremental) {
+      return fail(alarm::kWordNotAllowed,
+                  "G10 L14 P6 takes the load ratios by absolute addresses (X, Z, A ...), not "
+                  "by U, W or UA",
+                  w.column);
+    }
+    if (!(w.value >= 0.0 && w.value <= 1000.0)) {
+      return fail(alarm::kBadWordValue,
+                  "G10 L14 P6 " +
+                      std::string(1, config_.axes[static_cast<std::size_t>(axis)].name) +
+                      " (the load ratio, % of the rated torque) must be 0-1000",
+                  w.column);
+    }
+    ratios[static_cast<std::size_t>(axis)] = w.value;
+    return true;
+  });
+  if (!ok) {
+    return false;
+  }
+  load_ratio_ = any ? ratios : AxisVector{};
   return true;
 }
 

@@ -50,6 +50,7 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     axis.may_follow = a->sync_slave;
     axis.probe_input = a->probe_input;
     axis.torque_skip = a->torque_skip;
+    axis.skip_load = a->skip_load;
     axis.oscillation = a->oscillation;
     for (std::size_t s = 0; s < channel.spindles.size() && !a->spindle.empty(); ++s) {
       axis.spindle = channel.spindles[s] == a->spindle ? static_cast<int>(s) + 1 : axis.spindle;

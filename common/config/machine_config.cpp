@@ -424,6 +424,7 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "tpdo2",
                                  "touch_probe",
                                  "torque_skip",
+                                 "skip_load",
                                  "exchange",
                                  "axis_sync",
                                  "oscillation",
@@ -556,6 +557,16 @@ AxisConfig parse_axis(const YamlValue& value) {
     }
     if (axis.torque_skip && axis.probe_input > 0) {
       torque->fail("torque_skip and touch_probe do not fit one TPDO2");
+    }
+  }
+  if (auto load = map.optional("skip_load")) {
+    // Param 5511: G31 P98/P99 limit the torque to it and skip where the axis is held back.
+    axis.skip_load = load->number();
+    if (!(axis.skip_load > 0.0 && axis.skip_load <= 1000.0)) {
+      load->fail("skip_load is a load ratio above 0 and up to 1000 (% of the rated torque)");
+    }
+    if (!axis.torque_skip) {
+      load->fail("skip_load needs torque_skip: true (the drive's torque limit and its torque)");
     }
   }
   if (auto homing = map.optional("homing")) {

@@ -100,6 +100,9 @@ struct AxisConfig {
   // `torque_skip: true`: the drive's max torque 0x6072 is in RPDO2 and its torque 0x6077 in
   // TPDO2 (canopen::add_torque_limit), so that G160 can limit the torque and skip on it.
   bool torque_skip = false;
+  // `skip_load` (param 5511): the load ratio G31 P98/P99 skip at where no G10 L14 P6 set one,
+  // percent of the rated torque (0: none).
+  double skip_load = 0.0;
   // Reference return at start-up by the drive's homing mode (CiA 402 method, home offset).
   bool has_homing = false;
   int homing_method = 0;

@@ -4,7 +4,8 @@
 // B1's setpoints, the axis node puts it on the bus, the drive's torque rises to it at the
 // centre while the following error grows, the node latches the skip where B1 stands, and the
 // channel stops the move and hands the position to the program (#5063). The limit stays while
-// X and Z cut and through the retracting G160, until a G00 of B1 cancels it.
+// X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
+// the same way with B1's load ratio as the limit (decision 200), P99 also on Z1's touch probe.
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 
@@ -15,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mcnc::test {
@@ -23,38 +25,44 @@ namespace {
 constexpr std::uint8_t kTailstockNode = 3;
 constexpr double kCentre = -150.0;
 
-// small_lathe.yaml with the tailstock B1, at a 2 ms cycle (three axes and B1's second PDOs keep
-// the bus under 70 %).
-void add_tailstock(const TestMachine& machine) {
+// Rewrites the machine file: each `what` replaced by its `with` (each must be there), then
+// `more` appended.
+void edit_machine(const TestMachine& machine,
+                  const std::vector<std::pair<std::string, std::string>>& replacements,
+                  const std::string& more = "") {
   std::ifstream in(machine.path());
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
-  const auto replace = [&](const std::string& what, const std::string& with) {
+  for (const auto& [what, with] : replacements) {
     const std::size_t at = yaml.find(what);
     ASSERT_NE(at, std::string::npos) << what;
     yaml.replace(at, what.size(), with);
-  };
-  replace("cycle_us: 1000", "cycle_us: 2000");
-  replace("axes: [X1, Z1]", "axes: [X1, Z1, B1]");
-  yaml +=
-      "\n  - name: B1\n"
-      "    address: B\n"
-      "    type: linear\n"
-      "    bus: can0\n"
-      "    node_id: 3\n"
-      "    counts_per_unit: 10000\n"
-      "    rapid_rate: 6000\n"
-      "    max_feed: 3000\n"
-      "    acceleration: 1000\n"
-      "    in_position: 0.0005\n"
-      "    torque_skip: true\n"
-      "    drive:\n"
-      "      time_constant_s: 0.004\n"
-      "      max_velocity: 150\n"
-      "      quick_stop_decel: 5000\n"
-      "      contact: {at: -150, blocks: below}\n";
-  std::ofstream(machine.path()) << yaml;
+  }
+  std::ofstream(machine.path()) << yaml << more;
+}
+
+// small_lathe.yaml with the tailstock B1, at a 2 ms cycle (three axes and B1's second PDOs keep
+// the bus under 70 %).
+void add_tailstock(const TestMachine& machine) {
+  edit_machine(machine,
+               {{"cycle_us: 1000", "cycle_us: 2000"}, {"axes: [X1, Z1]", "axes: [X1, Z1, B1]"}},
+               "\n  - name: B1\n"
+               "    address: B\n"
+               "    type: linear\n"
+               "    bus: can0\n"
+               "    node_id: 3\n"
+               "    counts_per_unit: 10000\n"
+               "    rapid_rate: 6000\n"
+               "    max_feed: 3000\n"
+               "    acceleration: 1000\n"
+               "    in_position: 0.0005\n"
+               "    torque_skip: true\n"
+               "    drive:\n"
+               "      time_constant_s: 0.004\n"
+               "      max_velocity: 150\n"
+               "      quick_stop_decel: 5000\n"
+               "      contact: {at: -150, blocks: below}\n");
 }
 
 // Where the channel's blocks left `axis`, in order.
@@ -68,20 +76,57 @@ std::vector<double> block_ends(const std::vector<nlohmann::json>& trace, const s
   return ends;
 }
 
+// add_tailstock's machine with Z1's touch probe on input 13, on where Z1 passes -12.5 (as
+// integration.Skip's), and B1's load ratio of param 5511 at 50 %.
+void add_probe_and_load_ratio(const TestMachine& machine) {
+  add_tailstock(machine);
+  edit_machine(machine,
+               {{"  - name: Z1\n", "  - name: Z1\n    touch_probe: {input: 13}\n"},
+                {"      max_velocity: 250     # mm/s\n",
+                 "      max_velocity: 250     # mm/s\n      probe: {at: -12.5, on: below}\n"},
+                {"    torque_skip: true\n", "    torque_skip: true\n    skip_load: 50\n"}});
+}
+
 std::int32_t signed16(const can::CanFrame& f) {
   return static_cast<std::int16_t>(static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8)));
+}
+
+// B1's 0x6072 values in the order they changed, and the lowest torque its TPDO2 reported.
+void limits_on_the_bus(const std::vector<can::CanFrame>& frames, std::vector<std::int32_t>& limits,
+                       std::int32_t& lowest_torque) {
+  lowest_torque = 0;
+  for (const can::CanFrame& f : frames) {
+    if (f.id == 0x300U + kTailstockNode && f.dlc == 2) {
+      const std::int32_t v = static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8));
+      if (limits.empty() || limits.back() != v) {
+        limits.push_back(v);
+      }
+    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2) {
+      lowest_torque = std::min(lowest_torque, signed16(f));
+    }
+  }
+}
+
+// A run to its clean end, with every frame of the bus (that of the machine's domain).
+struct Recorded {
+  std::vector<nlohmann::json> trace;
+  std::vector<can::CanFrame> frames;
+};
+Recorded run_recording_the_bus(const TestMachine& machine, int domain, const std::string& program) {
+  Recorded r;
+  BusRecorder bus("udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
+  r.trace = run_to_clean_end(machine, program);
+  r.frames = bus.frames();
+  return r;
 }
 
 TEST(TorqueSkip, TheTailstockPressesAgainstTheCentreWithTheLimitOnTheBus) {
   TestMachine machine("small_lathe.yaml", 108);
   add_tailstock(machine);
-  std::vector<nlohmann::json> trace;
-  std::vector<can::CanFrame> frames;
-  {
-    BusRecorder bus("udp:239.255.108.1:" + std::to_string(24000 + 108));
-    trace = run_to_clean_end(machine, "tests/integration/programs/g160/tailstock.nc");
-    frames = bus.frames();
-  }
+  const Recorded r =
+      run_recording_the_bus(machine, 108, "tests/integration/programs/g160/tailstock.nc");
+  const std::vector<nlohmann::json>& trace = r.trace;
+  const std::vector<can::CanFrame>& frames = r.frames;
   EXPECT_TRUE(events(trace, "alarm").empty());
   // B1's block ends: G00 (line 3), G160 (4), G160 back (8), G00 to #5063 + 10 (9).
   const std::vector<double> b = block_ends(trace, "B1");
@@ -105,19 +150,76 @@ TEST(TorqueSkip, TheTailstockPressesAgainstTheCentreWithTheLimitOnTheBus) {
   // from it through the retract, none again after the G00; its TPDO2 the torque at -50 %.
   std::vector<std::int32_t> limits;
   std::int32_t lowest_torque = 0;
-  for (const can::CanFrame& f : frames) {
-    if (f.id == 0x300U + kTailstockNode && f.dlc == 2) {
-      const std::int32_t v = static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8));
-      if (limits.empty() || limits.back() != v) {
-        limits.push_back(v);
-      }
-    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2) {
-      lowest_torque = std::min(lowest_torque, signed16(f));
-    }
-  }
+  limits_on_the_bus(frames, limits, lowest_torque);
   EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000}));
   EXPECT_LE(lowest_torque, -485);
   EXPECT_GE(lowest_torque, -500);
+}
+
+TEST(TorqueSkip, G31P98StopsWhereTheTailstockIsHeldBackAtTheLoadRatioOfG10L14P6) {
+  TestMachine machine("small_lathe.yaml", 113);
+  add_tailstock(machine);
+  const Recorded r =
+      run_recording_the_bus(machine, 113, "tests/integration/programs/g160/load_skip.nc");
+  const std::vector<nlohmann::json>& trace = r.trace;
+  const std::vector<can::CanFrame>& frames = r.frames;
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  // Every block end gives each axis's position; B1's first below the centre is the G31's.
+  const std::vector<double> b = block_ends(trace, "B1");
+  const auto pressed = std::find_if(b.begin(), b.end(), [](double v) { return v < kCentre; });
+  ASSERT_NE(pressed, b.end());
+  // Stopped past the centre by the reaction (the latch reaches the channel a few 2 ms cycles
+  // later, 0.01 mm each at 5 mm/s) and the braking, with no following error to wait for.
+  EXPECT_GT(*pressed, kCentre - 0.25);
+  // #5063 is where B1 stood at the latch, the centre: the last G00 went 10 above it.
+  EXPECT_NEAR(b.back(), kCentre + 10.0, 0.005);
+  // R100 = 1: X went to 30 (the trace gives the slide's radius).
+  const std::vector<double> x = block_ends(trace, "X1");
+  ASSERT_FALSE(x.empty());
+  EXPECT_NEAR(x.back(), 15.0, 1e-6);
+  // On the wire: no limit before the G31, G10 L14 P6's 50 % (500 per mille) from it until the
+  // G00 of B1, none after; the torque at the centre at -50 %.
+  std::vector<std::int32_t> limits;
+  std::int32_t lowest_torque = 0;
+  limits_on_the_bus(frames, limits, lowest_torque);
+  EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000}));
+  EXPECT_LE(lowest_torque, -485);
+  EXPECT_GE(lowest_torque, -500);
+}
+
+TEST(TorqueSkip, G31P99StopsAtTheLoadOrAtTheTouchProbeWhicheverComesFirst) {
+  TestMachine machine("small_lathe.yaml", 115);
+  add_probe_and_load_ratio(machine);
+  const Recorded r =
+      run_recording_the_bus(machine, 115, "tests/integration/programs/g160/probe_or_load.nc");
+  const std::vector<nlohmann::json>& trace = r.trace;
+  const std::vector<can::CanFrame>& frames = r.frames;
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  // Every block end gives each axis's position. The first G31 (line 4): B1 held back at the
+  // centre at 50 %, halfway, Z1 at -1, short of the probe.
+  const std::vector<double> b = block_ends(trace, "B1");
+  const std::vector<double> z = block_ends(trace, "Z1");
+  ASSERT_EQ(b.size(), z.size());
+  const auto pressed = std::find_if(b.begin(), b.end(), [](double v) { return v < kCentre; });
+  ASSERT_NE(pressed, b.end());
+  const auto i = static_cast<std::size_t>(pressed - b.begin());
+  ASSERT_GE(b.size(), i + 4);
+  EXPECT_GT(b[i], kCentre - 0.25);
+  EXPECT_NEAR(z[i], -1.0, 0.02);
+  EXPECT_NEAR(b[i + 1], kCentre + 10.0, 0.005);  // #5063: the centre
+  // The second (line 7), Z1 from -1 to -21 with B1 from -140 to -146: Z1's probe at -12.5
+  // comes first, at 57.5 % of the way (B1 at -143.45), long before B1 could reach the centre.
+  EXPECT_LT(z[i + 2], -12.5);
+  EXPECT_GT(z[i + 2], -12.5 - 0.25);
+  EXPECT_NEAR(b[i + 2], -143.45, 0.05);
+  EXPECT_NEAR(z.back(), -10.5, 0.005);  // #5062: the probe's latch
+  // B1's limit on the wire: param 5511's 50 % from the first G31 to the G00, again from the
+  // second G31 to the end (a limit stands until a move of its axis).
+  std::vector<std::int32_t> limits;
+  std::int32_t lowest_torque = 0;
+  limits_on_the_bus(frames, limits, lowest_torque);
+  EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000, 500}));
+  EXPECT_LE(lowest_torque, -485);
 }
 
 TEST(TorqueSkip, G160OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeAnythingMoves) {

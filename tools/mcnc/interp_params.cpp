@@ -405,7 +405,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       const std::string k = "axes[" + std::to_string(i++) + "]";
       only_keys(a, k,
                 {"name", "diameter", "rotary", "start", "reference", "exchange", "approach",
-                 "stroke", "oscillation"});
+                 "stroke", "oscillation", "skip_load"});
       interp::AxisConfig ax;
       ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
       for (const auto& other : c.axes) {
@@ -432,6 +432,12 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
         ax.exchange = get<int>(a["exchange"], k + ".exchange");
       }
       ax.oscillation = a["oscillation"] && get<bool>(a["oscillation"], k + ".oscillation");
+      if (a["skip_load"]) {  // G31 P98/P99 without G10 L14 P6 (param 5511)
+        ax.skip_load = get<double>(a["skip_load"], k + ".skip_load");
+        if (!(ax.skip_load >= 0.0 && ax.skip_load <= 1000.0)) {
+          bad(k + ".skip_load", "0 to 1000 %");
+        }
+      }
       if (a["approach"]) {
         ax.approach = get<double>(a["approach"], k + ".approach") / unit;
       }

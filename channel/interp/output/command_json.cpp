@@ -357,6 +357,21 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
         }
         out += '}';
       }
+      if (c.load_skip) {  // G31 P98/P99: the load ratio of each axis watched
+        key(out, "load_skip");
+        out += '{';
+        bool first = true;
+        for (std::size_t i = 0; i < axes.size(); ++i) {
+          if (c.load_ratio[i] > 0.0) {
+            out += first ? "\"" : ",\"";
+            out += axes[i].name;
+            out += "\":";
+            number(out, c.load_ratio[i]);
+            first = false;
+          }
+        }
+        out += '}';
+      }
       if (c.torque_skip) {  // G160: the axis's torque limit (-1: cancelled) and the skip's error
         key(out, "torque_skip");
         out += "{\"limit\":";

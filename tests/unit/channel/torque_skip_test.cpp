@@ -2,14 +2,18 @@
 // with its setpoints from the block on, the move starts once the axis node reports the torque
 // skip armed, stops at the planner's reset deceleration once it latched, and the program reads
 // the latched position (#5061..). The limit stays after the skip, while other axes move, until
-// a move of that axis (G00/G01, or G160 P-1) cancels it. Channel 1 programs X and Z; Z's drive
-// takes a torque limit, and its load meets a contact at -12.5 coming from above.
+// a move of that axis (G00/G01, or G160 P-1) cancels it. G31 P98/P99 (decision 200) go the same
+// way with each moving axis's load ratio as its limit and no deviation, P99 also on the touch
+// probes of its input. Channel 1 programs X and Z; Z's drive takes a torque limit (its load
+// ratio of param 5511 30 %), and its load meets a contact at -12.5 coming from above; X's drive
+// has its touch probe on input 13, which a sensor switches on once Z passes `sensor_at`.
 #include "channel/interp/program_alarms.hpp"
 #include "channel_rig.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +22,7 @@ namespace {
 
 constexpr double kDt = 0.001;
 constexpr std::size_t kAxes = 2;  // X, Z
+constexpr std::size_t kX = 0;
 constexpr std::size_t kZ = 1;
 constexpr double kContact = -12.5;
 
@@ -26,13 +31,15 @@ interp::InterpreterConfig xz_channel(bool torque) {
   c.channel = 1;
   c.axes = {interp::AxisConfig{'X', true}, interp::AxisConfig{'Z'}};
   c.axes[kZ].torque_skip = torque;
+  c.axes[kZ].skip_load = 30.0;  // param 5511
+  c.axes[kX].probe_input = 13;
   return c;
 }
 
 ChannelSetup xz_setup(bool torque) {
   ChannelSetup s{kAxes, {0.001, 0.001}, kDt};
   s.channel_id = 1;
-  s.probe_inputs = {0, 0};
+  s.probe_inputs = {13, 0};
   s.torque_axes = {false, torque};
   s.probe_arm_cycles = 50;
   return s;
@@ -50,12 +57,15 @@ struct Sent {
 // Axis nodes that follow valid setpoints at once, except that Z's load stands at the contact.
 // Z's node reports the torque skip armed a cycle after it is asked with a limit, and latched
 // (at the contact) once the setpoint is beyond the contact by more than the deviation: the
-// torque is at the limit there.
+// torque is at the limit there. X's probe arms a cycle after it is asked and latches where Z
+// passes the sensor.
 class TorqueRig : public ChannelRig {
  public:
-  explicit TorqueRig(bool torque = true)
+  explicit TorqueRig(bool torque = true,
+                     double sensor_at = -std::numeric_limits<double>::infinity())
       : ChannelRig(xz_channel(torque), alike_axes(kAxes, kDt), xz_setup(torque)),
-        feedback_(standing_feedback(kAxes, 1)) {}
+        feedback_(standing_feedback(kAxes, 1)),
+        sensor_at_(sensor_at) {}
 
   const CycleOutput& step() override {
     const CycleOutput& out = channel_cycle(cycle_++, feedback_);
@@ -72,6 +82,15 @@ class TorqueRig : public ChannelRig {
       z.probe = ProbeSeen::latched;
       z.probe_pos = z.act;
     }
+    AxisFeedbackView& x = feedback_[kX];
+    if (out.setpoints[kX].probe != ProbeArm::rising) {
+      x.probe = ProbeSeen::off;
+    } else if (x.probe == ProbeSeen::off) {
+      x.probe = ProbeSeen::armed;
+    } else if (x.probe == ProbeSeen::armed && z.act <= sensor_at_) {
+      x.probe = ProbeSeen::latched;
+      x.probe_pos = x.act;
+    }
     for (std::size_t a = 0; a < kAxes; ++a) {
       sent[a].push_back(Sent{out.line, out.setpoints[a].pos, out.setpoints[a].torque_limit,
                              out.setpoints[a].skip_deviation, out.setpoints[a].probe});
@@ -84,6 +103,7 @@ class TorqueRig : public ChannelRig {
     return out;
   }
 
+  [[nodiscard]] double x() const { return feedback_[kX].act; }
   [[nodiscard]] double z() const { return feedback_[kZ].act; }
   [[nodiscard]] double z_cmd() const { return feedback_[kZ].cmd; }
   // What axis `a` was sent while line `line` ran.
@@ -108,6 +128,7 @@ class TorqueRig : public ChannelRig {
 
  private:
   std::vector<AxisFeedbackView> feedback_;
+  double sensor_at_;
   std::uint64_t cycle_ = 1;
 };
 
@@ -204,6 +225,92 @@ TEST(ChannelTorqueSkip, PMinusOneNeedsNoTorqueMapping) {
   ASSERT_TRUE(rig.run_to_end());
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
   EXPECT_NEAR(rig.z(), -5.0, 1e-9);
+}
+
+TEST(ChannelLoadSkip, P98LimitsTheTorqueToTheRatioAndSkipsWhereTheAxisIsHeldBack) {
+  TorqueRig rig;
+  rig.load(
+      "G98 G00 X20 Z0\n"          // 1
+      "G10 L14 P6 Z40\n"          // 2
+      "G31 W-50 F600 P98 R100\n"  // 3: held back at the contact, -12.5
+      "#101=#5062\n"              // 4
+      "G00 X[20+#100*10]\n"       // 5: X to 30 (radius 15) when it skipped
+      "G01 Z[#101+5] F600\n"      // 6: Z's move cancels the limit
+      "M30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  EXPECT_EQ(rig.armings, 1);
+  // Z limited to G10 L14 P6's 40 %, no deviation, its torque skip armed; X neither.
+  const std::vector<Sent> g31 = rig.during(kZ, 3);
+  ASSERT_FALSE(g31.empty());
+  EXPECT_TRUE(std::all_of(g31.begin(), g31.end(), [](const Sent& s) {
+    return s.torque_limit == 40.0 && s.skip_deviation == 0.0;
+  }));
+  EXPECT_EQ(g31.front().probe, ProbeArm::torque);
+  for (const Sent& s : rig.sent[kX]) {
+    EXPECT_EQ(s.torque_limit, 0.0);
+    EXPECT_EQ(s.probe, ProbeArm::off);  // P98: no touch probe
+  }
+  // Stopped past the contact within the reaction and the braking, far from -50.
+  const ChannelEvent* skipped = rig.end_of(3);
+  ASSERT_NE(skipped, nullptr);
+  EXPECT_LT(skipped->pos[kZ], kContact);
+  EXPECT_GT(skipped->pos[kZ], kContact - 0.2);
+  // X's rapid: Z keeps pressing with the limit.
+  for (const Sent& s : rig.during(kZ, 5)) {
+    EXPECT_EQ(s.torque_limit, 40.0);
+    EXPECT_EQ(s.probe, ProbeArm::off);
+  }
+  EXPECT_NEAR(rig.x(), 15.0, 1e-9);  // R100 = 1
+  for (const Sent& s : rig.during(kZ, 6)) {
+    EXPECT_EQ(s.torque_limit, 0.0);
+  }
+  EXPECT_NEAR(rig.z(), kContact + 5.0, 1e-9);  // #5062 = the contact
+}
+
+TEST(ChannelLoadSkip, P99SkipsOnTheTouchProbeBeforeTheLoad) {
+  TorqueRig rig(true, -6.0);
+  rig.load("G98 G00 X20 Z0\nG31 W-50 F600 L13 P99\nG00 Z[#5062+1]\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  // X's probe armed on the rising edge and Z's torque skip at param 5511's 30 %.
+  const std::vector<Sent> x = rig.during(kX, 2);
+  const std::vector<Sent> z = rig.during(kZ, 2);
+  ASSERT_FALSE(x.empty());
+  ASSERT_FALSE(z.empty());
+  EXPECT_EQ(x.front().probe, ProbeArm::rising);
+  EXPECT_EQ(x.front().torque_limit, 0.0);
+  EXPECT_EQ(z.front().probe, ProbeArm::torque);
+  EXPECT_EQ(z.front().torque_limit, 30.0);
+  // The sensor at -6 came first: stopped near it, Z never reached the contact.
+  const ChannelEvent* skipped = rig.end_of(2);
+  ASSERT_NE(skipped, nullptr);
+  EXPECT_LT(skipped->pos[kZ], -6.0);
+  EXPECT_GT(skipped->pos[kZ], -6.3);
+  EXPECT_NEAR(rig.z(), -6.0 + 1.0, 0.02);  // #5062 where Z stood at X's latch
+}
+
+TEST(ChannelLoadSkip, P99SkipsOnTheLoadWithoutTheSignal) {
+  TorqueRig rig;
+  rig.load("G98 G00 X20 Z0\nG31 W-50 F600 L13 P99\nG00 Z[#5062+1]\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  const ChannelEvent* skipped = rig.end_of(2);
+  ASSERT_NE(skipped, nullptr);
+  EXPECT_LT(skipped->pos[kZ], kContact);
+  EXPECT_GT(skipped->pos[kZ], kContact - 0.2);
+  EXPECT_NEAR(rig.z(), kContact + 1.0, 1e-9);
+}
+
+TEST(ChannelLoadSkip, AnAxisWhoseDriveTakesNoLimitIsRefusedBeforeTheProgramRuns) {
+  TorqueRig rig(false);
+  const auto alarm = rig.load_with_alarm("G98 G00 X20 Z0\nG31 W-50 F600 P98\nM30\n");
+  ASSERT_TRUE(alarm.has_value());
+  EXPECT_EQ(alarm->number, interp::alarm::kSkipInput);
+  EXPECT_EQ(alarm->line, 2);
+  EXPECT_NE(alarm->text.find("G31 P98: the drive of axis Z takes no torque limit"),
+            std::string::npos)
+      << alarm->text;
 }
 
 }  // namespace

@@ -575,6 +575,26 @@ TEST(MachineConfig, TorqueSkipAndTheDrivesContact) {
             "axes[1].drive.contact.at");
 }
 
+// G31 P98/P99: an axis's load ratio (param 5511), only where the drive takes a torque limit.
+TEST(MachineConfig, SkipLoadIsTheLoadRatioOfAnAxisWithATorqueLimit) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][1]["torque_skip"] = true;
+    r["axes"][1]["skip_load"] = 40.0;
+  }));
+  EXPECT_DOUBLE_EQ(config.axes[1].skip_load, 40.0);
+  EXPECT_DOUBLE_EQ(config.axes[0].skip_load, 0.0);
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][1]["skip_load"] = 40.0; })),
+            "axes[1].skip_load");
+  for (const double bad : {0.0, -5.0, 1000.5}) {
+    EXPECT_EQ(rejection_path(mutated([bad](YAML::Node& r) {
+                r["axes"][1]["torque_skip"] = true;
+                r["axes"][1]["skip_load"] = bad;
+              })),
+              "axes[1].skip_load")
+        << bad;
+  }
+}
+
 TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["axes"][0]["heartbeat_ms"] = 50;

@@ -122,7 +122,7 @@ TEST(InterpSkip, Alarms) {
       {"G98 G31 W-5 F100 P3 L13\nM30\n", alarm::kWordNotAllowed, 1},
       {"G98 G31 W-5 F100 P0\nM30\n", alarm::kBadWordValue, 1},
       {"G98 G31 W-5 F100 P2.5\nM30\n", alarm::kBadWordValue, 1},
-      {"G98 G31 W-5 F100 P98\nM30\n", alarm::kNotInThisVersion, 1},
+      {"G98 G31 W-5 F100 P98\nM30\n", alarm::kCycleWordMissing, 1},  // no load ratio
       {"G98 G31 W-5 F100 P20\nM30\n", alarm::kBadWordValue, 1},
       {"G98 G31 F100 L13\nM30\n", alarm::kWordNotAllowed, 1},
       {"G98 G31 W-5 F100 L13 R0.5\nM30\n", alarm::kBadWordValue, 1},
@@ -244,6 +244,75 @@ TEST(InterpTorqueSkip, Alarms) {
       {"G98 G160 P50 F100\nM30\n", alarm::kWordNotAllowed, 1},
   };
   expect_alarms(cases);
+}
+
+// G31 P98 (format 5, L5246-5249): the load ratios of G10 L14 P6, else of param 5511, on the
+// axes the move moves; no input. P99 (format 6, L5251-5252): the input (L, K, I or param 5510)
+// or the load (decision 200).
+TEST(InterpLoadSkip, P98TakesTheRatiosOfG10L14P6OnTheAxesItMoves) {
+  InterpreterConfig c = lathe();
+  c.axes[kX].skip_load = 30.0;  // param 5511
+  c.axes[kZ].skip_load = 20.0;
+  const RunResult r = run_ok(
+      "G98 G00 X20 Z5\nG31 W-30 F300 P98 R7\nG10 L14 P6 Z45\nG31 U4 W-2 F300 P98\n"
+      "G10 L14 P6 Z0\nG31 W-1 F300 P98\nG10 L14 P6 X60 Z70\nG10 L14 P6\nG31 U2 F300 P98\n"
+      "M30\n",
+      c);
+  const auto moves = r.of(Op::linear);
+  ASSERT_EQ(moves.size(), 4u);
+  const Command& g = moves[0];
+  EXPECT_TRUE(g.load_skip);
+  EXPECT_FALSE(g.skip);  // the load alone
+  EXPECT_FALSE(g.torque_skip);
+  EXPECT_TRUE(g.barrier);
+  EXPECT_TRUE(g.exact_stop);
+  EXPECT_EQ(g.input, 0);
+  EXPECT_NEAR(g.load_ratio[kZ], 20.0, 0.0);  // param 5511
+  EXPECT_NEAR(g.load_ratio[kX], 0.0, 0.0);   // X does not move
+  EXPECT_NEAR(g.to[kZ], -25.0, 1e-12);
+  EXPECT_NEAR(moves[1].load_ratio[kZ], 45.0, 0.0);  // G10 L14 P6
+  EXPECT_NEAR(moves[1].load_ratio[kX], 30.0, 0.0);  // X has none of G10: param 5511
+  EXPECT_NEAR(moves[2].load_ratio[kZ], 20.0, 0.0);  // Z0: back to param 5511
+  EXPECT_NEAR(moves[3].load_ratio[kX], 30.0, 0.0);  // G10 L14 P6 without axes: all back
+}
+
+TEST(InterpLoadSkip, P99SkipsOnItsInputOrTheLoad) {
+  InterpreterConfig c = lathe();
+  c.axes[kZ].skip_load = 25.0;
+  c.skip_input = 4;
+  const RunResult r = run_ok("G98 G31 W-10 F100 P99 L13\nG31 W-1 F100 P99\nM30\n", c);
+  const auto moves = r.of(Op::linear);
+  ASSERT_EQ(moves.size(), 2u);
+  EXPECT_TRUE(moves[0].skip);
+  EXPECT_TRUE(moves[0].load_skip);
+  EXPECT_EQ(moves[0].input, 13);
+  EXPECT_TRUE(moves[0].input_on);
+  EXPECT_EQ(moves[0].skip_signal, 0);
+  EXPECT_NEAR(moves[0].load_ratio[kZ], 25.0, 0.0);
+  EXPECT_EQ(moves[1].input, 4);  // param 5510
+  // Without the runtime the skip comes at the end point, as for every G31.
+  Interpreter in(c);
+  ASSERT_FALSE(in.start("G98 G00 X20 Z0\nG31 W-5 F200 P98 R100\n#101=#5062\nM30\n", "t.nc"));
+  drain(in);
+  EXPECT_NEAR(number_of(in, 100), 1.0, 0.0);
+  EXPECT_NEAR(number_of(in, 101), -5.0, 1e-12);
+}
+
+TEST(InterpLoadSkip, Alarms) {
+  InterpreterConfig c = lathe();
+  c.axes[kZ].skip_load = 25.0;
+  const ExpectedAlarm cases[] = {
+      {"G98 G31 U4 F100 P98\nM30\n", alarm::kCycleWordMissing, 1},     // X has no ratio
+      {"G98 G31 W-5 F100 P98 L13\nM30\n", alarm::kWordNotAllowed, 1},  // P98: no input
+      {"G98 G31 W-5 F100 P99\nM30\n", alarm::kSkipInput, 1},           // P99 on param 5510 = 0
+      {"G98 G31 W-5 F100 P99 L13 K13\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G98 G10 L14 P6 W40\nM30\n", alarm::kWordNotAllowed, 1},  // absolute addresses only
+      {"G98 G10 L14 P6 Z1001\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G10 L14 P6 Z-1\nM30\n", alarm::kBadWordValue, 1},
+      {"G98 G10 L14 P9 Z135\nM30\n", alarm::kNotInThisVersion, 1},  // the torque limit
+      {"G98 G10 L14 P1 Z80\nM30\n", alarm::kNotInThisVersion, 1},   // load monitoring
+  };
+  expect_alarms(cases, c);
 }
 
 }  // namespace

@@ -91,7 +91,9 @@ std::int32_t signed16(const can::CanFrame& f) {
   return static_cast<std::int16_t>(static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8)));
 }
 
-// B1's 0x6072 values in the order they changed, and the lowest torque its TPDO2 reported.
+// B1's 0x6072 values in the order they changed, and the lowest torque its TPDO2 reported while
+// a limit stood (a move that cancels it starts with the command past the part: the drive's
+// peak torque until the command backs off).
 void limits_on_the_bus(const std::vector<can::CanFrame>& frames, std::vector<std::int32_t>& limits,
                        std::int32_t& lowest_torque) {
   lowest_torque = 0;
@@ -101,7 +103,8 @@ void limits_on_the_bus(const std::vector<can::CanFrame>& frames, std::vector<std
       if (limits.empty() || limits.back() != v) {
         limits.push_back(v);
       }
-    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2) {
+    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2 && !limits.empty() &&
+               limits.back() < 10000) {
       lowest_torque = std::min(lowest_torque, signed16(f));
     }
   }
@@ -218,7 +221,10 @@ TEST(TorqueSkip, G31P99StopsAtTheLoadOrAtTheTouchProbeWhicheverComesFirst) {
   std::vector<std::int32_t> limits;
   std::int32_t lowest_torque = 0;
   limits_on_the_bus(frames, limits, lowest_torque);
-  EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000, 500}));
+  // (Its last change, back to none after M30, is not this test's: nothing moves B1 then.)
+  ASSERT_GE(limits.size(), 4U);
+  EXPECT_EQ(std::vector<std::int32_t>(limits.begin(), limits.begin() + 4),
+            (std::vector<std::int32_t>{10000, 500, 10000, 500}));
   EXPECT_LE(lowest_torque, -485);
 }
 

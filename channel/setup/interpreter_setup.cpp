@@ -38,6 +38,8 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.inclined_orthogonal = channel.inclined_orthogonal;
   c.inclined_degrees = channel.inclined_degrees;
   c.skip_input = channel.skip_input;
+  c.torque_skip_percent = channel.torque_skip_limit;
+  c.torque_skip_deviation = channel.torque_skip_deviation;
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);

@@ -231,9 +231,10 @@ char read_address(const YamlValue& value, std::string_view letters) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
-                                 "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
-                                 "inclined", "skip_input", "speed_arrival", "polygon"});
+  const YamlMap map =
+      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
+                 "dialect", "polar", "cylindrical_parallel", "normal", "inclined", "skip_input",
+                 "torque_skip", "speed_arrival", "polygon"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -329,6 +330,22 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   if (auto skip = map.optional("skip_input")) {
     channel.skip_input = read_int(*skip, 1, 99);
+  }
+  if (auto torque = map.optional("torque_skip")) {
+    // Params 5515/5516: what G160 takes without P and without Q.
+    const YamlMap t = torque->map({"limit", "deviation"});
+    if (auto limit = t.optional("limit")) {
+      channel.torque_skip_limit = limit->number();
+      if (!(channel.torque_skip_limit > 0.0 && channel.torque_skip_limit <= 1000.0)) {
+        limit->fail("limit is a torque limit above 0 and up to 1000 (% of the rated torque)");
+      }
+    }
+    if (auto deviation = t.optional("deviation")) {
+      channel.torque_skip_deviation = deviation->number();
+      if (!(channel.torque_skip_deviation >= 0.0)) {
+        deviation->fail("deviation is a following error of 0 or more (the axis's unit)");
+      }
+    }
   }
   if (auto arrival = map.optional("speed_arrival")) {
     const YamlMap a = arrival->map({"tolerance", "timeout"});

@@ -184,6 +184,10 @@ struct ChannelConfig {
   double polygon_max_rpm = 0.0;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
+  // G160 without P limits the torque to this, % of the rated torque (param 5515; 0: such a
+  // G160 is an alarm), and without Q skips beyond this following error (param 5516).
+  double torque_skip_limit = 0.0;
+  double torque_skip_deviation = 0.0;
   // G04 PS: the actual speed is reached within this many rpm (param 1057), and not reaching it
   // within this many seconds is an alarm (param 1059).
   double speed_arrival_rpm = 10.0;

@@ -56,6 +56,31 @@ TEST(InterpreterSetup, DialectIsTheChannels) {
   EXPECT_EQ(interpreter_config_for(m, m.channels[1]).dialect, interp::Dialect::dafeng);
 }
 
+// G160 without P / Q and G31 P98/P99 in `mcnc run`: the channel's `torque_skip` is params
+// 5515/5516, an axis's `skip_load` param 5511.
+TEST(InterpreterSetup, TorqueSkipDefaultsAndLoadRatiosAreTheMachineFiles) {
+  const config::MachineConfig m = config::parse_machine_yaml(R"(
+machine: {name: m, cycle_us: 4000}
+buses: [{name: b, uri: "socketcan:can0", sync_producer: X1}]
+channels:
+  - {name: LATHE, axes: [X1, Z1], torque_skip: {limit: 60, deviation: 1.5}}
+  - {name: LOADER, axes: [X2]}
+axes:
+  - {name: X1, address: X, diameter: true, bus: b, node_id: 1}
+  - {name: Z1, address: Z, bus: b, node_id: 2, torque_skip: true, skip_load: 35}
+  - {name: X2, address: X, bus: b, node_id: 4}
+)");
+  const interp::InterpreterConfig lathe = interpreter_config_for(m, m.channels[0]);
+  EXPECT_DOUBLE_EQ(lathe.torque_skip_percent, 60.0);
+  EXPECT_DOUBLE_EQ(lathe.torque_skip_deviation, 1.5);
+  ASSERT_EQ(lathe.axes.size(), 2u);
+  EXPECT_DOUBLE_EQ(lathe.axes[1].skip_load, 35.0);
+  EXPECT_DOUBLE_EQ(lathe.axes[0].skip_load, 0.0);
+  const interp::InterpreterConfig loader = interpreter_config_for(m, m.channels[1]);
+  EXPECT_DOUBLE_EQ(loader.torque_skip_percent, 0.0);
+  EXPECT_DOUBLE_EQ(loader.torque_skip_deviation, 0.0);
+}
+
 // G12.1 and G07.1 in `mcnc run`: the channel's `polar` and `cylindrical_parallel` are its
 // interpreter's parameters 5530/5531 and 0016.
 TEST(InterpreterSetup, PolarAndCylindricalAxesAreTheChannels) {

@@ -595,6 +595,31 @@ TEST(MachineConfig, SkipLoadIsTheLoadRatioOfAnAxisWithATorqueLimit) {
   }
 }
 
+// G160 without P and Q: the channel's params 5515/5516.
+TEST(MachineConfig, TheChannelsTorqueSkipIsWhatG160TakesWithoutPAndQ) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["channels"][0]["torque_skip"]["limit"] = 80.0;
+    r["channels"][0]["torque_skip"]["deviation"] = 0.5;
+  }));
+  EXPECT_DOUBLE_EQ(config.channels[0].torque_skip_limit, 80.0);
+  EXPECT_DOUBLE_EQ(config.channels[0].torque_skip_deviation, 0.5);
+  const MachineConfig none = parse_machine_yaml(mutated([](YAML::Node&) {}));
+  EXPECT_DOUBLE_EQ(none.channels[0].torque_skip_limit, 0.0);
+  EXPECT_DOUBLE_EQ(none.channels[0].torque_skip_deviation, 0.0);
+  for (const double bad : {0.0, 1001.0}) {
+    EXPECT_EQ(rejection_path(mutated(
+                  [bad](YAML::Node& r) { r["channels"][0]["torque_skip"]["limit"] = bad; })),
+              "channels[0].torque_skip.limit")
+        << bad;
+  }
+  EXPECT_EQ(rejection_path(mutated(
+                [](YAML::Node& r) { r["channels"][0]["torque_skip"]["deviation"] = -0.1; })),
+            "channels[0].torque_skip.deviation");
+  EXPECT_EQ(
+      rejection_path(mutated([](YAML::Node& r) { r["channels"][0]["torque_skip"]["force"] = 1; })),
+      "channels[0].torque_skip.force");
+}
+
 TEST(MachineConfig, CanopenSettingsAndObjectDefaults) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["axes"][0]["heartbeat_ms"] = 50;

@@ -230,14 +230,14 @@ class ChannelCoordination {
   std::uint64_t plc_inputs_ = 0;
   coordination::SkipProbe skip_;
   // G160's (and G31 P98/P99's) torque limits, per channel axis: they stay after the skip (a
-  // tailstock keeps pressing) until a move of the axis cancels them (decisions 101, 200).
+  // tailstock keeps pressing) until a move of the axis cancels them (decisions 101, 116).
   struct TorqueLimit {
     double limit = 0.0;  // percent of the rated torque, 0: none
     double deviation = 0.0;
   };
   std::array<TorqueLimit, interp::kMaxChannelAxes> torque_{};
   // The torque limit a G160 or G31 P98/P99 puts on channel axis i (limit 0: none): G160 its P
-  // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 200).
+  // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 116).
   [[nodiscard]] static TorqueLimit skip_torque_limit(const interp::Command& c,
                                                      std::size_t i) noexcept;
 };

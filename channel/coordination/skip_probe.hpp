@@ -10,7 +10,7 @@
 // 360). G160 skips where its axis's node reports the torque at the limit and the following
 // error beyond the deviation, a latch as a touch probe's, at the axis's actual position then
 // (decision 100). G31 P98/P99 skip where an axis is held back at its load ratio the same way,
-// P99 also on the touch probes of its input (decision 200). Pure: one call per cycle with the
+// P99 also on the touch probes of its input (decision 116). Pure: one call per cycle with the
 // feedback of that cycle; no allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"

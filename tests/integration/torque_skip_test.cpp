@@ -5,7 +5,7 @@
 // centre while the following error grows, the node latches the skip where B1 stands, and the
 // channel stops the move and hands the position to the program (#5063). The limit stays while
 // X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
-// the same way with B1's load ratio as the limit (decision 200), P99 also on Z1's touch probe.
+// the same way with B1's load ratio as the limit (decision 116), P99 also on Z1's touch probe.
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 

@@ -2,7 +2,7 @@
 // with its setpoints from the block on, the move starts once the axis node reports the torque
 // skip armed, stops at the planner's reset deceleration once it latched, and the program reads
 // the latched position (#5061..). The limit stays after the skip, while other axes move, until
-// a move of that axis (G00/G01, or G160 P-1) cancels it. G31 P98/P99 (decision 200) go the same
+// a move of that axis (G00/G01, or G160 P-1) cancels it. G31 P98/P99 (decision 116) go the same
 // way with each moving axis's load ratio as its limit and no deviation, P99 also on the touch
 // probes of its input. Channel 1 programs X and Z; Z's drive takes a torque limit (its load
 // ratio of param 5511 30 %), and its load meets a contact at -12.5 coming from above; X's drive

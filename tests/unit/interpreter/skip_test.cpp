@@ -248,7 +248,7 @@ TEST(InterpTorqueSkip, Alarms) {
 
 // G31 P98 (format 5, L5246-5249): the load ratios of G10 L14 P6, else of param 5511, on the
 // axes the move moves; no input. P99 (format 6, L5251-5252): the input (L, K, I or param 5510)
-// or the load (decision 200).
+// or the load (decision 116).
 TEST(InterpLoadSkip, P98TakesTheRatiosOfG10L14P6OnTheAxesItMoves) {
   InterpreterConfig c = lathe();
   c.axes[kX].skip_load = 30.0;  // param 5511

@@ -94,20 +94,35 @@ std::int32_t signed16(const can::CanFrame& f) {
 // B1's 0x6072 values in the order they changed, and the lowest torque its TPDO2 reported while
 // a limit stood (a move that cancels it starts with the command past the part: the drive's
 // peak torque until the command backs off).
-void limits_on_the_bus(const std::vector<can::CanFrame>& frames, std::vector<std::int32_t>& limits,
-                       std::int32_t& lowest_torque) {
-  lowest_torque = 0;
+// What B1's frames on the bus say: each change of its torque limit (0x6072, RPDO2) in order,
+// and the lowest torque it reported (TPDO2) while a limit stood.
+struct BusLimits {
+  std::vector<std::int32_t> limits;
+  std::int32_t lowest_torque = 0;
+};
+BusLimits limits_on_the_bus(const std::vector<can::CanFrame>& frames) {
+  BusLimits bus;
   for (const can::CanFrame& f : frames) {
     if (f.id == 0x300U + kTailstockNode && f.dlc == 2) {
       const std::int32_t v = static_cast<std::uint16_t>(f.data[0] | (f.data[1] << 8));
-      if (limits.empty() || limits.back() != v) {
-        limits.push_back(v);
+      if (bus.limits.empty() || bus.limits.back() != v) {
+        bus.limits.push_back(v);
       }
-    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2 && !limits.empty() &&
-               limits.back() < 10000) {
-      lowest_torque = std::min(lowest_torque, signed16(f));
+    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2 && !bus.limits.empty() &&
+               bus.limits.back() < 10000) {
+      bus.lowest_torque = std::min(bus.lowest_torque, signed16(f));
     }
   }
+  return bus;
+}
+
+// No limit, 500 per mille while one block held B1 against the centre, none again; the torque
+// there at -50 %.
+void expect_held_at_half_torque_once(const std::vector<can::CanFrame>& frames) {
+  const BusLimits bus = limits_on_the_bus(frames);
+  EXPECT_EQ(bus.limits, (std::vector<std::int32_t>{10000, 500, 10000}));
+  EXPECT_LE(bus.lowest_torque, -485);
+  EXPECT_GE(bus.lowest_torque, -500);
 }
 
 // A run to its clean end, with every frame of the bus (that of the machine's domain).
@@ -151,12 +166,7 @@ TEST(TorqueSkip, TheTailstockPressesAgainstTheCentreWithTheLimitOnTheBus) {
 
   // On the wire: B1's RPDO2 carries 0x6072, no limit (1000 %) before the G160, 500 per mille
   // from it through the retract, none again after the G00; its TPDO2 the torque at -50 %.
-  std::vector<std::int32_t> limits;
-  std::int32_t lowest_torque = 0;
-  limits_on_the_bus(frames, limits, lowest_torque);
-  EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000}));
-  EXPECT_LE(lowest_torque, -485);
-  EXPECT_GE(lowest_torque, -500);
+  expect_held_at_half_torque_once(frames);
 }
 
 TEST(TorqueSkip, G31P98StopsWhereTheTailstockIsHeldBackAtTheLoadRatioOfG10L14P6) {
@@ -182,12 +192,7 @@ TEST(TorqueSkip, G31P98StopsWhereTheTailstockIsHeldBackAtTheLoadRatioOfG10L14P6)
   EXPECT_NEAR(x.back(), 15.0, 1e-6);
   // On the wire: no limit before the G31, G10 L14 P6's 50 % (500 per mille) from it until the
   // G00 of B1, none after; the torque at the centre at -50 %.
-  std::vector<std::int32_t> limits;
-  std::int32_t lowest_torque = 0;
-  limits_on_the_bus(frames, limits, lowest_torque);
-  EXPECT_EQ(limits, (std::vector<std::int32_t>{10000, 500, 10000}));
-  EXPECT_LE(lowest_torque, -485);
-  EXPECT_GE(lowest_torque, -500);
+  expect_held_at_half_torque_once(frames);
 }
 
 TEST(TorqueSkip, G31P99StopsAtTheLoadOrAtTheTouchProbeWhicheverComesFirst) {
@@ -218,14 +223,12 @@ TEST(TorqueSkip, G31P99StopsAtTheLoadOrAtTheTouchProbeWhicheverComesFirst) {
   EXPECT_NEAR(z.back(), -10.5, 0.005);  // #5062: the probe's latch
   // B1's limit on the wire: param 5511's 50 % from the first G31 to the G00, again from the
   // second G31 to the end (a limit stands until a move of its axis).
-  std::vector<std::int32_t> limits;
-  std::int32_t lowest_torque = 0;
-  limits_on_the_bus(frames, limits, lowest_torque);
+  const BusLimits bus = limits_on_the_bus(frames);
   // (Its last change, back to none after M30, is not this test's: nothing moves B1 then.)
-  ASSERT_GE(limits.size(), 4U);
-  EXPECT_EQ(std::vector<std::int32_t>(limits.begin(), limits.begin() + 4),
+  ASSERT_GE(bus.limits.size(), 4U);
+  EXPECT_EQ(std::vector<std::int32_t>(bus.limits.begin(), bus.limits.begin() + 4),
             (std::vector<std::int32_t>{10000, 500, 10000, 500}));
-  EXPECT_LE(lowest_torque, -485);
+  EXPECT_LE(bus.lowest_torque, -485);
 }
 
 TEST(TorqueSkip, G160OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeAnythingMoves) {

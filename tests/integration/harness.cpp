@@ -9,6 +9,7 @@
 #include <sched.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,6 +21,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -122,10 +125,42 @@ int decode_status(int status) {
   return WIFSIGNALED(status) ? -WTERMSIG(status) : -1;
 }
 
+// Two tests on one domain and its buses would read each other's samples and frames, and both
+// fail in ways that say nothing of the cause (CI at 673a86c: two PolygonTurning tests on 117 side
+// by side). So a machine holds an exclusive lock on its domain, across processes, for as long as
+// it lives: a reused domain makes the second test wait, never mix. Machines of one process on one
+// domain share the hold (a lock taken twice by one process would wait for itself).
+std::shared_ptr<void> hold_domain(int domain) {
+  static std::mutex mutex;
+  static std::map<int, std::weak_ptr<void>> held;
+  const std::lock_guard lock(mutex);
+  if (auto hold = held[domain].lock()) {
+    return hold;
+  }
+  const std::string path = "/tmp/mcnc-domain-" + std::to_string(domain) + ".lock";
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    throw std::runtime_error("cannot open " + path + ": " + std::strerror(errno));
+  }
+  while (::flock(fd, LOCK_EX) != 0) {
+    if (errno != EINTR) {
+      ::close(fd);
+      throw std::runtime_error("cannot lock " + path + ": " + std::strerror(errno));
+    }
+  }
+  std::shared_ptr<void> hold(new int(fd), [](void* p) {
+    auto* f = static_cast<int*>(p);
+    ::close(*f);  // closing the only descriptor releases the lock
+    delete f;
+  });
+  held[domain] = hold;
+  return hold;
+}
+
 }  // namespace
 
 TestMachine::TestMachine(const std::string& machine_file, int domain, int deadline_cycles)
-    : domain_(domain) {
+    : domain_(domain), domain_hold_(hold_domain(domain)) {
   char tmpl[] = "/tmp/mcnc-test-XXXXXX";
   dir_ = mkdtemp(tmpl);
   std::string text = slurp(source("launch/machines/" + machine_file));

@@ -40,6 +40,7 @@ class TestMachine {
   std::string path_;
   int domain_;
   int deadline_cycles_ = 0;
+  std::shared_ptr<void> domain_hold_;  // this process's share of the domain's lock
 };
 
 struct RunResult {

@@ -140,7 +140,7 @@ TEST(PolygonTurning, G502SlowsTheTurningDiscToRestBeforeTheProgramGoesOn) {
 }
 
 TEST(PolygonTurning, ARefusedG512MovesNothing) {
-  TestMachine machine("polygon_lathe.yaml", 117);
+  TestMachine machine("polygon_lathe.yaml", 122);
   const std::string trace_path = machine.file("trace.jsonl");
   const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
                            "CH1=" + source("tests/integration/programs/polygon/too_fast.nc"),

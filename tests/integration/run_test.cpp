@@ -290,7 +290,7 @@ TEST(Run, SubprogramsComeFromTheProgramDirectory) {
 }
 
 TEST(Run, ProgramForUnknownChannelExits2) {
-  TestMachine machine("small_lathe.yaml", 17);
+  TestMachine machine("small_lathe.yaml", 129);
   const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
                            "CH9=" + source("launch/programs/xz_move.nc")},
                           -1, 60s);

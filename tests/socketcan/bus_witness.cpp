@@ -134,6 +134,33 @@ std::size_t nmt_start(const std::vector<Frame>& frames, std::uint32_t node) {
   return frames.size();
 }
 
+// The index of the NMT command that ends the run `node` started at frame `start` (stop,
+// pre-operational or a reset); frames.size() when its run is not ended on the record.
+std::size_t nmt_end(const std::vector<Frame>& frames, std::size_t start, std::uint32_t node) {
+  for (std::size_t i = start + 1; i < frames.size(); ++i) {
+    if (is_nmt(frames[i], NmtCommand::stop, node) ||
+        is_nmt(frames[i], NmtCommand::enter_preoperational, node) ||
+        is_nmt(frames[i], NmtCommand::reset_node, node) ||
+        is_nmt(frames[i], NmtCommand::reset_communication, node)) {
+      return i;
+    }
+  }
+  return frames.size();
+}
+
+// The end of a node's cyclic phase: its master's last setpoint (RPDO1) before the NMT command
+// that ends its run. The master sends that last setpoint as it stops, out of the SYNC rhythm, and
+// the drive sends no PDO after the NMT command (CiA 301); the SYNC producer, another node's
+// master, may go on for a cycle or two. So only the intervals closed before it are complete.
+std::size_t cyclic_end(const std::vector<Frame>& frames, std::size_t ended, std::uint32_t node) {
+  for (std::size_t i = ended; i-- > 0;) {
+    if (frames[i].id == kRpdo1Base + node) {
+      return i;
+    }
+  }
+  return ended;
+}
+
 // The position in `syncs` (frame indices of SYNCs) of the first SYNC after frame `index`.
 std::size_t first_sync_after(const std::vector<std::size_t>& syncs, std::size_t index) {
   return static_cast<std::size_t>(std::upper_bound(syncs.begin(), syncs.end(), index) -
@@ -204,19 +231,28 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
   // over the SYNC intervals in which every node of the bus is started (the last SYNC's
   // interval is cut short by the stop and is not counted).
   std::vector<std::size_t> started;  // per node, the frame of its NMT start
+  std::vector<std::size_t> ended;    // per node, the NMT command that ends its run
+  std::vector<std::size_t> cyclic_ends;
   std::size_t all_started = 0;
+  std::size_t first_end = frames.size();
   std::set<std::uint32_t> cyclic = {kSyncId};
   for (const auto& e : nodes) {
-    started.push_back(nmt_start(frames, static_cast<std::uint32_t>(e.node)));
+    const auto n = static_cast<std::uint32_t>(e.node);
+    started.push_back(nmt_start(frames, n));
+    ended.push_back(nmt_end(frames, started.back(), n));
+    cyclic_ends.push_back(cyclic_end(frames, ended.back(), n));
     all_started = std::max(all_started, started.back());
+    first_end = std::min(first_end, cyclic_ends.back());
     cyclic.insert(e.cyclic.begin(), e.cyclic.end());
   }
   const std::size_t from = first_sync_after(syncs, all_started);
+  // The last SYNC that closes an interval before the first node's cyclic phase ends.
+  const std::size_t to = first_sync_after(syncs, first_end) - 1;
   long long counted = 0;
   const long long intervals =
-      syncs.size() > from + 1 ? static_cast<long long>(syncs.size() - from - 1) : 0;
+      to != static_cast<std::size_t>(-1) && to > from ? static_cast<long long>(to - from) : 0;
   if (intervals > 0) {
-    for (std::size_t i = syncs[from]; i < syncs.back(); ++i) {
+    for (std::size_t i = syncs[from]; i < syncs[to]; ++i) {
       counted += static_cast<long long>(cyclic.count(frames[i].id));
     }
   }
@@ -268,17 +304,18 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
               std::to_string(answers) + " answers, " + std::to_string(aborts) + " aborts)");
     check(before_start, who + ": all SDO traffic before the NMT start");
 
-    // The cyclic phase: from the first SYNC after the NMT start to the last SYNC. Every
-    // interval between two SYNCs carries each cyclic PDO once; the interval after the last
-    // SYNC is not complete and is not counted.
+    // The cyclic phase: from the first SYNC after the NMT start to the last SYNC before its
+    // end (cyclic_end). Every interval between two SYNCs carries each cyclic PDO once; the
+    // interval after the last of them is not complete and is not counted.
     const std::size_t first = first_sync_after(syncs, start);
+    const std::size_t last = first_sync_after(syncs, cyclic_ends[j]);  // one past
     for (const std::uint32_t id : e.cyclic) {
       const bool transmitted = is_tpdo(id);
       int intervals = 0;
       int once = 0;
       int missing = 0;
       int doubled = 0;
-      for (std::size_t k = first; k + 1 < syncs.size(); ++k) {
+      for (std::size_t k = first; k + 1 < last; ++k) {
         int count = 0;
         for (std::size_t i = syncs[k] + 1; i < syncs[k + 1]; ++i) {
           count += frames[i].id == id;
@@ -300,15 +337,6 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
     // Heartbeats: a boot-up (state 0) at power-on and after each NMT reset, then one every
     // heartbeat_ms of SYNC time while the node runs: from the NMT start to the NMT command
     // that ends its run (after that it reports the state it was put in, CiA 301).
-    std::size_t ended = frames.size();
-    for (std::size_t i = start + 1; i < frames.size() && ended == frames.size(); ++i) {
-      if (is_nmt(frames[i], NmtCommand::stop, n) ||
-          is_nmt(frames[i], NmtCommand::enter_preoperational, n) ||
-          is_nmt(frames[i], NmtCommand::reset_node, n) ||
-          is_nmt(frames[i], NmtCommand::reset_communication, n)) {
-        ended = i;
-      }
-    }
     int bootups = 0;
     int beats = 0;        // "operational" (0x05) while it runs
     int other_after = 0;  // any other state while it runs
@@ -318,7 +346,7 @@ void check_bus(const mcnc::config::MachineConfig& machine, const mcnc::config::B
       if (f.id == kHeartbeatBase + n && f.data.size() == 1) {
         if (f.data[0] == static_cast<std::uint8_t>(NmtState::bootup)) {
           ++bootups;
-        } else if (i > start && i < ended) {
+        } else if (i > start && i < ended[j]) {
           (f.data[0] == static_cast<std::uint8_t>(NmtState::operational) ? beats : other_after) +=
               1;
         }

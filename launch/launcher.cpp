@@ -57,6 +57,12 @@ constexpr std::chrono::seconds kDriveHeardWait{2};
 // A wave of a secured machine's start (launch_plan.hpp, start_waves) waits for the last one to
 // be heard at most this long.
 constexpr std::chrono::seconds kStartWaveWait{10};
+// After an E-stop for a lost host, how long the processes on this side keep running before they
+// are stopped. They learn which of their axes and partners are gone from the same DDS leases
+// that told this launcher, but up to an announcement interval (1 s) later: a launcher may have
+// been heard last by its announcement, a node by its last sample. Stopped sooner, a channel
+// would end without the alarm that names the axis (1202) or the partner (1213, 1221) it lost.
+constexpr std::chrono::seconds kLossTellHold{2};
 // The most one look of the run's supervision counts towards a lockstep machine standing still.
 constexpr std::chrono::milliseconds kLookLateCap{100};
 
@@ -461,6 +467,11 @@ LaunchResult Launcher::run(
     }
     return {};
   };
+  const auto a_launcher_gone = [&] {
+    bool gone = false;
+    wake.update([&] { gone = !seen.launchers_gone.empty(); });
+    return gone;
+  };
   const auto coordinator_ended = [&] {
     const RunCommand cmd = node.run_control().command;
     return follower && (cmd == RUN_STOP || cmd == RUN_ESTOP);
@@ -588,6 +599,7 @@ LaunchResult Launcher::run(
 
   // 2. Run.
   bool estopped = false;
+  bool host_lost = false;  // the coordinator's E-stop is for a host gone or cut off
   if (follower) {
     // Until the coordinator stops the run: this host's processes, a lost one reported once.
     bool reported = false;
@@ -617,6 +629,7 @@ LaunchResult Launcher::run(
         estopped = true;
         send_control(RUN_ESTOP, failure);
         wait_drives_at_rest();
+        std::this_thread::sleep_for(kLossTellHold);
         break;
       }
       std::this_thread::sleep_for(20ms);
@@ -703,6 +716,7 @@ LaunchResult Launcher::run(
       }
       if (const std::string lost = host_failure(); !lost.empty()) {
         failure = "host " + lost;
+        host_lost = a_launcher_gone();
         break;
       }
       if (process::g_stop_signal != 0) {
@@ -803,6 +817,7 @@ LaunchResult Launcher::run(
       while (failure.empty() && std::chrono::steady_clock::now() < lease_end) {
         if (const std::string lost = host_failure(); !lost.empty()) {
           failure = "host " + lost;
+          host_lost = a_launcher_gone();
         }
         std::this_thread::sleep_for(20ms);
       }
@@ -817,6 +832,9 @@ LaunchResult Launcher::run(
       send_control(RUN_ESTOP, failure);
       resume_stopped_children();
       wait_drives_at_rest();
+      if (host_lost) {
+        std::this_thread::sleep_for(kLossTellHold);
+      }
     }
   }
 

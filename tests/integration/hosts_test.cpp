@@ -636,6 +636,9 @@ TEST(Hosts, APartitionDuringMotionStopsTheMachineOnBothSidesOfTheCut) {
   ASSERT_TRUE(cell.run_under_way()) << slurp(cell.log("ncu1") + ".err");
   ASSERT_EQ(hostnet(cell, {"cut", "ncu3"}).exit_code, 0);
   expect_partition_stops_both_sides(cell, "ncu3", ncu1, ncu2, ncu3);
+  // CH3, cut off from Z3's node on ncu2, says so before its launcher stops it (1202).
+  const std::string ncu3_out = slurp(cell.log("ncu3") + ".out");
+  EXPECT_NE(ncu3_out.find("alarm: CH3 1202 axis node lost"), std::string::npos) << ncu3_out;
   const std::vector<nlohmann::json> trace = read_trace(cell.trace());
   expect_link_axis_quick_stopped(trace, "Z3");
   expect_axes_at_rest_at_the_end(trace, {"X1", "Z1", "A1", "S1", "X2", "Z2", "S2", "Z3"});

@@ -49,6 +49,10 @@ enum class Op : std::uint8_t {
   oscillate,
   // G80.1: it ends its stroke at a dead point, then goes to `to`.
   oscillate_end,
+  // G10 L14 P9: the drives of `torque_data_axes` get `torque_data` from the next block on.
+  torque_limit,
+  // G10 L14 P0/P1: the loads of `torque_data_axes` watched against `torque_data`.
+  load_watch,
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -59,6 +63,9 @@ enum class SpindleDirection : std::uint8_t { cw, ccw, stop, orient, keep };
 
 // Spindle arguments of G114.1 and the G144 argument vector use these sizes.
 inline constexpr int kSubcallArgs = 26;  // #1-#26
+// The highest torque a program may name (G160 P, G10 L14): 1000 % of the motor's rated torque,
+// what the drive's max torque 0x6072 (per mille) takes.
+inline constexpr double kMaxTorquePercent = 1000.0;
 
 // The modal state a block runs in, as a control's modal screen shows it: the G code of groups
 // 01 (motion), 16 (plane), 03 (G90/G91: system B only), 05 (feed per minute or revolution), 02
@@ -160,6 +167,15 @@ struct Command {
   // with deviation 0; P99 (`skip` as well) also on the block's input.
   bool load_skip = false;
   std::array<double, kMaxChannelAxes> load_ratio{};
+  // G10 L14's values per axis, percent of the motor's rated torque, for each channel axis i with
+  // bit i of torque_data_axes: torque_limit (P9) the drive's limit (0: cancelled), load_watch
+  // (P0/P1) the reference load above which the axis overloads (no axes: every check
+  // cancelled); `every_move` P0 (all moves of the axis) or P1 (its G01 moves), `filter_s` J,
+  // how long the load must stay above (s).
+  std::uint32_t torque_data_axes = 0;
+  std::array<double, kMaxChannelAxes> torque_data{};
+  bool every_move = false;
+  double filter_s = 0.0;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

@@ -67,13 +67,25 @@ const AxisConfig* unlimited_load_axis(const Command& c, const InterpreterConfig&
   return nullptr;
 }
 
+// G10 L14 P9 / P0 / P1: an axis it names whose drive takes no torque limit nor reports its
+// torque (nullptr: none).
+const AxisConfig* unlimited_torque_axis(const Command& c, const InterpreterConfig& config) {
+  for (std::size_t a = 0; a < config.axes.size(); ++a) {
+    if (((c.torque_data_axes >> a) & 1U) != 0 && !config.axes[a].torque_skip) {
+      return &config.axes[a];
+    }
+  }
+  return nullptr;
+}
+
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
   if (c.multi_skip) {
     return alarm::kNotInThisVersion;
   }
-  if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr)) {
+  if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr) ||
+      c.op == Op::torque_limit || c.op == Op::load_watch) {
     return alarm::kSkipInput;
   }
   if (c.op == Op::sync) {
@@ -359,6 +371,19 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
             " takes no torque limit (torque_skip of the axis in the machine file)";
       return false;
     }
+  }
+  if (c.op == Op::torque_limit || c.op == Op::load_watch) {
+    if (const AxisConfig* a = unlimited_torque_axis(c, config)) {
+      const bool limit = c.op == Op::torque_limit;
+      why = std::string(limit          ? "G10 L14 P9"
+                        : c.every_move ? "G10 L14 P0"
+                                       : "G10 L14 P1") +
+            ": the drive of axis " + a->name +
+            (limit ? " takes no torque limit" : " does not report its torque") +
+            " (torque_skip of the axis in the machine file)";
+      return false;
+    }
+    return true;
   }
   if (c.skip && !skip_wired(c, config)) {
     why = c.skip_signal != 0

@@ -229,9 +229,15 @@ class ProgramRun final : public macro::VariableProvider {
   // False after alarm 1161 when an axis still oscillates at the program's end.
   bool oscillation_ended();
   bool run_skip(int column);
-  bool run_multi_skip(int column);   // G31.8
-  bool run_torque_skip(int column);  // G160
-  bool run_load_ratio(int column);   // G10 L14 P6
+  bool run_multi_skip(int column);    // G31.8
+  bool run_torque_skip(int column);   // G160
+  bool run_torque_data(int column);   // G10 L14 (program_run_torque.cpp)
+  bool run_load_ratio(int column);    // G10 L14 P6
+  bool run_torque_limit(int column);  // G10 L14 P9
+  bool run_load_watch(int column);    // G10 L14 P0/P1
+  // G10 L14's per-axis values (`what` in an alarm), absolute addresses only, 0-1000 %: into
+  // `values`, bit i of `given` for each axis named.
+  bool read_axis_percents(const char* what, AxisVector& values, std::uint32_t& given);
   // G31 P98/P99: the load ratio of each axis the move from `from` moves; an alarm when none
   // has one.
   bool set_load_ratios(Command& c, const AxisVector& from, const char* code, int column);

@@ -1969,12 +1969,12 @@ bool ProgramRun::run_data_input(int column) {
   if (l != nullptr) {
     l->used = true;
     if (whole_number(l->value, lv) && lv == 14) {
-      return run_load_ratio(column);
+      return run_torque_data(column);
     }
     if (!whole_number(l->value, lv) || (lv != 2 && lv != 20)) {
       return fail(alarm::kNotInThisVersion,
                   "G10 L" + std::to_string(lv) +
-                      " is not implemented (work offsets: L2, L20; load ratios: L14 P6; tool "
+                      " is not implemented (work offsets: L2, L20; torque data: L14; tool "
                       "offsets: no L)",
                   l->column);
     }

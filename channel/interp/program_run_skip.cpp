@@ -179,45 +179,16 @@ bool ProgramRun::set_load_ratios(Command& c, const AxisVector& from, const char*
   return true;
 }
 
-bool ProgramRun::run_load_ratio(int column) {
+bool ProgramRun::run_load_ratio(int /*column*/) {
   // G10 L14 P6 α (L5246-5247): the load ratios G31 P98/P99 skip at, in percent of the rated
   // torque, by absolute addresses only (L4773); 0 gives an axis back to param 5511, and the
-  // block without axes all of them (as G10 L14 P1 without axes cancels the checks, L4866). The
-  // other L14 forms (load monitoring P0-P5, P7/P8, the torque limit P9, torque mode P10-P12)
-  // are not implemented.
-  BlockWord* p = word('P');
-  if (p->value != 6.0) {
-    return fail(alarm::kNotInThisVersion,
-                "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
-                    " (load monitoring, torque limit or torque mode) is not implemented; G10 L14 "
-                    "P6 sets the load ratios of G31 P98/P99",
-                p->column);
-  }
-  (void)column;
-  bool any = false;
+  // block without axes all of them (as G10 L14 P1 without axes cancels the checks, L4866).
   AxisVector ratios = load_ratio_;
-  const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
-    any = true;
-    if (incremental) {
-      return fail(alarm::kWordNotAllowed,
-                  "G10 L14 P6 takes the load ratios by absolute addresses (X, Z, A ...), not "
-                  "by U, W or UA",
-                  w.column);
-    }
-    if (!(w.value >= 0.0 && w.value <= 1000.0)) {
-      return fail(alarm::kBadWordValue,
-                  "G10 L14 P6 " +
-                      std::string(1, config_.axes[static_cast<std::size_t>(axis)].name) +
-                      " (the load ratio, % of the rated torque) must be 0-1000",
-                  w.column);
-    }
-    ratios[static_cast<std::size_t>(axis)] = w.value;
-    return true;
-  });
-  if (!ok) {
+  std::uint32_t given = 0;
+  if (!read_axis_percents("the load ratios", ratios, given)) {
     return false;
   }
-  load_ratio_ = any ? ratios : AxisVector{};
+  load_ratio_ = given != 0 ? ratios : AxisVector{};
   return true;
 }
 
@@ -319,7 +290,7 @@ bool ProgramRun::run_torque_skip(int column) {
   double limit = config_.torque_skip_percent;
   if (BlockWord* p = word('P')) {
     p->used = true;
-    if (!(p->value == -1.0 || (p->value > 0.0 && p->value <= 1000.0))) {
+    if (!(p->value == -1.0 || (p->value > 0.0 && p->value <= kMaxTorquePercent))) {
       return fail(alarm::kBadWordValue,
                   "G160 P (the torque limit, % of the rated torque) must be above 0 and up to "
                   "1000, or -1 to cancel it",

@@ -206,6 +206,23 @@ void positions(Writer& out, const AxisVector& v, const std::vector<AxisConfig>& 
   out += '}';
 }
 
+// {axis: value} of the axes whose bit `shown` has (the torque data of G31 P98/P99, G10 L14).
+void axis_values(Writer& out, const AxisVector& v, std::uint32_t shown,
+                 const std::vector<AxisConfig>& axes) {
+  out += '{';
+  bool first = true;
+  for (std::size_t i = 0; i < axes.size(); ++i) {
+    if (((shown >> i) & 1U) != 0) {
+      out += first ? "\"" : ",\"";
+      out += axes[i].name;
+      out += "\":";
+      number(out, v[i]);
+      first = false;
+    }
+  }
+  out += '}';
+}
+
 void feed(Writer& out, const Command& c) {
   key(out, "feed");
   number(out, c.feed);
@@ -295,6 +312,10 @@ const char* op_name(Op op) {
       return "oscillate";
     case Op::oscillate_end:
       return "oscillate_end";
+    case Op::torque_limit:
+      return "torque_limit";
+    case Op::load_watch:
+      return "load_watch";
   }
   return "?";
 }
@@ -359,18 +380,11 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       }
       if (c.load_skip) {  // G31 P98/P99: the load ratio of each axis watched
         key(out, "load_skip");
-        out += '{';
-        bool first = true;
-        for (std::size_t i = 0; i < axes.size(); ++i) {
-          if (c.load_ratio[i] > 0.0) {
-            out += first ? "\"" : ",\"";
-            out += axes[i].name;
-            out += "\":";
-            number(out, c.load_ratio[i]);
-            first = false;
-          }
+        std::uint32_t watched = 0;
+        for (std::size_t i = 0; i < axes.size() && i < 32; ++i) {
+          watched |= c.load_ratio[i] > 0.0 ? 1U << i : 0U;
         }
-        out += '}';
+        axis_values(out, c.load_ratio, watched, axes);
       }
       if (c.torque_skip) {  // G160: the axis's torque limit (-1: cancelled) and the skip's error
         key(out, "torque_skip");
@@ -619,6 +633,18 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
     case Op::message:
       key(out, "text");
       string(out, c.text);
+      break;
+    case Op::load_watch:  // G10 L14 P0/P1: the moves watched, J, each axis's reference load
+      key(out, "moves");
+      out += c.every_move ? "\"all\"" : "\"feed\"";
+      key(out, "filter");
+      number(out, c.filter_s);
+      key(out, "loads");
+      axis_values(out, c.torque_data, c.torque_data_axes, axes);
+      break;
+    case Op::torque_limit:  // G10 L14 P9: each axis it sets, 0 cancelled
+      key(out, "limits");
+      axis_values(out, c.torque_data, c.torque_data_axes, axes);
       break;
     case Op::axis_restore:
     case Op::spindle_unsync:

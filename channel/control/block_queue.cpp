@@ -27,6 +27,7 @@ void BlockQueue::push(const interp::Command& c, const interp::AxisVector& start)
     b.moves |= c.to[i] != start[i] ? 1U << i : 0U;
   }
   b.sets_torque_limit = (c.torque_skip && c.torque_limit > 0.0) || c.load_skip;
+  b.feed = c.op == interp::Op::linear;
   ++count_;
 }
 

@@ -29,6 +29,7 @@ struct QueuedBlock {
   // G31 P98/P99 (its load ratios).
   std::uint32_t moves = 0;
   bool sets_torque_limit = false;
+  bool feed = false;  // a G01 (G10 L14 P1 watches its load)
 };
 
 class BlockQueue {

@@ -155,6 +155,7 @@ void ChannelController::finish_reset() noexcept {
   source_.abandon();
   coordination_.stop_serving(CallOutcome::aborted);  // its caller goes on with an alarm
   coordination_.release_polygon();
+  coordination_.cancel_programmed_torque_limits();
   forget_program_run();
   halted_ = estopped_;  // an emergency stop stays
   pending_alarm_.reset();
@@ -430,6 +431,7 @@ void ChannelController::block_events(const motion::MotionOutput& m,
     } else {
       event.kind = ChannelEventKind::block_ended;
       event.pos = q.to;
+      coordination_.block_ended();
       queued_.ended();
     }
     out_.add_event(event);
@@ -439,6 +441,9 @@ void ChannelController::block_events(const motion::MotionOutput& m,
 void ChannelController::run_blocks(std::uint64_t cycle,
                                    std::span<const AxisFeedbackView> feedback) noexcept {
   const bool in_pos = in_position(feedback, commanded_);
+  if (coordination_.watch_load(feedback)) {
+    return;  // overloaded: the axes stay where they were commanded last
+  }
   fill();
   coordination_.watch_skip(feedback);
   motion::CycleInput input;

@@ -1,6 +1,7 @@
 #include "channel/control/channel_coordination.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <type_traits>
 #include <utility>
@@ -41,7 +42,8 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
       coupling_(coordination::CouplingSetup{setup.axis_count, setup.slots, setup.spindle_groups,
                                             setup.machine_axes, setup.polygon}),
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
-      skip_(setup.axis_count, setup.probe_arm_cycles) {}
+      skip_(setup.axis_count, setup.probe_arm_cycles),
+      load_(setup.slots) {}
 
 void ChannelCoordination::on_arrival(const coordination::SyncArrival& arrival) noexcept {
   mark_.on_arrival(arrival);  // a full table makes the next evaluation an alarm
@@ -154,8 +156,10 @@ void ChannelCoordination::end_cycle() noexcept {
     }
   }
   for (std::size_t i = 0; i < setup_.axis_count && i < torque_.size(); ++i) {
-    out_.setpoints[i].torque_limit = torque_[i].limit;
-    out_.setpoints[i].skip_deviation = torque_[i].deviation;
+    // A G160's (or G31 P98/P99's) limit stands above G10 L14 P9's while it lasts.
+    const bool skip_limit = torque_[i].limit > 0.0;
+    out_.setpoints[i].torque_limit = skip_limit ? torque_[i].limit : programmed_torque_[i];
+    out_.setpoints[i].skip_deviation = skip_limit ? torque_[i].deviation : 0.0;
   }
   out_.spindle_position = false;
   const double c_base = spindle_mode_.c_base();
@@ -236,6 +240,8 @@ std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
 }
 
 void ChannelCoordination::abandon_run() noexcept {
+  load_.cancel();  // the checks live in the program's run (decision 201)
+  under_way_ = {};
   withdraw_waits();
   held_ = std::monostate{};
   exchange_.abandon();
@@ -337,6 +343,7 @@ std::uint32_t ChannelCoordination::torque_axes(const SkipStop& s) const noexcept
 }
 
 void ChannelCoordination::block_started(const QueuedBlock& b) noexcept {
+  under_way_ = coordination::MoveUnderWay{b.moves, b.feed};
   for (std::size_t i = 0; i < setup_.axis_count && i < torque_.size(); ++i) {
     if (((b.moves >> i) & 1U) != 0 && !b.sets_torque_limit) {
       torque_[i] = TorqueLimit{};
@@ -631,6 +638,37 @@ void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
   // The move ended (its end reached without the signal, or stopped at it) and its block too.
   host_.skip_result(skip_.skipped(), skip_.where(commanded_));
   held_ = std::monostate{};
+}
+
+void ChannelCoordination::run(TorqueDataStop& b, std::uint64_t /*cycle*/,
+                              std::span<const AxisFeedbackView> /*feedback*/) noexcept {
+  start_held(b.block);
+  if (b.limit) {
+    // G10 L14 P9: from here on the named axes' drives take their new limits (0: none).
+    for (std::size_t i = 0; i < setup_.axis_count && i < programmed_torque_.size(); ++i) {
+      if (((b.axes >> i) & 1U) != 0) {
+        programmed_torque_[i] = b.values[i];
+      }
+    }
+  } else {
+    // G10 L14 P0/P1: J in whole cycles, at least one.
+    coordination::LoadMonitor::Percent loads{};
+    std::copy_n(b.values.begin(), std::min(b.values.size(), loads.size()), loads.begin());
+    const auto cycles = static_cast<std::uint64_t>(std::ceil(b.filter_s / setup_.cycle_s - 1e-9));
+    load_.set(
+        b.every_move ? coordination::LoadWatch::every_move : coordination::LoadWatch::feed_moves,
+        b.axes, loads, cycles);
+  }
+  end_held(b.block);
+}
+
+bool ChannelCoordination::watch_load(std::span<const AxisFeedbackView> feedback) noexcept {
+  if (load_.watch() == coordination::LoadWatch::off ||
+      !load_.step(feedback.first(std::min(feedback.size(), setup_.axis_count)), under_way_)) {
+    return false;
+  }
+  raise(load_.alarm(), out_.line);
+  return true;
 }
 
 void ChannelCoordination::run(WaitStop& b, std::uint64_t /*cycle*/,

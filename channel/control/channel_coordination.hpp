@@ -16,6 +16,7 @@
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/channel_state.hpp"
 #include "channel/coordination/coupling_request.hpp"
+#include "channel/coordination/load_monitor.hpp"
 #include "channel/coordination/skip_probe.hpp"
 #include "channel/coordination/spindle_mode.hpp"
 #include "channel/coordination/sub_call.hpp"
@@ -111,6 +112,18 @@ class ChannelCoordination {
   void block_started(const QueuedBlock& b) noexcept;
   // G160: axis i's torque limit (percent of the rated torque, 0: none) and skip deviation.
   [[nodiscard]] double torque_limit(std::size_t i) const noexcept { return torque_[i].limit; }
+  // G10 L14 P9: axis i's torque limit (percent of the rated torque, 0: none); a G160's or G31
+  // P98/P99's stands above it while it lasts.
+  [[nodiscard]] double programmed_torque_limit(std::size_t i) const noexcept {
+    return programmed_torque_[i];
+  }
+  // A reset cancels the limits of G10 L14 P9 (decision 200).
+  void cancel_programmed_torque_limits() noexcept { programmed_torque_ = {}; }
+  // G10 L14 P0/P1, once per cycle of a run before the motion: true when an axis the block
+  // under way moves overloaded (its alarm raised: nothing may move from here on).
+  bool watch_load(std::span<const AxisFeedbackView> feedback) noexcept;
+  // The block under way ended: no move is under way until the next starts.
+  void block_ended() noexcept { under_way_ = {}; }
 
   // --- Runs and their end.
   void settle_slots() noexcept { exchange_.settle(received_, commanded_); }
@@ -194,6 +207,8 @@ class ChannelCoordination {
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   void run(WaitStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  void run(TorqueDataStop& b, std::uint64_t cycle,
+           std::span<const coordination::AxisFeedbackView> feedback) noexcept;
 
   const ChannelSetup& setup_;
   ChannelHost& host_;
@@ -236,6 +251,12 @@ class ChannelCoordination {
     double deviation = 0.0;
   };
   std::array<TorqueLimit, interp::kMaxChannelAxes> torque_{};
+  // G10 L14 P9's torque limits, per channel axis (percent, 0: none): modal, until P9 α0 or a
+  // reset.
+  interp::AxisVector programmed_torque_{};
+  // G10 L14 P0/P1: the loads watched, over the moves of the block under way.
+  coordination::LoadMonitor load_;
+  coordination::MoveUnderWay under_way_{};
   // The torque limit a G160 or G31 P98/P99 puts on channel axis i (limit 0: none): G160 its P
   // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 116).
   [[nodiscard]] static TorqueLimit skip_torque_limit(const interp::Command& c,

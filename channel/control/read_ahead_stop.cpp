@@ -118,6 +118,11 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                                              c.dwell_s};
       return WaitStop{held(c), coordination::ConditionBlock(spec, rules.conditions)};
     }
+    case Op::torque_limit:
+    case Op::load_watch:
+      return TorqueDataStop{
+          held(c),   c.op == Op::torque_limit, c.torque_data_axes, c.torque_data, c.every_move,
+          c.filter_s};
     default:
       break;
   }

@@ -1,10 +1,10 @@
 #pragma once
 // The blocks that stop the channel's read-ahead (spec dafeng §3.0, spec L6907): G04.1, G144,
 // G145, G140-G142, aux codes the PLC answers (and spindle starts it allows), G114.1/G113,
-// G51.4/G50.4, M18/M17, G31 and G04 I/PS. Such a block is pulled and held until every block
-// before it ended, then run by its coordination machine; nothing after it is read meanwhile.
-// "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the one place
-// that says which commands are one and what each carries. Pure: no allocation beyond the
+// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0/P1/P9. Such a block is pulled and held until
+// every block before it ended, then run by its coordination machine; nothing after it is read
+// meanwhile. "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the
+// one place that says which commands are one and what each carries. Pure: no allocation beyond the
 // command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
 // throws but a copy of a command.
 #include "channel/coordination/aux_handshake.hpp"
@@ -96,9 +96,20 @@ struct WaitStop {
   coordination::ConditionBlock condition;
 };
 
+// G10 L14 P9 (`limit`) and P0/P1: the drives' torque limits, or the loads watched, change
+// once every block before it ended, so that a move runs under one setting from start to end.
+struct TorqueDataStop {
+  HeldBlock block;
+  bool limit = true;            // P9; else P0/P1
+  std::uint32_t axes = 0;       // bit i: channel axis i's value is set
+  interp::AxisVector values{};  // percent of the rated torque: the limit (0: cancelled) or load
+  bool every_move = false;      // P0 (every move) or P1 (G01 moves)
+  double filter_s = 0.0;        // P0/P1's J
+};
 // The block held, std::monostate when none.
-using ReadAheadStop = std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop,
-                                   AuxStop, CouplingStop, ModeStop, SkipStop, WaitStop>;
+using ReadAheadStop =
+    std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop, AuxStop,
+                 CouplingStop, ModeStop, SkipStop, WaitStop, TorqueDataStop>;
 
 // What decides which commands stop read-ahead in a channel.
 struct StopRules {

@@ -32,6 +32,10 @@ struct AxisFeedbackView {
   ProbeSeen probe = ProbeSeen::off;
   double probe_pos = 0.0;
   double vel = 0.0;  // actual velocity, units/s (a spindle's degrees/s: G04 PS)
+  // The drive's torque (0x6077) in percent of the motor's rated torque, when it reports it
+  // (G10 L14 P0/P1).
+  bool load_known = false;
+  double load = 0.0;
 };
 
 // One axis the channel programs. The channel's own axes belong to it at start; an exchange

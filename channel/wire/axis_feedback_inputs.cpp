@@ -91,7 +91,9 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                                     (fb->full_channels() & self_bit_) != 0,
                                     probe_of(fb->probe()),
                                     fb->probe_pos(),
-                                    fb->vel()};
+                                    fb->vel(),
+                                    fb->load_known(),
+                                    fb->load()};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

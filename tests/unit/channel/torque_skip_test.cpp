@@ -64,6 +64,7 @@ class TorqueRig : public ChannelRig {
   explicit TorqueRig(bool torque = true,
                      double sensor_at = -std::numeric_limits<double>::infinity())
       : ChannelRig(xz_channel(torque), alike_axes(kAxes, kDt), xz_setup(torque)),
+        torque_(torque),
         feedback_(standing_feedback(kAxes, 1)),
         sensor_at_(sensor_at) {}
 
@@ -73,6 +74,13 @@ class TorqueRig : public ChannelRig {
     AxisFeedbackView& z = feedback_[kZ];
     const CommandedAxis& sz = out.setpoints[kZ];
     z.act = std::max(z.cmd, kContact);
+    // Z's drive reports its load: at the limit (300 % without one) while held at the contact,
+    // else 10 % the way it is commanded.
+    z.load_known = torque_;
+    z.load = z.act > z.cmd ? -(sz.torque_limit > 0.0 ? sz.torque_limit : 300.0)
+                           : (sz.vel < 0.0   ? -10.0
+                              : sz.vel > 0.0 ? 10.0
+                                             : 0.0);
     if (sz.probe != ProbeArm::torque || sz.torque_limit <= 0.0) {
       z.probe = ProbeSeen::off;
     } else if (z.probe == ProbeSeen::off) {
@@ -127,6 +135,7 @@ class TorqueRig : public ChannelRig {
   int armings = 0;
 
  private:
+  bool torque_;
   std::vector<AxisFeedbackView> feedback_;
   double sensor_at_;
   std::uint64_t cycle_ = 1;
@@ -309,6 +318,144 @@ TEST(ChannelLoadSkip, AnAxisWhoseDriveTakesNoLimitIsRefusedBeforeTheProgramRuns)
   EXPECT_EQ(alarm->number, interp::alarm::kSkipInput);
   EXPECT_EQ(alarm->line, 2);
   EXPECT_NE(alarm->text.find("G31 P98: the drive of axis Z takes no torque limit"),
+            std::string::npos)
+      << alarm->text;
+}
+
+// G10 L14 P9 (L5094-5142, decision 200): the limit goes out with the axis's setpoints from the
+// block after it, with no skip deviation nor skip; G00 and G01 keep it (modal); a G160's
+// stands above it while it lasts; Z0 cancels it, and so does a reset.
+TEST(ChannelTorqueLimit, P9LimitsTheAxisFromTheNextBlockUntilCancelled) {
+  TorqueRig rig;
+  rig.load(
+      "G98 G00 X20 Z0\n"         // 1
+      "G10 L14 P9 Z135\n"        // 2
+      "G01 Z-5 F600\n"           // 3: under 135 %
+      "G00 Z-2\n"                // 4: G00 keeps it
+      "G160 W-50 P50 Q1 F600\n"  // 5: G160's 50 % above it, skips at the contact
+      "G00 Z0\n"                 // 6: the move ends G160's: 135 % again
+      "G10 L14 P9 Z0\n"          // 7
+      "G01 Z-1 F600\n"           // 8: none
+      "G10 L14 P9 Z80\n"         // 9: stands past the end, until the reset
+      "M30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  for (const Sent& s : rig.during(kZ, 1)) {
+    EXPECT_EQ(s.torque_limit, 0.0);
+  }
+  for (const int line : {3, 4, 6}) {
+    const std::vector<Sent> moved = rig.during(kZ, line);
+    ASSERT_FALSE(moved.empty()) << line;
+    for (const Sent& s : moved) {
+      if (s.probe == ProbeArm::off) {  // not the G160 (line 5), armed while these run
+        EXPECT_EQ(s.torque_limit, 135.0) << line;
+        EXPECT_EQ(s.skip_deviation, 0.0) << line;
+      }
+    }
+  }
+  const std::vector<Sent> g160 = rig.during(kZ, 5);
+  ASSERT_FALSE(g160.empty());
+  EXPECT_EQ(g160.back().torque_limit, 50.0);
+  EXPECT_EQ(g160.back().skip_deviation, 1.0);
+  const std::vector<Sent> unlimited = rig.during(kZ, 8);
+  ASSERT_FALSE(unlimited.empty());
+  for (const Sent& s : unlimited) {
+    EXPECT_EQ(s.torque_limit, 0.0);
+  }
+  for (const Sent& s : rig.sent[kX]) {
+    EXPECT_EQ(s.torque_limit, 0.0);  // X was never named
+  }
+  EXPECT_NEAR(rig.z(), -1.0, 1e-9);
+  EXPECT_EQ(rig.sent[kZ].back().torque_limit, 80.0);
+  rig.ctl().request_reset();
+  for (int i = 0; i < 20; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.sent[kZ].back().torque_limit, 0.0);
+}
+
+TEST(ChannelTorqueLimit, P9OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeTheProgramRuns) {
+  TorqueRig rig(false);
+  const auto alarm = rig.load_with_alarm("G98 G00 X20 Z0\nG10 L14 P9 Z50\nG01 Z-5 F600\nM30\n");
+  ASSERT_TRUE(alarm.has_value());
+  EXPECT_EQ(alarm->number, interp::alarm::kSkipInput);
+  EXPECT_EQ(alarm->line, 2);
+  EXPECT_NE(alarm->text.find("G10 L14 P9: the drive of axis Z takes no torque limit"),
+            std::string::npos)
+      << alarm->text;
+}
+
+// G10 L14 P1 (L4770-4849, decision 201): Z's load watched in its G01 moves; held at the
+// contact its load passes 80 %: alarm 1280 at the G01's line, in the cycle its feedback shows
+// it, and nothing moves any more: Z stops where it was commanded, X never starts.
+TEST(ChannelLoadWatch, P1AlarmsWhereTheG01RunsIntoTheContactAndNothingMovesAfter) {
+  TorqueRig rig;
+  rig.load(
+      "G98 G00 X20 Z0\n"  // 1
+      "G10 L14 P1 Z80\n"  // 2
+      "G00 Z-12.5\n"      // 3: a rapid to the contact: not watched
+      "G00 Z-10\n"        // 4
+      "G01 Z-11 F600\n"   // 5: watched, 10 %
+      "G01 Z-20 F600\n"   // 6: into the contact at -12.5
+      "G01 X50 F600\n"    // 7: never runs
+      "M30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  ASSERT_EQ(rig.alarms, (std::vector<int>{1280}));
+  EXPECT_EQ(rig.alarm_lines, (std::vector<int>{6}));
+  EXPECT_NE(rig.alarm_text.find("the load of axis 2, 300 %, is above 80 % (overload)"),
+            std::string::npos)
+      << rig.alarm_text;
+  // The command passed the contact in one cycle (0.01 mm at 10 mm/s); the feedback shows it
+  // in the next; the channel stops in the cycle after: Z's command stands within three
+  // cycles' travel of the contact.
+  const double stopped = rig.z_cmd();
+  EXPECT_LT(stopped, kContact);
+  EXPECT_GT(stopped, kContact - 0.03);
+  for (int i = 0; i < 100; ++i) {
+    rig.step();
+  }
+  EXPECT_EQ(rig.z_cmd(), stopped);
+  EXPECT_NEAR(rig.x(), 10.0, 1e-12);  // X20 as a radius: line 7 never ran
+}
+
+// J (the example's J2, in seconds): the load above the reference that long, then the alarm.
+TEST(ChannelLoadWatch, TheFilterTimeLetsTheLoadStayAboveThatLongFirst) {
+  TorqueRig rig;
+  rig.load("G98 G00 X20 Z-10\nG10 L14 P1 Z80 J0.05\nG01 Z-20 F600\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  ASSERT_EQ(rig.alarms, (std::vector<int>{1280}));
+  EXPECT_EQ(rig.alarm_lines, (std::vector<int>{3}));
+  // 50 cycles above, at 0.01 mm a cycle: about 0.5 mm past the contact.
+  EXPECT_LT(rig.z_cmd(), kContact - 0.48);
+  EXPECT_GT(rig.z_cmd(), kContact - 0.52);
+}
+
+// P0 watches every move, G00 too; G10 L14 P1 without axes cancels every check.
+TEST(ChannelLoadWatch, P0WatchesRapidsAndACancelEndsIt) {
+  TorqueRig rig;
+  rig.load("G98 G00 X20 Z0\nG10 L14 P0 Z80\nG00 Z-20\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_EQ(rig.alarms, (std::vector<int>{1280}));
+  EXPECT_EQ(rig.alarm_lines, (std::vector<int>{3}));
+
+  // Cancelled, the same press goes on unwatched (the G01 waits at the contact, in no alarm).
+  TorqueRig cancelled;
+  cancelled.load("G98 G00 X20 Z0\nG10 L14 P0 Z80\nG10 L14 P1\nG01 Z-13 F600\nM30\n");
+  cancelled.ctl().request_start();
+  for (int i = 0; i < 3000; ++i) {
+    cancelled.step();
+  }
+  EXPECT_TRUE(cancelled.alarms.empty()) << cancelled.alarm_text;
+  EXPECT_NEAR(cancelled.z_cmd(), -13.0, 1e-9);
+}
+
+TEST(ChannelLoadWatch, AnAxisWhoseDriveDoesNotReportItsTorqueIsRefusedBeforeTheProgramRuns) {
+  TorqueRig rig(false);
+  const auto alarm = rig.load_with_alarm("G98 G00 X20 Z0\nG10 L14 P1 Z80\nM30\n");
+  ASSERT_TRUE(alarm.has_value());
+  EXPECT_EQ(alarm->number, interp::alarm::kSkipInput);
+  EXPECT_EQ(alarm->line, 2);
+  EXPECT_NE(alarm->text.find("G10 L14 P1: the drive of axis Z does not report its torque"),
             std::string::npos)
       << alarm->text;
 }

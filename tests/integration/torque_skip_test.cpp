@@ -6,6 +6,8 @@
 // channel stops the move and hands the position to the program (#5063). The limit stays while
 // X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
 // the same way with B1's load ratio as the limit (decision 116), P99 also on Z1's touch probe.
+// G10 L14 P9 limits B1's torque on the same bus, and G10 L14 P1 watches its reported load
+// (decisions 200, 201).
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 
@@ -14,6 +16,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -247,6 +250,92 @@ TEST(TorqueSkip, G160OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeAnythingMoves)
             std::string::npos)
       << r.err;
   EXPECT_TRUE(read_trace(trace_file).empty());
+}
+
+// G10 L14 P9 (decision 200): B1 pressed into the centre by less than its in-position width, so
+// that the blocks end in position; its position loop then asks for ever more torque. Under
+// the limit the drive gives 30 % and no more; once P9 B0 lifts it, the torque rises past that.
+TEST(TorqueLimit, P9LimitsTheTailstocksTorqueAgainstTheCentreUntilCancelled) {
+  TestMachine machine("small_lathe.yaml", 193);
+  add_tailstock(machine);
+  const Recorded r =
+      run_recording_the_bus(machine, 193, "tests/integration/programs/g10_l14/torque_limit.nc");
+  EXPECT_TRUE(events(r.trace, "alarm").empty());
+  // On the wire: no limit, 300 per mille from line 3 to line 6, none again.
+  const BusLimits bus = limits_on_the_bus(r.frames);
+  EXPECT_EQ(bus.limits, (std::vector<std::int32_t>{10000, 300, 10000}));
+  EXPECT_LE(bus.lowest_torque, -290);  // pressed at the limit, the way B1 moved
+  EXPECT_GE(bus.lowest_torque, -300);  // and never beyond it
+  // Without the limit the same press takes more.
+  std::int32_t unlimited = 0;
+  int changes = 0;  // of the limit: 2 once P9 B0 lifted it
+  std::int32_t limit = -1;
+  for (const can::CanFrame& f : r.frames) {
+    if (f.id == 0x300U + kTailstockNode && f.dlc == 2) {
+      const std::int32_t v = f.data[0] | (f.data[1] << 8);
+      changes += v != limit && limit != -1 ? 1 : 0;
+      limit = v;
+    } else if (changes == 2 && f.id == 0x280U + kTailstockNode && f.dlc == 2) {
+      unlimited = std::min(unlimited, signed16(f));
+    }
+  }
+  EXPECT_LT(unlimited, -400);
+  // B1 stood at the centre, then went back to -140.
+  const std::vector<double> b = block_ends(r.trace, "B1");
+  ASSERT_FALSE(b.empty());
+  EXPECT_NEAR(b.back(), -140.0, 1e-6);
+}
+
+// G10 L14 P1 (decision 201): B1's load, as its drive reports it, watched in its G01 moves at
+// 80 %. The feed to B-149.5 takes little; the one into the centre at B-150 presses until the
+// load passes 80 %: alarm 1280 at its line, and nothing moves from then on (B1 stays at the
+// centre, X never goes to 40).
+TEST(TorqueLimit, P1OverloadIsAnAlarmAtTheG01AndNothingMovesAfter) {
+  TestMachine machine("small_lathe.yaml", 194);
+  add_tailstock(machine);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run(
+      {bin("mcnc"), "run", machine.path(), "--program",
+       "CH1=" + source("tests/integration/programs/g10_l14/overload.nc"), "--trace", trace_file},
+      -1, std::chrono::seconds(180));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const std::vector<nlohmann::json> trace = read_trace(trace_file);
+  const std::vector<nlohmann::json> alarms = events(trace, "alarm");
+  ASSERT_EQ(alarms.size(), 1U);
+  const nlohmann::json& a = alarms.front();
+  EXPECT_EQ(a["number"], 1280);
+  EXPECT_EQ(a["line"], 6);  // the G01 into the centre
+  EXPECT_EQ(a["text"].get<std::string>().substr(0, 30), "G10 L14 P1: the load of axis B") << a;
+  // Raised once B1 stood at the centre: its command had passed it by less than the travel of
+  // the cycles the load needs to rise (5 mm/s: 0.01 mm per 2 ms cycle).
+  const auto alarm_cycle = a["cycle"].get<std::uint64_t>();
+  double b_cmd_then = 0.0;
+  for (const nlohmann::json& p : events(trace, "pos")) {
+    if (p["axis"] == "B1" && p["cycle"].get<std::uint64_t>() <= alarm_cycle) {
+      b_cmd_then = p["cmd"].get<double>();
+    }
+  }
+  EXPECT_LT(b_cmd_then, -149.9);
+  EXPECT_GT(b_cmd_then, -150.2);
+  // After it, neither B1 nor X1 moves: every sample of their nodes stands where the first after
+  // the alarm stood.
+  for (const std::string axis : {"B1", "X1"}) {
+    std::optional<double> stood;
+    for (const nlohmann::json& p : events(trace, "pos")) {
+      if (p["axis"] != axis || p["src"] == "CH1" ||
+          p["cycle"].get<std::uint64_t>() <= alarm_cycle + 4) {
+        continue;
+      }
+      stood = stood.value_or(p["cmd"].get<double>());
+      EXPECT_NEAR(p["cmd"].get<double>(), *stood, 1e-9) << axis << " " << p;
+    }
+    ASSERT_TRUE(stood.has_value()) << axis;
+  }
+  for (const nlohmann::json& p : events(trace, "pos")) {
+    if (p["axis"] == "X1") {
+      EXPECT_LT(p["cmd"].get<double>(), 10.0 + 1e-6) << p;  // X20 (a radius of 10): never X40
+    }
+  }
 }
 
 }  // namespace

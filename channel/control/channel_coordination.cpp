@@ -240,7 +240,7 @@ std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
 }
 
 void ChannelCoordination::abandon_run() noexcept {
-  load_.cancel();  // the checks live in the program's run (decision 201)
+  load_.cancel();  // the checks live in the program's run (decision 121)
   under_way_ = {};
   withdraw_waits();
   held_ = std::monostate{};

@@ -117,7 +117,7 @@ class ChannelCoordination {
   [[nodiscard]] double programmed_torque_limit(std::size_t i) const noexcept {
     return programmed_torque_[i];
   }
-  // A reset cancels the limits of G10 L14 P9 (decision 200).
+  // A reset cancels the limits of G10 L14 P9 (decision 120).
   void cancel_programmed_torque_limits() noexcept { programmed_torque_ = {}; }
   // G10 L14 P0/P1, once per cycle of a run before the motion: true when an axis the block
   // under way moves overloaded (its alarm raised: nothing may move from here on).

@@ -7,7 +7,7 @@
 // X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
 // the same way with B1's load ratio as the limit (decision 116), P99 also on Z1's touch probe.
 // G10 L14 P9 limits B1's torque on the same bus, and G10 L14 P1 watches its reported load
-// (decisions 200, 201).
+// (decisions 120, 121).
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 
@@ -252,7 +252,7 @@ TEST(TorqueSkip, G160OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeAnythingMoves)
   EXPECT_TRUE(read_trace(trace_file).empty());
 }
 
-// G10 L14 P9 (decision 200): B1 pressed into the centre by less than its in-position width, so
+// G10 L14 P9 (decision 120): B1 pressed into the centre by less than its in-position width, so
 // that the blocks end in position; its position loop then asks for ever more torque. Under
 // the limit the drive gives 30 % and no more; once P9 B0 lifts it, the torque rises past that.
 TEST(TorqueLimit, P9LimitsTheTailstocksTorqueAgainstTheCentreUntilCancelled) {
@@ -286,7 +286,7 @@ TEST(TorqueLimit, P9LimitsTheTailstocksTorqueAgainstTheCentreUntilCancelled) {
   EXPECT_NEAR(b.back(), -140.0, 1e-6);
 }
 
-// G10 L14 P1 (decision 201): B1's load, as its drive reports it, watched in its G01 moves at
+// G10 L14 P1 (decision 121): B1's load, as its drive reports it, watched in its G01 moves at
 // 80 %. The feed to B-149.5 takes little; the one into the centre at B-150 presses until the
 // load passes 80 %: alarm 1280 at its line, and nothing moves from then on (B1 stays at the
 // centre, X never goes to 40).

@@ -322,7 +322,7 @@ TEST(ChannelLoadSkip, AnAxisWhoseDriveTakesNoLimitIsRefusedBeforeTheProgramRuns)
       << alarm->text;
 }
 
-// G10 L14 P9 (L5094-5142, decision 200): the limit goes out with the axis's setpoints from the
+// G10 L14 P9 (L5094-5142, decision 120): the limit goes out with the axis's setpoints from the
 // block after it, with no skip deviation nor skip; G00 and G01 keep it (modal); a G160's
 // stands above it while it lasts; Z0 cancels it, and so does a reset.
 TEST(ChannelTorqueLimit, P9LimitsTheAxisFromTheNextBlockUntilCancelled) {
@@ -385,7 +385,7 @@ TEST(ChannelTorqueLimit, P9OfAnAxisWhoseDriveTakesNoLimitIsRefusedBeforeTheProgr
       << alarm->text;
 }
 
-// G10 L14 P1 (L4770-4849, decision 201): Z's load watched in its G01 moves; held at the
+// G10 L14 P1 (L4770-4849, decision 121): Z's load watched in its G01 moves; held at the
 // contact its load passes 80 %: alarm 1280 at the G01's line, in the cycle its feedback shows
 // it, and nothing moves any more: Z stops where it was commanded, X never starts.
 TEST(ChannelLoadWatch, P1AlarmsWhereTheG01RunsIntoTheContactAndNothingMovesAfter) {

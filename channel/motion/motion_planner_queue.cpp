@@ -191,17 +191,16 @@ MotionPlanner::Item& MotionPlanner::new_item(ItemKind kind) noexcept {
 // the limits, the blocks on either side give up that share (docs/motion.md).
 double MotionPlanner::junction_cap(Segment& prev, Segment& next, bool prev_open) const noexcept {
   const std::size_t n = config_.axis_count;
-  const AxisVector t_in = prev.geometry.tangent(prev.geometry.length());
-  const AxisVector t_out = next.geometry.tangent(0.0);
-  const AxisVector k_in = prev.geometry.curvature(prev.geometry.length());
-  const AxisVector k_out = next.geometry.curvature(0.0);
+  // One point per end: its tangent and curvature come together (an arc's sine and cosine once).
+  const PathPoint in = prev.geometry.point(prev.geometry.length());
+  const PathPoint out = next.geometry.point(0.0);
   AxisVector dt{};
   AxisVector dk{};
   double a = kInf;
   double j = kInf;
   for (std::size_t i = 0; i < n; ++i) {
-    dt[i] = t_out[i] - t_in[i];
-    dk[i] = k_out[i] - k_in[i];
+    dt[i] = out.tangent[i] - in.tangent[i];
+    dk[i] = out.curvature[i] - in.curvature[i];
     if (prev.geometry.axis_share()[i] > 1e-12 || next.geometry.axis_share()[i] > 1e-12) {
       a = std::min(a, config_.axes[i].acceleration);
       j = std::min(j, config_.axes[i].jerk);

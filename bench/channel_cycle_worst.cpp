@@ -71,6 +71,10 @@ class CountingSource final : public interp::CommandSource {
     ++pulls;
     return source_.next();
   }
+  const interp::PullResult* take() override {
+    ++pulls;
+    return source_.take();
+  }
   bool ready() noexcept override { return source_.ready(); }
   std::size_t block_count() const noexcept override { return source_.block_count(); }
   void adopt_position(const interp::AxisVector& at) override { source_.adopt_position(at); }

@@ -354,17 +354,18 @@ void ChannelController::fill() noexcept {
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !coordination_.holds() &&
          planner_.accepts() && !queued_.full() && source_.ready();
          ++k) {
-      auto pulled = source_.next();
-      if (!pulled) {
+      // Read where the source holds it (the read-ahead's ring): a command is not copied.
+      const interp::PullResult* pulled = source_.take();
+      if (pulled == nullptr) {
         source_alarm_ = interp::ProgramAlarm{kAlarmPlannerRejected,
                                              "program ended without M30 or M02", "", out_.line, 0};
         return;
       }
-      if (const auto* alarm = std::get_if<interp::ProgramAlarm>(&*pulled)) {
+      if (const auto* alarm = std::get_if<interp::ProgramAlarm>(pulled)) {
         source_alarm_ = *alarm;
         return;
       }
-      const auto* c = std::get_if<interp::Command>(&*pulled);
+      const auto* c = std::get_if<interp::Command>(pulled);
       if (c == nullptr) {
         return;
       }

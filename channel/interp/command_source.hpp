@@ -30,6 +30,13 @@ class CommandSource {
   // (channel axis order); incremental words and unprogrammed axes start from it.
   virtual void rewind(const AxisVector& current) = 0;
   virtual std::optional<PullResult> next() = 0;
+  // What next() answers, in place: valid until the next call of this source's functions;
+  // nullptr when nothing is left. A source that holds its answers in a buffer (the read-ahead's
+  // ring) hands them over without a copy: the cycle reads a command where it lies.
+  virtual const PullResult* take() {
+    taken_ = next();
+    return taken_ ? &*taken_ : nullptr;
+  }
   // Whether next() has its answer now. A source that computes it when asked always has; one
   // that reads ahead on another thread (channel/loading) may not have it yet: then the
   // cycle pulls again in a later cycle.
@@ -76,6 +83,9 @@ class CommandSource {
   virtual void abandon() noexcept {}
   // Whether the channel has its own program, free of alarms.
   [[nodiscard]] virtual bool has_program() const noexcept { return false; }
+
+ private:
+  std::optional<PullResult> taken_;  // take()'s answer, for a source without a buffer
 };
 
 }  // namespace mcnc::interp

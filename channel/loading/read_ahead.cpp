@@ -201,6 +201,7 @@ void ReadAhead::skip_result(bool skipped, const interp::AxisVector& skip_at,
 }
 
 bool ReadAhead::ready() noexcept {
+  release_taken();
   if (stopped_ || inner_ == nullptr) {
     return false;
   }
@@ -216,16 +217,14 @@ bool ReadAhead::ready() noexcept {
         if (writes_out_ != nullptr) {
           writes_out_->on_shared_write(e->write.number, e->write.value);
         }
-        entries_.pop();
       } else if (e->run != run_) {
-        entries_.pop();  // read ahead for a run that was abandoned
+        // read ahead for a run that was abandoned
       } else if (e->kind == Entry::Kind::started) {
         block_count_ = e->block_count;
-        entries_.pop();
       } else {
         return true;
       }
-      ring_bell();
+      pop_entry();
       continue;
     }
     if (passed_stop_) {
@@ -258,24 +257,35 @@ bool ReadAhead::ready() noexcept {
 }
 
 std::optional<interp::PullResult> ReadAhead::next() {
+  interp::PullResult* taken = take_slot();
+  if (taken == nullptr) {
+    return std::nullopt;
+  }
+  return std::optional<interp::PullResult>(std::move(*taken));
+}
+
+interp::PullResult* ReadAhead::take_slot() {
   if (!ready()) {
-    return interp::PullResult{interp::ProgramAlarm{
+    answer_ = interp::PullResult{interp::ProgramAlarm{
         kAlarmReadAhead, "the read-ahead was asked for a command it did not have", "", 0, 0}};
+    return &*answer_;
   }
   if (order_lost_) {
     order_lost_ = false;
     expecting_ = false;
-    return interp::PullResult{
+    answer_ = interp::PullResult{
         interp::ProgramAlarm{kAlarmReadAhead, "the read-ahead thread does not answer", "", 0, 0}};
+    return &*answer_;
   }
   Entry* e = entries_.front();
-  std::optional<interp::PullResult> out;
+  interp::PullResult* out = nullptr;
   if (e->kind == Entry::Kind::pulled) {
-    out.emplace(std::move(e->pulled));
+    out = &e->pulled;  // read where it lies: the slot stays the cycle's until release_taken()
+    holds_taken_ = true;
+  } else {
+    pop_entry();
   }
-  entries_.pop();
-  ring_bell();
-  const auto* c = out ? std::get_if<interp::Command>(&*out) : nullptr;
+  const auto* c = out != nullptr ? std::get_if<interp::Command>(out) : nullptr;
   if (c == nullptr || c->op == interp::Op::end) {
     thread_stands();  // the run is over: an alarm, the end, or nothing left
   } else if (c->barrier) {
@@ -283,6 +293,21 @@ std::optional<interp::PullResult> ReadAhead::next() {
     passed_stop_ = true;
   }
   return out;
+}
+
+void ReadAhead::release_taken() noexcept {
+  if (holds_taken_) {
+    holds_taken_ = false;
+    pop_entry();
+  }
+}
+
+void ReadAhead::pop_entry() noexcept {
+  // The thread waits on the bell for orders too: a pop that made no room it waits for does not
+  // wake it (a system call and a wake-up of its thread per command, in the cycle).
+  if (entries_.pop_was_full()) {
+    ring_bell();
+  }
 }
 
 // --- the read-ahead thread ---

@@ -72,6 +72,8 @@ class ReadAhead final : public interp::CommandSource {
   void rewind(const interp::AxisVector& current) override;
   [[nodiscard]] bool ready() noexcept override;
   std::optional<interp::PullResult> next() override;
+  // In its slot of the ring, which goes back to the thread at the next call of ready().
+  const interp::PullResult* take() override { return take_slot(); }
   [[nodiscard]] std::size_t block_count() const noexcept override { return block_count_; }
   void adopt_position(const interp::AxisVector& at) override;
   void skip_result(bool skipped, const interp::AxisVector& skip_at,
@@ -126,6 +128,13 @@ class ReadAhead final : public interp::CommandSource {
   };
 
   // Cycle side.
+  // The next answer where it lies (a slot of the ring, or answer_), handed over; nullptr when
+  // nothing is left.
+  interp::PullResult* take_slot();
+  // The slot take() handed over goes back to the thread.
+  void release_taken() noexcept;
+  // Gives the front slot back; wakes the thread only when it may wait for that room.
+  void pop_entry() noexcept;
   void ring_bell() noexcept;
   // The thread stands (a stop, the end, an alarm, no run): what partners wrote may reach it.
   void thread_stands() noexcept;
@@ -176,7 +185,9 @@ class ReadAhead final : public interp::CommandSource {
   std::size_t block_count_ = 0;
   bool has_program_ = false;
   bool stopped_ = false;
-  bool order_lost_ = false;  // an order did not fit: the next pull is an alarm
+  bool order_lost_ = false;   // an order did not fit: the next pull is an alarm
+  bool holds_taken_ = false;  // the front slot was handed over by take() and is not popped yet
+  std::optional<interp::PullResult> answer_;  // an answer of the read-ahead's own (an alarm)
 
   // The thread's own state.
   std::uint64_t thread_run_ = 0;

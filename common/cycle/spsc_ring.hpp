@@ -26,6 +26,9 @@ class SpscRing {
   // after publish().
   [[nodiscard]] T* claim() noexcept {
     const std::uint64_t tail = tail_.load(std::memory_order_relaxed);
+    // Pairs with pop_was_full(): a producer that finds the ring full, or the consumer that pops
+    // it, sees the other's last write.
+    std::atomic_thread_fence(std::memory_order_seq_cst);
     if (tail - head_.load(std::memory_order_acquire) == Capacity) {
       return nullptr;
     }
@@ -47,6 +50,15 @@ class SpscRing {
   // Consumer: gives the front slot back to the producer.
   void pop() noexcept {
     head_.store(head_.load(std::memory_order_relaxed) + 1, std::memory_order_release);
+  }
+  // Consumer: pop(), and whether the ring was full before it. A producer waits for room only
+  // after claim() found it full, so only such a pop needs to wake it: a consumer that tells it
+  // of every pop pays a wake-up of the producer's thread per slot for nothing.
+  [[nodiscard]] bool pop_was_full() noexcept {
+    const std::uint64_t head = head_.load(std::memory_order_relaxed);
+    head_.store(head + 1, std::memory_order_release);
+    std::atomic_thread_fence(std::memory_order_seq_cst);
+    return tail_.load(std::memory_order_relaxed) - head == Capacity;
   }
   // Consumer: waits until a slot is published.
   void wait_for_item() const noexcept {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
+#include <set>
 #include <thread>
 #include <vector>
 
@@ -162,6 +163,47 @@ std::vector<int> take_until_stop(ReadAhead& r, int* taken = nullptr) {
     }
   }
   return lines;
+}
+
+TEST(ReadAhead, TakeHandsOverEachCommandWhereItLiesInTheRingAndTheSlotGoesBackAtTheNextPull) {
+  ScriptSource source(1000, {300});
+  ReadAhead r(nullptr, nullptr);
+  r.set_lockstep(true);
+  r.start(source);
+  r.rewind({});
+  std::vector<int> lines;
+  std::set<const PullResult*> places;
+  while (r.ready()) {
+    const PullResult* pulled = r.take();
+    ASSERT_NE(pulled, nullptr);
+    places.insert(pulled);
+    const auto& c = std::get<Command>(*pulled);
+    lines.push_back(c.line);
+    if (c.op == Op::end) {
+      break;
+    }
+  }
+  // Past the stop at line 300 and to the end: each slot went back to the thread once read.
+  ASSERT_EQ(lines.size(), 1001U);
+  for (int i = 0; i < 1001; ++i) {
+    ASSERT_EQ(lines[static_cast<std::size_t>(i)], i + 1);
+  }
+  // Read where they lay, in the ring's slots: none was copied out to one place.
+  EXPECT_GT(places.size(), 1U);
+  EXPECT_LE(places.size(), ReadAhead::kWindow);
+  EXPECT_FALSE(r.ready());  // nothing after the end
+}
+
+TEST(CommandSource, TakeOfASourceWithoutABufferAnswersWhatNextDoes) {
+  ScriptSource source(2, {});
+  source.rewind({});
+  for (int line = 1; line <= 2; ++line) {
+    const PullResult* pulled = source.take();
+    ASSERT_NE(pulled, nullptr);
+    EXPECT_EQ(std::get<Command>(*pulled).line, line);
+  }
+  EXPECT_EQ(std::get<Command>(*source.take()).op, Op::end);
+  EXPECT_EQ(source.take(), nullptr);
 }
 
 TEST(ReadAhead, LockstepHandsOutTheSourcesCommandsInOrderAndReadsNoMoreThanItsWindowAhead) {

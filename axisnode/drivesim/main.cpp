@@ -95,6 +95,9 @@ int main(int argc, char** argv) {
     params.velocity_bandwidth_hz = axis.drive.velocity_bandwidth_hz;
     params.probe_side = axis.drive.probe_side;
     params.probe_at = axis.drive.probe_at;
+    params.probe_pitch = axis.drive.probe_pitch;
+    params.probe_width = axis.drive.probe_width;
+    params.probe_count = axis.drive.probe_count;
     params.contact_side = axis.drive.contact_side;
     params.contact_at = axis.drive.contact_at;
     for (const config::DriveObjectDefault& o : axis.drive.objects) {

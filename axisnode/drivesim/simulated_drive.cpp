@@ -418,32 +418,108 @@ std::int32_t SimulatedDrive::to_counts(double units) const noexcept {
 }
 
 bool SimulatedDrive::probe_input(double position) const noexcept {
-  return params_.probe_side > 0 ? position >= params_.probe_at : position <= params_.probe_at;
+  const double d =
+      params_.probe_side > 0 ? position - params_.probe_at : params_.probe_at - position;
+  if (!(d >= 0.0)) {
+    return false;
+  }
+  if (params_.probe_pitch <= 0.0) {
+    return true;  // one part face: on at or beyond it
+  }
+  const double k = std::floor(d / params_.probe_pitch);
+  return k < params_.probe_count && d - k * params_.probe_pitch < params_.probe_width;
 }
+
+namespace {
+
+// The input's edges in one cycle's travel, along d (the distance beyond the probe's position on
+// its side): how many went on and off, and the first and last of each, in travel order.
+struct ProbeEdges {
+  int on = 0;
+  int off = 0;
+  double first_on = 0.0;
+  double last_on = 0.0;
+  double first_off = 0.0;
+  double last_off = 0.0;
+
+  void add(bool going_on, double b) noexcept {
+    int& n = going_on ? on : off;
+    (going_on ? last_on : last_off) = b;
+    if (n++ == 0) {
+      (going_on ? first_on : first_off) = b;
+    }
+  }
+};
+
+}  // namespace
 
 void SimulatedDrive::run_touch_probe(double from) noexcept {
   namespace tp = canopen::touch_probe;
   const std::uint16_t function = objects_.touch_probe();
   if (params_.probe_side == 0 || (function & tp::kEnable) == 0) {
-    probe_status_ = 0;  // disabling clears what was stored
-  } else {
-    probe_status_ |= tp::kEnabled;
-    const bool was_on = probe_input(from);
-    const bool on = probe_input(position_);
-    // The input switches where the axis passes probe_at: a drive latches its encoder at the
-    // edge, between two cycles' positions.
-    const std::int32_t at = position_counts(params_.probe_at);
-    if (!was_on && on && (function & tp::kPositiveEdge) != 0 &&
-        (probe_status_ & tp::kPositiveStored) == 0) {
-      probe_status_ |= tp::kPositiveStored;
-      objects_.live.probe_positive = at;
+    probe_status_ = 0;  // disabling clears what was stored, and the edge count
+    objects_.live.touch_probe_status = probe_status_;
+    return;
+  }
+  probe_status_ |= tp::kEnabled;
+  const double side = params_.probe_side > 0 ? 1.0 : -1.0;
+  const double d0 = side * (from - params_.probe_at);
+  const double d1 = side * (position_ - params_.probe_at);
+  // Each window [k pitch, k pitch + width) of d switches the input at its two bounds (one
+  // bound, 0, without teeth); the bounds crossed in travel order, nearest d0 first.
+  ProbeEdges edges;
+  const bool up = d1 > d0;
+  const auto cross = [&](double b, bool window_start) {
+    if ((d0 < b) != (d1 < b)) {
+      edges.add(window_start == up, b);
     }
-    if (was_on && !on && (function & tp::kNegativeEdge) != 0 &&
-        (probe_status_ & tp::kNegativeStored) == 0) {
-      probe_status_ |= tp::kNegativeStored;
-      objects_.live.probe_negative = at;
+  };
+  if (params_.probe_pitch <= 0.0) {
+    cross(0.0, true);
+  } else {
+    const double lo = std::min(d0, d1);
+    const double hi = std::max(d0, d1);
+    const int k_low = std::max(0, static_cast<int>(std::floor(lo / params_.probe_pitch)) - 1);
+    const int k_high = std::min(params_.probe_count - 1,
+                                static_cast<int>(std::floor(hi / params_.probe_pitch)) + 1);
+    for (int i = 0; i <= k_high - k_low; ++i) {
+      const int k = up ? k_low + i : k_high - i;
+      const double start = k * params_.probe_pitch;
+      const double end = start + params_.probe_width;
+      if (up) {
+        cross(start, true);
+        cross(end, false);
+      } else {
+        cross(end, false);
+        cross(start, true);
+      }
     }
   }
+  // A drive latches its encoder at the edge, between two cycles' positions. First event: the
+  // first edge of its kind and none after; continuous: the last one, the count on by each.
+  const bool continuous = (function & tp::kContinuous) != 0;
+  int latched = 0;
+  const auto latch = [&](int n, double first, double last, std::uint16_t stored,
+                         std::int32_t& value) {
+    if (n == 0 || (!continuous && (probe_status_ & stored) != 0)) {
+      return;
+    }
+    probe_status_ |= stored;
+    value = position_counts(params_.probe_at + side * (continuous ? last : first));
+    latched += continuous ? n : 0;
+  };
+  if ((function & tp::kPositiveEdge) != 0) {
+    latch(edges.on, edges.first_on, edges.last_on, tp::kPositiveStored,
+          objects_.live.probe_positive);
+  }
+  if ((function & tp::kNegativeEdge) != 0) {
+    latch(edges.off, edges.first_off, edges.last_off, tp::kNegativeStored,
+          objects_.live.probe_negative);
+  }
+  const auto count = static_cast<std::uint16_t>(
+      ((probe_status_ >> tp::kEdgeCountShift) + static_cast<unsigned>(latched)) & 3U);
+  probe_status_ = static_cast<std::uint16_t>((probe_status_ & ~tp::kEdgeCountMask) |
+                                             (count << tp::kEdgeCountShift));
   objects_.live.touch_probe_status = probe_status_;
 }
 

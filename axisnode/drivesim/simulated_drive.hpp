@@ -47,6 +47,12 @@ struct DriveParams {
   // part there; 0: the drive has no probe input.
   int probe_side = 0;
   double probe_at = 0.0;
+  // Teeth (G31.8): with `probe_pitch` above 0 the input is on only within `probe_count`
+  // windows of `probe_width`, the k-th from probe_at + k * probe_pitch on the side probe_side
+  // (a gear's teeth passing the sensor); probe_width < probe_pitch.
+  double probe_pitch = 0.0;
+  double probe_width = 0.0;
+  int probe_count = 1;
   // A contact (a part, a centre the tailstock presses against): the load cannot pass
   // `contact_at` (units) going to the side `contact_side` (+1 above, -1 below; 0: none). There
   // the motor stands while the position loop's torque rises to its limit (G160).
@@ -134,7 +140,8 @@ class SimulatedDrive {
  private:
   void move_one_cycle() noexcept;
   // Touch probe 1 over the cycle's move from `from` to the present position: the edges of its
-  // input latch `probe_at` as the function 0x60B8 asks (first event of each edge).
+  // input latch where it switched as the function 0x60B8 asks (the first event of each edge,
+  // or every edge in continuous mode, counted in 0x60B9 bits 6-7).
   void run_touch_probe(double from) noexcept;
   [[nodiscard]] bool probe_input(double position) const noexcept;
   // The velocity and mechanics for one cycle; velocity command from the mode (see above).

@@ -43,11 +43,17 @@ inline constexpr std::uint16_t kNoTorqueLimit = 10000;
 // edge's position is stored.
 namespace touch_probe {
 inline constexpr std::uint16_t kEnable = 1U << 0;
+// 0x60B8 bit 1: latch every edge (continuous), not the first one only (G31.8).
+inline constexpr std::uint16_t kContinuous = 1U << 1;
 inline constexpr std::uint16_t kPositiveEdge = 1U << 4;
 inline constexpr std::uint16_t kNegativeEdge = 1U << 5;
 inline constexpr std::uint16_t kEnabled = 1U << 0;
 inline constexpr std::uint16_t kPositiveStored = 1U << 1;
 inline constexpr std::uint16_t kNegativeStored = 1U << 2;
+// 0x60B9 bits 6-7 (user-defined in ETG.6010): in continuous mode, the edges latched, counted
+// modulo 4, so that a master reading one position per SYNC sees an edge it missed.
+inline constexpr int kEdgeCountShift = 6;
+inline constexpr std::uint16_t kEdgeCountMask = 3U << kEdgeCountShift;
 }  // namespace touch_probe
 
 // What a master sends its drive in a cycle; an RPDO carries what its mapping names of it.

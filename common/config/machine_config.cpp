@@ -357,9 +357,8 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
 
 // A position of the simulated drive and the side it acts on: `{at, <side_key>: above|below}`;
 // side +1 above, -1 below.
-void read_drive_position(const YamlValue& value, const char* side_key, const std::string& what,
+void read_drive_position(const YamlMap& m, const char* side_key, const std::string& what,
                          double& at, int& side) {
-  const YamlMap m = value.map({"at", side_key});
   at = m.required("at").number();
   const YamlValue key = m.required(side_key);
   const std::string name = key.string();
@@ -385,11 +384,23 @@ DriveSimConfig parse_drive(const YamlValue& value) {
   read_optional_positive(map, "rated_torque", drive.rated_torque);
   read_optional_positive(map, "velocity_bandwidth_hz", drive.velocity_bandwidth_hz);
   if (auto probe = map.optional("probe")) {
-    read_drive_position(*probe, "on", "the probe's input is on", drive.probe_at, drive.probe_side);
+    const YamlMap p = probe->map({"at", "on", "teeth"});
+    read_drive_position(p, "on", "the probe's input is on", drive.probe_at, drive.probe_side);
+    if (auto teeth = p.optional("teeth")) {
+      const YamlMap t = teeth->map({"pitch", "width", "count"});
+      const YamlValue pitch = t.required("pitch");
+      drive.probe_pitch = pitch.number();
+      drive.probe_width = t.required("width").number();
+      drive.probe_count = read_int(t.required("count"), 1, 10000);
+      if (!(drive.probe_pitch > 0.0 && drive.probe_width > 0.0 &&
+            drive.probe_width < drive.probe_pitch)) {
+        pitch.fail("the teeth need 0 < width < pitch");
+      }
+    }
   }
   if (auto contact = map.optional("contact")) {
-    read_drive_position(*contact, "blocks", "the contact blocks the load", drive.contact_at,
-                        drive.contact_side);
+    read_drive_position(contact->map({"at", "blocks"}), "blocks", "the contact blocks the load",
+                        drive.contact_at, drive.contact_side);
   }
   if (auto objects = map.optional("objects")) {
     const std::vector<YamlValue> list = objects->list();

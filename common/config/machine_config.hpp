@@ -49,6 +49,11 @@ struct DriveSimConfig {
   // the side probe_side (+1 above, -1 below), a part the stylus touches there; 0: no probe.
   int probe_side = 0;
   double probe_at = 0.0;
+  // `probe.teeth: {pitch, width, count}` (G31.8): the input is on only within `count` windows
+  // of `width`, the k-th from probe_at + k * pitch on that side; pitch 0: no teeth.
+  double probe_pitch = 0.0;
+  double probe_width = 0.0;
+  int probe_count = 1;
   // `contact`: the load cannot pass `contact_at` going to the side contact_side (+1 above, -1
   // below), a part or a centre the axis presses against (G160); 0: none.
   int contact_side = 0;

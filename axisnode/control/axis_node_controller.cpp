@@ -334,13 +334,25 @@ void AxisNodeController::probe_cycle(const AxisNodeInput& in) noexcept {
                                             static_cast<std::uint32_t>(last_counts_));
     out_.probe_pos = stored ? static_cast<double>(counts) / setup_.counts_per_unit : 0.0;
   }
-  const bool asked =
-      out_.enabled && (in.probe == ProbeRequest::rising || in.probe == ProbeRequest::falling);
-  out_.touch_probe =
-      asked ? static_cast<std::uint16_t>(
-                  tp::kEnable |
-                  (in.probe == ProbeRequest::rising ? tp::kPositiveEdge : tp::kNegativeEdge))
-            : std::uint16_t{0};
+  // Continuous mode: every edge the drive counted since the last cycle is one more; the count
+  // restarts with the probe (the drive clears it when disabled).
+  if ((sent & tp::kContinuous) != 0 && out_.probe != ProbeState::off) {
+    const auto bits = static_cast<std::uint16_t>((in.touch_probe_status & tp::kEdgeCountMask) >>
+                                                 tp::kEdgeCountShift);
+    out_.probe_count += static_cast<std::uint32_t>((bits - probe_edge_bits_) & 3U);
+    probe_edge_bits_ = bits;
+  } else {
+    out_.probe_count = 0;
+    probe_edge_bits_ = 0;
+  }
+  const bool every =
+      in.probe == ProbeRequest::every_rising || in.probe == ProbeRequest::every_falling;
+  const bool up = in.probe == ProbeRequest::rising || in.probe == ProbeRequest::every_rising;
+  const bool asked = out_.enabled && (every || up || in.probe == ProbeRequest::falling);
+  out_.touch_probe = asked
+                         ? static_cast<std::uint16_t>(tp::kEnable | (every ? tp::kContinuous : 0U) |
+                                                      (up ? tp::kPositiveEdge : tp::kNegativeEdge))
+                         : std::uint16_t{0};
 }
 
 void AxisNodeController::torque_cycle(const AxisNodeInput& in) noexcept {

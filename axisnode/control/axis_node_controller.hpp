@@ -54,8 +54,16 @@ inline constexpr std::int8_t kModeCsv = 9;
 
 // G31 skip: the owner asks the drive's touch probe to latch the position where its input goes
 // on (rising) or off (falling); G160: to latch where the torque is at its limit and the
-// following error beyond the skip deviation (torque). What the node reports of it.
-enum class ProbeRequest : std::uint8_t { off = 0, rising = 1, falling = 2, torque = 3 };
+// following error beyond the skip deviation (torque). G31.8: to latch every such edge
+// (every_rising, every_falling: the drive's continuous mode). What the node reports of it.
+enum class ProbeRequest : std::uint8_t {
+  off = 0,
+  rising = 1,
+  falling = 2,
+  torque = 3,
+  every_rising = 4,
+  every_falling = 5
+};
 enum class ProbeState : std::uint8_t { off = 0, armed = 1, latched = 2 };
 
 struct AxisNodeInput {
@@ -125,6 +133,9 @@ struct AxisNodeOutput {
   // or latched at probe_pos (units).
   ProbeState probe = ProbeState::off;
   double probe_pos = 0.0;
+  // In continuous mode the edges latched since the probe was enabled (probe_pos: the last),
+  // counted on from the drive's count modulo 4; 0 in the other modes.
+  std::uint32_t probe_count = 0;
   // 0x6072 to send (torque_skip): the owner's limit, per mille of the rated torque, or none.
   std::uint16_t max_torque = canopen::kNoTorqueLimit;
 };
@@ -180,6 +191,7 @@ class AxisNodeController {
   std::uint16_t statusword_ = 0;    // the last one received
   std::int64_t counts_ = 0;         // position actual, unwrapped
   std::int32_t last_counts_ = 0;
+  std::uint16_t probe_edge_bits_ = 0;     // 0x60B9 bits 6-7 as last counted
   bool homing_started_ = false;           // in operation in homing mode: bit 4 goes up next
   std::uint64_t start_sent_cycle_ = 0;    // the cycle bit 4 first went out (0: not yet)
   canopen::HeartbeatConsumer heartbeat_;  // in cycles

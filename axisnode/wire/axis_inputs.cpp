@@ -58,7 +58,7 @@ SetpointSample to_core(const AxisSetpoint& sp) {
   SetpointSample out{sp.cycle(), sp.pos(),   sp.vel(),
                      sp.acc(),   sp.valid(), sp.mode() == SP_VELOCITY};
   // A value the wire does not know is no request: the probe stays off.
-  out.probe = sp.probe() <= 3 ? static_cast<ProbeRequest>(sp.probe()) : ProbeRequest::off;
+  out.probe = sp.probe() <= 5 ? static_cast<ProbeRequest>(sp.probe()) : ProbeRequest::off;
   // A limit the wire cannot mean (not a number, negative) is none.
   out.torque_limit =
       sp.torque_limit() > 0.0 && sp.torque_limit() <= 1000.0 ? sp.torque_limit() : 0.0;

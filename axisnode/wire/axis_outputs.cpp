@@ -138,6 +138,7 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   fb.alarm(out.alarm != AxisAlarm::none);
   fb.probe(static_cast<std::uint8_t>(out.probe));
   fb.probe_pos(out.probe_pos);
+  fb.probe_count(out.probe_count);
   feedback_.write(fb);
   if (!in_run) {
     return;

@@ -214,6 +214,9 @@ class ChannelController : private ChannelHost {
   void skip_result(bool skipped, const AxisVector& where) noexcept override {
     source_.skip_result(skipped, where, commanded_);
   }
+  void multi_skip_result(std::span<const double> latched) noexcept override {
+    source_.multi_skip_result(latched, commanded_);
+  }
 
   const CycleOutput& run_cycle(std::uint64_t cycle,
                                std::span<const AxisFeedbackView> feedback) noexcept;

@@ -200,6 +200,8 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   } else if (const auto* s = std::get_if<SkipStop>(&held_)) {
     if (s->command.skip_signal != 0) {
       skip_.begin_signal(s->command.skip_signal);
+    } else if (s->command.multi_skip) {
+      skip_.begin_multi(s->command.input, s->command.skip_axis, s->command.max_signals);
     } else {
       skip_.begin(s->command.input);
     }
@@ -368,7 +370,8 @@ void ChannelCoordination::watch_skip(std::span<const AxisFeedbackView> feedback)
   const int signal = skip->command.skip_signal;
   const bool stop =
       signal != 0 ? skip_.watch_signal(feedback, skip_signal_on(signal), skip_signal_gone(signal))
-                  : skip_.watch(feedback, skip_axes(*skip));
+      : skip->command.multi_skip ? skip_.watch_multi(feedback)
+                                 : skip_.watch(feedback, skip_axes(*skip));
   if (stop) {
     host_.stop_move();  // and drop the rest of the move
   }
@@ -631,12 +634,16 @@ void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
     }
     return;
   }
-  if (skip_.lost()) {  // the PLC went away under a G31 P: stopped, with its alarm
+  if (skip_.lost()) {  // the PLC went away under a G31 P, a G31.8 lost edges: stopped, alarm
     raise(skip_.alarm(), b.command.line);
     return;
   }
   // The move ended (its end reached without the signal, or stopped at it) and its block too.
-  host_.skip_result(skip_.skipped(), skip_.where(commanded_));
+  if (b.command.multi_skip) {
+    host_.multi_skip_result(skip_.latched());
+  } else {
+    host_.skip_result(skip_.skipped(), skip_.where(commanded_));
+  }
   held_ = std::monostate{};
 }
 

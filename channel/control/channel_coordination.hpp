@@ -44,6 +44,8 @@ class ChannelHost {
   virtual void stop_move() noexcept = 0;
   // G31's move is over: whether it skipped and where the axes stand then.
   virtual void skip_result(bool skipped, const interp::AxisVector& where) noexcept = 0;
+  // G31.8's move is over: the positions its probe latched, in order (none: no signal came).
+  virtual void multi_skip_result(std::span<const double> latched) noexcept = 0;
 
  protected:
   ChannelHost() = default;
@@ -170,7 +172,12 @@ class ChannelCoordination {
   // ratio), the channel commands the axis and its drive takes a torque limit.
   [[nodiscard]] std::uint32_t torque_axes(const SkipStop& s) const noexcept;
   // The probes that a G31 or G160 arms and watches: touch probes on the input and torque skips.
+  // G31.8: only the probe of the axis it moves, whose position it stores.
   [[nodiscard]] std::uint32_t skip_axes(const SkipStop& s) const noexcept {
+    if (s.command.multi_skip) {
+      return s.command.skip_axis < 32 ? probe_axes(s.command.input) & (1U << s.command.skip_axis)
+                                      : 0U;
+    }
     return (s.arm == ProbeArm::torque ? 0U : probe_axes(s.command.input)) | torque_axes(s);
   }
   // G31 P: skip signal `signal` (1-8) on in the PLC's status; the PLC gone (or without it).

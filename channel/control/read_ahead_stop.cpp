@@ -145,7 +145,10 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
   if (c.skip || c.load_skip || (c.torque_skip && c.torque_limit > 0.0)) {
     SkipStop s;
     s.command = c;
-    s.arm = !c.skip ? ProbeArm::torque : c.input_on ? ProbeArm::rising : ProbeArm::falling;
+    s.arm = !c.skip        ? ProbeArm::torque
+            : c.multi_skip ? (c.input_on ? ProbeArm::every_rising : ProbeArm::every_falling)
+            : c.input_on   ? ProbeArm::rising
+                           : ProbeArm::falling;
     return s;
   }
   return std::monostate{};

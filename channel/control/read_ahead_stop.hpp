@@ -28,7 +28,16 @@ namespace mcnc::channel {
 // goes on, or off); what the axis node says of it is ProbeSeen (the values the wire carries).
 // G160 (torque): the axis node latches where the axis's torque is at its limit and its
 // following error beyond the skip deviation.
-enum class ProbeArm : std::uint8_t { off = 0, rising = 1, falling = 2, torque = 3 };
+// What the setpoint asks of an axis's probe: G31's first edge, G160's torque skip, G31.8's every
+// edge (the drive's continuous latching).
+enum class ProbeArm : std::uint8_t {
+  off = 0,
+  rising = 1,
+  falling = 2,
+  torque = 3,
+  every_rising = 4,
+  every_falling = 5
+};
 
 // Where a block that stops read-ahead stands in the program.
 struct HeldBlock {

@@ -36,6 +36,9 @@ struct AxisFeedbackView {
   // (G10 L14 P0/P1).
   bool load_known = false;
   double load = 0.0;
+  // G31.8: the edges the drive latched since its probe was armed continuously (probe_pos: the
+  // last one's position).
+  std::uint32_t probe_count = 0;
 };
 
 // One axis the channel programs. The channel's own axes belong to it at start; an exchange

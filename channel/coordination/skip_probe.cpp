@@ -13,7 +13,48 @@ void SkipProbe::begin(int input) noexcept {
   lost_ = false;
   torque_ = false;
   load_ = 0;
+  multi_ = false;
+  latch_count_ = 0;
   skip_at_ = {};
+}
+
+void SkipProbe::begin_multi(int input, std::size_t axis, int most) noexcept {
+  begin(input);
+  multi_ = true;
+  torque_axis_ = axis;
+  most_ = most < 1
+              ? 1
+              : (static_cast<std::size_t>(most) > kMaxLatches ? kMaxLatches
+                                                              : static_cast<std::size_t>(most));
+}
+
+bool SkipProbe::watch_multi(std::span<const AxisFeedbackView> feedback) noexcept {
+  if (phase_ != SkipPhase::moving || torque_axis_ >= feedback.size()) {
+    return false;
+  }
+  const AxisFeedbackView& f = feedback[torque_axis_];
+  const std::uint32_t edges = f.probe_count - seen_count_;
+  if (edges == 0) {
+    return false;
+  }
+  seen_count_ = f.probe_count;
+  if (edges > 1) {
+    // The drive holds one position until its next report: the others are gone.
+    lost_ = true;
+    alarm_.set(kAlarmEdgesLost,
+               "G31.8: %u edges on input %d within one cycle, the drive reports one position a "
+               "cycle",
+               edges, input_);
+    phase_ = SkipPhase::stopping;
+    return true;
+  }
+  latched_[latch_count_++] = f.probe_pos;
+  skipped_ = true;
+  if (latch_count_ < most_) {
+    return false;
+  }
+  phase_ = SkipPhase::stopping;
+  return true;
 }
 
 void SkipProbe::begin_torque(std::size_t axis) noexcept {
@@ -90,6 +131,11 @@ SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
                  "G160: the channel does not command axis %d, or its drive takes no torque limit "
                  "(torque_skip)",
                  axis);
+    } else if (multi_) {
+      alarm_.set(interp::alarm::kSkipInput,
+                 "G31.8: the axis it moves (%d) is not this channel's to command, or its touch "
+                 "probe is not on input %d",
+                 axis, input_);
     } else {
       alarm_.set(interp::alarm::kSkipInput,
                  "G31: no axis this channel commands has its touch probe on input %d", input_);
@@ -97,6 +143,9 @@ SkipArming SkipProbe::arm(std::span<const AxisFeedbackView> feedback,
     return SkipArming::alarm;
   }
   if (armed) {
+    if (multi_ && torque_axis_ < feedback.size()) {
+      seen_count_ = feedback[torque_axis_].probe_count;  // edges count from here
+    }
     return SkipArming::armed;
   }
   if (++waited_ > arm_cycles_) {

@@ -10,8 +10,10 @@
 // 360). G160 skips where its axis's node reports the torque at the limit and the following
 // error beyond the deviation, a latch as a touch probe's, at the axis's actual position then
 // (decision 100). G31 P98/P99 skip where an axis is held back at its load ratio the same way,
-// P99 also on the touch probes of its input (decision 116). Pure: one call per cycle with the
-// feedback of that cycle; no allocation, nothing throws.
+// P99 also on the touch probes of its input (decision 116). G31.8 arms its axis's probe to latch
+// every edge; the move goes on past each, up to the most edges, and keeps each latched
+// position, counted by the drive so that none is taken twice or missed unseen. Pure: one call per
+// cycle with the feedback of that cycle; no allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
@@ -23,6 +25,9 @@
 namespace mcnc::coordination {
 
 inline constexpr int kAlarmProbeNotArmed = 1270;  // G31: a drive's touch probe did not arm
+inline constexpr int kAlarmEdgesLost = 1273;      // G31.8: more edges in a cycle than reported
+// G31.8 keeps at most this many positions (interp::kMaxMultiSkipSignals).
+inline constexpr std::size_t kMaxLatches = 100;
 
 enum class SkipPhase : std::uint8_t { arming, moving, stopping };
 enum class SkipArming : std::uint8_t { waiting, armed, alarm };
@@ -48,6 +53,17 @@ class SkipProbe {
   // Moving, one cycle: true when a probe latched now (the move must stop at once).
   bool watch(std::span<const AxisFeedbackView> feedback, std::uint32_t probes) noexcept;
 
+  // G31.8 on skip input `input` reached the front: the touch probe of channel axis `axis`
+  // latches every edge, and the move stops at the `most`-th (1..kMaxLatches).
+  void begin_multi(int input, std::size_t axis, int most) noexcept;
+  // Moving a G31.8, one cycle: true when the move must stop at once (the most edges came, or
+  // more edges came in one cycle than the drive holds positions of: the alarm, lost()).
+  bool watch_multi(std::span<const AxisFeedbackView> feedback) noexcept;
+  // G31.8: the positions latched, in order.
+  [[nodiscard]] std::span<const double> latched() const noexcept {
+    return {latched_.data(), latch_count_};
+  }
+
   // G31 P `signal` (1-8) reached the front.
   void begin_signal(int signal) noexcept;
   // Arming on a PLC signal, one cycle: `on` the signal as the PLC's status shows it, `gone` the
@@ -64,7 +80,8 @@ class SkipProbe {
     return skipped_ ? skip_at_ : end;
   }
   [[nodiscard]] const CoordinationAlarm& alarm() const noexcept { return alarm_; }
-  // The PLC node went away during a G31 P move: the move stopped and this alarm is to raise.
+  // The PLC node went away during a G31 P move, or a G31.8's drive latched edges faster than it
+  // reports them: the move stopped and this alarm is to raise.
   [[nodiscard]] bool lost() const noexcept { return lost_; }
 
  private:
@@ -75,6 +92,11 @@ class SkipProbe {
   bool torque_ = false;  // G160: the torque skip of axis torque_axis_
   int load_ = 0;         // G31 P98 / P99: the load skips of the axes with a load ratio
   std::size_t torque_axis_ = 0;
+  bool multi_ = false;  // G31.8: every edge of torque_axis_'s probe, up to most_
+  std::size_t most_ = 0;
+  std::uint32_t seen_count_ = 0;  // the drive's edge count as last taken
+  std::array<double, kMaxLatches> latched_{};
+  std::size_t latch_count_ = 0;
   SkipPhase phase_ = SkipPhase::arming;
   std::uint64_t waited_ = 0;  // cycles arming
   bool skipped_ = false;

@@ -53,6 +53,12 @@ class CommandSource {
     (void)skip_at;
     (void)stop_at;
   }
+  // The G31.8 (Command::multi_skip) just pulled ended: its axis's probe latched at `latched`
+  // (machine positions, in order); the axes stand at `stop_at`. Called before the next pull.
+  virtual void multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) {
+    (void)latched;
+    (void)stop_at;
+  }
   // Positions the source at the start of program O<number> called by another channel (G144)
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to

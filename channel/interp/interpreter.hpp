@@ -79,6 +79,10 @@ class Interpreter {
   // skipped at its end point (a dry run, `mcnc interp`). Only while the G31 is the last
   // command pulled.
   void skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at);
+  // The G31.8 just pulled ended: its axis's probe latched at `latched` (machine positions, in
+  // order), which go to #P.. and their count to #R; the axes stand at `stop_at`. Without this
+  // call the signals count as coming evenly along the move (decision 93).
+  void multi_skip_result(std::span<const double> latched, const AxisVector& stop_at);
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
   // The number of non-empty lines of the main program (0 before start).

@@ -49,6 +49,9 @@ bool skip_wired(const Command& c, const InterpreterConfig& config) {
   if (c.skip_signal != 0) {  // G31 P: an input of the PLC
     return config.skip_signals[static_cast<std::size_t>(c.skip_signal - 1)];
   }
+  if (c.multi_skip) {  // G31.8 stores its own axis's positions: that drive's probe latches them
+    return c.skip_axis < config.axes.size() && config.axes[c.skip_axis].probe_input == c.input;
+  }
   for (const AxisConfig& a : config.axes) {
     if (a.probe_input == c.input) {
       return true;
@@ -81,9 +84,6 @@ const AxisConfig* unlimited_torque_axis(const Command& c, const InterpreterConfi
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
-  if (c.multi_skip) {
-    return alarm::kNotInThisVersion;
-  }
   if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr) ||
       c.op == Op::torque_limit || c.op == Op::load_watch) {
     return alarm::kSkipInput;
@@ -354,8 +354,11 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
           std::to_string(c.spindle) + " whose actual speed it reads (spindles in the machine file)";
     return false;
   }
-  if (c.multi_skip) {
-    why = "G31.8 (the multi-skip) needs the touch probe's continuous latching, not in this version";
+  if (c.multi_skip && !skip_wired(c, config)) {
+    const char axis = c.skip_axis < config.axes.size() ? config.axes[c.skip_axis].name : '?';
+    why = "G31.8: the touch probe of axis " + std::string(1, axis) +
+          ", whose positions it stores, is not wired to input " + std::to_string(c.input) +
+          " (touch_probe of the axis in the machine file)";
     return false;
   }
   if (c.torque_skip && c.torque_limit > 0.0 &&
@@ -424,6 +427,13 @@ void InterpreterSource::skip_result(bool skipped, const AxisVector& skip_at,
                                     const AxisVector& stop_at) {
   if (interpreter_) {
     interpreter_->skip_result(skipped, skip_at, stop_at);
+  }
+}
+
+void InterpreterSource::multi_skip_result(std::span<const double> latched,
+                                          const AxisVector& stop_at) {
+  if (interpreter_) {
+    interpreter_->multi_skip_result(latched, stop_at);
   }
 }
 

@@ -68,6 +68,7 @@ class ProgramRun final : public macro::VariableProvider {
   void set_machine(const AxisVector& at);
   // The last G31: skipped at `skip_at` (machine), or not; the axes stand at `stop_at`.
   void set_skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at);
+  void set_multi_skip_result(std::span<const double> latched, const AxisVector& stop_at);
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;
@@ -646,6 +647,11 @@ class ProgramRun final : public macro::VariableProvider {
   std::int64_t multi_skip_first_ = 0;
   std::int64_t multi_skip_count_variable_ = 0;
   int multi_skip_axis_ = 0;
+  // What #P.. held before the dry run's positions went in (multi_skip_dry_ of them): the channel's
+  // result gives back those it did not latch.
+  std::array<macro::MacroValue, kMaxMultiSkipSignals> multi_skip_before_{};
+  std::size_t multi_skip_dry_ = 0;
+  int multi_skip_column_ = 0;
   // G10 L14 P6: per channel axis, the load ratio G31 P98/P99 skip at (percent of the rated
   // torque; 0: param 5511's).
   AxisVector load_ratio_{};

@@ -7,6 +7,7 @@
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <span>
 #include <string>
@@ -246,10 +247,16 @@ bool ProgramRun::run_multi_skip(int column) {
   for (std::size_t a = 0; a < config_.axes.size(); ++a) {
     multi_skip_axis_ = machine_[a] != from[a] ? static_cast<int>(a) : multi_skip_axis_;
   }
+  c->skip_axis = static_cast<std::size_t>(multi_skip_axis_);  // the probe the channel arms
+  multi_skip_column_ = column;
   // Without the channel (a dry run, `mcnc interp`): Q signals (one without Q) evenly along the
   // move, the last at its end, so that a program that counts them runs through (decision 93).
   std::array<double, kMaxMultiSkipSignals> at{};
   const int n = most == 0 ? 1 : most;
+  multi_skip_dry_ = static_cast<std::size_t>(n);
+  for (std::size_t k = 0; k < multi_skip_dry_; ++k) {
+    multi_skip_before_[k] = vars_.read(first + static_cast<std::int64_t>(k)).value;
+  }
   const auto axis = static_cast<std::size_t>(multi_skip_axis_);
   const AxisVector start_m = transform::to_vector(frame_.to_machine(transform::to_point(from)));
   const AxisVector end_m = transform::to_vector(frame_.to_machine(transform::to_point(machine_)));
@@ -279,6 +286,17 @@ bool ProgramRun::record_multi_skip(std::span<const double> at, int column) {
                       macro::MacroValue::of(static_cast<double>(at.size())));
   }
   return true;
+}
+
+void ProgramRun::set_multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) {
+  // The variables the dry run filled beyond what the probe latched get back what they held:
+  // a position that was not measured must not read as one.
+  const std::size_t n = std::min(latched.size(), multi_skip_before_.size());
+  for (std::size_t k = n; k < multi_skip_dry_; ++k) {
+    (void)vars_.write(multi_skip_first_ + static_cast<std::int64_t>(k), multi_skip_before_[k]);
+  }
+  (void)record_multi_skip(latched.first(n), multi_skip_column_);
+  set_machine(stop_at);  // the next block starts where the axes stopped
 }
 
 bool ProgramRun::run_torque_skip(int column) {

@@ -4,6 +4,7 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <algorithm>
 
 #include <limits>
 #include <utility>
@@ -195,8 +196,18 @@ void ReadAhead::adopt_position(const interp::AxisVector& at) {
 void ReadAhead::skip_result(bool skipped, const interp::AxisVector& skip_at,
                             const interp::AxisVector& stop_at) {
   has_skip_ = true;
+  multi_skip_ = false;
   skipped_ = skipped;
   skip_at_ = skip_at;
+  stop_at_ = stop_at;
+}
+
+void ReadAhead::multi_skip_result(std::span<const double> latched,
+                                  const interp::AxisVector& stop_at) {
+  has_skip_ = true;
+  multi_skip_ = true;
+  latched_count_ = std::min(latched.size(), latched_.size());
+  std::copy_n(latched.begin(), latched_count_, latched_.begin());
   stop_at_ = stop_at;
 }
 
@@ -243,6 +254,9 @@ bool ReadAhead::ready() noexcept {
       o->skipped = skipped_;
       o->skip_at = skip_at_;
       o->stop_at = stop_at_;
+      o->multi_skip = multi_skip_;
+      o->latched = latched_;
+      o->latched_count = latched_count_;
       o->peer_writes = peer_writes_posted_;
       has_position_ = false;
       has_skip_ = false;
@@ -389,7 +403,10 @@ void ReadAhead::handle(Order& order) noexcept {
         if (order.has_position) {
           inner_->adopt_position(order.at);
         }
-        if (order.has_skip) {
+        if (order.has_skip && order.multi_skip) {
+          inner_->multi_skip_result(
+              std::span<const double>(order.latched.data(), order.latched_count), order.stop_at);
+        } else if (order.has_skip) {
           inner_->skip_result(order.skipped, order.skip_at, order.stop_at);
         }
         reading_ = true;

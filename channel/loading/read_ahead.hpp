@@ -20,6 +20,7 @@
 // cycle, however fast the thread is); in realtime it takes what is ready and pulls the rest in
 // later cycles, as a control whose buffer ran empty does.
 #include "channel/interp/command_source.hpp"
+#include "channel/interp/interp_config.hpp"
 #include "channel/interp/macro/variable_store.hpp"
 #include "common/cycle/spsc_ring.hpp"
 
@@ -78,6 +79,8 @@ class ReadAhead final : public interp::CommandSource {
   void adopt_position(const interp::AxisVector& at) override;
   void skip_result(bool skipped, const interp::AxisVector& skip_at,
                    const interp::AxisVector& stop_at) override;
+  void multi_skip_result(std::span<const double> latched,
+                         const interp::AxisVector& stop_at) override;
   std::optional<interp::ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const interp::AxisVector& current) override;
   std::optional<interp::ProgramAlarm> start_mdi(const interp::AxisVector& current) override;
@@ -111,6 +114,9 @@ class ReadAhead final : public interp::CommandSource {
     bool skipped = false;
     interp::AxisVector skip_at{};
     interp::AxisVector stop_at{};
+    bool multi_skip = false;  // the result is a G31.8's: these positions
+    std::array<double, interp::kMaxMultiSkipSignals> latched{};
+    std::size_t latched_count = 0;
     int program = 0;
     std::array<std::pair<int, double>, interp::kSubcallArgs> args{};
     std::size_t arg_count = 0;
@@ -181,6 +187,9 @@ class ReadAhead final : public interp::CommandSource {
   bool skipped_ = false;
   interp::AxisVector skip_at_{};
   interp::AxisVector stop_at_{};
+  bool multi_skip_ = false;
+  std::array<double, interp::kMaxMultiSkipSignals> latched_{};
+  std::size_t latched_count_ = 0;
   std::uint64_t peer_writes_posted_ = 0;
   std::size_t block_count_ = 0;
   bool has_program_ = false;

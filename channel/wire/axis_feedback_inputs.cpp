@@ -93,7 +93,8 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                                     fb->probe_pos(),
                                     fb->vel(),
                                     fb->load_known(),
-                                    fb->load()};
+                                    fb->load(),
+                                    fb->probe_count()};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

@@ -316,6 +316,13 @@ bool ChannelCoordination::under_position_control() const noexcept {
   return setup_.spindle_c_slot && exchange_.use(*setup_.spindle_c_slot) == SlotUse::commanded;
 }
 
+bool ChannelCoordination::stands_at_command(std::span<const AxisFeedbackView> feedback,
+                                            std::size_t axis) const noexcept {
+  const double width = axis < setup_.in_position.size() ? setup_.in_position[axis] : 0.0;
+  return axis >= feedback.size() || axis >= commanded_.size() ||
+         std::fabs(feedback[axis].act - commanded_[axis]) <= width;
+}
+
 std::uint32_t ChannelCoordination::probe_axes(int input) const noexcept {
   std::uint32_t probes = 0;
   for (std::size_t i = 0; i < setup_.axis_count && i < setup_.probe_inputs.size(); ++i) {
@@ -636,6 +643,12 @@ void ChannelCoordination::run(SkipStop& b, std::uint64_t /*cycle*/,
   }
   if (skip_.lost()) {  // the PLC went away under a G31 P, a G31.8 lost edges: stopped, alarm
     raise(skip_.alarm(), b.command.line);
+    return;
+  }
+  // G31.8 at its end point: the edges its axis passed are latched when the axis passes them,
+  // which lags the command by the drive's following error; they count until it stands there.
+  if (b.command.multi_skip && skip_.phase() == coordination::SkipPhase::moving &&
+      !stands_at_command(feedback, b.command.skip_axis)) {
     return;
   }
   // The move ended (its end reached without the signal, or stopped at it) and its block too.

@@ -166,6 +166,9 @@ class ChannelCoordination {
   [[nodiscard]] bool writes_pending() const noexcept {
     return setup_.shared_writes != nullptr && setup_.shared_writes->size() > 0;
   }
+  // Axis `axis`'s actual position is within its in-position width of the command.
+  [[nodiscard]] bool stands_at_command(std::span<const AxisFeedbackView> feedback,
+                                       std::size_t axis) const noexcept;
   // Bit i: axis i's touch probe is on skip input `input` and the channel commands the axis.
   [[nodiscard]] std::uint32_t probe_axes(int input) const noexcept;
   // Bit i: a G160 or G31 P98/P99 limits axis i's torque (its axis, the axes with a load

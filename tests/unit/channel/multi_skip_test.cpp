@@ -53,6 +53,12 @@ class TeethRig : public ChannelRig {
     const CycleOutput& out = channel_cycle(cycle_++, feedback_);
     const double before = feedback_[kZ].act;
     follow_setpoints(out, feedback_, kAxes);
+    // Z's drive `lag` cycles behind its command, as a following error.
+    z_commands_.push_back(feedback_[kZ].act);
+    if (z_commands_.size() > lag + 1) {
+      z_commands_.erase(z_commands_.begin());
+    }
+    feedback_[kZ].act = z_commands_.front();
     AxisFeedbackView& z = feedback_[kZ];
     if (out.setpoints[kZ].probe != ProbeArm::every_rising) {
       z.probe = ProbeSeen::off;
@@ -89,9 +95,11 @@ class TeethRig : public ChannelRig {
   }
   std::vector<ChannelEvent> ends;
   int armings = 0;
+  std::size_t lag = 0;
 
  private:
   std::vector<double> teeth_;
+  std::vector<double> z_commands_;
   std::vector<AxisFeedbackView> feedback_;
   std::uint64_t cycle_ = 1;
 };
@@ -123,6 +131,20 @@ TEST(ChannelMultiSkip, StoresEachToothAndRunsToTheEndBeforeQ) {
   EXPECT_NEAR(count->pos[0], 3.0, 1e-9);  // #1 = 3
   // #503 was not measured: the 7 it held (the check before the run filled it).
   EXPECT_NEAR(rig.x(), 3.5, 1e-9);
+}
+
+TEST(ChannelMultiSkip, ATeethNearTheEndPointCountsOnceTheAxisStandsThere) {
+  // Z 10 cycles behind its command (0.2 mm at 20 mm/s): its last tooth, 0.05 mm before the end
+  // point, passes after the command got there; the block waits for Z to stand at the end.
+  TeethRig rig({-10.0, -12.0, -19.95});
+  rig.lag = 10;
+  rig.load("G98 G00 X20 Z0\nG31.8 W-20 F1200 L1 P500 Q5 R1\nG00 X[#1*2]\nG00 Z[#502]\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  EXPECT_NEAR(rig.x(), 3.0, 1e-9);  // #1 = 3
+  const ChannelEvent* e = rig.end_of_line(4);
+  ASSERT_NE(e, nullptr);
+  EXPECT_NEAR(e->pos[kZ], -19.95, 1e-9);  // #502
 }
 
 TEST(ChannelMultiSkip, TheQthToothStopsTheMove) {

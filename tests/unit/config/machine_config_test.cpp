@@ -575,6 +575,38 @@ TEST(MachineConfig, TorqueSkipAndTheDrivesContact) {
             "axes[1].drive.contact.at");
 }
 
+// G31.8: the simulated drive's probe passing teeth.
+TEST(MachineConfig, TheDrivesProbeMayPassTeeth) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["axes"][1]["drive"]["probe"]["at"] = -10.0;
+    r["axes"][1]["drive"]["probe"]["on"] = "below";
+    r["axes"][1]["drive"]["probe"]["teeth"]["pitch"] = 2.0;
+    r["axes"][1]["drive"]["probe"]["teeth"]["width"] = 1.0;
+    r["axes"][1]["drive"]["probe"]["teeth"]["count"] = 3;
+  }));
+  const DriveSimConfig& z = config.axes[1].drive;
+  EXPECT_DOUBLE_EQ(z.probe_at, -10.0);
+  EXPECT_EQ(z.probe_side, -1);
+  EXPECT_DOUBLE_EQ(z.probe_pitch, 2.0);
+  EXPECT_DOUBLE_EQ(z.probe_width, 1.0);
+  EXPECT_EQ(z.probe_count, 3);
+  EXPECT_DOUBLE_EQ(config.axes[0].drive.probe_pitch, 0.0);  // no teeth: one face
+  const auto teeth = [](double pitch, double width) {
+    return mutated([pitch, width](YAML::Node& r) {
+      r["axes"][1]["drive"]["probe"]["at"] = -10.0;
+      r["axes"][1]["drive"]["probe"]["on"] = "below";
+      r["axes"][1]["drive"]["probe"]["teeth"]["pitch"] = pitch;
+      r["axes"][1]["drive"]["probe"]["teeth"]["width"] = width;
+      r["axes"][1]["drive"]["probe"]["teeth"]["count"] = 3;
+    });
+  };
+  for (const auto& [pitch, width] :
+       {std::pair{2.0, 2.0}, std::pair{2.0, 0.0}, std::pair{0.0, 1.0}}) {
+    EXPECT_EQ(rejection_path(teeth(pitch, width)), "axes[1].drive.probe.teeth.pitch")
+        << pitch << " " << width;
+  }
+}
+
 // G31 P98/P99: an axis's load ratio (param 5511), only where the drive takes a torque limit.
 TEST(MachineConfig, SkipLoadIsTheLoadRatioOfAnAxisWithATorqueLimit) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {

@@ -14,6 +14,11 @@
 
 namespace mcnc::interp {
 
+namespace {
+constexpr std::int64_t kGskFirstSkipVariable = 995;  // #995-#999
+constexpr std::size_t kGskSkipVariables = 5;
+}  // namespace
+
 bool ProgramRun::skip_move_allowed(const char* code, int column) {
   if (interpolation_mode()) {
     return fail(
@@ -125,6 +130,12 @@ bool ProgramRun::run_skip(int column) {
   bool load = false;
   if (p != nullptr) {
     p->used = true;
+    // GSK: P1-P4 select the skip signals whose addresses params №148-№151 hold (gsk A.6.20).
+    if (config_.dialect == Dialect::gsk &&
+        !(p->value >= 1.0 && p->value <= 4.0 && p->value == std::floor(p->value))) {
+      return fail(alarm::kBadWordValue,
+                  "G31 P must be 1-4, the skip signals of params 148-151 (gsk A.6.20)", p->column);
+    }
     load = p->value == 98.0 || or_load;
     if (!load && !(p->value >= 1.0 && p->value <= 8.0 && p->value == std::floor(p->value))) {
       return fail(alarm::kBadWordValue, "G31 P must be 1-8, 98 or 99", p->column);
@@ -363,6 +374,13 @@ void ProgramRun::record_skip(bool skipped, const AxisVector& skip_at) {
     skip_position_[a] = to_programmed(axis, at[a] - offset_sum(axis) - tool_offset(axis));
   }
   skip_known_ = true;
+  // GSK: the skip position also goes to #995-#999, axis 1-5 of the channel in order (gsk A.6.20,
+  // L675; the order is the spec's proposal).
+  for (std::size_t a = 0;
+       config_.dialect == Dialect::gsk && a < config_.axes.size() && a < kGskSkipVariables; ++a) {
+    (void)vars_.write(kGskFirstSkipVariable + static_cast<std::int64_t>(a),
+                      macro::MacroValue::of(skip_position_[a]));
+  }
   if (skip_flag_variable_ != 0) {
     (void)vars_.write(skip_flag_variable_, macro::MacroValue::of(skipped ? 1.0 : 0.0));
   }

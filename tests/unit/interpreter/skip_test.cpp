@@ -314,5 +314,39 @@ TEST(InterpLoadSkip, Alarms) {
   expect_alarms(cases, c);
 }
 
+// GSK's G31 (gsk A.6.20): P1-P4 select the skip signals of params 148-151, and the skip
+// position also goes to #995-#999 (axis 1-5 in order: X as a diameter, as #5061 reads it).
+TEST(InterpSkipGsk, PSelectsOneOfFourSignalsAndTheResultGoesTo995) {
+  Interpreter in(gsk());
+  ASSERT_FALSE(in.start("G98 G00 X40 Z10\nG31 W-50 F200 P2\n#101=#995\nG01 W-1\nM30\n", "t.nc"));
+  (void)in.next();
+  auto g31 = in.next();
+  ASSERT_TRUE(g31 && std::holds_alternative<Command>(*g31));
+  EXPECT_EQ(std::get<Command>(*g31).skip_signal, 2);
+  // Without the channel the signal counts at the end point.
+  EXPECT_NEAR(number_of(in, 996), -40.0, 1e-12);
+  in.skip_result(true, AxisVector{20.0, -12.5}, AxisVector{20.0, -13.0});
+  (void)in.next();
+  EXPECT_NEAR(number_of(in, 995), 40.0, 1e-12);
+  EXPECT_NEAR(number_of(in, 996), -12.5, 1e-12);
+  EXPECT_NEAR(number_of(in, 101), 40.0, 1e-12);
+  // Dafeng keeps #995 as a common variable.
+  Interpreter d(lathe());
+  ASSERT_FALSE(d.start("G98 G31 W-5 F200 P2\nM30\n", "t.nc"));
+  (void)d.next();
+  EXPECT_TRUE(d.variables().read(995).value.is_null());
+}
+
+TEST(InterpSkipGsk, APOtherThanOneToFourIsAnAlarm) {
+  const InterpreterConfig c = gsk();
+  for (const char* p : {"P5", "P0", "P98", "P99", "P1.5"}) {
+    const RunResult r = run("G98 G31 W-5 F200 " + std::string(p) + "\nM30\n", c);
+    ASSERT_TRUE(r.alarm.has_value()) << p;
+    EXPECT_EQ(r.alarm->number, alarm::kBadWordValue) << p;
+    EXPECT_NE(r.alarm->text.find("1-4"), std::string::npos) << r.alarm->text;
+    EXPECT_TRUE(r.of(Op::linear).empty()) << p;
+  }
+}
+
 }  // namespace
 }  // namespace mcnc::interp::test

@@ -105,7 +105,7 @@ TEST(Skip, G31PStopsWhereThePlcsSkipSignalComesOn) {
 // Z1's probe passing three 1 mm teeth below -10, 2 mm apart: on at -10, -12 and -14 going down.
 const std::string kTeeth = "{at: -10, on: below, teeth: {pitch: 2, width: 1, count: 3}}";
 
-// G31.8 through the runtime (decision 200): the channel asks the drive's continuous latching
+// G31.8 through the runtime (decision 123): the channel asks the drive's continuous latching
 // (0x60B8 bit 1), the drive latches every edge and counts it (0x60B9 bits 6-7), the axis node
 // reports the count and the last position in its feedback, and the channel stores each
 // position in #P.. and their count in #R.

@@ -234,7 +234,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   const YamlMap map =
       value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
                  "dialect", "polar", "cylindrical_parallel", "normal", "inclined", "skip_input",
-                 "torque_skip", "speed_arrival", "polygon"});
+                 "torque_skip", "speed_arrival", "polygon", "cam"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -327,6 +327,13 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     if (auto max_rpm = p.optional("max_rpm")) {
       channel.polygon_max_rpm = max_rpm->positive_number();
     }
+  }
+  if (auto cam = map.optional("cam")) {
+    const YamlMap m = cam->map({"master", "slave"});
+    (void)m.required("master");
+    (void)m.required("slave");
+    channel.cam_master = -1;  // named: check_cam resolves both
+    channel.cam_slave = -1;
   }
   if (auto skip = map.optional("skip_input")) {
     channel.skip_input = read_int(*skip, 1, 99);
@@ -1067,6 +1074,37 @@ void check_polygon(MachineConfig& config, ChannelConfig& channel, const YamlValu
   }
 }
 
+// `cam` names the master spindle of G51.8 (param 5350), a spindle of the channel, and its slave
+// (param 5351), one of the channel's own axes: the lift is laid over what the channel commands
+// it. An axis that may follow another (G51.4) has its setpoint from elsewhere at times.
+void check_cam(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
+  if (channel.cam_master == 0) {
+    return;
+  }
+  const YamlValue cam = value.child("cam");
+  const YamlValue master = cam.child("master");
+  channel.cam_master = spindle_id(master, config);
+  const std::string& master_name =
+      config.axes[static_cast<std::size_t>(channel.cam_master - 1)].name;
+  if (std::find(channel.spindles.begin(), channel.spindles.end(), master_name) ==
+      channel.spindles.end()) {
+    master.fail(master_name + " is not a spindle of channel " + channel.name);
+  }
+  const YamlValue slave = cam.child("slave");
+  const std::string name = read_name(slave);
+  if (std::find(channel.axes.begin(), channel.axes.end(), name) == channel.axes.end()) {
+    slave.fail(name + " is not an axis of channel " + channel.name +
+               " (its `axes`: the cam's lift is laid over what the channel commands it)");
+  }
+  const AxisConfig* axis = config.find_axis(name);
+  if (axis->sync_slave) {
+    slave.fail(name +
+               " may follow another axis (G51.4, axis_sync): its setpoint is not the "
+               "channel's alone");
+  }
+  channel.cam_slave = axis->id;
+}
+
 // `polar` names a linear and a rotary axis the channel programs: G12.1 turns the work on the
 // one while the tool moves on the other. `normal` names a rotary axis it programs: G41.1 keeps
 // it normal to the path. `inclined` names two linear axes it programs: the inclined one and
@@ -1422,6 +1460,7 @@ MachineConfig parse_document(const YAML::Node& root) {
   }
   for (std::size_t i = 0; i < config.channels.size(); ++i) {
     check_polygon(config, config.channels[i], channels[i]);
+    check_cam(config, config.channels[i], channels[i]);
   }
   return config;
 }

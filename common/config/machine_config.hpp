@@ -187,6 +187,10 @@ struct ChannelConfig {
   int polygon_master = 0;
   int polygon_slave = 0;
   double polygon_max_rpm = 0.0;
+  // Electronic cam G51.8 (params 5350/5351, `cam`): the master spindle (a spindle of this
+  // channel) and the slave, one of its own axes (axis ids; 0: none, G51.8 is an alarm).
+  int cam_master = 0;
+  int cam_slave = 0;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
   // G160 without P limits the torque to this, % of the rated torque (param 5515; 0: such a

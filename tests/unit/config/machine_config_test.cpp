@@ -1520,3 +1520,44 @@ axes:
 
 }  // namespace
 }  // namespace mcnc::config
+
+namespace mcnc::config {
+namespace {
+
+// Params 5350/5351 (spec dafeng §2.6.7, L3036-3042): G51.8's master is a spindle of the channel
+// and its slave one of the channel's own axes, which follows no other axis.
+TEST(MachineConfig, CamMasterAndSlaveOfAChannel) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+  - {name: b2, uri: "socketcan:can1", sync_producer: X2}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: Z1, address: Z, bus: b, node_id: 4, axis_sync: {master: X1}}
+  - {name: S1, type: spindle, bus: b, node_id: 2}
+  - {name: X2, address: X, bus: b2, node_id: 1}
+  - {name: S2, type: spindle, bus: b2, node_id: 2}
+)";
+  const auto with = [&](const std::string& cam) {
+    return base + "channels: [{name: CH1, axes: [X1, Z1], spindles: [S1], cam: " + cam +
+           "}, {name: CH2, axes: [X2], spindles: [S2]}]\n";
+  };
+  const MachineConfig config = parse_machine_yaml(with("{master: S1, slave: X1}"));
+  EXPECT_EQ(config.channels[0].cam_master, 3);
+  EXPECT_EQ(config.channels[0].cam_slave, 1);
+  EXPECT_EQ(config.channels[1].cam_master, 0);  // none
+  std::string what;
+  EXPECT_EQ(rejection_path(with("{master: S2, slave: X1}"), &what), "channels[0].cam.master");
+  EXPECT_NE(what.find("S2 is not a spindle of channel CH1"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{master: X1, slave: X1}")), "channels[0].cam.master");
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: X2}"), &what), "channels[0].cam.slave");
+  EXPECT_NE(what.find("X2 is not an axis of channel CH1"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: S1}")), "channels[0].cam.slave");
+  EXPECT_EQ(rejection_path(with("{master: S1, slave: Z1}"), &what), "channels[0].cam.slave");
+  EXPECT_NE(what.find("G51.4"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{master: S1}")), "channels[0].cam.slave");
+}
+
+}  // namespace
+}  // namespace mcnc::config

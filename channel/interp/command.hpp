@@ -39,6 +39,8 @@ enum class Op : std::uint8_t {
   spindle_unsync,
   polygon,      // G51.2: the channel's polygon axis follows its master spindle at sync_q/sync_p
   polygon_off,  // G50.2: it is released (`wait`: the block ends once it stands)
+  cam,          // G51.8: the channel's cam slave follows a lift per master spindle angle
+  cam_off,      // G50.8: the lift is taken off the cam slave
   subcall,
   subcall_release,
   message,
@@ -203,6 +205,16 @@ struct Command {
   int sync_q = 1;
   int sync_k = 1;
   double sync_r = 0.0;
+
+  // cam (G51.8, R in sync_r): the shape (CamShape: 0 a table, 1 the ellipse of H1, 2 the
+  // eccentric circle of H2); the table's first variable (P) and its lift values as they stood
+  // when the block ran; the ellipse's semi-axes A and B, or the circle's diameter D and
+  // eccentricity P, in cam_a and cam_b.
+  int cam_shape = 0;
+  int cam_first = 0;
+  std::vector<double> cam_lift;
+  double cam_a = 0.0;
+  double cam_b = 0.0;
 
   // subcall (G144)
   int program = 0;

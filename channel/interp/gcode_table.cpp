@@ -200,7 +200,9 @@ GCodeInfo common_code(int code10) {
     case 512:
       return {GFunction::polygon_on, 0};
     case 508:
+      return {GFunction::cam_off, 0};
     case 518:
+      return {GFunction::cam_on, 0};
     case 804:
     case 814:
       return not_yet(kOther);

@@ -78,6 +78,8 @@ enum class GFunction : std::uint8_t {
   spindle_sync_on,    // G114.1
   polygon_off,        // G50.2 (group 20)
   polygon_on,         // G51.2
+  cam_off,            // G50.8
+  cam_on,             // G51.8
   axis_release,       // G140
   axis_acquire,       // G141
   axis_restore,       // G142

@@ -33,6 +33,8 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::spindle_unsync:
     case Op::polygon:
     case Op::polygon_off:
+    case Op::cam:
+    case Op::cam_off:
       return "multi-channel commands need the channel coordination runtime";
     case Op::message:
       return "#3006 messages need the HMI";
@@ -274,7 +276,8 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     return true;
   }
   if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
-      c.op == Op::spindle_unsync || c.op == Op::polygon || c.op == Op::polygon_off) {
+      c.op == Op::spindle_unsync || c.op == Op::polygon || c.op == Op::polygon_off ||
+      c.op == Op::cam || c.op == Op::cam_off) {
     return true;
   }
   if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {

@@ -151,6 +151,8 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_axis_exchange(GFunction f, int column);
   bool run_spindle_sync(GFunction f);
   bool run_polygon(GFunction f, int column);
+  bool run_cam(GFunction f, int column);
+  bool run_cam_table(Command& c, int column);
   bool run_axis_sync(GFunction f, int column);
   bool check_unused_words();
 

@@ -120,6 +120,7 @@ bool takes_p(GFunction f) {
     case GFunction::spindle_sync_on:
     case GFunction::polygon_on:
     case GFunction::polygon_off:
+    case GFunction::cam_on:
     case GFunction::stroke_check_on:
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
@@ -1503,6 +1504,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::polygon_on:
     case GFunction::polygon_off:
       return run_polygon(f, column);
+    case GFunction::cam_on:
+    case GFunction::cam_off:
+      return run_cam(f, column);
     case GFunction::finishing_cycle:
       return run_finishing_cycle(column);
     case GFunction::rough_turning:
@@ -1954,6 +1958,103 @@ bool ProgramRun::run_polygon(GFunction f, int column) {
     c.sync_r = r->value;
   }
   c.barrier = true;
+  return true;
+}
+
+// G51.8 P L R / H1 A B R / H2 D P R and G50.8 (spec dafeng §2.6.7-2.6.10, L3013-3230): the
+// channel's cam slave follows a lift per master spindle angle. The table is read from #P to
+// #P+L-1 when the block runs, so the program fills it before (L3067-3085); a vacant point is an
+// alarm, not a lift of 0: a table with a hole would move the axis by what nobody wrote.
+bool ProgramRun::run_cam(GFunction f, int column) {
+  if (f == GFunction::cam_off) {
+    emit(Op::cam_off).barrier = true;
+    return true;
+  }
+  Command& c = emit(Op::cam);
+  c.barrier = true;
+  c.sync_r = 0.0;
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    if (!(r->value >= 0.0 && r->value <= 360.0)) {
+      return fail(alarm::kBadWordValue, "G51.8 R (start angle) must be 0-360 degrees", r->column);
+    }
+    c.sync_r = r->value;
+  }
+  std::int64_t h = 0;
+  if (BlockWord* hw = word('H')) {
+    hw->used = true;
+    if (!whole_number(hw->value, h) || (h != 1 && h != 2)) {
+      return fail(alarm::kBadWordValue,
+                  "G51.8 H must be 1 (ellipse) or 2 (eccentric circle); a table takes P and L",
+                  hw->column);
+    }
+  }
+  if (h == 0) {
+    return run_cam_table(c, column);
+  }
+  c.cam_shape = static_cast<int>(h);
+  const char first = h == 1 ? 'A' : 'D';
+  const char second = h == 1 ? 'B' : 'P';
+  BlockWord* a = word(first);
+  BlockWord* b = word(second);
+  if (a == nullptr || b == nullptr) {
+    return fail(alarm::kBadWordValue,
+                h == 1 ? "G51.8 H1 needs A (semi-major axis) and B (semi-minor axis)"
+                       : "G51.8 H2 needs D (circle diameter) and P (eccentricity)",
+                column);
+  }
+  a->used = true;
+  b->used = true;
+  if (!(a->value > 0.0)) {
+    return fail(alarm::kBadWordValue,
+                h == 1 ? "G51.8 H1 A (semi-major axis) must be greater than 0"
+                       : "G51.8 H2 D (circle diameter) must be greater than 0",
+                a->column);
+  }
+  if (h == 1 && !(b->value > 0.0)) {
+    return fail(alarm::kBadWordValue, "G51.8 H1 B (semi-minor axis) must be greater than 0",
+                b->column);
+  }
+  // The spindle's axis must lie inside the circle, or the lift has no value at some angles.
+  if (h == 2 && !(b->value >= 0.0 && b->value < a->value / 2.0)) {
+    return fail(alarm::kBadWordValue, "G51.8 H2 P (eccentricity) must be 0 or more and below D/2",
+                b->column);
+  }
+  c.cam_a = a->value;
+  c.cam_b = b->value;
+  return true;
+}
+
+bool ProgramRun::run_cam_table(Command& c, int column) {
+  BlockWord* p = word('P');
+  BlockWord* l = word('L');
+  if (p == nullptr || l == nullptr) {
+    return fail(alarm::kBadWordValue,
+                "G51.8 needs P (the table's first variable) and L (its number of points)", column);
+  }
+  p->used = true;
+  l->used = true;
+  std::int64_t first = 0;
+  std::int64_t points = 0;
+  if (!whole_number(p->value, first) || first < 1 || first > 999) {
+    return fail(alarm::kBadWordValue, "G51.8 P (the table's first variable) must be #1-#999",
+                p->column);
+  }
+  if (!whole_number(l->value, points) || points < 1 || first + points - 1 > 999) {
+    return fail(alarm::kBadWordValue,
+                "G51.8 L (number of points) must be 1 or more, the table within #1-#999",
+                l->column);
+  }
+  c.cam_first = static_cast<int>(first);
+  c.cam_lift.reserve(static_cast<std::size_t>(points));
+  for (std::int64_t n = first; n < first + points; ++n) {
+    const macro::VariableRead v = vars_.read(n);
+    if (v.alarm.number != 0 || v.value.is_null() || !std::isfinite(v.value.number())) {
+      return fail(alarm::kBadWordValue,
+                  "G51.8: #" + std::to_string(n) + " of the cam table is vacant", p->column);
+    }
+    c.cam_lift.push_back(v.value.number());
+  }
   return true;
 }
 

@@ -298,6 +298,10 @@ const char* op_name(Op op) {
       return "polygon";
     case Op::polygon_off:
       return "polygon_off";
+    case Op::cam:
+      return "cam";
+    case Op::cam_off:
+      return "cam_off";
     case Op::subcall:
       return "subcall";
     case Op::subcall_release:
@@ -605,6 +609,30 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       key(out, "wait");
       out += c.wait ? "true" : "false";
       break;
+    case Op::cam:
+      key(out, "shape");
+      out += c.cam_shape == 1 ? "\"ellipse\"" : c.cam_shape == 2 ? "\"eccentric\"" : "\"table\"";
+      if (c.cam_shape == 0) {
+        key(out, "first");
+        integer(out, c.cam_first);
+        key(out, "lift");
+        out += '[';
+        for (std::size_t i = 0; i < c.cam_lift.size(); ++i) {
+          if (i > 0) {
+            out += ',';
+          }
+          number(out, c.cam_lift[i]);
+        }
+        out += ']';
+      } else {
+        key(out, c.cam_shape == 1 ? "a" : "d");
+        number(out, c.cam_a);
+        key(out, c.cam_shape == 1 ? "b" : "p");
+        number(out, c.cam_b);
+      }
+      key(out, "r");
+      number(out, c.sync_r);
+      break;
     case Op::subcall: {
       key(out, "channel");
       integer(out, c.channel);
@@ -649,6 +677,7 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
     case Op::axis_restore:
     case Op::spindle_unsync:
     case Op::subcall_release:
+    case Op::cam_off:
       break;
   }
   if (c.barrier) {

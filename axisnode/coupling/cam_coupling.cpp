@@ -85,6 +85,25 @@ double cam_lift(const CamProfile& p, double master_deg) noexcept {
   return 0.0;
 }
 
+CamProfile cam_profile_of(std::uint8_t shape, double first, double second, double start,
+                          std::span<const double> lift) noexcept {
+  CamProfile p;
+  p.start = start;
+  if (shape == 1) {
+    p.shape = CamShape::ellipse;
+    p.a = first;
+    p.b = second;
+  } else if (shape == 2) {
+    p.shape = CamShape::eccentric;
+    p.a = first / 2.0;
+    p.b = second;
+  } else if (shape == 0) {
+    p.points = std::min(lift.size(), kMaxCamPoints);
+    std::copy_n(lift.begin(), p.points, p.lift.begin());
+  }
+  return p;
+}
+
 void CamCoupling::couple(const CamProfile& profile) noexcept {
   profile_ = profile;
   if (!active_) {

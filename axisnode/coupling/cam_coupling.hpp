@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 
 namespace mcnc::coupling {
 
@@ -41,6 +42,12 @@ const char* cam_profile_error(const CamProfile& profile) noexcept;
 // angle: the ellipse's radius minus a, the eccentric circle's distance from the spindle's axis
 // minus its largest, a + b.
 double cam_lift(const CamProfile& profile, double master_deg) noexcept;
+
+// The profile of G51.8's words: shape 0 with the table `lift` (at most kMaxCamPoints taken), 1
+// (H1) with A and B, 2 (H2) with the diameter D and the eccentricity P; R is `start`. Another
+// shape is a table of no points, which cam_profile_error refuses.
+CamProfile cam_profile_of(std::uint8_t shape, double first, double second, double start,
+                          std::span<const double> lift) noexcept;
 
 struct CamCouplingSetup {
   double cycle_s = 0.001;

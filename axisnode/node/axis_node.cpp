@@ -27,6 +27,7 @@ AxisNode::AxisNode(const AxisNodeRoles& roles)
       ownership_(roles.home),
       spindle_coupling_(roles.spindle_coupling),
       axis_coupling_(roles.cycle_s),
+      cam_coupling_(roles.cam_coupling),
       controller_(roles.controller),
       owner_now_(roles.home),
       following_(0) {
@@ -79,8 +80,11 @@ void AxisNode::on_event(const AxisNodeEvent& e) noexcept {
   if (from_sync_channel) {
     sync_channel_.on_event(e.seq, gate_);
     const bool polygon = e.kind == AxisNodeEvent::Kind::polygon_sync && roles_.polygon;
+    if (e.kind == AxisNodeEvent::Kind::cam_sync && roles_.cam) {
+      (void)cams_.push(CamRequest{e.sync_on, e.cam}, e.cycle);
+    }
     const bool spindle_sync =
-        e.kind == AxisNodeEvent::Kind::spindle_sync && !roles_.polygon &&
+        e.kind == AxisNodeEvent::Kind::spindle_sync && !roles_.polygon && !roles_.cam &&
         (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0));
     if (polygon || spindle_sync) {
       (void)spindle_syncs_.push(SpindleSyncRequest{e.sync_on, e.spindle}, e.cycle);
@@ -339,15 +343,48 @@ void AxisNode::apply_axis_sync(std::uint64_t cycle, bool lockstep) noexcept {
   }
 }
 
+void AxisNode::apply_cam(std::uint64_t cycle, bool lockstep) noexcept {
+  using Kind = AxisNodeHappening::Kind;
+  cams_.take_due(cycle, [&](const CamRequest& r) {
+    if (!r.on) {
+      cam_coupling_.release();  // told once the lift is off
+    } else if (coupling::cam_profile_error(r.profile) != nullptr) {
+      happened(AxisNodeHappening{Kind::cam_refused, 0, 0, false, roles_.sync_master, {}});
+    } else {
+      cam_coupling_.couple(r.profile);
+      happened(AxisNodeHappening{Kind::cam_coupled, 0, 0, false, roles_.sync_master, {}});
+    }
+  });
+  // The lift is laid over what the owner commands, while it commands the axis: a setpoint that
+  // holds (a reset, an alarm) holds the lift where it is too.
+  if (!cam_coupling_.active() || !in_.have_setpoint || !in_.setpoint_valid ||
+      in_.setpoint_velocity) {
+    return;
+  }
+  const MasterSample* m = master_feedback_.for_cycle(cycle, lockstep);
+  // The master's angle of this cycle, from its feedback of the last one.
+  const coupling::CamOffset o = m != nullptr && !master_feedback_.lost()
+                                    ? cam_coupling_.step(m->act + m->vel * roles_.cycle_s)
+                                    : cam_coupling_.step_without_master();
+  in_.setpoint_pos += o.pos;
+  in_.setpoint_vel += o.vel;
+  if (!cam_coupling_.active()) {
+    happened(AxisNodeHappening{Kind::cam_decoupled, 0, 0, false, roles_.sync_master, {}});
+  }
+}
+
 void AxisNode::take_inputs(std::uint64_t cycle, bool lockstep) noexcept {
   happened_count_ = 0;
   in_ = AxisNodeInput{};
   const ownership::OwnershipChange change = decide_owner(cycle, lockstep);
-  if (coupled_spindle()) {
+  if (coupled_spindle() && !roles_.cam) {
     apply_spindle_sync(cycle, lockstep);
   }
   if (roles_.may_follow) {
     apply_axis_sync(cycle, lockstep);
+  }
+  if (roles_.cam) {
+    apply_cam(cycle, lockstep);
   }
   // The owner's change is told after the couplings' (the order the trace has always had).
   if (change.changed) {
@@ -386,8 +423,10 @@ AxisNodeStanding AxisNode::standing() const noexcept {
   AxisNodeStanding s;
   s.owner = owner_now_;
   s.released_by = ownership_.released_by();
-  s.coupled_to = spindle_coupling_.active() ? roles_.sync_master : axis_coupling_.master();
-  s.coupling_locked = spindle_coupling_.locked() || axis_coupling_.active();
+  s.coupled_to = spindle_coupling_.active() || cam_coupling_.active() ? roles_.sync_master
+                                                                      : axis_coupling_.master();
+  s.coupling_locked =
+      spindle_coupling_.locked() || axis_coupling_.active() || cam_coupling_.locked();
   s.refused_channels = ownership_.refused_channels();
   s.full_channels = ownership_.full_channels();
   return s;

@@ -15,6 +15,7 @@
 // thread or file.
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/coupling/axis_coupling.hpp"
+#include "axisnode/coupling/cam_coupling.hpp"
 #include "axisnode/coupling/master_history.hpp"
 #include "axisnode/coupling/spindle_coupling.hpp"
 #include "axisnode/ownership/axis_ownership.hpp"
@@ -50,10 +51,14 @@ struct AxisNodeRoles {
   // is the master spindle and sync_channel the channel; G50.2 or the channel's reset brings the
   // axis to rest before it lets go.
   bool polygon = false;
+  // Or the slave of a channel's electronic cam (G51.8 / G50.8, its `cam`): sync_master is the
+  // master spindle and sync_channel the channel; the lift is laid over the channel's setpoint.
+  bool cam = false;
   double in_position = 0.0;  // units: the axis stands when command and actual are this close
   double cycle_s = 0.001;
   AxisNodeSetup controller;
   coupling::SpindleCouplingSetup spindle_coupling;
+  coupling::CamCouplingSetup cam_coupling;
 };
 
 // One candidate owner's setpoint.
@@ -73,7 +78,14 @@ struct SetpointSample {
 
 // A coordination event from a channel, as far as an axis node reads it.
 struct AxisNodeEvent {
-  enum class Kind : std::uint8_t { axis_request, axis_sync, spindle_sync, polygon_sync, other };
+  enum class Kind : std::uint8_t {
+    axis_request,
+    axis_sync,
+    spindle_sync,
+    polygon_sync,
+    cam_sync,
+    other
+  };
   Kind kind = Kind::other;
   std::uint32_t channel = 0;
   std::uint64_t seq = 0;    // the sender's event sequence number
@@ -86,6 +98,7 @@ struct AxisNodeEvent {
   std::uint32_t sync_group = 0;   // spindle_sync (0 with sync_on false: every group)
   // spindle_sync: P, Q and the slave's phase; polygon_sync: P, Q and the master's start angle.
   coupling::SpindleCouplingCommand spindle{};
+  coupling::CamProfile cam{};  // cam_sync with sync_on
 };
 
 // The drive's side of a cycle, from the bus.
@@ -112,6 +125,9 @@ struct AxisNodeHappening {
     axis_decoupled,     // master
     polygon_coupled,    // master, spindle (r: the master's start angle)
     polygon_decoupled,  // master (the polygon axis stands)
+    cam_coupled,        // master (the lift is laid over the setpoint from the next cycle)
+    cam_decoupled,      // master (the lift is off)
+    cam_refused,        // master (a profile that cannot be a cam: nothing moves)
     owner,              // channel (0: released), previous (0: none), forced
     follows,            // channel whose valid setpoints the node now applies (0: none)
   };
@@ -196,6 +212,8 @@ class AxisNode {
   // Ownership requests that did not fit (more waiting than the node keeps).
   [[nodiscard]] std::uint64_t requests_dropped() const noexcept { return requests_dropped_; }
   [[nodiscard]] const AxisNodeRoles& roles() const noexcept { return roles_; }
+  // G51.8: the cam's lift in this cycle's command (0: no cam).
+  [[nodiscard]] double superimposed() const noexcept { return cam_coupling_.offset(); }
   // The node reads the channels' coordination events (G140-G142, G51.4 or G114.1 concern it).
   [[nodiscard]] bool hears_events() const noexcept { return watches_events_ || coupled_spindle(); }
   // Events of `channel` may concern the node (a candidate owner or the coupling channel). Reads
@@ -208,6 +226,10 @@ class AxisNode {
   struct SpindleSyncRequest {
     bool on = false;
     coupling::SpindleCouplingCommand command;  // polygon: as programmed (r: the start angle)
+  };
+  struct CamRequest {
+    bool on = false;
+    coupling::CamProfile profile;
   };
   struct AxisSyncRequest {
     bool on = false;
@@ -234,6 +256,7 @@ class AxisNode {
   ownership::OwnershipChange decide_owner(std::uint64_t cycle, bool lockstep) noexcept;
   void apply_spindle_sync(std::uint64_t cycle, bool lockstep) noexcept;
   void apply_axis_sync(std::uint64_t cycle, bool lockstep) noexcept;
+  void apply_cam(std::uint64_t cycle, bool lockstep) noexcept;
   void happened(const AxisNodeHappening& h) noexcept;
 
   AxisNodeRoles roles_;
@@ -245,11 +268,13 @@ class AxisNode {
   cycle::PendingEvents<ownership::OwnershipRequest, 256> requests_;
   cycle::PendingEvents<SpindleSyncRequest, 16> spindle_syncs_;
   cycle::PendingEvents<AxisSyncRequest, 16> axis_syncs_;
+  cycle::PendingEvents<CamRequest, 4> cams_;
   coupling::MasterHistory master_history_;
   std::vector<LeaderWriter> leader_writers_;  // capacity: the leaders
   ownership::AxisOwnership ownership_;
   coupling::SpindleCoupling spindle_coupling_;
   coupling::AxisCoupling axis_coupling_;
+  coupling::CamCoupling cam_coupling_;
   AxisNodeController controller_;
 
   std::uint32_t owner_now_;  // the owner as the last decision left it

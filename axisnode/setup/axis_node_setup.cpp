@@ -75,6 +75,13 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
       roles.sync_channel = static_cast<std::uint32_t>(ch.id);
     }
   }
+  for (const config::ChannelConfig& ch : machine.channels) {
+    if (ch.cam_slave == axis.id) {  // one of the channel's own axes, never a spindle (check_cam)
+      roles.cam = true;
+      roles.sync_master = static_cast<std::uint32_t>(ch.cam_master);
+      roles.sync_channel = static_cast<std::uint32_t>(ch.id);
+    }
+  }
   roles.in_position = axis.in_position;
   roles.cycle_s = machine.cycle_s();
 
@@ -98,6 +105,9 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
   setup.torque_skip = axis.torque_skip;
   roles.spindle_coupling =
       coupling::SpindleCouplingSetup{machine.cycle_s(), axis.acceleration, 0.05, 1.0};
+  // G51.8's lift moves no faster than the axis's rapid rate, with its acceleration.
+  roles.cam_coupling =
+      coupling::CamCouplingSetup{machine.cycle_s(), axis.rapid_rate / 60.0, axis.acceleration};
   return roles;
 }
 

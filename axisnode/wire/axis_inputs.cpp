@@ -36,6 +36,11 @@ AxisNodeEvent to_core(const CoordinationEvent& e) {
     case COORD_POLYGON_SYNC:
       out.kind = AxisNodeEvent::Kind::polygon_sync;
       break;
+    case COORD_CAM_SYNC:
+      out.kind = AxisNodeEvent::Kind::cam_sync;
+      out.cam =
+          coupling::cam_profile_of(e.cam_shape(), e.cam_a(), e.cam_b(), e.sync_r(), e.cam_lift());
+      break;
     default:
       out.kind = AxisNodeEvent::Kind::other;
       break;

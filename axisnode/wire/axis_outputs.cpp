@@ -71,6 +71,17 @@ void AxisOutputs::trace_decisions(std::uint64_t cycle, const AxisNode& core) noe
                      h.kind == AxisNodeHappening::Kind::polygon_decoupled ? "polygon" : "spindle",
                      axis_name(h.master), self);
         break;
+      case AxisNodeHappening::Kind::cam_coupled:
+      case AxisNodeHappening::Kind::cam_refused:
+        tracer_.emit(cycle, "couple",
+                     "\"kind\":\"cam\",\"master\":\"%s\",\"slave\":\"%s\",\"refused\":%s",
+                     axis_name(h.master), self,
+                     h.kind == AxisNodeHappening::Kind::cam_refused ? "true" : "false");
+        break;
+      case AxisNodeHappening::Kind::cam_decoupled:
+        tracer_.emit(cycle, "decouple", "\"kind\":\"cam\",\"master\":\"%s\",\"slave\":\"%s\"",
+                     axis_name(h.master), self);
+        break;
       case AxisNodeHappening::Kind::axis_coupled:
         tracer_.emit(cycle, "couple", "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",
                      axis_name(h.master), self);
@@ -139,6 +150,7 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   fb.probe(static_cast<std::uint8_t>(out.probe));
   fb.probe_pos(out.probe_pos);
   fb.probe_count(out.probe_count);
+  fb.superimposed(core.superimposed());
   feedback_.write(fb);
   if (!in_run) {
     return;

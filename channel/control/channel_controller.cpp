@@ -123,7 +123,12 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
     // Under a G160 torque limit the axis may press against what holds it, its command beyond
     // by up to Q: it stands where it is held (decision 101).
     const double width = i < setup_.in_position.size() ? setup_.in_position[i] : 0.0;
-    if (coordination_.torque_limit(i) == 0.0 && std::fabs(feedback[i].act - at[i]) > width) {
+    // A cam's slave (G51.8) never stands while the lift moves it: the path's part of its
+    // command is what must have arrived.
+    const bool cam =
+        setup_.cam.master != 0 && i == setup_.cam.slave_slot && feedback[i].coupled_to != 0;
+    const double now = cam ? feedback[i].channel_cmd() : feedback[i].act;
+    if (coordination_.torque_limit(i) == 0.0 && std::fabs(now - at[i]) > width) {
       return false;
     }
   }
@@ -291,7 +296,7 @@ const CycleOutput& ChannelController::run_cycle(
       return out_;
     }
     for (std::size_t i = 0; i < setup_.axis_count; ++i) {
-      commanded_[i] = feedback[i].cmd;
+      commanded_[i] = feedback[i].channel_cmd();
     }
     position_known_ = true;
     after_reset_ = false;

@@ -40,7 +40,7 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
                                             setup.spindle_c_slot}),
       aux_(setup.channel_id),
       coupling_(coordination::CouplingSetup{setup.axis_count, setup.slots, setup.spindle_groups,
-                                            setup.machine_axes, setup.polygon}),
+                                            setup.machine_axes, setup.polygon, setup.cam}),
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
       skip_(setup.axis_count, setup.probe_arm_cycles),
       load_(setup.slots) {}
@@ -107,6 +107,7 @@ void ChannelCoordination::begin_cycle(std::span<const AxisFeedbackView> feedback
   out_.spindle_sync_due = false;
   out_.axis_sync_due = false;
   out_.polygon_sync_due = false;
+  out_.cam_sync = nullptr;
   was_position_ = under_position_control();
   received_ = feedback;
   for (std::size_t s = 0; s < feedback.size(); ++s) {
@@ -188,7 +189,9 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   } else if (const auto* s = std::get_if<AuxStop>(&held_)) {
     aux_.begin(s->kind, s->code, s->spindle_start);
   } else if (const auto* s = std::get_if<CouplingStop>(&held_)) {
-    if (s->polygon) {
+    if (s->cam) {
+      coupling_.begin_cam(s->cam_sync);
+    } else if (s->polygon) {
       coupling_.begin_polygon(s->polygon_sync);
     } else if (s->axis) {
       coupling_.begin_axis(s->on, s->master, s->slave);
@@ -284,6 +287,9 @@ void ChannelCoordination::release_polygon() noexcept {
   if (const auto off = coupling_.polygon_on_reset(received_)) {
     out_.polygon_sync = *off;
     out_.polygon_sync_due = true;
+  }
+  if (coupling_.cam_on_reset(received_)) {
+    out_.cam_sync = &coupling_.cam();
   }
 }
 
@@ -552,7 +558,9 @@ void ChannelCoordination::run(CouplingStop& b, std::uint64_t cycle,
       raise(coupling_.alarm(), b.block.line);
       return;
     case coordination::CouplingStep::send:
-      if (coupling_.kind() == coordination::CouplingKind::polygon) {
+      if (coupling_.kind() == coordination::CouplingKind::cam) {
+        out_.cam_sync = &coupling_.cam();
+      } else if (coupling_.kind() == coordination::CouplingKind::polygon) {
         out_.polygon_sync = coupling_.polygon();
         out_.polygon_sync_due = true;
       } else if (coupling_.axis()) {

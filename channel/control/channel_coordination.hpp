@@ -140,7 +140,8 @@ class ChannelCoordination {
   void release_caller(coordination::CallOutcome outcome) noexcept;
   void push_release(const coordination::CallRelease& release) noexcept;
   void leave_position_control() noexcept;  // no program runs: speed control, at rest
-  // A reset or an emergency stop: the polygon axis, if it follows, is released (G50.2 P0).
+  // A reset or an emergency stop: the polygon axis, if it follows, is released (G50.2 P0), and
+  // the cam's lift taken off its slave (G50.8).
   void release_polygon() noexcept;
   coordination::SubCall& calls() noexcept { return calls_; }
   [[nodiscard]] const coordination::SubCall& calls() const noexcept { return calls_; }

@@ -38,6 +38,7 @@ using coordination::AxisSyncOut;
 using coordination::CallOutcome;
 using coordination::CallRelease;
 using coordination::CallRequest;
+using coordination::CamOut;
 using coordination::ChannelState;
 using coordination::MachineAxis;
 using coordination::MachineAxisKind;
@@ -145,6 +146,9 @@ struct CycleOutput {
   // G51.2 / G50.2 to the polygon axis's node, sent this cycle.
   bool polygon_sync_due = false;
   PolygonOut polygon_sync{};
+  // G51.8 / G50.8 to the cam slave's node, sent this cycle (nullptr: none); the table stays the
+  // coordination's.
+  const CamOut* cam_sync = nullptr;
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;

@@ -2,6 +2,8 @@
 
 #include "channel/coordination/coordination_alarm.hpp"
 
+#include <algorithm>
+
 namespace mcnc::channel {
 namespace {
 
@@ -85,13 +87,27 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
       const bool on = c.op == Op::spindle_sync;
       return CouplingStop{held(c), false, {on, on ? c.sync_k : 0, c.sync_p, c.sync_q, c.sync_r},
                           false,   0,     0,
-                          false,   {}};
+                          false,   {},    false,
+                          {}};
     }
     case Op::polygon:
     case Op::polygon_off: {
-      CouplingStop s{held(c), false, {}, false, 0, 0, true, {}};
+      CouplingStop s{held(c), false, {}, false, 0, 0, true, {}, false, {}};
       s.polygon_sync = coordination::PolygonOut{c.op == Op::polygon, c.sync_p, c.sync_q, c.sync_r,
                                                 c.op == Op::polygon || c.wait};
+      return s;
+    }
+    case Op::cam:
+    case Op::cam_off: {
+      CouplingStop s{held(c), false, {}, false, 0, 0, false, {}, true, {}};
+      coordination::CamOut& cam = s.cam_sync;
+      cam.on = c.op == Op::cam;
+      cam.shape = static_cast<std::uint8_t>(c.cam_shape);
+      cam.a = c.cam_a;
+      cam.b = c.cam_b;
+      cam.r = c.sync_r;
+      cam.points = std::min(c.cam_lift.size(), cam.lift.size());  // the interpreter's #1-#999
+      std::copy_n(c.cam_lift.begin(), cam.points, cam.lift.begin());
       return s;
     }
     case Op::spindle_mode:
@@ -104,6 +120,8 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                           c.op == Op::axis_couple,
                           static_cast<std::uint32_t>(c.master),
                           static_cast<std::uint32_t>(c.slave),
+                          false,
+                          {},
                           false,
                           {}};
     case Op::wait_input:

@@ -76,7 +76,8 @@ struct AuxStop {  // an M or T code for the PLC, or a spindle start it must allo
   bool spindle_start = false;
   interp::Command command;  // a spindle start: goes to the planner once allowed
 };
-struct CouplingStop {  // G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 / G50.2 (polygon)
+// G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 / G50.2 (polygon), G51.8 / G50.8 (cam)
+struct CouplingStop {
   HeldBlock block;
   bool axis = false;
   coordination::SpindleSyncOut spindle{};
@@ -85,6 +86,8 @@ struct CouplingStop {  // G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 /
   std::uint32_t slave = 0;   // axis: Q
   bool polygon = false;      // G51.2 / G50.2
   coordination::PolygonOut polygon_sync{};
+  bool cam = false;  // G51.8 / G50.8
+  coordination::CamOut cam_sync{};
 };
 struct ModeStop {  // M18 / M17
   HeldBlock block;

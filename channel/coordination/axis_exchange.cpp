@@ -88,7 +88,7 @@ void AxisExchange::settle(std::span<const AxisFeedbackView> feedback,
       if (setup_.slots[s].may_follow && f.coupled_to != 0) {
         use_[s] = SlotUse::follows;  // G51.4 outlives a reset and a restart of the channel
       } else if (use_[s] != SlotUse::commanded) {
-        commanded[s] = f.cmd;  // the machine position travels with the axis
+        commanded[s] = f.channel_cmd();  // the machine position travels with the axis
         use_[s] = SlotUse::commanded;
       }
     } else {

@@ -39,6 +39,11 @@ struct AxisFeedbackView {
   // G31.8: the edges the drive latched since its probe was armed continuously (probe_pos: the
   // last one's position).
   std::uint32_t probe_count = 0;
+  // G51.8: the cam's lift in cmd (and act) that the node lays over what the channel commands.
+  double superimposed = 0.0;
+
+  // Where the channel commands the axis: cmd without the lift of a cam.
+  [[nodiscard]] double channel_cmd() const noexcept { return cmd - superimposed; }
 };
 
 // One axis the channel programs. The channel's own axes belong to it at start; an exchange

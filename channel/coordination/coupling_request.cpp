@@ -33,16 +33,25 @@ void CouplingRequest::begin_polygon(const PolygonOut& polygon) noexcept {
   change_ = {};
 }
 
+void CouplingRequest::begin_cam(const CamOut& cam) noexcept {
+  kind_ = CouplingKind::cam;
+  cam_ = cam;
+  sent_ = false;
+  change_ = {};
+}
+
 CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   if (!sent_) {
     const Start start = kind_ == CouplingKind::axis      ? start_axis(in)
                         : kind_ == CouplingKind::polygon ? start_polygon(in)
+                        : kind_ == CouplingKind::cam     ? start_cam(in)
                                                          : start_spindle();
     if (start == Start::refused) {
       return CouplingStep::alarm;
     }
     if (start == Start::send) {
       polygon_asked_ = kind_ == CouplingKind::polygon ? polygon_.on : polygon_asked_;
+      cam_asked_ = kind_ == CouplingKind::cam ? cam_.on : cam_asked_;
       sent_ = true;
       sent_cycle_ = in.cycle;
       return CouplingStep::send;
@@ -54,6 +63,7 @@ CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   }
   const bool done = kind_ == CouplingKind::axis      ? axis_done(in)
                     : kind_ == CouplingKind::polygon ? polygon_done(in)
+                    : kind_ == CouplingKind::cam     ? cam_done(in)
                                                      : spindle_done(in);
   if (!answer_visible(sent_cycle_, in.cycle) || !done) {
     return CouplingStep::waiting;
@@ -118,6 +128,45 @@ std::optional<PolygonOut> CouplingRequest::polygon_on_reset(
   }
   polygon_asked_ = false;
   return PolygonOut{false, 1, 1, 0.0, false};
+}
+
+CouplingRequest::Start CouplingRequest::start_cam(const CouplingInputs& in) noexcept {
+  const CamSetup& s = setup_.cam;
+  if (!cam_.on) {
+    const bool runs = s.master != 0 && s.slave_slot < in.feedback.size() &&
+                      in.feedback[s.slave_slot].coupled_to != 0;
+    return runs || cam_asked_ ? Start::send : Start::nothing_to_do;
+  }
+  if (s.master == 0) {
+    alarm_.set(kAlarmCam,
+               "G51.8: this channel has no electronic cam (cam in the machine file, parameters "
+               "5350/5351)");
+    return Start::refused;
+  }
+  return Start::send;
+}
+
+bool CouplingRequest::cam_done(const CouplingInputs& in) const noexcept {
+  const std::size_t v = setup_.cam.slave_slot;
+  if (v >= in.feedback.size()) {
+    return false;
+  }
+  const AxisFeedbackView& slave = in.feedback[v];
+  // G51.8 ends once the slave is on its lift ("moves incrementally to the table value for the
+  // current master angle", L3052); G50.8 once the lift is off it.
+  return cam_.on ? slave.coupled_to == setup_.cam.master && slave.coupling_locked
+                 : slave.coupled_to == 0;
+}
+
+bool CouplingRequest::cam_on_reset(std::span<const AxisFeedbackView> feedback) noexcept {
+  const CamSetup& s = setup_.cam;
+  const bool runs = s.slave_slot < feedback.size() && feedback[s.slave_slot].coupled_to != 0;
+  if (s.master == 0 || (!runs && !cam_asked_)) {
+    return false;
+  }
+  cam_asked_ = false;
+  cam_.on = false;
+  return true;
 }
 
 CouplingRequest::Start CouplingRequest::start_spindle() noexcept {

@@ -1,16 +1,18 @@
 #pragma once
-// G114.1 / G113 (spindle synchronisation), G51.4 / G50.4 (axis synchronisation) and G51.2 /
-// G50.2 (polygon turning) as the channel asks them of the slave's axis node, which holds the
-// coupling (ARCHITECTURE.md §5). A request is checked against the machine's set-up first (a
-// group this channel's spindle leads; a slave that may follow, of this channel, not following
-// another master; a master of the same kind that is no slave itself; a polygon axis at rest that
-// the master's speed would not take beyond its limit), then sent; the block ends once the
-// slave's feedback shows it in phase (G114.1, G51.2), free (G113, G50.2: at rest), following its
-// master (G51.4) or this channel's again (G50.4).
-// Pure: one step() per cycle with the feedback of that cycle; no allocation, nothing throws.
+// G114.1 / G113 (spindle synchronisation), G51.4 / G50.4 (axis synchronisation), G51.2 /
+// G50.2 (polygon turning) and G51.8 / G50.8 (electronic cam) as the channel asks them of the
+// slave's axis node, which holds the coupling (ARCHITECTURE.md §5). A request is checked against
+// the machine's set-up first (a group this channel's spindle leads; a slave that may follow, of
+// this channel, not following another master; a master of the same kind that is no slave itself; a
+// polygon axis at rest that the master's speed would not take beyond its limit; a cam slave), then
+// sent; the block ends once the slave's feedback shows it in phase (G114.1, G51.2), on its lift
+// (G51.8), free (G113, G50.2: at rest; G50.8: the lift taken off), following its master (G51.4) or
+// this channel's again (G50.4). Pure: one step() per cycle with the feedback of that cycle; no
+// allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
 #include "channel/coordination/coordination_alarm.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -56,12 +58,34 @@ struct PolygonSetup {
   double max_speed = 0.0;  // deg/s the polygon axis may turn at most (param 5312)
 };
 
+// The most points a cam table has: macro variables #1-#999 (spec dafeng L3048), the bound of
+// the coordination event's cam_lift.
+inline constexpr std::size_t kMaxCamPoints = 999;
+
+// G51.8 / G50.8 to the node of the channel's cam slave. a and b are the words of H1 (A, B) or
+// H2 (D, P); the slave's node makes its profile of them.
+struct CamOut {
+  bool on = true;          // G51.8; false: G50.8
+  std::uint8_t shape = 0;  // 0: the table lift[0, points); 1: H1 ellipse; 2: H2 eccentric circle
+  double a = 0.0;
+  double b = 0.0;
+  double r = 0.0;  // the master angle of the table's first point, degrees
+  std::size_t points = 0;
+  std::array<double, kMaxCamPoints> lift{};
+};
+// The channel's cam (params 5350/5351): the master spindle, and the slave, one of its axes.
+struct CamSetup {
+  std::uint32_t master = 0;  // axis id; 0: the channel has no cam
+  std::size_t slave_slot = 0;
+};
+
 struct CouplingSetup {
   std::size_t axis_count = 0;
   std::vector<AxisSlot> slots;
   std::vector<SpindleGroupSetup> spindle_groups;
   std::vector<MachineAxis> machine_axes;  // by system number - 1
   PolygonSetup polygon{};
+  CamSetup cam{};
 };
 
 struct CouplingInputs {
@@ -84,7 +108,7 @@ struct SlotChange {
   double at = 0.0;  // commanded: where the axis stands (its master took it there)
 };
 
-enum class CouplingKind : std::uint8_t { spindle, axis, polygon };
+enum class CouplingKind : std::uint8_t { spindle, axis, polygon, cam };
 
 class CouplingRequest {
  public:
@@ -94,6 +118,7 @@ class CouplingRequest {
   // G51.4 (`on`) / G50.4 Q`slave` [P`master`, 0: the slave's default master].
   void begin_axis(bool on, std::uint32_t master, std::uint32_t slave) noexcept;
   void begin_polygon(const PolygonOut& polygon) noexcept;
+  void begin_cam(const CamOut& cam) noexcept;
   CouplingStep step(const CouplingInputs& in) noexcept;
 
   [[nodiscard]] CouplingKind kind() const noexcept { return kind_; }
@@ -101,6 +126,10 @@ class CouplingRequest {
   [[nodiscard]] const SpindleSyncOut& spindle_sync() const noexcept { return spindle_; }
   [[nodiscard]] const AxisSyncOut& axis_sync() const noexcept { return axis_sync_; }
   [[nodiscard]] const PolygonOut& polygon() const noexcept { return polygon_; }
+  [[nodiscard]] const CamOut& cam() const noexcept { return cam_; }
+  // A reset: the cam, if it runs or was asked for, ends (param 5340.2 = 1): the G50.8 to send,
+  // if any (cam() holds it).
+  [[nodiscard]] bool cam_on_reset(std::span<const AxisFeedbackView> feedback) noexcept;
   // A reset: the polygon axis, if it follows or was asked to, is released (spec dafeng
   // L2933-2939, param 5300.4 = 1: at once, decelerating); what to send, if anything.
   [[nodiscard]] std::optional<PolygonOut> polygon_on_reset(
@@ -113,9 +142,11 @@ class CouplingRequest {
   Start start_spindle() noexcept;
   Start start_axis(const CouplingInputs& in) noexcept;
   Start start_polygon(const CouplingInputs& in) noexcept;
+  Start start_cam(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool spindle_done(const CouplingInputs& in) const noexcept;
   bool axis_done(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool polygon_done(const CouplingInputs& in) const noexcept;
+  [[nodiscard]] bool cam_done(const CouplingInputs& in) const noexcept;
 
   CouplingSetup setup_;
   CouplingKind kind_ = CouplingKind::spindle;
@@ -123,7 +154,9 @@ class CouplingRequest {
   AxisSyncOut axis_sync_{};
   PolygonOut polygon_{};
   bool polygon_asked_ = false;  // the last G51.2 / G50.2 sent was a G51.2
-  std::uint32_t slave_ = 0;     // G51.4 / G50.4 Q: the slave's system number
+  CamOut cam_{};
+  bool cam_asked_ = false;   // the last G51.8 / G50.8 sent was a G51.8
+  std::uint32_t slave_ = 0;  // G51.4 / G50.4 Q: the slave's system number
   bool sent_ = false;
   std::uint64_t sent_cycle_ = 0;
   SlotChange change_{};

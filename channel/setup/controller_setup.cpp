@@ -68,6 +68,14 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
           SpindleGroupSetup{g.group, axes.size() + ch.spindles.size() + sync_slaves++});
     }
   }
+  // G51.8: the cam's slave is one of the channel's own axes (check_cam), its slot its index.
+  if (ch.cam_master != 0) {
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      if (axes[k]->id == ch.cam_slave) {
+        setup.cam = coordination::CamSetup{static_cast<std::uint32_t>(ch.cam_master), k};
+      }
+    }
+  }
   // G51.2: the master spindle and the polygon axis are spindles of the channel (check_polygon),
   // their feedback after the channel's axes.
   if (ch.polygon_master != 0) {

@@ -94,7 +94,8 @@ void AxisFeedbackInputs::take(std::uint64_t cycle, bool lockstep,
                                     fb->vel(),
                                     fb->load_known(),
                                     fb->load(),
-                                    fb->probe_count()};
+                                    fb->probe_count(),
+                                    fb->superimposed()};
       }
       if (feedback_[i].take_loss()) {
         controller.axis_lost(i);

@@ -46,6 +46,7 @@ ChannelOutputs::ChannelOutputs(process::ProcessNode& node, trace::TraceWriter& t
     spindle_setpoints_.push_back(std::make_unique<dds::Writer<AxisSetpoint>>(
         node.participant(), config::node_key(*spindle)));
   }
+  cam_event_.cam_lift().reserve(coordination::kMaxCamPoints);
   set_program_now(program_name_);
 }
 
@@ -152,6 +153,22 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     e.sync_p(out.polygon_sync.p);
     e.sync_q(out.polygon_sync.q);
     e.sync_r(out.polygon_sync.r);
+    events_.write(e);
+  }
+  if (out.cam_sync != nullptr) {
+    const CamOut& cam = *out.cam_sync;
+    CoordinationEvent& e = cam_event_;
+    e.channel(static_cast<std::uint32_t>(channel_.id));
+    e.seq(++event_seq_);
+    e.cycle(cycle);
+    e.kind(COORD_CAM_SYNC);
+    e.sync_on(cam.on);
+    e.sync_r(cam.r);
+    e.cam_shape(cam.shape);
+    e.cam_a(cam.a);
+    e.cam_b(cam.b);
+    e.cam_lift().assign(cam.lift.begin(),
+                        cam.lift.begin() + static_cast<std::ptrdiff_t>(cam.points));
     events_.write(e);
   }
   if (out.axis_sync_due && out.axis_sync.slot < axes_.size()) {

@@ -67,7 +67,9 @@ class ChannelOutputs {
   dds::Writer<::mcnc::ChannelStatus> status_;
   dds::Writer<::mcnc::CoordinationEvent> events_;
   std::uint64_t event_seq_ = 0;  // the last CoordinationEvent sent
-  CallRequest out_call_{};       // this cycle's G144 call, for its trace event
+  // G51.8's event, its table's room taken at start: a cycle that sends it does not allocate.
+  ::mcnc::CoordinationEvent cam_event_;
+  CallRequest out_call_{};  // this cycle's G144 call, for its trace event
   SharedWriteLog& writes_;
   std::vector<std::string> channel_names_;  // by channel id - 1
   char escaped_[512] = {};

@@ -36,14 +36,6 @@ void add_plc(const TestMachine& machine) {
   std::ofstream(machine.path()) << yaml;
 }
 
-std::map<int, std::uint64_t> block_starts(const std::vector<nlohmann::json>& trace) {
-  std::map<int, std::uint64_t> starts;
-  for (const auto& b : events(trace, "block", "CH1")) {
-    starts.emplace(b["line"].get<int>(), b["cycle"].get<std::uint64_t>());
-  }
-  return starts;
-}
-
 TEST(DwellWait, PsEndsAtTheSpindlesActualSpeedAndIAtThePlcInput) {
   TestMachine machine("spindle_lathe.yaml", 148);
   add_plc(machine);

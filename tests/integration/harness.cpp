@@ -372,6 +372,24 @@ std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, con
   return found;
 }
 
+std::map<std::uint64_t, double> axis_positions(const std::vector<nlohmann::json>& trace,
+                                               const std::string& axis, const char* which) {
+  std::map<std::uint64_t, double> at;
+  for (const auto& p : events(trace, "pos", axis)) {
+    at[p["cycle"].get<std::uint64_t>()] = p[which].get<double>();
+  }
+  return at;
+}
+
+std::map<int, std::uint64_t> block_starts(const std::vector<nlohmann::json>& trace,
+                                          const std::string& channel) {
+  std::map<int, std::uint64_t> at;
+  for (const auto& b : events(trace, "block", channel)) {
+    at.emplace(b["line"].get<int>(), b["cycle"].get<std::uint64_t>());
+  }
+  return at;
+}
+
 void isolate_iceoryx_host() {
   const auto fail = [](const std::string& what) {
     throw std::runtime_error("isolate_iceoryx_host: " + what);

@@ -8,6 +8,7 @@
 #include "common/config/machine_config.hpp"
 
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -91,6 +92,12 @@ bool insert_in_machine_file(const TestMachine& machine, const std::string& after
 std::vector<nlohmann::json> read_trace(const std::string& path);
 std::vector<nlohmann::json> events(const std::vector<nlohmann::json>& trace, const std::string& ev,
                                    const std::string& src = {});
+// An axis's `cmd` or `act` per cycle, from its node's pos events.
+std::map<std::uint64_t, double> axis_positions(const std::vector<nlohmann::json>& trace,
+                                               const std::string& axis, const char* which);
+// The cycle each line's block started in, from a channel's block events (the first per line).
+std::map<int, std::uint64_t> block_starts(const std::vector<nlohmann::json>& trace,
+                                          const std::string& channel = "CH1");
 
 // A lockstep trace up to its program end, and its summary without the stop's cycle: what two
 // runs of one machine and programs must have alike. Events after the last channel's end depend

@@ -23,25 +23,6 @@ double wrap(double degrees) {
   return a;
 }
 
-// An axis's cmd or act per cycle, from its node's pos events.
-std::map<std::uint64_t, double> positions(const std::vector<nlohmann::json>& trace,
-                                          const std::string& axis, const char* which) {
-  std::map<std::uint64_t, double> at;
-  for (const auto& p : events(trace, "pos", axis)) {
-    at[p["cycle"].get<std::uint64_t>()] = p[which].get<double>();
-  }
-  return at;
-}
-
-// The cycle each line's block started in.
-std::map<int, std::uint64_t> block_starts(const std::vector<nlohmann::json>& trace) {
-  std::map<int, std::uint64_t> at;
-  for (const auto& b : events(trace, "block", "CH1")) {
-    at.emplace(b["line"].get<int>(), b["cycle"].get<std::uint64_t>());
-  }
-  return at;
-}
-
 TEST(PolygonTurning, TheDiscTurnsTwiceTheSpindleInPhaseUntilG502) {
   TestMachine machine("polygon_lathe.yaml", 117);
   const auto trace =
@@ -60,9 +41,9 @@ TEST(PolygonTurning, TheDiscTurnsTwiceTheSpindleInPhaseUntilG502) {
   EXPECT_EQ(decouples[0]["kind"], "polygon");
 
   const auto block = block_starts(trace);
-  const auto s1 = positions(trace, "S1", "act");
-  const auto t1_cmd = positions(trace, "T1", "cmd");
-  const auto t1_act = positions(trace, "T1", "act");
+  const auto s1 = axis_positions(trace, "S1", "act");
+  const auto t1_cmd = axis_positions(trace, "T1", "cmd");
+  const auto t1_act = axis_positions(trace, "T1", "act");
   // N40-N70 cut while the disc is locked (G51.2 ended only then), up to M05's stop (its
   // setpoint goes out before N80's block event: the spindle's command is the channel's, M05
   // is no read-ahead stop).
@@ -114,8 +95,8 @@ TEST(PolygonTurning, G502SlowsTheTurningDiscToRestBeforeTheProgramGoesOn) {
   EXPECT_EQ(couples[0]["q"], -3);
   EXPECT_EQ(couples[0]["r"].get<double>(), 45.0);
   const auto block = block_starts(trace);
-  const auto s1 = positions(trace, "S1", "act");
-  const auto t1 = positions(trace, "T1", "cmd");
+  const auto s1 = axis_positions(trace, "S1", "act");
+  const auto t1 = axis_positions(trace, "T1", "cmd");
   // In the dwell of N30 the disc turns -3/2 times the spindle, at its zero where S1 is at 45.
   for (std::uint64_t c = block.at(5); c < block.at(6); ++c) {
     ASSERT_NEAR(wrap(-1.5 * (s1.at(c) - 45.0) - t1.at(c)), 0.0, 0.01) << "cycle " << c;
@@ -161,12 +142,12 @@ TEST(PolygonTurning, ARefusedG512MovesNothing) {
   EXPECT_TRUE(refused);
   EXPECT_TRUE(events(trace, "couple").empty());
   // The disc never turned, and X stayed at the G00's 50 (25 in radius): N50 never ran.
-  const auto t1 = positions(trace, "T1", "cmd");
+  const auto t1 = axis_positions(trace, "T1", "cmd");
   ASSERT_FALSE(t1.empty());
   for (const auto& [cycle, cmd] : t1) {
     ASSERT_EQ(cmd, t1.begin()->second) << "cycle " << cycle;
   }
-  const auto x1 = positions(trace, "X1", "cmd");
+  const auto x1 = axis_positions(trace, "X1", "cmd");
   ASSERT_FALSE(x1.empty());
   for (const auto& [cycle, cmd] : x1) {
     ASSERT_LE(std::fabs(cmd), 25.0 + 1e-9) << "cycle " << cycle;

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <vector>
 
 using namespace mcnc;
@@ -270,4 +272,72 @@ TEST(AxisNode, ASlaveSpindleCouplesAtTheCycleAfterG1141ForItsOwnGroupOnly) {
   EXPECT_EQ(core.happenings()[0].spindle.q, -1);
   EXPECT_DOUBLE_EQ(core.happenings()[0].spindle.r, 30.0);
   EXPECT_EQ(core.standing().coupled_to, 3U);
+}
+
+// G51.8 (spec dafeng §2.6.7): X of channel 1 is the cam's slave, S1 (axis 3) its master. The
+// node adds the lift at S1's angle to the channel's setpoint from the cycle after the event,
+// reaching it within its limits, and G50.8 takes it off again.
+TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG508) {
+  AxisNodeRoles r;
+  r.axis = 1;
+  r.home = 1;
+  r.candidates = {1};
+  r.in_position = 0.01;
+  r.cycle_s = kCycle;
+  r.controller = axisnode::AxisNodeSetup{10000.0, kCycle, 5};
+  r.cam = true;
+  r.sync_master = 3;
+  r.sync_channel = 1;
+  r.cam_coupling = coupling::CamCouplingSetup{kCycle, 100.0, 1000.0};
+  Node n(r);
+  const std::array<double, 4> table{0.0, 1.0, 3.0, 2.0};
+  std::uint64_t seq = 0;
+  double angle = 90.0;  // the table's second point: a lift of 1
+  double last_cmd = 5.0;
+  double last_vel = 0.0;
+  std::uint64_t coupled_at = 0;
+  std::uint64_t decoupled_at = 0;
+  for (std::uint64_t c = 0; c < 1500; ++c) {
+    if (c == 10 || c == 1000) {
+      AxisNodeEvent e;
+      e.kind = AxisNodeEvent::Kind::cam_sync;
+      e.channel = 1;
+      e.seq = ++seq;
+      e.cycle = c;
+      e.sync_on = c == 10;
+      e.cam = coupling::cam_profile_of(0, 0.0, 0.0, 0.0, table);
+      n.core.on_event(e);
+    }
+    n.core.on_setpoint(1, 1, at(c, 5.0), seq, writer(1));
+    n.core.on_sync_channel_status(1, c, seq, writer(1));
+    angle = c == 600 ? 180.0 : angle;  // the master turns on to the third point: a lift of 3
+    n.core.on_master_feedback(3, c, angle, 0.0, writer(3));
+    ASSERT_TRUE(n.core.ready(c + 1)) << c;
+    const double cmd = n.run(c + 1).cmd;
+    for (std::size_t k = 0; k < n.core.happening_count(); ++k) {
+      coupled_at = n.core.happenings()[k].kind == Happening::cam_coupled ? c + 1 : coupled_at;
+      decoupled_at = n.core.happenings()[k].kind == Happening::cam_decoupled ? c + 1 : decoupled_at;
+    }
+    if (c > 200) {  // enabled: the lift moves within 100 units/s and 1000 units/s^2
+      const double vel = (cmd - last_cmd) / kCycle;
+      ASSERT_LE(std::fabs(vel), 100.0 + 1e-6) << c;
+      ASSERT_LE(std::fabs(vel - last_vel), 1000.0 * kCycle + 1e-6) << c;
+      last_vel = vel;
+    }
+    last_cmd = cmd;
+    if (c == 599) {
+      EXPECT_NEAR(cmd, 6.0, 1e-9);
+      EXPECT_EQ(n.core.superimposed(), 1.0);
+      EXPECT_EQ(n.core.standing().coupled_to, 3U);
+      EXPECT_TRUE(n.core.standing().coupling_locked);
+    }
+    if (c == 999) {
+      EXPECT_NEAR(cmd, 8.0, 1e-9);
+    }
+  }
+  EXPECT_EQ(coupled_at, 11U);  // the cycle after the event
+  EXPECT_GT(decoupled_at, 1001U);
+  EXPECT_NEAR(last_cmd, 5.0, 1e-9);
+  EXPECT_EQ(n.core.superimposed(), 0.0);
+  EXPECT_EQ(n.core.standing().coupled_to, 0U);
 }

@@ -3,9 +3,7 @@
 // continuous mode (0x60B8 bit 1), and the node reports each edge the drive counted (0x60B9 bits
 // 6-7) in probe_count, with the last edge's position in probe_pos; without the request the
 // count is 0.
-#include "axisnode/control/axis_node_controller.hpp"
-#include "axisnode/drivesim/simulated_drive.hpp"
-#include "canopen/cia402/drive_pdos.hpp"
+#include "tests/unit/axisnode/node_drive_loop.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,15 +20,11 @@ namespace {
 constexpr double kCycle = 0.001;
 namespace tp = canopen::touch_probe;
 
-struct ProbeLoop {
-  AxisNodeController node{axisnode::AxisNodeSetup{10000.0, kCycle, 5}};
-  drivesim::SimulatedDrive drive;
-  canopen::TxPdoCsp tpdo{};
-  bool have_tpdo = false;
-  std::uint64_t cycle = 0;
-
+// The node and a drive whose probe passes three teeth, on within 1 mm above 10, 12 and 14.
+struct ProbeLoop : test::NodeDriveLoop {
   ProbeLoop()
-      : drive(
+      : NodeDriveLoop(
+            axisnode::AxisNodeSetup{10000.0, kCycle, 5},
             [] {
               drivesim::DriveParams p{1, 10000.0, 0.004, 500.0, 5000.0, 0.0};
               p.probe_side = 1;
@@ -40,36 +34,7 @@ struct ProbeLoop {
               p.probe_count = 3;
               return p;
             }(),
-            kCycle) {
-    drive.power_on();
-    drive.on_nmt(canopen::NmtCommand::start);
-    for (int i = 0; i < 10 && !node.output().enabled; ++i) {
-      AxisNodeInput in;
-      in.have_setpoint = true;
-      step(in);
-    }
-  }
-
-  const axisnode::AxisNodeOutput& step(AxisNodeInput in) {
-    in.have_tpdo = have_tpdo;
-    in.statusword = tpdo.statusword;
-    in.position_counts = tpdo.position_actual;
-    in.touch_probe_status = drive.objects().live.touch_probe_status;
-    in.probe_positive = drive.objects().live.probe_positive;
-    in.probe_negative = drive.objects().live.probe_negative;
-    const auto& out = node.cycle(cycle++, in);
-    drivesim::RpdoValues v;
-    v.controlword = out.controlword;
-    v.has_controlword = true;
-    v.target_position = out.target_counts;
-    v.has_target_position = true;
-    v.touch_probe = out.touch_probe;
-    v.has_touch_probe = true;
-    drive.on_rpdo(v);
-    tpdo = drive.on_sync();
-    have_tpdo = true;
-    return out;
-  }
+            kCycle) {}
 };
 
 AxisNodeInput moving(double pos, ProbeRequest probe) {

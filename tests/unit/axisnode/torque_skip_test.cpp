@@ -3,9 +3,7 @@
 // skip latches once the torque (0x6077) stands at the limit and the following error is beyond
 // the deviation, where the axis stands then, and the following-error check (alarm 2009) allows
 // the deviation on top of its limit while the limit stands.
-#include "axisnode/control/axis_node_controller.hpp"
-#include "axisnode/drivesim/simulated_drive.hpp"
-#include "canopen/cia402/drive_pdos.hpp"
+#include "tests/unit/axisnode/node_drive_loop.hpp"
 
 #include <gtest/gtest.h>
 
@@ -22,58 +20,23 @@ namespace {
 
 constexpr double kCycle = 0.001;
 
-struct PressLoop {
-  AxisNodeController node;
-  drivesim::SimulatedDrive drive;
-  canopen::TxPdoCsp tpdo{};
-  std::int16_t torque = 0;
-  bool have_tpdo = false;
-  std::uint64_t cycle = 0;
-
+// The node and a drive whose load meets the contact at 12.0 from above.
+struct PressLoop : test::NodeDriveLoop {
   explicit PressLoop(bool torque_skip)
-      : node([&] {
-          axisnode::AxisNodeSetup s{10000.0, kCycle, 5};
-          s.following_error_limit = 2.0;
-          s.torque_skip = torque_skip;
-          return s;
-        }()),
-        drive(
+      : NodeDriveLoop(
+            [&] {
+              axisnode::AxisNodeSetup s{10000.0, kCycle, 5};
+              s.following_error_limit = 2.0;
+              s.torque_skip = torque_skip;
+              return s;
+            }(),
             [] {
               drivesim::DriveParams p{1, 10000.0, 0.004, 500.0, 5000.0, 12.5};
               p.contact_side = -1;
               p.contact_at = 12.0;
               return p;
             }(),
-            kCycle) {
-    drive.power_on();
-    drive.on_nmt(canopen::NmtCommand::start);
-    for (int i = 0; i < 10 && !node.output().enabled; ++i) {
-      AxisNodeInput in;
-      in.have_setpoint = true;
-      step(in);
-    }
-  }
-
-  // One cycle: the RPDOs (controlword, target, max torque) to the drive, its TPDOs back.
-  const axisnode::AxisNodeOutput& step(AxisNodeInput in) {
-    in.have_tpdo = have_tpdo;
-    in.statusword = tpdo.statusword;
-    in.position_counts = tpdo.position_actual;
-    in.torque_actual = torque;
-    const auto& out = node.cycle(cycle++, in);
-    drivesim::RpdoValues v;
-    v.controlword = out.controlword;
-    v.has_controlword = true;
-    v.target_position = out.target_counts;
-    v.has_target_position = true;
-    v.max_torque = out.max_torque;
-    v.has_max_torque = true;
-    drive.on_rpdo(v);
-    tpdo = drive.on_sync();
-    torque = drive.objects().live.torque;
-    have_tpdo = true;
-    return out;
-  }
+            kCycle) {}
 };
 
 // G160's setpoint: `pos` at `vel`, the torque skip asked, `limit` % and `deviation` mm.

@@ -27,8 +27,9 @@ bool ProgramRun::run_torque_data(int column) {
   }
   return fail(alarm::kNotInThisVersion,
               "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
-                  " (load monitoring, overload detection or torque mode) is not implemented; G10 "
-                  "L14 P6 sets the load ratios of G31 P98/P99, P9 the torque limits",
+                  " (load timers, overload detection or torque mode) is not implemented; G10 "
+                  "L14 P0/P1 watch the load, P6 sets the load ratios of G31 P98/P99, P9 the "
+                  "torque limits",
               p->column);
 }
 

@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
       const auto time_ns = static_cast<std::int64_t>(cycle) * period_ns;
       link.read(time_ns, period_ns);  // a bus off is in the state, for the core to alarm
       const axisnode::DriveSample& state = link.state();
-      const axisnode::AxisNodeOutput& out =
-          core.step(cycle, axisnode::readings_of(state), emergency_stop);
+      const axisnode::AxisNodeOutput& out = core.step(cycle, axisnode::readings_of(state),
+                                                      emergency_stop, lockstep && loop.degraded());
       outputs.publish(cycle, core, state, in_run);
       link.command() = axisnode::command_of(out);
       link.set_lockstep(step_lockstep);
@@ -183,8 +183,7 @@ int main(int argc, char** argv) {
     const int cycles_per_s = std::max(1, 1'000'000 / machine.cycle_us);
     stop_limits.limit_cycles = 5 * cycles_per_s;
     stop_limits.quiet_cycles = std::max(stop_limits.quiet_cycles, cycles_per_s / 20);
-    // Half a second: a lockstep machine may step slower than real time for a while.
-    stop_limits.silent_drive_cycles = std::max(machine.deadline_cycles, cycles_per_s / 2);
+    stop_limits.silent_drive_cycles = core.roles().controller.best_effort_watch_cycles;
     axisnode::DriveStop drive_stop(sync_producer, stop_limits);
     // At a run's end the drives stand where the programs ended, and an E-stop has already
     // stopped them in the loop: they are disabled at once, as before, and the bus and the trace

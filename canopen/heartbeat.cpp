@@ -30,8 +30,9 @@ HeartbeatConsumer::Event HeartbeatConsumer::on_frame(const can::CanFrame& frame,
   return *state == NmtState::bootup ? Event::bootup : Event::heard;
 }
 
-HeartbeatConsumer::Event HeartbeatConsumer::on_time(std::uint64_t now) noexcept {
-  if (!heard_ || lost_ || consumer_time_ == 0 || now - last_ <= consumer_time_) {
+HeartbeatConsumer::Event HeartbeatConsumer::on_time(std::uint64_t now,
+                                                    std::uint64_t slack) noexcept {
+  if (!heard_ || lost_ || consumer_time_ == 0 || now - last_ <= consumer_time_ + slack) {
     return Event::none;
   }
   lost_ = true;

@@ -20,9 +20,10 @@ class HeartbeatConsumer {
   Event on_frame(const can::CanFrame& frame, std::uint64_t now) noexcept;
   // A heartbeat of the node was heard (told by whoever decodes the frames).
   void heard(std::uint64_t now) noexcept;
-  // lost once when the consumer time has passed since the last heartbeat; the time starts at
-  // the first heartbeat (CiA 301: monitoring starts with the first one received).
-  Event on_time(std::uint64_t now) noexcept;
+  // lost once when the consumer time, and `slack` beyond it, has passed since the last
+  // heartbeat; the time starts at the first heartbeat (CiA 301: monitoring starts with the first
+  // one received).
+  Event on_time(std::uint64_t now, std::uint64_t slack = 0) noexcept;
   // Monitoring starts again from `now` (an operator reset): a node heard before and still
   // silent is reported lost again after the consumer time.
   void restart(std::uint64_t now) noexcept;

@@ -90,6 +90,10 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   const std::uint64_t elapsed = cycle > last_cycle_ ? cycle - last_cycle_ : 1;
   last_cycle_ = cycle;
   const auto deadline = static_cast<std::uint64_t>(setup_.deadline_cycles);
+  const auto drive_watch =
+      in.paced_best_effort
+          ? std::max(deadline, static_cast<std::uint64_t>(setup_.best_effort_watch_cycles))
+          : deadline;
 
   // Drive side: what the drive reported for the last SYNC.
   if (in.have_tpdo) {
@@ -133,7 +137,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       // position at the actual speed, so the drive does not brake on the switch.
       out_.cmd = out_.act + out_.vel * setup_.cycle_s;
     }
-  } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= deadline) {
+  } else if (was_enabled_ && cycle - last_tpdo_cycle_ >= drive_watch) {
     raise(AxisAlarm::drive_lost);
   }
 
@@ -165,11 +169,17 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   if (faulted && !resetting_) {
     raise(AxisAlarm::drive_fault);
   }
-  // Heartbeat consumer, in cycles: watched from the first heartbeat on.
+  // Heartbeat consumer, in cycles: watched from the first heartbeat on (paced best effort: over
+  // best_effort_watch_cycles at least).
+  const std::uint64_t heartbeat_slack =
+      in.paced_best_effort && setup_.best_effort_watch_cycles > setup_.heartbeat_cycles
+          ? static_cast<std::uint64_t>(setup_.best_effort_watch_cycles - setup_.heartbeat_cycles)
+          : 0;
   if (in.heartbeats != heartbeats_) {
     heartbeats_ = in.heartbeats;
     heartbeat_.heard(cycle);
-  } else if (heartbeat_.on_time(cycle) == canopen::HeartbeatConsumer::Event::lost) {
+  } else if (heartbeat_.on_time(cycle, heartbeat_slack) ==
+             canopen::HeartbeatConsumer::Event::lost) {
     raise(AxisAlarm::heartbeat_lost);
   }
 

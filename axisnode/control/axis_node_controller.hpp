@@ -19,6 +19,9 @@ struct AxisNodeSetup {
   // Heartbeat consumer time in cycles (CiA 301: monitoring starts with the first heartbeat);
   // 0: not monitored.
   int heartbeat_cycles = 0;
+  // Cycles paced without real-time scheduling (AxisNodeInput::paced_best_effort): the drive's
+  // answers and heartbeat are watched over at least this many cycles (decision 127).
+  int best_effort_watch_cycles = 0;
   // A setpoint outside [soft_min, soft_max] is not followed: alarm and quick stop.
   bool has_soft_limits = false;
   double soft_min = 0.0;
@@ -78,6 +81,11 @@ struct AxisNodeInput {
   std::int32_t position_counts = 0;
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
+  // The cycles are paced to real time by a process that is not scheduled for it (a lockstep
+  // run after its E-stop, or stopping): on a loaded host the drive's simulator may answer
+  // late while nothing moves any more, so a drive is judged silent only after
+  // best_effort_watch_cycles.
+  bool paced_best_effort = false;
   std::uint64_t heartbeats = 0;            // the drive's heartbeats received so far
   bool bus_off = false;                    // the CAN controller went bus off
   std::uint64_t foreign_syncs = 0;         // SYNC frames another node sent
@@ -97,7 +105,7 @@ enum class AxisAlarm : std::uint8_t {
   setpoint_deadline = 1,  // no setpoint for deadline_cycles
   owner_lost = 2,
   drive_fault = 3,
-  drive_lost = 4,       // no TPDO for deadline_cycles
+  drive_lost = 4,       // no TPDO for deadline_cycles (best_effort_watch_cycles if longer)
   drive_startup = 5,    // the drive could not be brought up (no boot-up, a refused SDO)
   heartbeat_lost = 6,   // no heartbeat from the drive for the consumer time
   bus_off = 7,          // the CAN controller went bus off

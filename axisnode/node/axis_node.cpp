@@ -403,7 +403,7 @@ std::uint32_t AxisNode::commanding_channel() const noexcept {
 }
 
 const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& drive,
-                                     bool emergency_stop) noexcept {
+                                     bool emergency_stop, bool paced_best_effort) noexcept {
   in_.have_tpdo = drive.have_tpdo;
   in_.statusword = drive.statusword;
   in_.position_counts = drive.position_counts;
@@ -416,6 +416,7 @@ const AxisNodeOutput& AxisNode::step(std::uint64_t cycle, const DriveReadings& d
   in_.probe_negative = drive.probe_negative;
   in_.torque_actual = drive.torque_actual;
   in_.emergency_stop = emergency_stop;
+  in_.paced_best_effort = paced_best_effort;
   return controller_.cycle(cycle, in_);
 }
 

@@ -200,9 +200,10 @@ class AxisNode {
   // its borrower); released, its home channel.
   [[nodiscard]] std::uint32_t commanding_channel() const noexcept;
   void reset() noexcept { controller_.reset(); }
-  // Outside the lock, after take_inputs(): the drive's cycle.
-  const AxisNodeOutput& step(std::uint64_t cycle, const DriveReadings& drive,
-                             bool emergency_stop) noexcept;
+  // Outside the lock, after take_inputs(): the drive's cycle. `paced_best_effort`: see
+  // AxisNodeInput.
+  const AxisNodeOutput& step(std::uint64_t cycle, const DriveReadings& drive, bool emergency_stop,
+                             bool paced_best_effort = false) noexcept;
 
   [[nodiscard]] const AxisNodeOutput& output() const noexcept { return controller_.output(); }
   [[nodiscard]] bool ready_to_disable() const noexcept { return controller_.ready_to_disable(); }

@@ -24,10 +24,12 @@ struct Loop {
   bool have_tpdo = false;
   std::uint64_t cycle = 0;
 
-  explicit Loop(int deadline = 5, double start = 12.5, double acceleration = 0.0)
+  explicit Loop(int deadline = 5, double start = 12.5, double acceleration = 0.0,
+                int best_effort_watch_cycles = 0)
       : node([&] {
           axisnode::AxisNodeSetup s{10000.0, kCycle, deadline};
           s.acceleration = acceleration;
+          s.best_effort_watch_cycles = best_effort_watch_cycles;
           return s;
         }()),
         drive(drivesim::DriveParams{1, 10000.0, 0.004, 500.0, 5000.0, start}, kCycle) {
@@ -189,6 +191,48 @@ TEST(AxisNodeController, DriveThatStopsAnsweringIsAlarmed) {
   EXPECT_EQ(node.cycle(last + 1, no_answer).new_alarm, AxisAlarm::none);
   EXPECT_EQ(node.cycle(last + 2, no_answer).new_alarm, AxisAlarm::none);
   EXPECT_EQ(node.cycle(last + 3, no_answer).new_alarm, AxisAlarm::drive_lost);
+}
+
+// A lockstep machine paced after its E-stop runs without real-time scheduling: the drive's
+// simulator may answer late on a loaded host, so the drive is judged silent only after the
+// longer watch (decision 127). The same node, cycles and silence alarm at the deadline when
+// the cycles are scheduled.
+TEST(AxisNodeController, PacedBestEffortADriveIsSilentOnlyAfterTheLongerWatch) {
+  for (const bool best_effort : {false, true}) {
+    Loop loop(/*deadline=*/3, 12.5, 0.0, /*best_effort_watch_cycles=*/20);
+    loop.enable();
+    const std::uint64_t last = loop.cycle - 1;  // the last answer was used in this cycle
+    AxisNodeInput silent = setpoint(12.5);
+    silent.emergency_stop = true;
+    silent.paced_best_effort = best_effort;
+    std::uint64_t alarm_after = 0;
+    for (std::uint64_t c = last + 1; c < last + 100 && alarm_after == 0; ++c) {
+      if (loop.node.cycle(c, silent).new_alarm == AxisAlarm::drive_lost) {
+        alarm_after = c - last;
+      }
+    }
+    EXPECT_EQ(alarm_after, best_effort ? 20U : 3U) << "paced best effort: " << best_effort;
+  }
+}
+
+// The heartbeat likewise: consumer time 15 cycles, watched over 40 when paced best effort.
+TEST(AxisNodeController, PacedBestEffortTheHeartbeatIsLostOnlyAfterTheLongerWatch) {
+  for (const bool best_effort : {false, true}) {
+    axisnode::AxisNodeSetup setup{10000.0, kCycle, 5, 15};
+    setup.best_effort_watch_cycles = 40;
+    axisnode::AxisNodeController node(setup);
+    AxisNodeInput in;
+    in.have_tpdo = true;  // the drive answers; only its heartbeat stops after cycle 10
+    in.paced_best_effort = best_effort;
+    std::uint64_t lost_at = 0;
+    for (std::uint64_t c = 0; c < 200 && lost_at == 0; ++c) {
+      in.heartbeats = c <= 10 ? c + 1 : 11;
+      if (node.cycle(c, in).new_alarm == AxisAlarm::heartbeat_lost) {
+        lost_at = c;
+      }
+    }
+    EXPECT_EQ(lost_at, best_effort ? 51U : 26U) << "paced best effort: " << best_effort;
+  }
 }
 
 TEST(AxisNodeController, AnAlarmIsRaisedOnceAndStaysActive) {

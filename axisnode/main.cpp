@@ -156,7 +156,10 @@ int main(int argc, char** argv) {
       });
       outputs.trace_decisions(cycle, core);
       if (!lockstep && !loop.degraded()) {
-        outputs.trace_tick(cycle, loop.due_ns(), loop.woke_ns());
+        link.follow_machine_start(loop.origin_ns());  // the SYNCs too (decision 128)
+        axisnode::SentSync sync;
+        outputs.trace_tick(cycle, loop.due_ns(), loop.woke_ns(),
+                           sync_producer && link.latest_sync(sync) ? &sync : nullptr);
       }
       if (lost_now && !owner_loss_checked) {
         owner_loss_checked = true;

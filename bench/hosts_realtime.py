@@ -7,9 +7,10 @@ CLOCK_MONOTONIC at +0, +3 and -7 ms) and runs launch/machines/cell_3ncu.yaml on 
 launcher on each, realtime, Cyclone DDS:
 
 1. The part transfer with a `tick` every cycle from every axis node. A tick has the cycle's due
-   time on its host's clock and the wake-up's lateness; taken back to ncu1's clock with the
-   true offsets (the namespaces'), each cycle's due times and wake-ups on the three hosts give
-   the alignment: the largest difference between two hosts, per cycle. Also each host's
+   time on its host's clock and the wake-up's lateness, a SYNC producer's also its latest
+   SYNC's due time and lateness; taken back to ncu1's clock with the true offsets (the
+   namespaces'), each cycle's due times, wake-ups and SYNCs on the three hosts (one bus each)
+   give the alignment: the largest difference between two hosts, per cycle. Also each host's
    estimated offset against its true one.
 2. The three channels (CH1 on ncu1, CH2 on ncu2, CH3 on ncu3) meet at `G04.1 P1` ROUNDS times,
    Q123 after dwells that differ by channel and round (bench/barrier_release.py's program): the
@@ -51,12 +52,15 @@ def run_on_hosts(mcnc, work, programs, extra, prefix):
             for ch, path in programs.items():
                 argv += ["--program", "%s=%s" % (ch, path)]
             return argv
-        followers = [subprocess.Popen(launcher(h), stdout=subprocess.DEVNULL,
-                                      stderr=subprocess.DEVNULL, env=env)
-                     for h in ("ncu2", "ncu3")]
+        logs = [open(os.path.join(work, "%s-%s.log" % (prefix, h)), "w") for h in ("ncu2", "ncu3")]
+        followers = [subprocess.Popen(launcher(h), stdout=log, stderr=subprocess.STDOUT, env=env)
+                     for h, log in zip(("ncu2", "ncu3"), logs)]
         r = subprocess.run(launcher("ncu1"), capture_output=True, text=True, env=env)
-        for f in followers:
+        with open(os.path.join(work, prefix + "-ncu1.log"), "w") as log:
+            log.write(r.stdout + r.stderr)
+        for f, log in zip(followers, logs):
             f.wait(timeout=120)
+            log.close()
     finally:
         subprocess.run([sys.executable, HOSTNET, "down", "--prefix", prefix])
     with open(trace) as f:
@@ -69,23 +73,29 @@ def pct(values, q):
     return values[min(len(values) - 1, int(q * len(values)))]
 
 
+def spreads(by_cycle):
+    """Per cycle seen on all three hosts: the largest difference between two hosts."""
+    return [max(h.values()) - min(h.values()) for h in by_cycle.values() if len(h) == 3]
+
+
 def alignment(events):
-    due, woke = {}, {}  # cycle -> host -> ns on ncu1's clock
+    """The alignment between hosts, each list a spread per cycle: the cycles' due times, the
+    first wake-up of a host's axis nodes, the SYNCs' due times and when the SYNCs went out."""
+    due, woke, sync_due, sync_sent = {}, {}, {}, {}  # cycle -> host -> ns on ncu1's clock
     for e in events:
         if e["ev"] != "tick":
             continue
         host = HOST_OF[e["axis"]]
         t = e["due_ns"] - OFFSET_NS[host]
         due.setdefault(e["cycle"], {})[host] = t
-        woke.setdefault(e["cycle"], {}).setdefault(host, []).append(t + e["late_ns"])
-    spread_due = [max(h.values()) - min(h.values()) for h in due.values() if len(h) == 3]
-    # A host's cycle starts when its first axis node wakes for it.
-    spread_woke = []
-    for hosts in woke.values():
-        if len(hosts) == 3:
-            starts = [min(ts) for ts in hosts.values()]
-            spread_woke.append(max(starts) - min(starts))
-    return spread_due, spread_woke
+        # A host's cycle starts when its first axis node wakes for it.
+        first = woke.setdefault(e["cycle"], {})
+        first[host] = min(first.get(host, t + e["late_ns"]), t + e["late_ns"])
+        if "sync_cycle" in e:  # the host's bus's SYNC producer
+            s = e["sync_due_ns"] - OFFSET_NS[host]
+            sync_due.setdefault(e["sync_cycle"], {})[host] = s
+            sync_sent.setdefault(e["sync_cycle"], {})[host] = s + e["sync_late_ns"]
+    return spreads(due), spreads(woke), spreads(sync_due), spreads(sync_sent)
 
 
 def main():
@@ -110,8 +120,9 @@ def main():
                   "error %+.1f us" % (e["host"], e["offset_ns"] / 1e3, e["error_ns"] / 1e3,
                                       e["samples"], OFFSET_NS[e["host"]] / 1e3,
                                       (e["offset_ns"] - OFFSET_NS[e["host"]]) / 1e3))
-    spread_due, spread_woke = alignment(events)
-    for name, spread in (("due times", spread_due), ("wake-ups", spread_woke)):
+    spread_due, spread_woke, spread_sync_due, spread_sync = alignment(events)
+    for name, spread in (("due times", spread_due), ("wake-ups", spread_woke),
+                         ("SYNC due times", spread_sync_due), ("SYNCs sent", spread_sync)):
         if spread:
             print("  cycle start alignment between hosts, %s: %d cycles, median %.0f us, "
                   "p99 %.0f us, max %.0f us" % (name, len(spread), statistics.median(spread) / 1e3,

@@ -2,7 +2,10 @@
 // When a SYNC producer sends (CiA 301 §7.2.5: SYNC every communication cycle period): SYNC n
 // at start + n x period + offset, a fixed point inside each cycle. A producer that wakes late
 // sends the latest SYNC that is due and skips the ones it missed, so the drives never get a
-// burst of SYNCs that would each step them a full cycle. Pure: times in, indices out.
+// burst of SYNCs that would each step them a full cycle. The start may move while SYNCs go out
+// (a host's estimate of the machine's clock refined): the SYNCs after it follow, by a bounded
+// step each, so that no cycle of the drives is much shorter or longer than the period. Pure:
+// times in, indices out.
 #include <cstdint>
 
 namespace mcnc::canopen {
@@ -11,6 +14,15 @@ class SyncSchedule {
  public:
   SyncSchedule(std::int64_t start_ns, std::int64_t period_ns, std::int64_t offset_ns) noexcept
       : start_ns_(start_ns), period_ns_(period_ns > 0 ? period_ns : 1), offset_ns_(offset_ns) {}
+
+  // Moves the start toward `target_ns` by at most `max_step_ns`; call it once per SYNC. SYNC n
+  // is then due at the start + n x period + offset. An index once handed out is never handed
+  // out again: a start moved earlier does not repeat a SYNC.
+  void follow_start(std::int64_t target_ns, std::int64_t max_step_ns) noexcept {
+    const std::int64_t gap = target_ns - start_ns_;
+    start_ns_ += gap > max_step_ns ? max_step_ns : (gap < -max_step_ns ? -max_step_ns : gap);
+  }
+  [[nodiscard]] std::int64_t start_ns() const noexcept { return start_ns_; }
 
   // When SYNC n is due.
   [[nodiscard]] std::int64_t due(std::uint64_t n) const noexcept {

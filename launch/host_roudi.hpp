@@ -30,8 +30,8 @@ std::string roudi_config(std::size_t processes);
 // bounded (registrations and port requests at start-up, keep-alives), so it runs above
 // everything of the host's: above ordinary load, which starved it at a lockstep machine's
 // start beside a CPU hog, and above a realtime machine's processes and their cycle threads
-// (clock::kAxisCyclePriority).
-inline constexpr int kRoudiPriority = clock::kAxisCyclePriority + 1;
+// (up to clock::kSyncPriority).
+inline constexpr int kRoudiPriority = clock::kSyncPriority + 1;
 
 class HostRoudi {
  public:

@@ -21,7 +21,7 @@ namespace mcnc::launch {
 // supervising thread runs above the machine and its RouDi (common/clock, host_roudi.hpp), and
 // when no channel has been heard for kMachineSilentLimit it E-stops the machine: its run
 // timeout, an interrupt and the stop that follows still work on such a host.
-inline constexpr int kSupervisorPriority = clock::kAxisCyclePriority + 2;
+inline constexpr int kSupervisorPriority = clock::kSyncPriority + 2;
 inline constexpr std::chrono::seconds kMachineSilentLimit{5};
 // How long the processes may take to answer the scripted operator's commands (they answer as a
 // command arrives, not at its cycle).

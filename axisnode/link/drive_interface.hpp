@@ -43,6 +43,14 @@ struct DriveSample {
   std::uint64_t foreign_syncs = 0;
 };
 
+// A timed SYNC that went out (realtime SYNC producer): its index (the machine cycle it belongs
+// to), when it was due and how late it went out, on this host's CLOCK_MONOTONIC.
+struct SentSync {
+  std::uint64_t index = 0;
+  std::int64_t due_ns = 0;
+  std::int64_t late_ns = 0;
+};
+
 // How the cyclic exchange runs once active.
 struct DriveActivation {
   // Lockstep: write() waits for the drive's answer to this cycle (and the SYNC producer, before

@@ -208,9 +208,11 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
   sync_stop_ = false;
   sync_late_ns_.assign(kLatenessRecords, 0);
   sync_late_count_ = 0;
-  sync_thread_ = std::thread([this, schedule] {
+  sync_start_ns_.store(schedule.start_ns());
+  sent_index_plus_one_.store(0);
+  sync_thread_ = std::thread([this, schedule = canopen::SyncSchedule(schedule)]() mutable {
     process::name_this_thread("can-sync");
-    (void)clock::raise_realtime_thread(clock::kAxisCyclePriority);
+    (void)clock::raise_realtime_thread(clock::kSyncPriority);
     std::uint64_t next = 0;
     while (!sync_stop_) {
       // Wake at the due time, or within 50 ms to notice a stop.
@@ -223,8 +225,13 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
       }
       send_sync(true);
       syncs_skipped_ += index - next;
-      sync_late_ns_[sync_late_count_++ % kLatenessRecords] = woke - schedule.due(index);
+      const std::int64_t due = schedule.due(index);
+      sync_late_ns_[sync_late_count_++ % kLatenessRecords] = woke - due;
+      sent_due_ns_[index % kSentSlots].store(due);
+      sent_late_ns_[index % kSentSlots].store(woke - due);
+      sent_index_plus_one_.store(index + 1);
       next = index + 1;
+      schedule.follow_start(sync_start_ns_.load(), kSyncSlewNs);  // for the SYNCs from next on
     }
   });
 }
@@ -234,6 +241,17 @@ void DriveLink::stop_sync_timer() {
     sync_stop_ = true;
     sync_thread_.join();
   }
+}
+
+bool DriveLink::latest_sync(SentSync& out) const noexcept {
+  const std::uint64_t n = sent_index_plus_one_.load();
+  if (n == 0) {
+    return false;
+  }
+  out.index = n - 1;
+  out.due_ns = sent_due_ns_[out.index % kSentSlots].load();
+  out.late_ns = sent_late_ns_[out.index % kSentSlots].load();
+  return true;
 }
 
 std::vector<std::int64_t> DriveLink::sync_lateness() const {

@@ -11,6 +11,7 @@
 #include "common/cycle/double_buffer.hpp"
 #include "common/process/wakeup.hpp"
 
+#include <array>
 #include <atomic>
 #include <bitset>
 #include <chrono>
@@ -63,6 +64,13 @@ class DriveLink final : public DriveInterface {
   // them in order; read after stop_sync_timer() (benchmarks).
   static constexpr std::size_t kLatenessRecords = 1U << 14;
   [[nodiscard]] std::vector<std::int64_t> sync_lateness() const;
+  // The machine's start on this host's clock, as the host's estimate of the machine clock is
+  // refined: the timed SYNCs from the next one on follow it, by kSyncSlewNs a SYNC at most
+  // (SyncSchedule::follow_start), 1 % of a 2 ms cycle.
+  static constexpr std::int64_t kSyncSlewNs = 20'000;
+  void follow_machine_start(std::int64_t start_ns) noexcept { sync_start_ns_.store(start_ns); }
+  // The latest timed SYNC that went out. False before the first.
+  bool latest_sync(SentSync& out) const noexcept;
 
   // RPDO1 frames of the bus's other nodes seen so far: a stopping SYNC producer waits until
   // they stop (axisnode/node/drive_stop.hpp).
@@ -139,6 +147,13 @@ class DriveLink final : public DriveInterface {
   std::atomic<std::uint64_t> syncs_skipped_{0};
   std::vector<std::int64_t> sync_late_ns_;  // a ring, written by the SYNC thread only
   std::uint64_t sync_late_count_ = 0;
+  std::atomic<std::int64_t> sync_start_ns_{0};
+  // The latest SYNC sent, for latest_sync(): slots by index, the index stored last (a reader
+  // would need the SYNC thread to lap the slots between two loads to read a torn record).
+  static constexpr std::size_t kSentSlots = 8;
+  std::array<std::atomic<std::int64_t>, kSentSlots> sent_due_ns_{};
+  std::array<std::atomic<std::int64_t>, kSentSlots> sent_late_ns_{};
+  std::atomic<std::uint64_t> sent_index_plus_one_{0};  // 0: none sent yet
 };
 
 }  // namespace mcnc::axisnode

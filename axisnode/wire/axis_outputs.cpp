@@ -183,14 +183,26 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   }
 }
 
-void AxisOutputs::trace_tick(std::uint64_t cycle, std::int64_t due_ns,
-                             std::int64_t woke_ns) noexcept {
-  if (cycle % static_cast<std::uint64_t>(trace_pos_every_) == 0) {
+void AxisOutputs::trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns,
+                             const SentSync* sync) noexcept {
+  if (cycle % static_cast<std::uint64_t>(trace_pos_every_) != 0) {
+    return;
+  }
+  if (sync == nullptr) {
     tracer_.emit(
         cycle, "tick", "\"axis\":\"%s\",\"due_ns\":%lld,\"offset_ns\":%lld,\"late_ns\":%lld",
         axis_.name.c_str(), static_cast<long long>(due_ns),
         static_cast<long long>(node_.clock_offset_ns()), static_cast<long long>(woke_ns - due_ns));
+    return;
   }
+  tracer_.emit(cycle, "tick",
+               "\"axis\":\"%s\",\"due_ns\":%lld,\"offset_ns\":%lld,\"late_ns\":%lld,"
+               "\"sync_cycle\":%llu,\"sync_due_ns\":%lld,\"sync_late_ns\":%lld",
+               axis_.name.c_str(), static_cast<long long>(due_ns),
+               static_cast<long long>(node_.clock_offset_ns()),
+               static_cast<long long>(woke_ns - due_ns),
+               static_cast<unsigned long long>(sync->index), static_cast<long long>(sync->due_ns),
+               static_cast<long long>(sync->late_ns));
 }
 
 }  // namespace mcnc::axisnode

@@ -28,8 +28,10 @@ class AxisOutputs {
   void trace_decisions(std::uint64_t cycle, const AxisNode& core) noexcept;
   void trace_reset(std::uint64_t cycle) noexcept;
   // Realtime, every K cycles: when the cycle was due on this host's clock, the host's offset
-  // against machine time, and how late the wake-up came (the hosts' alignment, from the trace).
-  void trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns) noexcept;
+  // against machine time, and how late the wake-up came (the hosts' alignment, from the trace);
+  // the SYNC producer's also the latest SYNC it sent (`sync`, null for the others).
+  void trace_tick(std::uint64_t cycle, std::int64_t due_ns, std::int64_t woke_ns,
+                  const SentSync* sync = nullptr) noexcept;
   // The cycle's feedback (with the drive's own values where TPDO2 carries them), then its mode
   // and state changes, a new alarm (raised to the machine too) and every K cycles its position.
   // `in_run` false: a stopping node after its run (drive_stop.hpp): its feedback still goes

@@ -18,11 +18,15 @@ std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std
 // realtime process, its middleware's receive threads among them; the cycle thread of a channel
 // or the PLC; the cycle thread of an axis node and its CAN threads (the drive's answers, the
 // SYNC timer), which close the drive's loop at the tick. A
-// burst of samples or of discovery then never delays a tick. The host's RouDi and the
+// burst of samples or of discovery then never delays a tick. The SYNC timer runs above those:
+// the SYNC is the bus's clock, when the drives take their setpoints, and hosts align their
+// cycles by it (decision 128); an axis-node cycle still running at the SYNC's due time sends
+// its RPDO for the next SYNC, as a late node on a real bus does. The host's RouDi and the
 // launcher's supervision run above all of them (launch/).
 inline constexpr int kRealtimePriority = 38;
 inline constexpr int kCyclePriority = 39;
 inline constexpr int kAxisCyclePriority = 40;
+inline constexpr int kSyncPriority = 41;
 // Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted.
 // Call it first thing in main(), before any thread starts: threads inherit the policy, and the
 // DDS and CAN receive threads must not wait behind ordinary work. Returns a short description

@@ -104,6 +104,9 @@ class CycleLoop {
   // CLOCK_MONOTONIC.
   [[nodiscard]] std::int64_t due_ns() const noexcept { return due_ns_; }
   [[nodiscard]] std::int64_t woke_ns() const noexcept { return woke_ns_; }
+  // When cycle 0 was due on this host's clock (realtime: the run's start, as the host's launcher
+  // refines its offset against machine time).
+  [[nodiscard]] std::int64_t origin_ns() const noexcept { return origin_ns_; }
 
  private:
   // Lockstep waits never give up (decision 7). While one lasts, the process announces its

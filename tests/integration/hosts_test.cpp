@@ -401,36 +401,60 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
   // The axis nodes' hosts, as the machine file says.
   const mcnc::config::MachineConfig machine =
       mcnc::config::load_machine_file(source("launch/machines/cell_3ncu.yaml"));
-  std::map<std::uint64_t, std::pair<std::int64_t, std::int64_t>> due_range;  // by cycle
+  using Range = std::pair<std::int64_t, std::int64_t>;
+  std::map<std::uint64_t, Range> due_range;       // by cycle
+  std::map<std::uint64_t, Range> sync_due_range;  // by the cycle a SYNC belongs to
+  const auto widen = [](std::map<std::uint64_t, Range>& ranges, std::uint64_t cycle,
+                        std::int64_t t) {
+    auto [it, fresh] = ranges.try_emplace(cycle, t, t);
+    it->second.first = std::min(it->second.first, t);
+    it->second.second = std::max(it->second.second, t);
+  };
   std::set<std::string> hosts_seen;
+  std::set<std::string> sync_producers_seen;
   std::size_t ticks = 0;
   for (const nlohmann::json& e : trace) {
     if (e["ev"] != "tick") {
       continue;
     }
-    const mcnc::config::HostConfig* on = machine.host_of(e["axis"].get<std::string>());
+    const std::string axis = e["axis"].get<std::string>();
+    const mcnc::config::HostConfig* on = machine.host_of(axis);
     ASSERT_NE(on, nullptr) << e.dump();
     const std::string host = on->name;
     // The launcher refines its estimate during the run; the node follows it.
     EXPECT_LE(std::llabs(e["offset_ns"].get<std::int64_t>() - true_offset.at(host)), 500'000)
         << e.dump();
-    const std::int64_t on_ncu1 = e["due_ns"].get<std::int64_t>() - true_offset.at(host);
-    auto [it, fresh] = due_range.try_emplace(e["cycle"].get<std::uint64_t>(), on_ncu1, on_ncu1);
-    it->second.first = std::min(it->second.first, on_ncu1);
-    it->second.second = std::max(it->second.second, on_ncu1);
+    widen(due_range, e["cycle"].get<std::uint64_t>(),
+          e["due_ns"].get<std::int64_t>() - true_offset.at(host));
     hosts_seen.insert(host);
     ++ticks;
-  }
-  EXPECT_EQ(hosts_seen.size(), 3U);
-  ASSERT_GT(ticks, 100U);
-  std::size_t misaligned = 0;
-  for (const auto& [cycle, range] : due_range) {
-    if (range.second - range.first > 1'000'000 && ++misaligned <= 5) {
-      ADD_FAILURE() << "cycle " << cycle << ": due times " << (range.second - range.first) / 1000
-                    << " us apart";
+    // A bus's SYNC producer: its SYNCs are due at one machine time on every host too, each
+    // at its bus's offset inside the cycle (decision 128).
+    const mcnc::config::AxisConfig* a = machine.find_axis(axis);
+    const mcnc::config::BusConfig* bus = a == nullptr ? nullptr : machine.find_bus(a->bus);
+    const bool producer = bus != nullptr && bus->sync_producer == axis;
+    EXPECT_TRUE(producer || !e.contains("sync_cycle"))
+        << "only a SYNC producer sends SYNC " << e.dump();
+    if (e.contains("sync_cycle")) {
+      sync_producers_seen.insert(axis);
+      widen(sync_due_range, e["sync_cycle"].get<std::uint64_t>(),
+            e["sync_due_ns"].get<std::int64_t>() - std::int64_t{bus->sync_offset_us} * 1000 -
+                true_offset.at(host));
     }
   }
-  EXPECT_EQ(misaligned, 0U);
+  EXPECT_EQ(hosts_seen.size(), 3U);
+  EXPECT_EQ(sync_producers_seen.size(), 3U) << "one SYNC producer per host's bus";
+  ASSERT_GT(ticks, 100U);
+  for (const auto* ranges : {&due_range, &sync_due_range}) {
+    std::size_t misaligned = 0;
+    for (const auto& [cycle, range] : *ranges) {
+      if (range.second - range.first > 1'000'000 && ++misaligned <= 5) {
+        ADD_FAILURE() << "cycle " << cycle << ": " << (ranges == &due_range ? "due" : "SYNC due")
+                      << " times " << (range.second - range.first) / 1000 << " us apart";
+      }
+    }
+    EXPECT_EQ(misaligned, 0U);
+  }
 }
 
 namespace {

@@ -24,7 +24,7 @@ command -v iox-roudi >/dev/null || { echo "roudi fixture: iox-roudi is not insta
 # Above everything else, as mcnc-launch starts one (launch/host_roudi.hpp: under load RouDi
 # fell behind and removed live processes); as an ordinary process where that is not permitted.
 fifo=()
-if chrt -f 41 true 2>/dev/null; then fifo=(chrt -f 41); fi
+if chrt -f 42 true 2>/dev/null; then fifo=(chrt -f 42); fi
 setsid "${fifo[@]}" iox-roudi -c "$here/roudi_config.toml" -l warning -k 1 >"$1/roudi.log" 2>&1 </dev/null &
 echo $! >"$pidfile"
 for _ in $(seq 1 500); do

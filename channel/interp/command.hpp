@@ -245,6 +245,13 @@ struct Command {
   Compensation compensation = Compensation::off;
   double nose_radius = 0.0;
   int nose_tip = 0;
+  // Normal direction control for this move (G41.1/G42.1; not printed: the interpreter turns the
+  // axis on the path the look-ahead releases, channel/interp/normal_direction.hpp): left or
+  // right of travel in the plane of `normal_plane` (channel axes), or `hold`: the axis stays
+  // where the control's last move leaves it (a move after G40.1 made before that was known).
+  enum class Normal : std::uint8_t { off, left, right, hold };
+  Normal normal = Normal::off;
+  std::array<int, 2> normal_plane{};
   // Chip breaking in force for this cutting move (G98.1/G99.1; not printed: the interpreter
   // splits the move before it leaves): the path length of one spindle revolution (0: none),
   // the revolutions of feed between breaks (Q) and the break (P: > 0 a dwell of P

@@ -31,6 +31,29 @@ void BlockLookahead::set_plane(std::array<int, 2> axes, Plane plane) {
   plane_ = plane;
 }
 
+bool BlockLookahead::holds_normal_direction() const {
+  auto turned = [](const Command& c) {
+    return c.normal == Command::Normal::left || c.normal == Command::Normal::right;
+  };
+  auto any_turned = [&](const std::vector<Command>& list) {
+    for (const Command& c : list) {
+      if (turned(c)) {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (corner_held_ && (turned(corner_held_->move) || any_turned(corner_held_->after))) {
+    return true;
+  }
+  for (const Entry& e : entries_) {
+    if (turned(e.move) || any_turned(e.generated) || any_turned(e.after)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 path::Point2 BlockLookahead::plane_point(const AxisVector& v) const {
   return {v[static_cast<std::size_t>(axes_[0])], v[static_cast<std::size_t>(axes_[1])]};
 }

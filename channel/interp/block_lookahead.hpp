@@ -45,6 +45,9 @@ class BlockLookahead {
   // everything; a corner still waiting for its next move is alarm 1147.
   path::PathResult flush(std::vector<Command>& ready);
   bool holding() const { return corner_held_.has_value() || !entries_.empty(); }
+  // Whether it holds a move under normal direction control (G41.1/G42.1): until that leaves,
+  // where the control leaves its axis is not known.
+  bool holds_normal_direction() const;
 
  private:
   struct CornerHeld {

@@ -275,6 +275,9 @@ GCodeInfo mill_code(int code10) {
     case 400:
     case 410:
     case 420:
+    case 401:  // G40.1-G42.1 normal direction control (FANUC 0i-MF, group 19)
+    case 411:
+    case 421:
     case 520:
     case 530:
     case 540:
@@ -332,6 +335,7 @@ int mill_group_slot(int group) {
     case 12:
     case 14:
     case 15:
+    case 19:
       return group;
     case 2:
       return 16;

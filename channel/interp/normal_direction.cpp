@@ -55,17 +55,17 @@ void NormalDirection::reset(const AxisVector& position) {
 }
 
 Command NormalDirection::turn_before(const Command& move, double to_angle) const {
-  Command r = move;
+  // The axis alone: none of the move's other requests (skip, exact stop, chip breaking).
+  Command r;
   r.op = Op::linear;
+  r.line = move.line;
+  r.file = move.file;
+  r.block_text = move.block_text;
+  r.modal = move.modal;
   r.to = at_;
   r.to[static_cast<std::size_t>(settings_.axis)] = to_angle;
   r.feed = settings_.feed;
   r.feed_mode = FeedMode::per_min;
-  r.exact_stop = false;
-  r.barrier = false;
-  r.skip = false;
-  r.corner = Command::Corner::none;
-  r.chip_rev_length = 0.0;  // the axis alone: nothing to break
   return r;
 }
 

@@ -87,6 +87,8 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   // GSK and the FANUC mill start the compensation on G00 too; Dafeng on the first G01.
   lookahead_ = BlockLookahead(BlockLookahead::Settings{config_.dialect != Dialect::dafeng});
   lookahead_.reset(machine_);
+  normal_ = NormalDirection(NormalDirection::Settings{normal_axis_, config_.normal_feed});
+  normal_.reset(machine_);
   cycle_memory_ = config_.cycles;  // the first blocks of G71-G76 change them from here
   extended_thread_.angle = config_.cycles.thread_angle;
   extended_thread_.min_depth = config_.cycles.thread_min_depth;
@@ -316,7 +318,7 @@ std::optional<InterpResult> ProgramRun::next() {
 }
 
 void ProgramRun::release_block() {
-  if (!apply_normal_direction() || !mark_chip_breaking()) {
+  if (!tag_normal_direction() || !mark_chip_breaking()) {
     return;
   }
   map_to_machine();
@@ -324,6 +326,7 @@ void ProgramRun::release_block() {
   const std::size_t from = ready_.size();
   release_through_lookahead();
   expand_modes(ready_, from);
+  turn_normal_direction(from);
   split_chip_breaking(from);
   expand_inclined(ready_, from);
   check_stroke(from);

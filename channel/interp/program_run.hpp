@@ -14,6 +14,7 @@
 #include "channel/interp/gcode_table.hpp"
 #include "channel/interp/interpreter.hpp"
 #include "channel/interp/limits/stroke_zone.hpp"
+#include "channel/interp/normal_direction.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
@@ -259,10 +260,13 @@ class ProgramRun final : public macro::VariableProvider {
   bool record_multi_skip(std::span<const double> at, int column);
   // An axis's machine position in programmed units, as #5021 reads it (X as a diameter).
   double machine_reading(std::size_t axis, double physical) const;
-  // The block's moves (out_) with the rotary axis turned normal to the path: a rotation of that
-  // axis alone before each cutting move that starts in another direction, an arc turning it as
-  // it goes (false after an alarm).
-  bool apply_normal_direction();
+  // The block's moves (out_) tagged for normal direction control (Command::normal): turned by
+  // the side in force, or held where the control leaves the axis after G40.1 (false after an
+  // alarm: the block programs the axis the control turns).
+  bool tag_normal_direction();
+  // The released commands ready_[from..] turned (NormalDirection); the program learns the axis's
+  // angle once the look-ahead holds no move of the control.
+  void turn_normal_direction(std::size_t from);
 
   // ---- G22 / G23 stored stroke check 2 (program_run_stroke.cpp)
   bool run_stroke_check(GFunction f, int column);
@@ -615,6 +619,10 @@ class ProgramRun final : public macro::VariableProvider {
   // G41.1 (+1) / G42.1 (-1) / G40.1 (0), and the channel axis it turns (-1: none configured).
   int normal_side_ = 0;
   int normal_axis_ = -1;
+  // The turning of the released path, and whether G40.1 came while the look-ahead held moves of
+  // the control: until they leave, machine_ does not hold the axis's angle.
+  NormalDirection normal_;
+  bool normal_pending_ = false;
   // G81.1: the axes that oscillate as the blocks run, and as the released commands leave
   // (the look-ahead may still hold moves from before G81.1), each held at its machine position
   // of then.

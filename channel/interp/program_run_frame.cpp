@@ -59,6 +59,7 @@ void ProgramRun::set_machine(const AxisVector& where) {
   }
   released_at_ = inclined;
   const AxisVector at = from_inclined(inclined);  // what the modes below work in
+  normal_.reset(at);
   machine_ = transform::to_vector(frame_.to_program(transform::to_point(at)));
   if (polar_) {
     // In polar interpolation the two axes stand for a point of the polar plane.

@@ -71,10 +71,7 @@ Command NormalDirection::turn_before(const Command& move, double to_angle) const
 
 void NormalDirection::turn(std::vector<Command>& list, std::size_t from) {
   if (settings_.axis < 0) {
-    for (std::size_t k = from; k < list.size(); ++k) {
-      at_ = list[k].moves() ? list[k].to : at_;
-    }
-    return;
+    return;  // nothing to turn, and no position needed for it
   }
   const auto rot = static_cast<std::size_t>(settings_.axis);
   for (std::size_t k = from; k < list.size(); ++k) {

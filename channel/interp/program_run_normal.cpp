@@ -89,6 +89,9 @@ bool ProgramRun::tag_normal_direction() {
 }
 
 void ProgramRun::turn_normal_direction(std::size_t from) {
+  if (normal_axis_ < 0) {
+    return;
+  }
   normal_.turn(ready_, from);
   if ((normal_side_ != 0 || normal_pending_) && !lookahead_.holds_normal_direction()) {
     // Every move of the control has left: the program knows where the axis stands.

@@ -152,4 +152,32 @@ class ChannelRig {
   bool reads_ahead_;
 };
 
+// A rig whose first `axes` axis nodes stand enabled, owned by channel 1, and follow the
+// setpoints one cycle late, as in lockstep; `record` sees each cycle's output.
+class LockstepRig : public ChannelRig {
+ public:
+  LockstepRig(const interp::InterpreterConfig& interp, const motion::MotionConfig& motion,
+              ChannelSetup setup, std::size_t axes, bool read_ahead = false)
+      : ChannelRig(interp, motion, std::move(setup), read_ahead),
+        axes_(axes),
+        feedback_(standing_feedback(axes, 1)) {}
+
+  const CycleOutput& step() override {
+    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
+    follow_setpoints(previous_, feedback_, axes_);  // what the nodes reached: last cycle's
+    previous_ = out;
+    record(out);
+    return out;
+  }
+
+ protected:
+  virtual void record(const CycleOutput& out) = 0;
+
+ private:
+  std::size_t axes_;
+  std::vector<AxisFeedbackView> feedback_;
+  CycleOutput previous_{};
+  std::uint64_t cycle_ = 0;
+};
+
 }  // namespace mcnc::channel

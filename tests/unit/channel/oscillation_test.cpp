@@ -27,28 +27,20 @@ interp::InterpreterConfig xz_channel() {
   return c;
 }
 
-class OscillationRig : public ChannelRig {
+class OscillationRig : public LockstepRig {
  public:
   OscillationRig()
-      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), ChannelSetup{kAxes, {0.001, 0.001}, kDt}),
-        feedback_(standing_feedback(kAxes, 1)) {}
-
-  const CycleOutput& step() override {
-    const CycleOutput& out = channel_cycle(cycle_++, feedback_);
-    follow_setpoints(previous_, feedback_, kAxes);  // what the nodes reached: last cycle's
-    previous_ = out;
-    z.push_back(out.setpoints[kZ].pos);
-    x.push_back(out.setpoints[kX].pos);
-    return out;
-  }
+      : LockstepRig(xz_channel(), alike_axes(kAxes, kDt), ChannelSetup{kAxes, {0.001, 0.001}, kDt},
+                    kAxes) {}
 
   std::vector<double> z;
   std::vector<double> x;
 
- private:
-  std::vector<AxisFeedbackView> feedback_;
-  CycleOutput previous_{};
-  std::uint64_t cycle_ = 0;
+ protected:
+  void record(const CycleOutput& out) override {
+    z.push_back(out.setpoints[kZ].pos);
+    x.push_back(out.setpoints[kX].pos);
+  }
 };
 
 TEST(ChannelOscillation, ZStrokesWhileTheProgramRunsAndG801EndsItAtItsPosition) {

@@ -124,10 +124,16 @@ class LineParser {
   bool at_end() const { return pos_ >= text_.size(); }
   char peek() const { return text_[pos_]; }
   int column(std::size_t index) const { return static_cast<int>(index) + 1; }
+  // The hot loops read the text through locals: a store through a `char` (a word's address)
+  // may alias anything, which would make them reload the string's pointer and size.
   void skip_blanks() {
-    while (!at_end() && is_blank(peek())) {
-      ++pos_;
+    const char* const t = text_.data();
+    const std::size_t n = text_.size();
+    std::size_t i = pos_;
+    while (i < n && is_blank(t[i])) {
+      ++i;
     }
+    pos_ = i;
   }
   bool failed() const { return error_.has_value(); }
   void fail(int number, std::string text, std::size_t index) {
@@ -258,6 +264,10 @@ class LineParser {
       return;
     }
     const std::string_view run = letters_at(pos_);
+    if (run.size() < 2) {  // every statement keyword has two letters or more: NC words
+      parse_block(s);
+      return;
+    }
     if (run == "IF") {
       pos_ += 2;
       s.condition = bracket_condition(s, "IF");
@@ -375,6 +385,10 @@ class LineParser {
            pos_);
       return;
     }
+    parse_block(s);
+  }
+
+  void parse_block(Statement& s) {
     s.kind = StatementKind::block;
     s.first_word = static_cast<std::uint32_t>(arena_.words.size());
     parse_words(s);
@@ -436,60 +450,65 @@ class LineParser {
 
   // `S2=`: digits followed by '=' are a sub-index.
   void parse_index(Word& w) {
+    const char* const t = text_.data();
+    const std::size_t n = text_.size();
     std::size_t i = pos_;
-    while (i < text_.size() && is_blank(text_[i])) {
+    while (i < n && is_blank(t[i])) {
       ++i;
     }
     const std::size_t digits = i;
-    while (i < text_.size() && is_digit(text_[i])) {
+    while (i < n && is_digit(t[i])) {
       ++i;
     }
     if (i == digits || i - digits > 3) {
       return;
     }
     std::size_t j = i;
-    while (j < text_.size() && is_blank(text_[j])) {
+    while (j < n && is_blank(t[j])) {
       ++j;
     }
-    if (j < text_.size() && text_[j] == '=') {
-      std::from_chars(text_.data() + digits, text_.data() + i, w.index);
+    if (j < n && t[j] == '=') {
+      std::from_chars(t + digits, t + i, w.index);
       pos_ = j + 1;
     }
   }
 
   void parse_value(Statement& s, Word& w) {
     skip_blanks();
+    const char* const t = text_.data();
+    const std::size_t n = text_.size();
     std::size_t i = pos_;
     bool negative = false;
-    if (i < text_.size() && (text_[i] == '+' || text_[i] == '-')) {
-      negative = text_[i] == '-';
+    if (i < n && (t[i] == '+' || t[i] == '-')) {
+      negative = t[i] == '-';
       ++i;
-      while (i < text_.size() && is_blank(text_[i])) {
+      while (i < n && is_blank(t[i])) {
         ++i;
       }
     }
-    if (i < text_.size() && (is_digit(text_[i]) || text_[i] == '.')) {
+    if (i < n && (is_digit(t[i]) || t[i] == '.')) {
       const std::size_t begin = i;
       int digits = 0;
       int decimals = 0;
+      bool point = false;
       std::uint64_t mantissa = 0;  // the digits as one integer: exact up to kExactDigits
-      while (i < text_.size() && is_digit(text_[i])) {
-        mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
+      while (i < n && is_digit(t[i])) {
+        mantissa = mantissa * 10 + static_cast<std::uint64_t>(t[i] - '0');
         ++i;
         ++digits;
       }
-      if (i < text_.size() && text_[i] == '.') {
-        w.has_point = true;
+      if (i < n && t[i] == '.') {
+        point = true;
         ++i;
-        while (i < text_.size() && is_digit(text_[i])) {
-          mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
+        while (i < n && is_digit(t[i])) {
+          mantissa = mantissa * 10 + static_cast<std::uint64_t>(t[i] - '0');
           ++i;
           ++digits;
           ++decimals;
         }
       }
-      if (digits == 0 || (i < text_.size() && (text_[i] == '.' || text_[i] == '#' ||
-                                               text_[i] == '[' || text_[i] == '='))) {
+      w.has_point = point;
+      if (digits == 0 || (i < n && (t[i] == '.' || t[i] == '#' || t[i] == '[' || t[i] == '='))) {
         fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
                        w.column);
         return;
@@ -499,13 +518,13 @@ class LineParser {
         magnitude =
             static_cast<double>(mantissa) / kPowersOfTen[static_cast<std::size_t>(decimals)];
       } else {
-        const auto [ptr, ec] = std::from_chars(text_.data() + begin, text_.data() + i, magnitude);
+        const auto [ptr, ec] = std::from_chars(t + begin, t + i, magnitude);
         if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
           fail_at_column(alarm::kValueOutOfRange,
                          "value of " + name_of(w.address) + " out of range", w.column);
           return;
         }
-        if (ec != std::errc() || ptr != text_.data() + i) {
+        if (ec != std::errc() || ptr != t + i) {
           fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
                          w.column);
           return;
@@ -565,22 +584,27 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
   // Blank comments (keeping columns), remember the first one, cut at `;` or `//`, upper-case.
   // One buffer per thread: parsing a large file does not allocate a string per line.
   thread_local std::string work;
-  work.assign(text);
-  std::size_t end = work.size();
+  work.resize(text.size());
+  // Through locals: the stores of chars may alias anything, the string's pointer and size too.
+  char* const out = work.data();
+  const char* const in = text.data();
+  const std::size_t size = text.size();
+  std::size_t end = size;
   bool have_message = false;
-  for (std::size_t i = 0; i < work.size(); ++i) {
-    const char c = work[i];
+  for (std::size_t i = 0; i < size; ++i) {
+    const char c = in[i];
     if (!kCommentMarks[static_cast<unsigned char>(c)]) {
-      work[i] = to_upper(c);
+      out[i] = to_upper(c);
       continue;
     }
-    if (c == ';' || (c == '/' && i + 1 < work.size() && work[i + 1] == '/')) {
+    out[i] = c;
+    if (c == ';' || (c == '/' && i + 1 < size && in[i + 1] == '/')) {
       end = i;
       break;
     }
     if (c == '(') {
-      const std::size_t close = work.find(')', i + 1);
-      if (close == std::string::npos) {
+      const std::size_t close = text.find(')', i + 1);
+      if (close == std::string_view::npos) {
         return ParseError{alarm::kUnclosedComment, "comment '(' not closed on its line",
                           static_cast<int>(i) + 1};
       }
@@ -590,7 +614,7 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
         have_message = true;
       }
       for (std::size_t j = i; j <= close; ++j) {
-        work[j] = ' ';
+        out[j] = ' ';
       }
       i = close;
       continue;

@@ -15,7 +15,8 @@ namespace {
 
 // One JSON object built in a local buffer and appended to the caller's string in a few pieces
 // (flush() at its end): std::string's append costs more than the few bytes of most pieces. A
-// piece longer than the buffer (a long message) goes straight through.
+// piece longer than the buffer (a long message) goes straight through. The fast paths are small
+// enough to be inlined, so that the pieces of known length are copied without a library call.
 class Writer {
  public:
   explicit Writer(std::string& text) : text_(text) {}
@@ -35,21 +36,26 @@ class Writer {
   }
   Writer& operator+=(const char* s) { return *this += std::string_view(s); }
   Writer& operator+=(const std::string& s) { return *this += std::string_view(s); }
-  void append(const char* s, std::size_t n) {
-    if (n > kSize - used_) {
-      flush();
-      if (n > kSize) {
-        text_.append(s, n);
-        return;
-      }
+  [[gnu::always_inline]] void append(const char* s, std::size_t n) {
+    if (n <= kSize - used_) {
+      std::memcpy(buffer_.data() + used_, s, n);
+      used_ += n;
+      return;
     }
-    std::memcpy(buffer_.data() + used_, s, n);
-    used_ += n;
+    append_long(s, n);
   }
   void append(std::string_view s) { append(s.data(), s.size()); }
   void append(const char* begin, const char* end) {
     append(begin, static_cast<std::size_t>(end - begin));
   }
+  // Room for `n` bytes written in place (n <= kSize), then taken with commit(end).
+  char* room(std::size_t n) {
+    if (n > kSize - used_) {
+      flush();
+    }
+    return buffer_.data() + used_;
+  }
+  void commit(const char* end) { used_ = static_cast<std::size_t>(end - buffer_.data()); }
   void flush() {
     text_.append(buffer_.data(), used_);
     used_ = 0;
@@ -58,10 +64,48 @@ class Writer {
  private:
   static constexpr std::size_t kSize = 512;
 
+  void append_long(const char* s, std::size_t n) {
+    flush();
+    if (n > kSize) {
+      text_.append(s, n);
+      return;
+    }
+    std::memcpy(buffer_.data(), s, n);
+    used_ = n;
+  }
+
   std::string& text_;
   std::array<char, kSize> buffer_;
   std::size_t used_ = 0;
 };
+
+// std::round(x) and std::nearbyint(y) (y >= 0, the default rounding mode) without a library
+// call each: a double below 2^52 in magnitude is truncated exactly by a conversion to an integer,
+// and 2^52 added and taken away again rounds it to the nearest, ties to even; from 2^52 on a
+// double is a whole number already. These run for every number printed.
+constexpr double kTwoPow52 = 4503599627370496.0;
+
+double round_half_away(double x) {
+  if (!(std::fabs(x) < kTwoPow52)) {
+    return std::round(x);  // whole already, or not finite
+  }
+  const double t = static_cast<double>(static_cast<std::int64_t>(x));
+  const double frac = x - t;  // exact
+  if (frac >= 0.5) {
+    return t + 1.0;
+  }
+  if (frac <= -0.5) {
+    return t - 1.0;
+  }
+  return t == 0.0 ? std::copysign(0.0, x) : t;
+}
+
+double nearest_even(double y) {
+  if (y < kTwoPow52) {
+    return (y + kTwoPow52) - kTwoPow52;  // IEEE arithmetic: never folded to y
+  }
+  return y;
+}
 
 constexpr std::array<double, 10> kPowersOfTen{1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 
@@ -76,7 +120,7 @@ char* fixed_shortest(char* out, double v) {
     return nullptr;
   }
   for (std::size_t k = 0; k < kPowersOfTen.size(); ++k) {
-    const double scaled = std::nearbyint(a * kPowersOfTen[k]);
+    const double scaled = nearest_even(a * kPowersOfTen[k]);
     if (scaled >= 1e13) {
       return nullptr;
     }
@@ -122,23 +166,44 @@ char* fixed_shortest(char* out, double v) {
 
 // Shortest round-trip form, after rounding to 1e-9 so that binary noise (0.30000000000000004)
 // does not reach the output; -0 prints as 0.
+// The decimal digits of `u` at `out` (room for 10); the end.
+char* digits_of(char* out, std::uint32_t u) {
+  return std::to_chars(out, out + 10, u).ptr;
+}
+
 void number(Writer& out, double v) {
-  double r = std::round(v * 1e9) / 1e9;
+  double r = round_half_away(v * 1e9) / 1e9;
   if (r == 0.0 || !std::isfinite(r)) {
     r = 0.0;
   }
-  char buf[40];
+  char* const buf = out.room(40);
+  // A whole number below 1e5 prints as its digits: fixed_shortest's text, as five digits are
+  // never longer than the scientific form.
+  if (std::fabs(r) < 1e5) {
+    const auto whole = static_cast<std::int32_t>(r);
+    if (static_cast<double>(whole) == r) {
+      char* at = buf;
+      if (whole < 0) {
+        *at++ = '-';
+      }
+      out.commit(digits_of(at, static_cast<std::uint32_t>(whole < 0 ? -whole : whole)));
+      return;
+    }
+  }
   char* end = fixed_shortest(buf, r);
   if (end == nullptr) {
-    end = std::to_chars(buf, buf + sizeof buf, r).ptr;
+    end = std::to_chars(buf, buf + 40, r).ptr;
   }
-  out.append(buf, end);
+  out.commit(end);
 }
 
 void integer(Writer& out, long long v) {
-  char buf[24];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  out.append(buf, res.ptr);
+  char* const buf = out.room(24);
+  if (v >= 0 && v <= 0xFFFFFFFFLL) {
+    out.commit(digits_of(buf, static_cast<std::uint32_t>(v)));
+    return;
+  }
+  out.commit(std::to_chars(buf, buf + 24, v).ptr);
 }
 
 void string(Writer& out, const std::string& s) {

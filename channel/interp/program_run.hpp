@@ -497,6 +497,7 @@ class ProgramRun final : public macro::VariableProvider {
   // block, which they do several times per block. Kept by index_word() and index_words().
   std::array<std::uint32_t, 26> first_letter_word_{};
   std::array<std::uint32_t, 26> first_comma_word_{};
+  std::uint32_t two_letter_words_ = 0;  // UX, PS, SP ...: word(a, b) scans only when some are
   std::size_t block_out_start_ = 0;
   bool block_barrier_ = false;
   bool block_moved_ = false;

@@ -146,7 +146,11 @@ struct BlockG {
 
 void ProgramRun::index_word(std::size_t k) {
   const parse::Address& a = words_[k].address;
-  if (a.first < 'A' || a.first > 'Z' || (a.second != 0 && !a.comma)) {
+  if (a.second != 0 && !a.comma) {
+    ++two_letter_words_;
+    return;
+  }
+  if (a.first < 'A' || a.first > 'Z') {
     return;
   }
   std::uint32_t& first = (a.comma ? first_comma_word_ : first_letter_word_)[a.first - 'A'];
@@ -158,6 +162,7 @@ void ProgramRun::index_word(std::size_t k) {
 void ProgramRun::index_words() {
   first_letter_word_.fill(0);
   first_comma_word_.fill(0);
+  two_letter_words_ = 0;
   for (std::size_t k = 0; k < words_.size(); ++k) {
     index_word(k);
   }
@@ -177,6 +182,9 @@ BlockWord* ProgramRun::word(char letter) {
 }
 
 BlockWord* ProgramRun::word(char a, char b) {
+  if (two_letter_words_ == 0 && b != 0) {
+    return nullptr;
+  }
   for (BlockWord& w : words_) {
     if (w.address.is(a, b)) {
       return &w;

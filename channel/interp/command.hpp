@@ -41,6 +41,8 @@ enum class Op : std::uint8_t {
   polygon_off,  // G50.2: it is released (`wait`: the block ends once it stands)
   cam,          // G51.8: the channel's cam slave follows a lift per master spindle angle
   cam_off,      // G50.8: the lift is taken off the cam slave
+  egb,          // G81.4: the channel's EGB work axis follows its tool spindle (gear box)
+  egb_off,      // G80.4: it stops where it reached (`wait`: the block ends once it stands)
   subcall,
   subcall_release,
   message,
@@ -215,6 +217,16 @@ struct Command {
   std::vector<double> cam_lift;
   double cam_a = 0.0;
   double cam_b = 0.0;
+
+  // egb (G81.4): T the work's teeth and L the hob's threads (the work axis turns L/T times the
+  // tool spindle, L's sign its direction); P the helix angle (degrees, 0: a spur gear) and Q
+  // the module (mm, its sign the helical term's direction); R the work axis's phase (sync_r)
+  // when egb_phase, else no phase matching. egb_off (G80.4) takes `wait`.
+  int egb_teeth = 1;
+  int egb_threads = 1;
+  double egb_helix = 0.0;
+  double egb_module = 0.0;
+  bool egb_phase = false;
 
   // subcall (G144)
   int program = 0;

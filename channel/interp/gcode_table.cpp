@@ -4,12 +4,6 @@ namespace mcnc::interp {
 
 namespace {
 
-constexpr const char* kOther = "this function of the dialect is not implemented";
-
-GCodeInfo not_yet(const char* topic) {
-  return GCodeInfo{GFunction::not_in_this_version, 0, topic};
-}
-
 // Codes that system A and B write the same way.
 GCodeInfo common_code(int code10) {
   switch (code10) {
@@ -204,8 +198,9 @@ GCodeInfo common_code(int code10) {
     case 518:
       return {GFunction::cam_on, 0};
     case 804:
+      return {GFunction::egb_off, 0};
     case 814:
-      return not_yet(kOther);
+      return {GFunction::egb_on, 0};
     default:
       return {};
   }

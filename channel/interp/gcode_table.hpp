@@ -80,6 +80,8 @@ enum class GFunction : std::uint8_t {
   polygon_on,         // G51.2
   cam_off,            // G50.8
   cam_on,             // G51.8
+  egb_off,            // G80.4
+  egb_on,             // G81.4
   axis_release,       // G140
   axis_acquire,       // G141
   axis_restore,       // G142

@@ -36,6 +36,9 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::cam:
     case Op::cam_off:
       return "multi-channel commands need the channel coordination runtime";
+    case Op::egb:
+    case Op::egb_off:
+      return "G81.4/G80.4 (the electronic gear box) does not run in the channel yet";
     case Op::message:
       return "#3006 messages need the HMI";
     case Op::thread:

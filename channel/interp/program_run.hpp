@@ -152,8 +152,10 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_axis_exchange(GFunction f, int column);
   bool run_spindle_sync(GFunction f);
   bool run_polygon(GFunction f, int column);
+  bool run_coupling_off(Op op, const char* code, const char* axis);  // G50.2 P, G80.4 P
   bool run_cam(GFunction f, int column);
   bool run_cam_table(Command& c, int column);
+  bool run_gear_box(GFunction f);  // G81.4 / G80.4
   bool run_axis_sync(GFunction f, int column);
   bool check_unused_words();
 

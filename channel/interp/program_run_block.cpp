@@ -10,6 +10,9 @@ namespace mcnc::interp {
 
 namespace {
 
+// The largest whole number of a coupling's ratio: G51.2's P and Q, G81.4's T and L.
+constexpr std::int64_t kMaxRatio = 9999;
+
 bool whole_number(double v, std::int64_t& out) {
   const double r = std::round(v);
   if (std::fabs(v - r) > 1e-6 || std::fabs(r) > 1e15) {
@@ -121,6 +124,8 @@ bool takes_p(GFunction f) {
     case GFunction::polygon_on:
     case GFunction::polygon_off:
     case GFunction::cam_on:
+    case GFunction::egb_on:
+    case GFunction::egb_off:
     case GFunction::stroke_check_on:
     case GFunction::chip_break_per_min:
     case GFunction::chip_break_per_rev:
@@ -716,13 +721,15 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (spindle_words && !run_spindle_words(p_is_spindle_address)) {
     return false;
   }
-  if (BlockWord* t = word('T'); interpolation_mode() && t != nullptr) {
+  // G81.4's T is the work's number of teeth, not a tool (spec dafeng L3236-3238).
+  const bool t_is_teeth = primary == GFunction::egb_on;
+  if (BlockWord* t = word('T'); interpolation_mode() && t != nullptr && !t_is_teeth) {
     return fail(alarm::kInterpolationModeRestriction,
                 "the tool and its offset do not change in polar or cylindrical interpolation "
                 "(spec L711-849)",
                 t->column);
   }
-  if (!capture &&
+  if (!capture && !t_is_teeth &&
       !(config_.dialect == Dialect::fanuc_mill ? run_mill_tool_words() : run_tool_word())) {
     return false;
   }
@@ -1515,6 +1522,9 @@ bool ProgramRun::run_one_shot(GFunction f, int code10, int column) {
     case GFunction::cam_on:
     case GFunction::cam_off:
       return run_cam(f, column);
+    case GFunction::egb_on:
+    case GFunction::egb_off:
+      return run_gear_box(f);
     case GFunction::finishing_cycle:
       return run_finishing_cycle(column);
     case GFunction::rough_turning:
@@ -1918,23 +1928,32 @@ bool ProgramRun::run_spindle_sync(GFunction f) {
   return true;
 }
 
+// G50.2 P / G80.4 P: a coupling ends, the block waiting for its axis to stop with P1 or no P,
+// not with P0 (spec dafeng L2925-2927, L3245-3249).
+bool ProgramRun::run_coupling_off(Op op, const char* code, const char* axis) {
+  Command& c = emit(op);
+  c.wait = true;
+  c.barrier = true;
+  if (BlockWord* p = word('P')) {
+    p->used = true;
+    std::int64_t v = 0;
+    if (!whole_number(p->value, v) || (v != 0 && v != 1)) {
+      return fail(
+          alarm::kBadWordValue,
+          std::string(code) + " P must be 0 (do not wait for the " + axis + " to stop) or 1 (wait)",
+          p->column);
+    }
+    c.wait = v == 1;
+  }
+  return true;
+}
+
 // G51.2 P Q R / G50.2 P (spec dafeng §2.6.6, L2847-2870): the ratios are whole numbers, P
 // unsigned and Q signed (its sign turns the slave the other way), R the master's start angle.
 bool ProgramRun::run_polygon(GFunction f, int column) {
   std::int64_t v = 0;
   if (f == GFunction::polygon_off) {
-    Command& c = emit(Op::polygon_off);
-    if (BlockWord* p = word('P')) {
-      p->used = true;
-      if (!whole_number(p->value, v) || (v != 0 && v != 1)) {
-        return fail(alarm::kBadWordValue,
-                    "G50.2 P must be 0 (do not wait for the polygon axis to stop) or 1 (wait)",
-                    p->column);
-      }
-      c.wait = v == 1;
-    }
-    c.barrier = true;
-    return true;
+    return run_coupling_off(Op::polygon_off, "G50.2", "polygon axis");
   }
   BlockWord* p = word('P');
   BlockWord* q = word('Q');
@@ -1944,13 +1963,13 @@ bool ProgramRun::run_polygon(GFunction f, int column) {
   }
   Command& c = emit(Op::polygon);
   p->used = true;
-  if (!whole_number(p->value, v) || v < 1 || v > 9999) {
+  if (!whole_number(p->value, v) || v < 1 || v > kMaxRatio) {
     return fail(alarm::kBadWordValue, "G51.2 P (master ratio) must be a whole number 1-9999",
                 p->column);
   }
   c.sync_p = static_cast<int>(v);
   q->used = true;
-  if (!whole_number(q->value, v) || v == 0 || v < -9999 || v > 9999) {
+  if (!whole_number(q->value, v) || v == 0 || v < -kMaxRatio || v > kMaxRatio) {
     return fail(alarm::kBadWordValue,
                 "G51.2 Q (polygon axis ratio) must be a non-zero whole number, -9999 to 9999",
                 q->column);
@@ -2062,6 +2081,71 @@ bool ProgramRun::run_cam_table(Command& c, int column) {
                   "G51.8: #" + std::to_string(n) + " of the cam table is vacant", p->column);
     }
     c.cam_lift.push_back(v.value.number());
+  }
+  return true;
+}
+
+// G81.4 T L P Q R / G80.4 P, the electronic gear box (spec dafeng §2.6.11, L3231-3374): the
+// channel's EGB work axis follows its tool spindle until G80.4. T and L take the whole numbers of
+// G51.2's ratios (decision 200).
+bool ProgramRun::run_gear_box(GFunction f) {
+  std::int64_t v = 0;
+  if (f == GFunction::egb_off) {
+    return run_coupling_off(Op::egb_off, "G80.4", "work axis");
+  }
+  Command& c = emit(Op::egb);
+  c.barrier = true;
+  if (BlockWord* t = word('T')) {
+    t->used = true;
+    if (!whole_number(t->value, v) || v < 1 || v > kMaxRatio) {
+      return fail(alarm::kBadWordValue,
+                  "G81.4 T (number of teeth of the work) must be a whole number 1-9999", t->column);
+    }
+    c.egb_teeth = static_cast<int>(v);
+  }
+  if (BlockWord* l = word('L')) {
+    l->used = true;
+    if (!whole_number(l->value, v) || v == 0 || v < -kMaxRatio || v > kMaxRatio) {
+      return fail(alarm::kBadWordValue,
+                  "G81.4 L (number of threads of the hob) must be a non-zero whole number, -9999 "
+                  "to 9999",
+                  l->column);
+    }
+    c.egb_threads = static_cast<int>(v);
+  }
+  BlockWord* p = word('P');
+  BlockWord* q = word('Q');
+  if (p != nullptr) {
+    p->used = true;
+    if (!(p->value >= -90.0 && p->value <= 90.0)) {
+      return fail(alarm::kBadWordValue, "G81.4 P (helix angle) must be -90 to 90 degrees",
+                  p->column);
+    }
+    c.egb_helix = p->value;
+  }
+  if (q != nullptr) {
+    q->used = true;
+    // The sign reverses the helical term (L3349), so the range is the module's magnitude.
+    if (!(std::fabs(q->value) >= 0.1 && std::fabs(q->value) <= 25.0)) {
+      return fail(alarm::kBadWordValue,
+                  "G81.4 Q (module) must be 0.1-25 mm (its sign: the "
+                  "helical term's direction)",
+                  q->column);
+    }
+    c.egb_module = q->value;
+  }
+  // A helical gear's term divides by the module: a helix angle without it has no value.
+  if (c.egb_helix != 0.0 && q == nullptr) {
+    return fail(alarm::kBadWordValue, "G81.4 P (helix angle) needs Q (module)", p->column);
+  }
+  if (BlockWord* r = word('R')) {
+    r->used = true;
+    if (!(r->value >= 0.0 && r->value < 360.0)) {
+      return fail(alarm::kBadWordValue, "G81.4 R (work phase) must be 0-359.999 degrees",
+                  r->column);
+    }
+    c.sync_r = r->value;
+    c.egb_phase = true;
   }
   return true;
 }

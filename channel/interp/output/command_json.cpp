@@ -367,6 +367,10 @@ const char* op_name(Op op) {
       return "cam";
     case Op::cam_off:
       return "cam_off";
+    case Op::egb:
+      return "egb";
+    case Op::egb_off:
+      return "egb_off";
     case Op::subcall:
       return "subcall";
     case Op::subcall_release:
@@ -671,6 +675,7 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       number(out, c.sync_r);
       break;
     case Op::polygon_off:
+    case Op::egb_off:
       key(out, "wait");
       out += c.wait ? "true" : "false";
       break;
@@ -697,6 +702,22 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       }
       key(out, "r");
       number(out, c.sync_r);
+      break;
+    case Op::egb:  // P and Q only for a helical gear, R only when the phase is matched
+      key(out, "t");
+      integer(out, c.egb_teeth);
+      key(out, "l");
+      integer(out, c.egb_threads);
+      if (c.egb_helix != 0.0) {
+        key(out, "p");
+        number(out, c.egb_helix);
+        key(out, "q");
+        number(out, c.egb_module);
+      }
+      if (c.egb_phase) {
+        key(out, "r");
+        number(out, c.sync_r);
+      }
       break;
     case Op::subcall: {
       key(out, "channel");

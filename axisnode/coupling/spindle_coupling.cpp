@@ -1,6 +1,7 @@
 #include "axisnode/coupling/spindle_coupling.hpp"
 
-#include <algorithm>
+#include "axisnode/coupling/catch_up.hpp"
+
 #include <cmath>
 
 namespace mcnc::coupling {
@@ -46,14 +47,10 @@ SlaveTarget SpindleCoupling::step(double master_pos, double master_vel) noexcept
     vel_ = want_vel;
     return SlaveTarget{pos_, vel_, true};
   }
-  // Catch up: a critically damped pull on phase (where the slave would be at its present
-  // speed) and speed, within the acceleration limit.
+  // Catch up on the phase modulo a revolution (where the slave would be at its present speed).
   const double dt = setup_.cycle_s;
-  const double omega = std::min(20.0, 0.25 / dt);  // rad/s: settles in a few tenths of a second
-  const double phase_error = wrap_degrees(target - (pos_ + vel_ * dt));
-  const double speed_error = want_vel - vel_;
-  const double acc = std::clamp(omega * omega * phase_error + 2.0 * omega * speed_error,
-                                -setup_.max_acceleration, setup_.max_acceleration);
+  const double acc = catch_up_acceleration(wrap_degrees(target - (pos_ + vel_ * dt)),
+                                           want_vel - vel_, dt, setup_.max_acceleration);
   vel_ += acc * dt;
   pos_ += vel_ * dt;
   const double after = wrap_degrees(target - pos_);

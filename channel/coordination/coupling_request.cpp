@@ -9,6 +9,17 @@ namespace {
 // deg/s: a polygon axis slower than this stands (a tenth of a revolution per minute).
 constexpr double kPolygonAtRest = 0.6;
 
+// A coupling of a slave to its master spindle (G51.2, G51.8) has answered: `on`, the slave at
+// `view` follows `master` locked (in phase, on its lift); off, it follows nothing.
+bool slave_answered(std::span<const AxisFeedbackView> feedback, std::size_t view,
+                    std::uint32_t master, bool on) noexcept {
+  if (view >= feedback.size()) {
+    return false;
+  }
+  const AxisFeedbackView& slave = feedback[view];
+  return on ? slave.coupled_to == master && slave.coupling_locked : slave.coupled_to == 0;
+}
+
 }  // namespace
 
 void CouplingRequest::begin_spindle(const SpindleSyncOut& sync) noexcept {
@@ -109,14 +120,8 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
 }
 
 bool CouplingRequest::polygon_done(const CouplingInputs& in) const noexcept {
-  const std::size_t v = setup_.polygon.slave_view;
-  if (v >= in.feedback.size()) {
-    return false;
-  }
-  const AxisFeedbackView& slave = in.feedback[v];
   // G51.2 ends once the axis is in phase (param 5300.5 = 0); G50.2 once it stands free.
-  return polygon_.on ? slave.coupled_to == setup_.polygon.master && slave.coupling_locked
-                     : slave.coupled_to == 0;
+  return slave_answered(in.feedback, setup_.polygon.slave_view, setup_.polygon.master, polygon_.on);
 }
 
 std::optional<PolygonOut> CouplingRequest::polygon_on_reset(
@@ -147,15 +152,9 @@ CouplingRequest::Start CouplingRequest::start_cam(const CouplingInputs& in) noex
 }
 
 bool CouplingRequest::cam_done(const CouplingInputs& in) const noexcept {
-  const std::size_t v = setup_.cam.slave_slot;
-  if (v >= in.feedback.size()) {
-    return false;
-  }
-  const AxisFeedbackView& slave = in.feedback[v];
   // G51.8 ends once the slave is on its lift ("moves incrementally to the table value for the
   // current master angle", L3052); G50.8 once the lift is off it.
-  return cam_.on ? slave.coupled_to == setup_.cam.master && slave.coupling_locked
-                 : slave.coupled_to == 0;
+  return slave_answered(in.feedback, setup_.cam.slave_slot, setup_.cam.master, cam_.on);
 }
 
 bool CouplingRequest::cam_on_reset(std::span<const AxisFeedbackView> feedback) noexcept {

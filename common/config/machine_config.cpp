@@ -234,7 +234,7 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   const YamlMap map =
       value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
                  "dialect", "polar", "cylindrical_parallel", "normal", "inclined", "skip_input",
-                 "torque_skip", "speed_arrival", "polygon", "cam"});
+                 "torque_skip", "speed_arrival", "polygon", "cam", "egb"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -334,6 +334,24 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     (void)m.required("slave");
     channel.cam_master = -1;  // named: check_cam resolves both
     channel.cam_slave = -1;
+  }
+  if (auto egb = map.optional("egb")) {
+    const YamlMap m =
+        egb->map({"tool", "work", "axial", "stop_time", "deviation_rpm", "deviation_time"});
+    (void)m.required("tool");
+    (void)m.required("work");
+    channel.egb_tool = -1;  // named: check_egb resolves them
+    channel.egb_work = -1;
+    channel.egb_axial = m.optional("axial") ? -1 : 0;
+    if (auto t = m.optional("stop_time")) {
+      channel.egb_stop_time_s = t->positive_number();
+    }
+    if (auto d = m.optional("deviation_rpm")) {
+      channel.egb_deviation_rpm = d->positive_number();
+    }
+    if (auto t = m.optional("deviation_time")) {
+      channel.egb_deviation_time_s = t->positive_number();
+    }
   }
   if (auto skip = map.optional("skip_input")) {
     channel.skip_input = read_int(*skip, 1, 99);
@@ -1074,35 +1092,79 @@ void check_polygon(MachineConfig& config, ChannelConfig& channel, const YamlValu
   }
 }
 
+// A spindle of `channel` named at `ref`: its axis id.
+int spindle_of_channel(const YamlValue& ref, const ChannelConfig& channel, MachineConfig& config) {
+  const int id = spindle_id(ref, config);
+  const std::string& name = config.axes[static_cast<std::size_t>(id - 1)].name;
+  if (std::find(channel.spindles.begin(), channel.spindles.end(), name) == channel.spindles.end()) {
+    ref.fail(name + " is not a spindle of channel " + channel.name);
+  }
+  return id;
+}
+
+// One of `channel`'s own axes named at `ref`, that a coupling (`what`) moves over what the
+// channel commands it. An axis that may follow another (G51.4) has its setpoint from elsewhere
+// at times.
+const AxisConfig& commanded_axis_of_channel(const YamlValue& ref, const ChannelConfig& channel,
+                                            const MachineConfig& config, const char* what) {
+  const std::string name = read_name(ref);
+  if (std::find(channel.axes.begin(), channel.axes.end(), name) == channel.axes.end()) {
+    ref.fail(name + " is not an axis of channel " + channel.name + " (its `axes`: " + what +
+             " is laid over what the channel commands it)");
+  }
+  const AxisConfig* axis = config.find_axis(name);
+  if (axis->sync_slave) {
+    ref.fail(name +
+             " may follow another axis (G51.4, axis_sync): its setpoint is not the "
+             "channel's alone");
+  }
+  return *axis;
+}
+
 // `cam` names the master spindle of G51.8 (param 5350), a spindle of the channel, and its slave
-// (param 5351), one of the channel's own axes: the lift is laid over what the channel commands
-// it. An axis that may follow another (G51.4) has its setpoint from elsewhere at times.
+// (param 5351), one of the channel's own axes.
 void check_cam(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
   if (channel.cam_master == 0) {
     return;
   }
   const YamlValue cam = value.child("cam");
-  const YamlValue master = cam.child("master");
-  channel.cam_master = spindle_id(master, config);
-  const std::string& master_name =
-      config.axes[static_cast<std::size_t>(channel.cam_master - 1)].name;
-  if (std::find(channel.spindles.begin(), channel.spindles.end(), master_name) ==
-      channel.spindles.end()) {
-    master.fail(master_name + " is not a spindle of channel " + channel.name);
+  channel.cam_master = spindle_of_channel(cam.child("master"), channel, config);
+  channel.cam_slave =
+      commanded_axis_of_channel(cam.child("slave"), channel, config, "the cam's lift").id;
+}
+
+// `egb` names G81.4's tool spindle (param 5330), a spindle of the channel; its work axis (5331),
+// one of the channel's own rotary axes, not the cam's slave; and the axial feed axis of helical
+// gears (5332), optional, another of its axes, linear.
+void check_egb(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
+  if (channel.egb_tool == 0) {
+    return;
   }
-  const YamlValue slave = cam.child("slave");
-  const std::string name = read_name(slave);
-  if (std::find(channel.axes.begin(), channel.axes.end(), name) == channel.axes.end()) {
-    slave.fail(name + " is not an axis of channel " + channel.name +
-               " (its `axes`: the cam's lift is laid over what the channel commands it)");
+  const YamlValue egb = value.child("egb");
+  channel.egb_tool = spindle_of_channel(egb.child("tool"), channel, config);
+  const AxisConfig& work =
+      commanded_axis_of_channel(egb.child("work"), channel, config, "the gear box's angle");
+  if (work.type != AxisType::rotary) {
+    egb.child("work").fail(work.name +
+                           " is not a rotary axis (the work axis turns with the "
+                           "tool spindle)");
   }
-  const AxisConfig* axis = config.find_axis(name);
-  if (axis->sync_slave) {
-    slave.fail(name +
-               " may follow another axis (G51.4, axis_sync): its setpoint is not the "
-               "channel's alone");
+  if (work.id == channel.cam_slave) {
+    egb.child("work").fail(work.name + " is the slave of the channel's cam already");
   }
-  channel.cam_slave = axis->id;
+  channel.egb_work = work.id;
+  if (channel.egb_axial != 0) {
+    const YamlValue axial = egb.child("axial");
+    const std::string name = read_name(axial);
+    if (std::find(channel.axes.begin(), channel.axes.end(), name) == channel.axes.end()) {
+      axial.fail(name + " is not an axis of channel " + channel.name);
+    }
+    const AxisConfig* axis = config.find_axis(name);
+    if (axis->type != AxisType::linear) {
+      axial.fail(name + " is not a linear axis (the hob's feed along the work)");
+    }
+    channel.egb_axial = axis->id;
+  }
 }
 
 // `polar` names a linear and a rotary axis the channel programs: G12.1 turns the work on the
@@ -1461,6 +1523,7 @@ MachineConfig parse_document(const YAML::Node& root) {
   for (std::size_t i = 0; i < config.channels.size(); ++i) {
     check_polygon(config, config.channels[i], channels[i]);
     check_cam(config, config.channels[i], channels[i]);
+    check_egb(config, config.channels[i], channels[i]);
   }
   return config;
 }

@@ -191,6 +191,17 @@ struct ChannelConfig {
   // channel) and the slave, one of its own axes (axis ids; 0: none, G51.8 is an alarm).
   int cam_master = 0;
   int cam_slave = 0;
+  // Electronic gear box G81.4 (params 5330-5337, `egb`): the tool spindle (a spindle of this
+  // channel), the work axis (one of its own rotary axes) and the axial feed axis of helical
+  // gears (one of its linear axes; 0: none) (axis ids; tool 0: none, G81.4 is an alarm); the
+  // time G80.4 stops the work axis in (5333), and the speed deviation (rpm of the work axis;
+  // 0: not watched) that lasting longer than deviation_time is an alarm (5336/5337).
+  int egb_tool = 0;
+  int egb_work = 0;
+  int egb_axial = 0;
+  double egb_stop_time_s = 0.5;
+  double egb_deviation_rpm = 0.0;
+  double egb_deviation_time_s = 0.1;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
   // G160 without P limits the torque to this, % of the rated torque (param 5515; 0: such a

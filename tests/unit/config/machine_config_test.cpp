@@ -1560,4 +1560,50 @@ axes:
 }
 
 }  // namespace
+TEST(MachineConfig, EgbNamesAToolSpindleAndARotaryWorkAxisOfTheChannel) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: Z1, address: Z, bus: b, node_id: 2}
+  - {name: C1, address: C, type: rotary, bus: b, node_id: 3}
+  - {name: B1, address: B, type: rotary, bus: b, node_id: 4, axis_sync: {master: C1}}
+  - {name: S1, type: spindle, bus: b, node_id: 5}
+)";
+  const auto with = [&](const std::string& egb) {
+    return base + "channels: [{name: CH1, axes: [X1, Z1, C1, B1], spindles: [S1], egb: " + egb +
+           "}]\n";
+  };
+  const MachineConfig config =
+      parse_machine_yaml(with("{tool: S1, work: C1, axial: Z1, stop_time: 0.4}"));
+  EXPECT_EQ(config.channels[0].egb_tool, 5);
+  EXPECT_EQ(config.channels[0].egb_work, 3);
+  EXPECT_EQ(config.channels[0].egb_axial, 2);
+  EXPECT_DOUBLE_EQ(config.channels[0].egb_stop_time_s, 0.4);
+  const MachineConfig spur = parse_machine_yaml(with("{tool: S1, work: C1}"));
+  EXPECT_EQ(spur.channels[0].egb_axial, 0);  // no helical gears
+  std::string what;
+  EXPECT_EQ(rejection_path(with("{tool: X1, work: C1}")), "channels[0].egb.tool");
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: X1}"), &what), "channels[0].egb.work");
+  EXPECT_NE(what.find("not a rotary axis"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: B1}"), &what), "channels[0].egb.work");
+  EXPECT_NE(what.find("G51.4"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: S1}")), "channels[0].egb.work");
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: C1, axial: C1}"), &what),
+            "channels[0].egb.axial");
+  EXPECT_NE(what.find("not a linear axis"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: C1, stop_time: 0}")),
+            "channels[0].egb.stop_time");
+  EXPECT_EQ(rejection_path(with("{tool: S1}")), "channels[0].egb.work");
+  EXPECT_EQ(
+      rejection_path(
+          base + "channels: [{name: CH1, axes: [X1, Z1, C1, B1], spindles: [S1], cam: {master: "
+                 "S1, slave: C1}, egb: {tool: S1, work: C1}}]\n",
+          &what),
+      "channels[0].egb.work");
+  EXPECT_NE(what.find("cam"), std::string::npos) << what;
+}
+
 }  // namespace mcnc::config

@@ -5,12 +5,12 @@
 // G51.8 on a channel without a cam sends nothing and moves nothing. Channel 1 programs X (the
 // slave) and Z and has the spindle S1 (axis 3, the master).
 #include "channel_rig.hpp"
+#include "coupling_node_rig.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 namespace mcnc::channel {
@@ -40,38 +40,27 @@ ChannelSetup xz_setup(bool cam) {
   return s;
 }
 
-// The slave's node: it hears an event the cycle after it was sent, and has the lift on (or
-// off) kCatchUp cycles later. While the cam runs X's command is the channel's plus the lift,
-// and its actual position lags that by kLag.
-class CamRig : public ChannelRig {
+// The slave's node (CouplingNodeRig, catching up in kCatchUp cycles). While the cam runs X's
+// command is the channel's plus the lift, and its actual position lags that by kLag.
+class CamRig : public ChannelRig, public CouplingNodeRig<CamOut> {
  public:
   explicit CamRig(bool cam = true)
-      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup(cam)) {
+      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup(cam)),
+        CouplingNodeRig<CamOut>(3, kCatchUp) {
     feedback_ = standing_feedback(kAxes + 1, 1);
   }
 
   const CycleOutput& step() override {
     const CycleOutput& out = channel_cycle(cycle_, feedback_);
     AxisFeedbackView& x = feedback_[0];
-    if (since_ && cycle_ == *since_ + 1) {
-      x.coupled_to = on_ ? 3 : x.coupled_to;
-      x.coupling_locked = false;
-    }
-    if (since_ && cycle_ == *since_ + kCatchUp) {
-      x.coupled_to = on_ ? 3 : 0;
-      x.coupling_locked = on_;
+    if (answer(cycle_, x)) {
       const double path = x.channel_cmd();
-      x.superimposed = on_ ? kLift : 0.0;
+      x.superimposed = coupling_on() ? kLift : 0.0;
       x.cmd = path + x.superimposed;
-      x.act = x.cmd - (on_ ? kLag : 0.0);
-      locked_at = on_ ? cycle_ : locked_at;
-      since_.reset();
+      x.act = x.cmd - (coupling_on() ? kLag : 0.0);
     }
     if (out.cam_sync != nullptr) {
-      sent.push_back(*out.cam_sync);
-      sent_at.push_back(cycle_);
-      on_ = out.cam_sync->on;
-      since_ = cycle_;
+      record(cycle_, *out.cam_sync);
     }
     for (std::size_t a = 0; a < kAxes; ++a) {
       if (out.setpoints[a].valid) {
@@ -86,16 +75,9 @@ class CamRig : public ChannelRig {
     return out;
   }
 
-  std::vector<CamOut> sent;
-  std::vector<std::uint64_t> sent_at;
-  std::uint64_t locked_at = 0;
   std::uint64_t first_move = 0;
   std::uint64_t cycle_ = 0;
   std::vector<AxisFeedbackView> feedback_;
-
- private:
-  std::optional<std::uint64_t> since_;
-  bool on_ = false;
 };
 
 TEST(CamChannel, TheMoveAfterG518WaitsForTheLiftAndTheProgramEndsWithItOff) {

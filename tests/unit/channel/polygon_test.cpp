@@ -4,11 +4,11 @@
 // Channel 1 programs X and Z and has the spindles S1 (axis 3, the master) and T1 (axis 4, the
 // polygon axis, at most 3000 rpm).
 #include "channel_rig.hpp"
+#include "coupling_node_rig.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,34 +37,22 @@ ChannelSetup xz_setup() {
   return s;
 }
 
-// The polygon axis's node: it takes a request in the cycle after it was sent (the channel sees
-// that a cycle later), locks kCatchUp cycles after G51.2 and stands free kCatchUp cycles after
-// G50.2.
-class PolygonRig : public ChannelRig {
+// The polygon axis's node (CouplingNodeRig): it locks kCatchUp cycles after G51.2 and stands
+// free kCatchUp cycles after G50.2.
+class PolygonRig : public ChannelRig, public CouplingNodeRig<PolygonOut> {
  public:
-  PolygonRig() : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup()) {
+  PolygonRig()
+      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup()),
+        CouplingNodeRig<PolygonOut>(3, kCatchUp) {
     feedback_ = standing_feedback(kAxes + 2, 1);
     feedback_[kMaster].vel = 3000.0;  // S1 turns at 500 rpm
   }
 
   const CycleOutput& step() override {
     const CycleOutput& out = channel_cycle(cycle_, feedback_);
-    AxisFeedbackView& t1 = feedback_[kSlave];
-    if (since_ && cycle_ == *since_ + 1) {
-      t1.coupled_to = on_ ? 3 : t1.coupled_to;
-      t1.coupling_locked = false;
-    }
-    if (since_ && cycle_ == *since_ + kCatchUp) {
-      t1.coupled_to = on_ ? 3 : 0;
-      t1.coupling_locked = on_;
-      locked_at = on_ ? cycle_ : locked_at;
-      since_.reset();
-    }
+    (void)answer(cycle_, feedback_[kSlave]);
     if (out.polygon_sync_due) {
-      sent.push_back(out.polygon_sync);
-      sent_at.push_back(cycle_);
-      on_ = out.polygon_sync.on;
-      since_ = cycle_;
+      record(cycle_, out.polygon_sync);
     }
     for (std::size_t a = 0; a < kAxes; ++a) {
       if (out.setpoints[a].valid) {
@@ -78,16 +66,9 @@ class PolygonRig : public ChannelRig {
     return out;
   }
 
-  std::vector<PolygonOut> sent;
-  std::vector<std::uint64_t> sent_at;
-  std::uint64_t locked_at = 0;
   std::uint64_t first_move = 0;
   std::uint64_t cycle_ = 0;
   std::vector<AxisFeedbackView> feedback_;
-
- private:
-  std::optional<std::uint64_t> since_;
-  bool on_ = false;
 };
 
 TEST(PolygonChannel, TheCutAfterG512WaitsForThePhaseAndG502ForTheStop) {

@@ -2087,7 +2087,7 @@ bool ProgramRun::run_cam_table(Command& c, int column) {
 
 // G81.4 T L P Q R / G80.4 P, the electronic gear box (spec dafeng §2.6.11, L3231-3374): the
 // channel's EGB work axis follows its tool spindle until G80.4. T and L take the whole numbers of
-// G51.2's ratios (decision 200).
+// G51.2's ratios (decision 133).
 bool ProgramRun::run_gear_box(GFunction f) {
   std::int64_t v = 0;
   if (f == GFunction::egb_off) {

@@ -139,6 +139,13 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
   }
 }
 
+// The unicast discovery port of participant index `index` on `domain`: the DDSI port mapping
+// with Cyclone DDS's default base (7400), domain gain (250), participant gain (2) and unicast
+// discovery offset (10).
+int discovery_port(int domain, int index) {
+  return 7400 + 250 * domain + 10 + 2 * index;
+}
+
 // Domain configuration: the lease and announcements of the Fast DDS profile, and shared memory
 // under a service name of the domain's own, so that two machines on two domains of one host
 // share a RouDi and never each other's samples. Multicast only for discovery, as Fast DDS does:
@@ -147,12 +154,29 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 // those (decision 54). A writer's heartbeats stay 100 ms apart while a reader lacks a sample:
 // Cyclone DDS doubles the interval, up to 8 s, after five heartbeats without a write, and a
 // lockstep writer writes nothing until that reader's answer comes (decision 91).
+// A secured participant of a machine on one host announces itself to its peers alone, by
+// unicast, and listens on the discovery port of its participant index (decision 220): without
+// multicast, participants that share no topic never meet, nor authenticate each other.
 // CYCLONEDDS_URI, when set, is read after it.
-std::string domain_config(int domain, bool shared_memory) {
+std::string domain_config(int domain, bool shared_memory, const security::DiscoveryPeers* peers) {
   std::string config =
       "<CycloneDDS><Domain id=\"any\">"
-      "<General><AllowMulticast>spdp</AllowMulticast></General>"
-      "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>1s</SPDPInterval>"
+      "<General><AllowMulticast>" +
+      std::string(peers != nullptr ? "false" : "spdp") +
+      "</AllowMulticast></General>"
+      "<Discovery><LeaseDuration>3s</LeaseDuration><SPDPInterval>1s</SPDPInterval>";
+  if (peers != nullptr) {
+    config += "<ParticipantIndex>" +
+              (peers->participant_index < 0 ? std::string("none")
+                                            : std::to_string(peers->participant_index)) +
+              "</ParticipantIndex><Peers>";
+    for (const int peer : peers->peers) {
+      config +=
+          "<Peer address=\"127.0.0.1:" + std::to_string(discovery_port(domain, peer)) + "\"/>";
+    }
+    config += "</Peers>";
+  }
+  config +=
       "</Discovery>"
       "<Internal><HeartbeatInterval max=\"100 ms\">100 ms</HeartbeatInterval></Internal>"
       "<SharedMemory><Enable>" +
@@ -176,14 +200,14 @@ std::string domain_config(int domain, bool shared_memory) {
 // of runs).
 class DomainUse {
  public:
-  static void enter(int domain, bool shared_memory) {
+  static void enter(int domain, bool shared_memory, const security::DiscoveryPeers* peers) {
     std::lock_guard<std::mutex> lock(mutex());
     Entry& entry = entries()[domain];
     if (entry.participants++ > 0) {
       return;
     }
-    const dds_entity_t created = dds_create_domain(static_cast<dds_domainid_t>(domain),
-                                                   domain_config(domain, shared_memory).c_str());
+    const dds_entity_t created = dds_create_domain(
+        static_cast<dds_domainid_t>(domain), domain_config(domain, shared_memory, peers).c_str());
     if (created < 0 && created != DDS_RETCODE_PRECONDITION_NOT_MET) {
       entries().erase(domain);
       throw std::runtime_error("cannot configure Cyclone DDS domain " + std::to_string(domain) +
@@ -256,7 +280,8 @@ class CycloneParticipant final : public detail::ParticipantImpl {
                                ": a Cyclone DDS process needs one running on its host (iox-roudi;"
                                " mcnc-launch starts it)");
     }
-    DomainUse::enter(domain, shared_memory);
+    DomainUse::enter(domain, shared_memory,
+                     security != nullptr && security->discovery ? &*security->discovery : nullptr);
     QosOf qos;
     dds_qset_entity_name(qos.qos, name.c_str());
     if (security != nullptr) {

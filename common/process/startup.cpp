@@ -1,5 +1,6 @@
 #include "common/process/startup.hpp"
 
+#include "common/security/discovery_peers.hpp"
 #include "common/security/pki/pki.hpp"
 
 #include "common/clock/cycle_clock.hpp"
@@ -82,7 +83,9 @@ std::optional<security::IdentityFiles> resolve_security_or_exit(
                  problem->c_str());
     std::exit(2);
   }
-  return security::identity_files(machine.security_dir, identity);
+  security::IdentityFiles files = security::identity_files(machine.security_dir, identity);
+  files.discovery = security::discovery_peers(machine, identity);
+  return files;
 }
 
 namespace {

@@ -3,10 +3,21 @@
 // (docs/operations.md, "Security"). One CA signs the identities, the governance and the
 // permissions (decision 69); every identity shares the one permissions document, whose grant for
 // its subject name says what it may write.
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace mcnc::security {
+
+// A participant's discovery peers on a secured machine of one host (discovery_peers.hpp).
+struct DiscoveryPeers {
+  // Its own participant index; -1 for an onlooker (the viewer), whose ports are the system's
+  // choice: it announces itself, and the processes answer it.
+  int participant_index = -1;
+  // The participant indices of the processes it announces itself to. A process it does not
+  // name may still find it by announcing itself to it; so the relation is symmetric here.
+  std::vector<int> peers;
+};
 
 // The files a participant of the identity `name` is configured with (absolute when `dir` is).
 struct IdentityFiles {
@@ -17,6 +28,9 @@ struct IdentityFiles {
   std::string private_key;     // its key, unencrypted, readable by its owner only
   std::string governance;      // signed (S/MIME)
   std::string permissions;     // signed (S/MIME)
+  // Not a file: whom it announces itself to instead of multicast (decision 220); none:
+  // multicast discovery, as an unsecured participant.
+  std::optional<DiscoveryPeers> discovery;
 };
 
 IdentityFiles identity_files(const std::string& dir, const std::string& identity);

@@ -9,6 +9,7 @@
 // sample of a fixed-size type written straight into a loaned chunk); state and event topics go
 // over RTPS (writer_qos).
 #include "idl/dds_participant.hpp"
+#include "idl/discovery_port.hpp"
 
 #include <dds/dds.h>
 #include <dds/ddsc/dds_loan_api.h>
@@ -139,13 +140,6 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
   }
 }
 
-// The unicast discovery port of participant index `index` on `domain`: the DDSI port mapping
-// with Cyclone DDS's default base (7400), domain gain (250), participant gain (2) and unicast
-// discovery offset (10).
-int discovery_port(int domain, int index) {
-  return 7400 + 250 * domain + 10 + 2 * index;
-}
-
 // Domain configuration: the lease and announcements of the Fast DDS profile, and shared memory
 // under a service name of the domain's own, so that two machines on two domains of one host
 // share a RouDi and never each other's samples. Multicast only for discovery, as Fast DDS does:
@@ -172,7 +166,8 @@ std::string domain_config(int domain, bool shared_memory, const security::Discov
               "</ParticipantIndex><Peers>";
     for (const int peer : peers->peers) {
       config +=
-          "<Peer address=\"127.0.0.1:" + std::to_string(discovery_port(domain, peer)) + "\"/>";
+          "<Peer address=\"127.0.0.1:" + std::to_string(unicast_discovery_port(domain, peer)) +
+          "\"/>";
     }
     config += "</Peers>";
   }

@@ -74,7 +74,10 @@ class Rogue {
  public:
   Rogue(const TestMachine& machine, const std::string& name, std::vector<std::string> args)
       : log_(machine.file("rogue-" + name)) {
-    std::vector<std::string> argv{bin("mcnc_rogue"), "--domain", std::to_string(machine.domain())};
+    // It also announces itself to the ports a secured machine's processes discover on: an
+    // attacker on the host knows the DDSI port mapping (decision 220).
+    std::vector<std::string> argv{bin("mcnc_rogue"), "--domain", std::to_string(machine.domain()),
+                                  "--announce-to", "20"};
     argv.insert(argv.end(), args.begin(), args.end());
     process_ = std::make_unique<Background>(argv, -1, log_);
     // Its writers are made before the machine starts.

@@ -5,6 +5,7 @@
 // CH2's arrival at G04.1 P1, a setpoint and a feedback of X1. A process of its own: Cyclone
 // DDS 0.10 keeps one access control per domain and process, so two identities in one process
 // would share a grant.
+// With --announce-to it also announces itself to the ports of a secured machine's processes.
 // Prints "writers N" once its writers are made (those its own access control allows) and
 // "rounds N" at its end.
 // With --flood it only fills the machine's operator inboxes as in issue 25: `--count` feed holds
@@ -13,12 +14,14 @@
 #include "common/operator/operator_admission.hpp"
 #include "common/security/identity_files.hpp"
 #include "idl/dds_participant.hpp"
+#include "idl/discovery_port.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -172,7 +175,24 @@ int main(int argc, char** argv) {
   int count = 40;
   app.add_option("--flood", flood, "only send --count operator commands stamped with each cycle");
   app.add_option("--count", count);
+  int announce_to = 0;
+  app.add_option("--announce-to", announce_to,
+                 "also announce itself to participant indices 0 to N-1 on this host (a secured "
+                 "machine discovers by unicast, and its ports follow from the domain)");
   CLI11_PARSE(app, argc, argv);
+  if (announce_to > 0) {
+    std::string peers;
+    for (int index = 0; index < announce_to; ++index) {
+      peers += "<Peer address=\"127.0.0.1:" +
+               std::to_string(dds::unicast_discovery_port(domain, index)) + "\"/>";
+    }
+    // Read after the participant's own configuration (idl/cyclonedds_participant.cpp).
+    setenv("CYCLONEDDS_URI",
+           ("<CycloneDDS><Domain id=\"any\"><Discovery><Peers>" + peers +
+            "</Peers></Discovery></Domain></CycloneDDS>")
+               .c_str(),
+           1);
+  }
   std::optional<security::IdentityFiles> files;
   if (!certs.empty()) {
     files = security::identity_files(certs, identity);

@@ -85,6 +85,10 @@ def run(build, channels, clock, domain, middleware, axes, cycle_us, per_bus, dwe
                 out.append(line)
                 if run_start is None and "starting the run" in line:
                     run_start = time.monotonic()
+                    # How long the start took (the handshakes of a secured machine), on stderr.
+                    print(f"N = {channels} {protection} ({clock}): ready "
+                          f"{run_start - start:.0f} s after the start", file=sys.stderr,
+                          flush=True)
             code = p.wait()
         end = time.monotonic()
         after = resource.getrusage(resource.RUSAGE_CHILDREN)

@@ -149,7 +149,7 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 // Cyclone DDS doubles the interval, up to 8 s, after five heartbeats without a write, and a
 // lockstep writer writes nothing until that reader's answer comes (decision 91).
 // A secured participant of a machine on one host announces itself to its peers alone, by
-// unicast, and listens on the discovery port of its participant index (decision 220): without
+// unicast, and listens on the discovery port of its participant index (decision 137): without
 // multicast, participants that share no topic never meet, nor authenticate each other.
 // CYCLONEDDS_URI, when set, is read after it.
 std::string domain_config(int domain, bool shared_memory, const security::DiscoveryPeers* peers) {

@@ -1,6 +1,6 @@
 #pragma once
 // Where a Cyclone DDS participant with a fixed participant index listens for discovery
-// (security::DiscoveryPeers, decision 220).
+// (security::DiscoveryPeers, decision 137).
 
 namespace mcnc::dds {
 

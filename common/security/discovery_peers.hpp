@@ -1,5 +1,5 @@
 #pragma once
-// Which participants of a secured machine discover each other (decision 220). DDS Security
+// Which participants of a secured machine discover each other (decision 137). DDS Security
 // authenticates every pair of participants that discover each other, and on Cyclone DDS 0.10 a
 // participant does its handshakes one after the other: a machine whose every participant
 // discovers every other does a handshake per pair, most of them between processes that share

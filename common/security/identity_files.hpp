@@ -28,7 +28,7 @@ struct IdentityFiles {
   std::string private_key;     // its key, unencrypted, readable by its owner only
   std::string governance;      // signed (S/MIME)
   std::string permissions;     // signed (S/MIME)
-  // Not a file: whom it announces itself to instead of multicast (decision 220); none:
+  // Not a file: whom it announces itself to instead of multicast (decision 137); none:
   // multicast discovery, as an unsecured participant.
   std::optional<DiscoveryPeers> discovery;
 };

@@ -75,7 +75,7 @@ class Rogue {
   Rogue(const TestMachine& machine, const std::string& name, std::vector<std::string> args)
       : log_(machine.file("rogue-" + name)) {
     // It also announces itself to the ports a secured machine's processes discover on: an
-    // attacker on the host knows the DDSI port mapping (decision 220).
+    // attacker on the host knows the DDSI port mapping (decision 137).
     std::vector<std::string> argv{bin("mcnc_rogue"), "--domain", std::to_string(machine.domain()),
                                   "--announce-to", "20"};
     argv.insert(argv.end(), args.begin(), args.end());

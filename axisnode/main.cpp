@@ -186,6 +186,8 @@ int main(int argc, char** argv) {
     const int cycles_per_s = std::max(1, 1'000'000 / machine.cycle_us);
     stop_limits.limit_cycles = 5 * cycles_per_s;
     stop_limits.quiet_cycles = std::max(stop_limits.quiet_cycles, cycles_per_s / 20);
+    // The same half second as the paced cycles' watch: a lockstep machine may step slower than
+    // real time for a while.
     stop_limits.silent_drive_cycles = core.roles().controller.best_effort_watch_cycles;
     axisnode::DriveStop drive_stop(sync_producer, stop_limits);
     // At a run's end the drives stand where the programs ended, and an E-stop has already

@@ -15,12 +15,13 @@ class SyncSchedule {
   SyncSchedule(std::int64_t start_ns, std::int64_t period_ns, std::int64_t offset_ns) noexcept
       : start_ns_(start_ns), period_ns_(period_ns > 0 ? period_ns : 1), offset_ns_(offset_ns) {}
 
-  // Moves the start toward `target_ns` by at most `max_step_ns`; call it once per SYNC. SYNC n
-  // is then due at the start + n x period + offset. An index once handed out is never handed
-  // out again: a start moved earlier does not repeat a SYNC.
-  void follow_start(std::int64_t target_ns, std::int64_t max_step_ns) noexcept {
+  // Moves the start toward `target_ns` by at most 1 % of the period; call it once per SYNC.
+  // SYNC n is then due at the start + n x period + offset. An index once handed out is never
+  // handed out again: a start moved earlier does not repeat a SYNC.
+  void follow_start(std::int64_t target_ns) noexcept {
+    const std::int64_t step = period_ns_ / 100 > 0 ? period_ns_ / 100 : 1;
     const std::int64_t gap = target_ns - start_ns_;
-    start_ns_ += gap > max_step_ns ? max_step_ns : (gap < -max_step_ns ? -max_step_ns : gap);
+    start_ns_ += gap > step ? step : (gap < -step ? -step : gap);
   }
   [[nodiscard]] std::int64_t start_ns() const noexcept { return start_ns_; }
 

@@ -82,9 +82,9 @@ struct AxisNodeInput {
   bool owner_lost = false;  // the owner's writer left (DDS liveliness)
   bool emergency_stop = false;
   // The cycles are paced to real time by a process that is not scheduled for it (a lockstep
-  // run after its E-stop, or stopping): on a loaded host the drive's simulator may answer
-  // late while nothing moves any more, so a drive is judged silent only after
-  // best_effort_watch_cycles.
+  // node after an E-stop, once its owner is gone, or stopping: each after its axis was
+  // quick-stopped): on a loaded host the drive's simulator may answer late, so a drive is
+  // judged silent only after best_effort_watch_cycles.
   bool paced_best_effort = false;
   std::uint64_t heartbeats = 0;            // the drive's heartbeats received so far
   bool bus_off = false;                    // the CAN controller went bus off

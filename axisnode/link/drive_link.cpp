@@ -231,7 +231,7 @@ void DriveLink::start_sync_timer(const canopen::SyncSchedule& schedule) {
       sent_late_ns_[index % kSentSlots].store(woke - due);
       sent_index_plus_one_.store(index + 1);
       next = index + 1;
-      schedule.follow_start(sync_start_ns_.load(), kSyncSlewNs);  // for the SYNCs from next on
+      schedule.follow_start(sync_start_ns_.load());  // for the SYNCs from next on
     }
   });
 }
@@ -377,17 +377,13 @@ void DriveLink::receive_loop() {
 void DriveLink::send_sync(bool timed) noexcept {
   sync_counter_ = static_cast<std::uint8_t>(sync_counter_ % 240 + 1);
   // Our own frames are not received back: the RPDOs seen are forgotten here, in lockstep before
-  // the SYNC goes out (the next cycle's RPDOs may come back at once). The timer (realtime, no
-  // RPDO bookkeeping) sends first: the lock is shared with non-realtime threads, and the SYNC's
-  // time on the bus is what must not wait.
-  const auto forget_rpdos = [&] { wakeup_.update([&] { rpdo_seen_.reset(); }); };
-  if (timed) {
-    bus_->send(canopen::encode_sync(sync_counter_));
-    forget_rpdos();
-  } else {
-    forget_rpdos();
-    bus_->send(canopen::encode_sync(sync_counter_));
+  // the SYNC goes out (the next cycle's RPDOs may come back at once). Only the lockstep wait reads
+  // them, so the timer (realtime) does not take the lock at all: it is shared with non-realtime
+  // threads, and the SYNC's time on the bus is what must not wait.
+  if (!timed) {
+    wakeup_.update([&] { rpdo_seen_.reset(); });
   }
+  bus_->send(canopen::encode_sync(sync_counter_));
 }
 
 std::uint64_t DriveLink::malformed_count() const noexcept {

@@ -65,9 +65,8 @@ class DriveLink final : public DriveInterface {
   static constexpr std::size_t kLatenessRecords = 1U << 14;
   [[nodiscard]] std::vector<std::int64_t> sync_lateness() const;
   // The machine's start on this host's clock, as the host's estimate of the machine clock is
-  // refined: the timed SYNCs from the next one on follow it, by kSyncSlewNs a SYNC at most
-  // (SyncSchedule::follow_start), 1 % of a 2 ms cycle.
-  static constexpr std::int64_t kSyncSlewNs = 20'000;
+  // refined: the timed SYNCs from the next one on follow it, by 1 % of the cycle a SYNC at most
+  // (SyncSchedule::follow_start).
   void follow_machine_start(std::int64_t start_ns) noexcept { sync_start_ns_.store(start_ns); }
   // The latest timed SYNC that went out. False before the first.
   bool latest_sync(SentSync& out) const noexcept;

@@ -16,8 +16,8 @@ std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std
                              bool skip_missed) noexcept;
 // SCHED_FIFO priorities of a realtime machine, lowest first (decision 55): every thread of a
 // realtime process, its middleware's receive threads among them; the cycle thread of a channel
-// or the PLC; the cycle thread of an axis node and its CAN threads (the drive's answers, the
-// SYNC timer), which close the drive's loop at the tick. A
+// or the PLC; the cycle thread of an axis node and its CAN receive thread (the drive's
+// answers), which close the drive's loop at the tick. A
 // burst of samples or of discovery then never delays a tick. The SYNC timer runs above those:
 // the SYNC is the bus's clock, when the drives take their setpoints, and hosts align their
 // cycles by it (decision 128); an axis-node cycle still running at the SYNC's due time sends

@@ -1,6 +1,7 @@
 #include "harness.hpp"
 
 #include "common/process/shm_cleanup.hpp"
+#include "launch/host_roudi.hpp"
 #include "roudi/iceoryx_tmp.hpp"
 
 #include <gtest/gtest.h>
@@ -408,8 +409,9 @@ void isolate_iceoryx_host() {
 
 std::unique_ptr<Background> start_host_roudi(const std::string& log_path) {
   auto roudi = std::make_unique<Background>(
-      std::vector<std::string>{"/usr/bin/chrt", "-f", "41", "/usr/bin/iox-roudi", "-c",
-                               source("tests/roudi/roudi_config.toml"), "-l", "warning"},
+      std::vector<std::string>{"/usr/bin/chrt", "-f", std::to_string(mcnc::launch::kRoudiPriority),
+                               "/usr/bin/iox-roudi", "-c", source("tests/roudi/roudi_config.toml"),
+                               "-l", "warning"},
       -1, log_path);
   EXPECT_TRUE(eventually(
       [] { return run({bin("mcnc-roudi-check")}, -1, std::chrono::seconds(10)).exit_code == 0; },

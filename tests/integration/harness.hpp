@@ -121,7 +121,7 @@ double last_cmd(const std::string& trace_path, const std::string& axis);
 void isolate_iceoryx_host();
 
 // A RouDi of the test's own host (after isolate_iceoryx_host), as mcnc-launch starts one: at
-// SCHED_FIFO 41 with the suite's configuration, its output in `log_path`. Returns once it
+// SCHED_FIFO launch::kRoudiPriority with the suite's configuration, its output in `log_path`. Returns once it
 // registers a process (mcnc-roudi-check); fails the test when it does not within 20 s.
 // A test that kills a process on Cyclone DDS runs on such a host: iceoryx 2.0's RouDi can hang
 // for good cleaning up after a process killed with SIGKILL, and the suite's RouDi serves every

@@ -20,6 +20,7 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -234,12 +235,17 @@ void expect_partition_stops_both_sides(const CellOnThreeHosts& cell, const std::
   }
   // Only the link was cut: no drive failed. The lockstep machine, paced after its E-stop
   // without real-time scheduling, judges its drives silent only after half a second (decision
-  // 127); before, a drive simulator starved at the E-stop gave them in half the runs, and Z3
-  // (the cut-off channel's link axis) its 2004 in every run.
+  // 127); before, a drive simulator starved at the E-stop gave 2004 and 2006 in half the runs.
+  // The cut link axis (Z3) is left out: its node waits for its lost owner until the owner's DDS
+  // lease runs out (about 300 ms here, enough for a 2004 before the change), and that wait is
+  // DDS's timing, not this machine's.
+  const std::regex drive_alarm(R"(alarm: (\S+) (2004|2006) )");
   for (const std::string host : {"ncu1", "ncu2", "ncu3"}) {
     const std::string out = slurp(cell.log(host) + ".out");
-    EXPECT_EQ(out.find(" 2004 drive does not answer SYNC"), std::string::npos) << host << out;
-    EXPECT_EQ(out.find(" 2006 no heartbeat"), std::string::npos) << host << out;
+    for (auto it = std::sregex_iterator(out.begin(), out.end(), drive_alarm);
+         it != std::sregex_iterator(); ++it) {
+      EXPECT_EQ((*it)[1], "Z3") << host << ": " << it->str() << "\n" << out;
+    }
   }
 }
 
@@ -404,6 +410,7 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
   using Range = std::pair<std::int64_t, std::int64_t>;
   std::map<std::uint64_t, Range> due_range;       // by cycle
   std::map<std::uint64_t, Range> sync_due_range;  // by the cycle a SYNC belongs to
+  std::map<std::uint64_t, int> sync_hosts;        // how many hosts' SYNCs of that cycle
   const auto widen = [](std::map<std::uint64_t, Range>& ranges, std::uint64_t cycle,
                         std::int64_t t) {
     auto [it, fresh] = ranges.try_emplace(cycle, t, t);
@@ -435,8 +442,9 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
     const bool producer = bus != nullptr && bus->sync_producer == axis;
     EXPECT_TRUE(producer || !e.contains("sync_cycle"))
         << "only a SYNC producer sends SYNC " << e.dump();
-    if (e.contains("sync_cycle")) {
+    if (producer && e.contains("sync_cycle")) {
       sync_producers_seen.insert(axis);
+      ++sync_hosts[e["sync_cycle"].get<std::uint64_t>()];
       widen(sync_due_range, e["sync_cycle"].get<std::uint64_t>(),
             e["sync_due_ns"].get<std::int64_t>() - std::int64_t{bus->sync_offset_us} * 1000 -
                 true_offset.at(host));
@@ -445,6 +453,10 @@ TEST(Hosts, RealtimeCyclesAreDueAtOneMachineTimeOnHostsWhoseClocksDiffer) {
   EXPECT_EQ(hosts_seen.size(), 3U);
   EXPECT_EQ(sync_producers_seen.size(), 3U) << "one SYNC producer per host's bus";
   ASSERT_GT(ticks, 100U);
+  EXPECT_GT(std::count_if(sync_hosts.begin(), sync_hosts.end(),
+                          [](const auto& c) { return c.second == 3; }),
+            100)
+      << "cycles whose SYNC is in the trace from every host";
   for (const auto* ranges : {&due_range, &sync_due_range}) {
     std::size_t misaligned = 0;
     for (const auto& [cycle, range] : *ranges) {

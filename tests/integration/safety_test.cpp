@@ -6,6 +6,7 @@
 #include "common/clock/cycle_clock.hpp"
 #include "common/process/exit_deadline.hpp"
 #include "common/process/process_node.hpp"
+#include "launch/launcher.hpp"
 
 #include <gtest/gtest.h>
 
@@ -190,8 +191,9 @@ TEST(Safety, CrashedChildMakesLaunchStopEverythingAndExitNonZero) {
 }
 
 // A realtime machine that needs more CPU than the host has starves every ordinary process, the
-// launcher's middleware threads among them. Here two busy loops at the machine's highest priority
-// (SCHED_FIFO 40, its axis nodes' cycle threads), one a core, stand for such a machine for 8 s: the
+// launcher's middleware threads among them. Here two busy loops at its axis nodes' cycle priority
+// (SCHED_FIFO 40; only the SYNC timers' short sends run above), one a core, stand for such a
+// machine for 8 s: the
 // machine's processes cannot run beside them, and no channel is heard. The launcher's supervising
 // thread runs above them and E-stops the machine after 5 s of silence; the stop goes through once
 // the loops end.
@@ -208,7 +210,7 @@ TEST(Safety, ARealtimeMachineTheHostCannotKeepUpWithIsStoppedByItsLauncher) {
   sched_param param{};
   EXPECT_EQ(::sched_getscheduler(launch.pid()), SCHED_FIFO);
   ASSERT_EQ(::sched_getparam(launch.pid(), &param), 0);
-  EXPECT_EQ(param.sched_priority, mcnc::clock::kAxisCyclePriority + 2);
+  EXPECT_EQ(param.sched_priority, mcnc::launch::kSupervisorPriority);
   std::vector<std::unique_ptr<Background>> loops;
   for (int core = 0; core < 2; ++core) {
     // Each ends by its own clock: nothing of lower priority could end it.

@@ -5,11 +5,16 @@
 #include "axisnode/link/drive_link.hpp"
 #include "canopen/cia402/cia402_state.hpp"
 #include "canopen/cia402/drive_pdos.hpp"
+#include "common/clock/cycle_clock.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <functional>
+#include <map>
 #include <string>
+#include <thread>
 
 using namespace mcnc;
 using namespace std::chrono_literals;
@@ -162,4 +167,50 @@ TEST(DriveLink, TheSyncProducerCountsSyncsOfAnotherProducer) {
     ASSERT_EQ(l.link.read(time, kPeriodNs), DriveStatus::ok);
   }
   EXPECT_EQ(l.link.state().foreign_syncs, 3U);
+}
+
+// Decision 128: in realtime the SYNC producer's timer follows the machine's start on this
+// host's clock as the host's offset estimate is refined, by 1 % of the cycle a SYNC at most, and
+// tells the latest SYNC it sent.
+TEST(DriveLink, TheTimedSyncsFollowTheMachineStartByBoundedSteps) {
+  Link l;
+  canopen::NodeStartupConfig startup{3};
+  startup.pdos = canopen::spindle_pdos();
+  ASSERT_EQ(l.link.configure(startup, 5s), std::nullopt);
+  constexpr std::int64_t kOffsetNs = 1'000'000;
+  const std::int64_t start = clock::monotonic_ns() + 10'000'000;
+  axisnode::DriveActivation activation;
+  activation.sync_timer = canopen::SyncSchedule(start, kPeriodNs, kOffsetNs);
+  l.link.activate(activation);
+  // How far each SYNC sent is from the schedule it started with.
+  std::map<std::uint64_t, std::int64_t> moved;
+  const auto watch_until = [&](std::size_t syncs) {
+    const auto give_up = std::chrono::steady_clock::now() + 20s;
+    while (moved.size() < syncs && std::chrono::steady_clock::now() < give_up) {
+      axisnode::SentSync s;
+      if (l.link.latest_sync(s)) {
+        moved[s.index] =
+            s.due_ns - (start + static_cast<std::int64_t>(s.index) * kPeriodNs + kOffsetNs);
+        EXPECT_GE(s.late_ns, 0) << s.index;
+      }
+      std::this_thread::sleep_for(200us);
+    }
+  };
+  watch_until(3);
+  l.link.follow_machine_start(start + 70'000);  // the estimate moved 70 us
+  watch_until(20);
+  l.link.deactivate(canopen::DriveCommand{});
+  ASSERT_GE(moved.size(), 20U);
+  std::int64_t before = 0;
+  std::uint64_t before_index = moved.begin()->first;
+  for (const auto& [index, shift] : moved) {
+    EXPECT_GE(shift, before) << "SYNC " << index << ": the start only moves toward the estimate";
+    // A SYNC the watch did not see in between moved it too.
+    EXPECT_LE(shift - before,
+              20'000 * static_cast<std::int64_t>(std::max<std::uint64_t>(1, index - before_index)))
+        << "SYNC " << index << ": 1 % of 2 ms a SYNC at most";
+    before = shift;
+    before_index = index;
+  }
+  EXPECT_EQ(before, 70'000) << "the SYNCs reach the new start and stay on it";
 }

@@ -6,6 +6,9 @@
 // that its RouDi can be watched and killed without touching the suite's.
 #include "harness.hpp"
 
+#include "common/clock/cycle_clock.hpp"
+#include "launch/host_roudi.hpp"
+
 #include <gtest/gtest.h>
 
 #include <sched.h>
@@ -247,10 +250,12 @@ TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcesses) {
                ? param.sched_priority
                : 0;
   };
-  // The axis node's main thread runs its cycles, at the machine's highest priority once the run
-  // has started (its other threads run below it, decision 55).
-  EXPECT_TRUE(eventually([&] { return fifo_priority(axis) == 40; }, 10s));
-  EXPECT_EQ(fifo_priority(roudi), 41);
+  // The axis node's main thread runs its cycles, at the axis cycle priority once the run has
+  // started (its other threads run below it, decision 55; only its SYNC timer above, decision
+  // 128); RouDi above all of them.
+  EXPECT_TRUE(
+      eventually([&] { return fifo_priority(axis) == mcnc::clock::kAxisCyclePriority; }, 10s));
+  EXPECT_EQ(fifo_priority(roudi), mcnc::launch::kRoudiPriority);
   launch.kill(SIGTERM);
   EXPECT_NE(launch.wait(60s), -1000) << "launch did not exit";
   EXPECT_TRUE(pids_with_arg(roudi_config).empty()) << "the launcher stops the RouDi it started";

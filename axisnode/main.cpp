@@ -183,9 +183,9 @@ int main(int argc, char** argv) {
     // (the SYNC producer once the bus's other nodes are quiet too). The feedback goes on, so
     // that a machine still running steps on and sees the axis stop.
     axisnode::DriveStopLimits stop_limits;
-    const int cycles_per_s = std::max(1, 1'000'000 / machine.cycle_us);
-    stop_limits.limit_cycles = 5 * cycles_per_s;
-    stop_limits.quiet_cycles = std::max(stop_limits.quiet_cycles, cycles_per_s / 20);
+    stop_limits.limit_cycles = static_cast<int>(machine.cycles_of(5000));
+    stop_limits.quiet_cycles =
+        std::max(stop_limits.quiet_cycles, static_cast<int>(machine.cycles_of(50)));
     // The same half second as the paced cycles' watch: a lockstep machine may step slower than
     // real time for a while.
     stop_limits.silent_drive_cycles = core.roles().controller.best_effort_watch_cycles;

@@ -100,10 +100,10 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
       startup.heartbeat_ms == 0
           ? 0
           : std::max(1, static_cast<int>(1.5 * startup.heartbeat_ms * 1000 / machine.cycle_us));
-  // Half a second: a lockstep machine paced after its E-stop may step slower than real time
-  // for a while (decision 127).
+  // Half a second: a lockstep node that paces itself once its axis is stopped may step slower
+  // than real time for a while (decision 127).
   setup.best_effort_watch_cycles =
-      std::max(machine.deadline_cycles, std::max(1, 1'000'000 / machine.cycle_us) / 2);
+      std::max(machine.deadline_cycles, static_cast<int>(machine.cycles_of(500)));
   setup.spindle = axis.type == config::AxisType::spindle;
   setup.homing = axis.has_homing;
   setup.torque_skip = axis.torque_skip;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -43,9 +44,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 64));
   app.add_option("--cycles", cycles, "cycles")->check(CLI::Range(10, 10'000'000));
   app.add_option("--cycle-us", cycle_us, "cycle in microseconds")->check(CLI::Range(100, 100'000));
+  std::string idle_cpus = "poll";
+  app.add_option("--idle-cpus", idle_cpus,
+                 "poll: as a realtime process of the machine (CPU latency 0, decision 138); "
+                 "kernel: the idle states the kernel chooses")
+      ->check(CLI::IsMember({"poll", "kernel"}));
   CLI11_PARSE(app, argc, argv);
 
-  std::printf("%s\n", mcnc::clock::prepare_realtime_process());
+  std::printf("%s\n", mcnc::clock::prepare_realtime_process(
+                          idle_cpus == "poll" ? mcnc::clock::IdleCpus::poll
+                                              : mcnc::clock::IdleCpus::kernel_default));
   const std::int64_t period_ns = static_cast<std::int64_t>(cycle_us) * 1000;
   // Far enough ahead for every thread to be asleep before the first due time.
   const std::int64_t origin_ns = mcnc::clock::monotonic_ns() + 50'000'000;

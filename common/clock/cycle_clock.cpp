@@ -1,11 +1,14 @@
 #include "common/clock/cycle_clock.hpp"
 
+#include "common/clock/cpu_latency.hpp"
+
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <ctime>
 
 namespace mcnc::clock {
@@ -35,21 +38,28 @@ std::uint64_t wait_for_cycle(std::int64_t origin_ns, std::int64_t period_ns, std
   return cycle;
 }
 
-const char* prepare_realtime_process() noexcept {
+const char* prepare_realtime_process(IdleCpus idle) noexcept {
   // The default 50 us timer slack would add to every wake-up.
   prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL);
   sched_param param{};
   param.sched_priority = kRealtimePriority;
   const bool fifo = sched_setscheduler(0, SCHED_FIFO, &param) == 0;
   const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
-  static_assert(kRealtimePriority == 38, "the descriptions below name it");
-  if (fifo && locked) {
-    return "timer slack 1 ns, SCHED_FIFO 38, memory locked";
+  // Held until the process ends: every cycle of its life wakes from a polling CPU.
+  static CpuLatencyRequest awake;
+  if (idle == IdleCpus::poll) {
+    awake = CpuLatencyRequest(0);
   }
-  if (fifo) {
-    return "timer slack 1 ns, SCHED_FIFO 38 (mlockall not permitted)";
-  }
-  return "timer slack 1 ns (SCHED_FIFO not permitted)";
+  static_assert(kRealtimePriority == 38, "the description below names it");
+  static char description[160];
+  std::snprintf(description, sizeof description, "timer slack 1 ns, %s, %s, %s",
+                fifo ? "SCHED_FIFO 38" : "SCHED_FIFO not permitted",
+                locked ? "memory locked" : "mlockall not permitted",
+                idle == IdleCpus::kernel_default ? "idle CPUs as the kernel sets them"
+                : awake.held()                   ? "idle CPUs poll (CPU latency 0)"
+                                                 : "idle CPUs as the kernel sets them (no CPU "
+                                                   "latency request permitted)");
+  return description;
 }
 
 bool raise_realtime_thread(int priority) noexcept {

@@ -27,11 +27,14 @@ inline constexpr int kRealtimePriority = 38;
 inline constexpr int kCyclePriority = 39;
 inline constexpr int kAxisCyclePriority = 40;
 inline constexpr int kSyncPriority = 41;
-// Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted.
-// Call it first thing in main(), before any thread starts: threads inherit the policy, and the
-// DDS and CAN receive threads must not wait behind ordinary work. Returns a short description
-// of what was applied (for the log).
-const char* prepare_realtime_process() noexcept;
+// Whether a realtime process asks the kernel to keep idle CPUs polling (CpuLatencyRequest at 0
+// for the process's life, decision 138) or leaves them to the kernel's idle states.
+enum class IdleCpus { poll, kernel_default };
+// Best effort for the realtime clock: 1 ns timer slack, SCHED_FIFO and mlockall where permitted,
+// and idle CPUs that poll. Call it first thing in main(), before any thread starts: threads
+// inherit the policy, and the DDS and CAN receive threads must not wait behind ordinary work.
+// Returns a short description of what was applied (for the log). Call it once.
+const char* prepare_realtime_process(IdleCpus idle = IdleCpus::poll) noexcept;
 // Raises the calling thread (a cycle thread, or an axis node's CAN threads) to `priority` when
 // it runs at SCHED_FIFO (prepare_realtime_process() was permitted). False when it does not, or
 // may not.

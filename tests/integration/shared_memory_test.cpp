@@ -222,11 +222,24 @@ TEST(SharedMemory, AKilledRoudiEStopsTheMachineAndTheNextRunStartsItsOwn) {
   EXPECT_EQ(roudi_holdings().chunks_in_use, -1) << "the launcher stops the RouDi it started";
 }
 
+// Whether process `pid` has `path` open.
+bool holds_open(pid_t pid, const std::string& path) {
+  std::error_code error;
+  for (const auto& fd :
+       std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/fd", error)) {
+    if (std::filesystem::read_symlink(fd.path(), error) == path) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // RouDi removes a process whose keep-alive it has not handled for 1.5 s. The threads of a
 // realtime machine run at SCHED_FIFO, above every ordinary process: the RouDi the launcher
 // starts runs above them, so that no load of the host starves it into removing processes that
-// still run (docs/decisions.md 37).
-TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcesses) {
+// still run (docs/decisions.md 37). The machine's processes keep idle CPUs polling while they
+// run (decision 138).
+TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcessesWhichKeepIdleCpusPolling) {
   isolate_iceoryx_host();
   const TestMachine machine = small_lathe_on_shared_memory(172);
   Background launch({bin("mcnc"), "run", machine.path(), "--clock", "realtime", "--program",
@@ -256,6 +269,8 @@ TEST(SharedMemory, ARealtimeMachinesRoudiRunsAboveItsProcesses) {
   EXPECT_TRUE(
       eventually([&] { return fifo_priority(axis) == mcnc::clock::kAxisCyclePriority; }, 10s));
   EXPECT_EQ(fifo_priority(roudi), mcnc::launch::kRoudiPriority);
+  // Its CPU latency request is an open file: the kernel drops it when the process ends.
+  EXPECT_TRUE(holds_open(axis, "/dev/cpu_dma_latency"));
   launch.kill(SIGTERM);
   EXPECT_NE(launch.wait(60s), -1000) << "launch did not exit";
   EXPECT_TRUE(pids_with_arg(roudi_config).empty()) << "the launcher stops the RouDi it started";

@@ -98,6 +98,13 @@ def alignment(events):
     return spreads(due), spreads(woke), spreads(sync_due), spreads(sync_sent)
 
 
+def print_alarms(events):
+    """The first alarms of a run that did not end well: where its figures stop, and why."""
+    for e in [e for e in events if e["ev"] == "alarm"][:4]:
+        print("  alarm %s at cycle %s from %s: %s"
+              % (e.get("number"), e.get("cycle"), e.get("src"), e.get("text", "")))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--build", default=os.path.join(SOURCE, "build"))
@@ -114,6 +121,8 @@ def main():
                                           "CH2": "launch/programs/part_transfer_ch2.nc"},
                              ["--trace-pos-every", "1"], "mhr1")
     print("part transfer: exit %d" % r.returncode)
+    if r.returncode != 0:
+        print_alarms(events)
     for e in events:
         if e["ev"] == "clock":
             print("  %s: estimated offset %+.1f us (+-%.1f us, %d exchanges), true %+.1f us, "
@@ -150,6 +159,7 @@ def main():
         print("  last arrival to all released: median %.0f cycles, p99 %d cycles, max %d cycles"
               % (statistics.median(lat), pct(lat, 0.99), max(lat)))
     if r.returncode != 0:
+        print_alarms(events)
         print(r.stdout[-1500:])
 
 

@@ -264,6 +264,10 @@ struct Command {
   enum class Normal : std::uint8_t { off, left, right, hold };
   Normal normal = Normal::off;
   std::array<int, 2> normal_plane{};
+  // The channel axis whose travel the feed does not count, -1: none (not printed). The normal
+  // direction axis turning with an arc: F is the tool's feed along the path in the plane, and
+  // the axis turns in the time that takes, as fast as its own limits allow (decision 139).
+  int feed_without_axis = -1;
   // Chip breaking in force for this cutting move (G98.1/G99.1; not printed: the interpreter
   // splits the move before it leaves): the path length of one spindle revolution (0: none),
   // the revolutions of feed between breaks (Q) and the break (P: > 0 a dwell of P

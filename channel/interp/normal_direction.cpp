@@ -105,6 +105,7 @@ void NormalDirection::turn(std::vector<Command>& list, std::size_t from) {
         double sweep = path::arc_sweep(p.from, p.move);
         sweep += (sweep < 0.0 ? -1.0 : 1.0) * 2.0 * path::kPi * list[k].turns;
         angle_ += sweep * kDegrees;
+        list[k].feed_without_axis = settings_.axis;  // F is the feed along the arc in the plane
       }
     }
     list[k].to[rot] = angle_;

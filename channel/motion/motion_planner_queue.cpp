@@ -394,6 +394,14 @@ PushResult MotionPlanner::push_path(const interp::Command& c, Feed feed_kind) no
   s.exact_stop = c.exact_stop || feed_kind == Feed::rapid || single_block_;
   s.feed_kind = feed_kind;
   s.programmed = feed_kind == Feed::per_min ? c.feed / 60.0 : c.feed;
+  if (feed_kind != Feed::rapid && c.feed_without_axis >= 0) {
+    // The feed holds along the path the other axes make; the planner runs on the whole path,
+    // so the same time there is a proportionally higher speed (the axes' limits still cap it).
+    const double counted = s.geometry.length_without(static_cast<std::size_t>(c.feed_without_axis));
+    if (counted > 1e-9) {
+      s.programmed *= s.geometry.length() / counted;
+    }
+  }
   s.spindle = spindle_;
   set_segment_limits(s);
   tail_pos_ = c.to;

@@ -107,6 +107,15 @@ PathSegment PathSegment::blend(const AxisVector& from, const AxisVector& to, con
   return p;
 }
 
+double PathSegment::length_without(std::size_t axis) const noexcept {
+  if (axis >= axes_) {
+    return length_;
+  }
+  // A line's and an arc's helical share of `axis` are both straight: take it off the square.
+  const double along = arc_ ? h_[axis] : end_[axis] - start_[axis];
+  return std::sqrt(std::max(0.0, length_ * length_ - along * along));
+}
+
 void PathSegment::finish_arc() noexcept {
   const double r_mean = (r0_ + r1_) / 2.0;
   double h2 = 0.0;

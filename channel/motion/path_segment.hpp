@@ -40,6 +40,9 @@ class PathSegment {
 
   [[nodiscard]] bool is_arc() const noexcept { return arc_; }
   [[nodiscard]] double length() const noexcept { return length_; }
+  // The length of the path without the travel of `axis`, an axis that moves straight along the
+  // segment (any axis of a line, a helical axis of an arc); an arc's circle stays whole.
+  [[nodiscard]] double length_without(std::size_t axis) const noexcept;
   [[nodiscard]] const AxisVector& start() const noexcept { return start_; }
   [[nodiscard]] const AxisVector& end() const noexcept { return end_; }
 

@@ -35,9 +35,9 @@ interp::InterpreterConfig mill_channel() {
 
 class NormalRig : public LockstepRig {
  public:
-  NormalRig()
-      : LockstepRig(mill_channel(), alike_axes(kAxes, kDt),
-                    ChannelSetup{kAxes, {0.001, 0.001, 0.001, 0.001}, kDt}, kAxes, true) {}
+  explicit NormalRig(const motion::MotionConfig& axes = alike_axes(kAxes, kDt))
+      : LockstepRig(mill_channel(), axes, ChannelSetup{kAxes, {0.001, 0.001, 0.001, 0.001}, kDt},
+                    kAxes, true) {}
 
   struct Sample {
     double x;
@@ -54,19 +54,22 @@ class NormalRig : public LockstepRig {
   }
 };
 
-TEST(ChannelNormalDirection, AxisPointsNormalToTheOffsetPathWhileCutting) {
-  NormalRig rig;
-  // The golden gsk-B1-L15-17-mill-g411-cutter-compensation's square, G40.1 before the G40 move
-  // (which the look-ahead then still holds the last side of the square for).
+// The golden gsk-B1-L15-17-mill-g411-cutter-compensation's square, G40.1 before the G40 move
+// (which the look-ahead then still holds the last side of the square for), run to its end.
+void run_the_square(NormalRig& rig) {
   rig.load(
       "G00 X0 Y-20 Z0\nG41.1\nG41 D1 G01 X0 Y0 F1200\nY40\nX40\nY0\nX0\nG40.1\n"
       "G40 G00 X0 Y-20\nM30\n");
-  // The planner counts C's degrees in the corner arcs' length (90 degrees at F1200: 4.5 s each).
   rig.ctl().request_start();
   ASSERT_TRUE(rig.run_until(
       [](const CycleOutput& o) { return o.program_end || o.state == ChannelState::alarm; },
       100000));
   ASSERT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+}
+
+TEST(ChannelNormalDirection, AxisPointsNormalToTheOffsetPathWhileCutting) {
+  NormalRig rig;
+  ASSERT_NO_FATAL_FAILURE(run_the_square(rig));
   int cutting = 0;
   double worst = 0.0;
   for (std::size_t i = 1; i < rig.samples.size(); ++i) {
@@ -83,11 +86,53 @@ TEST(ChannelNormalDirection, AxisPointsNormalToTheOffsetPathWhileCutting) {
     ++cutting;
   }
   EXPECT_GT(cutting, 5000);  // 160 mm and more at 20 mm/s
-  // Within a cycle's turn on the corner arcs (C at F1200 there: 0.02 degrees a cycle).
+  // Within a cycle's turn on the corner arcs (C at its limit of 100 degrees/s there: 0.1
+  // degrees a cycle, the planner's path speed shared between C and the circle).
   EXPECT_LT(worst, 0.1);
   // G40.1: the G40 rapid leaves C at the left normal of the last side (along -X): 270.
   EXPECT_NEAR(std::remainder(rig.samples.back().c - 270.0, 360.0), 0.0, 1e-9);
   EXPECT_NEAR(rig.samples.back().y, -20.0, 1e-9);
+}
+
+// FANUC's feed under normal direction control is the tool's along the path in the plane: the
+// corner arcs of radius 1 at F1200 take 1.57 mm / 20 mm/s = 79 ms each, C turning its 90
+// degrees in that time, not the 4.5 s that counting C's degrees as millimetres of path took
+// (decision 139). The axes' limits are set high enough here not to slow the turn: the planner
+// bounds an arc's acceleration along its path by the smallest limit of its axes, X's and Y's
+// too, though they take a sixtieth of the path.
+TEST(ChannelNormalDirection, TheFeedIsTheToolsAlongTheCornerArcsInThePlane) {
+  motion::MotionConfig axes = alike_axes(kAxes, kDt);
+  for (std::size_t i = 0; i < kAxes; ++i) {
+    axes.axes[i] = motion::AxisDynamics{3000.0, 200000.0, 1.0e8};
+  }
+  NormalRig rig(axes);
+  ASSERT_NO_FATAL_FAILURE(run_the_square(rig));
+  // The corner arcs: cycles of the cutting lines in which X or Y and C move together.
+  std::vector<int> arc_cycles;
+  std::vector<double> arc_speeds;  // mm/s in the plane
+  bool in_arc = false;
+  for (std::size_t i = 1; i < rig.samples.size(); ++i) {
+    const auto& p = rig.samples[i - 1];
+    const auto& q = rig.samples[i];
+    const double in_plane = std::hypot(q.x - p.x, q.y - p.y);
+    // C turns by 90 degrees on the square's three outside corners, in steps of about a degree.
+    const bool arc = q.line >= 3 && q.line <= 7 && in_plane > 1e-6 && std::fabs(q.c - p.c) > 0.01;
+    if (arc && !in_arc) {
+      arc_cycles.push_back(0);
+    }
+    if (arc) {
+      ++arc_cycles.back();
+      arc_speeds.push_back(in_plane / kDt);
+    }
+    in_arc = arc;
+  }
+  ASSERT_EQ(arc_cycles.size(), 3U) << ::testing::PrintToString(arc_cycles);
+  for (const int cycles : arc_cycles) {
+    EXPECT_GE(cycles, 75);
+    EXPECT_LE(cycles, 100);  // 79 ms at F1200, and the few cycles it takes to reach it
+  }
+  std::sort(arc_speeds.begin(), arc_speeds.end());
+  EXPECT_NEAR(arc_speeds[arc_speeds.size() / 2], 20.0, 0.2);  // the median: F1200 in the plane
 }
 
 }  // namespace

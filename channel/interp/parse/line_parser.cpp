@@ -57,6 +57,54 @@ constexpr std::array<bool, 256> kCommentMarks = [] {
   return marks;
 }();
 
+// The characters a line must be rewritten for before it is parsed: comment marks and lower case.
+// Most lines have none, and are parsed as they are read.
+constexpr std::array<bool, 256> kRewritten = [] {
+  std::array<bool, 256> rewritten = kCommentMarks;
+  for (int c = 'a'; c <= 'z'; ++c) {
+    rewritten[static_cast<std::size_t>(c)] = true;
+  }
+  return rewritten;
+}();
+
+// The digits of a literal from `i`: integer digits, then an optional point and its digits.
+struct Digits {
+  std::size_t end = 0;         // the first character after them
+  std::uint64_t mantissa = 0;  // all digits as one integer: exact up to kExactDigits
+  int digits = 0;
+  int decimals = 0;
+  bool point = false;
+};
+
+// The run of digits from `i` taken into `mantissa`; the index after it. One unsigned comparison
+// tells a digit: any other character's distance from '0' is above 9.
+inline std::size_t take_digits(const char* t, std::size_t n, std::size_t i,
+                               std::uint64_t& mantissa) {
+  for (unsigned digit = 0;
+       i < n &&
+       (digit = static_cast<unsigned>(static_cast<unsigned char>(t[i])) - unsigned{'0'}) <= 9;
+       ++i) {
+    mantissa = mantissa * 10 + digit;
+  }
+  return i;
+}
+
+inline Digits read_digits(const char* t, std::size_t n, std::size_t i) {
+  Digits d;
+  std::uint64_t mantissa = 0;
+  const std::size_t point = take_digits(t, n, i, mantissa);
+  d.digits = static_cast<int>(point - i);
+  d.end = point;
+  if (point < n && t[point] == '.') {
+    d.point = true;
+    d.end = take_digits(t, n, point + 1, mantissa);
+    d.decimals = static_cast<int>(d.end - point - 1);
+    d.digits += d.decimals;
+  }
+  d.mantissa = mantissa;
+  return d;
+}
+
 std::string describe_char(char c) {
   const auto byte = static_cast<unsigned char>(c);
   char buf[32];
@@ -72,7 +120,7 @@ std::string describe_char(char c) {
 // and cut at `;` or `//`.
 class LineParser {
  public:
-  LineParser(const std::string& text, Line& line, std::optional<ParseError>& error, Arena& arena)
+  LineParser(std::string_view text, Line& line, std::optional<ParseError>& error, Arena& arena)
       : text_(text), line_(line), error_(error), arena_(arena) {}
 
   void run() {
@@ -400,9 +448,12 @@ class LineParser {
       if (at_end()) {
         return;
       }
+      const char c = peek();
+      if (plain_word(s, c)) {
+        continue;
+      }
       Word w;
       w.column = column(pos_);
-      const char c = peek();
       if (c == ',') {
         ++pos_;
         if (at_end() || (peek() != 'C' && peek() != 'R' && peek() != 'A')) {
@@ -473,6 +524,63 @@ class LineParser {
     }
   }
 
+  // Whether digits `d` end the literal: at least one, and not followed by a second point, a
+  // macro operand or '='.
+  static bool plain_literal_end(const Digits& d, const char* t, std::size_t n) {
+    const std::size_t i = d.end;
+    return d.digits > 0 && !(i < n && (t[i] == '.' || t[i] == '#' || t[i] == '[' || t[i] == '='));
+  }
+  // The value of at most kExactDigits digits: an exact integer over an exact power of ten.
+  static double exact_magnitude(const Digits& d) {
+    return static_cast<double>(d.mantissa) / kPowersOfTen[static_cast<std::size_t>(d.decimals)];
+  }
+
+  // The most common word, a one-letter address with a literal right after it (`X40.`, `Z-10.`,
+  // `G01`): read in one go, with the rules of parse_index and parse_value. False, with nothing
+  // read, for any other word (blanks inside it, a sub-index, an expression, anything malformed),
+  // which the general path reads.
+  bool plain_word(Statement& s, char c) {
+    const char* const t = text_.data();
+    const std::size_t n = text_.size();
+    const std::size_t start = pos_;
+    std::size_t i = start + 1;
+    if (c == 'O' || !is_letter(c) || i >= n) {
+      return false;
+    }
+    bool negative = false;
+    if (t[i] == '+' || t[i] == '-') {
+      negative = t[i] == '-';
+      ++i;
+    }
+    if (i >= n || !(is_digit(t[i]) || t[i] == '.')) {
+      return false;
+    }
+    const Digits d = read_digits(t, n, i);
+    if (d.digits > kExactDigits || !plain_literal_end(d, t, n)) {
+      return false;
+    }
+    if (!negative && !d.point && d.digits <= 3) {
+      // Digits followed by '=' after blanks are a sub-index (parse_index).
+      std::size_t j = d.end;
+      while (j < n && is_blank(t[j])) {
+        ++j;
+      }
+      if (j < n && t[j] == '=') {
+        return false;
+      }
+    }
+    Word w;
+    w.column = column(start);
+    w.address = Address{c, 0, false};
+    w.has_point = d.point;
+    const double magnitude = exact_magnitude(d);
+    w.value = negative ? -magnitude : magnitude;
+    arena_.words.push_back(w);
+    ++s.word_count;
+    pos_ = d.end;
+    return true;
+  }
+
   void parse_value(Statement& s, Word& w) {
     skip_blanks();
     const char* const t = text_.data();
@@ -488,35 +596,17 @@ class LineParser {
     }
     if (i < n && (is_digit(t[i]) || t[i] == '.')) {
       const std::size_t begin = i;
-      int digits = 0;
-      int decimals = 0;
-      bool point = false;
-      std::uint64_t mantissa = 0;  // the digits as one integer: exact up to kExactDigits
-      while (i < n && is_digit(t[i])) {
-        mantissa = mantissa * 10 + static_cast<std::uint64_t>(t[i] - '0');
-        ++i;
-        ++digits;
-      }
-      if (i < n && t[i] == '.') {
-        point = true;
-        ++i;
-        while (i < n && is_digit(t[i])) {
-          mantissa = mantissa * 10 + static_cast<std::uint64_t>(t[i] - '0');
-          ++i;
-          ++digits;
-          ++decimals;
-        }
-      }
-      w.has_point = point;
-      if (digits == 0 || (i < n && (t[i] == '.' || t[i] == '#' || t[i] == '[' || t[i] == '='))) {
+      const Digits d = read_digits(t, n, i);
+      i = d.end;
+      w.has_point = d.point;
+      if (!plain_literal_end(d, t, n)) {
         fail_at_column(alarm::kMalformedNumber, "malformed number after " + name_of(w.address),
                        w.column);
         return;
       }
       double magnitude = 0.0;
-      if (digits <= kExactDigits) {
-        magnitude =
-            static_cast<double>(mantissa) / kPowersOfTen[static_cast<std::size_t>(decimals)];
+      if (d.digits <= kExactDigits) {
+        magnitude = exact_magnitude(d);
       } else {
         const auto [ptr, ec] = std::from_chars(t + begin, t + i, magnitude);
         if (ec == std::errc::result_out_of_range || magnitude > 1e15) {
@@ -560,7 +650,7 @@ class LineParser {
     return n;
   }
 
-  const std::string& text_;
+  std::string_view text_;
   Line& line_;
   std::optional<ParseError>& error_;
   Arena& arena_;
@@ -580,6 +670,16 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
   line.line = line_number;
   if (!text.empty() && text.back() == '\r') {
     text.remove_suffix(1);
+  }
+  std::optional<ParseError> error;
+  bool rewritten = false;
+  for (const char c : text) {
+    rewritten |= kRewritten[static_cast<unsigned char>(c)];
+  }
+  if (!rewritten) {
+    LineParser parser(text, line, error, arena);
+    parser.run();
+    return error;
   }
   // Blank comments (keeping columns), remember the first one, cut at `;` or `//`, upper-case.
   // One buffer per thread: parsing a large file does not allocate a string per line.
@@ -621,7 +721,6 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
     }
   }
   work.resize(end);
-  std::optional<ParseError> error;
   LineParser parser(work, line, error, arena);
   parser.run();
   return error;

@@ -120,7 +120,8 @@ std::string describe_char(char c) {
 // and cut at `;` or `//`.
 class LineParser {
  public:
-  LineParser(std::string_view text, Line& line, std::optional<ParseError>& error, Arena& arena)
+  // `arena` nullptr: check only, keeping no words, expressions or assignments.
+  LineParser(std::string_view text, Line& line, std::optional<ParseError>& error, Arena* arena)
       : text_(text), line_(line), error_(error), arena_(arena) {}
 
   void run() {
@@ -260,8 +261,11 @@ class LineParser {
       return -1;
     }
     pos_ += r.end;
-    arena_.expressions.push_back(std::move(r.expression));
-    return static_cast<int>(arena_.expressions.size()) - 1;
+    if (arena_ == nullptr) {
+      return 0;
+    }
+    arena_->expressions.push_back(std::move(r.expression));
+    return static_cast<int>(arena_->expressions.size()) - 1;
   }
 
   // `[cond]` after IF / ELIF / WHILE.
@@ -303,7 +307,9 @@ class LineParser {
         fail_at_column(a.alarm.number, std::string(a.alarm.text()), a.alarm.column);
         return;
       }
-      s.assignment = std::make_unique<macro::Assignment>(std::move(a.assignment));
+      if (arena_ != nullptr) {
+        s.assignment = std::make_unique<macro::Assignment>(std::move(a.assignment));
+      }
       pos_ = text_.size();
       return;
     }
@@ -438,7 +444,7 @@ class LineParser {
 
   void parse_block(Statement& s) {
     s.kind = StatementKind::block;
-    s.first_word = static_cast<std::uint32_t>(arena_.words.size());
+    s.first_word = arena_ == nullptr ? 0 : static_cast<std::uint32_t>(arena_->words.size());
     parse_words(s);
   }
 
@@ -493,7 +499,7 @@ class LineParser {
         parse_value(s, w);
       }
       if (!failed()) {
-        arena_.words.push_back(w);
+        keep(w);
         ++s.word_count;
       }
     }
@@ -521,6 +527,12 @@ class LineParser {
     if (j < n && t[j] == '=') {
       std::from_chars(t + digits, t + i, w.index);
       pos_ = j + 1;
+    }
+  }
+
+  void keep(const Word& w) {
+    if (arena_ != nullptr) {
+      arena_->words.push_back(w);
     }
   }
 
@@ -575,7 +587,7 @@ class LineParser {
     w.has_point = d.point;
     const double magnitude = exact_magnitude(d);
     w.value = negative ? -magnitude : magnitude;
-    arena_.words.push_back(w);
+    keep(w);
     ++s.word_count;
     pos_ = d.end;
     return true;
@@ -653,7 +665,7 @@ class LineParser {
   std::string_view text_;
   Line& line_;
   std::optional<ParseError>& error_;
-  Arena& arena_;
+  Arena* arena_;
   std::size_t pos_ = 0;
 };
 
@@ -665,8 +677,11 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena) {
   return out;
 }
 
-std::optional<ParseError> parse_line_into(std::string_view text, int line_number, Arena& arena,
-                                          Line& line) {
+namespace {
+
+// parse_line_into, and check_line_into when `arena` is nullptr.
+std::optional<ParseError> parse_or_check(std::string_view text, int line_number, Arena* arena,
+                                         Line& line) {
   line.line = line_number;
   if (!text.empty() && text.back() == '\r') {
     text.remove_suffix(1);
@@ -708,9 +723,9 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
         return ParseError{alarm::kUnclosedComment, "comment '(' not closed on its line",
                           static_cast<int>(i) + 1};
       }
-      if (!have_message) {
-        arena.messages.emplace_back(text.substr(i + 1, close - i - 1));
-        line.message = static_cast<int>(arena.messages.size()) - 1;
+      if (!have_message && arena != nullptr) {
+        arena->messages.emplace_back(text.substr(i + 1, close - i - 1));
+        line.message = static_cast<int>(arena->messages.size()) - 1;
         have_message = true;
       }
       for (std::size_t j = i; j <= close; ++j) {
@@ -724,6 +739,17 @@ std::optional<ParseError> parse_line_into(std::string_view text, int line_number
   LineParser parser(work, line, error, arena);
   parser.run();
   return error;
+}
+
+}  // namespace
+
+std::optional<ParseError> parse_line_into(std::string_view text, int line_number, Arena& arena,
+                                          Line& line) {
+  return parse_or_check(text, line_number, &arena, line);
+}
+
+std::optional<ParseError> check_line_into(std::string_view text, int line_number, Line& line) {
+  return parse_or_check(text, line_number, nullptr, line);
 }
 
 }  // namespace mcnc::interp::parse

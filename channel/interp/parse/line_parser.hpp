@@ -29,5 +29,11 @@ LineParse parse_line(std::string_view text, int line_number, Arena& arena);
 // place); the parse error, if any (then `line` holds what was parsed before it).
 std::optional<ParseError> parse_line_into(std::string_view text, int line_number, Arena& arena,
                                           Line& line);
+// The syntax check of parse_line_into, without what only running the line needs: the same
+// error, if any, and in `line` (a default-constructed Line) its number, skip level, N number
+// and its statement's kind, label, column and `then` statement. No words, expressions,
+// assignments or messages are kept: its word indices refer to nothing.
+// A program's load checks the lines it does not keep this way (ParsedProgram).
+std::optional<ParseError> check_line_into(std::string_view text, int line_number, Line& line);
 
 }  // namespace mcnc::interp::parse

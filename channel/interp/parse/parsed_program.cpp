@@ -219,6 +219,16 @@ struct ParsedProgramLoader {
     checksum = checksum_line(checksum, raw.text);
     return std::nullopt;
   }
+  // Checks line `raw`, which the window does not keep, into `line`: its syntax error, if any.
+  static std::optional<ParseError> check(const program::RawLine& raw, std::uint64_t& checksum,
+                                         Line& line) {
+    line = Line{};
+    if (std::optional<ParseError> error = check_line_into(raw.text, raw.line, line)) {
+      return error;
+    }
+    checksum = checksum_line(checksum, raw.text);
+    return std::nullopt;
+  }
   // parse_program().
   static ParsedProgramResult load(const program::Program& program, StructureLimits limits);
 };
@@ -386,15 +396,17 @@ ParsedProgramResult ParsedProgramLoader::load(const program::Program& program,
   std::optional<ProgramAlarm> structure;  // reported when no line has a syntax error
   program::LineReader reader(*program.text, program.begin, program.end, program.first_line);
   program::RawLine raw;
-  ParsedProgram::Chunk scratch;
+  // The chunks past the window are checked, not kept: they are parsed again when the run
+  // reaches them, so the load builds nothing of their lines.
+  ParsedProgram::Chunk beyond_window;
+  Line checked;
   ParsedProgram::Chunk* chunk = nullptr;
   ParsedProgram::ChunkInfo info;
   const auto close_chunk = [&] {
     if (chunk == nullptr) {
       return;
     }
-    if (chunk == &scratch) {
-      scratch.clear();
+    if (chunk == &beyond_window) {
       p.slot_of_chunk_.push_back(-1);
     } else {
       chunk->seal();
@@ -413,14 +425,16 @@ ParsedProgramResult ParsedProgramLoader::load(const program::Program& program,
         p.slots_.push_back(std::make_unique<ParsedProgram::Chunk>());
         chunk = p.slots_.back().get();
       } else {
-        chunk = &scratch;
+        chunk = &beyond_window;
       }
     }
-    if (auto error = ParsedProgramLoader::add(*chunk, raw, info.checksum)) {
+    const bool kept = chunk != &beyond_window;
+    if (auto error = kept ? ParsedProgramLoader::add(*chunk, raw, info.checksum)
+                          : ParsedProgramLoader::check(raw, info.checksum, checked)) {
       out.alarm = ProgramAlarm{error->number, error->text, program.file, raw.line, error->column};
       return out;
     }
-    const Line& line = chunk->lines.back();
+    const Line& line = kept ? chunk->lines.back() : checked;
     if (line.sequence >= 0) {
       info.min_n = info.min_n < 0 ? line.sequence : std::min(info.min_n, line.sequence);
       info.max_n = std::max(info.max_n, line.sequence);

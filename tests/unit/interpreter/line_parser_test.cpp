@@ -6,7 +6,10 @@
 
 #include <charconv>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -111,6 +114,67 @@ TEST(LineParser, PlainWordsParseAsTheGeneralPathParsesThem) {
   EXPECT_EQ(parsed_words("S2=1000"), "S@1[2]=1000.000000 ");
   EXPECT_EQ(parsed_words("g01 x40. (a comment) z-10.;f500"),
             parsed_words("G01 X40.             Z-10."));
+}
+
+// What the syntax check sees of a line: its error and what the block structure and the jumps
+// need.
+std::string checked_shape(const std::optional<ParseError>& error, const Line& line) {
+  std::ostringstream out;
+  if (error) {
+    out << "error " << error->number << " at " << error->column << ": " << error->text;
+    return out.str();
+  }
+  out << line.line << " /" << line.skip_level << " N" << line.sequence << "@"
+      << line.sequence_column;
+  for (const Statement* s = &line.statement; s != nullptr; s = s->then.get()) {
+    out << " kind " << static_cast<int>(s->kind) << " label " << s->label << " column " << s->column
+        << " direction " << static_cast<int>(s->direction);
+  }
+  return out.str();
+}
+
+// The lines of the fuzz corpus (lathe and mill programs, and the inputs that once crashed the
+// interpreter) and of the example and conformance programs, each whole and cut after every
+// character (which makes most of them malformed): the check that a long program's load does
+// for the lines it does not keep gives the same error, number, text and column, as the full
+// parse, and the same N number and statement structure.
+TEST(LineParser, TheCheckGivesTheFullParsesErrorsAndStructure) {
+  const std::filesystem::path root(MCNC_SOURCE_DIR);
+  std::vector<std::filesystem::path> files;
+  for (const char* dir :
+       {"tests/fuzz/corpus", "tests/fuzz/crashes", "launch/programs", "tests/conformance"}) {
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(root / dir)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".nc") {
+        files.push_back(entry.path());
+      }
+    }
+  }
+  ASSERT_GT(files.size(), 100U);
+  int lines = 0;
+  int errors = 0;
+  for (const auto& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    std::string text;
+    int number = 0;
+    while (std::getline(in, text)) {
+      ++number;
+      for (std::size_t cut = 1; cut <= text.size(); ++cut) {
+        const std::string_view part = std::string_view(text).substr(0, cut);
+        Arena arena;
+        Line parsed;
+        const std::optional<ParseError> parse_error = parse_line_into(part, number, arena, parsed);
+        Line checked;
+        const std::optional<ParseError> check_error = check_line_into(part, number, checked);
+        ASSERT_EQ(checked_shape(check_error, checked), checked_shape(parse_error, parsed))
+            << file << ":" << number << ": " << part;
+        ++lines;
+        errors += parse_error ? 1 : 0;
+      }
+    }
+  }
+  // Both kinds were compared, many of each.
+  EXPECT_GT(errors, 10000);
+  EXPECT_GT(lines - errors, 10000);
 }
 
 }  // namespace

@@ -450,14 +450,11 @@ class LineParser {
 
   void parse_words(Statement& s) {
     while (!failed()) {
-      skip_blanks();
+      plain_words(s);
       if (at_end()) {
         return;
       }
       const char c = peek();
-      if (plain_word(s, c)) {
-        continue;
-      }
       Word w;
       w.column = column(pos_);
       if (c == ',') {
@@ -547,50 +544,59 @@ class LineParser {
     return static_cast<double>(d.mantissa) / kPowersOfTen[static_cast<std::size_t>(d.decimals)];
   }
 
-  // The most common word, a one-letter address with a literal right after it (`X40.`, `Z-10.`,
-  // `G01`): read in one go, with the rules of parse_index and parse_value. False, with nothing
-  // read, for any other word (blanks inside it, a sub-index, an expression, anything malformed),
-  // which the general path reads.
-  bool plain_word(Statement& s, char c) {
+  // The most common words, a one-letter address with a literal right after it (`X40.`,
+  // `Z-10.`, `G01`), from pos_ on: read in one go each, with the rules of parse_index and
+  // parse_value. Stops, at the start of the word after the blanks before it (or at the end),
+  // at any other word (blanks inside it, a sub-index, an expression, anything malformed), which
+  // the general path reads.
+  void plain_words(Statement& s) {
     const char* const t = text_.data();
     const std::size_t n = text_.size();
-    const std::size_t start = pos_;
-    std::size_t i = start + 1;
-    if (c == 'O' || !is_letter(c) || i >= n) {
-      return false;
-    }
-    bool negative = false;
-    if (t[i] == '+' || t[i] == '-') {
-      negative = t[i] == '-';
+    std::size_t i = pos_;
+    while (i < n && is_blank(t[i])) {
       ++i;
     }
-    if (i >= n || !(is_digit(t[i]) || t[i] == '.')) {
-      return false;
-    }
-    const Digits d = read_digits(t, n, i);
-    if (d.digits > kExactDigits || !plain_literal_end(d, t, n)) {
-      return false;
-    }
-    if (!negative && !d.point && d.digits <= 3) {
+    while (i < n) {
+      const std::size_t start = i;
+      const char c = t[start];
+      i = start + 1;
+      if (c == 'O' || !is_letter(c) || i >= n) {
+        i = start;
+        break;
+      }
+      bool negative = false;
+      if (t[i] == '+' || t[i] == '-') {
+        negative = t[i] == '-';
+        ++i;
+      }
+      if (i >= n || !(is_digit(t[i]) || t[i] == '.')) {
+        i = start;
+        break;
+      }
+      const Digits d = read_digits(t, n, i);
+      if (d.digits > kExactDigits || !plain_literal_end(d, t, n)) {
+        i = start;
+        break;
+      }
+      i = d.end;
+      while (i < n && is_blank(t[i])) {
+        ++i;
+      }
       // Digits followed by '=' after blanks are a sub-index (parse_index).
-      std::size_t j = d.end;
-      while (j < n && is_blank(t[j])) {
-        ++j;
+      if (i < n && t[i] == '=' && !negative && !d.point && d.digits <= 3) {
+        i = start;
+        break;
       }
-      if (j < n && t[j] == '=') {
-        return false;
-      }
+      Word w;
+      w.column = column(start);
+      w.address = Address{c, 0, false};
+      w.has_point = d.point;
+      const double magnitude = exact_magnitude(d);
+      w.value = negative ? -magnitude : magnitude;
+      keep(w);
+      ++s.word_count;
     }
-    Word w;
-    w.column = column(start);
-    w.address = Address{c, 0, false};
-    w.has_point = d.point;
-    const double magnitude = exact_magnitude(d);
-    w.value = negative ? -magnitude : magnitude;
-    keep(w);
-    ++s.word_count;
-    pos_ = d.end;
-    return true;
+    pos_ = i;
   }
 
   void parse_value(Statement& s, Word& w) {

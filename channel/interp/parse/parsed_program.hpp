@@ -1,6 +1,7 @@
 #pragma once
 // A program ready to run, read as a stream (issue 23, "programs stream"). Loading reads every
-// line once, in order: each line is parsed, so that a syntax error is an alarm before the
+// line once, in order: each line is parsed (those past the window only checked, as they are
+// parsed again when the run reaches them), so that a syntax error is an alarm before the
 // program moves anything, and the block structure is matched (WHILE-DO m with END m, IF with
 // ELIF/ELSE/ENDIF, within the nesting limits). What is kept of the whole program is what a jump
 // needs: where each chunk of kChunkLines lines is in the file, which N numbers it may hold, and

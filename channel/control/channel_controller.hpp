@@ -217,6 +217,7 @@ class ChannelController : private ChannelHost {
   void multi_skip_result(std::span<const double> latched) noexcept override {
     source_.multi_skip_result(latched, commanded_);
   }
+  void load_timer_result(std::uint32_t axes) noexcept override { source_.load_timer_result(axes); }
 
   const CycleOutput& run_cycle(std::uint64_t cycle,
                                std::span<const AxisFeedbackView> feedback) noexcept;

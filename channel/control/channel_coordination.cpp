@@ -43,7 +43,8 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
                                             setup.machine_axes, setup.polygon, setup.cam}),
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
       skip_(setup.axis_count, setup.probe_arm_cycles),
-      load_(setup.slots) {}
+      load_(setup.slots),
+      timers_(setup.slots) {}
 
 void ChannelCoordination::on_arrival(const coordination::SyncArrival& arrival) noexcept {
   mark_.on_arrival(arrival);  // a full table makes the next evaluation an alarm
@@ -245,7 +246,8 @@ std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
 }
 
 void ChannelCoordination::abandon_run() noexcept {
-  load_.cancel();  // the checks live in the program's run (decision 121)
+  load_.cancel();   // the checks live in the program's run (decision 121)
+  timers_.clear();  // so do the load timers
   under_way_ = {};
   withdraw_waits();
   held_ = std::monostate{};
@@ -679,20 +681,44 @@ void ChannelCoordination::run(TorqueDataStop& b, std::uint64_t /*cycle*/,
       }
     }
   } else {
-    // G10 L14 P0/P1: J in whole cycles, at least one.
+    // G10 L14 P0/P1 and P2-P5: J in whole cycles, at least one.
     coordination::LoadMonitor::Percent loads{};
     std::copy_n(b.values.begin(), std::min(b.values.size(), loads.size()), loads.begin());
     const auto cycles = static_cast<std::uint64_t>(std::ceil(b.filter_s / setup_.cycle_s - 1e-9));
-    load_.set(
-        b.every_move ? coordination::LoadWatch::every_move : coordination::LoadWatch::feed_moves,
-        b.axes, loads, cycles);
+    if (b.timer != 0) {
+      timers_.start(b.timer, b.axes, loads, cycles);
+    } else {
+      load_.set(
+          b.every_move ? coordination::LoadWatch::every_move : coordination::LoadWatch::feed_moves,
+          b.axes, loads, cycles);
+    }
   }
   end_held(b.block);
 }
 
+void ChannelCoordination::run(LoadTimerStop& b, std::uint64_t /*cycle*/,
+                              std::span<const AxisFeedbackView> /*feedback*/) noexcept {
+  // G10 L14 P20-P51: every block before it ended, so its timer holds their whole time.
+  start_held(b.block);
+  coordination::LoadTimers::Values seconds{};
+  std::copy_n(b.seconds.begin(), std::min(b.seconds.size(), seconds.size()), seconds.begin());
+  const std::uint32_t met =
+      timers_.check(b.timer, b.longer, b.axes, seconds, setup_.cycle_s, b.variable);
+  if (met != 0 && !b.variable) {
+    raise(timers_.alarm(), b.block.line);
+    return;
+  }
+  host_.load_timer_result(met);
+  end_held(b.block);
+}
+
 bool ChannelCoordination::watch_load(std::span<const AxisFeedbackView> feedback) noexcept {
-  if (load_.watch() == coordination::LoadWatch::off ||
-      !load_.step(feedback.first(std::min(feedback.size(), setup_.axis_count)), under_way_)) {
+  const auto axes = feedback.first(std::min(feedback.size(), setup_.axis_count));
+  if (!timers_.step(axes, under_way_)) {
+    raise(timers_.alarm(), out_.line);
+    return true;
+  }
+  if (load_.watch() == coordination::LoadWatch::off || !load_.step(axes, under_way_)) {
     return false;
   }
   raise(load_.alarm(), out_.line);

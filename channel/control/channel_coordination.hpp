@@ -17,6 +17,7 @@
 #include "channel/coordination/channel_state.hpp"
 #include "channel/coordination/coupling_request.hpp"
 #include "channel/coordination/load_monitor.hpp"
+#include "channel/coordination/load_timers.hpp"
 #include "channel/coordination/skip_probe.hpp"
 #include "channel/coordination/spindle_mode.hpp"
 #include "channel/coordination/sub_call.hpp"
@@ -46,6 +47,8 @@ class ChannelHost {
   virtual void skip_result(bool skipped, const interp::AxisVector& where) noexcept = 0;
   // G31.8's move is over: the positions its probe latched, in order (none: no signal came).
   virtual void multi_skip_result(std::span<const double> latched) noexcept = 0;
+  // G10 L14 P20-P51 ran: the axes (bit i: channel axis i) that met its condition.
+  virtual void load_timer_result(std::uint32_t axes) noexcept = 0;
 
  protected:
   ChannelHost() = default;
@@ -121,8 +124,9 @@ class ChannelCoordination {
   }
   // A reset cancels the limits of G10 L14 P9 (decision 120).
   void cancel_programmed_torque_limits() noexcept { programmed_torque_ = {}; }
-  // G10 L14 P0/P1, once per cycle of a run before the motion: true when an axis the block
-  // under way moves overloaded (its alarm raised: nothing may move from here on).
+  // G10 L14 P0/P1 and the load timers of P2-P5, once per cycle of a run before the motion:
+  // true when an axis the block under way moves overloaded, or does not report the load a
+  // timer counts (its alarm raised: nothing may move from here on).
   bool watch_load(std::span<const AxisFeedbackView> feedback) noexcept;
   // The block under way ended: no move is under way until the next starts.
   void block_ended() noexcept { under_way_ = {}; }
@@ -220,6 +224,8 @@ class ChannelCoordination {
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   void run(TorqueDataStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  void run(LoadTimerStop& b, std::uint64_t cycle,
+           std::span<const coordination::AxisFeedbackView> feedback) noexcept;
 
   const ChannelSetup& setup_;
   ChannelHost& host_;
@@ -268,6 +274,8 @@ class ChannelCoordination {
   // G10 L14 P0/P1: the loads watched, over the moves of the block under way.
   coordination::LoadMonitor load_;
   coordination::MoveUnderWay under_way_{};
+  // G10 L14 P2-P5: the load timers, over the same moves; P20-P51 read them.
+  coordination::LoadTimers timers_;
   // The torque limit a G160 or G31 P98/P99 puts on channel axis i (limit 0: none): G160 its P
   // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 116).
   [[nodiscard]] static TorqueLimit skip_torque_limit(const interp::Command& c,

@@ -138,9 +138,16 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
     }
     case Op::torque_limit:
     case Op::load_watch:
-      return TorqueDataStop{
-          held(c),   c.op == Op::torque_limit, c.torque_data_axes, c.torque_data, c.every_move,
-          c.filter_s};
+      return TorqueDataStop{held(c),
+                            c.op == Op::torque_limit,
+                            c.torque_data_axes,
+                            c.torque_data,
+                            c.every_move,
+                            c.filter_s,
+                            c.load_timer};
+    case Op::load_timer_check:
+      return LoadTimerStop{held(c),       c.load_timer,         c.timer_longer, c.torque_data_axes,
+                           c.torque_data, c.timer_variable != 0};
     default:
       break;
   }

@@ -1,8 +1,8 @@
 #pragma once
 // The blocks that stop the channel's read-ahead (spec dafeng §3.0, spec L6907): G04.1, G144,
 // G145, G140-G142, aux codes the PLC answers (and spindle starts it allows), G114.1/G113,
-// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0/P1/P9. Such a block is pulled and held until
-// every block before it ended, then run by its coordination machine; nothing after it is read
+// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0-P5/P9/P20-P51. Such a block is pulled and held
+// until every block before it ended, then run by its coordination machine; nothing after it is read
 // meanwhile. "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the
 // one place that says which commands are one and what each carries. Pure: no allocation beyond the
 // command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
@@ -108,20 +108,32 @@ struct WaitStop {
   coordination::ConditionBlock condition;
 };
 
-// G10 L14 P9 (`limit`) and P0/P1: the drives' torque limits, or the loads watched, change
-// once every block before it ended, so that a move runs under one setting from start to end.
+// G10 L14 P9 (`limit`), P0/P1 and P2-P5: the drives' torque limits, the loads watched or a
+// load timer change once every block before it ended, so that a move runs under one setting
+// from start to end.
 struct TorqueDataStop {
   HeldBlock block;
-  bool limit = true;            // P9; else P0/P1
+  bool limit = true;            // P9; else P0/P1 or P2-P5
   std::uint32_t axes = 0;       // bit i: channel axis i's value is set
   interp::AxisVector values{};  // percent of the rated torque: the limit (0: cancelled) or load
   bool every_move = false;      // P0 (every move) or P1 (G01 moves)
-  double filter_s = 0.0;        // P0/P1's J
+  double filter_s = 0.0;        // J
+  int timer = 0;                // P2-P5: the load timer it starts (0: P0/P1)
+};
+// G10 L14 P20-P51: load timer `timer` compared with `seconds` once every block before it ended;
+// the axes that meet it go back to the interpreter (#R), or are an alarm without R.
+struct LoadTimerStop {
+  HeldBlock block;
+  int timer = 2;
+  bool longer = false;           // P21/P31/P41/P51: more than `seconds`; else less
+  std::uint32_t axes = 0;        // bit i: channel axis i is compared
+  interp::AxisVector seconds{};  // per axis
+  bool variable = false;         // R given
 };
 // The block held, std::monostate when none.
 using ReadAheadStop =
     std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop, AuxStop,
-                 CouplingStop, ModeStop, SkipStop, WaitStop, TorqueDataStop>;
+                 CouplingStop, ModeStop, SkipStop, WaitStop, TorqueDataStop, LoadTimerStop>;
 
 // What decides which commands stop read-ahead in a channel.
 struct StopRules {

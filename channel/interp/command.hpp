@@ -55,8 +55,13 @@ enum class Op : std::uint8_t {
   oscillate_end,
   // G10 L14 P9: the drives of `torque_data_axes` get `torque_data` from the next block on.
   torque_limit,
-  // G10 L14 P0/P1: the loads of `torque_data_axes` watched against `torque_data`.
+  // G10 L14 P0/P1: the loads of `torque_data_axes` watched against `torque_data`; P2-P5
+  // (`load_timer` 2-5): a load timer started over them instead.
   load_watch,
+  // G10 L14 P20-P51: the time load timer `load_timer` counted for each axis of
+  // `torque_data_axes` compared with `torque_data` (s); the axes that meet it go to
+  // #`timer_variable` as bits (the channel hands them back: CommandSource::load_timer_result).
+  load_timer_check,
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -180,6 +185,13 @@ struct Command {
   std::array<double, kMaxChannelAxes> torque_data{};
   bool every_move = false;
   double filter_s = 0.0;
+  // load_watch: 0 for P0/P1, else the load timer P2-P5 starts (2-5; no alarm, it counts the
+  // seconds above the reference). load_timer_check: the timer read (P20/P21: 2 ... P50/P51: 5),
+  // `timer_longer` P21/P31/P41/P51 (more than the seconds) or P20/.../P50 (less), and the
+  // variable R (0: none, the condition met is an alarm).
+  int load_timer = 0;
+  bool timer_longer = false;
+  std::int64_t timer_variable = 0;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

@@ -59,6 +59,9 @@ class CommandSource {
     (void)latched;
     (void)stop_at;
   }
+  // The G10 L14 P20-P51 (Op::load_timer_check) just pulled: `axes` (bit i: channel axis i) met
+  // its condition. Called before the next pull.
+  virtual void load_timer_result(std::uint32_t axes) { (void)axes; }
   // Positions the source at the start of program O<number> called by another channel (G144)
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to

@@ -55,6 +55,10 @@ void Interpreter::skip_result(bool skipped, const AxisVector& skip_at, const Axi
   run_->set_skip_result(skipped, skip_at, stop_at);
 }
 
+void Interpreter::load_timer_result(std::uint32_t axes) {
+  run_->set_load_timer_result(axes);
+}
+
 void Interpreter::multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) {
   run_->set_multi_skip_result(latched, stop_at);
 }

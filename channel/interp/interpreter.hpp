@@ -83,6 +83,10 @@ class Interpreter {
   // order), which go to #P.. and their count to #R; the axes stand at `stop_at`. Without this
   // call the signals count as coming evenly along the move (decision 93).
   void multi_skip_result(std::span<const double> latched, const AxisVector& stop_at);
+  // The G10 L14 P20-P51 just pulled was decided by the channel's load timer: `axes` (bit i:
+  // channel axis i) met its condition and go to its R variable. Without this call #R is not
+  // written (a dry run).
+  void load_timer_result(std::uint32_t axes);
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
   // The number of non-empty lines of the main program (0 before start).

@@ -280,7 +280,7 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
   }
   if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
       c.op == Op::spindle_unsync || c.op == Op::polygon || c.op == Op::polygon_off ||
-      c.op == Op::cam || c.op == Op::cam_off) {
+      c.op == Op::cam || c.op == Op::cam_off || c.op == Op::load_timer_check) {
     return true;
   }
   if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {
@@ -384,10 +384,8 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
   if (c.op == Op::torque_limit || c.op == Op::load_watch) {
     if (const AxisConfig* a = unlimited_torque_axis(c, config)) {
       const bool limit = c.op == Op::torque_limit;
-      why = std::string(limit          ? "G10 L14 P9"
-                        : c.every_move ? "G10 L14 P0"
-                                       : "G10 L14 P1") +
-            ": the drive of axis " + a->name +
+      const int p = limit ? 9 : c.load_timer != 0 ? c.load_timer : c.every_move ? 0 : 1;
+      why = "G10 L14 P" + std::to_string(p) + ": the drive of axis " + a->name +
             (limit ? " takes no torque limit" : " does not report its torque") +
             " (torque_skip of the axis in the machine file)";
       return false;
@@ -433,6 +431,12 @@ void InterpreterSource::skip_result(bool skipped, const AxisVector& skip_at,
                                     const AxisVector& stop_at) {
   if (interpreter_) {
     interpreter_->skip_result(skipped, skip_at, stop_at);
+  }
+}
+
+void InterpreterSource::load_timer_result(std::uint32_t axes) {
+  if (interpreter_) {
+    interpreter_->load_timer_result(axes);
   }
 }
 

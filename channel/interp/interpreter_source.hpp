@@ -54,6 +54,7 @@ class InterpreterSource final : public CommandSource {
   void adopt_position(const AxisVector& at) override;
   void skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at) override;
   void multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) override;
+  void load_timer_result(std::uint32_t axes) override;
 
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a
   // spindle turns its first (M03/M04/M05 with S, G96/G97); orientation (M19) and other

@@ -70,6 +70,9 @@ class ProgramRun final : public macro::VariableProvider {
   // The last G31: skipped at `skip_at` (machine), or not; the axes stand at `stop_at`.
   void set_skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at);
   void set_multi_skip_result(std::span<const double> latched, const AxisVector& stop_at);
+  // The last G10 L14 P20-P51: the axes (bit i: channel axis i) that met its condition, written
+  // to its R variable when any did.
+  void set_load_timer_result(std::uint32_t axes);
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;
@@ -235,14 +238,17 @@ class ProgramRun final : public macro::VariableProvider {
   // False after alarm 1161 when an axis still oscillates at the program's end.
   bool oscillation_ended();
   bool run_skip(int column);
-  bool run_multi_skip(int column);    // G31.8
-  bool run_torque_skip(int column);   // G160
-  bool run_torque_data(int column);   // G10 L14 (program_run_torque.cpp)
-  bool run_load_ratio(int column);    // G10 L14 P6
-  bool run_torque_limit(int column);  // G10 L14 P9
-  bool run_load_watch(int column);    // G10 L14 P0/P1
-  // G10 L14's per-axis values (`what` in an alarm), absolute addresses only, 0-1000 %: into
-  // `values`, bit i of `given` for each axis named.
+  bool run_multi_skip(int column);        // G31.8
+  bool run_torque_skip(int column);       // G160
+  bool run_torque_data(int column);       // G10 L14 (program_run_torque.cpp)
+  bool run_load_ratio(int column);        // G10 L14 P6
+  bool run_torque_limit(int column);      // G10 L14 P9
+  bool run_load_watch(int column);        // G10 L14 P0/P1, P2-P5 (the load timers)
+  bool run_load_timer_check(int column);  // G10 L14 P20-P51
+  // G10 L14's per-axis values (`what` in an alarm), absolute addresses only, 0-`max` in
+  // `unit`: into `values`, bit i of `given` for each axis named.
+  bool read_axis_values(const char* what, const char* unit, double max, AxisVector& values,
+                        std::uint32_t& given);
   bool read_axis_percents(const char* what, AxisVector& values, std::uint32_t& given);
   // G31 P98/P99: the load ratio of each axis the move from `from` moves; an alarm when none
   // has one.
@@ -668,6 +674,10 @@ class ProgramRun final : public macro::VariableProvider {
   // G10 L14 P6: per channel axis, the load ratio G31 P98/P99 skip at (percent of the rated
   // torque; 0: param 5511's).
   AxisVector load_ratio_{};
+  // G10 L14 P2-P5: the axes each load timer (2-5) counts for (bit i: channel axis i), which
+  // format ② (P20-P51) may read.
+  std::array<std::uint32_t, 4> load_timer_axes_{};
+  std::int64_t load_timer_variable_ = 0;  // the R of the last G10 L14 P20-P51
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

@@ -1,7 +1,7 @@
 // G10 L14 (spec dafeng §2.9.1-2.9.4, L4768-5209): the torque data of the axes. P6 sets the
 // load ratios of G31 P98/P99 (program_run_skip.cpp); P9 limits the drives' torque (L5094-5142).
-// P0/P1 watch the load (L4770-4849). The timers of P2-P5 and P20-P51, the drilling/tapping
-// overloads (P7/P8) and torque mode (P10-P12) are not implemented.
+// P0/P1 watch the load, P2-P5 start the load timers and P20-P51 read them (L4770-4849). The
+// drilling/tapping overloads (P7/P8) and torque mode (P10-P12) are not implemented.
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
@@ -12,6 +12,17 @@ namespace mcnc::interp {
 namespace {
 // The longest load filter J a program may name: an hour.
 constexpr double kMaxLoadFilterSeconds = 3600.0;
+// The longest time format ② may compare a load timer with: a day.
+constexpr double kMaxLoadTimerSeconds = 86400.0;
+// Format ② (L4794-4812): P20/P21 read timer 2 ... P50/P51 timer 5.
+bool is_timer_check(double p) {
+  for (int timer = 2; timer <= 5; ++timer) {
+    if (p == timer * 10.0 || p == timer * 10.0 + 1.0) {
+      return true;
+    }
+  }
+  return false;
+}
 }  // namespace
 
 bool ProgramRun::run_torque_data(int column) {
@@ -22,19 +33,28 @@ bool ProgramRun::run_torque_data(int column) {
   if (p->value == 9.0) {
     return run_torque_limit(column);
   }
-  if (p->value == 0.0 || p->value == 1.0) {
+  if (p->value >= 0.0 && p->value <= 5.0 && p->value == static_cast<int>(p->value)) {
     return run_load_watch(column);
+  }
+  if (is_timer_check(p->value)) {
+    return run_load_timer_check(column);
   }
   return fail(alarm::kNotInThisVersion,
               "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
-                  " (load timers, overload detection or torque mode) is not implemented; G10 "
-                  "L14 P0/P1 watch the load, P6 sets the load ratios of G31 P98/P99, P9 the "
-                  "torque limits",
+                  " (overload detection or torque mode) is not implemented; G10 L14 P0/P1 "
+                  "watch the load, P2-P5 and P20-P51 time it, P6 sets the load ratios of G31 "
+                  "P98/P99, P9 the torque limits",
               p->column);
 }
 
 bool ProgramRun::read_axis_percents(const char* what, AxisVector& values, std::uint32_t& given) {
-  // Format ① (L4771-4776) and P9 (L5098-5100): one value per axis, by its absolute address.
+  return read_axis_values(what, "% of the rated torque", kMaxTorquePercent, values, given);
+}
+
+bool ProgramRun::read_axis_values(const char* what, const char* unit, double max,
+                                  AxisVector& values, std::uint32_t& given) {
+  // Formats ① and ② (L4771-4776, L4794-4797) and P9 (L5098-5100): one value per axis, by its
+  // absolute address.
   given = 0;
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const std::string code = "G10 L14 P" + std::to_string(static_cast<int>(word('P')->value));
@@ -45,10 +65,11 @@ bool ProgramRun::read_axis_percents(const char* what, AxisVector& values, std::u
                       "or UA",
                   w.column);
     }
-    if (!(w.value >= 0.0 && w.value <= kMaxTorquePercent)) {
+    if (!(w.value >= 0.0 && w.value <= max)) {
       return fail(alarm::kBadWordValue,
                   code + " " + std::string(1, config_.axes[static_cast<std::size_t>(axis)].name) +
-                      " (" + what + ", % of the rated torque) must be 0-1000",
+                      " (" + what + ", " + unit + ") must be 0-" +
+                      std::to_string(static_cast<long long>(max)),
                   w.column);
     }
     values[static_cast<std::size_t>(axis)] = w.value;
@@ -80,7 +101,11 @@ bool ProgramRun::run_load_watch(int /*column*/) {
   // G10 L14 P0/P1 α J (L4770-4849): the axes named watched at α % of the rated torque, P0 in
   // every move, P1 in G01 only; J the seconds the load must stay above (D15: seconds, as the
   // example's J2). A new P0/P1 replaces the set (L4860); without axes it cancels it (L4866).
-  const bool every_move = word('P')->value == 0.0;
+  // P2-P5 (L4783-4789, L4822-4835): the same without an alarm; each starts its load timer
+  // (diagnostics 0530-0533) from 0 over the axes named, P2/P3 in G01 moves, P4/P5 in every
+  // move; without axes the timer stops.
+  const int p = static_cast<int>(word('P')->value);
+  const bool every_move = p == 0 || p == 4 || p == 5;
   double filter_s = 0.0;
   if (BlockWord* j = word('J')) {
     j->used = true;
@@ -99,7 +124,63 @@ bool ProgramRun::run_load_watch(int /*column*/) {
   c.torque_data = loads;
   c.every_move = every_move;
   c.filter_s = filter_s;
+  if (p >= 2) {
+    c.load_timer = p;
+    load_timer_axes_[static_cast<std::size_t>(p - 2)] = given;
+  }
   return true;
+}
+
+bool ProgramRun::run_load_timer_check(int column) {
+  // G10 L14 P20-P51 α R (L4792-4835): each axis named compares the seconds load timer P/10
+  // counted above its reference with α: P20/P30/P40/P50 hold when less, P21/P31/P41/P51 when
+  // more. The axes it holds for go to #R as bits (bit i for channel axis i+1: the example's Z,
+  // the third axis, reads 4, L4890-4892), nothing is written when none; without R it holds is an
+  // alarm. The timers run in the channel: the block is a read-ahead stop, and the channel hands
+  // back the axes when every block before it ended (set_load_timer_result). Without it (a dry run,
+  // `mcnc interp`) #R is not written.
+  const int p = static_cast<int>(word('P')->value);
+  const int timer = p / 10;
+  const std::string code = "G10 L14 P" + std::to_string(p);
+  std::int64_t variable = 0;
+  if (!read_result_variable('R', code.c_str(), "the axes that meet the condition", variable)) {
+    return false;
+  }
+  AxisVector seconds{};
+  std::uint32_t given = 0;
+  if (!read_axis_values("the time above the load", "s", kMaxLoadTimerSeconds, seconds, given)) {
+    return false;
+  }
+  if (given == 0) {
+    return fail(alarm::kCycleWordMissing,
+                code + " needs the time of an axis to compare its load timer with (Z15)", column);
+  }
+  const std::uint32_t timed = load_timer_axes_[static_cast<std::size_t>(timer - 2)];
+  for (std::size_t a = 0; a < config_.axes.size(); ++a) {
+    if (((given >> a) & 1U) != 0 && ((timed >> a) & 1U) == 0) {
+      return fail(alarm::kCycleWordMissing,
+                  code + " " + std::string(1, config_.axes[a].name) + ": load timer " +
+                      std::to_string(timer) + " does not time axis " +
+                      std::string(1, config_.axes[a].name) + " (give G10 L14 P" +
+                      std::to_string(timer) + " with its reference load before it)",
+                  column);
+    }
+  }
+  Command& c = emit(Op::load_timer_check);
+  c.load_timer = timer;
+  c.timer_longer = p % 10 == 1;
+  c.timer_variable = variable;
+  c.torque_data_axes = given;
+  c.torque_data = seconds;
+  c.barrier = true;  // the program reads #R after it
+  load_timer_variable_ = variable;
+  return true;
+}
+
+void ProgramRun::set_load_timer_result(std::uint32_t axes) {
+  if (axes != 0 && load_timer_variable_ != 0) {
+    (void)vars_.write(load_timer_variable_, macro::MacroValue::of(static_cast<double>(axes)));
+  }
 }
 
 }  // namespace mcnc::interp

@@ -88,6 +88,7 @@ void ReadAhead::abandon() noexcept {
   passed_stop_ = false;
   has_position_ = false;
   has_skip_ = false;
+  has_timer_ = false;
   thread_stands();
 }
 
@@ -115,6 +116,7 @@ ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVecto
   passed_stop_ = false;
   has_position_ = false;
   has_skip_ = false;
+  has_timer_ = false;
   order_lost_ = false;
   Order* o = order_slot();
   if (o == nullptr) {
@@ -126,6 +128,7 @@ ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVecto
   o->at = at;
   o->has_position = false;
   o->has_skip = false;
+  o->has_timer = false;
   o->arg_count = 0;
   o->peer_writes = peer_writes_posted_;
   return o;
@@ -202,6 +205,11 @@ void ReadAhead::skip_result(bool skipped, const interp::AxisVector& skip_at,
   stop_at_ = stop_at;
 }
 
+void ReadAhead::load_timer_result(std::uint32_t axes) {
+  has_timer_ = true;
+  timer_axes_ = axes;
+}
+
 void ReadAhead::multi_skip_result(std::span<const double> latched,
                                   const interp::AxisVector& stop_at) {
   has_skip_ = true;
@@ -257,9 +265,12 @@ bool ReadAhead::ready() noexcept {
       o->multi_skip = multi_skip_;
       o->latched = latched_;
       o->latched_count = latched_count_;
+      o->has_timer = has_timer_;
+      o->timer_axes = timer_axes_;
       o->peer_writes = peer_writes_posted_;
       has_position_ = false;
       has_skip_ = false;
+      has_timer_ = false;
       expecting_ = true;
       post();
     }
@@ -408,6 +419,9 @@ void ReadAhead::handle(Order& order) noexcept {
               std::span<const double>(order.latched.data(), order.latched_count), order.stop_at);
         } else if (order.has_skip) {
           inner_->skip_result(order.skipped, order.skip_at, order.stop_at);
+        }
+        if (order.has_timer) {
+          inner_->load_timer_result(order.timer_axes);
         }
         reading_ = true;
       }

@@ -81,6 +81,7 @@ class ReadAhead final : public interp::CommandSource {
                    const interp::AxisVector& stop_at) override;
   void multi_skip_result(std::span<const double> latched,
                          const interp::AxisVector& stop_at) override;
+  void load_timer_result(std::uint32_t axes) override;
   std::optional<interp::ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const interp::AxisVector& current) override;
   std::optional<interp::ProgramAlarm> start_mdi(const interp::AxisVector& current) override;
@@ -117,6 +118,8 @@ class ReadAhead final : public interp::CommandSource {
     bool multi_skip = false;  // the result is a G31.8's: these positions
     std::array<double, interp::kMaxMultiSkipSignals> latched{};
     std::size_t latched_count = 0;
+    bool has_timer = false;  // a G10 L14 P20-P51's result: these axes met it
+    std::uint32_t timer_axes = 0;
     int program = 0;
     std::array<std::pair<int, double>, interp::kSubcallArgs> args{};
     std::size_t arg_count = 0;
@@ -190,6 +193,8 @@ class ReadAhead final : public interp::CommandSource {
   bool multi_skip_ = false;
   std::array<double, interp::kMaxMultiSkipSignals> latched_{};
   std::size_t latched_count_ = 0;
+  bool has_timer_ = false;  // load_timer_result() waits for the resume
+  std::uint32_t timer_axes_ = 0;
   std::uint64_t peer_writes_posted_ = 0;
   std::size_t block_count_ = 0;
   bool has_program_ = false;

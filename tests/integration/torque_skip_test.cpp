@@ -338,5 +338,35 @@ TEST(TorqueLimit, P1OverloadIsAnAlarmAtTheG01AndNothingMovesAfter) {
   }
 }
 
+// G10 L14 P4/P5 and P41/P51 (L4770-4849, decision 200): B1 fed into the centre by G31 P98
+// (skipping at its 50 % ratio) with timer 4 counting its load above 20 % and timer 5 above
+// 900 %. The checks run once the blocks before them ended: #100 gets B's bit (the third axis:
+// 4, as the spec's example reads Z), #101 nothing, so X goes to 20 + 4 * 10 = 60.
+TEST(LoadTimers, TheChecksHandTheAxesBitsToTheProgramAtTheirBlock) {
+  TestMachine machine("small_lathe.yaml", 212);
+  add_tailstock(machine);
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run({bin("mcnc"), "run", machine.path(), "--program",
+                           "CH1=" + source("tests/integration/programs/g10_l14/load_timers.nc"),
+                           "--trace", trace_file},
+                          -1, std::chrono::seconds(180));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const std::vector<nlohmann::json> trace = read_trace(trace_file);
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  // B1 stopped at the centre (the skip), then went back; X1 went to 60 (a radius of 30) only
+  // after the checks: its last block end.
+  const std::vector<double> x = block_ends(trace, "X1");
+  ASSERT_FALSE(x.empty());
+  EXPECT_NEAR(x.back(), 30.0, 1e-6);
+  double b_min = 0.0;
+  for (const nlohmann::json& p : events(trace, "pos")) {
+    if (p["axis"] == "B1" && p["src"] != "CH1") {
+      b_min = std::min(b_min, p["act"].get<double>());
+    }
+  }
+  EXPECT_GT(b_min, -150.01);  // held at the centre
+  EXPECT_LT(b_min, -149.9);
+}
+
 }  // namespace
 }  // namespace mcnc::test

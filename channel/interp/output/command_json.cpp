@@ -389,6 +389,8 @@ const char* op_name(Op op) {
       return "torque_limit";
     case Op::load_watch:
       return "load_watch";
+    case Op::load_timer_check:
+      return "load_timer_check";
   }
   return "?";
 }
@@ -755,6 +757,22 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       number(out, c.filter_s);
       key(out, "loads");
       axis_values(out, c.torque_data, c.torque_data_axes, axes);
+      if (c.load_timer != 0) {  // P2-P5: the load timer it starts
+        key(out, "timer");
+        integer(out, c.load_timer);
+      }
+      break;
+    case Op::load_timer_check:  // G10 L14 P20-P51: the timer, the condition, each axis's time
+      key(out, "timer");
+      integer(out, c.load_timer);
+      key(out, "condition");
+      out += c.timer_longer ? "\"longer\"" : "\"shorter\"";
+      key(out, "seconds");
+      axis_values(out, c.torque_data, c.torque_data_axes, axes);
+      if (c.timer_variable != 0) {
+        key(out, "variable");
+        integer(out, c.timer_variable);
+      }
       break;
     case Op::torque_limit:  // G10 L14 P9: each axis it sets, 0 cancelled
       key(out, "limits");

@@ -460,5 +460,64 @@ TEST(ChannelLoadWatch, AnAxisWhoseDriveDoesNotReportItsTorqueIsRefusedBeforeTheP
       << alarm->text;
 }
 
+// G10 L14 P2-P5 and P20-P51 (L4770-4849): the timers count while the blocks run; the check
+// waits until the blocks before it ended and hands the axes that meet it to #R, which the
+// blocks after it read (X moved to 20 + 10·#100 + 100·#101, as a diameter).
+TEST(ChannelLoadTimers, TheChecksHandTheAxesThatMeetThemToTheProgram) {
+  TorqueRig rig;
+  rig.load(
+      "G98 G00 X20 Z0\n"         // 1
+      "G10 L14 P2 Z80\n"         // 2: never above 80 % in free motion
+      "G10 L14 P3 Z5\n"          // 3: 10 % while Z moves
+      "G01 Z-10 F600\n"          // 4: about 1 s of feed
+      "G00 Z0\n"                 // 5: P3 times G01 moves only
+      "#100=0\n"                 // 6
+      "G10 P21 L14 Z0.5 R100\n"  // 7: 0 s, not more than 0.5 s: #100 stays 0
+      "#101=0\n"                 // 8
+      "G10 P31 L14 Z0.5 R101\n"  // 9: about 1 s, more than 0.5 s: #101 = Z's bit, 2
+      "#102=0\n"                 // 10
+      "G10 P31 L14 Z1.5 R102\n"  // 11: not more than 1.5 s
+      "G00 X[20+#100*10+#101*100+#102*1000]\n"
+      "M30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  EXPECT_NEAR(rig.x(), 110.0, 1e-9);  // X220 as a radius
+  EXPECT_NE(rig.end_of(9), nullptr);
+}
+
+// Without R, the condition met is alarm 1281 at the check's line; nothing moves after it.
+TEST(ChannelLoadTimers, WithoutRTheConditionMetIsAnAlarmAndNothingMovesAfter) {
+  TorqueRig rig;
+  rig.load(
+      "G98 G00 X20 Z0\n"
+      "G10 L14 P4 Z5\n"     // 2: every move
+      "G00 Z-10\n"          // 3
+      "G10 P40 L14 Z100\n"  // 4: the rapid took less than 100 s: the alarm
+      "G00 X50\n"           // 5: never runs
+      "M30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  ASSERT_EQ(rig.alarms, (std::vector<int>{1281}));
+  EXPECT_EQ(rig.alarm_lines, (std::vector<int>{4}));
+  EXPECT_NE(rig.alarm_text.find("G10 L14 P40: the load of axis 2 was above 5 % for"),
+            std::string::npos)
+      << rig.alarm_text;
+  for (int i = 0; i < 100; ++i) {
+    rig.step();
+  }
+  EXPECT_NEAR(rig.x(), 10.0, 1e-12);
+  EXPECT_NEAR(rig.z_cmd(), -10.0, 1e-9);
+}
+
+TEST(ChannelLoadTimers, AnAxisWhoseDriveDoesNotReportItsTorqueIsRefusedBeforeTheProgramRuns) {
+  TorqueRig rig(false);
+  const auto alarm = rig.load_with_alarm("G98 G00 X20 Z0\nG10 L14 P4 Z80\nM30\n");
+  ASSERT_TRUE(alarm.has_value());
+  EXPECT_EQ(alarm->number, interp::alarm::kSkipInput);
+  EXPECT_EQ(alarm->line, 2);
+  EXPECT_NE(alarm->text.find("G10 L14 P4: the drive of axis Z does not report its torque"),
+            std::string::npos)
+      << alarm->text;
+}
+
 }  // namespace
 }  // namespace mcnc::channel

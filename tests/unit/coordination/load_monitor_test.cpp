@@ -2,6 +2,8 @@
 // reference, over the moves P0 or P1 watch, with the filter time in cycles.
 #include "channel/coordination/load_monitor.hpp"
 
+#include "tests/unit/coordination/xz_loads.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -13,21 +15,8 @@ namespace {
 constexpr std::uint32_t kX = 1U << 0;
 constexpr std::uint32_t kZ = 1U << 1;
 
-std::vector<AxisSlot> xz() {
-  std::vector<AxisSlot> s(2);
-  s[0].address = 'X';
-  s[1].address = 'Z';
-  return s;
-}
-
-std::vector<AxisFeedbackView> loads(double x, double z) {
-  std::vector<AxisFeedbackView> f(2);
-  f[0].load_known = true;
-  f[0].load = x;
-  f[1].load_known = true;
-  f[1].load = z;
-  return f;
-}
+using test::loads;
+using test::xz;
 
 LoadMonitor::Percent reference(double x, double z) {
   LoadMonitor::Percent r{};

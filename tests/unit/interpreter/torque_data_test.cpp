@@ -1,5 +1,6 @@
 // G10 L14 P9 (spec dafeng L5094-5142): the torque limits it emits, per axis named, modal; G10
-// L14 P0/P1 (L4770-4849): the loads watched; and the alarms.
+// L14 P0/P1 (L4770-4849): the loads watched; P2-P5 and P20-P51: the load timers started and
+// read, #R from the channel's answer; and the alarms.
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
 namespace mcnc::interp::test {
@@ -77,8 +78,89 @@ TEST(InterpTorqueLimit, Alarms) {
       {"G10 L14 P1 Z80 J-1\nM30\n", alarm::kBadWordValue, 1},
       {"G10 L14 P0 U80\nM30\n", alarm::kWordNotAllowed, 1},
       {"G10 L14 P1 Z1200\nM30\n", alarm::kBadWordValue, 1},
-      {"G10 L14 P21 Z15 R100\nM30\n", alarm::kNotInThisVersion, 1},  // the timers' checks
-      {"G10 L14 P7 R100 Z80\nM30\n", alarm::kNotInThisVersion, 1},   // drilling overload
+      {"G10 L14 P7 R100 Z80\nM30\n", alarm::kNotInThisVersion, 1},  // drilling overload
+  };
+  expect_alarms(cases, lathe());
+}
+
+// The spec's drill check (L4868-4893): timers 2 and 3 started on Z at 80 % and 10 % in G01
+// moves, then P21 and P30 compare them with 15 s, each a read-ahead stop with its variable.
+TEST(InterpLoadTimers, TheDrillCheckExampleStartsTwoTimersAndReadsThem) {
+  const RunResult r = run_ok(
+      "G10 P2 L14 Z80\nG10 P3 L14 Z10\nG00 X0 Z0\nG98 G01 W-10 F30\nG00 Z0\n#100=0\n"
+      "G10 P21 L14 Z15 R100\n#101=0\nG10 P30 L14 Z15 R101\nM30\n");
+  const auto starts = r.of(Op::load_watch);
+  ASSERT_EQ(starts.size(), 2u);
+  EXPECT_EQ(starts[0].load_timer, 2);
+  EXPECT_FALSE(starts[0].every_move);  // P2/P3: G01 moves
+  EXPECT_EQ(starts[0].torque_data_axes, 1U << kZ);
+  EXPECT_EQ(starts[0].torque_data[kZ], 80.0);
+  EXPECT_EQ(starts[1].load_timer, 3);
+  EXPECT_EQ(starts[1].torque_data[kZ], 10.0);
+  const auto checks = r.of(Op::load_timer_check);
+  ASSERT_EQ(checks.size(), 2u);
+  EXPECT_EQ(checks[0].load_timer, 2);
+  EXPECT_TRUE(checks[0].timer_longer);
+  EXPECT_EQ(checks[0].timer_variable, 100);
+  EXPECT_EQ(checks[0].torque_data_axes, 1U << kZ);
+  EXPECT_EQ(checks[0].torque_data[kZ], 15.0);  // seconds
+  EXPECT_TRUE(checks[0].barrier);
+  EXPECT_EQ(checks[0].line, 7);
+  EXPECT_EQ(checks[1].load_timer, 3);
+  EXPECT_FALSE(checks[1].timer_longer);
+  EXPECT_EQ(checks[1].timer_variable, 101);
+}
+
+TEST(InterpLoadTimers, P4AndP5TimeEveryMove) {
+  const RunResult r = run_ok("G10 L14 P4 X50\nG10 L14 P5 Z60 J1\nM30\n");
+  const auto starts = r.of(Op::load_watch);
+  ASSERT_EQ(starts.size(), 2u);
+  EXPECT_TRUE(starts[0].every_move);
+  EXPECT_EQ(starts[0].load_timer, 4);
+  EXPECT_EQ(starts[1].load_timer, 5);
+  EXPECT_EQ(starts[1].filter_s, 1.0);
+}
+
+// The channel's answer goes to #R as the axes' bits; none met leaves #R as it was; without the
+// answer (a dry run) #R is not written.
+TEST(InterpLoadTimers, TheChannelsAnswerGoesToRAsTheAxesBits) {
+  const char* program = "G10 L14 P4 X50 Z80\n#100=-1\nG10 L14 P41 X1 Z1 R100\n#101=#100\nM30\n";
+  for (const std::uint32_t answer : {0U, 1U << kZ, (1U << kX) | (1U << kZ)}) {
+    Interpreter in(lathe());
+    ASSERT_FALSE(in.start(program, "t.nc"));
+    std::optional<InterpResult> c;
+    do {
+      c = in.next();
+      ASSERT_TRUE(c && std::holds_alternative<Command>(*c));
+    } while (std::get<Command>(*c).op != Op::load_timer_check);
+    in.load_timer_result(answer);
+    while (in.next()) {
+    }
+    EXPECT_EQ(in.variables().read(101).value.number(),
+              answer == 0 ? -1.0 : static_cast<double>(answer))
+        << answer;
+  }
+  Interpreter dry(lathe());
+  ASSERT_FALSE(dry.start(program, "t.nc"));
+  while (dry.next()) {
+  }
+  EXPECT_EQ(dry.variables().read(101).value.number(), -1.0);
+}
+
+TEST(InterpLoadTimers, Alarms) {
+  const ExpectedAlarm cases[] = {
+      {"G10 L14 P21 Z15 R100\nM30\n", alarm::kCycleWordMissing, 1},  // no P2 before it
+      {"G10 L14 P2 X80\nG10 L14 P21 Z15 R100\nM30\n", alarm::kCycleWordMissing, 2},  // Z untimed
+      {"G10 L14 P2 Z80\nG10 L14 P31 Z15 R100\nM30\n", alarm::kCycleWordMissing, 2},  // timer 3
+      {"G10 L14 P2 Z80\nG10 L14 P21 R100\nM30\n", alarm::kCycleWordMissing, 2},      // no axis
+      {"G10 L14 P2 Z80\nG10 L14 P21 W15 R100\nM30\n", alarm::kWordNotAllowed, 2},
+      {"G10 L14 P2 Z80\nG10 L14 P21 Z-1 R100\nM30\n", alarm::kBadWordValue, 2},
+      {"G10 L14 P2 Z80\nG10 L14 P21 Z15 R0.5\nM30\n", alarm::kBadWordValue, 2},
+      {"G10 L14 P2 Z1200\nM30\n", alarm::kBadWordValue, 1},
+      {"G10 L14 P2 W80\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G10 L14 P22 Z15 R100\nM30\n", alarm::kNotInThisVersion, 1},  // no such form
+      {"G10 L14 P2 Z80\nG10 L14 P2\nG10 L14 P21 Z15 R100\nM30\n", alarm::kCycleWordMissing,
+       3},  // P2 without axes stopped the timer
   };
   expect_alarms(cases, lathe());
 }

@@ -1,0 +1,13 @@
+O1000 (spec L4870-4893: timers 2 and 3 on Z at 80 % and 10 % in G01, read by P21 and P30 into #100 and #101; without the runtime #R is not written)
+G10 P2 L14 Z80
+G10 P3 L14 Z10
+G00 X0 Z0
+G98 G01 W-10 F30
+G00 Z0
+#100=0
+G10 P21 L14 Z15 R100
+#101=0
+G10 P30 L14 Z15 R101
+IF[#100==4]#3000=1(LOAD TOO HIGH)
+IF[#101==4]#3000=1(DRILL BROKEN)
+M30

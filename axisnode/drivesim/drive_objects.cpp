@@ -38,7 +38,7 @@ std::uint32_t expect_size(std::size_t size, std::size_t wanted) noexcept {
 bool mappable(bool receive, std::uint16_t index) noexcept {
   if (receive) {
     return index == 0x6040 || index == 0x607A || index == 0x60FF || index == 0x6060 ||
-           index == 0x60B8 || index == 0x6072;
+           index == 0x60B8 || index == 0x6072 || index == 0x6071 || index == 0x6080;
   }
   return index == 0x6041 || index == 0x6064 || index == 0x606C || index == 0x60F4 ||
          index == 0x6061 || index == 0x6077 || index == 0x60B9 || index == 0x60BA ||
@@ -115,6 +115,14 @@ void RpdoValues::merge(const RpdoValues& other) noexcept {
     max_torque = other.max_torque;
     has_max_torque = true;
   }
+  if (other.has_target_torque) {
+    target_torque = other.target_torque;
+    has_target_torque = true;
+  }
+  if (other.has_max_motor_speed) {
+    max_motor_speed = other.max_motor_speed;
+    has_max_motor_speed = true;
+  }
 }
 
 bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
@@ -147,6 +155,14 @@ bool DriveObjects::decode_rpdo(std::size_t n, const can::CanFrame& frame,
       case 0x6072:
         out.max_torque = static_cast<std::uint16_t>(raw);
         out.has_max_torque = true;
+        break;
+      case 0x6071:
+        out.target_torque = static_cast<std::int16_t>(canopen::sign_extend(raw, bits));
+        out.has_target_torque = true;
+        break;
+      case 0x6080:
+        out.max_motor_speed = raw;
+        out.has_max_motor_speed = true;
         break;
       default:
         break;
@@ -312,6 +328,10 @@ std::uint32_t DriveObjects::read(std::uint16_t index, std::uint8_t sub,
       return put<std::uint16_t>(out, touch_probe_);
     case 0x6072:
       return put<std::uint16_t>(out, max_torque_);
+    case 0x6071:
+      return put<std::int16_t>(out, target_torque_);
+    case 0x6080:
+      return put<std::uint32_t>(out, max_motor_speed_);
     case 0x60B9:
       return put<std::uint16_t>(out, live.touch_probe_status);
     case 0x60BA:
@@ -371,6 +391,18 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
       }
       max_torque_ = static_cast<std::uint16_t>(value);
       return 0;
+    case 0x6071:
+      if (const std::uint32_t e = expect_size(size, 2)) {
+        return e;
+      }
+      target_torque_ = static_cast<std::int16_t>(static_cast<std::uint16_t>(value));
+      return 0;
+    case 0x6080:
+      if (const std::uint32_t e = expect_size(size, 4)) {
+        return e;
+      }
+      max_motor_speed_ = value;
+      return 0;
     case 0x1017:
       if (const std::uint32_t e = expect_size(size, 2)) {
         return e;
@@ -388,8 +420,8 @@ std::uint32_t DriveObjects::write(std::uint16_t index, std::uint8_t sub, const s
         return e;
       }
       const auto mode = static_cast<std::int8_t>(value);
-      if (mode != 6 && mode != 8 && mode != 9) {
-        return abort::kInvalidValue;  // homing, CSP and CSV are what this drive does
+      if (mode != 6 && mode != 8 && mode != 9 && mode != 10) {
+        return abort::kInvalidValue;  // homing, CSP, CSV and CST are what this drive does
       }
       mode_ = mode;
       return 0;

@@ -3,7 +3,7 @@
 // communication objects a master configures at start-up (device type, heartbeat time, the
 // PDOs' communication and mapping parameters) and the drive-profile objects (controlword,
 // statusword, modes of operation and display, position, velocity, following error, rated and
-// actual torque). Mapping
+// actual torque, the target torque and max motor speed of CST). Mapping
 // follows CiA 301: a PDO's mapping changes only while the PDO is invalid (COB-ID bit 31) and
 // its count is 0; only mappable objects, at most 64 bits. A refusal can be injected for one
 // object. Pure.
@@ -32,17 +32,21 @@ struct DriveLiveValues {
 // What an RPDO carried, by its mapping: only the objects it maps are set.
 struct RpdoValues {
   std::uint16_t controlword = 0;
-  std::int32_t target_position = 0;  // counts (0x607A)
-  std::int32_t target_velocity = 0;  // counts/s (0x60FF)
-  std::int8_t mode = 0;              // 0x6060
-  std::uint16_t touch_probe = 0;     // 0x60B8
-  std::uint16_t max_torque = 0;      // 0x6072, per mille of the rated torque
+  std::int32_t target_position = 0;   // counts (0x607A)
+  std::int32_t target_velocity = 0;   // counts/s (0x60FF)
+  std::int8_t mode = 0;               // 0x6060
+  std::uint16_t touch_probe = 0;      // 0x60B8
+  std::uint16_t max_torque = 0;       // 0x6072, per mille of the rated torque
+  std::int16_t target_torque = 0;     // 0x6071, per mille of the rated torque (CST)
+  std::uint32_t max_motor_speed = 0;  // 0x6080, rpm (CST's speed limit)
   bool has_controlword = false;
   bool has_target_position = false;
   bool has_target_velocity = false;
   bool has_mode = false;
   bool has_touch_probe = false;
   bool has_max_torque = false;
+  bool has_target_torque = false;
+  bool has_max_motor_speed = false;
   // Takes what `other` carries, keeps the rest.
   void merge(const RpdoValues& other) noexcept;
 };
@@ -86,6 +90,10 @@ class DriveObjects final : public canopen::ObjectAccess {
   [[nodiscard]] std::uint16_t touch_probe() const noexcept { return touch_probe_; }
   // 0x6072, the max torque (by SDO or in an RPDO), per mille of the rated torque.
   [[nodiscard]] std::uint16_t max_torque() const noexcept { return max_torque_; }
+  // 0x6071, the target torque of CST (mode 10), per mille of the rated torque.
+  [[nodiscard]] std::int16_t target_torque() const noexcept { return target_torque_; }
+  // 0x6080, the max motor speed (rpm): CST's speed limit; 0: none but the drive's own.
+  [[nodiscard]] std::uint32_t max_motor_speed() const noexcept { return max_motor_speed_; }
   [[nodiscard]] std::int32_t home_offset() const noexcept { return home_offset_; }
   [[nodiscard]] std::int8_t homing_method() const noexcept { return homing_method_; }
   [[nodiscard]] std::uint16_t heartbeat_ms() const noexcept { return heartbeat_ms_; }
@@ -113,6 +121,8 @@ class DriveObjects final : public canopen::ObjectAccess {
   std::uint16_t controlword_ = 0;
   std::uint16_t touch_probe_ = 0;
   std::uint16_t max_torque_ = 0;
+  std::int16_t target_torque_ = 0;
+  std::uint32_t max_motor_speed_ = 0;
   std::int32_t target_position_ = 0;
   std::int32_t target_velocity_ = 0;
   std::uint16_t refused_index_ = 0;

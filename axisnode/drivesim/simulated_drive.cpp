@@ -179,6 +179,19 @@ canopen::TxPdoCsp SimulatedDrive::on_sync() noexcept {
                                             static_cast<std::uint8_t>(latched_.max_torque >> 8)};
     (void)objects_.write(0x6072, 0, value.data(), value.size());
   }
+  if (latched_.has_target_torque && rpdo_since_sync_) {
+    const auto raw = static_cast<std::uint16_t>(latched_.target_torque);
+    const std::array<std::uint8_t, 2> value{static_cast<std::uint8_t>(raw & 0xFFU),
+                                            static_cast<std::uint8_t>(raw >> 8)};
+    (void)objects_.write(0x6071, 0, value.data(), value.size());
+  }
+  if (latched_.has_max_motor_speed && rpdo_since_sync_) {
+    const std::uint32_t s = latched_.max_motor_speed;
+    const std::array<std::uint8_t, 4> value{
+        static_cast<std::uint8_t>(s & 0xFFU), static_cast<std::uint8_t>((s >> 8) & 0xFFU),
+        static_cast<std::uint8_t>((s >> 16) & 0xFFU), static_cast<std::uint8_t>(s >> 24)};
+    (void)objects_.write(0x6080, 0, value.data(), value.size());
+  }
 
   const std::int8_t mode = objects_.mode();
   const bool homing_bit = (latched_.controlword & 0x0010U) != 0;
@@ -291,6 +304,7 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
   for (int i = 0; i < steps; ++i) {
     double command = 0.0;       // units/s
     double feed_forward = 0.0;  // N m: the torque a known acceleration takes
+    double direct = 0.0;        // N m: CST's torque, no velocity loop
     switch (loop) {
       case Loop::position: {
         // Fine interpolation, as CSP drives do: the target moves from the last SYNC's to this
@@ -304,6 +318,21 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
       case Loop::velocity:
         command = std::clamp(velocity_target_, -params_.max_velocity, params_.max_velocity);
         break;
+      case Loop::torque: {
+        // CST: the torque is the target 0x6071. The speed limit 0x6080 (and the drive's
+        // max_velocity) bounds the motor the way it turns, as a drive's speed limiting does:
+        // a proportional velocity loop toward the limit takes over where it asks for less.
+        const double set =
+            static_cast<double>(objects_.target_torque()) / 1000.0 * params_.rated_torque;
+        const double rpm = static_cast<double>(objects_.max_motor_speed());
+        const double limit =
+            rpm > 0.0 ? std::min(rpm / 60.0 * params_.units_per_rev, params_.max_velocity)
+                      : params_.max_velocity;
+        const double to_limit = kv * (std::copysign(limit, set) - velocity_) * rad_per_unit;
+        direct = set >= 0.0 ? std::min(set, to_limit) : std::max(set, to_limit);
+        integral_ = 0.0;  // back in CSP, the velocity loop starts afresh
+        break;
+      }
       case Loop::ramp_down: {
         // 0x6085, as the master configured it (or the drive's default).
         const double step =
@@ -317,10 +346,10 @@ void SimulatedDrive::run_loops(Loop loop, double dt) noexcept {
     }
     const double w = velocity_ * rad_per_unit;
     const double error = (command - velocity_) * rad_per_unit;
-    double torque = kv * error + integral_ + feed_forward;
+    double torque = loop == Loop::torque ? direct : kv * error + integral_ + feed_forward;
     if (std::abs(torque) > t_max) {
       torque = std::copysign(t_max, torque);  // saturated: the integral holds (anti-windup)
-    } else {
+    } else if (loop != Loop::torque) {
       integral_ = std::clamp(integral_ + ki * error * h, -t_max, t_max);
     }
     torque_ = torque;
@@ -346,6 +375,11 @@ void SimulatedDrive::move_one_cycle() noexcept {
       if (objects_.mode() == 9) {
         run_loops(Loop::velocity, dt);
         target_ = position_;
+        break;
+      }
+      if (objects_.mode() == 10) {
+        run_loops(Loop::torque, dt);
+        target_ = position_;  // back in CSP, the position loop starts where the motor is
         break;
       }
       if (objects_.mode() == 6) {

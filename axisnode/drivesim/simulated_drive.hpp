@@ -1,6 +1,7 @@
 #pragma once
-// One simulated CiA 402 servo drive in cyclic synchronous position mode. Time advances only
-// through on_sync(), one cycle per call, so a run is a pure function of the frames received.
+// One simulated CiA 402 servo drive in cyclic synchronous position, velocity or torque mode. Time
+// advances only through on_sync(), one cycle per call, so a run is a pure function of the frames
+// received.
 #include "axisnode/drivesim/drive_objects.hpp"
 #include "canopen/cia402/cia402_state.hpp"
 #include "canopen/cia402/drive_pdos.hpp"
@@ -87,7 +88,11 @@ struct DriveParams {
 // (and in every other state) it follows the actual position, so enabling never jumps.
 //
 // Modes of operation (0x6060, by SDO or in an RPDO): 8 CSP (and 0, as before any was set); 9
-// CSV: the target velocity 0x60FF (counts/s) is the velocity loop's command; 6 homing:
+// CSV: the target velocity 0x60FF (counts/s) is the velocity loop's command; 10 CST: the
+// target torque 0x6071 (per mille of rated_torque, within 0x6072 and torque_limit) drives the
+// mechanics, the motor's speed bounded by 0x6080 (rpm; 0: max_velocity) the way the torque
+// turns it, so that a free motor runs at the limit and one against a contact presses with the
+// set torque; 6 homing:
 // methods 35 and 37 only (no switches on a simulated axis): on the rising edge of controlword
 // bit 4 in operation enabled the current position becomes the home offset (0x607C), without
 // moving, and statusword bit 12 (homing attained) is set until the mode changes.
@@ -145,7 +150,7 @@ class SimulatedDrive {
   void run_touch_probe(double from) noexcept;
   [[nodiscard]] bool probe_input(double position) const noexcept;
   // The velocity and mechanics for one cycle; velocity command from the mode (see above).
-  enum class Loop : std::uint8_t { position, velocity, ramp_down };
+  enum class Loop : std::uint8_t { position, velocity, torque, ramp_down };
   void run_loops(Loop loop, double dt) noexcept;
   [[nodiscard]] bool target_reached() const noexcept;
   [[nodiscard]] std::int32_t to_counts(double units) const noexcept;        // saturating

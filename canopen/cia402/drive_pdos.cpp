@@ -78,6 +78,13 @@ void add_torque_limit(PdoLayout& layout) noexcept {
   layout.tpdo2.objects[layout.tpdo2.count++] = MappedObject{0x6077, 0, 16};
 }
 
+void add_torque_mode(PdoLayout& layout) noexcept {
+  layout.rpdo1.objects[layout.rpdo1.count++] = MappedObject{0x6060, 0, 8};
+  layout.tpdo1.objects[layout.tpdo1.count++] = MappedObject{0x6061, 0, 8};
+  layout.rpdo2.objects[layout.rpdo2.count++] = MappedObject{0x6071, 0, 16};
+  layout.rpdo2.objects[layout.rpdo2.count++] = MappedObject{0x6080, 0, 32};
+}
+
 bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& command,
                   can::CanFrame& out) noexcept {
   const auto value_of = [&](std::uint16_t index, std::uint8_t) -> std::uint32_t {
@@ -94,6 +101,10 @@ bool pack_command(const PdoMapping& pdo, std::uint8_t node, const DriveCommand& 
         return command.touch_probe;
       case 0x6072:
         return command.max_torque;
+      case 0x6071:
+        return static_cast<std::uint16_t>(command.target_torque);
+      case 0x6080:
+        return command.max_motor_speed;
       default:
         return 0;  // an object the master does not command: zeros, as the mapping's length asks
     }

@@ -34,6 +34,12 @@ void add_touch_probe(PdoLayout& layout) noexcept;
 // max torque 0x6072 (2 bytes), TPDO2 the torque actual value 0x6077 (2 bytes, after what it
 // maps already), both per mille of the motor's rated torque. One frame more per cycle.
 void add_torque_limit(PdoLayout& layout) noexcept;
+// An axis layout with add_torque_limit's objects and cyclic synchronous torque (CST, mode 10)
+// beside CSP, switched cycle by cycle: RPDO1 adds the modes of operation 0x6060 (7 bytes),
+// TPDO1 its display 0x6061 (7 bytes), RPDO2 the target torque 0x6071 (per mille of the rated
+// torque) and the max motor speed 0x6080 (rpm, CST's speed limit) after 0x6072 (8 bytes). No
+// frame more than add_torque_limit's. Call it after add_torque_limit.
+void add_torque_mode(PdoLayout& layout) noexcept;
 // 0x6072 with no limit asked: 1000 % of the rated torque, above any drive's peak, so that the
 // drive's own limit applies.
 inline constexpr std::uint16_t kNoTorqueLimit = 10000;
@@ -64,6 +70,8 @@ struct DriveCommand {
   std::int8_t mode = 8;                       // 0x6060
   std::uint16_t touch_probe = 0;              // 0x60B8, touch probe function
   std::uint16_t max_torque = kNoTorqueLimit;  // 0x6072, per mille of the rated torque
+  std::int16_t target_torque = 0;             // 0x6071, per mille of the rated torque (CST)
+  std::uint32_t max_motor_speed = 0;          // 0x6080, rpm (CST's speed limit)
 };
 // What a drive's TPDOs said; a TPDO sets what its mapping names, the rest stays.
 struct DriveFeedback {

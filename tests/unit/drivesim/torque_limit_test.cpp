@@ -4,6 +4,7 @@
 // RPDO that maps 0x6072 (canopen::add_torque_limit); without one it is the drive's peak torque.
 #include "axisnode/drivesim/simulated_drive.hpp"
 #include "canopen/cia402/drive_pdos.hpp"
+#include "tests/unit/drivesim/pressing_drive.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,24 +14,9 @@
 namespace mcnc::drivesim {
 namespace {
 
-constexpr double kCycle = 0.001;
-constexpr double kCounts = 10000.0;
-
-// Powered, started and enabled at 0, with a contact that holds the load at -12.5 from above:
-// peak torque 10 N m, rated 3 N m (0x6072's default: 3334 per mille, the peak rounded up).
-SimulatedDrive pressing_drive() {
-  DriveParams p{1, kCounts, 0.004, 500.0, 5000.0, 0.0};
-  p.contact_side = -1;
-  p.contact_at = -12.5;
-  SimulatedDrive d(p, kCycle);
-  d.power_on();
-  d.on_nmt(canopen::NmtCommand::start);
-  for (const std::uint16_t cw : {0x06, 0x07, 0x0F, 0x0F}) {
-    d.on_rpdo(canopen::RxPdoCsp{cw, 0});
-    d.on_sync();
-  }
-  return d;
-}
+constexpr double kCounts = test::kPressCounts;
+// test::pressing_drive(): 0x6072's default is 3334 per mille, the peak rounded up.
+using test::pressing_drive;
 
 // One cycle towards `target` (units) with the max torque `max_torque` (per mille; 0: not sent).
 void cycle(SimulatedDrive& d, double target, std::uint16_t max_torque) {

@@ -130,7 +130,8 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     have_position_ = true;
     out_.drive_state_changed = state != out_.drive_state;
     out_.drive_state = state;
-    if ((setup_.spindle || setup_.homing) && in.mode_display != out_.mode_display) {
+    if ((setup_.spindle || setup_.homing || setup_.torque_mode) &&
+        in.mode_display != out_.mode_display) {
       out_.mode_changed = true;
       out_.mode_display = in.mode_display;
       // Into CSP while turning: the position target takes over one cycle ahead of the actual
@@ -223,8 +224,25 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
   if (setup_.spindle && in.have_setpoint && in.setpoint_valid) {
     requested_mode_ = in.setpoint_velocity ? kModeCsv : kModeCsp;
   }
+  // G10 L14 P10-P12: the mode the owner asks for goes out with the RPDO, with the torque and
+  // the speed limit; the drive's display says when it runs in it.
+  if (setup_.torque_mode && in.have_setpoint && in.setpoint_valid) {
+    requested_mode_ = in.torque_mode ? kModeCst : kModeCsp;
+    out_.target_torque =
+        in.torque_mode
+            ? static_cast<std::int16_t>(std::clamp(std::lround(in.torque * 10.0), -10000L, 10000L))
+            : std::int16_t{0};
+    out_.max_motor_speed =
+        in.torque_mode
+            ? static_cast<std::uint32_t>(std::clamp(std::lround(in.torque_speed), 0L, 1000000L))
+            : 0U;
+  }
   out_.mode = requested_mode_;
-  const bool velocity_mode = setup_.spindle && out_.mode_display == kModeCsv;
+  // In CST (and on the way into it) the drive has no position loop: the command follows it, so
+  // that the frame that switches back to CSP holds where the motor stands.
+  const bool torque_mode =
+      setup_.torque_mode && (out_.mode_display == kModeCst || requested_mode_ == kModeCst);
+  const bool velocity_mode = (setup_.spindle && out_.mode_display == kModeCsv) || torque_mode;
   if (setup_.spindle && following_ && !out_.quick_stop) {
     if (in.have_setpoint && in.setpoint_valid && in.setpoint_velocity) {
       out_.vel_cmd = in.setpoint_vel;
@@ -280,7 +298,7 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
       }
     }
   }
-  if (!following_ || (velocity_mode && requested_mode_ == kModeCsv)) {
+  if (!following_ || (velocity_mode && requested_mode_ == kModeCsv) || torque_mode) {
     // No position loop in CSV (no following error either); and a drive not yet the owner's
     // (enabling, homing) is told to stay where it is, whatever mode it switches to next.
     out_.cmd = out_.act;

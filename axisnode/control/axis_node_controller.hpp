@@ -46,6 +46,11 @@ struct AxisNodeSetup {
   // G160: the drive's max torque 0x6072 is in its RPDO2 and its torque 0x6077 in its TPDO2
   // (canopen::add_torque_limit).
   bool torque_skip = false;
+  // G10 L14 P10-P12: the drive switches between CSP and cyclic synchronous torque (CST, mode
+  // 10) as the owner's setpoints ask, the modes of operation in its RPDO1 and their display in
+  // its TPDO1, the target torque 0x6071 and the max motor speed 0x6080 in its RPDO2 after the
+  // max torque (canopen::add_torque_mode after add_torque_limit; needs torque_skip).
+  bool torque_mode = false;
 };
 
 inline constexpr std::int8_t kModeHoming = 6;
@@ -54,6 +59,7 @@ const char* mode_name(std::int8_t mode) noexcept;
 
 inline constexpr std::int8_t kModeCsp = 8;
 inline constexpr std::int8_t kModeCsv = 9;
+inline constexpr std::int8_t kModeCst = 10;
 
 // G31 skip: the owner asks the drive's touch probe to latch the position where its input goes
 // on (rising) or off (falling); G160: to latch where the torque is at its limit and the
@@ -98,6 +104,12 @@ struct AxisNodeInput {
   double torque_limit = 0.0;
   double skip_deviation = 0.0;
   std::int16_t torque_actual = 0;  // 0x6077, per mille of the rated torque (torque_skip)
+  // G10 L14 P10/P11, the owner's while it commands the axis (setup torque_mode): the drive in
+  // torque mode at `torque` percent of the rated torque (signed), its motor within
+  // `torque_speed` rpm; false: position mode.
+  bool torque_mode = false;
+  double torque = 0.0;
+  double torque_speed = 0.0;
 };
 
 enum class AxisAlarm : std::uint8_t {
@@ -146,6 +158,9 @@ struct AxisNodeOutput {
   std::uint32_t probe_count = 0;
   // 0x6072 to send (torque_skip): the owner's limit, per mille of the rated torque, or none.
   std::uint16_t max_torque = canopen::kNoTorqueLimit;
+  // 0x6071 and 0x6080 to send (torque_mode): per mille of the rated torque, rpm; 0 in CSP.
+  std::int16_t target_torque = 0;
+  std::uint32_t max_motor_speed = 0;
 };
 
 class AxisNodeController {

@@ -24,8 +24,9 @@ inline DriveReadings readings_of(const DriveSample& sample) noexcept {
 }
 
 inline canopen::DriveCommand command_of(const AxisNodeOutput& out) noexcept {
-  return canopen::DriveCommand{out.controlword, out.target_counts, out.target_velocity_counts,
-                               out.mode,        out.touch_probe,   out.max_torque};
+  return canopen::DriveCommand{out.controlword,   out.target_counts,  out.target_velocity_counts,
+                               out.mode,          out.touch_probe,    out.max_torque,
+                               out.target_torque, out.max_motor_speed};
 }
 
 }  // namespace mcnc::axisnode

@@ -1,9 +1,10 @@
 #pragma once
 // An axis node's core in closed loop with a simulated drive, one SYNC a cycle, for the node's
-// unit tests: what the node puts in its RPDOs (controlword, target position, max torque 0x6072,
-// touch probe function 0x60B8) goes to the drive, and what the drive answers in its TPDOs
-// (statusword, position, torque 0x6077, touch probe status and edge positions) is the node's
-// input of the next cycle. The drive is started and the node has enabled it on construction.
+// unit tests: what the node puts in its RPDOs (controlword, target position, modes of operation,
+// max torque 0x6072, target torque 0x6071, max motor speed 0x6080, touch probe function 0x60B8)
+// goes to the drive, and what the drive answers in its TPDOs (statusword, position, mode
+// display, torque 0x6077, touch probe status and edge positions) is the node's input of the
+// next cycle. The drive is started and the node has enabled it on construction.
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/drivesim/simulated_drive.hpp"
 #include "canopen/cia402/drive_pdos.hpp"
@@ -38,6 +39,7 @@ struct NodeDriveLoop {
     in.statusword = tpdo.statusword;
     in.position_counts = tpdo.position_actual;
     in.torque_actual = torque;
+    in.mode_display = drive.objects().mode();
     in.touch_probe_status = drive.objects().live.touch_probe_status;
     in.probe_positive = drive.objects().live.probe_positive;
     in.probe_negative = drive.objects().live.probe_negative;
@@ -49,6 +51,12 @@ struct NodeDriveLoop {
     v.has_target_position = true;
     v.max_torque = out.max_torque;
     v.has_max_torque = true;
+    v.mode = out.mode;
+    v.has_mode = true;
+    v.target_torque = out.target_torque;
+    v.has_target_torque = true;
+    v.max_motor_speed = out.max_motor_speed;
+    v.has_max_motor_speed = true;
     v.touch_probe = out.touch_probe;
     v.has_touch_probe = true;
     drive.on_rpdo(v);

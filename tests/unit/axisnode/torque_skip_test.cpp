@@ -141,3 +141,56 @@ TEST(AxisNodeTorqueSkip, AnAxisWithoutTheTorqueMappingNeitherLimitsNorSkips) {
   }
   EXPECT_EQ(loop.node.output().touch_probe, 0);  // nor does it arm a touch probe
 }
+
+// G10 L14 P10-P12 (setup torque_mode): the owner's torque mode goes out as CST (mode 10) with
+// the torque and the speed limit; the drive presses against the contact with the set torque
+// while the node's command follows it (no following error, no alarm); back in CSP the node
+// holds where the motor stands.
+TEST(AxisNodeTorqueMode, PressesWithTheSetTorqueThenHoldsWhereItStandsInCsp) {
+  test::NodeDriveLoop loop(
+      [] {
+        axisnode::AxisNodeSetup s{10000.0, kCycle, 5};
+        s.following_error_limit = 0.1;
+        s.torque_skip = true;
+        s.torque_mode = true;
+        return s;
+      }(),
+      [] {
+        drivesim::DriveParams p{1, 10000.0, 0.004, 500.0, 5000.0, 12.5};
+        p.contact_side = -1;
+        p.contact_at = 12.0;
+        return p;
+      }(),
+      kCycle);
+  ASSERT_TRUE(loop.node.output().enabled);
+  AxisNodeInput in;
+  in.have_setpoint = true;
+  in.setpoint_valid = true;
+  in.setpoint_pos = 12.5;
+  in.torque_mode = true;
+  in.torque = -50.0;
+  in.torque_speed = 600.0;  // 100 mm/s at 10 mm a revolution
+  for (int i = 0; i < 500; ++i) {
+    loop.step(in);
+  }
+  const axisnode::AxisNodeOutput& out = loop.node.output();
+  EXPECT_EQ(out.mode, axisnode::kModeCst);
+  EXPECT_EQ(out.mode_display, axisnode::kModeCst);
+  EXPECT_EQ(out.target_torque, -500);
+  EXPECT_EQ(out.max_motor_speed, 600U);
+  EXPECT_DOUBLE_EQ(loop.drive.position(), 12.0);
+  EXPECT_EQ(loop.torque, -500);      // the drive holds the set torque against the contact
+  EXPECT_NEAR(out.cmd, 12.0, 1e-9);  // the command follows the motor
+  EXPECT_EQ(out.alarm, AxisAlarm::none);
+  // Back to position mode: the owner commands where the axis stands.
+  in.torque_mode = false;
+  in.setpoint_pos = 12.0;
+  for (int i = 0; i < 100; ++i) {
+    loop.step(in);
+  }
+  EXPECT_EQ(out.mode_display, axisnode::kModeCsp);
+  EXPECT_EQ(out.target_torque, 0);
+  EXPECT_DOUBLE_EQ(loop.drive.position(), 12.0);
+  EXPECT_EQ(out.alarm, AxisAlarm::none);
+  EXPECT_TRUE(out.enabled);
+}

@@ -62,6 +62,10 @@ enum class Op : std::uint8_t {
   // `torque_data_axes` compared with `torque_data` (s); the axes that meet it go to
   // #`timer_variable` as bits (the channel hands them back: CommandSource::load_timer_result).
   load_timer_check,
+  // G10 L14 P10/P11/P12: the axes of `torque_data_axes` to torque mode at `torque_data` % (P10;
+  // 0: back to position mode), their speed limit in it (P11, rpm), or back to position mode
+  // with `torque_data` as their torque limit (P12; 0: none). `torque_mode_p` says which.
+  torque_mode,
 };
 
 enum class FeedMode : std::uint8_t { per_min, per_rev };
@@ -192,6 +196,7 @@ struct Command {
   int load_timer = 0;
   bool timer_longer = false;
   std::int64_t timer_variable = 0;
+  int torque_mode_p = 0;  // torque_mode: 10, 11 or 12
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

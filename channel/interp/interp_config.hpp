@@ -58,6 +58,9 @@ struct AxisConfig {
   // Param 5511: the load ratio G31 P98/P99 skip at on this axis, percent of the rated torque,
   // where no G10 L14 P6 set one (0: none, the axis is not watched).
   double skip_load = 0.0;
+  // Param 5521: the motor speed limit in torque mode (G10 L14 P10) where no P11 set one, rpm (0:
+  // none; then P10 needs a P11 first).
+  double torque_mode_speed = 0.0;
   // Param 5700.1: G81.1 may oscillate it.
   bool oscillation = false;
 };

@@ -39,6 +39,8 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::egb:
     case Op::egb_off:
       return "G81.4/G80.4 (the electronic gear box) does not run in the channel yet";
+    case Op::torque_mode:
+      return "G10 L14 P10-P12 (torque mode) does not run in the channel yet";
     case Op::message:
       return "#3006 messages need the HMI";
     case Op::thread:

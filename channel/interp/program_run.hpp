@@ -245,6 +245,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_torque_limit(int column);      // G10 L14 P9
   bool run_load_watch(int column);        // G10 L14 P0/P1, P2-P5 (the load timers)
   bool run_load_timer_check(int column);  // G10 L14 P20-P51
+  bool run_torque_mode(int column);       // G10 L14 P10-P12
   // G10 L14's per-axis values (`what` in an alarm), absolute addresses only, 0-`max` in
   // `unit`: into `values`, bit i of `given` for each axis named.
   bool read_axis_values(const char* what, const char* unit, double max, AxisVector& values,
@@ -678,6 +679,8 @@ class ProgramRun final : public macro::VariableProvider {
   // format ② (P20-P51) may read.
   std::array<std::uint32_t, 4> load_timer_axes_{};
   std::int64_t load_timer_variable_ = 0;  // the R of the last G10 L14 P20-P51
+  // G10 L14 P11: per channel axis, the motor speed limit of torque mode, rpm (0: param 5521's).
+  AxisVector torque_mode_speed_{};
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

@@ -5,6 +5,8 @@
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace mcnc::interp {
@@ -14,6 +16,8 @@ namespace {
 constexpr double kMaxLoadFilterSeconds = 3600.0;
 // The longest time format ② may compare a load timer with: a day.
 constexpr double kMaxLoadTimerSeconds = 86400.0;
+// The highest motor speed G10 L14 P11 may name.
+constexpr double kMaxTorqueModeRpm = 100000.0;
 // Format ② (L4794-4812): P20/P21 read timer 2 ... P50/P51 timer 5.
 bool is_timer_check(double p) {
   for (int timer = 2; timer <= 5; ++timer) {
@@ -39,11 +43,14 @@ bool ProgramRun::run_torque_data(int column) {
   if (is_timer_check(p->value)) {
     return run_load_timer_check(column);
   }
+  if (p->value == 10.0 || p->value == 11.0 || p->value == 12.0) {
+    return run_torque_mode(column);
+  }
   return fail(alarm::kNotInThisVersion,
               "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
-                  " (overload detection or torque mode) is not implemented; G10 L14 P0/P1 "
-                  "watch the load, P2-P5 and P20-P51 time it, P6 sets the load ratios of G31 "
-                  "P98/P99, P9 the torque limits",
+                  " (overload detection) is not implemented; G10 L14 P0/P1 watch the load, "
+                  "P2-P5 and P20-P51 time it, P6 sets the load ratios of G31 P98/P99, P9 the "
+                  "torque limits, P10-P12 switch torque mode",
               p->column);
 }
 
@@ -174,6 +181,69 @@ bool ProgramRun::run_load_timer_check(int column) {
   c.torque_data = seconds;
   c.barrier = true;  // the program reads #R after it
   load_timer_variable_ = variable;
+  return true;
+}
+
+bool ProgramRun::run_torque_mode(int column) {
+  // G10 L14 P10/P11/P12 α (L5143-5209): P10 α the axes named to torque mode, α % of the rated
+  // torque (the sign turns the motor), α0 back to position mode; P11 α their motor speed in
+  // torque mode (rpm, unsigned; param 5521 where none); P12 α back to position mode with the
+  // torque limit α (<= 0, -1 recommended: none). Absolute addresses only; no axis 1152.
+  const int p = static_cast<int>(word('P')->value);
+  const std::string code = "G10 L14 P" + std::to_string(p);
+  AxisVector values{};
+  std::uint32_t given = 0;
+  const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
+    const auto a = static_cast<std::size_t>(axis);
+    const std::string name(1, config_.axes[a].name);
+    if (incremental) {
+      return fail(alarm::kWordNotAllowed,
+                  code +
+                      " takes its values by absolute addresses (X, Z, B ...), not by U, W or "
+                      "UB",
+                  w.column);
+    }
+    const bool in_range = p == 10   ? std::fabs(w.value) <= kMaxTorquePercent
+                          : p == 11 ? w.value > 0.0 && w.value <= kMaxTorqueModeRpm
+                                    : w.value <= kMaxTorquePercent;
+    if (!in_range) {
+      return fail(alarm::kBadWordValue,
+                  code + " " + name +
+                      (p == 10   ? " (the torque, % of the rated torque) must be -1000 to 1000"
+                       : p == 11 ? " (the motor speed, rpm) must be above 0 and up to 100000"
+                                 : " (the torque limit, % of the rated torque) must be up to "
+                                   "1000, or -1 for none"),
+                  w.column);
+    }
+    if (p == 10 && w.value != 0.0 && torque_mode_speed_[a] <= 0.0 &&
+        config_.axes[a].torque_mode_speed <= 0.0) {
+      return fail(alarm::kCycleWordMissing,
+                  code + " " + name + ": no motor speed for torque mode (G10 L14 P11 " + name +
+                      " first, or param 5521: torque_mode_speed of the axis)",
+                  w.column);
+    }
+    values[a] = p == 12 ? std::max(w.value, 0.0) : w.value;
+    given |= 1U << axis;
+    return true;
+  });
+  if (!ok) {
+    return false;
+  }
+  if (given == 0) {
+    return fail(alarm::kCycleWordMissing, code + " needs an axis (B50)", column);
+  }
+  for (std::size_t a = 0; a < config_.axes.size(); ++a) {
+    if (p == 11 && ((given >> a) & 1U) != 0) {
+      torque_mode_speed_[a] = values[a];
+    }
+  }
+  Command& c = emit(Op::torque_mode);
+  c.torque_mode_p = p;
+  c.torque_data_axes = given;
+  c.torque_data = values;
+  // Back in position mode the axis stands where the torque left it: the blocks after it start
+  // from there (the channel's position at the stop).
+  c.barrier = p != 11;
   return true;
 }
 

@@ -405,7 +405,7 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
       const std::string k = "axes[" + std::to_string(i++) + "]";
       only_keys(a, k,
                 {"name", "diameter", "rotary", "start", "reference", "exchange", "approach",
-                 "stroke", "oscillation", "skip_load"});
+                 "stroke", "oscillation", "skip_load", "torque_mode_speed"});
       interp::AxisConfig ax;
       ax.name = axis_letter(get<std::string>(a["name"], k + ".name"), k + ".name");
       for (const auto& other : c.axes) {
@@ -436,6 +436,12 @@ void load_interp_params(const std::string& path, InterpreterConfig& c) {
         ax.skip_load = get<double>(a["skip_load"], k + ".skip_load");
         if (!(ax.skip_load >= 0.0 && ax.skip_load <= 1000.0)) {
           bad(k + ".skip_load", "0 to 1000 %");
+        }
+      }
+      if (a["torque_mode_speed"]) {  // G10 L14 P10 without P11 (param 5521)
+        ax.torque_mode_speed = get<double>(a["torque_mode_speed"], k + ".torque_mode_speed");
+        if (!(ax.torque_mode_speed >= 0.0 && ax.torque_mode_speed <= 100000.0)) {
+          bad(k + ".torque_mode_speed", "0 to 100000 rpm");
         }
       }
       if (a["approach"]) {

@@ -391,6 +391,8 @@ const char* op_name(Op op) {
       return "load_watch";
     case Op::load_timer_check:
       return "load_timer_check";
+    case Op::torque_mode:
+      return "torque_mode";
   }
   return "?";
 }
@@ -761,6 +763,14 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
         key(out, "timer");
         integer(out, c.load_timer);
       }
+      break;
+    case Op::torque_mode:  // G10 L14 P10/P11/P12: what it sets, per axis named
+      key(out, "set");
+      out += c.torque_mode_p == 10   ? "\"torque\""
+             : c.torque_mode_p == 11 ? "\"speed\""
+                                     : "\"position\"";
+      key(out, c.torque_mode_p == 10 ? "torques" : c.torque_mode_p == 11 ? "speeds" : "limits");
+      axis_values(out, c.torque_data, c.torque_data_axes, axes);
       break;
     case Op::load_timer_check:  // G10 L14 P20-P51: the timer, the condition, each axis's time
       key(out, "timer");

@@ -1,6 +1,6 @@
 // G10 L14 P9 (spec dafeng L5094-5142): the torque limits it emits, per axis named, modal; G10
 // L14 P0/P1 (L4770-4849): the loads watched; P2-P5 and P20-P51: the load timers started and
-// read, #R from the channel's answer; and the alarms.
+// read, #R from the channel's answer; P10-P12 (L5143-5209): torque mode; and the alarms.
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
 namespace mcnc::interp::test {
@@ -73,8 +73,7 @@ TEST(InterpTorqueLimit, Alarms) {
       {"G00 X10\nG10 L14 P9 W40\nM30\n", alarm::kWordNotAllowed, 2},  // absolute addresses only
       {"G10 L14 P9 Z1001\nM30\n", alarm::kBadWordValue, 1},
       {"G10 L14 P9 Z-1\nM30\n", alarm::kBadWordValue, 1},
-      {"G10 L14 P9\nM30\n", alarm::kCycleWordMissing, 1},       // no axis: nothing to limit
-      {"G10 L14 P10 Z50\nM30\n", alarm::kNotInThisVersion, 1},  // torque mode
+      {"G10 L14 P9\nM30\n", alarm::kCycleWordMissing, 1},  // no axis: nothing to limit
       {"G10 L14 P1 Z80 J-1\nM30\n", alarm::kBadWordValue, 1},
       {"G10 L14 P0 U80\nM30\n", alarm::kWordNotAllowed, 1},
       {"G10 L14 P1 Z1200\nM30\n", alarm::kBadWordValue, 1},
@@ -163,6 +162,55 @@ TEST(InterpLoadTimers, Alarms) {
        3},  // P2 without axes stopped the timer
   };
   expect_alarms(cases, lathe());
+}
+
+// The electric tailstock (L5185-5209): B's speed (P11), torque mode at 50 % (P10), back to
+// position mode with a 50 % limit (P12); P10 and P12 stop the read-ahead (the axis stands where
+// the torque left it), P11 does not.
+TEST(InterpTorqueMode, TheTailstockExampleSetsSpeedTorqueAndTheLimitAfter) {
+  InterpreterConfig c = lathe();
+  AxisConfig b;
+  b.name = 'B';
+  c.axes.push_back(b);
+  const RunResult r = run_ok(
+      "G10 L14 P11 B300\nG10 L14 P10 B50\nG04 X2\nG10 L14 P12 B50\nG10 L14 P10 B-20\n"
+      "G10 L14 P10 B0\nG10 L14 P12 B-1\nM30\n",
+      c);
+  const auto modes = r.of(Op::torque_mode);
+  ASSERT_EQ(modes.size(), 6u);
+  EXPECT_EQ(modes[0].torque_mode_p, 11);
+  EXPECT_EQ(modes[0].torque_data_axes, 1U << 2);
+  EXPECT_EQ(modes[0].torque_data[2], 300.0);
+  EXPECT_FALSE(modes[0].barrier);
+  EXPECT_EQ(modes[1].torque_mode_p, 10);
+  EXPECT_EQ(modes[1].torque_data[2], 50.0);
+  EXPECT_TRUE(modes[1].barrier);
+  EXPECT_EQ(modes[2].torque_mode_p, 12);
+  EXPECT_EQ(modes[2].torque_data[2], 50.0);
+  EXPECT_TRUE(modes[2].barrier);
+  EXPECT_EQ(modes[3].torque_data[2], -20.0);  // the sign turns the motor the other way
+  EXPECT_EQ(modes[4].torque_data[2], 0.0);    // back to position mode
+  EXPECT_EQ(modes[5].torque_data[2], 0.0);    // -1: no limit after
+}
+
+TEST(InterpTorqueMode, Alarms) {
+  InterpreterConfig c = lathe();
+  AxisConfig b;
+  b.name = 'B';
+  c.axes.push_back(b);
+  const ExpectedAlarm cases[] = {
+      {"G10 L14 P10 B50\nM30\n", alarm::kCycleWordMissing, 1},  // no speed: P11 or param 5521
+      {"G10 L14 P11 B300\nG10 L14 P10 B1001\nM30\n", alarm::kBadWordValue, 2},
+      {"G10 L14 P11 B0\nM30\n", alarm::kBadWordValue, 1},  // a speed above 0
+      {"G10 L14 P11 B-300\nM30\n", alarm::kBadWordValue, 1},
+      {"G10 L14 P12 B1200\nM30\n", alarm::kBadWordValue, 1},
+      {"G10 L14 P11 UB300\nM30\n", alarm::kWordNotAllowed, 1},
+      {"G10 L14 P10\nM30\n", alarm::kCycleWordMissing, 1},
+  };
+  expect_alarms(cases, c);
+  // Param 5521 stands in for P11.
+  c.axes[2].torque_mode_speed = 500.0;
+  run_ok("G10 L14 P10 B50\nM30\n", c);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // G10 L14 P9 (spec dafeng L5094-5142): the torque limits it emits, per axis named, modal; G10
 // L14 P0/P1 (L4770-4849): the loads watched; P2-P5 and P20-P51: the load timers started and
 // read, #R from the channel's answer; P10-P12 (L5143-5209): torque mode; and the alarms.
+#include "channel/interp/interpreter_source.hpp"
 #include "tests/unit/interpreter/interp_test_support.hpp"
 
 namespace mcnc::interp::test {
@@ -211,6 +212,27 @@ TEST(InterpTorqueMode, Alarms) {
   // Param 5521 stands in for P11.
   c.axes[2].torque_mode_speed = 500.0;
   run_ok("G10 L14 P10 B50\nM30\n", c);
+}
+
+// What the channel's source takes before a run: the load timers' checks run (Z reports its
+// torque), torque mode is refused with 1122 at its line until the channel runs it.
+TEST(InterpTorqueMode, TheChannelTakesTheTimersAndRefusesTorqueModeBeforeAnythingMoves) {
+  InterpreterConfig c = lathe();
+  c.axes[kZ].torque_skip = true;
+  AxisConfig b;
+  b.name = 'B';
+  b.torque_skip = true;
+  b.torque_mode_speed = 300.0;
+  c.axes.push_back(b);
+  const CheckedProgram timers = InterpreterSource::check(
+      c, "G10 L14 P2 Z80\nG01 W-1 F30\nG10 L14 P21 Z15 R100\nM30\n", "T.nc", false);
+  EXPECT_FALSE(timers.alarm.has_value()) << timers.alarm->text;
+  const CheckedProgram torque =
+      InterpreterSource::check(c, "G00 Z1\nG10 L14 P10 B50\nM30\n", "M.nc", false);
+  ASSERT_TRUE(torque.alarm.has_value());
+  EXPECT_EQ(torque.alarm->number, alarm::kNotInThisVersion);
+  EXPECT_EQ(torque.alarm->line, 2);
+  EXPECT_NE(torque.alarm->text.find("torque mode"), std::string::npos) << torque.alarm->text;
 }
 
 }  // namespace

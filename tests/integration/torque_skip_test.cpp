@@ -338,7 +338,7 @@ TEST(TorqueLimit, P1OverloadIsAnAlarmAtTheG01AndNothingMovesAfter) {
   }
 }
 
-// G10 L14 P4/P5 and P41/P51 (L4770-4849, decision 200): B1 fed into the centre by G31 P98
+// G10 L14 P4/P5 and P41/P51 (L4770-4849, decision 141): B1 fed into the centre by G31 P98
 // (skipping at its 50 % ratio) with timer 4 counting its load above 20 % and timer 5 above
 // 900 %. The checks run once the blocks before them ended: #100 gets B's bit (the third axis:
 // 4, as the spec's example reads Z), #101 nothing, so X goes to 20 + 4 * 10 = 60.

@@ -337,7 +337,8 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
   }
   if (auto egb = map.optional("egb")) {
     const YamlMap m =
-        egb->map({"tool", "work", "axial", "stop_time", "deviation_rpm", "deviation_time"});
+        egb->map({"tool", "work", "axial", "stop_time", "deviation_rpm", "deviation_time",
+                  "synchronous", "no_wait", "reset", "reverse", "helix_reverse"});
     (void)m.required("tool");
     (void)m.required("work");
     channel.egb_tool = -1;  // named: check_egb resolves them
@@ -351,6 +352,26 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     }
     if (auto t = m.optional("deviation_time")) {
       channel.egb_deviation_time_s = t->positive_number();
+    }
+    // Param 5320's bits 1-5.
+    if (auto b = m.optional("synchronous")) {
+      channel.egb_synchronous = b->boolean();
+    }
+    if (auto b = m.optional("no_wait")) {
+      channel.egb_no_wait = b->boolean();
+    }
+    if (auto r = m.optional("reset")) {
+      const std::string text = r->string();
+      if (text != "at_once" && text != "when_tool_stops") {
+        r->fail("reset must be at_once or when_tool_stops (parameter 5320.4), got '" + text + "'");
+      }
+      channel.egb_reset_at_once = text == "at_once";
+    }
+    if (auto b = m.optional("reverse")) {
+      channel.egb_reverse = b->boolean();
+    }
+    if (auto b = m.optional("helix_reverse")) {
+      channel.egb_helix_reverse = b->boolean();
     }
   }
   if (auto skip = map.optional("skip_input")) {

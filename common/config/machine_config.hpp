@@ -202,6 +202,16 @@ struct ChannelConfig {
   double egb_stop_time_s = 0.5;
   double egb_deviation_rpm = 0.0;
   double egb_deviation_time_s = 0.1;
+  // Param 5320's bits: the work axis follows the tool spindle's commanded angle (.1 = 1,
+  // synchronous) rather than its feedback (0, follow: the deviation is watched); G81.4 ends
+  // without waiting for the work axis to lock (.5); a reset or an emergency stop lets go of the
+  // work axis at once, stopping it within stop_time (.4 = 1), rather than once the tool spindle
+  // stands (0); the work axis (.2) and the helical term (.3) turn the other way.
+  bool egb_synchronous = false;
+  bool egb_no_wait = false;
+  bool egb_reset_at_once = false;
+  bool egb_reverse = false;
+  bool egb_helix_reverse = false;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
   // G160 without P limits the torque to this, % of the rated torque (param 5515; 0: such a

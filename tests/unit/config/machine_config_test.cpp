@@ -1606,4 +1606,38 @@ axes:
   EXPECT_NE(what.find("cam"), std::string::npos) << what;
 }
 
+TEST(MachineConfig, EgbTakesParameter5320sBits) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: C1, address: C, type: rotary, bus: b, node_id: 2}
+  - {name: S1, type: spindle, bus: b, node_id: 3}
+)";
+  const auto with = [&](const std::string& egb) {
+    return base + "channels: [{name: CH1, axes: [X1, C1], spindles: [S1], egb: " + egb + "}]\n";
+  };
+  const ChannelConfig plain = parse_machine_yaml(with("{tool: S1, work: C1}")).channels[0];
+  EXPECT_FALSE(plain.egb_synchronous);  // follow mode, the deviation watched
+  EXPECT_FALSE(plain.egb_no_wait);
+  EXPECT_FALSE(plain.egb_reset_at_once);  // 5320.4 = 0: once the tool spindle stands
+  EXPECT_FALSE(plain.egb_reverse);
+  EXPECT_FALSE(plain.egb_helix_reverse);
+  const ChannelConfig all =
+      parse_machine_yaml(with("{tool: S1, work: C1, synchronous: true, no_wait: true, reset: "
+                              "at_once, reverse: true, helix_reverse: true}"))
+          .channels[0];
+  EXPECT_TRUE(all.egb_synchronous);
+  EXPECT_TRUE(all.egb_no_wait);
+  EXPECT_TRUE(all.egb_reset_at_once);
+  EXPECT_TRUE(all.egb_reverse);
+  EXPECT_TRUE(all.egb_helix_reverse);
+  std::string what;
+  EXPECT_EQ(rejection_path(with("{tool: S1, work: C1, reset: later}"), &what),
+            "channels[0].egb.reset");
+  EXPECT_NE(what.find("5320.4"), std::string::npos) << what;
+}
+
 }  // namespace mcnc::config

@@ -14,6 +14,9 @@ std::size_t gate_inputs(const AxisNodeRoles& roles) {
 // Long enough for a master that runs ahead of its slave's channel (a minute at 1 ms).
 constexpr std::size_t kLeaderHistory = std::size_t{1} << 16;
 
+// deg/s: a tool spindle slower than this stands (a reset's G81.4 lets go then, param 5320.4).
+constexpr double kToolStands = 0.6;
+
 }  // namespace
 
 AxisNode::AxisNode(const AxisNodeRoles& roles)
@@ -23,11 +26,12 @@ AxisNode::AxisNode(const AxisNodeRoles& roles)
       from_(cycle::tracked_inputs<SetpointSample>(0, roles.candidates.size())),
       sync_channel_(roles.candidates.size()),
       master_feedback_(roles.candidates.size() + 1),
-      master_history_(roles.leaders, roles.may_follow ? kLeaderHistory : 1),
+      master_history_(roles.leaders, roles.may_follow || roles.egb_axial != 0 ? kLeaderHistory : 1),
       ownership_(roles.home),
       spindle_coupling_(roles.spindle_coupling),
       axis_coupling_(roles.cycle_s),
       cam_coupling_(roles.cam_coupling),
+      gear_box_(roles.gear_box),
       controller_(roles.controller),
       owner_now_(roles.home),
       following_(0) {
@@ -83,9 +87,12 @@ void AxisNode::on_event(const AxisNodeEvent& e) noexcept {
     if (e.kind == AxisNodeEvent::Kind::cam_sync && roles_.cam) {
       (void)cams_.push(CamRequest{e.sync_on, e.cam}, e.cycle);
     }
+    if (e.kind == AxisNodeEvent::Kind::egb_sync && roles_.egb) {
+      (void)egbs_.push(EgbRequest{e.sync_on, e.egb, e.egb_off}, e.cycle);
+    }
     const bool spindle_sync =
         e.kind == AxisNodeEvent::Kind::spindle_sync && !roles_.polygon && !roles_.cam &&
-        (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0));
+        !roles_.egb && (e.sync_group == roles_.sync_group || (!e.sync_on && e.sync_group == 0));
     if (polygon || spindle_sync) {
       (void)spindle_syncs_.push(SpindleSyncRequest{e.sync_on, e.spindle}, e.cycle);
     }
@@ -113,9 +120,9 @@ void AxisNode::on_sync_channel_gone(const WriterId& writer) noexcept {
 }
 
 void AxisNode::on_master_feedback(std::uint32_t axis, std::uint64_t cycle, double act, double vel,
-                                  const WriterId& writer) noexcept {
+                                  double cmd, const WriterId& writer) noexcept {
   if (coupled_spindle() && axis == roles_.sync_master) {
-    master_feedback_.on_sample(MasterSample{act, vel}, cycle, 0, writer, gate_);
+    master_feedback_.on_sample(MasterSample{act, vel, cmd}, cycle, 0, writer, gate_);
   }
 }
 
@@ -160,9 +167,23 @@ bool AxisNode::ready(std::uint64_t cycle) const noexcept {
   if (!gate_.may_run(cycle)) {
     return false;
   }
+  if (waits_for_axial(cycle)) {
+    return false;
+  }
   const std::uint32_t m = roles_.may_follow ? axis_master_at(cycle) : 0;
   return m == 0 ||
          master_history_.at(m, cycle - 1).lookup != coupling::MasterHistory::Lookup::not_yet;
+}
+
+bool AxisNode::waits_for_axial(std::uint64_t cycle) const noexcept {
+  if (roles_.egb_axial == 0 || cycle == 0 ||
+      master_history_.at(roles_.egb_axial, cycle - 1).lookup !=
+          coupling::MasterHistory::Lookup::not_yet) {
+    return false;
+  }
+  bool on = gear_box_.active();
+  egbs_.peek_due(cycle, [&](const EgbRequest& r) { on = on || r.on; });
+  return on;
 }
 
 std::optional<AxisNode::InputWait> AxisNode::input_wait(std::uint64_t cycle) const noexcept {
@@ -188,7 +209,7 @@ std::optional<AxisNode::InputWait> AxisNode::input_wait(std::uint64_t cycle) con
   }
   InputWait w;
   w.from = InputWait::From::leader;
-  w.id = axis_master_at(cycle);
+  w.id = waits_for_axial(cycle) ? roles_.egb_axial : axis_master_at(cycle);
   return w;
 }
 
@@ -373,11 +394,100 @@ void AxisNode::apply_cam(std::uint64_t cycle, bool lockstep) noexcept {
   }
 }
 
+void AxisNode::stop_egb(AxisNodeHappening::EgbStop why) noexcept {
+  if (gear_box_.active() && !gear_box_.releasing()) {
+    egb_stopping_ = why;
+    gear_box_.release();
+  }
+}
+
+void AxisNode::apply_egb(std::uint64_t cycle, bool lockstep) noexcept {
+  using Kind = AxisNodeHappening::Kind;
+  using Stop = AxisNodeHappening::EgbStop;
+  // The tool spindle's angle of this cycle, from its feedback of the last one: its actual
+  // angle (follow mode), or its commanded one (synchronous mode, param 5320.1; in speed mode the
+  // two are one).
+  const MasterSample* m = master_feedback_.for_cycle(cycle, lockstep);
+  const bool have_tool = m != nullptr && !master_feedback_.lost();
+  const double tool_vel = have_tool ? m->vel : 0.0;
+  const double tool_deg =
+      have_tool ? (roles_.egb_synchronous ? m->cmd : m->act) + m->vel * roles_.cycle_s : 0.0;
+  // The axial axis's commanded position of this cycle and its speed, as a G51.4 leader's.
+  double axial = 0.0;
+  double axial_vel = 0.0;
+  if (roles_.egb_axial != 0 && cycle > 0) {
+    const auto now = master_history_.estimate(roles_.egb_axial, cycle, lockstep);
+    const auto before = master_history_.estimate(roles_.egb_axial, cycle - 1, lockstep);
+    if (now.lookup == coupling::MasterHistory::Lookup::found) {
+      axial = now.cmd;
+      axial_vel = before.lookup == coupling::MasterHistory::Lookup::found
+                      ? (now.cmd - before.cmd) / roles_.cycle_s
+                      : 0.0;
+    }
+  }
+  const bool commanded = in_.have_setpoint && in_.setpoint_valid && !in_.setpoint_velocity;
+  if (commanded) {
+    egb_base_ = in_.setpoint_pos;
+  }
+  egbs_.take_due(cycle, [&](const EgbRequest& r) {
+    if (r.on && coupling::gear_box_command_error(r.command) != nullptr) {
+      happened(AxisNodeHappening{Kind::egb_refused, 0, 0, false, roles_.sync_master, {}});
+    } else if (r.on) {
+      gear_box_.couple(r.command, tool_deg, axial, egb_base_);
+      egb_release_when_tool_stands_ = false;
+      happened(AxisNodeHappening{Kind::egb_coupled, 0, 0, false, roles_.sync_master, {}});
+    } else if (r.off == AxisNodeEvent::EgbOff::absorb) {
+      if (!gear_box_.active() && gear_box_.offset() != 0.0) {
+        gear_box_.absorb();
+        happened(AxisNodeHappening{Kind::egb_absorbed, 0, 0, false, roles_.sync_master, {}});
+      }
+    } else if (r.off == AxisNodeEvent::EgbOff::reset && !roles_.egb_reset_at_once) {
+      // Param 5320.4 = 0: the gear holds until the tool spindle stands, then lets go.
+      egb_release_when_tool_stands_ = gear_box_.active();
+    } else {
+      stop_egb(r.off == AxisNodeEvent::EgbOff::reset ? Stop::reset : Stop::program);
+    }
+  });
+  if (!gear_box_.active()) {
+    // Stopped: the offset stays laid over the channel's setpoint until it takes it over.
+    if (commanded) {
+      in_.setpoint_pos += gear_box_.offset();
+    }
+    return;
+  }
+  // A missing setpoint is the node's deadline's business: the gear box waits for it.
+  if (!in_.have_setpoint || in_.setpoint_velocity) {
+    return;
+  }
+  if (egb_release_when_tool_stands_ && std::fabs(tool_vel) < kToolStands) {
+    stop_egb(Stop::reset);
+  }
+  if (!have_tool) {
+    stop_egb(Stop::tool_lost);
+  }
+  const bool was_releasing = gear_box_.releasing();
+  const coupling::GearBoxOffset o = have_tool ? gear_box_.step(tool_deg, tool_vel, axial, axial_vel)
+                                              : gear_box_.step_without_master();
+  if (!was_releasing && gear_box_.deviation_alarm()) {
+    egb_stopping_ = Stop::deviation;  // the coupling stops itself (5336/5337)
+  }
+  // The gear box runs on whatever the channel does: a reset's hold keeps its last setpoint.
+  in_.setpoint_valid = true;
+  in_.setpoint_pos = egb_base_ + o.pos;
+  in_.setpoint_vel = (commanded ? in_.setpoint_vel : 0.0) + o.vel;
+  if (!gear_box_.active()) {
+    AxisNodeHappening h{Kind::egb_stopped, 0, 0, false, roles_.sync_master, {}};
+    h.egb_stop = egb_stopping_;
+    h.at = gear_box_.offset();
+    happened(h);
+  }
+}
+
 void AxisNode::take_inputs(std::uint64_t cycle, bool lockstep) noexcept {
   happened_count_ = 0;
   in_ = AxisNodeInput{};
   const ownership::OwnershipChange change = decide_owner(cycle, lockstep);
-  if (coupled_spindle() && !roles_.cam) {
+  if (coupled_spindle() && !roles_.cam && !roles_.egb) {
     apply_spindle_sync(cycle, lockstep);
   }
   if (roles_.may_follow) {
@@ -385,6 +495,9 @@ void AxisNode::take_inputs(std::uint64_t cycle, bool lockstep) noexcept {
   }
   if (roles_.cam) {
     apply_cam(cycle, lockstep);
+  }
+  if (roles_.egb) {
+    apply_egb(cycle, lockstep);
   }
   // The owner's change is told after the couplings' (the order the trace has always had).
   if (change.changed) {
@@ -424,10 +537,11 @@ AxisNodeStanding AxisNode::standing() const noexcept {
   AxisNodeStanding s;
   s.owner = owner_now_;
   s.released_by = ownership_.released_by();
-  s.coupled_to = spindle_coupling_.active() || cam_coupling_.active() ? roles_.sync_master
-                                                                      : axis_coupling_.master();
-  s.coupling_locked =
-      spindle_coupling_.locked() || axis_coupling_.active() || cam_coupling_.locked();
+  s.coupled_to = spindle_coupling_.active() || cam_coupling_.active() || gear_box_.active()
+                     ? roles_.sync_master
+                     : axis_coupling_.master();
+  s.coupling_locked = spindle_coupling_.locked() || axis_coupling_.active() ||
+                      cam_coupling_.locked() || gear_box_.locked();
   s.refused_channels = ownership_.refused_channels();
   s.full_channels = ownership_.full_channels();
   return s;

@@ -16,6 +16,7 @@
 #include "axisnode/control/axis_node_controller.hpp"
 #include "axisnode/coupling/axis_coupling.hpp"
 #include "axisnode/coupling/cam_coupling.hpp"
+#include "axisnode/coupling/gear_box_coupling.hpp"
 #include "axisnode/coupling/master_history.hpp"
 #include "axisnode/coupling/spindle_coupling.hpp"
 #include "axisnode/ownership/axis_ownership.hpp"
@@ -54,11 +55,22 @@ struct AxisNodeRoles {
   // Or the slave of a channel's electronic cam (G51.8 / G50.8, its `cam`): sync_master is the
   // master spindle and sync_channel the channel; the lift is laid over the channel's setpoint.
   bool cam = false;
+  // Or the work axis of a channel's electronic gear box (G81.4 / G80.4, its `egb`): sync_master
+  // is the tool spindle and sync_channel the channel; the gear box's offset is laid over the
+  // channel's setpoint. egb_axial: the axial feed axis of helical gears (0: none), followed by
+  // its commanded position as a G51.4 leader is (leaders holds it). egb_synchronous (param
+  // 5320.1): the tool spindle's commanded angle is followed, not its actual one;
+  // egb_reset_at_once (5320.4): a reset stops the work axis at once, not once the tool stands.
+  bool egb = false;
+  std::uint32_t egb_axial = 0;
+  bool egb_synchronous = false;
+  bool egb_reset_at_once = false;
   double in_position = 0.0;  // units: the axis stands when command and actual are this close
   double cycle_s = 0.001;
   AxisNodeSetup controller;
   coupling::SpindleCouplingSetup spindle_coupling;
   coupling::CamCouplingSetup cam_coupling;
+  coupling::GearBoxSetup gear_box;
 };
 
 // One candidate owner's setpoint.
@@ -84,6 +96,7 @@ struct AxisNodeEvent {
     spindle_sync,
     polygon_sync,
     cam_sync,
+    egb_sync,
     other
   };
   Kind kind = Kind::other;
@@ -98,7 +111,10 @@ struct AxisNodeEvent {
   std::uint32_t sync_group = 0;   // spindle_sync (0 with sync_on false: every group)
   // spindle_sync: P, Q and the slave's phase; polygon_sync: P, Q and the master's start angle.
   coupling::SpindleCouplingCommand spindle{};
-  coupling::CamProfile cam{};  // cam_sync with sync_on
+  coupling::CamProfile cam{};      // cam_sync with sync_on
+  coupling::GearBoxCommand egb{};  // egb_sync with sync_on
+  // egb_sync without sync_on: G80.4, a reset, or the channel took the reached angle (absorb).
+  enum class EgbOff : std::uint8_t { stop, reset, absorb } egb_off = EgbOff::stop;
 };
 
 // The drive's side of a cycle, from the bus.
@@ -128,6 +144,10 @@ struct AxisNodeHappening {
     cam_coupled,        // master (the lift is laid over the setpoint from the next cycle)
     cam_decoupled,      // master (the lift is off)
     cam_refused,        // master (a profile that cannot be a cam: nothing moves)
+    egb_coupled,        // master (the gear box is laid over the setpoint from this cycle)
+    egb_refused,        // master (a command that cannot be a gear box: nothing moves)
+    egb_stopped,        // master, why (G80.4, a reset, the deviation or the tool lost), at
+    egb_absorbed,       // master (the channel commands the reached angle: the offset is off)
     owner,              // channel (0: released), previous (0: none), forced
     follows,            // channel whose valid setpoints the node now applies (0: none)
   };
@@ -137,6 +157,9 @@ struct AxisNodeHappening {
   bool forced = false;
   std::uint32_t master = 0;
   coupling::SpindleCouplingCommand spindle{};
+  // egb_stopped: why the work axis stopped, and the offset it stands at (degrees).
+  enum class EgbStop : std::uint8_t { program, reset, deviation, tool_lost } egb_stop{};
+  double at = 0.0;
 };
 
 // What the feedback says besides the drive's own values.
@@ -169,8 +192,9 @@ class AxisNode {
   void on_sync_channel_status(std::uint32_t channel, std::uint64_t cycle,
                               std::uint64_t announced_event_seq, const WriterId& writer) noexcept;
   void on_sync_channel_gone(const WriterId& writer) noexcept;
+  // `cmd`: its commanded angle (a G81.4 in synchronous mode follows it, param 5320.1).
   void on_master_feedback(std::uint32_t axis, std::uint64_t cycle, double act, double vel,
-                          const WriterId& writer) noexcept;
+                          double cmd, const WriterId& writer) noexcept;
   void on_master_gone(const WriterId& writer) noexcept;
   // G51.4: an axis's feedback that this slave may follow.
   void on_leader_feedback(std::uint32_t axis, std::uint64_t cycle, double cmd, bool operating,
@@ -213,8 +237,11 @@ class AxisNode {
   // Ownership requests that did not fit (more waiting than the node keeps).
   [[nodiscard]] std::uint64_t requests_dropped() const noexcept { return requests_dropped_; }
   [[nodiscard]] const AxisNodeRoles& roles() const noexcept { return roles_; }
-  // G51.8: the cam's lift in this cycle's command (0: no cam).
-  [[nodiscard]] double superimposed() const noexcept { return cam_coupling_.offset(); }
+  // G51.8: the cam's lift in this cycle's command (0: no cam); G81.4: the gear box's offset,
+  // which stays once G80.4 has stopped the work axis until the channel takes it (absorb).
+  [[nodiscard]] double superimposed() const noexcept {
+    return cam_coupling_.offset() + gear_box_.offset();
+  }
   // The node reads the channels' coordination events (G140-G142, G51.4 or G114.1 concern it).
   [[nodiscard]] bool hears_events() const noexcept { return watches_events_ || coupled_spindle(); }
   // Events of `channel` may concern the node (a candidate owner or the coupling channel). Reads
@@ -232,6 +259,11 @@ class AxisNode {
     bool on = false;
     coupling::CamProfile profile;
   };
+  struct EgbRequest {
+    bool on = false;
+    coupling::GearBoxCommand command;
+    AxisNodeEvent::EgbOff off = AxisNodeEvent::EgbOff::stop;
+  };
   struct AxisSyncRequest {
     bool on = false;
     std::uint32_t master = 0;
@@ -239,6 +271,7 @@ class AxisNode {
   struct MasterSample {
     double act = 0.0;
     double vel = 0.0;
+    double cmd = 0.0;
   };
   struct LeaderWriter {
     WriterId writer{};
@@ -258,6 +291,10 @@ class AxisNode {
   void apply_spindle_sync(std::uint64_t cycle, bool lockstep) noexcept;
   void apply_axis_sync(std::uint64_t cycle, bool lockstep) noexcept;
   void apply_cam(std::uint64_t cycle, bool lockstep) noexcept;
+  void apply_egb(std::uint64_t cycle, bool lockstep) noexcept;
+  void stop_egb(AxisNodeHappening::EgbStop why) noexcept;
+  // G81.4 with a helical term: the axial axis's sample of cycle - 1 is an input of the cycle.
+  [[nodiscard]] bool waits_for_axial(std::uint64_t cycle) const noexcept;
   void happened(const AxisNodeHappening& h) noexcept;
 
   AxisNodeRoles roles_;
@@ -270,12 +307,19 @@ class AxisNode {
   cycle::PendingEvents<SpindleSyncRequest, 16> spindle_syncs_;
   cycle::PendingEvents<AxisSyncRequest, 16> axis_syncs_;
   cycle::PendingEvents<CamRequest, 4> cams_;
+  cycle::PendingEvents<EgbRequest, 8> egbs_;
   coupling::MasterHistory master_history_;
   std::vector<LeaderWriter> leader_writers_;  // capacity: the leaders
   ownership::AxisOwnership ownership_;
   coupling::SpindleCoupling spindle_coupling_;
   coupling::AxisCoupling axis_coupling_;
   coupling::CamCoupling cam_coupling_;
+  coupling::GearBoxCoupling gear_box_;
+  // G81.4: where the channel last validly commanded the work axis (a reset's stop lays the
+  // offset over it), why the gear box is stopping, and a reset that waits for the tool to stand.
+  double egb_base_ = 0.0;
+  AxisNodeHappening::EgbStop egb_stopping_ = AxisNodeHappening::EgbStop::program;
+  bool egb_release_when_tool_stands_ = false;
   AxisNodeController controller_;
 
   std::uint32_t owner_now_;  // the owner as the last decision left it

@@ -82,6 +82,28 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
       roles.sync_channel = static_cast<std::uint32_t>(ch.id);
     }
   }
+  for (const config::ChannelConfig& ch : machine.channels) {
+    if (ch.egb_work == axis.id) {  // one of the channel's own rotary axes (check_egb)
+      roles.egb = true;
+      roles.sync_master = static_cast<std::uint32_t>(ch.egb_tool);
+      roles.sync_channel = static_cast<std::uint32_t>(ch.id);
+      roles.egb_axial = static_cast<std::uint32_t>(ch.egb_axial);
+      roles.egb_synchronous = ch.egb_synchronous;
+      roles.egb_reset_at_once = ch.egb_reset_at_once;
+      if (ch.egb_axial != 0) {
+        roles.leaders.push_back(roles.egb_axial);  // the work axis follows no other (G51.4)
+      }
+      coupling::GearBoxSetup& g = roles.gear_box;
+      g.cycle_s = machine.cycle_s();
+      g.max_acceleration = axis.acceleration;  // param 5313, as the polygon axis's
+      g.stop_time_s = ch.egb_stop_time_s;
+      // 5336 in rpm of the work axis (decision 135), watched in follow mode only (5320.1 = 0).
+      g.max_deviation = ch.egb_synchronous ? 0.0 : ch.egb_deviation_rpm * 6.0;
+      g.deviation_time_s = ch.egb_deviation_time_s;
+      g.reverse = ch.egb_reverse;
+      g.helix_reverse = ch.egb_helix_reverse;
+    }
+  }
   roles.in_position = axis.in_position;
   roles.cycle_s = machine.cycle_s();
 

@@ -41,6 +41,15 @@ AxisNodeEvent to_core(const CoordinationEvent& e) {
       out.cam =
           coupling::cam_profile_of(e.cam_shape(), e.cam_a(), e.cam_b(), e.sync_r(), e.cam_lift());
       break;
+    case COORD_EGB_SYNC:
+      out.kind = AxisNodeEvent::Kind::egb_sync;
+      out.egb = coupling::GearBoxCommand{e.egb_teeth(),  e.egb_threads(), e.egb_helix(),
+                                         e.egb_module(), e.egb_phase(),   e.sync_r()};
+      // A value the wire does not know stops the gear box as G80.4 does.
+      out.egb_off = e.egb_off() == 2   ? AxisNodeEvent::EgbOff::absorb
+                    : e.egb_off() == 1 ? AxisNodeEvent::EgbOff::reset
+                                       : AxisNodeEvent::EgbOff::stop;
+      break;
     default:
       out.kind = AxisNodeEvent::Kind::other;
       break;
@@ -101,7 +110,7 @@ AxisInputs::AxisInputs(process::ProcessNode& node, const config::MachineConfig& 
             }
           }) {
   const AxisNodeRoles& roles = core.roles();
-  if (roles.may_follow) {
+  if (!roles.leaders.empty()) {  // G51.4's masters, or G81.4's axial axis
     leaders_.emplace(
         node.participant(), dds::Keys::of(names_of(machine, roles.leaders)),
         [this](const AxisFeedback& fb, const dds::WriterId& writer) {
@@ -130,8 +139,9 @@ AxisInputs::AxisInputs(process::ProcessNode& node, const config::MachineConfig& 
     sync_master_.emplace(
         node.participant(), dds::Keys::of({machine.axes[roles.sync_master - 1].name}),
         [this](const AxisFeedback& fb, const dds::WriterId& writer) {
-          node_.wakeup().update(
-              [&] { core_.on_master_feedback(fb.axis(), fb.cycle(), fb.act(), fb.vel(), writer); });
+          node_.wakeup().update([&] {
+            core_.on_master_feedback(fb.axis(), fb.cycle(), fb.act(), fb.vel(), fb.cmd(), writer);
+          });
         },
         [this](const dds::WriterId& writer, bool matched) {
           if (!matched) {

@@ -37,6 +37,24 @@ const char* AxisOutputs::channel_name(std::uint32_t id) const noexcept {
   return channel != nullptr ? channel->name.c_str() : "";
 }
 
+namespace {
+
+const char* egb_stop_name(AxisNodeHappening::EgbStop why) {
+  switch (why) {
+    case AxisNodeHappening::EgbStop::program:
+      return "G80.4";
+    case AxisNodeHappening::EgbStop::reset:
+      return "reset";
+    case AxisNodeHappening::EgbStop::deviation:
+      return "deviation";
+    case AxisNodeHappening::EgbStop::tool_lost:
+      return "tool_lost";
+  }
+  return "G80.4";
+}
+
+}  // namespace
+
 const char* AxisOutputs::axis_name(std::uint32_t id) const noexcept {
   const config::AxisConfig* axis = machine_.axis_by_id(id);
   return axis != nullptr ? axis->name.c_str() : "";
@@ -81,6 +99,22 @@ void AxisOutputs::trace_decisions(std::uint64_t cycle, const AxisNode& core) noe
       case AxisNodeHappening::Kind::cam_decoupled:
         tracer_.emit(cycle, "decouple", "\"kind\":\"cam\",\"master\":\"%s\",\"slave\":\"%s\"",
                      axis_name(h.master), self);
+        break;
+      case AxisNodeHappening::Kind::egb_coupled:
+      case AxisNodeHappening::Kind::egb_refused:
+        tracer_.emit(cycle, "couple",
+                     "\"kind\":\"egb\",\"master\":\"%s\",\"slave\":\"%s\",\"refused\":%s",
+                     axis_name(h.master), self,
+                     h.kind == AxisNodeHappening::Kind::egb_refused ? "true" : "false");
+        break;
+      case AxisNodeHappening::Kind::egb_stopped:
+        tracer_.emit(cycle, "decouple",
+                     "\"kind\":\"egb\",\"master\":\"%s\",\"slave\":\"%s\",\"why\":\"%s\","
+                     "\"offset\":%.6f",
+                     axis_name(h.master), self, egb_stop_name(h.egb_stop), h.at);
+        break;
+      case AxisNodeHappening::Kind::egb_absorbed:
+        tracer_.emit(cycle, "absorb", "\"kind\":\"egb\",\"axis\":\"%s\"", self);
         break;
       case AxisNodeHappening::Kind::axis_coupled:
         tracer_.emit(cycle, "couple", "\"kind\":\"axis\",\"master\":\"%s\",\"slave\":\"%s\"",

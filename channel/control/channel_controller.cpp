@@ -127,7 +127,12 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
     // command is what must have arrived.
     const bool cam =
         setup_.cam.master != 0 && i == setup_.cam.slave_slot && feedback[i].coupled_to != 0;
-    const double now = cam ? feedback[i].channel_cmd() : feedback[i].act;
+    // So does the EGB's work axis (G81.4) while it turns with the tool; stopped, it stands
+    // where the channel commands it plus the offset the gear box left.
+    const bool egb = setup_.egb.tool != 0 && i == setup_.egb.work_slot;
+    const double now = cam || (egb && feedback[i].coupled_to != 0)
+                           ? feedback[i].channel_cmd()
+                           : feedback[i].act - (egb ? feedback[i].superimposed : 0.0);
     if (coordination_.torque_limit(i) == 0.0 && std::fabs(now - at[i]) > width) {
       return false;
     }
@@ -311,6 +316,7 @@ const CycleOutput& ChannelController::run_cycle(
   if (out_.state == ChannelState::idle && start_requested_ && !program_pending_) {
     start_requested_ = false;
     coordination_.settle_slots();
+    coordination_.take_gear_box_angle();
     // A start builds the run's interpreter (the allocation a start makes): out of memory is an
     // alarm, not the end of the process. An alarm of the blocks themselves comes as the
     // source's first pull, as a program's does.
@@ -449,6 +455,9 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   const bool in_pos = in_position(feedback, commanded_);
   if (coordination_.watch_load(feedback)) {
     return;  // overloaded: the axes stay where they were commanded last
+  }
+  if (coordination_.watch_gear_box(cycle)) {
+    return;  // the work axis stopped off its gear: nothing moves on
   }
   fill();
   coordination_.watch_skip(feedback);

@@ -40,7 +40,8 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
                                             setup.spindle_c_slot}),
       aux_(setup.channel_id),
       coupling_(coordination::CouplingSetup{setup.axis_count, setup.slots, setup.spindle_groups,
-                                            setup.machine_axes, setup.polygon, setup.cam}),
+                                            setup.machine_axes, setup.polygon, setup.cam,
+                                            setup.egb}),
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
       skip_(setup.axis_count, setup.probe_arm_cycles),
       load_(setup.slots),
@@ -109,6 +110,7 @@ void ChannelCoordination::begin_cycle(std::span<const AxisFeedbackView> feedback
   out_.axis_sync_due = false;
   out_.polygon_sync_due = false;
   out_.cam_sync = nullptr;
+  out_.egb_sync_due = false;
   was_position_ = under_position_control();
   received_ = feedback;
   for (std::size_t s = 0; s < feedback.size(); ++s) {
@@ -190,7 +192,9 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   } else if (const auto* s = std::get_if<AuxStop>(&held_)) {
     aux_.begin(s->kind, s->code, s->spindle_start);
   } else if (const auto* s = std::get_if<CouplingStop>(&held_)) {
-    if (s->cam) {
+    if (s->egb) {
+      coupling_.begin_egb(s->egb_sync);
+    } else if (s->cam) {
       coupling_.begin_cam(s->cam_sync);
     } else if (s->polygon) {
       coupling_.begin_polygon(s->polygon_sync);
@@ -292,6 +296,26 @@ void ChannelCoordination::release_polygon() noexcept {
   }
   if (coupling_.cam_on_reset(received_)) {
     out_.cam_sync = &coupling_.cam();
+  }
+  if (coupling_.egb_on_reset(received_)) {
+    out_.egb_sync = coupling_.egb();
+    out_.egb_sync_due = true;
+  }
+}
+
+bool ChannelCoordination::watch_gear_box(std::uint64_t cycle) noexcept {
+  if (!coupling_.egb_lost(coordination::CouplingInputs{cycle, received_, exchange_.uses()})) {
+    return false;
+  }
+  raise(coupling_.alarm(), out_.line);
+  return true;
+}
+
+void ChannelCoordination::take_gear_box_angle() noexcept {
+  if (const auto change = coupling_.egb_hand_over(received_)) {
+    commanded_[change->slot] = change->at;
+    out_.egb_sync = coupling_.egb();
+    out_.egb_sync_due = true;
   }
 }
 
@@ -560,7 +584,10 @@ void ChannelCoordination::run(CouplingStop& b, std::uint64_t cycle,
       raise(coupling_.alarm(), b.block.line);
       return;
     case coordination::CouplingStep::send:
-      if (coupling_.kind() == coordination::CouplingKind::cam) {
+      if (coupling_.kind() == coordination::CouplingKind::egb) {
+        out_.egb_sync = coupling_.egb();
+        out_.egb_sync_due = true;
+      } else if (coupling_.kind() == coordination::CouplingKind::cam) {
         out_.cam_sync = &coupling_.cam();
       } else if (coupling_.kind() == coordination::CouplingKind::polygon) {
         out_.polygon_sync = coupling_.polygon();
@@ -580,10 +607,15 @@ void ChannelCoordination::run(CouplingStop& b, std::uint64_t cycle,
   if (change.to == coordination::SlotChange::To::follows) {
     exchange_.set_use(change.slot, coordination::SlotUse::follows);  // the program won't move it
   } else if (change.to == coordination::SlotChange::To::commanded) {
-    // The axis stands where its master took it: the program goes on from there.
+    // The axis stands where its master (or G80.4's gear box) took it: the program goes on from
+    // there; the gear box's node takes its offset off in the same cycle.
     commanded_[change.slot] = change.at;
     exchange_.set_use(change.slot, coordination::SlotUse::commanded);
     host_.restart_at_commanded();
+    if (coupling_.kind() == coordination::CouplingKind::egb) {
+      out_.egb_sync = coupling_.egb();
+      out_.egb_sync_due = true;
+    }
   }
   end_held(b.block);
 }

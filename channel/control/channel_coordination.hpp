@@ -144,9 +144,14 @@ class ChannelCoordination {
   void release_caller(coordination::CallOutcome outcome) noexcept;
   void push_release(const coordination::CallRelease& release) noexcept;
   void leave_position_control() noexcept;  // no program runs: speed control, at rest
-  // A reset or an emergency stop: the polygon axis, if it follows, is released (G50.2 P0), and
-  // the cam's lift taken off its slave (G50.8).
+  // A reset or an emergency stop: the polygon axis, if it follows, is released (G50.2 P0), the
+  // cam's lift taken off its slave (G50.8) and the gear box stopped (param 5320.4).
   void release_polygon() noexcept;
+  // Once per cycle of a run: the gear box stopped without G80.4 (its alarm raised: true).
+  bool watch_gear_box(std::uint64_t cycle) noexcept;
+  // A run starts: the work axis a stopped gear box left off the commanded position (a reset's,
+  // an alarm's stop) is commanded where it stands, and its node told.
+  void take_gear_box_angle() noexcept;
   coordination::SubCall& calls() noexcept { return calls_; }
   [[nodiscard]] const coordination::SubCall& calls() const noexcept { return calls_; }
 

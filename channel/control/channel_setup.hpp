@@ -38,6 +38,8 @@ struct ChannelSetup {
   coordination::PolygonSetup polygon{};
   // G51.8: the channel's cam master spindle and slave axis (master 0: none).
   coordination::CamSetup cam{};
+  // G81.4: the channel's gear box's tool spindle and work axis (tool 0: none).
+  coordination::EgbSetup egb{};
   // G144: how many cycles a call waits for its target to become free (0: as long as it takes).
   std::uint64_t call_wait_cycles = 0;
   // The channel's first spindle is the slave of a G114.1 group: a start waits until the blocks

@@ -40,6 +40,7 @@ using coordination::CallRelease;
 using coordination::CallRequest;
 using coordination::CamOut;
 using coordination::ChannelState;
+using coordination::EgbOut;
 using coordination::MachineAxis;
 using coordination::MachineAxisKind;
 using coordination::PartnerStatus;
@@ -149,6 +150,10 @@ struct CycleOutput {
   // G51.8 / G50.8 to the cam slave's node, sent this cycle (nullptr: none); the table stays the
   // coordination's.
   const CamOut* cam_sync = nullptr;
+  // G81.4 / G80.4 (a reset's stop, the hand-over of the reached angle) to the EGB work axis's
+  // node, sent this cycle.
+  bool egb_sync_due = false;
+  EgbOut egb_sync{};
   static constexpr std::size_t kMaxEvents = 64;  // many short blocks may pass in one cycle
   std::array<ChannelEvent, kMaxEvents> events{};
   std::size_t event_count = 0;

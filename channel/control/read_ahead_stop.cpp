@@ -88,18 +88,18 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
       return CouplingStop{held(c), false, {on, on ? c.sync_k : 0, c.sync_p, c.sync_q, c.sync_r},
                           false,   0,     0,
                           false,   {},    false,
-                          {}};
+                          {},      false, {}};
     }
     case Op::polygon:
     case Op::polygon_off: {
-      CouplingStop s{held(c), false, {}, false, 0, 0, true, {}, false, {}};
+      CouplingStop s{held(c), false, {}, false, 0, 0, true, {}, false, {}, false, {}};
       s.polygon_sync = coordination::PolygonOut{c.op == Op::polygon, c.sync_p, c.sync_q, c.sync_r,
                                                 c.op == Op::polygon || c.wait};
       return s;
     }
     case Op::cam:
     case Op::cam_off: {
-      CouplingStop s{held(c), false, {}, false, 0, 0, false, {}, true, {}};
+      CouplingStop s{held(c), false, {}, false, 0, 0, false, {}, true, {}, false, {}};
       coordination::CamOut& cam = s.cam_sync;
       cam.on = c.op == Op::cam;
       cam.shape = static_cast<std::uint8_t>(c.cam_shape);
@@ -108,6 +108,19 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
       cam.r = c.sync_r;
       cam.points = std::min(c.cam_lift.size(), cam.lift.size());  // the interpreter's #1-#999
       std::copy_n(c.cam_lift.begin(), cam.points, cam.lift.begin());
+      return s;
+    }
+    case Op::egb:
+    case Op::egb_off: {
+      CouplingStop s{held(c), false, {}, false, 0, 0, false, {}, false, {}, true, {}};
+      coordination::EgbOut& egb = s.egb_sync;
+      egb.on = c.op == Op::egb;
+      egb.teeth = c.egb_teeth;
+      egb.threads = c.egb_threads;
+      egb.helix = c.egb_helix;
+      egb.module = c.egb_module;
+      egb.phase = c.egb_phase;
+      egb.r = c.sync_r;
       return s;
     }
     case Op::spindle_mode:
@@ -120,6 +133,8 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                           c.op == Op::axis_couple,
                           static_cast<std::uint32_t>(c.master),
                           static_cast<std::uint32_t>(c.slave),
+                          false,
+                          {},
                           false,
                           {},
                           false,

@@ -76,7 +76,8 @@ struct AuxStop {  // an M or T code for the PLC, or a spindle start it must allo
   bool spindle_start = false;
   interp::Command command;  // a spindle start: goes to the planner once allowed
 };
-// G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 / G50.2 (polygon), G51.8 / G50.8 (cam)
+// G114.1 / G113 (spindle), G51.4 / G50.4 (axis), G51.2 / G50.2 (polygon), G51.8 / G50.8 (cam),
+// G81.4 / G80.4 (electronic gear box)
 struct CouplingStop {
   HeldBlock block;
   bool axis = false;
@@ -88,6 +89,8 @@ struct CouplingStop {
   coordination::PolygonOut polygon_sync{};
   bool cam = false;  // G51.8 / G50.8
   coordination::CamOut cam_sync{};
+  bool egb = false;  // G81.4 / G80.4
+  coordination::EgbOut egb_sync{};
 };
 struct ModeStop {  // M18 / M17
   HeldBlock block;

@@ -22,6 +22,7 @@ inline constexpr int kAlarmSlaveSpindle = 1250;      // a spindle start of a G11
 inline constexpr int kAlarmSyncGroup = 1251;         // G114.1 K of a group this channel lacks
 inline constexpr int kAlarmPolygon = 1252;           // G51.2 the channel or its axes do not allow
 inline constexpr int kAlarmCam = 1253;               // G51.8 on a channel without a cam
+inline constexpr int kAlarmEgb = 1254;               // G81.4 refused, or its gear lost
 inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest

@@ -6,8 +6,9 @@ namespace mcnc::coordination {
 
 namespace {
 
-// deg/s: a polygon axis slower than this stands (a tenth of a revolution per minute).
-constexpr double kPolygonAtRest = 0.6;
+// deg/s: a spindle (a polygon axis, a tool spindle) slower than this stands (a tenth of a
+// revolution per minute).
+constexpr double kSpindleAtRest = 0.6;
 
 // A coupling of a slave to its master spindle (G51.2, G51.8) has answered: `on`, the slave at
 // `view` follows `master` locked (in phase, on its lift); off, it follows nothing.
@@ -51,11 +52,19 @@ void CouplingRequest::begin_cam(const CamOut& cam) noexcept {
   change_ = {};
 }
 
+void CouplingRequest::begin_egb(const EgbOut& egb) noexcept {
+  kind_ = CouplingKind::egb;
+  egb_ = egb;
+  sent_ = false;
+  change_ = {};
+}
+
 CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   if (!sent_) {
     const Start start = kind_ == CouplingKind::axis      ? start_axis(in)
                         : kind_ == CouplingKind::polygon ? start_polygon(in)
                         : kind_ == CouplingKind::cam     ? start_cam(in)
+                        : kind_ == CouplingKind::egb     ? start_egb(in)
                                                          : start_spindle();
     if (start == Start::refused) {
       return CouplingStep::alarm;
@@ -63,6 +72,10 @@ CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
     if (start == Start::send) {
       polygon_asked_ = kind_ == CouplingKind::polygon ? polygon_.on : polygon_asked_;
       cam_asked_ = kind_ == CouplingKind::cam ? cam_.on : cam_asked_;
+      if (kind_ == CouplingKind::egb) {
+        egb_asked_ = egb_.on;
+        egb_sent_cycle_ = in.cycle;
+      }
       sent_ = true;
       sent_cycle_ = in.cycle;
       return CouplingStep::send;
@@ -72,9 +85,13 @@ CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   if (kind_ == CouplingKind::polygon && !polygon_.on && !polygon_.wait) {
     return CouplingStep::done;  // G50.2 P0: the program goes on while the axis slows down
   }
+  if (kind_ == CouplingKind::egb && egb_.on && setup_.egb.no_wait) {
+    return CouplingStep::done;  // param 5320.5 = 1: the program goes on while it locks
+  }
   const bool done = kind_ == CouplingKind::axis      ? axis_done(in)
                     : kind_ == CouplingKind::polygon ? polygon_done(in)
                     : kind_ == CouplingKind::cam     ? cam_done(in)
+                    : kind_ == CouplingKind::egb     ? egb_done(in)
                                                      : spindle_done(in);
   if (!answer_visible(sent_cycle_, in.cycle) || !done) {
     return CouplingStep::waiting;
@@ -100,7 +117,7 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
     alarm_.set(kAlarmPolygon, "G51.2: the polygon axis follows its master already: G50.2 first");
     return Start::refused;
   }
-  if (std::fabs(slave.vel) > kPolygonAtRest) {
+  if (std::fabs(slave.vel) > kSpindleAtRest) {
     alarm_.set(kAlarmPolygon,
                "G51.2: the polygon axis turns at %.1f rpm: stop its spindle (M05) before G51.2",
                slave.vel / 6.0);
@@ -165,6 +182,101 @@ bool CouplingRequest::cam_on_reset(std::span<const AxisFeedbackView> feedback) n
   }
   cam_asked_ = false;
   cam_.on = false;
+  return true;
+}
+
+CouplingRequest::Start CouplingRequest::start_egb(const CouplingInputs& in) noexcept {
+  const EgbSetup& s = setup_.egb;
+  const AxisFeedbackView none{};
+  const AxisFeedbackView& work =
+      s.tool != 0 && s.work_slot < in.feedback.size() ? in.feedback[s.work_slot] : none;
+  if (!egb_.on) {
+    // G80.4 stops a gear box that runs, and hands over the angle a stopped one left.
+    return work.coupled_to != 0 || work.superimposed != 0.0 || egb_asked_ ? Start::send
+                                                                          : Start::nothing_to_do;
+  }
+  if (s.tool == 0) {
+    alarm_.set(kAlarmEgb,
+               "G81.4: this channel has no electronic gear box (egb in the machine file, "
+               "parameters 5330/5331)");
+    return Start::refused;
+  }
+  if (work.coupled_to != 0 || egb_asked_) {
+    alarm_.set(kAlarmEgb, "G81.4: the gear box is on already: G80.4 first");
+    return Start::refused;
+  }
+  if (egb_.helix != 0.0 && !s.axial) {
+    alarm_.set(kAlarmEgb,
+               "G81.4 P%.3f: a helical gear needs the axial feed axis (egb axial in the machine "
+               "file, parameter 5332)",
+               egb_.helix);
+    return Start::refused;
+  }
+  const double tool_vel = s.tool_view < in.feedback.size() ? in.feedback[s.tool_view].vel : 0.0;
+  if (!egb_.phase && std::fabs(tool_vel) > kSpindleAtRest) {
+    // Without R nothing is matched: the axes were positioned with the tool at rest (L3372).
+    alarm_.set(kAlarmEgb,
+               "G81.4 without R: the tool spindle turns at %.1f rpm; without phase matching it "
+               "must stand (M05 before G81.4), or give R",
+               tool_vel / 6.0);
+    return Start::refused;
+  }
+  return Start::send;
+}
+
+bool CouplingRequest::egb_done(const CouplingInputs& in) noexcept {
+  const EgbSetup& s = setup_.egb;
+  if (egb_.on) {
+    // G81.4 ends once the work axis is locked to the tool spindle (param 5320.5 = 0).
+    return slave_answered(in.feedback, s.work_slot, s.tool, true);
+  }
+  if (!slave_answered(in.feedback, s.work_slot, s.tool, false)) {
+    return false;
+  }
+  // G80.4: the work axis stands where it reached; the program goes on from there (P0 waits
+  // too: the channel can take the angle only once the axis stands).
+  const std::optional<SlotChange> change = egb_hand_over(in.feedback);
+  change_ = change ? *change : SlotChange{};
+  return true;
+}
+
+std::optional<SlotChange> CouplingRequest::egb_hand_over(
+    std::span<const AxisFeedbackView> feedback) noexcept {
+  const EgbSetup& s = setup_.egb;
+  if (s.tool == 0 || s.work_slot >= feedback.size() || feedback[s.work_slot].coupled_to != 0 ||
+      feedback[s.work_slot].superimposed == 0.0) {
+    return std::nullopt;
+  }
+  egb_ = EgbOut{};
+  egb_.on = false;
+  egb_.off = EgbOut::Off::absorb;
+  return SlotChange{SlotChange::To::commanded, s.work_slot, feedback[s.work_slot].cmd};
+}
+
+bool CouplingRequest::egb_on_reset(std::span<const AxisFeedbackView> feedback) noexcept {
+  const EgbSetup& s = setup_.egb;
+  const bool runs = s.work_slot < feedback.size() && feedback[s.work_slot].coupled_to != 0;
+  if (s.tool == 0 || (!runs && !egb_asked_)) {
+    return false;
+  }
+  egb_asked_ = false;
+  egb_ = EgbOut{};
+  egb_.on = false;
+  egb_.off = EgbOut::Off::reset;
+  return true;
+}
+
+bool CouplingRequest::egb_lost(const CouplingInputs& in) noexcept {
+  const EgbSetup& s = setup_.egb;
+  if (!egb_asked_ || !answer_visible(egb_sent_cycle_, in.cycle) ||
+      s.work_slot >= in.feedback.size() || in.feedback[s.work_slot].coupled_to != 0) {
+    return false;
+  }
+  egb_asked_ = false;
+  alarm_.set(kAlarmEgb,
+             "G81.4: the work axis stopped %.3f deg off the channel's position: off the gear's "
+             "ratio too long (parameters 5336/5337) or the tool spindle lost",
+             in.feedback[s.work_slot].superimposed);
   return true;
 }
 

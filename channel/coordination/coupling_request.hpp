@@ -1,12 +1,14 @@
 #pragma once
 // G114.1 / G113 (spindle synchronisation), G51.4 / G50.4 (axis synchronisation), G51.2 /
-// G50.2 (polygon turning) and G51.8 / G50.8 (electronic cam) as the channel asks them of the
+// G50.2 (polygon turning), G51.8 / G50.8 (electronic cam) and G81.4 / G80.4 (electronic gear
+// box) as the channel asks them of the
 // slave's axis node, which holds the coupling (ARCHITECTURE.md §5). A request is checked against
 // the machine's set-up first (a group this channel's spindle leads; a slave that may follow, of
 // this channel, not following another master; a master of the same kind that is no slave itself; a
-// polygon axis at rest that the master's speed would not take beyond its limit; a cam slave), then
-// sent; the block ends once the slave's feedback shows it in phase (G114.1, G51.2), on its lift
-// (G51.8), free (G113, G50.2: at rest; G50.8: the lift taken off), following its master (G51.4) or
+// polygon axis at rest that the master's speed would not take beyond its limit; a cam slave; a
+// gear box not on already), then sent; the block ends once the slave's feedback shows it in phase
+// (G114.1, G51.2, G81.4), on its lift (G51.8), free (G113, G50.2: at rest; G50.8: the lift taken
+// off; G80.4: stopped, the channel taking the angle it reached), following its master (G51.4) or
 // this channel's again (G50.4). Pure: one step() per cycle with the feedback of that cycle; no
 // allocation, nothing throws.
 #include "channel/coordination/channel_axes.hpp"
@@ -79,6 +81,29 @@ struct CamSetup {
   std::size_t slave_slot = 0;
 };
 
+// G81.4 / G80.4 to the node of the channel's EGB work axis (or, off, a reset's stop or the
+// hand-over of the angle it reached).
+struct EgbOut {
+  enum class Off : std::uint8_t { stop, reset, absorb };
+  bool on = true;  // G81.4; false: `off`
+  int teeth = 1;
+  int threads = 1;
+  double helix = 0.0;   // P, degrees (0: a spur gear)
+  double module = 0.0;  // Q, mm
+  bool phase = false;   // R given
+  double r = 0.0;
+  Off off = Off::stop;
+};
+// The channel's gear box (params 5330-5332, 5320.5): the tool spindle, its feedback's view and
+// the work axis's slot (one of the channel's axes).
+struct EgbSetup {
+  std::uint32_t tool = 0;  // axis id; 0: the channel has no gear box
+  std::size_t tool_view = 0;
+  std::size_t work_slot = 0;
+  bool axial = false;    // an axial feed axis (5332): helical gears may be cut
+  bool no_wait = false;  // 5320.5: G81.4 ends without waiting for the work axis to lock
+};
+
 struct CouplingSetup {
   std::size_t axis_count = 0;
   std::vector<AxisSlot> slots;
@@ -86,6 +111,7 @@ struct CouplingSetup {
   std::vector<MachineAxis> machine_axes;  // by system number - 1
   PolygonSetup polygon{};
   CamSetup cam{};
+  EgbSetup egb{};
 };
 
 struct CouplingInputs {
@@ -108,7 +134,7 @@ struct SlotChange {
   double at = 0.0;  // commanded: where the axis stands (its master took it there)
 };
 
-enum class CouplingKind : std::uint8_t { spindle, axis, polygon, cam };
+enum class CouplingKind : std::uint8_t { spindle, axis, polygon, cam, egb };
 
 class CouplingRequest {
  public:
@@ -119,6 +145,7 @@ class CouplingRequest {
   void begin_axis(bool on, std::uint32_t master, std::uint32_t slave) noexcept;
   void begin_polygon(const PolygonOut& polygon) noexcept;
   void begin_cam(const CamOut& cam) noexcept;
+  void begin_egb(const EgbOut& egb) noexcept;
   CouplingStep step(const CouplingInputs& in) noexcept;
 
   [[nodiscard]] CouplingKind kind() const noexcept { return kind_; }
@@ -127,6 +154,19 @@ class CouplingRequest {
   [[nodiscard]] const AxisSyncOut& axis_sync() const noexcept { return axis_sync_; }
   [[nodiscard]] const PolygonOut& polygon() const noexcept { return polygon_; }
   [[nodiscard]] const CamOut& cam() const noexcept { return cam_; }
+  [[nodiscard]] const EgbOut& egb() const noexcept { return egb_; }
+  // A reset or an emergency stop: the gear box, if it runs or was asked for, stops as param
+  // 5320.4 says (the work axis's node knows how); the G80.4 to send, if any (egb() holds it).
+  [[nodiscard]] bool egb_on_reset(std::span<const AxisFeedbackView> feedback) noexcept;
+  // Once per cycle: the gear box the channel asked for stopped without a G80.4 (the work axis
+  // off the ratio too long, params 5336/5337, or the tool spindle lost): true once, with the
+  // alarm set.
+  [[nodiscard]] bool egb_lost(const CouplingInputs& in) noexcept;
+  // The work axis stands where a stopped gear box left it, off the channel's commanded position:
+  // the channel takes that angle (its slot, where), and tells the node (egb() holds the
+  // hand-over).
+  [[nodiscard]] std::optional<SlotChange> egb_hand_over(
+      std::span<const AxisFeedbackView> feedback) noexcept;
   // A reset: the cam, if it runs or was asked for, ends (param 5340.2 = 1): the G50.8 to send,
   // if any (cam() holds it).
   [[nodiscard]] bool cam_on_reset(std::span<const AxisFeedbackView> feedback) noexcept;
@@ -143,10 +183,12 @@ class CouplingRequest {
   Start start_axis(const CouplingInputs& in) noexcept;
   Start start_polygon(const CouplingInputs& in) noexcept;
   Start start_cam(const CouplingInputs& in) noexcept;
+  Start start_egb(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool spindle_done(const CouplingInputs& in) const noexcept;
   bool axis_done(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool polygon_done(const CouplingInputs& in) const noexcept;
   [[nodiscard]] bool cam_done(const CouplingInputs& in) const noexcept;
+  bool egb_done(const CouplingInputs& in) noexcept;
 
   CouplingSetup setup_;
   CouplingKind kind_ = CouplingKind::spindle;
@@ -155,7 +197,10 @@ class CouplingRequest {
   PolygonOut polygon_{};
   bool polygon_asked_ = false;  // the last G51.2 / G50.2 sent was a G51.2
   CamOut cam_{};
-  bool cam_asked_ = false;   // the last G51.8 / G50.8 sent was a G51.8
+  bool cam_asked_ = false;  // the last G51.8 / G50.8 sent was a G51.8
+  EgbOut egb_{};
+  bool egb_asked_ = false;  // the last G81.4 / G80.4 sent was a G81.4
+  std::uint64_t egb_sent_cycle_ = 0;
   std::uint32_t slave_ = 0;  // G51.4 / G50.4 Q: the slave's system number
   bool sent_ = false;
   std::uint64_t sent_cycle_ = 0;

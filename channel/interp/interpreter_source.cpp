@@ -35,10 +35,9 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::polygon_off:
     case Op::cam:
     case Op::cam_off:
-      return "multi-channel commands need the channel coordination runtime";
     case Op::egb:
     case Op::egb_off:
-      return "G81.4/G80.4 (the electronic gear box) does not run in the channel yet";
+      return "multi-channel commands need the channel coordination runtime";
     case Op::torque_mode:
       return "G10 L14 P10-P12 (torque mode) does not run in the channel yet";
     case Op::message:
@@ -282,7 +281,8 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
   }
   if (c.op == Op::subcall_release || c.op == Op::axis_restore || c.op == Op::spindle_sync ||
       c.op == Op::spindle_unsync || c.op == Op::polygon || c.op == Op::polygon_off ||
-      c.op == Op::cam || c.op == Op::cam_off || c.op == Op::load_timer_check) {
+      c.op == Op::cam || c.op == Op::cam_off || c.op == Op::load_timer_check || c.op == Op::egb ||
+      c.op == Op::egb_off) {
     return true;
   }
   if (c.op == Op::axis_couple || c.op == Op::axis_decouple) {

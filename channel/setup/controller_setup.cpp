@@ -76,6 +76,23 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
       }
     }
   }
+  // G81.4: the work axis is one of the channel's own axes, the tool one of its spindles
+  // (check_egb), its feedback after the axes.
+  if (ch.egb_tool != 0) {
+    for (std::size_t k = 0; k < axes.size(); ++k) {
+      if (axes[k]->id == ch.egb_work) {
+        setup.egb.work_slot = k;
+      }
+    }
+    for (std::size_t k = 0; k < layout.spindles.size(); ++k) {
+      if (layout.spindles[k]->id == ch.egb_tool) {
+        setup.egb.tool_view = axes.size() + k;
+      }
+    }
+    setup.egb.tool = static_cast<std::uint32_t>(ch.egb_tool);
+    setup.egb.axial = ch.egb_axial != 0;
+    setup.egb.no_wait = ch.egb_no_wait;
+  }
   // G51.2: the master spindle and the polygon axis are spindles of the channel (check_polygon),
   // their feedback after the channel's axes.
   if (ch.polygon_master != 0) {

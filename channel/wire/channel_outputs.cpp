@@ -171,6 +171,19 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
                         cam.lift.begin() + static_cast<std::ptrdiff_t>(cam.points));
     events_.write(e);
   }
+  if (out.egb_sync_due) {
+    const EgbOut& g = out.egb_sync;
+    CoordinationEvent e = event(cycle, COORD_EGB_SYNC);
+    e.sync_on(g.on);
+    e.sync_r(g.r);
+    e.egb_teeth(g.teeth);
+    e.egb_threads(g.threads);
+    e.egb_helix(g.helix);
+    e.egb_module(g.module);
+    e.egb_phase(g.phase);
+    e.egb_off(static_cast<std::uint8_t>(g.off));  // 0 G80.4, 1 a reset, 2 the hand-over
+    events_.write(e);
+  }
   if (out.axis_sync_due && out.axis_sync.slot < axes_.size()) {
     CoordinationEvent e = event(cycle, COORD_AXIS_SYNC);
     e.axis(static_cast<std::uint32_t>(axes_[out.axis_sync.slot]->id));

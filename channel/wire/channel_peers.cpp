@@ -175,6 +175,7 @@ void ChannelPeers::deliver(const ::mcnc::CoordinationEvent& e, ChannelController
     case COORD_AXIS_SYNC:
     case COORD_POLYGON_SYNC:
     case COORD_CAM_SYNC:
+    case COORD_EGB_SYNC:
       break;  // for the axis nodes and the PLC: their answers come on their own topics
   }
 }

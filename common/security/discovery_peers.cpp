@@ -48,6 +48,9 @@ class TalkGraph {
       }
       link_coupling(machine, channel, channel.polygon_master, channel.polygon_slave);
       link_coupling(machine, channel, channel.cam_master, channel.cam_slave);
+      // G81.4: the work axis follows the tool spindle, and the axial axis as a leader.
+      link_coupling(machine, channel, channel.egb_tool, channel.egb_work);
+      link_axes(machine, channel.egb_work, channel.egb_axial);
     }
     for (const config::SpindleSyncGroup& group : machine.spindle_sync) {
       const config::ChannelConfig* channel = machine.channel_by_id(group.channel);

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 using namespace mcnc;
@@ -249,7 +250,7 @@ TEST(AxisNode, ASlaveSpindleCouplesAtTheCycleAfterG1141ForItsOwnGroupOnly) {
   core.on_setpoint(1, 4, at(0, 0.0, false), 0, writer(1));
   EXPECT_FALSE(core.ready(1)) << "the coupling channel's status and the master are waited for";
   core.on_sync_channel_status(1, 0, 1, writer(1));
-  core.on_master_feedback(3, 0, 90.0, 0.0, writer(3));
+  core.on_master_feedback(3, 0, 90.0, 0.0, 90.0, writer(3));
   EXPECT_FALSE(core.ready(1)) << "the coupling channel announced an event";
   AxisNodeEvent e;
   e.kind = AxisNodeEvent::Kind::spindle_sync;
@@ -277,7 +278,11 @@ TEST(AxisNode, ASlaveSpindleCouplesAtTheCycleAfterG1141ForItsOwnGroupOnly) {
 // G51.8 (spec dafeng §2.6.7): X of channel 1 is the cam's slave, S1 (axis 3) its master. The
 // node adds the lift at S1's angle to the channel's setpoint from the cycle after the event,
 // reaching it within its limits, and G50.8 takes it off again.
-TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG508) {
+namespace {
+
+// Axis 1 of channel 1, laid over by a coupling that channel 1 commands to the spindle axis 3
+// (G51.8's cam, G81.4's gear box).
+AxisNodeRoles over_spindle_3() {
   AxisNodeRoles r;
   r.axis = 1;
   r.home = 1;
@@ -285,9 +290,16 @@ TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG5
   r.in_position = 0.01;
   r.cycle_s = kCycle;
   r.controller = axisnode::AxisNodeSetup{10000.0, kCycle, 5};
-  r.cam = true;
   r.sync_master = 3;
   r.sync_channel = 1;
+  return r;
+}
+
+}  // namespace
+
+TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG508) {
+  AxisNodeRoles r = over_spindle_3();
+  r.cam = true;
   r.cam_coupling = coupling::CamCouplingSetup{kCycle, 100.0, 1000.0};
   Node n(r);
   const std::array<double, 4> table{0.0, 1.0, 3.0, 2.0};
@@ -311,7 +323,7 @@ TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG5
     n.core.on_setpoint(1, 1, at(c, 5.0), seq, writer(1));
     n.core.on_sync_channel_status(1, c, seq, writer(1));
     angle = c == 600 ? 180.0 : angle;  // the master turns on to the third point: a lift of 3
-    n.core.on_master_feedback(3, c, angle, 0.0, writer(3));
+    n.core.on_master_feedback(3, c, angle, 0.0, angle, writer(3));
     ASSERT_TRUE(n.core.ready(c + 1)) << c;
     const double cmd = n.run(c + 1).cmd;
     for (std::size_t k = 0; k < n.core.happening_count(); ++k) {
@@ -340,4 +352,147 @@ TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG5
   EXPECT_NEAR(last_cmd, 5.0, 1e-9);
   EXPECT_EQ(n.core.superimposed(), 0.0);
   EXPECT_EQ(n.core.standing().coupled_to, 0U);
+}
+
+namespace {
+
+// G81.4 (spec dafeng §2.6.11): axis 1 of channel 1 is the gear box's work axis, the tool
+// spindle S1 is axis 3 and the axial axis Z axis 2. The channel commands the work axis at 5.
+AxisNodeRoles work_axis() {
+  AxisNodeRoles r = over_spindle_3();
+  r.egb = true;
+  r.egb_axial = 2;
+  r.leaders = {2};
+  r.gear_box = coupling::GearBoxSetup{kCycle, 3600.0, 0.4, 0.05, 1.0, 0.0, 0.1};
+  return r;
+}
+
+AxisNodeEvent egb_event(std::uint64_t seq, std::uint64_t cycle, bool on,
+                        AxisNodeEvent::EgbOff off = AxisNodeEvent::EgbOff::stop) {
+  AxisNodeEvent e;
+  e.kind = AxisNodeEvent::Kind::egb_sync;
+  e.channel = 1;
+  e.seq = seq;
+  e.cycle = cycle;
+  e.sync_on = on;
+  e.egb = coupling::GearBoxCommand{20, 1, 15.0, 2.0, true, 0.0};  // T20 L1 P15 Q2 R0
+  e.egb_off = off;
+  return e;
+}
+
+double off_period(double degrees, double period) {
+  return std::fabs(degrees - period * std::round(degrees / period));
+}
+
+}  // namespace
+
+// The work axis turns 1/20 of the tool spindle (1800 deg/s) in the phase R0 plus the helical
+// angle of Z's travel, over the channel's setpoint; G80.4 stops it within 0.4 s where it
+// reached, and it stays there until the channel commands that angle (absorb).
+TEST(AxisNode, TheGearBoxsWorkAxisTurnsLOverTOfTheToolPlusTheHelixUntilG804AndTheChannelTakesIt) {
+  Node n(work_axis());
+  const double helix =
+      std::sin(15.0 * std::numbers::pi / 180.0) / (std::numbers::pi * 40.0) * 360.0;
+  // Z stands at 5, then from cycle 1000 speeds up to 10 mm/s in 20 ms (500 mm/s^2).
+  const auto z_at = [](std::uint64_t c) {
+    const double t = c < 1000 ? 0.0 : double(c - 1000) * kCycle;
+    return t < 0.02 ? 5.0 - 250.0 * t * t : 5.0 - 0.1 - 10.0 * (t - 0.02);
+  };
+  std::uint64_t seq = 0;
+  double channel = 5.0;  // where the channel commands the work axis
+  double last_cmd = 5.0;
+  std::uint64_t coupled_at = 0;
+  std::uint64_t stopped_at = 0;
+  std::uint64_t absorbed_at = 0;
+  for (std::uint64_t c = 0; c < 2600; ++c) {
+    if (c == 300 || c == 1500) {
+      n.core.on_event(egb_event(++seq, c, c == 300));
+    }
+    if (c == 2200) {
+      channel = last_cmd;  // the channel takes the angle, and tells the node in the same cycle
+      n.core.on_event(egb_event(++seq, c, false, AxisNodeEvent::EgbOff::absorb));
+    }
+    n.core.on_setpoint(1, 1, at(c, channel), seq, writer(1));
+    n.core.on_sync_channel_status(1, c, seq, writer(1));
+    n.core.on_master_feedback(3, c, 1.8 * double(c), 1800.0, 1.8 * double(c), writer(3));
+    if (c == 700) {
+      EXPECT_FALSE(n.core.ready(c + 1)) << "the axial axis's sample is an input of the gear box";
+    }
+    n.core.on_leader_feedback(2, c, z_at(c), true, writer(2));
+    ASSERT_TRUE(n.core.ready(c + 1)) << c;
+    const double cmd = n.run(c + 1).cmd;
+    for (const AxisNodeHappening& h : n.told.back()) {
+      coupled_at = h.kind == Happening::egb_coupled ? c + 1 : coupled_at;
+      absorbed_at = h.kind == Happening::egb_absorbed ? c + 1 : absorbed_at;
+      if (h.kind == Happening::egb_stopped) {
+        stopped_at = c + 1;
+        EXPECT_EQ(h.egb_stop, AxisNodeHappening::EgbStop::program);
+        EXPECT_NEAR(h.at, cmd - 5.0, 1e-9);
+      }
+    }
+    // Locked: on the ratio, in phase, with the helical term (while Z speeds up, the node's
+    // estimate of Z, extrapolated from the cycle before, is off by its acceleration's share).
+    if (c >= 800 && c < 1500) {
+      const double tool = 1.8 * double(c + 1);
+      // R0: the work axis's angle, setpoint and offset together, is the tool's 1/20 + R.
+      const double off = off_period(cmd - tool / 20.0 - (z_at(c + 1) - 5.0) * helix, 18.0);
+      ASSERT_LT(off, c >= 999 && c < 1021 ? 1e-3 : 1e-9) << c;
+      ASSERT_TRUE(n.core.standing().coupling_locked) << c;
+      ASSERT_EQ(n.core.standing().coupled_to, 3U);
+    }
+    if (stopped_at != 0 && c + 1 > stopped_at) {
+      ASSERT_NEAR(cmd, last_cmd, 1e-12) << "it stands where it reached, cycle " << c;
+    }
+    last_cmd = cmd;
+  }
+  EXPECT_EQ(coupled_at, 301U);  // the cycle after the event
+  EXPECT_GT(stopped_at, 1501U);
+  EXPECT_LE(stopped_at, 1501U + 400U + 1U);  // within the stop time
+  EXPECT_EQ(absorbed_at, 2201U);
+  EXPECT_EQ(n.core.superimposed(), 0.0);
+  EXPECT_EQ(n.core.standing().coupled_to, 0U);
+  EXPECT_NE(last_cmd, 5.0);
+}
+
+// The tool spindle's node gone: the work axis stops as for G80.4 and stands there.
+TEST(AxisNode, TheGearBoxsWorkAxisStopsWhenTheToolSpindleIsLost) {
+  AxisNodeRoles r = work_axis();
+  r.egb_axial = 0;
+  r.leaders = {};
+  Node n(r);
+  std::uint64_t stopped_at = 0;
+  AxisNodeHappening::EgbStop why{};
+  double last_cmd = 5.0;
+  for (std::uint64_t c = 0; c < 1500; ++c) {
+    if (c == 300) {
+      AxisNodeEvent e = egb_event(1, c, true);
+      e.egb = coupling::GearBoxCommand{20, 1, 0.0, 0.0, true, 0.0};
+      n.core.on_event(e);
+    }
+    const std::uint64_t seq = c < 300 ? 0 : 1;
+    n.core.on_setpoint(1, 1, at(c, 5.0), seq, writer(1));
+    n.core.on_sync_channel_status(1, c, seq, writer(1));
+    if (c < 800) {
+      n.core.on_master_feedback(3, c, 1.8 * double(c), 1800.0, 1.8 * double(c), writer(3));
+    } else if (c == 800) {
+      n.core.on_master_gone(writer(3));
+    }
+    ASSERT_TRUE(n.core.ready(c + 1)) << c;
+    const double cmd = n.run(c + 1).cmd;
+    for (const AxisNodeHappening& h : n.told.back()) {
+      if (h.kind == Happening::egb_stopped) {
+        stopped_at = c + 1;
+        why = h.egb_stop;
+      }
+    }
+    if (c > 810) {  // slowing down evenly from 90 deg/s, never faster
+      ASSERT_LE(std::fabs(cmd - last_cmd) / kCycle, 90.0 + 1e-6) << c;
+    }
+    last_cmd = cmd;
+  }
+  EXPECT_GT(stopped_at, 801U);
+  EXPECT_LE(stopped_at, 801U + 400U + 1U);
+  EXPECT_EQ(why, AxisNodeHappening::EgbStop::tool_lost);
+  EXPECT_EQ(n.core.standing().coupled_to, 0U);
+  EXPECT_NEAR(n.core.superimposed(), last_cmd - 5.0, 1e-9);
 }

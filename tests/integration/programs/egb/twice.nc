@@ -1,0 +1,8 @@
+O2 (a second G81.4 while the first is on)
+G00 X30 Z5 C0
+M03 S300
+G81.4 T20 L1 R0
+G04 X0.5
+G81.4 T10 L1 R0
+G01 X20 F300
+M30

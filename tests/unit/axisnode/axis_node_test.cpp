@@ -496,3 +496,51 @@ TEST(AxisNode, TheGearBoxsWorkAxisStopsWhenTheToolSpindleIsLost) {
   EXPECT_EQ(n.core.standing().coupled_to, 0U);
   EXPECT_NEAR(n.core.superimposed(), last_cmd - 5.0, 1e-9);
 }
+
+// A reset (param 5320.4): at_once stops the work axis within the stop time; when_tool_stops
+// keeps the gear while the tool spindle turns and lets go once it stands.
+TEST(AxisNode, AResetStopsTheGearBoxAtOnceOrOnceTheToolSpindleStands) {
+  for (const bool at_once : {true, false}) {
+    AxisNodeRoles r = work_axis();
+    r.egb_axial = 0;
+    r.leaders = {};
+    r.egb_reset_at_once = at_once;
+    Node n(r);
+    std::uint64_t stopped_at = 0;
+    AxisNodeHappening::EgbStop why{};
+    double tool = 0.0;
+    for (std::uint64_t c = 0; c < 2000; ++c) {
+      if (c == 300 || c == 800) {
+        AxisNodeEvent e = egb_event(c == 300 ? 1 : 2, c, c == 300, AxisNodeEvent::EgbOff::reset);
+        e.egb = coupling::GearBoxCommand{20, 1, 0.0, 0.0, true, 0.0};
+        n.core.on_event(e);
+      }
+      const std::uint64_t seq = c < 300 ? 0 : c < 800 ? 1 : 2;
+      // The channel holds the work axis from its reset on.
+      n.core.on_setpoint(1, 1, at(c, 5.0, c < 800), seq, writer(1));
+      n.core.on_sync_channel_status(1, c, seq, writer(1));
+      const double vel = c < 1200 ? 1800.0 : 0.0;  // the tool spindle stops at 1200
+      tool += vel * kCycle;
+      n.core.on_master_feedback(3, c, tool, vel, tool, writer(3));
+      ASSERT_TRUE(n.core.ready(c + 1)) << c;
+      (void)n.run(c + 1);
+      for (const AxisNodeHappening& h : n.told.back()) {
+        if (h.kind == Happening::egb_stopped) {
+          stopped_at = c + 1;
+          why = h.egb_stop;
+        }
+      }
+      if (!at_once && c > 800 && c < 1200) {
+        ASSERT_EQ(n.core.standing().coupled_to, 3U) << "still geared while the tool turns, " << c;
+      }
+    }
+    EXPECT_EQ(why, AxisNodeHappening::EgbStop::reset);
+    if (at_once) {
+      EXPECT_GT(stopped_at, 801U);
+      EXPECT_LE(stopped_at, 801U + 400U + 1U);
+    } else {
+      EXPECT_GT(stopped_at, 1201U);
+    }
+    EXPECT_EQ(n.core.standing().coupled_to, 0U);
+  }
+}

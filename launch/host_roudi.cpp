@@ -179,6 +179,10 @@ HostRoudi::HostRoudi(std::size_t processes, bool must_be_running) {
 }
 
 HostRoudi::~HostRoudi() {
+  stop();
+}
+
+void HostRoudi::stop() noexcept {
   if (!child_) {
     return;
   }

@@ -45,6 +45,8 @@ class HostRoudi {
   // Stops the RouDi it started (SIGTERM, SIGKILL after 5 s): call it after the machine's
   // processes are gone, since RouDi ends the processes still registered with it.
   ~HostRoudi();
+  // The same stop, now (from any thread; once).
+  void stop() noexcept;
   HostRoudi(const HostRoudi&) = delete;
   HostRoudi& operator=(const HostRoudi&) = delete;
 

@@ -84,7 +84,8 @@ struct Observed {
 class LeftOverShmRemoval {
  public:
   explicit LeftOverShmRemoval(int domain) : footprint_(domain) {}
-  ~LeftOverShmRemoval() {
+  ~LeftOverShmRemoval() { remove_left_over(); }
+  void remove_left_over() noexcept {
     if (const std::size_t removed = footprint_.remove_left_over(); removed > 0) {
       spdlog::info("removed {} shared-memory files the run left in /dev/shm", removed);
     }
@@ -107,7 +108,8 @@ Launcher::Launcher(config::MachineConfig machine, LaunchOptions options)
     : machine_(std::move(machine)), options_(std::move(options)) {}
 
 LaunchResult Launcher::run(
-    const std::function<void(const std::vector<ChannelProgress>&)>& on_progress) {
+    const std::function<void(const std::vector<ChannelProgress>&)>& on_progress,
+    const std::function<void(const LaunchResult&)>& on_result) {
   LaunchResult result;
   const int domain = process::resolve_domain(machine_);
   // What /dev/shm held before the run: what the run's processes leave there is removed when
@@ -1035,7 +1037,13 @@ LaunchResult Launcher::run(
     out << summary.str() << '\n';
     fs::remove_all(parts_dir);
   }
-  return result;
+  if (on_result) {
+    // What the run's processes left goes now: the teardown that follows may be cut short
+    // (process::TeardownBound).
+    shm_footprint.remove_left_over();
+    on_result(result);
+  }
+  return result;  // the participant and its readers are deleted now
 }
 
 }  // namespace mcnc::launch

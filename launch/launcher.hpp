@@ -101,8 +101,11 @@ const char* to_string(::mcnc::ChannelState state) noexcept;
 class Launcher {
  public:
   Launcher(config::MachineConfig machine, LaunchOptions options);
-  // Runs the machine to the end. `on_progress` is called about ten times a second.
-  LaunchResult run(const std::function<void(const std::vector<ChannelProgress>&)>& on_progress);
+  // Runs the machine to the end. `on_progress` is called about ten times a second;
+  // `on_result` with the result once the run's processes are gone and its trace is written,
+  // before the launcher's own DDS participant is deleted.
+  LaunchResult run(const std::function<void(const std::vector<ChannelProgress>&)>& on_progress,
+                   const std::function<void(const LaunchResult&)>& on_result = {});
 
  private:
   config::MachineConfig machine_;

@@ -2,6 +2,8 @@
 
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/setup/interpreter_setup.hpp"
+#include "common/process/exit_deadline.hpp"
+#include "common/process/shm_cleanup.hpp"
 #include "common/process/startup.hpp"
 #include "launch/host_roudi.hpp"
 #include "launch/host_service.hpp"
@@ -150,6 +152,36 @@ std::optional<ScriptedOperatorCommand> parse_operator_command(const config::Mach
   }
   return std::nullopt;
 }
+
+// What the run did, on stdout: each program's end, the alarms, the failure, the verdict.
+void print_result(const config::MachineConfig& machine, const LaunchResult& result) {
+  for (const auto& p : result.channels) {
+    if (!p.has_program) {
+      continue;
+    }
+    if (p.ended) {
+      std::printf(
+          "%s: program end M%02d, cycle time %.3f s, %u alarms\n", p.name.c_str(), p.end_code,
+          static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s(), p.alarms);
+    } else {
+      std::printf("%s: did not end (%s), %u alarms\n", p.name.c_str(), to_string(p.state),
+                  p.alarms);
+    }
+  }
+  for (const auto& a : result.alarms) {
+    std::printf("alarm: %s\n", a.c_str());
+  }
+  if (!result.failure.empty()) {
+    std::printf("failed: %s\n", result.failure.c_str());
+  }
+  std::printf("%s after %llu cycles\n", result.exit_code == 0 ? "ok" : "FAILED",
+              static_cast<unsigned long long>(result.cycles));
+}
+
+// How long the launcher's own DDS teardown may take once the run's processes are gone: it
+// takes well under a second; Cyclone DDS 0.10's security teardown has hung for good
+// (docs/operations.md, "Security"). Beyond it `mcnc run` stops the RouDi it started and leaves.
+constexpr std::chrono::milliseconds kLauncherTeardownLimit{10'000};
 
 }  // namespace
 
@@ -392,45 +424,45 @@ int execute_run(const RunArguments& args) {
   Launcher launcher(machine, options);
   std::map<std::string, std::string> last_line;
   LaunchResult result;
-  try {
-    result = launcher.run([&](const std::vector<ChannelProgress>& list) {
-      for (const auto& p : list) {
-        char line[160];
-        std::snprintf(line, sizeof line, "%-4s block %u/%u  line %d  %s%s", p.name.c_str(), p.block,
-                      p.block_total, p.line, to_string(p.state), p.ended ? "  (program end)" : "");
-        if (last_line[p.name] != line) {
-          last_line[p.name] = line;
-          std::printf("%s\n", line);
-          std::fflush(stdout);
-        }
+  std::optional<process::TeardownBound> teardown_bound;
+  const auto bound_teardown = [&](const LaunchResult& ended) {
+    teardown_bound.emplace(kLauncherTeardownLimit, ended.exit_code, [&, ended] {
+      print_result(machine, ended);
+      std::fprintf(stderr,
+                   "error: the launcher's DDS teardown did not end within %lld s after the run "
+                   "(or a stop signal came meanwhile); the run's processes are gone, stopping "
+                   "RouDi and leaving with the run's exit code %d\n",
+                   static_cast<long long>(kLauncherTeardownLimit.count() / 1000), ended.exit_code);
+      std::fflush(stdout);
+      if (roudi) {
+        roudi->stop();
       }
+      process::remove_stale_dds_shm_files();
     });
+  };
+  try {
+    result = launcher.run(
+        [&](const std::vector<ChannelProgress>& list) {
+          for (const auto& p : list) {
+            char line[160];
+            std::snprintf(line, sizeof line, "%-4s block %u/%u  line %d  %s%s", p.name.c_str(),
+                          p.block, p.block_total, p.line, to_string(p.state),
+                          p.ended ? "  (program end)" : "");
+            if (last_line[p.name] != line) {
+              last_line[p.name] = line;
+              std::printf("%s\n", line);
+              std::fflush(stdout);
+            }
+          }
+        },
+        bound_teardown);
   } catch (const std::exception& e) {
     // The children are stopped by their handles; report and fail.
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
-  for (const auto& p : result.channels) {
-    if (!p.has_program) {
-      continue;
-    }
-    if (p.ended) {
-      std::printf(
-          "%s: program end M%02d, cycle time %.3f s, %u alarms\n", p.name.c_str(), p.end_code,
-          static_cast<double>(p.end_cycle - p.run_start_cycle) * machine.cycle_s(), p.alarms);
-    } else {
-      std::printf("%s: did not end (%s), %u alarms\n", p.name.c_str(), to_string(p.state),
-                  p.alarms);
-    }
-  }
-  for (const auto& a : result.alarms) {
-    std::printf("alarm: %s\n", a.c_str());
-  }
-  if (!result.failure.empty()) {
-    std::printf("failed: %s\n", result.failure.c_str());
-  }
-  std::printf("%s after %llu cycles\n", result.exit_code == 0 ? "ok" : "FAILED",
-              static_cast<unsigned long long>(result.cycles));
+  teardown_bound.reset();
+  print_result(machine, result);
   if (!args.report_dir.empty()) {
     write_report(args.report_dir, machine, result, options.trace_path);
   }

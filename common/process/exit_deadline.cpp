@@ -1,5 +1,7 @@
 #include "common/process/exit_deadline.hpp"
 
+#include "common/process/startup.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,6 +33,43 @@ void arm_exit_deadline(const char* process_name, std::chrono::milliseconds limit
     }).detach();
   } catch (const std::system_error&) {
     // No thread: the launcher's kill remains the bound.
+  }
+}
+
+TeardownBound::TeardownBound(std::chrono::milliseconds limit, int exit_code,
+                             std::function<void()> before_exit) {
+  const std::sig_atomic_t signals_before = g_stop_signals;
+  try {
+    watch_ =
+        std::thread([this, limit, exit_code, signals_before, before_exit = std::move(before_exit)] {
+          const auto end = std::chrono::steady_clock::now() + limit;
+          std::unique_lock<std::mutex> lock(mutex_);
+          // Polled: a signal handler cannot notify a condition variable.
+          while (!disarmed_ && std::chrono::steady_clock::now() < end &&
+                 g_stop_signals == signals_before) {
+            disarmed_signal_.wait_for(lock, std::chrono::milliseconds(50));
+          }
+          if (disarmed_) {
+            return;
+          }
+          if (before_exit) {
+            before_exit();
+          }
+          std::_Exit(exit_code);
+        });
+  } catch (const std::system_error&) {
+    // No thread: no bound.
+  }
+}
+
+TeardownBound::~TeardownBound() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    disarmed_ = true;
+  }
+  disarmed_signal_.notify_all();
+  if (watch_.joinable()) {
+    watch_.join();
   }
 }
 

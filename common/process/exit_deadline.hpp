@@ -5,6 +5,10 @@
 // only kill it, and a kill cannot tell "stuck after the work" from "killed before it"; the stop
 // announcement that would tell is lost in the same hang (docs/decisions.md 28).
 #include <chrono>
+#include <condition_variable>
+#include <functional>
+#include <mutex>
+#include <thread>
 
 namespace mcnc::process {
 
@@ -24,5 +28,26 @@ inline constexpr std::chrono::milliseconds kStopToExitLimit{4000};
 // notices. Without a thread to spare, there is no deadline.
 void arm_exit_deadline(const char* process_name, std::chrono::milliseconds limit,
                        int exit_code) noexcept;
+
+// A bound on a stretch of a process's end that may hang in its DDS implementation: Cyclone DDS
+// 0.10's teardown waits for its security handshake thread, which can spin for good after a
+// handshake's time-out (a race in its state machine, fixed upstream after 0.10.2), and a stop
+// signal only sets g_stop_signal. Armed, it watches on a thread of its own; when it is not
+// disarmed (destroyed) within `limit`, or a stop signal comes after it was armed, it runs
+// `before_exit` there and leaves at once with `exit_code`, skipping every destructor still to
+// run. Without a thread to spare, there is no bound.
+class TeardownBound {
+ public:
+  TeardownBound(std::chrono::milliseconds limit, int exit_code, std::function<void()> before_exit);
+  ~TeardownBound();  // disarms it
+  TeardownBound(const TeardownBound&) = delete;
+  TeardownBound& operator=(const TeardownBound&) = delete;
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable disarmed_signal_;
+  bool disarmed_ = false;
+  std::thread watch_;
+};
 
 }  // namespace mcnc::process

@@ -54,6 +54,7 @@ void start_process(const std::string& process_name, const ShellOptions& options,
 }
 
 volatile std::sig_atomic_t g_stop_signal = 0;
+volatile std::sig_atomic_t g_stop_signals = 0;
 
 config::MachineConfig load_machine_or_exit(const std::string& path) {
   try {
@@ -91,6 +92,7 @@ std::optional<security::IdentityFiles> resolve_security_or_exit(
 namespace {
 void on_stop_signal(int /*signal*/) {
   g_stop_signal = 1;
+  g_stop_signals = g_stop_signals + 1;
 }
 pid_t g_launcher_pid = 0;  // 0: not started by a launcher
 }  // namespace

@@ -63,6 +63,9 @@ std::optional<std::string> security_problem(const config::MachineConfig& machine
 // is set (mcnc-launch sets it for its children), the process also gets SIGTERM when its parent
 // dies (`WhenLauncherDies::stop`), so a killed launcher leaves nothing running.
 extern volatile std::sig_atomic_t g_stop_signal;
+// How many SIGINT/SIGTERM came: a signal after a given moment, which g_stop_signal, once set,
+// cannot tell.
+extern volatile std::sig_atomic_t g_stop_signals;
 void install_stop_signals(WhenLauncherDies when = WhenLauncherDies::stop);
 // True once the launcher that started this process is gone: its parent is no longer the
 // process MCNC_LAUNCHER_PID names (a service manager that adopts orphans is not pid 1). False

@@ -9,10 +9,16 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/ptrace.h>
+#include <sys/wait.h>
+
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <regex>
+#include <set>
 
 using namespace mcnc;
 using namespace mcnc::test;
@@ -27,6 +33,7 @@ using Trace = std::vector<nlohmann::json>;
 constexpr int kSecuredDomain = 207;
 constexpr int kUnsecuredDomain = 208;
 constexpr int kBadCertificatesDomain = 209;
+constexpr int kHungTeardownDomain = 213;
 
 // CH1 reaches its wait mark long before CH2: a fake arrival of CH2 would release it early.
 constexpr const char* kCh1 = "G00 X20 Z5\nG01 Z-10 F600\nG04.1 P1 Q12\nG01 X30 F600\nM30\n";
@@ -125,6 +132,52 @@ std::vector<std::string> forged_viewer(const std::string& certs, const std::stri
           write_text(
               dir + "/governance.p7s",
               security::sign_document(ca, security::governance_xml(security::Protection::sign)))};
+}
+
+// One thread of another process held still, as a thread that spins for good would hold what
+// waits for it: ptrace-stopped (the rest of its process runs on), until the process ends.
+class HeldThread {
+ public:
+  explicit HeldThread(pid_t tid) : tid_(tid) {
+    held_ = ::ptrace(PTRACE_SEIZE, tid_, nullptr, nullptr) == 0 &&
+            ::ptrace(PTRACE_INTERRUPT, tid_, nullptr, nullptr) == 0;
+  }
+  ~HeldThread() { (void)::ptrace(PTRACE_DETACH, tid_, nullptr, nullptr); }
+  HeldThread(const HeldThread&) = delete;
+  HeldThread& operator=(const HeldThread&) = delete;
+  [[nodiscard]] bool held() const { return held_; }
+  // Its process cannot be reaped before its tracer has reaped the thread's own end.
+  void reap() const {
+    int status = 0;
+    (void)::waitpid(tid_, &status, __WALL | WNOHANG);
+  }
+
+ private:
+  pid_t tid_;
+  bool held_ = false;
+};
+
+// The thread of process `pid` whose name is `name`, or -1.
+pid_t thread_named(pid_t pid, const std::string& name) {
+  std::error_code ec;
+  for (const auto& task : fs::directory_iterator("/proc/" + std::to_string(pid) + "/task", ec)) {
+    std::string comm = slurp(task.path().string() + "/comm");
+    if (!comm.empty() && comm.back() == '\n') {
+      comm.pop_back();
+    }
+    if (comm == name) {
+      return static_cast<pid_t>(std::stol(task.path().filename().string()));
+    }
+  }
+  return -1;
+}
+
+std::set<std::string> shm_listing() {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator("/dev/shm")) {
+    names.insert(entry.path().filename().string());
+  }
+  return names;
 }
 
 }  // namespace
@@ -263,4 +316,48 @@ TEST(Security, BadCertificatesStopTheStartNamingTheFileAndNothingStarts) {
                               "CH1=" + write_text(machine.file("short.nc"), "G00 X20 Z5\nM30\n")},
                              -1, 240s);
   EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+}
+
+// Cyclone DDS 0.10's security handshake thread ("fsm") can spin for good (a race on a
+// handshake's time-out), and the deletion of a secured participant then waits for it: `mcnc
+// run` hung after a failed start until killed, SIGTERM doing nothing. Here the launcher's fsm
+// thread is held still once the run is under way: the run ends as it should, `mcnc run` says
+// what happened and leaves with the run's exit code within its bound, with its RouDi, every
+// child and every file of the run in /dev/shm gone.
+TEST(Security, ALauncherWhoseDdsSecurityTeardownHangsStillEndsInBoundedTime) {
+  isolate_iceoryx_host();  // its RouDi and /dev/shm are the test's: what is left is the run's
+  TestMachine machine("small_lathe.yaml", kHungTeardownDomain);
+  make_certs(machine.path(), machine.file("certs"));
+  name_security_dir(machine, "certs");
+  const std::set<std::string> shm_before = shm_listing();
+  Background launcher({bin("mcnc"), "run", machine.path(), "--pace", "--program",
+                       "CH1=" + source("launch/programs/xz_move.nc")},
+                      -1, machine.file("launch"));
+  const auto output = [&] {
+    return slurp(machine.file("launch.out")) + slurp(machine.file("launch.err"));
+  };
+  ASSERT_TRUE(eventually(
+      [&] { return slurp(machine.file("launch.out")).find("running") != std::string::npos; }, 120s))
+      << output();
+  const pid_t fsm = thread_named(launcher.pid(), "fsm");
+  ASSERT_GT(fsm, 0) << "no Cyclone DDS security thread in the launcher";
+  const HeldThread held(fsm);
+  ASSERT_TRUE(held.held()) << std::strerror(errno);
+  const auto held_at = std::chrono::steady_clock::now();
+  int code = -1000;
+  while (code == -1000 && std::chrono::steady_clock::now() < held_at + 60s) {
+    held.reap();
+    code = launcher.wait(1s);
+  }
+  const auto took =
+      std::chrono::duration_cast<std::chrono::seconds>(std::chrono::steady_clock::now() - held_at);
+  std::cout << "mcnc run left " << took.count() << " s after its fsm thread was held\n";
+  ASSERT_NE(code, -1000) << "mcnc run still there 60 s after its run\n" << output();
+  EXPECT_EQ(code, 0) << output();
+  EXPECT_NE(output().find("ok after 4829 cycles"), std::string::npos) << output();
+  EXPECT_NE(output().find("DDS teardown did not end within 10 s"), std::string::npos) << output();
+  EXPECT_TRUE(pids_with_arg(machine.path()).empty()) << "a child of the run is left";
+  EXPECT_TRUE(pids_with_arg("mcnc-roudi-" + std::to_string(launcher.pid())).empty())
+      << "its RouDi is left";
+  EXPECT_EQ(shm_listing(), shm_before) << output();
 }

@@ -9,6 +9,7 @@
 #include "launch/host_service.hpp"
 #include "launch/launcher.hpp"
 #include "launch/machine_security.hpp"
+#include "launch/port_reservation.hpp"
 #include "launch/self_path.hpp"
 #include "tools/report/run_report.hpp"
 
@@ -406,7 +407,7 @@ int execute_run(const RunArguments& args) {
     }
   }
   const bool with_hmi = !options.hmi_listen.empty();
-  if (!check_machine_security(machine, options.host, with_hmi)) {
+  if (!check_machine_security(machine, options.host, with_hmi) || !reserve_fixed_ports(machine)) {
     return 2;
   }
   // RouDi before any process, and stopped after the last (HostRoudi's destructor).

@@ -6,9 +6,12 @@
 #include "common/security/machine_permissions.hpp"
 #include "common/security/pki/pki.hpp"
 #include "harness.hpp"
+#include "launch/ephemeral_ports.hpp"
+#include "launch/port_reservation.hpp"
 
 #include <gtest/gtest.h>
 
+#include <sys/mount.h>
 #include <sys/ptrace.h>
 #include <sys/wait.h>
 
@@ -34,6 +37,8 @@ constexpr int kSecuredDomain = 207;
 constexpr int kUnsecuredDomain = 208;
 constexpr int kBadCertificatesDomain = 209;
 constexpr int kHungTeardownDomain = 213;
+// Its small lathe's fixed ports, 60660-60669, lie in Linux's default ephemeral range.
+constexpr int kEphemeralPortsDomain = 213;
 
 // CH1 reaches its wait mark long before CH2: a fake arrival of CH2 would release it early.
 constexpr const char* kCh1 = "G00 X20 Z5\nG01 Z-10 F600\nG04.1 P1 Q12\nG01 X30 F600\nM30\n";
@@ -360,4 +365,64 @@ TEST(Security, ALauncherWhoseDdsSecurityTeardownHangsStillEndsInBoundedTime) {
   EXPECT_TRUE(pids_with_arg("mcnc-roudi-" + std::to_string(launcher.pid())).empty())
       << "its RouDi is left";
   EXPECT_EQ(shm_listing(), shm_before) << output();
+}
+
+// A secured machine's processes listen on fixed ports (decision 137); from domain 102 up those
+// lie in Linux's ephemeral port range, where another program's outgoing socket may take one.
+// The launcher reserves them (net.ipv4.ip_local_reserved_ports) before anything starts, and
+// refuses the start, naming the domain and the setting, when it cannot.
+TEST(Security, ASecuredMachineReservesItsFixedPortsInTheEphemeralRangeOrDoesNotStart) {
+  isolate_iceoryx_host();  // a mount namespace: /proc/sys is made read-only in it alone
+  TestMachine machine("small_lathe.yaml", kEphemeralPortsDomain);
+  make_certs(machine.path(), machine.file("certs"));
+  name_security_dir(machine, "certs");
+  const std::string setting = "/proc/sys/net/ipv4/ip_local_reserved_ports";
+  const auto range = launch::parse_port_range(slurp("/proc/sys/net/ipv4/ip_local_port_range"));
+  ASSERT_TRUE(range);
+  const auto ports =
+      launch::fixed_ports(config::load_machine_file(machine.path()), kEphemeralPortsDomain);
+  ASSERT_TRUE(ports);
+  ASSERT_TRUE(ports->first >= range->first && ports->last <= range->last)
+      << "the host's ephemeral range " << launch::port_list({*range}) << " misses the ports "
+      << launch::port_list({*ports});
+  // Not reserved yet: the test takes back what an earlier run reserved.
+  const auto reserved = launch::parse_port_list(slurp(setting));
+  ASSERT_TRUE(reserved);
+  std::vector<launch::PortRange> others;
+  for (const launch::PortRange& r : *reserved) {
+    for (const launch::PortRange& kept : launch::exposed_ports(r, {0, 65535}, {*ports})) {
+      others.push_back(kept);
+    }
+  }
+  std::ofstream(setting) << launch::port_list(others) << "\n";
+  const auto run_short = [&](const std::string& name) {
+    return run({bin("mcnc"), "run", machine.path(), "--program",
+                "CH1=" + write_text(machine.file("short.nc"), "G00 X20 Z5\nM30\n"), "--trace",
+                machine.file(name + ".jsonl")},
+               -1, 240s);
+  };
+
+  // The settings read-only, as for a launcher that is not root.
+  ASSERT_EQ(::mount("/proc/sys", "/proc/sys", nullptr, MS_BIND, nullptr), 0)
+      << std::strerror(errno);
+  ASSERT_EQ(::mount(nullptr, "/proc/sys", nullptr, MS_BIND | MS_REMOUNT | MS_RDONLY, nullptr), 0)
+      << std::strerror(errno);
+  const RunResult refused = run_short("refused");
+  ASSERT_EQ(::umount("/proc/sys"), 0) << std::strerror(errno);
+  EXPECT_EQ(refused.exit_code, 2) << refused.out << refused.err;
+  EXPECT_NE(refused.err.find("error: machine.domain 213 (or MCNC_DOMAIN): the secured machine's "
+                             "processes listen on the fixed ports 60660-60669"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("sysctl -w net.ipv4.ip_local_reserved_ports="), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("nothing started"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(machine.file("refused.jsonl")));
+
+  const RunResult good = run_short("good");
+  EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+  const auto now_reserved = launch::parse_port_list(slurp(setting));
+  ASSERT_TRUE(now_reserved);
+  EXPECT_TRUE(launch::exposed_ports(*ports, *range, *now_reserved).empty())
+      << launch::port_list(*now_reserved);
 }

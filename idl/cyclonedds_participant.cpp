@@ -148,9 +148,10 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 // those (decision 54). A writer's heartbeats stay 100 ms apart while a reader lacks a sample:
 // Cyclone DDS doubles the interval, up to 8 s, after five heartbeats without a write, and a
 // lockstep writer writes nothing until that reader's answer comes (decision 91).
-// A secured participant of a machine on one host announces itself to its peers alone, by
-// unicast, and listens on the discovery port of its participant index (decision 137): without
-// multicast, participants that share no topic never meet, nor authenticate each other.
+// A secured participant announces itself to its peers alone, by unicast (at 127.0.0.1 on one
+// host, at their hosts' addresses across hosts), and listens on the discovery port of its
+// participant index (decisions 137, 202): without multicast, participants that share no topic
+// never meet, nor authenticate each other.
 // CYCLONEDDS_URI, when set, is read after it.
 std::string domain_config(int domain, bool shared_memory, const security::DiscoveryPeers* peers) {
   std::string config =
@@ -164,10 +165,11 @@ std::string domain_config(int domain, bool shared_memory, const security::Discov
               (peers->participant_index < 0 ? std::string("none")
                                             : std::to_string(peers->participant_index)) +
               "</ParticipantIndex><Peers>";
-    for (const int peer : peers->peers) {
-      config +=
-          "<Peer address=\"127.0.0.1:" + std::to_string(unicast_discovery_port(domain, peer)) +
-          "\"/>";
+    for (std::size_t k = 0; k < peers->peers.size(); ++k) {
+      const std::string host =
+          k < peers->peer_addresses.size() ? peers->peer_addresses[k] : std::string("127.0.0.1");
+      config += "<Peer address=\"" + host + ":" +
+                std::to_string(unicast_discovery_port(domain, peers->peers[k])) + "\"/>";
     }
     config += "</Peers>";
   }

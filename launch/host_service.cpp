@@ -63,7 +63,9 @@ int serve_host(const RunArguments& args) {
   process::ProcessNode node(
       process::resolve_domain(machine), kServicePrefix + args.host, dds::CyclicClock::realtime,
       process::resolve_middleware(machine, "launch"), dds::LocalTransport::network,
-      process::resolve_security_or_exit(machine, launcher_identity(machine, args.host)));
+      // An onlooker: the launcher it starts takes the identity's index.
+      process::resolve_security_or_exit(machine, launcher_identity(machine, args.host),
+                                        {true, true}));
   std::mutex mutex;
   std::deque<RunRequest> requests;
   std::set<std::string> seen_ids;
@@ -139,10 +141,11 @@ int request_run(const RunArguments& args) {
     return 2;
   }
   process::install_stop_signals();
-  process::ProcessNode node(
-      process::resolve_domain(machine), "mcnc-run-" + std::to_string(::getpid()),
-      dds::CyclicClock::realtime, process::resolve_middleware(machine, "launch"),
-      dds::LocalTransport::network, process::resolve_security_or_exit(machine, "launch"));
+  process::ProcessNode node(process::resolve_domain(machine),
+                            "mcnc-run-" + std::to_string(::getpid()), dds::CyclicClock::realtime,
+                            process::resolve_middleware(machine, "launch"),
+                            dds::LocalTransport::network,
+                            process::resolve_security_or_exit(machine, "launch", {true, true}));
   std::map<std::string, ProcessPhase> services;  // under the wake-up lock, as outcomes
   std::map<std::string, RunOutcome> outcomes;
   const std::string id = run_id();

@@ -148,7 +148,8 @@ LaunchResult Launcher::run(
   const std::string self = launcher_identity(machine_, options_.host);
   process::ProcessNode node(
       domain, self, dds::CyclicClock::realtime, process::resolve_middleware(machine_, "launch"),
-      dds::LocalTransport::network, process::resolve_security_or_exit(machine_, self));
+      dds::LocalTransport::network,
+      process::resolve_security_or_exit(machine_, self, {!options_.host.empty(), false}));
   trace::TraceWriter tracer(follower ? std::string() : part_for("launch"), "launch");
   Observed seen;
   process::Wakeup& wake = node.wakeup();

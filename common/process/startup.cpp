@@ -76,6 +76,15 @@ std::optional<std::string> security_problem(const config::MachineConfig& machine
 
 std::optional<security::IdentityFiles> resolve_security_or_exit(
     const config::MachineConfig& machine, const std::string& identity) {
+  // A process a launcher started on one of the machine's hosts has MCNC_HOST; the viewer looks
+  // on wherever the machine runs.
+  const bool across_hosts =
+      identity == security::kViewerIdentity ? !machine.hosts.empty() : !resolve_host().empty();
+  return resolve_security_or_exit(machine, identity, SecuredDiscovery{across_hosts, false});
+}
+
+std::optional<security::IdentityFiles> resolve_security_or_exit(
+    const config::MachineConfig& machine, const std::string& identity, SecuredDiscovery discovery) {
   if (machine.security_dir.empty()) {
     return std::nullopt;
   }
@@ -85,7 +94,9 @@ std::optional<security::IdentityFiles> resolve_security_or_exit(
     std::exit(2);
   }
   security::IdentityFiles files = security::identity_files(machine.security_dir, identity);
-  files.discovery = security::discovery_peers(machine, identity);
+  files.discovery = security::discovery_peers(
+      machine, discovery.onlooker ? std::string(security::kViewerIdentity) : identity,
+      discovery.across_hosts);
   return files;
 }
 

@@ -54,6 +54,15 @@ void require_roudi_or_exit(const config::MachineConfig& machine, const std::stri
 // file, and exits with code 2: nothing is started.
 std::optional<security::IdentityFiles> resolve_security_or_exit(
     const config::MachineConfig& machine, const std::string& identity);
+// How a participant of a secured machine discovers (decisions 137, 202).
+struct SecuredDiscovery {
+  bool across_hosts = false;  // the machine runs across the hosts of its hosts: section
+  bool onlooker = false;      // no index of its own (as the viewer): a launcher's service
+};
+// The same for a participant that is not the process its identity names for discovery: a
+// launcher (which knows its host from --host) and the tools that share its identity.
+std::optional<security::IdentityFiles> resolve_security_or_exit(
+    const config::MachineConfig& machine, const std::string& identity, SecuredDiscovery discovery);
 // The same check without exiting: nullopt when the identity's files are good (or the machine is
 // unsecured), else the reason.
 std::optional<std::string> security_problem(const config::MachineConfig& machine,

@@ -14,7 +14,11 @@ class TalkGraph {
  public:
   explicit TalkGraph(const config::MachineConfig& machine)
       : names_(indexed_participants(machine)), links_(names_.size() * names_.size(), false) {
-    for (const std::string& hub : {std::string("launch"), std::string("hmi"), std::string("PLC")}) {
+    std::vector<std::string> hubs{"launch", "hmi", "PLC"};
+    for (const config::HostConfig& host : machine.hosts) {
+      hubs.push_back("launch-" + host.name);  // a host's launcher watches its processes
+    }
+    for (const std::string& hub : hubs) {
       for (const std::string& other : names_) {
         link(hub, other);
       }
@@ -103,11 +107,28 @@ class TalkGraph {
   std::vector<bool> links_;
 };
 
+// The address of the host that runs the participant `name` (an identity's name).
+std::string host_address(const config::MachineConfig& machine, const std::string& name) {
+  const config::HostConfig* host = nullptr;
+  if (name == "launch") {
+    host = &machine.hosts.front();  // the first host's launcher runs the machine
+  } else if (name.rfind("launch-", 0) == 0) {
+    for (const config::HostConfig& h : machine.hosts) {
+      host = "launch-" + h.name == name ? &h : host;
+    }
+  } else {
+    host = machine.host_of(name == "PLC" ? "plc" : name);  // host_of names the PLC in lower case
+  }
+  return host == nullptr ? std::string() : host->address;
+}
+
 }  // namespace
 
 std::vector<std::string> indexed_participants(const config::MachineConfig& machine) {
-  if (!machine.hosts.empty()) {
-    return {};
+  for (const config::HostConfig& host : machine.hosts) {
+    if (host.address.empty()) {
+      return {};  // no index says where a process of that host listens
+    }
   }
   std::vector<std::string> names;
   for (const Identity& identity : machine_identities(machine)) {
@@ -122,27 +143,26 @@ std::vector<std::string> indexed_participants(const config::MachineConfig& machi
 }
 
 std::optional<DiscoveryPeers> discovery_peers(const config::MachineConfig& machine,
-                                              const std::string& identity) {
+                                              const std::string& identity, bool across_hosts) {
   const TalkGraph graph(machine);
   const std::size_t n = graph.names().size();
   if (n == 0) {
     return std::nullopt;
   }
   DiscoveryPeers peers;
-  if (identity == kViewerIdentity) {
-    for (std::size_t j = 0; j < n; ++j) {
-      peers.peers.push_back(static_cast<int>(j));
+  if (identity != kViewerIdentity) {
+    peers.participant_index = graph.index_of(identity);
+    if (peers.participant_index < 0) {
+      return std::nullopt;
     }
-    return peers;
   }
-  peers.participant_index = graph.index_of(identity);
-  if (peers.participant_index < 0) {
-    return std::nullopt;
-  }
-  const auto self = static_cast<std::size_t>(peers.participant_index);
   for (std::size_t j = 0; j < n; ++j) {
-    if (graph.linked(self, j)) {
+    if (peers.participant_index < 0 ||
+        graph.linked(static_cast<std::size_t>(peers.participant_index), j)) {
       peers.peers.push_back(static_cast<int>(j));
+      if (across_hosts && !machine.hosts.empty()) {
+        peers.peer_addresses.push_back(host_address(machine, graph.names()[j]));
+      }
     }
   }
   return peers;

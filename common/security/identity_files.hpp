@@ -9,7 +9,7 @@
 
 namespace mcnc::security {
 
-// A participant's discovery peers on a secured machine of one host (discovery_peers.hpp).
+// A participant's discovery peers on a secured machine (discovery_peers.hpp).
 struct DiscoveryPeers {
   // Its own participant index; -1 for an onlooker (the viewer), whose ports are the system's
   // choice: it announces itself, and the processes answer it.
@@ -17,6 +17,9 @@ struct DiscoveryPeers {
   // The participant indices of the processes it announces itself to. A process it does not
   // name may still find it by announcing itself to it; so the relation is symmetric here.
   std::vector<int> peers;
+  // Where each of `peers` listens: the address of the host that runs it, on a machine run
+  // across its hosts; empty when every process runs on this host (127.0.0.1).
+  std::vector<std::string> peer_addresses;
 };
 
 // The files a participant of the identity `name` is configured with (absolute when `dir` is).

@@ -504,7 +504,8 @@ std::string HostsRun::host_of(const std::string& process) const {
 
 HostsRun run_across_hosts(const std::string& machine_file, int domain,
                           const std::vector<HostPart>& hosts,
-                          const std::map<std::string, std::string>& programs) {
+                          const std::map<std::string, std::string>& programs,
+                          HostsRunOptions options) {
   const TestMachine machine(machine_file, domain);
   // In the build tree: the hosts share it, each has a /tmp of its own.
   const std::string dir = std::string(MCNC_BINARY_DIR) + "/hosts-run-" + std::to_string(domain);
@@ -515,8 +516,16 @@ HostsRun run_across_hosts(const std::string& machine_file, int domain,
   std::string names;
   std::string offsets;
   const std::vector<std::string> offset_ms{"3", "-7", "5", "-2"};
+  const std::string subnet = "10.77." + std::to_string(domain);
+  if (options.secured) {
+    text = std::regex_replace(text, std::regex("(^|\n)machine:\n"),
+                              "$1machine:\n  security_dir: certs\n");
+  }
   for (std::size_t i = 0; i < hosts.size(); ++i) {
-    text += "  - {name: " + hosts[i].name + ", runs: [" + hosts[i].runs + "]}\n";
+    // hostnet.py gives the hosts subnet.1, subnet.2, ... in this order.
+    const std::string address =
+        options.secured ? ", address: " + subnet + "." + std::to_string(i + 1) : "";
+    text += "  - {name: " + hosts[i].name + address + ", runs: [" + hosts[i].runs + "]}\n";
     names += (i == 0 ? "" : ",") + hosts[i].name;
     if (i > 0) {
       offsets += (i == 1 ? "" : ",") + hosts[i].name + "=" + offset_ms.at(i - 1);
@@ -524,10 +533,22 @@ HostsRun run_across_hosts(const std::string& machine_file, int domain,
   }
   const std::string machine_path = dir + "/" + machine_file;
   std::ofstream(machine_path) << text;
+  if (options.secured) {
+    const RunResult certs =
+        run({bin("mcnc"), "certs", machine_path, dir + "/certs"}, -1, std::chrono::seconds(120));
+    EXPECT_EQ(certs.exit_code, 0) << certs.out << certs.err;
+  }
   HostsRun result{{}, mcnc::config::load_machine_file(machine_path)};
   {
-    const SimulatedHosts simulated("mhx" + std::to_string(domain), names, offsets,
-                                   "10.77." + std::to_string(domain));
+    const SimulatedHosts simulated("mhx" + std::to_string(domain), names, offsets, subnet);
+    for (std::size_t i = 0; options.without_multicast && i < hosts.size(); ++i) {
+      // On the host's link to the others only: a bus's CAN frames stay on its loopback.
+      const RunResult drop =
+          run(simulated.on(hosts[i].name, {"iptables", "-w", "-A", "INPUT", "-i", "eth0", "-d",
+                                           "224.0.0.0/4", "-j", "DROP"}),
+              -1, std::chrono::seconds(30));
+      EXPECT_EQ(drop.exit_code, 0) << drop.err;
+    }
     const auto launcher = [&](const std::string& host) {
       std::vector<std::string> argv{
           bin("mcnc"), "run", machine_path, "--trace", dir + "/trace.jsonl",

@@ -121,9 +121,9 @@ double last_cmd(const std::string& trace_path, const std::string& axis);
 void isolate_iceoryx_host();
 
 // A RouDi of the test's own host (after isolate_iceoryx_host), as mcnc-launch starts one: at
-// SCHED_FIFO launch::kRoudiPriority with the suite's configuration, its output in `log_path`. Returns once it
-// registers a process (mcnc-roudi-check); fails the test when it does not within 20 s.
-// A test that kills a process on Cyclone DDS runs on such a host: iceoryx 2.0's RouDi can hang
+// SCHED_FIFO launch::kRoudiPriority with the suite's configuration, its output in `log_path`.
+// Returns once it registers a process (mcnc-roudi-check); fails the test when it does not within 20
+// s. A test that kills a process on Cyclone DDS runs on such a host: iceoryx 2.0's RouDi can hang
 // for good cleaning up after a process killed with SIGKILL, and the suite's RouDi serves every
 // test after it.
 std::unique_ptr<Background> start_host_roudi(const std::string& log_path);
@@ -175,9 +175,16 @@ struct HostsRun {
   mcnc::config::MachineConfig machine;  // the file as run: where each process was
   [[nodiscard]] std::string host_of(const std::string& process) const;
 };
+// `secured`: each host with its address in the file and the machine secured by `mcnc certs`;
+// `without_multicast`: the hosts drop every multicast datagram from the others.
+struct HostsRunOptions {
+  bool secured = false;
+  bool without_multicast = false;
+};
 HostsRun run_across_hosts(const std::string& machine_file, int domain,
                           const std::vector<HostPart>& hosts,
-                          const std::map<std::string, std::string>& programs);
+                          const std::map<std::string, std::string>& programs,
+                          HostsRunOptions options = {});
 
 // Two lockstep traces of the same machine and programs, one of them across hosts, are equal
 // event for event (the hosts' clocks, only in a run across hosts, left out).

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <regex>
 #include <set>
 
@@ -37,6 +38,8 @@ constexpr int kSecuredDomain = 207;
 constexpr int kUnsecuredDomain = 208;
 constexpr int kBadCertificatesDomain = 209;
 constexpr int kHungTeardownDomain = 213;
+constexpr int kOneHostDomain = 222;
+constexpr int kAcrossHostsDomain = 225;
 // Its small lathe's fixed ports, 60660-60669, lie in Linux's default ephemeral range.
 constexpr int kEphemeralPortsDomain = 213;
 
@@ -425,4 +428,19 @@ TEST(Security, ASecuredMachineReservesItsFixedPortsInTheEphemeralRangeOrDoesNotS
   ASSERT_TRUE(now_reserved);
   EXPECT_TRUE(launch::exposed_ports(*ports, *range, *now_reserved).empty())
       << launch::port_list(*now_reserved);
+}
+
+// A secured machine across hosts discovers by unicast at its hosts' addresses, each process
+// only the processes it talks to (decision 202), as on one host: it runs, its trace the one-host
+// machine's, on a network that carries no multicast between the hosts (before, its processes
+// announced themselves only by multicast there, and no process of one host met another's).
+TEST(Security, ASecuredMachineAcrossHostsDiscoversItsPeersByUnicastWithoutMulticast) {
+  const std::map<std::string, std::string> programs{{"CH1", "launch/programs/twin_turret_ch1.nc"},
+                                                    {"CH2", "launch/programs/twin_turret_ch2.nc"}};
+  const auto one_host = run_programs("cell_3ncu.yaml", kOneHostDomain, programs);
+  const HostsRun across = run_across_hosts("cell_3ncu.yaml", kAcrossHostsDomain,
+                                           {{"ncu1", "CH1, X1, Z1, A1, S1, can0, CH3, X3, can2"},
+                                            {"ncu2", "CH2, X2, Z2, S2, Z3, can1, plc, hmi"}},
+                                           programs, HostsRunOptions{true, true});
+  expect_same_trace(one_host, across.trace);
 }

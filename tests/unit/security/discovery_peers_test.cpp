@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 using namespace mcnc;
@@ -117,11 +118,45 @@ TEST(DiscoveryPeers, TheScaleMachineAtSixteenChannelsDiscoversAFifthOfItsPairs) 
   EXPECT_EQ(security::discovering_pairs(machine), 97U + 120U + 32U);
 }
 
-TEST(DiscoveryPeers, AMachineOfSeveralHostsKeepsMulticastDiscovery) {
-  const config::MachineConfig machine = machine_file("cell_3ncu.yaml");
-  ASSERT_FALSE(machine.hosts.empty());
+TEST(DiscoveryPeers, AMachineOfSeveralHostsOneOfWhichHasNoAddressKeepsMulticastDiscovery) {
+  config::MachineConfig machine = machine_file("cell_3ncu.yaml");
+  ASSERT_EQ(machine.hosts.size(), 3U);
+  machine.hosts[0].address = "10.77.0.1";
+  machine.hosts[1].address = "10.77.0.2";
   EXPECT_TRUE(security::indexed_participants(machine).empty());
-  EXPECT_FALSE(security::discovery_peers(machine, "launch"));
+  EXPECT_FALSE(security::discovery_peers(machine, "launch", true));
+}
+
+// Across hosts each peer is reached at the address of the host that runs it (decision 202);
+// run on one host, at 127.0.0.1 (no addresses).
+TEST(DiscoveryPeers, AcrossHostsEachPeerIsReachedAtItsHostsAddress) {
+  config::MachineConfig machine = machine_file("cell_3ncu.yaml");
+  ASSERT_EQ(machine.hosts.size(),
+            3U);  // ncu1: CH1 X1 Z1 A1 S1 plc hmi, ncu2: CH2 ..., ncu3: CH3 X3
+  for (std::size_t h = 0; h < 3; ++h) {
+    machine.hosts[h].address = "10.77.0." + std::to_string(h + 1);
+  }
+  const std::vector<std::string> names = security::indexed_participants(machine);
+  EXPECT_THAT(names, Contains("launch-ncu2"));
+  const auto peers = security::discovery_peers(machine, "X3", true);
+  ASSERT_TRUE(peers);
+  ASSERT_EQ(peers->peer_addresses.size(), peers->peers.size());
+  std::map<std::string, std::string> where;
+  for (std::size_t k = 0; k < peers->peers.size(); ++k) {
+    where[names.at(static_cast<std::size_t>(peers->peers[k]))] = peers->peer_addresses[k];
+  }
+  // Its channel, the launchers (the machine's on ncu1, its host's), the PLC and the HMI.
+  EXPECT_EQ(where.at("CH3"), "10.77.0.3");
+  EXPECT_EQ(where.at("launch"), "10.77.0.1");
+  EXPECT_EQ(where.at("launch-ncu3"), "10.77.0.3");
+  EXPECT_EQ(where.at("launch-ncu2"), "10.77.0.2");
+  EXPECT_EQ(where.at("PLC"), "10.77.0.1");
+  EXPECT_EQ(where.at("hmi"), "10.77.0.1");
+  EXPECT_EQ(where.count("X1"), 0U);
+  EXPECT_TRUE(security::discovery_peers(machine, "X3", false)->peer_addresses.empty());
+  const auto viewer = security::discovery_peers(machine, security::kViewerIdentity, true);
+  ASSERT_TRUE(viewer);
+  EXPECT_EQ(viewer->peer_addresses.size(), names.size());
 }
 
 // Every reader a process makes of another process's topic has that process among its peers:

@@ -150,7 +150,7 @@ void reader_qos(dds_qos_t* qos, QosKind kind, ReaderRole role) {
 // lockstep writer writes nothing until that reader's answer comes (decision 91).
 // A secured participant announces itself to its peers alone, by unicast (at 127.0.0.1 on one
 // host, at their hosts' addresses across hosts), and listens on the discovery port of its
-// participant index (decisions 137, 202): without multicast, participants that share no topic
+// participant index (decisions 137, 151): without multicast, participants that share no topic
 // never meet, nor authenticate each other.
 // CYCLONEDDS_URI, when set, is read after it.
 std::string domain_config(int domain, bool shared_memory, const security::DiscoveryPeers* peers) {

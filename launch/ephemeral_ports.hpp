@@ -1,6 +1,6 @@
 #pragma once
 // Which of a secured machine's fixed ports another program's outgoing socket may take
-// (decision 201): Linux gives a socket that binds no port one of its ephemeral range
+// (decision 150): Linux gives a socket that binds no port one of its ephemeral range
 // (net.ipv4.ip_local_port_range), except those reserved (net.ipv4.ip_local_reserved_ports).
 // Pure: the two settings' texts in, the ports to reserve out.
 #include <optional>

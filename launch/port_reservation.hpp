@@ -1,6 +1,6 @@
 #pragma once
 // A secured machine's fixed discovery ports kept from other programs' outgoing sockets
-// (decision 201).
+// (decision 150).
 #include "common/config/machine_config.hpp"
 #include "launch/ephemeral_ports.hpp"
 

@@ -54,7 +54,7 @@ void require_roudi_or_exit(const config::MachineConfig& machine, const std::stri
 // file, and exits with code 2: nothing is started.
 std::optional<security::IdentityFiles> resolve_security_or_exit(
     const config::MachineConfig& machine, const std::string& identity);
-// How a participant of a secured machine discovers (decisions 137, 202).
+// How a participant of a secured machine discovers (decisions 137, 151).
 struct SecuredDiscovery {
   bool across_hosts = false;  // the machine runs across the hosts of its hosts: section
   bool onlooker = false;      // no index of its own (as the viewer): a launcher's service

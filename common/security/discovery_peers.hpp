@@ -6,7 +6,7 @@
 // no topic (two axis nodes of different channels). So a secured machine discovers without
 // multicast: each process has a fixed participant index (its unicast discovery port follows
 // from it and the domain) and announces itself to the processes it talks to alone, at
-// 127.0.0.1 on one host, at the address of each one's host across hosts (decision 202).
+// 127.0.0.1 on one host, at the address of each one's host across hosts (decision 151).
 // Pure: the machine file in, the indices and addresses out.
 #include "common/config/machine_config.hpp"
 #include "common/security/identity_files.hpp"

@@ -431,7 +431,7 @@ TEST(Security, ASecuredMachineReservesItsFixedPortsInTheEphemeralRangeOrDoesNotS
 }
 
 // A secured machine across hosts discovers by unicast at its hosts' addresses, each process
-// only the processes it talks to (decision 202), as on one host: it runs, its trace the one-host
+// only the processes it talks to (decision 151), as on one host: it runs, its trace the one-host
 // machine's, on a network that carries no multicast between the hosts (before, its processes
 // announced themselves only by multicast there, and no process of one host met another's).
 TEST(Security, ASecuredMachineAcrossHostsDiscoversItsPeersByUnicastWithoutMulticast) {

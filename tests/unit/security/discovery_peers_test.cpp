@@ -127,7 +127,7 @@ TEST(DiscoveryPeers, AMachineOfSeveralHostsOneOfWhichHasNoAddressKeepsMulticastD
   EXPECT_FALSE(security::discovery_peers(machine, "launch", true));
 }
 
-// Across hosts each peer is reached at the address of the host that runs it (decision 202);
+// Across hosts each peer is reached at the address of the host that runs it (decision 151);
 // run on one host, at 127.0.0.1 (no addresses).
 TEST(DiscoveryPeers, AcrossHostsEachPeerIsReachedAtItsHostsAddress) {
   config::MachineConfig machine = machine_file("cell_3ncu.yaml");

@@ -282,6 +282,9 @@ ownership::OwnershipChange AxisNode::decide_owner(std::uint64_t cycle, bool lock
   in_.probe = in_.setpoint_valid ? sp.probe : ProbeRequest::off;
   in_.torque_limit = sp.torque_limit;
   in_.skip_deviation = sp.skip_deviation;
+  in_.torque_mode = sp.torque_mode;
+  in_.torque = sp.torque;
+  in_.torque_speed = sp.torque_speed;
   in_.owner_lost = owner_lost_;
   return change;
 }

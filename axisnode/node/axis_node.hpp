@@ -86,6 +86,11 @@ struct SetpointSample {
   // (units), sent for as long as the limit stands.
   double torque_limit = 0.0;
   double skip_deviation = 0.0;
+  // G10 L14 P10: torque mode at `torque` percent of the rated torque, the motor within
+  // `torque_speed` rpm.
+  bool torque_mode = false;
+  double torque = 0.0;
+  double torque_speed = 0.0;
 };
 
 // A coordination event from a channel, as far as an axis node reads it.

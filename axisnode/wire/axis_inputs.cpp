@@ -1,5 +1,6 @@
 #include "axisnode/wire/axis_inputs.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,13 @@ SetpointSample to_core(const AxisSetpoint& sp) {
   out.torque_limit =
       sp.torque_limit() > 0.0 && sp.torque_limit() <= 1000.0 ? sp.torque_limit() : 0.0;
   out.skip_deviation = sp.skip_deviation() >= 0.0 ? sp.skip_deviation() : 0.0;
+  // A torque or speed the wire cannot mean (not a number, beyond the rated range) is no torque
+  // mode: the axis stays in position mode.
+  const bool torque_known =
+      std::fabs(sp.torque()) <= 1000.0 && sp.torque_speed() > 0.0 && sp.torque_speed() <= 100000.0;
+  out.torque_mode = sp.torque_mode() && torque_known;
+  out.torque = out.torque_mode ? sp.torque() : 0.0;
+  out.torque_speed = out.torque_mode ? sp.torque_speed() : 0.0;
   return out;
 }
 

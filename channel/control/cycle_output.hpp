@@ -61,6 +61,11 @@ struct CommandedAxis {
   // error beyond which the torque skip latches (units), for as long as the limit stands.
   double torque_limit = 0.0;
   double skip_deviation = 0.0;
+  // G10 L14 P10: the axis held in torque mode at `torque` percent of the rated torque (signed),
+  // its motor within `torque_speed` rpm; pos is where the channel last knew it.
+  bool torque_mode = false;
+  double torque = 0.0;
+  double torque_speed = 0.0;
 };
 
 enum class ChannelEventKind : std::uint8_t {

@@ -209,6 +209,9 @@ void ChannelOutputs::publish(std::uint64_t cycle, const ChannelController& contr
     sp.probe(static_cast<std::uint8_t>(out.setpoints[i].probe));
     sp.torque_limit(out.setpoints[i].torque_limit);
     sp.skip_deviation(out.setpoints[i].skip_deviation);
+    sp.torque_mode(out.setpoints[i].torque_mode);
+    sp.torque(out.setpoints[i].torque);
+    sp.torque_speed(out.setpoints[i].torque_speed);
     axis_setpoints_[i]->write(sp);
   }
   const double rpm = out.spindle_rpm * out.spindle_direction;

@@ -79,6 +79,9 @@ mcnc::AxisSetpoint setpoint(std::uint64_t cycle) {
   sp.probe(3);  // G160's torque skip, with its limit and deviation
   sp.torque_limit(50.0);
   sp.skip_deviation(2.25);
+  sp.torque_mode(true);  // G10 L14 P10's torque and speed limit
+  sp.torque(-35.5);
+  sp.torque_speed(300.0);
   return sp;
 }
 
@@ -95,6 +98,9 @@ void expect_same(const mcnc::AxisSetpoint& got, const mcnc::AxisSetpoint& sent) 
   EXPECT_EQ(got.probe(), sent.probe());
   EXPECT_EQ(got.torque_limit(), sent.torque_limit());
   EXPECT_EQ(got.skip_deviation(), sent.skip_deviation());
+  EXPECT_EQ(got.torque_mode(), sent.torque_mode());
+  EXPECT_EQ(got.torque(), sent.torque());
+  EXPECT_EQ(got.torque_speed(), sent.torque_speed());
 }
 
 class Middlewares : public ::testing::TestWithParam<std::pair<Middleware, Middleware>> {};

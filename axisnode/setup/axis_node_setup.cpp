@@ -38,6 +38,9 @@ canopen::NodeStartupConfig drive_startup_of(const config::AxisConfig& axis) {
   if (axis.torque_skip) {
     canopen::add_torque_limit(startup.pdos);
   }
+  if (axis.torque_mode) {
+    canopen::add_torque_mode(startup.pdos);  // after add_torque_limit's 0x6072
+  }
   return startup;
 }
 
@@ -129,6 +132,7 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
   setup.spindle = axis.type == config::AxisType::spindle;
   setup.homing = axis.has_homing;
   setup.torque_skip = axis.torque_skip;
+  setup.torque_mode = axis.torque_mode;
   roles.spindle_coupling =
       coupling::SpindleCouplingSetup{machine.cycle_s(), axis.acceleration, 0.05, 1.0};
   // G51.8's lift moves no faster than the axis's rapid rate, with its acceleration.

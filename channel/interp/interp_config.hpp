@@ -61,6 +61,9 @@ struct AxisConfig {
   // Param 5521: the motor speed limit in torque mode (G10 L14 P10) where no P11 set one, rpm (0:
   // none; then P10 needs a P11 first).
   double torque_mode_speed = 0.0;
+  // Its drive switches to torque mode (torque_mode of the machine file; the channel refuses G10
+  // L14 P10-P12 naming an axis without it).
+  bool torque_mode = false;
   // Param 5700.1: G81.1 may oscillate it.
   bool oscillation = false;
 };

@@ -53,6 +53,8 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
     axis.probe_input = a->probe_input;
     axis.torque_skip = a->torque_skip;
     axis.skip_load = a->skip_load;
+    axis.torque_mode_speed = a->torque_mode_speed;
+    axis.torque_mode = a->torque_mode;
     axis.oscillation = a->oscillation;
     for (std::size_t s = 0; s < channel.spindles.size() && !a->spindle.empty(); ++s) {
       axis.spindle = channel.spindles[s] == a->spindle ? static_cast<int>(s) + 1 : axis.spindle;

@@ -231,10 +231,10 @@ char read_address(const YamlValue& value, std::string_view letters) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map =
-      value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode", "middleware",
-                 "dialect", "polar", "cylindrical_parallel", "normal", "inclined", "skip_input",
-                 "torque_skip", "speed_arrival", "polygon", "cam", "egb"});
+  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
+                                 "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
+                                 "inclined", "skip_input", "torque_skip", "speed_arrival",
+                                 "polygon", "cam", "egb", "reset_leaves_torque_mode"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -393,6 +393,9 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
       }
     }
   }
+  if (auto leaves = map.optional("reset_leaves_torque_mode")) {
+    channel.reset_leaves_torque_mode = leaves->boolean();  // param 5520.1
+  }
   if (auto arrival = map.optional("speed_arrival")) {
     const YamlMap a = arrival->map({"tolerance", "timeout"});
     read_optional_positive(a, "tolerance", channel.speed_arrival_rpm);
@@ -498,6 +501,8 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "tpdo2",
                                  "touch_probe",
                                  "torque_skip",
+                                 "torque_mode",
+                                 "torque_mode_speed",
                                  "skip_load",
                                  "exchange",
                                  "axis_sync",
@@ -631,6 +636,29 @@ AxisConfig parse_axis(const YamlValue& value) {
     }
     if (axis.torque_skip && axis.probe_input > 0) {
       torque->fail("torque_skip and touch_probe do not fit one TPDO2");
+    }
+  }
+  if (auto mode = map.optional("torque_mode")) {
+    axis.torque_mode = mode->boolean();
+    // add_torque_mode puts 0x6071/0x6080 after add_torque_limit's 0x6072 in RPDO2, and the mode
+    // in RPDO1/TPDO1, where a homed axis has it already.
+    if (axis.torque_mode && !axis.torque_skip) {
+      mode->fail(
+          "torque_mode needs torque_skip: true (the drive's torque limit and its torque, whose "
+          "RPDO2 takes the target torque)");
+    }
+    if (axis.torque_mode && map.optional("homing")) {
+      mode->fail("torque_mode is on an axis without homing (both map the mode of operation)");
+    }
+  }
+  if (auto speed = map.optional("torque_mode_speed")) {
+    // Param 5521: G10 L14 P10's motor speed where no P11 set one.
+    axis.torque_mode_speed = speed->number();
+    if (!(axis.torque_mode_speed > 0.0 && axis.torque_mode_speed <= 100000.0)) {
+      speed->fail("torque_mode_speed is a motor speed above 0 and up to 100000 (rpm)");
+    }
+    if (!axis.torque_mode) {
+      speed->fail("torque_mode_speed needs torque_mode: true");
     }
   }
   if (auto load = map.optional("skip_load")) {
@@ -1649,6 +1677,10 @@ int axis_bits_per_cycle(const AxisConfig& axis) noexcept {
   const int tpdo2 = bytes > 0 ? can_frame_bits(bytes) : 0;
   if (axis.type == AxisType::spindle) {
     return 2 * can_frame_bits(7) + can_frame_bits(4) + tpdo2;
+  }
+  if (axis.torque_mode) {
+    // The mode and its display in RPDO1/TPDO1; 0x6072, 0x6071 and 0x6080 in RPDO2.
+    return 2 * can_frame_bits(7) + tpdo2 + can_frame_bits(8);
   }
   const int rpdo2 = axis.torque_skip ? can_frame_bits(2) : 0;  // 0x6072
   return 2 * can_frame_bits(axis.has_homing ? 7 : 6) + tpdo2 + rpdo2;

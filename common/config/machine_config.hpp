@@ -105,6 +105,13 @@ struct AxisConfig {
   // `torque_skip: true`: the drive's max torque 0x6072 is in RPDO2 and its torque 0x6077 in
   // TPDO2 (canopen::add_torque_limit), so that G160 can limit the torque and skip on it.
   bool torque_skip = false;
+  // `torque_mode: true` (G10 L14 P10-P12; needs torque_skip): the drive switches to cyclic
+  // synchronous torque (CST) as the owner asks, the mode and its display in RPDO1/TPDO1, the
+  // target torque 0x6071 and the max motor speed 0x6080 in RPDO2 (canopen::add_torque_mode).
+  bool torque_mode = false;
+  // `torque_mode_speed` (param 5521): the motor speed in torque mode where no G10 L14 P11 set
+  // one, rpm (0: none).
+  double torque_mode_speed = 0.0;
   // `skip_load` (param 5511): the load ratio G31 P98/P99 skip at where no G10 L14 P6 set one,
   // percent of the rated torque (0: none).
   double skip_load = 0.0;
@@ -214,6 +221,9 @@ struct ChannelConfig {
   bool egb_helix_reverse = false;
   // G31 without L, K or I skips on this input (param 5510; 0: such a G31 is an alarm).
   int skip_input = 0;
+  // Param 5520.1: a reset puts the channel's axes in torque mode (G10 L14 P10) back in position
+  // mode where they stand; false (0): they keep their torque.
+  bool reset_leaves_torque_mode = false;
   // G160 without P limits the torque to this, % of the rated torque (param 5515; 0: such a
   // G160 is an alarm), and without Q skips beyond this following error (param 5516).
   double torque_skip_limit = 0.0;

@@ -73,3 +73,24 @@ TEST(AxisNodeSetup, ThePolygonAxisFollowsItsMasterSpindleForItsChannel) {
   EXPECT_FALSE(master.polygon);
   EXPECT_EQ(master.sync_master, 0U);
 }
+
+// G10 L14 P10-P12: an axis with torque_mode gets the CST objects after the torque limit's, and
+// its node switches the drive's mode as its owner asks.
+TEST(AxisNodeSetup, ATorqueModeAxisMapsTheModeTheTargetTorqueAndTheSpeedLimit) {
+  config::MachineConfig m = twin_turret();
+  config::AxisConfig z = *m.find_axis("Z1");
+  z.torque_skip = true;
+  z.torque_mode = true;
+  const canopen::NodeStartupConfig startup = axisnode::drive_startup_of(z);
+  const canopen::PdoMapping& rpdo2 = startup.pdos.rpdo2;
+  ASSERT_EQ(rpdo2.count, 3U);
+  EXPECT_EQ(rpdo2.objects[0].index, 0x6072);
+  EXPECT_EQ(rpdo2.objects[1].index, 0x6071);
+  EXPECT_EQ(rpdo2.objects[2].index, 0x6080);
+  EXPECT_EQ(startup.pdos.rpdo1.objects[startup.pdos.rpdo1.count - 1].index, 0x6060);
+  EXPECT_EQ(startup.pdos.tpdo1.objects[startup.pdos.tpdo1.count - 1].index, 0x6061);
+  EXPECT_TRUE(axisnode::roles_of(m, z, startup).controller.torque_mode);
+  EXPECT_FALSE(
+      axisnode::roles_of(m, *m.find_axis("Z1"), axisnode::drive_startup_of(*m.find_axis("Z1")))
+          .controller.torque_mode);
+}

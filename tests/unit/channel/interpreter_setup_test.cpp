@@ -67,7 +67,8 @@ channels:
   - {name: LOADER, axes: [X2]}
 axes:
   - {name: X1, address: X, diameter: true, bus: b, node_id: 1}
-  - {name: Z1, address: Z, bus: b, node_id: 2, torque_skip: true, skip_load: 35}
+  - {name: Z1, address: Z, bus: b, node_id: 2, torque_skip: true, skip_load: 35,
+     torque_mode: true, torque_mode_speed: 250}
   - {name: X2, address: X, bus: b, node_id: 4}
 )");
   const interp::InterpreterConfig lathe = interpreter_config_for(m, m.channels[0]);
@@ -76,6 +77,9 @@ axes:
   ASSERT_EQ(lathe.axes.size(), 2u);
   EXPECT_DOUBLE_EQ(lathe.axes[1].skip_load, 35.0);
   EXPECT_DOUBLE_EQ(lathe.axes[0].skip_load, 0.0);
+  // Param 5521: G10 L14 P10's motor speed where no P11 set one.
+  EXPECT_DOUBLE_EQ(lathe.axes[1].torque_mode_speed, 250.0);
+  EXPECT_DOUBLE_EQ(lathe.axes[0].torque_mode_speed, 0.0);
   const interp::InterpreterConfig loader = interpreter_config_for(m, m.channels[1]);
   EXPECT_DOUBLE_EQ(loader.torque_skip_percent, 0.0);
   EXPECT_DOUBLE_EQ(loader.torque_skip_deviation, 0.0);

@@ -627,6 +627,49 @@ TEST(MachineConfig, SkipLoadIsTheLoadRatioOfAnAxisWithATorqueLimit) {
   }
 }
 
+// G10 L14 P10-P12: an axis's torque mode needs its drive's torque limit (torque_skip); its
+// mapping is counted in the bus load; param 5521 is the axis's torque_mode_speed.
+TEST(MachineConfig, TorqueModeNeedsTorqueSkipAndIsCountedInTheBusLoad) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["machine"]["cycle_us"] = 2000;  // at 1 ms the two axes would take 75.5 % of the bus
+    r["axes"][1]["torque_skip"] = true;
+    r["axes"][1]["torque_mode"] = true;
+    r["axes"][1]["torque_mode_speed"] = 300.0;
+  }));
+  const AxisConfig& z = config.axes[1];
+  EXPECT_TRUE(z.torque_mode);
+  EXPECT_DOUBLE_EQ(z.torque_mode_speed, 300.0);
+  EXPECT_FALSE(config.axes[0].torque_mode);
+  EXPECT_DOUBLE_EQ(config.axes[0].torque_mode_speed, 0.0);
+  // The mode in RPDO1/TPDO1 (7 bytes), RPDO2 with 0x6072, 0x6071 and 0x6080 (8), TPDO2 0x6077.
+  EXPECT_EQ(axis_bits_per_cycle(z), 2 * can_frame_bits(7) + can_frame_bits(8) + can_frame_bits(2));
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][1]["torque_mode"] = true; })),
+            "axes[1].torque_mode");
+  std::string what;
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+                             r["axes"][1]["torque_skip"] = true;
+                             r["axes"][1]["torque_mode"] = true;
+                             r["axes"][1]["homing"]["method"] = 35;
+                           }),
+                           &what),
+            "axes[1].torque_mode");
+  EXPECT_NE(what.find("homing"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) {
+              r["axes"][1]["torque_skip"] = true;
+              r["axes"][1]["torque_mode_speed"] = 300.0;
+            })),
+            "axes[1].torque_mode_speed");
+  for (const double bad : {0.0, -5.0, 100000.5}) {
+    EXPECT_EQ(rejection_path(mutated([bad](YAML::Node& r) {
+                r["axes"][1]["torque_skip"] = true;
+                r["axes"][1]["torque_mode"] = true;
+                r["axes"][1]["torque_mode_speed"] = bad;
+              })),
+              "axes[1].torque_mode_speed")
+        << bad;
+  }
+}
+
 // G160 without P and Q: the channel's params 5515/5516.
 TEST(MachineConfig, TheChannelsTorqueSkipIsWhatG160TakesWithoutPAndQ) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {

@@ -133,7 +133,9 @@ bool ChannelController::in_position(std::span<const AxisFeedbackView> feedback,
     const double now = cam || (egb && feedback[i].coupled_to != 0)
                            ? feedback[i].channel_cmd()
                            : feedback[i].act - (egb ? feedback[i].superimposed : 0.0);
-    if (coordination_.torque_limit(i) == 0.0 && std::fabs(now - at[i]) > width) {
+    // In torque mode (G10 L14 P10) the node's command follows the motor wherever it stops.
+    if (coordination_.torque_limit(i) == 0.0 && !coordination_.in_torque_mode(i) &&
+        std::fabs(now - at[i]) > width) {
       return false;
     }
   }
@@ -166,6 +168,9 @@ void ChannelController::finish_reset() noexcept {
   coordination_.stop_serving(CallOutcome::aborted);  // its caller goes on with an alarm
   coordination_.release_polygon();
   coordination_.cancel_programmed_torque_limits();
+  if (setup_.reset_leaves_torque_mode) {
+    coordination_.leave_torque_mode();  // param 5520.1
+  }
   forget_program_run();
   halted_ = estopped_;  // an emergency stop stays
   pending_alarm_.reset();

@@ -165,6 +165,20 @@ void ChannelCoordination::end_cycle() noexcept {
     out_.setpoints[i].torque_limit = skip_limit ? torque_[i].limit : programmed_torque_[i];
     out_.setpoints[i].skip_deviation = skip_limit ? torque_[i].deviation : 0.0;
   }
+  for (std::size_t i = 0; i < setup_.axis_count && i < torque_mode_.size(); ++i) {
+    if (!torque_mode_[i].on) {
+      continue;
+    }
+    // In torque mode the node's command follows the motor: the setpoint says where that is, so
+    // that its position goes on from there when the channel takes the axis back.
+    CommandedAxis& sp = out_.setpoints[i];
+    sp.pos = i < received_.size() ? received_[i].channel_cmd() : sp.pos;
+    sp.vel = 0.0;
+    sp.acc = 0.0;
+    sp.torque_mode = true;
+    sp.torque = torque_mode_[i].torque;
+    sp.torque_speed = torque_mode_[i].speed;
+  }
   out_.spindle_position = false;
   const double c_base = spindle_mode_.c_base();
   if (const auto c = setup_.spindle_c_slot; c && under_position_control()) {
@@ -241,6 +255,16 @@ void ChannelCoordination::run_held_if_partner_lost(
 
 std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
     const interp::AxisVector& from, const interp::Command& c) const {
+  for (std::size_t i = 0; c.moves() && i < setup_.axis_count && i < torque_mode_.size(); ++i) {
+    if (torque_mode_[i].on && c.to[i] != from[i]) {
+      coordination::CoordinationAlarm a;
+      a.set(coordination::kAlarmTorqueMode,
+            "axis %zu is held in torque mode (G10 L14 P10): G10 L14 P12 (or P10 with 0) before "
+            "the program moves it",
+            i + 1);
+      return interp::ProgramAlarm{a.number, a.text.data(), "", c.line, 0};
+    }
+  }
   const auto away = c.moves() ? exchange_.foreign_slot(from, c.to) : std::nullopt;
   if (!away) {
     return std::nullopt;
@@ -250,8 +274,9 @@ std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
 }
 
 void ChannelCoordination::abandon_run() noexcept {
-  load_.cancel();   // the checks live in the program's run (decision 121)
-  timers_.clear();  // so do the load timers
+  load_.cancel();           // the checks live in the program's run (decision 121)
+  timers_.clear();          // so do the load timers
+  torque_mode_speed_ = {};  // so does P11's speed; an axis in torque mode keeps its own
   under_way_ = {};
   withdraw_waits();
   held_ = std::monostate{};
@@ -779,6 +804,45 @@ void ChannelCoordination::run(WaitStop& b, std::uint64_t /*cycle*/,
       return;
     case coordination::ConditionStep::done:
       break;
+  }
+  end_held(b.block);
+}
+
+void ChannelCoordination::run(TorqueModeStop& b, std::uint64_t /*cycle*/,
+                              std::span<const AxisFeedbackView> /*feedback*/) noexcept {
+  // G10 L14 P10-P12 (L5143-5209): every block before it ended, so the axes stand.
+  start_held(b.block);
+  bool back = false;
+  for (std::size_t i = 0; i < setup_.axis_count && i < torque_mode_.size(); ++i) {
+    if (((b.axes >> i) & 1U) == 0) {
+      continue;
+    }
+    const double param_speed =
+        i < setup_.torque_mode_speeds.size() ? setup_.torque_mode_speeds[i] : 0.0;
+    TorqueMode& m = torque_mode_[i];
+    if (b.p == 11) {
+      torque_mode_speed_[i] = b.values[i];
+      m.speed = m.on ? b.values[i] : m.speed;  // an axis in torque mode takes it at once
+      continue;
+    }
+    if (b.p == 10 && b.values[i] != 0.0) {
+      m = TorqueMode{true, b.values[i],
+                     torque_mode_speed_[i] > 0.0 ? torque_mode_speed_[i] : param_speed};
+      continue;
+    }
+    // P10 α0 or P12: back to position mode where the motor took the axis; the program goes on
+    // from there (as after G141).
+    if (m.on && i < received_.size()) {
+      commanded_[i] = received_[i].channel_cmd();
+      back = true;
+    }
+    m = TorqueMode{};
+    if (b.p == 12) {
+      programmed_torque_[i] = b.values[i];  // P12 α: the torque limit from here on (0: none)
+    }
+  }
+  if (back) {
+    host_.restart_at_commanded();
   }
   end_held(b.block);
 }

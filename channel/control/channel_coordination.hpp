@@ -124,6 +124,14 @@ class ChannelCoordination {
   }
   // A reset cancels the limits of G10 L14 P9 (decision 120).
   void cancel_programmed_torque_limits() noexcept { programmed_torque_ = {}; }
+  // G10 L14 P10: axis i is held in torque mode; its command follows the motor, so it is never
+  // out of position, and no block may move it until P10 α0 or P12.
+  [[nodiscard]] bool in_torque_mode(std::size_t i) const noexcept {
+    return i < torque_mode_.size() && torque_mode_[i].on;
+  }
+  // A reset with param 5520.1 = 1: every axis in torque mode goes back to position mode where
+  // it stands (the channel re-reads its position once its axes are enabled again).
+  void leave_torque_mode() noexcept { torque_mode_ = {}; }
   // G10 L14 P0/P1 and the load timers of P2-P5, once per cycle of a run before the motion:
   // true when an axis the block under way moves overloaded, or does not report the load a
   // timer counts (its alarm raised: nothing may move from here on).
@@ -231,6 +239,8 @@ class ChannelCoordination {
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   void run(LoadTimerStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  void run(TorqueModeStop& b, std::uint64_t cycle,
+           std::span<const coordination::AxisFeedbackView> feedback) noexcept;
 
   const ChannelSetup& setup_;
   ChannelHost& host_;
@@ -276,6 +286,15 @@ class ChannelCoordination {
   // G10 L14 P9's torque limits, per channel axis (percent, 0: none): modal, until P9 α0 or a
   // reset.
   interp::AxisVector programmed_torque_{};
+  // G10 L14 P10-P12, per channel axis: in torque mode at `torque` % of the rated torque, the
+  // motor within `speed` rpm; P11's speeds (rpm, 0: param 5521's) for the P10s after it.
+  struct TorqueMode {
+    bool on = false;
+    double torque = 0.0;
+    double speed = 0.0;
+  };
+  std::array<TorqueMode, interp::kMaxChannelAxes> torque_mode_{};
+  interp::AxisVector torque_mode_speed_{};
   // G10 L14 P0/P1: the loads watched, over the moves of the block under way.
   coordination::LoadMonitor load_;
   coordination::MoveUnderWay under_way_{};

@@ -55,6 +55,13 @@ struct ChannelSetup {
   std::vector<int> probe_inputs{};
   // Per axis: its drive takes a torque limit and reports its torque (G160; torque_skip).
   std::vector<bool> torque_axes{};
+  // Per axis: its drive switches to torque mode (G10 L14 P10; torque_mode), and its motor speed
+  // there where no P11 set one (param 5521, rpm; 0: none). Empty: none.
+  std::vector<bool> torque_mode_axes{};
+  std::vector<double> torque_mode_speeds{};
+  // Param 5520.1: a reset puts the axes in torque mode back in position mode where they stand
+  // (false: they keep their torque).
+  bool reset_leaves_torque_mode = false;
   // G31: a touch probe that does not report itself armed within this many cycles is an alarm.
   std::uint64_t probe_arm_cycles = 200;
   // G04 I: per input port (the index), the bit of the PLC's inputs it reads (-1: none).

@@ -160,6 +160,8 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                             c.every_move,
                             c.filter_s,
                             c.load_timer};
+    case Op::torque_mode:
+      return TorqueModeStop{held(c), c.torque_mode_p, c.torque_data_axes, c.torque_data};
     case Op::load_timer_check:
       return LoadTimerStop{held(c),       c.load_timer,         c.timer_longer, c.torque_data_axes,
                            c.torque_data, c.timer_variable != 0};

@@ -1,11 +1,11 @@
 #pragma once
 // The blocks that stop the channel's read-ahead (spec dafeng §3.0, spec L6907): G04.1, G144,
 // G145, G140-G142, aux codes the PLC answers (and spindle starts it allows), G114.1/G113,
-// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0-P5/P9/P20-P51. Such a block is pulled and held
-// until every block before it ended, then run by its coordination machine; nothing after it is read
-// meanwhile. "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is the
-// one place that says which commands are one and what each carries. Pure: no allocation beyond the
-// command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
+// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0-P5/P9-P12/P20-P51. Such a block is pulled and
+// held until every block before it ended, then run by its coordination machine; nothing after it is
+// read meanwhile. "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is
+// the one place that says which commands are one and what each carries. Pure: no allocation beyond
+// the command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
 // throws but a copy of a command.
 #include "channel/coordination/aux_handshake.hpp"
 #include "channel/coordination/axis_exchange.hpp"
@@ -133,10 +133,19 @@ struct LoadTimerStop {
   interp::AxisVector seconds{};  // per axis
   bool variable = false;         // R given
 };
+// G10 L14 P10/P11/P12 once every block before it ended: P10 puts the axes named in torque mode
+// (α0: back to position mode), P11 sets their motor speed in it, P12 puts them back in position
+// mode with a torque limit.
+struct TorqueModeStop {
+  HeldBlock block;
+  int p = 10;                   // 10, 11 or 12
+  std::uint32_t axes = 0;       // bit i: channel axis i is named
+  interp::AxisVector values{};  // P10: % of the rated torque; P11: rpm; P12: the limit (0: none)
+};
 // The block held, std::monostate when none.
-using ReadAheadStop =
-    std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop, AuxStop,
-                 CouplingStop, ModeStop, SkipStop, WaitStop, TorqueDataStop, LoadTimerStop>;
+using ReadAheadStop = std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop,
+                                   AuxStop, CouplingStop, ModeStop, SkipStop, WaitStop,
+                                   TorqueDataStop, LoadTimerStop, TorqueModeStop>;
 
 // What decides which commands stop read-ahead in a channel.
 struct StopRules {

@@ -26,6 +26,7 @@ inline constexpr int kAlarmEgb = 1254;               // G81.4 refused, or its ge
 inline constexpr int kAlarmAxisSync = 1260;          // G51.4 / G50.4 the axes do not allow
 inline constexpr int kAlarmAxisFollows = 1261;       // a block moves an axis that follows (G51.4)
 inline constexpr int kAlarmSpindleNotAtRest = 1262;  // M18: the spindle did not come to rest
+inline constexpr int kAlarmTorqueMode = 1263;  // a block moves an axis in torque mode (G10 L14 P10)
 
 struct CoordinationAlarm {
   int number = 0;

@@ -38,8 +38,6 @@ const char* what_is_missing(Op op, FeedMode mode, bool in_revs) {
     case Op::egb:
     case Op::egb_off:
       return "multi-channel commands need the channel coordination runtime";
-    case Op::torque_mode:
-      return "G10 L14 P10-P12 (torque mode) does not run in the channel yet";
     case Op::message:
       return "#3006 messages need the HMI";
     case Op::thread:
@@ -87,11 +85,21 @@ const AxisConfig* unlimited_torque_axis(const Command& c, const InterpreterConfi
   return nullptr;
 }
 
+// G10 L14 P10-P12: an axis it names whose drive has no torque mode (nullptr: none).
+const AxisConfig* axis_without_torque_mode(const Command& c, const InterpreterConfig& config) {
+  for (std::size_t a = 0; a < config.axes.size(); ++a) {
+    if (((c.torque_data_axes >> a) & 1U) != 0 && !config.axes[a].torque_mode) {
+      return &config.axes[a];
+    }
+  }
+  return nullptr;
+}
+
 // A command the channel refuses: a G04.1 naming a channel the machine lacks is a program error;
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
   if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr) ||
-      c.op == Op::torque_limit || c.op == Op::load_watch) {
+      c.op == Op::torque_limit || c.op == Op::load_watch || c.op == Op::torque_mode) {
     return alarm::kSkipInput;
   }
   if (c.op == Op::sync) {
@@ -390,6 +398,14 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
       why = "G10 L14 P" + std::to_string(p) + ": the drive of axis " + a->name +
             (limit ? " takes no torque limit" : " does not report its torque") +
             " (torque_skip of the axis in the machine file)";
+      return false;
+    }
+    return true;
+  }
+  if (c.op == Op::torque_mode) {
+    if (const AxisConfig* a = axis_without_torque_mode(c, config)) {
+      why = "G10 L14 P" + std::to_string(c.torque_mode_p) + ": the drive of axis " + a->name +
+            " has no torque mode (torque_mode of the axis in the machine file)";
       return false;
     }
     return true;

@@ -18,6 +18,8 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
     setup.in_position.push_back(a->in_position);
     setup.probe_inputs.push_back(a->probe_input);
     setup.torque_axes.push_back(a->torque_skip);
+    setup.torque_mode_axes.push_back(a->torque_mode);
+    setup.torque_mode_speeds.push_back(a->torque_mode_speed);
     const bool exchange_slot = axes.size() > ch.axes.size() && a->spindle.empty();
     setup.slots.push_back(AxisSlot{
         a->address, exchange_slot, static_cast<std::uint32_t>(machine.find_channel(a->channel)->id),
@@ -51,6 +53,7 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
     }
   }
   setup.speed_arrival_rpm = ch.speed_arrival_rpm;
+  setup.reset_leaves_torque_mode = ch.reset_leaves_torque_mode;
   setup.speed_arrival_timeout_s = ch.speed_arrival_timeout_s;
   setup.call_wait_cycles = machine.cycles_of(machine.call_wait_timeout_ms);
   // The slaves of the G114.1 groups this channel commands (its spindle is their master): their

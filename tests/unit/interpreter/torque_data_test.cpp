@@ -215,8 +215,9 @@ TEST(InterpTorqueMode, Alarms) {
 }
 
 // What the channel's source takes before a run: the load timers' checks run (Z reports its
-// torque), torque mode is refused with 1122 at its line until the channel runs it.
-TEST(InterpTorqueMode, TheChannelTakesTheTimersAndRefusesTorqueModeBeforeAnythingMoves) {
+// torque); torque mode runs on an axis with torque_mode and is 1157 at its line on one without
+// (decision 201).
+TEST(InterpTorqueMode, TheChannelTakesTheTimersAndTorqueModeOnlyOfAnAxisThatHasIt) {
   InterpreterConfig c = lathe();
   c.axes[kZ].torque_skip = true;
   AxisConfig b;
@@ -227,12 +228,17 @@ TEST(InterpTorqueMode, TheChannelTakesTheTimersAndRefusesTorqueModeBeforeAnythin
   const CheckedProgram timers = InterpreterSource::check(
       c, "G10 L14 P2 Z80\nG01 W-1 F30\nG10 L14 P21 Z15 R100\nM30\n", "T.nc", false);
   EXPECT_FALSE(timers.alarm.has_value()) << timers.alarm->text;
-  const CheckedProgram torque =
-      InterpreterSource::check(c, "G00 Z1\nG10 L14 P10 B50\nM30\n", "M.nc", false);
-  ASSERT_TRUE(torque.alarm.has_value());
-  EXPECT_EQ(torque.alarm->number, alarm::kNotInThisVersion);
-  EXPECT_EQ(torque.alarm->line, 2);
-  EXPECT_NE(torque.alarm->text.find("torque mode"), std::string::npos) << torque.alarm->text;
+  const std::string program = "G00 Z1\nG10 L14 P10 B50\nG10 L14 P12 B-1\nM30\n";
+  const CheckedProgram without = InterpreterSource::check(c, program, "M.nc", false);
+  ASSERT_TRUE(without.alarm.has_value());
+  EXPECT_EQ(without.alarm->number, alarm::kSkipInput);
+  EXPECT_EQ(without.alarm->line, 2);
+  EXPECT_NE(without.alarm->text.find("G10 L14 P10: the drive of axis B has no torque mode"),
+            std::string::npos)
+      << without.alarm->text;
+  c.axes.back().torque_mode = true;
+  const CheckedProgram with = InterpreterSource::check(c, program, "M.nc", false);
+  EXPECT_FALSE(with.alarm.has_value()) << with.alarm->text;
 }
 
 }  // namespace

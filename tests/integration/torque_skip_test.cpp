@@ -7,7 +7,7 @@
 // X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
 // the same way with B1's load ratio as the limit (decision 116), P99 also on Z1's touch probe.
 // G10 L14 P9 limits B1's torque on the same bus, and G10 L14 P1 watches its reported load
-// (decisions 120, 121).
+// (decisions 120, 121). G10 L14 P10-P12 push B1 into the centre in torque mode (decision 200).
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 
@@ -133,10 +133,11 @@ struct Recorded {
   std::vector<nlohmann::json> trace;
   std::vector<can::CanFrame> frames;
 };
-Recorded run_recording_the_bus(const TestMachine& machine, int domain, const std::string& program) {
+Recorded run_recording_the_bus(const TestMachine& machine, int domain, const std::string& program,
+                               const std::vector<std::string>& extra = {}) {
   Recorded r;
   BusRecorder bus("udp:239.255." + std::to_string(domain) + ".1:" + std::to_string(24000 + domain));
-  r.trace = run_to_clean_end(machine, program);
+  r.trace = run_to_clean_end(machine, program, extra);
   r.frames = bus.frames();
   return r;
 }
@@ -366,6 +367,115 @@ TEST(LoadTimers, TheChecksHandTheAxesBitsToTheProgramAtTheirBlock) {
   }
   EXPECT_GT(b_min, -150.01);  // held at the centre
   EXPECT_LT(b_min, -149.9);
+}
+
+// add_tailstock's machine with B1's torque mode, at 30 rpm where no P11 sets one (param 5521).
+void add_torque_mode_tailstock(const TestMachine& machine) {
+  add_tailstock(machine);
+  edit_machine(machine, {{"    torque_skip: true\n",
+                          "    torque_skip: true\n    torque_mode: true\n"
+                          "    torque_mode_speed: 30\n"}});
+}
+
+// G10 L14 P10-P12 (decision 200): B1 with torque mode (its drive's CST: the target torque 0x6071
+// and the speed limit 0x6080 in its RPDO2 after 0x6072) pushed from B-148 into the centre at
+// -50 % and 30 rpm (param 5521: 5 mm/s at 10 mm a revolution). Its drive's torque (TPDO2) holds
+// at the set torque against the centre, nothing moves B1 while X cuts, and P12 takes it back to
+// position control where it stands: its command never jumps, and the G00 retracts from there.
+TEST(TorqueMode, TheTailstockHoldsItsSetTorqueAgainstTheCentreAndP12TakesItBackWhereItStands) {
+  constexpr int kDomain = 217;
+  TestMachine machine("small_lathe.yaml", kDomain);
+  add_torque_mode_tailstock(machine);
+  const Recorded r =
+      run_recording_the_bus(machine, kDomain, "tests/integration/programs/g10_l14/torque_mode.nc",
+                            {"--trace-pos-every", "1"});
+  EXPECT_TRUE(events(r.trace, "alarm").empty());
+  // On the wire: B1's RPDO2 (8 bytes: 0x6072, 0x6071, 0x6080) carries -500 per mille and 30 rpm
+  // from P10 to P12, 0 before and after; its TPDO2 the drive's torque.
+  std::vector<std::int32_t> targets;  // each change of 0x6071
+  std::vector<std::int32_t> held;     // the torque reported while -500 was set
+  for (const can::CanFrame& f : r.frames) {
+    if (f.id == 0x300U + kTailstockNode && f.dlc == 8) {
+      const std::int32_t target =
+          static_cast<std::int16_t>(static_cast<std::uint16_t>(f.data[2] | (f.data[3] << 8)));
+      const std::uint32_t speed = static_cast<std::uint32_t>(f.data[4]) |
+                                  (static_cast<std::uint32_t>(f.data[5]) << 8) |
+                                  (static_cast<std::uint32_t>(f.data[6]) << 16) |
+                                  (static_cast<std::uint32_t>(f.data[7]) << 24);
+      if (targets.empty() || targets.back() != target) {
+        targets.push_back(target);
+      }
+      EXPECT_EQ(speed, target != 0 ? 30U : 0U);
+    } else if (f.id == 0x280U + kTailstockNode && f.dlc == 2 && !targets.empty() &&
+               targets.back() == -500) {
+      held.push_back(signed16(f));
+    }
+  }
+  EXPECT_EQ(targets, (std::vector<std::int32_t>{0, -500, 0}));
+  // Held against the centre for the last half of the push (the dwell and the cut): at the set
+  // torque, within 3 %.
+  ASSERT_GT(held.size(), 400U);
+  for (std::size_t i = held.size() / 2; i < held.size(); ++i) {
+    EXPECT_NEAR(held[i], -500, 15) << i;
+  }
+  // B1's node, every cycle: at the centre, never past it; no step of its command larger than a
+  // cycle of its rapid (100 mm/s: 0.2 mm per 2 ms): no jump back to -148 at P12.
+  std::optional<double> last;
+  double b_min = 0.0;
+  for (const nlohmann::json& p : events(r.trace, "pos")) {
+    if (p["axis"] != "B1" || p["src"] == "CH1") {
+      continue;
+    }
+    const double cmd = p["cmd"].get<double>();
+    b_min = std::min(b_min, p["act"].get<double>());
+    if (last) {
+      EXPECT_LT(std::abs(cmd - *last), 0.21) << p;
+    }
+    last = cmd;
+  }
+  EXPECT_GT(b_min, -150.01);
+  EXPECT_LT(b_min, -149.9);
+  // Block ends: B1 stood at the centre while X cut (line 6), then the G00 went to -140; X1 at
+  // a radius of 5.
+  const std::vector<double> b = block_ends(r.trace, "B1");
+  ASSERT_FALSE(b.empty());
+  EXPECT_NEAR(b.back(), -140.0, 1e-6);
+  const std::vector<double> x = block_ends(r.trace, "X1");
+  ASSERT_FALSE(x.empty());
+  EXPECT_NEAR(x.back(), 5.0, 1e-6);
+}
+
+// A block that moves B1 while it is in torque mode: alarm 1263 at its line before it moves
+// anything; B1 keeps pushing.
+TEST(TorqueMode, ABlockThatMovesTheTailstockInTorqueModeIsAnAlarmAtItsLine) {
+  constexpr int kDomain = 217;
+  TestMachine machine("small_lathe.yaml", kDomain);
+  add_torque_mode_tailstock(machine);
+  const std::string program = machine.file("moves_b.nc");
+  std::ofstream(program) << "G98 G00 X20 Z0\nG00 B-148\nG10 L14 P10 B-50\nG04 X1\n"
+                            "G00 X30 B-140\nM30\n";
+  const std::string trace_file = machine.file("trace.jsonl");
+  const RunResult r = run(
+      {bin("mcnc"), "run", machine.path(), "--program", "CH1=" + program, "--trace", trace_file},
+      -1, std::chrono::seconds(180));
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  const std::vector<nlohmann::json> trace = read_trace(trace_file);
+  const std::vector<nlohmann::json> alarms = events(trace, "alarm");
+  ASSERT_EQ(alarms.size(), 1U);
+  EXPECT_EQ(alarms.front()["number"], 1263);
+  EXPECT_EQ(alarms.front()["line"], 5);
+  bool b_pushed = false;  // B1 reached -148 (line 2): from then on it never goes back up
+  for (const nlohmann::json& p : events(trace, "pos")) {
+    if (p["axis"] == "X1") {
+      EXPECT_LT(p["cmd"].get<double>(), 10.0 + 1e-6) << p;  // X20 (radius 10): never X30
+    }
+    if (p["axis"] == "B1") {
+      const double cmd = p["cmd"].get<double>();
+      EXPECT_TRUE(!b_pushed || cmd < -147.99) << p;
+      b_pushed = b_pushed || cmd < -147.99;
+    }
+  }
+  EXPECT_TRUE(b_pushed);
 }
 
 }  // namespace

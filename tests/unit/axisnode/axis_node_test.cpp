@@ -544,3 +544,36 @@ TEST(AxisNode, AResetStopsTheGearBoxAtOnceOrOnceTheToolSpindleStands) {
     EXPECT_EQ(n.core.standing().coupled_to, 0U);
   }
 }
+
+// G10 L14 P10: the owner's setpoint in torque mode reaches the controller, which asks the drive
+// for CST with the torque (per mille) and the speed limit; back in position mode it asks for
+// CSP. A node whose axis has no torque mode stays in CSP whatever the setpoint says.
+TEST(AxisNode, TheOwnersTorqueModeGoesToTheDriveOnlyWhereTheAxisHasIt) {
+  for (const bool has_torque_mode : {true, false}) {
+    AxisNodeRoles roles = exchanged_axis();
+    roles.candidates = {1};
+    roles.exchangeable = false;
+    roles.controller.torque_skip = true;
+    roles.controller.torque_mode = has_torque_mode;
+    Node node(roles);
+    std::uint64_t cycle = 1;
+    for (; cycle < 200; ++cycle) {
+      node.core.on_setpoint(1, 1, at(cycle - 1, 5.0), 0, writer(1));
+      node.run(cycle);
+    }
+    ASSERT_TRUE(node.core.output().enabled);
+    SetpointSample torque = at(cycle - 1, 5.0);
+    torque.torque_mode = true;
+    torque.torque = -50.0;
+    torque.torque_speed = 30.0;
+    node.core.on_setpoint(1, 1, torque, 0, writer(1));
+    const axisnode::AxisNodeOutput& pushed = node.run(cycle++);
+    EXPECT_EQ(pushed.mode, has_torque_mode ? axisnode::kModeCst : axisnode::kModeCsp);
+    EXPECT_EQ(pushed.target_torque, has_torque_mode ? -500 : 0);
+    EXPECT_EQ(pushed.max_motor_speed, has_torque_mode ? 30U : 0U);
+    node.core.on_setpoint(1, 1, at(cycle - 1, 5.0), 0, writer(1));
+    const axisnode::AxisNodeOutput& back = node.run(cycle++);
+    EXPECT_EQ(back.mode, axisnode::kModeCsp);
+    EXPECT_EQ(back.target_torque, 0);
+  }
+}

@@ -7,7 +7,7 @@
 // X and Z cut and through the retracting G160, until a G00 of B1 cancels it. G31 P98/P99 go
 // the same way with B1's load ratio as the limit (decision 116), P99 also on Z1's touch probe.
 // G10 L14 P9 limits B1's torque on the same bus, and G10 L14 P1 watches its reported load
-// (decisions 120, 121). G10 L14 P10-P12 push B1 into the centre in torque mode (decision 200).
+// (decisions 120, 121). G10 L14 P10-P12 push B1 into the centre in torque mode (decision 152).
 #include "bus_recorder.hpp"
 #include "tests/integration/harness.hpp"
 
@@ -377,7 +377,7 @@ void add_torque_mode_tailstock(const TestMachine& machine) {
                           "    torque_mode_speed: 30\n"}});
 }
 
-// G10 L14 P10-P12 (decision 200): B1 with torque mode (its drive's CST: the target torque 0x6071
+// G10 L14 P10-P12 (decision 152): B1 with torque mode (its drive's CST: the target torque 0x6071
 // and the speed limit 0x6080 in its RPDO2 after 0x6072) pushed from B-148 into the centre at
 // -50 % and 30 rpm (param 5521: 5 mm/s at 10 mm a revolution). Its drive's torque (TPDO2) holds
 // at the set torque against the centre, nothing moves B1 while X cuts, and P12 takes it back to

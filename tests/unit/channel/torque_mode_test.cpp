@@ -1,4 +1,4 @@
-// G10 L14 P10-P12 as a channel runs them (decision 200): P10 holds an axis in torque mode, its
+// G10 L14 P10-P12 as a channel runs them (decision 152): P10 holds an axis in torque mode, its
 // setpoints carrying the torque and the motor speed (P11's, else param 5521) while the program
 // goes on with the other axes; a block that moves that axis meanwhile is alarm 1263 at its line;
 // P12 (or P10 α0) puts it back in position mode where the motor took it and the program goes

@@ -216,7 +216,7 @@ TEST(InterpTorqueMode, Alarms) {
 
 // What the channel's source takes before a run: the load timers' checks run (Z reports its
 // torque); torque mode runs on an axis with torque_mode and is 1157 at its line on one without
-// (decision 201).
+// (decision 153).
 TEST(InterpTorqueMode, TheChannelTakesTheTimersAndTorqueModeOnlyOfAnAxisThatHasIt) {
   InterpreterConfig c = lathe();
   c.axes[kZ].torque_skip = true;

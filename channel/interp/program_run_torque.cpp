@@ -1,7 +1,8 @@
 // G10 L14 (spec dafeng §2.9.1-2.9.4, L4768-5209): the torque data of the axes. P6 sets the
 // load ratios of G31 P98/P99 (program_run_skip.cpp); P9 limits the drives' torque (L5094-5142).
-// P0/P1 watch the load, P2-P5 start the load timers and P20-P51 read them (L4770-4849). The
-// drilling/tapping overloads (P7/P8) and torque mode (P10-P12) are not implemented.
+// P0/P1 watch the load, P2-P5 start the load timers and P20-P51 read them (L4770-4849); P10-P12
+// switch torque mode (run_torque_mode, below). The drilling/tapping overloads (P7/P8) are
+// alarm 1122 (docs/dialect.md, "Not done yet").
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 

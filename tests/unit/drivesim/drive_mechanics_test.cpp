@@ -4,6 +4,7 @@
 // quick stop ramps at the configured deceleration.
 #include "axisnode/drivesim/simulated_drive.hpp"
 #include "canopen/cia402/cia402_state.hpp"
+#include "pressing_drive.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,14 +27,7 @@ DriveParams params() {
 }
 
 SimulatedDrive enabled(const DriveParams& p, double cycle_s = kCycle) {
-  SimulatedDrive d(p, cycle_s);
-  d.power_on();
-  d.on_nmt(canopen::NmtCommand::start);
-  for (const std::uint16_t cw : {0x06, 0x07, 0x0F, 0x0F}) {
-    d.on_rpdo(canopen::RxPdoCsp{cw, 0});
-    d.on_sync();
-  }
-  return d;
+  return test::enabled_drive(p, cycle_s);
 }
 
 canopen::TxPdoCsp cycle(SimulatedDrive& d, double target, std::uint16_t cw = 0x0F) {

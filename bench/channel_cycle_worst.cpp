@@ -6,6 +6,7 @@
 // interpreter inside the cycle, as the channel did before the read-ahead thread. `--slowest N`
 // tells what the slowest cycles did; `--free-run --dump FILE` runs the cycles back to back and
 // writes each, so that several runs tell a cycle's own work from the host's stalls.
+// `--pulls-before-settled 64` pulls a refill whole in one cycle, as the channel did before.
 #include "channel/control/channel_controller.hpp"
 #include "channel/interp/interpreter_source.hpp"
 #include "channel/loading/read_ahead.hpp"
@@ -116,6 +117,7 @@ int main(int argc, char** argv) {
   std::size_t slowest = 0;
   bool free_run = false;
   std::string dump;
+  std::size_t pulls_before_settled = channel::ChannelSetup{}.pulls_before_settled;
   app.add_option("--cycle-us", cycle_us, "cycle")->check(CLI::Range(250, 10000));
   app.add_option("--repeats", repeats, "times the program's pattern is repeated")
       ->check(CLI::Range(1, 100));
@@ -125,6 +127,10 @@ int main(int argc, char** argv) {
                "cycles back to back, no sleep: with --in-cycle the same cycles every run, so the "
                "least of several runs is a cycle's work without the host's stalls");
   app.add_option("--dump", dump, "write every cycle (cycle, ns, pulls, line) to this file");
+  app.add_option("--pulls-before-settled", pulls_before_settled,
+                 "commands a cycle pulls before it asks whether more would change the motion "
+                 "(64: the whole refill in one cycle, as before)")
+      ->check(CLI::Range(1, 64));
   CLI11_PARSE(app, argc, argv);
   std::printf("%s\n", clock::prepare_realtime_process());
 
@@ -151,6 +157,7 @@ int main(int argc, char** argv) {
   }
   motion::MotionPlanner planner(motion, interp::AxisVector{});
   channel::ChannelSetup setup{2, {0.001, 0.001}, motion.cycle_s};
+  setup.pulls_before_settled = pulls_before_settled;
   CountingSource counted(in_cycle ? static_cast<interp::CommandSource&>(interpreter)
                                   : static_cast<interp::CommandSource&>(read_ahead));
   channel::ChannelController controller(setup, counted, planner);

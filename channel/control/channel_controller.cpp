@@ -361,7 +361,9 @@ const CycleOutput& ChannelController::run_cycle(
 
 // Pulls what the look-ahead takes: up to the window, the program end or an alarm. A bad block
 // is an alarm only when the blocks before it have run (what a control shows when it gets there);
-// it never reaches the planner.
+// it never reaches the planner. Past `pulls_before_settled` a cycle it pulls on only while more
+// blocks could change the next cycle's motion: the planner's push is the costliest part of a
+// cycle, and a refill of the whole 64 after a read-ahead stop was the longest cycle.
 void ChannelController::fill() noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
@@ -370,6 +372,10 @@ void ChannelController::fill() noexcept {
          k < setup_.pulls_per_cycle && !end_pulled_ && !source_alarm_ && !coordination_.holds() &&
          planner_.accepts() && !queued_.full() && source_.ready();
          ++k) {
+      if (k >= setup_.pulls_before_settled && k % setup_.pulls_before_settled == 0 &&
+          !planner_.window_end_binds()) {
+        return;
+      }
       // Read where the source holds it (the read-ahead's ring): a command is not copied.
       const interp::PullResult* pulled = source_.take();
       if (pulled == nullptr) {

@@ -19,6 +19,10 @@ struct ChannelSetup {
   std::vector<double> in_position;  // per axis, units
   double cycle_s = 0.001;
   std::size_t pulls_per_cycle = 64;  // commands pulled into the look-ahead per cycle at most
+  // Past this many a cycle, the channel pulls on only while the window's end holds down what
+  // the planner's next cycle may do (MotionPlanner::window_end_binds): a refill after a
+  // read-ahead stop is spread over cycles without changing the motion.
+  std::size_t pulls_before_settled = 16;
   // Spindles whose feedback follows the axes' in cycle()'s `feedback`: their alarms stop the
   // channel too, and a channel comes to idle only with them enabled.
   std::size_t spindle_count = 0;

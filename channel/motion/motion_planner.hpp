@@ -120,6 +120,12 @@ class MotionPlanner {
     }
   }
 
+  // Whether the end of the window holds down a speed that the next step() may plan with: the
+  // end speed of the run under way (or of the first one) or of the run after it. Only then can
+  // more blocks change what the next cycle does; otherwise the channel may leave them for later
+  // cycles. Runs the pending backward pass.
+  [[nodiscard]] bool window_end_binds() noexcept;
+
   // Single block: stop at the end of every block (from the next block end that can be reached
   // within the limits), and go on at resume().
   void set_single_block(bool on) noexcept;

@@ -556,6 +556,51 @@ double MotionPlanner::end_target(std::size_t index) const noexcept {
   return next.kind == ItemKind::path ? std::min(next.vb, next.start_cap) : 0.0;
 }
 
+bool MotionPlanner::window_end_binds() noexcept {
+  update_lookahead();
+  const std::size_t last = item_head_ + item_count_;
+  // From the run after `from`: a chain of runs each slowed down to brake for the next is held
+  // by the window's end when it reaches it, and by what the program asks for when it ends at a
+  // run at its own limit, at a junction's cap or at a stop.
+  const auto held_by_end = [&](std::size_t from) {
+    for (std::size_t j = from + 1;; ++j) {
+      if (j >= last) {
+        return true;
+      }
+      const Item& it = item(j);
+      if (it.kind != ItemKind::path || it.vb >= std::min(cap_of(it), it.start_cap) * (1.0 - 1e-9)) {
+        return false;
+      }
+      if (j + 1 < last &&
+          (item(j + 1).kind != ItemKind::path || item(j + 1).start_cap <= item(j + 1).vb)) {
+        return false;
+      }
+    }
+  };
+  if (item_count_ == 0) {
+    return true;
+  }
+  // Every run the next cycle may start: the one under way, and those after it within twice a
+  // cycle's travel at the highest speed among them (short runs pass several in one cycle).
+  double ahead = active_ ? -s_ : 0.0;
+  double fastest = v_;
+  for (std::size_t i = item_head_; i < last; ++i) {
+    if (held_by_end(i)) {
+      return true;
+    }
+    const Item& it = item(i);
+    if (it.kind != ItemKind::path) {
+      return false;
+    }
+    ahead += it.length;
+    fastest = std::max(fastest, cap_of(it));
+    if (ahead > 2.0 * fastest * config_.cycle_s) {
+      return false;
+    }
+  }
+  return false;
+}
+
 void MotionPlanner::touch(std::size_t index) noexcept {
   first_changed_ = std::min(first_changed_, index);
   backward_pending_ = true;

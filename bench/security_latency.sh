@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The setpoint latency of a secured machine (issue 25): mcnc_bench_setpoint_latency on the
 # small lathe, unsecured and secured with each `mcnc certs --protection`, on each DDS
-# implementation. The bench plays the channel with the channel's identity, and starts the
-# launcher's part (run control) as a second process with the launcher's identity.
+# implementation. The bench plays the launcher (RouDi, processes, run control) with the
+# launcher's identity, and starts the channel's part as a process with the channel's identity.
 # Usage: [MIDDLEWARES="cyclonedds fastdds"] [PROTECTIONS="off access sign encrypt"]
 #        [CYCLES=10000] [DOMAIN=78] bench/security_latency.sh [BUILD_DIR]
 . "$(dirname "$0")/security_bench.sh"

@@ -318,14 +318,17 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     }
   }
   if (auto polygon = map.optional("polygon")) {
-    // Which spindles they are is checked with the machine's axes (check_polygon).
-    const YamlMap p = polygon->map({"master", "slave", "max_rpm"});
+    // Which axes they are is checked with the machine's axes (check_polygon).
+    const YamlMap p = polygon->map({"master", "slave", "max_rpm", "no_wait"});
     (void)p.required("master");
     (void)p.required("slave");
     channel.polygon_master = -1;  // named: check_polygon resolves both
     channel.polygon_slave = -1;
     if (auto max_rpm = p.optional("max_rpm")) {
       channel.polygon_max_rpm = max_rpm->positive_number();
+    }
+    if (auto no_wait = p.optional("no_wait")) {
+      channel.polygon_no_wait = no_wait->boolean();
     }
   }
   if (auto cam = map.optional("cam")) {
@@ -1101,46 +1104,6 @@ void check_program_axis(const MachineConfig& config, const ChannelConfig& channe
              " (its axes, exchange_axes and its spindle's c_axis)");
 }
 
-// `polygon` names two spindles of the channel (params 5310/5311): the master that holds the
-// work and the polygon axis, a driven tool that follows it. A spindle that is a G114.1 slave
-// follows its own master already. Without max_rpm (param 5312) the polygon axis may turn as
-// fast as its drive.
-void check_polygon(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
-  if (channel.polygon_master == 0) {
-    return;
-  }
-  const YamlValue polygon = value.child("polygon");
-  const auto channel_spindle = [&](const YamlValue& ref) {
-    const int id = spindle_id(ref, config);
-    const std::string& name = config.axes[static_cast<std::size_t>(id - 1)].name;
-    if (std::find(channel.spindles.begin(), channel.spindles.end(), name) ==
-        channel.spindles.end()) {
-      ref.fail(name + " is not a spindle of channel " + channel.name +
-               " (a rotary axis as the polygon axis is not supported yet)");
-    }
-    return id;
-  };
-  channel.polygon_master = channel_spindle(polygon.child("master"));
-  channel.polygon_slave = channel_spindle(polygon.child("slave"));
-  if (channel.polygon_master == channel.polygon_slave) {
-    polygon.child("slave").fail("a spindle cannot follow itself");
-  }
-  for (const SpindleSyncGroup& g : config.spindle_sync) {
-    if (g.slave == channel.polygon_slave) {
-      polygon.child("slave").fail("the spindle is already the slave of G114.1 group " +
-                                  std::to_string(g.group) + " (spindle_sync)");
-    }
-  }
-  const AxisConfig& slave = config.axes[static_cast<std::size_t>(channel.polygon_slave - 1)];
-  const double drive_rpm = slave.drive.max_velocity / 6.0;
-  if (channel.polygon_max_rpm == 0.0) {
-    channel.polygon_max_rpm = drive_rpm;
-  } else if (channel.polygon_max_rpm > drive_rpm) {
-    polygon.child("max_rpm").fail("max_rpm is above what " + slave.name + "'s drive can turn (" +
-                                  std::to_string(static_cast<int>(drive_rpm)) + " rpm)");
-  }
-}
-
 // A spindle of `channel` named at `ref`: its axis id.
 int spindle_of_channel(const YamlValue& ref, const ChannelConfig& channel, MachineConfig& config) {
   const int id = spindle_id(ref, config);
@@ -1170,6 +1133,52 @@ const AxisConfig& commanded_axis_of_channel(const YamlValue& ref, const ChannelC
   return *axis;
 }
 
+// `polygon` names the master spindle of the channel (param 5310), which holds the work, and the
+// polygon axis (5311), a driven tool that follows it: another spindle of the channel, or one of
+// its own rotary servo axes (the spec allows both, L2897-2899). A spindle that is a G114.1 slave
+// follows its own master already; an axis that may follow another (G51.4) has its setpoint
+// from elsewhere at times, and an axis with soft limits could not turn without end. Without
+// max_rpm (param 5312) the polygon axis may turn as fast as its drive.
+void check_polygon(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
+  if (channel.polygon_master == 0) {
+    return;
+  }
+  const YamlValue polygon = value.child("polygon");
+  channel.polygon_master = spindle_of_channel(polygon.child("master"), channel, config);
+  const YamlValue slave_ref = polygon.child("slave");
+  const AxisConfig* named = config.find_axis(read_name(slave_ref));
+  if (named != nullptr && named->type != AxisType::spindle) {
+    const AxisConfig& axis =
+        commanded_axis_of_channel(slave_ref, channel, config, "the polygon axis's turning");
+    if (axis.type != AxisType::rotary) {
+      slave_ref.fail(axis.name + " is not a rotary axis (the polygon axis turns with the master)");
+    }
+    if (axis.has_soft_limits) {
+      slave_ref.fail(axis.name + " has soft_limits: the polygon axis turns without end");
+    }
+    channel.polygon_slave = axis.id;
+  } else {
+    channel.polygon_slave = spindle_of_channel(slave_ref, channel, config);
+  }
+  if (channel.polygon_master == channel.polygon_slave) {
+    slave_ref.fail("a spindle cannot follow itself");
+  }
+  for (const SpindleSyncGroup& g : config.spindle_sync) {
+    if (g.slave == channel.polygon_slave) {
+      slave_ref.fail("the spindle is already the slave of G114.1 group " + std::to_string(g.group) +
+                     " (spindle_sync)");
+    }
+  }
+  const AxisConfig& slave = config.axes[static_cast<std::size_t>(channel.polygon_slave - 1)];
+  const double drive_rpm = slave.drive.max_velocity / 6.0;
+  if (channel.polygon_max_rpm == 0.0) {
+    channel.polygon_max_rpm = drive_rpm;
+  } else if (channel.polygon_max_rpm > drive_rpm) {
+    polygon.child("max_rpm").fail("max_rpm is above what " + slave.name + "'s drive can turn (" +
+                                  std::to_string(static_cast<int>(drive_rpm)) + " rpm)");
+  }
+}
+
 // `cam` names the master spindle of G51.8 (param 5350), a spindle of the channel, and its slave
 // (param 5351), one of the channel's own axes.
 void check_cam(MachineConfig& config, ChannelConfig& channel, const YamlValue& value) {
@@ -1180,6 +1189,9 @@ void check_cam(MachineConfig& config, ChannelConfig& channel, const YamlValue& v
   channel.cam_master = spindle_of_channel(cam.child("master"), channel, config);
   channel.cam_slave =
       commanded_axis_of_channel(cam.child("slave"), channel, config, "the cam's lift").id;
+  if (channel.cam_slave == channel.polygon_slave) {
+    cam.child("slave").fail(read_name(cam.child("slave")) + " is the channel's polygon axis");
+  }
 }
 
 // `egb` names G81.4's tool spindle (param 5330), a spindle of the channel; its work axis (5331),
@@ -1200,6 +1212,9 @@ void check_egb(MachineConfig& config, ChannelConfig& channel, const YamlValue& v
   }
   if (work.id == channel.cam_slave) {
     egb.child("work").fail(work.name + " is the slave of the channel's cam already");
+  }
+  if (work.id == channel.polygon_slave) {
+    egb.child("work").fail(work.name + " is the channel's polygon axis");
   }
   channel.egb_work = work.id;
   if (channel.egb_axial != 0) {

@@ -188,12 +188,15 @@ struct ChannelConfig {
   char inclined_orthogonal = 0;
   double inclined_degrees = 0.0;
   // Polygon turning G51.2 (params 5310-5312, `polygon`): the master spindle and the polygon
-  // axis that follows it (axis ids, both spindles of this channel; 0: none, G51.2 is an
-  // alarm), and the fastest the polygon axis may turn, rpm (G51.2 that would need more is an
-  // alarm).
+  // axis that follows it (axis ids: a spindle of this channel, and another spindle or one of
+  // its own rotary axes; 0: none, G51.2 is an alarm), and the fastest the polygon axis may
+  // turn, rpm (G51.2 that would need more is an alarm).
   int polygon_master = 0;
   int polygon_slave = 0;
   double polygon_max_rpm = 0.0;
+  // Param 5300.5: G51.2 ends without waiting for the polygon axis to lock; the next cutting
+  // block waits for it instead.
+  bool polygon_no_wait = false;
   // Electronic cam G51.8 (params 5350/5351, `cam`): the master spindle (a spindle of this
   // channel) and the slave, one of its own axes (axis ids; 0: none, G51.8 is an alarm).
   int cam_master = 0;
@@ -211,9 +214,10 @@ struct ChannelConfig {
   double egb_deviation_time_s = 0.1;
   // Param 5320's bits: the work axis follows the tool spindle's commanded angle (.1 = 1,
   // synchronous) rather than its feedback (0, follow: the deviation is watched); G81.4 ends
-  // without waiting for the work axis to lock (.5); a reset or an emergency stop lets go of the
-  // work axis at once, stopping it within stop_time (.4 = 1), rather than once the tool spindle
-  // stands (0); the work axis (.2) and the helical term (.3) turn the other way.
+  // without waiting for the work axis to lock, the next cutting block waiting instead (.5); a reset
+  // or an emergency stop lets go of the work axis at once, stopping it within stop_time (.4 = 1),
+  // rather than once the tool spindle stands (0); the work axis (.2) and the helical term (.3) turn
+  // the other way.
   bool egb_synchronous = false;
   bool egb_no_wait = false;
   bool egb_reset_at_once = false;

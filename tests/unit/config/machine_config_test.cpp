@@ -1552,14 +1552,69 @@ axes:
   EXPECT_EQ(rejection_path(with("{master: S1, slave: S1}")), "channels[0].polygon.slave");
   EXPECT_EQ(rejection_path(with("{master: S1, slave: S2}"), &what), "channels[0].polygon.slave");
   EXPECT_NE(what.find("S2 is not a spindle of channel CH1"), std::string::npos) << what;
-  EXPECT_EQ(rejection_path(with("{master: S1, slave: C1}")), "channels[0].polygon.slave");
   EXPECT_EQ(rejection_path(with("{master: S1}")), "channels[0].polygon.slave");
+  EXPECT_EQ(rejection_path(with("{master: C1, slave: T1}"), &what), "channels[0].polygon.master");
+  EXPECT_NE(what.find("C1 is not a spindle of this machine"), std::string::npos) << what;
   EXPECT_EQ(rejection_path(with("{master: S1, slave: T1}",
                                 "spindle_sync: [{group: 1, master: S2, slave: T1}]\n"),
                            &what),
             "channels[0].polygon.slave");
   EXPECT_NE(what.find("already the slave of G114.1 group 1"), std::string::npos) << what;
 }
+
+// Param 5311 may name a servo axis too (spec dafeng L2897-2899): one of the channel's own rotary
+// axes, which the channel stops commanding while it follows (decision 200).
+TEST(MachineConfig, PolygonAxisMayBeARotaryServoAxisOfTheChannel) {
+  const std::string base = R"(
+machine: {name: m, cycle_us: 2000}
+buses:
+  - {name: b, uri: "socketcan:can0", sync_producer: X1}
+  - {name: b2, uri: "socketcan:can1", sync_producer: X2}
+axes:
+  - {name: X1, address: X, bus: b, node_id: 1}
+  - {name: S1, type: spindle, bus: b, node_id: 2}
+  - {name: X2, address: X, bus: b2, node_id: 1}
+  - {name: C2, address: C, type: rotary, bus: b2, node_id: 2}
+  - {name: S2, type: spindle, bus: b2, node_id: 3}
+)";
+  const auto with = [&](const std::string& c1, const std::string& channel_keys) {
+    return base + "  - {name: C1, address: C, type: rotary, bus: b, node_id: 3" + c1 +
+           "}\nchannels: [{name: CH1, axes: [X1, C1], spindles: [S1]" + channel_keys +
+           "}, {name: CH2, axes: [X2, C2], spindles: [S2]}]\n";
+  };
+  const MachineConfig config = parse_machine_yaml(
+      with(", drive: {max_velocity: 12000}", ", polygon: {master: S1, slave: C1}"));
+  EXPECT_EQ(config.channels[0].polygon_master, 2);
+  EXPECT_EQ(config.channels[0].polygon_slave, 6);  // C1, the last axis of the file
+  EXPECT_EQ(config.channels[0].polygon_max_rpm, 2000.0);  // its drive's 12000 deg/s
+  EXPECT_FALSE(config.channels[0].polygon_no_wait);
+  // Param 5300.5 = 1: G51.2 does not wait for the lock, the next cutting block does.
+  EXPECT_TRUE(parse_machine_yaml(with("", ", polygon: {master: S1, slave: C1, no_wait: true}"))
+                  .channels[0]
+                  .polygon_no_wait);
+  std::string what;
+  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: X1}"), &what),
+            "channels[0].polygon.slave");
+  EXPECT_NE(what.find("X1 is not a rotary axis"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C2}"), &what),
+            "channels[0].polygon.slave");
+  EXPECT_NE(what.find("C2 is not an axis of channel CH1"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with(", soft_limits: [-10, 10]", ", polygon: {master: S1, slave: C1}"),
+                           &what),
+            "channels[0].polygon.slave");
+  EXPECT_NE(what.find("turns without end"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with(", axis_sync: {}", ", polygon: {master: S1, slave: C1}"), &what),
+            "channels[0].polygon.slave");
+  EXPECT_NE(what.find("may follow another axis"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C1}, cam: {master: S1, slave: C1}"),
+                           &what),
+            "channels[0].cam.slave");
+  EXPECT_NE(what.find("C1 is the channel's polygon axis"), std::string::npos) << what;
+  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C1}, egb: {tool: S1, work: C1}"),
+                           &what),
+            "channels[0].egb.work");
+  EXPECT_NE(what.find("C1 is the channel's polygon axis"), std::string::npos) << what;
+  }
 
 }  // namespace
 }  // namespace mcnc::config

@@ -364,7 +364,7 @@ const CycleOutput& ChannelController::run_cycle(
 // it never reaches the planner. Past `pulls_before_settled` a cycle it pulls on only while more
 // blocks could change the next cycle's motion: the planner's push is the costliest part of a
 // cycle, and a refill of the whole 64 after a read-ahead stop was the longest cycle.
-void ChannelController::fill() noexcept {
+void ChannelController::fill(std::uint64_t cycle) noexcept {
   // The interpreter allocates (its strings, its call stack): the only thing in the cycle that
   // can throw. Out of memory stops the program with an alarm rather than the process.
   try {
@@ -406,7 +406,8 @@ void ChannelController::fill() noexcept {
           setup_.plc,
           setup_.spindle_may_follow,
           {setup_.speed_arrival_rpm, setup_.speed_arrival_timeout_s, setup_.cycle_s}};
-      if (coordination_.hold(read_ahead_stop(*c, rules, spindle_queued_, source_alarm_))) {
+      if (coordination_.hold(read_ahead_stop(*c, rules, spindle_queued_, source_alarm_)) ||
+          coordination_.hold_cut_until_locked(*c, cycle)) {
         return;
       }
       if (source_alarm_ || !queue_command(*c)) {
@@ -470,7 +471,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   if (coordination_.watch_gear_box(cycle)) {
     return;  // the work axis stopped off its gear: nothing moves on
   }
-  fill();
+  fill(cycle);
   coordination_.watch_skip(feedback);
   motion::CycleInput input;
   input.in_position = in_pos;

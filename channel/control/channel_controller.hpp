@@ -234,7 +234,7 @@ class ChannelController : private ChannelHost {
   void run_blocks(std::uint64_t cycle, std::span<const AxisFeedbackView> feedback) noexcept;
   // The program's end block, once everything before it ran: its events, then idle.
   void end_program(std::uint64_t cycle, bool in_pos) noexcept;
-  void fill() noexcept;
+  void fill(std::uint64_t cycle) noexcept;
   void block_events(const motion::MotionOutput& m,
                     std::span<const AxisFeedbackView> feedback) noexcept;
   void hold_outputs(bool valid) noexcept;

@@ -231,6 +231,17 @@ bool ChannelCoordination::hold(ReadAheadStop stop) noexcept {
   return holds();
 }
 
+bool ChannelCoordination::hold_cut_until_locked(const interp::Command& c,
+                                                std::uint64_t cycle) noexcept {
+  using interp::Op;
+  const bool cuts = c.op == Op::linear || c.op == Op::arc || c.op == Op::thread;
+  if (!cuts ||
+      !coupling_.lock_pending(coordination::CouplingInputs{cycle, received_, exchange_.uses()})) {
+    return false;
+  }
+  return hold(LockWaitStop{c});
+}
+
 bool ChannelCoordination::holds_before_motion() const noexcept {
   return holds() &&
          (!std::holds_alternative<SkipStop>(held_) || skip_in(coordination::SkipPhase::arming));
@@ -617,6 +628,10 @@ void ChannelCoordination::run(CouplingStop& b, std::uint64_t cycle,
       } else if (coupling_.kind() == coordination::CouplingKind::polygon) {
         out_.polygon_sync = coupling_.polygon();
         out_.polygon_sync_due = true;
+        if (coupling_.slot_change().to == coordination::SlotChange::To::follows) {
+          // A servo polygon axis: no valid setpoint from the cycle its node takes G51.2 in.
+          exchange_.set_use(coupling_.slot_change().slot, SlotUse::follows);
+        }
       } else if (coupling_.axis()) {
         out_.axis_sync = coupling_.axis_sync();
         out_.axis_sync_due = true;
@@ -845,6 +860,17 @@ void ChannelCoordination::run(TorqueModeStop& b, std::uint64_t /*cycle*/,
     host_.restart_at_commanded();
   }
   end_held(b.block);
+}
+
+void ChannelCoordination::run(LockWaitStop& b, std::uint64_t cycle,
+                              std::span<const AxisFeedbackView> /*feedback*/) noexcept {
+  // Every block before it ended: the cut starts once the slave is locked.
+  if (coupling_.lock_pending(coordination::CouplingInputs{cycle, received_, exchange_.uses()})) {
+    return;
+  }
+  const interp::Command command = b.command;
+  held_ = std::monostate{};
+  (void)host_.queue_command(command);  // a refusal is a source alarm, raised in its turn
 }
 
 }  // namespace mcnc::channel

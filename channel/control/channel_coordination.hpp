@@ -94,6 +94,9 @@ class ChannelCoordination {
   [[nodiscard]] bool holds() const noexcept {
     return !std::holds_alternative<std::monostate>(held_);
   }
+  // A cutting block `c` while a G51.2 or G81.4 that did not wait has not locked yet: held until
+  // it has (LockWaitStop); false when `c` may go to the planner.
+  bool hold_cut_until_locked(const interp::Command& c, std::uint64_t cycle) noexcept;
   // The held block stops the motion before it for single block: any but a G31 whose move runs.
   [[nodiscard]] bool holds_before_motion() const noexcept;
   // One cycle of the held block, once every block before it ended.
@@ -240,6 +243,8 @@ class ChannelCoordination {
   void run(LoadTimerStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   void run(TorqueModeStop& b, std::uint64_t cycle,
+           std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  void run(LockWaitStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
 
   const ChannelSetup& setup_;

@@ -142,10 +142,15 @@ struct TorqueModeStop {
   std::uint32_t axes = 0;       // bit i: channel axis i is named
   interp::AxisVector values{};  // P10: % of the rated torque; P11: rpm; P12: the limit (0: none)
 };
+// The cutting block after a G51.2 or G81.4 that did not wait for its slave to lock (params
+// 5300.5 / 5320.5 = 1): queued once the slave is locked (spec dafeng L2917-2919, L3331-3333).
+struct LockWaitStop {
+  interp::Command command;
+};
 // The block held, std::monostate when none.
 using ReadAheadStop = std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop,
                                    AuxStop, CouplingStop, ModeStop, SkipStop, WaitStop,
-                                   TorqueDataStop, LoadTimerStop, TorqueModeStop>;
+                                   TorqueDataStop, LoadTimerStop, TorqueModeStop, LockWaitStop>;
 
 // What decides which commands stop read-ahead in a channel.
 struct StopRules {

@@ -85,8 +85,10 @@ void AxisExchange::settle(std::span<const AxisFeedbackView> feedback,
     }
     const AxisFeedbackView& f = feedback[s];
     if (f.present && f.owner == setup_.channel_id) {
-      if (setup_.slots[s].may_follow && f.coupled_to != 0) {
-        use_[s] = SlotUse::follows;  // G51.4 outlives a reset and a restart of the channel
+      if ((setup_.slots[s].may_follow || setup_.slots[s].polygon) && f.coupled_to != 0) {
+        // G51.4 outlives a reset and a restart of the channel; a polygon axis that a reset let
+        // go is the channel's once it stands.
+        use_[s] = SlotUse::follows;
       } else if (use_[s] != SlotUse::commanded) {
         commanded[s] = f.channel_cmd();  // the machine position travels with the axis
         use_[s] = SlotUse::commanded;
@@ -121,6 +123,11 @@ CoordinationAlarm AxisExchange::foreign_move_alarm(
   if (use_[slot] == SlotUse::speed_control) {
     alarm.set(interp::alarm::kSpindleControl,
               "%c is the spindle under speed control: position control first", address);
+  } else if (use_[slot] == SlotUse::follows && setup_.slots[slot].polygon) {
+    alarm.set(kAlarmAxisFollows,
+              "%c is the polygon axis, turning with its master spindle (G51.2): G50.2 before the "
+              "program moves it",
+              address);
   } else if (use_[slot] == SlotUse::follows) {
     alarm.set(kAlarmAxisFollows,
               "%c follows axis %u (G51.4): G50.4 Q%u before the program moves it", address,

@@ -59,6 +59,9 @@ struct AxisSlot {
   bool may_follow = false;
   std::uint32_t default_master = 0;
   bool follows_at_start = false;
+  // G51.2: the channel's polygon axis, a rotary servo axis that follows the master spindle
+  // instead of the program between G51.2 and G50.2 (params 5310/5311).
+  bool polygon = false;
 };
 
 // G51.4: an axis of the machine as a possible master (spec dafeng §3.2: of the same kind as

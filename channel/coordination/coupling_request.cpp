@@ -76,17 +76,31 @@ CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
         egb_asked_ = egb_.on;
         egb_sent_cycle_ = in.cycle;
       }
+      if (kind_ == CouplingKind::polygon) {
+        polygon_lock_due_ = polygon_.on && setup_.polygon.no_wait
+                                ? std::optional<std::uint64_t>(in.cycle)
+                                : std::nullopt;
+      } else if (kind_ == CouplingKind::egb) {
+        egb_lock_due_ =
+            egb_.on && setup_.egb.no_wait ? std::optional<std::uint64_t>(in.cycle) : std::nullopt;
+      }
       sent_ = true;
       sent_cycle_ = in.cycle;
       return CouplingStep::send;
     }
     return CouplingStep::done;
   }
-  if (kind_ == CouplingKind::polygon && !polygon_.on && !polygon_.wait) {
-    return CouplingStep::done;  // G50.2 P0: the program goes on while the axis slows down
+  if (kind_ == CouplingKind::polygon && !polygon_.on && !polygon_.wait &&
+      !setup_.polygon.slave_axis) {
+    // G50.2 P0: the program goes on while the spindle slows down. A servo polygon axis is
+    // waited for: the program goes on from where it stands (decision 201).
+    return CouplingStep::done;
   }
   if (kind_ == CouplingKind::egb && egb_.on && setup_.egb.no_wait) {
     return CouplingStep::done;  // param 5320.5 = 1: the program goes on while it locks
+  }
+  if (kind_ == CouplingKind::polygon && polygon_.on && setup_.polygon.no_wait) {
+    return CouplingStep::done;  // param 5300.5 = 1: the program goes on while it locks
   }
   const bool done = kind_ == CouplingKind::axis      ? axis_done(in)
                     : kind_ == CouplingKind::polygon ? polygon_done(in)
@@ -104,8 +118,17 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
   const AxisFeedbackView none{};
   const AxisFeedbackView& slave =
       s.slave_view < in.feedback.size() ? in.feedback[s.slave_view] : none;
+  const SlotUse use = s.slave_axis && s.slave_view < in.slot_use.size() ? in.slot_use[s.slave_view]
+                                                                        : SlotUse::commanded;
   if (!polygon_.on) {
-    return s.master != 0 && slave.coupled_to != 0 ? Start::send : Start::nothing_to_do;
+    if (s.master != 0 && slave.coupled_to != 0) {
+      return Start::send;
+    }
+    if (use == SlotUse::follows) {
+      // Let go already (a reset's release ended): the program goes on from where it stands.
+      change_ = SlotChange{SlotChange::To::commanded, s.slave_view, slave.cmd};
+    }
+    return Start::nothing_to_do;
   }
   if (s.master == 0) {
     alarm_.set(kAlarmPolygon,
@@ -115,6 +138,10 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
   }
   if (slave.coupled_to != 0) {
     alarm_.set(kAlarmPolygon, "G51.2: the polygon axis follows its master already: G50.2 first");
+    return Start::refused;
+  }
+  if (use != SlotUse::commanded) {
+    alarm_.set(kAlarmPolygon, "G51.2: the polygon axis is not this channel's now (G141 first)");
     return Start::refused;
   }
   if (std::fabs(slave.vel) > kSpindleAtRest) {
@@ -133,12 +160,26 @@ CouplingRequest::Start CouplingRequest::start_polygon(const CouplingInputs& in) 
                polygon_.p, polygon_.q, speed / 6.0, s.max_speed / 6.0);
     return Start::refused;
   }
+  if (s.slave_axis) {
+    // A servo polygon axis is its master's from the cycle its node takes G51.2 in.
+    change_ = SlotChange{SlotChange::To::follows, s.slave_view, 0.0};
+  }
   return Start::send;
 }
 
-bool CouplingRequest::polygon_done(const CouplingInputs& in) const noexcept {
+bool CouplingRequest::polygon_done(const CouplingInputs& in) noexcept {
   // G51.2 ends once the axis is in phase (param 5300.5 = 0); G50.2 once it stands free.
-  return slave_answered(in.feedback, setup_.polygon.slave_view, setup_.polygon.master, polygon_.on);
+  const PolygonSetup& s = setup_.polygon;
+  if (!slave_answered(in.feedback, s.slave_view, s.master, polygon_.on)) {
+    return false;
+  }
+  if (s.slave_axis) {
+    // After G50.2 the program goes on from where a servo polygon axis stands.
+    change_ = polygon_.on ? SlotChange{SlotChange::To::follows, s.slave_view, 0.0}
+                          : SlotChange{SlotChange::To::commanded, s.slave_view,
+                                       in.feedback[s.slave_view].cmd};
+  }
+  return true;
 }
 
 std::optional<PolygonOut> CouplingRequest::polygon_on_reset(
@@ -149,7 +190,21 @@ std::optional<PolygonOut> CouplingRequest::polygon_on_reset(
     return std::nullopt;
   }
   polygon_asked_ = false;
+  polygon_lock_due_.reset();
   return PolygonOut{false, 1, 1, 0.0, false};
+}
+
+bool CouplingRequest::lock_pending(const CouplingInputs& in) noexcept {
+  const PolygonSetup& p = setup_.polygon;
+  if (polygon_lock_due_ && answer_visible(*polygon_lock_due_, in.cycle) &&
+      slave_answered(in.feedback, p.slave_view, p.master, true)) {
+    polygon_lock_due_.reset();
+  }
+  if (egb_lock_due_ && answer_visible(*egb_lock_due_, in.cycle) &&
+      slave_answered(in.feedback, setup_.egb.work_slot, setup_.egb.tool, true)) {
+    egb_lock_due_.reset();
+  }
+  return polygon_lock_due_ || egb_lock_due_;
 }
 
 CouplingRequest::Start CouplingRequest::start_cam(const CouplingInputs& in) noexcept {
@@ -260,6 +315,7 @@ bool CouplingRequest::egb_on_reset(std::span<const AxisFeedbackView> feedback) n
     return false;
   }
   egb_asked_ = false;
+  egb_lock_due_.reset();
   egb_ = EgbOut{};
   egb_.on = false;
   egb_.off = EgbOut::Off::reset;
@@ -273,6 +329,7 @@ bool CouplingRequest::egb_lost(const CouplingInputs& in) noexcept {
     return false;
   }
   egb_asked_ = false;
+  egb_lock_due_.reset();
   alarm_.set(kAlarmEgb,
              "G81.4: the work axis stopped %.3f deg off the channel's position: off the gear's "
              "ratio too long (parameters 5336/5337) or the tool spindle lost",

@@ -52,12 +52,15 @@ struct PolygonOut {
   bool wait = true;  // G50.2: the block ends once the polygon axis stands (P1 or no P)
 };
 // The channel's polygon axis (params 5310-5312): the feedback of its master spindle and of
-// itself, both spindles of the channel.
+// itself, a spindle of the channel or one of its rotary servo axes (`slave_axis`: slave_view is
+// then its slot, which the program does not move while it follows).
 struct PolygonSetup {
   std::uint32_t master = 0;  // the master spindle's axis id; 0: the channel has no polygon axis
   std::size_t master_view = 0;
   std::size_t slave_view = 0;
   double max_speed = 0.0;  // deg/s the polygon axis may turn at most (param 5312)
+  bool slave_axis = false;
+  bool no_wait = false;  // 5300.5: G51.2 ends without waiting for the polygon axis to lock
 };
 
 // The most points a cam table has: macro variables #1-#999 (spec dafeng L3048), the bound of
@@ -174,6 +177,9 @@ class CouplingRequest {
   // L2933-2939, param 5300.4 = 1: at once, decelerating); what to send, if anything.
   [[nodiscard]] std::optional<PolygonOut> polygon_on_reset(
       std::span<const AxisFeedbackView> feedback) noexcept;
+  // A G51.2 or G81.4 that ended without waiting (params 5300.5 / 5320.5 = 1) and whose slave
+  // is not locked yet: the next cutting block waits for it (spec dafeng L2917-2919, L3331-3333).
+  [[nodiscard]] bool lock_pending(const CouplingInputs& in) noexcept;
   [[nodiscard]] const SlotChange& slot_change() const noexcept { return change_; }
   [[nodiscard]] const CoordinationAlarm& alarm() const noexcept { return alarm_; }
 
@@ -186,7 +192,7 @@ class CouplingRequest {
   Start start_egb(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool spindle_done(const CouplingInputs& in) const noexcept;
   bool axis_done(const CouplingInputs& in) noexcept;
-  [[nodiscard]] bool polygon_done(const CouplingInputs& in) const noexcept;
+  bool polygon_done(const CouplingInputs& in) noexcept;
   [[nodiscard]] bool cam_done(const CouplingInputs& in) const noexcept;
   bool egb_done(const CouplingInputs& in) noexcept;
 
@@ -201,6 +207,9 @@ class CouplingRequest {
   EgbOut egb_{};
   bool egb_asked_ = false;  // the last G81.4 / G80.4 sent was a G81.4
   std::uint64_t egb_sent_cycle_ = 0;
+  // When a G51.2 / G81.4 was sent without waiting whose lock the next cutting block waits for.
+  std::optional<std::uint64_t> polygon_lock_due_;
+  std::optional<std::uint64_t> egb_lock_due_;
   std::uint32_t slave_ = 0;  // G51.4 / G50.4 Q: the slave's system number
   bool sent_ = false;
   std::uint64_t sent_cycle_ = 0;

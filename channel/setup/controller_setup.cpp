@@ -96,8 +96,9 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
     setup.egb.axial = ch.egb_axial != 0;
     setup.egb.no_wait = ch.egb_no_wait;
   }
-  // G51.2: the master spindle and the polygon axis are spindles of the channel (check_polygon),
-  // their feedback after the channel's axes.
+  // G51.2: the master spindle is a spindle of the channel, its feedback after the channel's
+  // axes; the polygon axis another spindle, or one of its own rotary axes, its slot its index
+  // (check_polygon).
   if (ch.polygon_master != 0) {
     const auto view_of = [&](int id) {
       for (std::size_t k = 0; k < layout.spindles.size(); ++k) {
@@ -110,6 +111,14 @@ ControllerLayout controller_layout_for(const config::MachineConfig& machine,
     setup.polygon = coordination::PolygonSetup{static_cast<std::uint32_t>(ch.polygon_master),
                                                view_of(ch.polygon_master),
                                                view_of(ch.polygon_slave), ch.polygon_max_rpm * 6.0};
+    setup.polygon.no_wait = ch.polygon_no_wait;
+    for (std::size_t k = 0; k < ch.axes.size() && k < axes.size(); ++k) {
+      if (axes[k]->id == ch.polygon_slave) {
+        setup.polygon.slave_view = k;
+        setup.polygon.slave_axis = true;
+        setup.slots[k].polygon = true;
+      }
+    }
   }
   return layout;
 }

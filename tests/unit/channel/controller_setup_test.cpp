@@ -111,5 +111,21 @@ TEST(ControllerSetup, ThePolygonAxisAndItsMasterAreTheChannelsSpindles) {
   EXPECT_EQ(controller_layout_for(twin, *twin.find_channel("CH1")).setup.polygon.master, 0U);
 }
 
+// polygon_servo_lathe.yaml: CH1's polygon axis is its third axis, C1, whose slot the program
+// does not move while it follows; S1's feedback comes after the axes.
+TEST(ControllerSetup, AServoPolygonAxisIsOneOfTheChannelsAxisSlots) {
+  const config::MachineConfig m = config::load_machine_file(
+      std::string(MCNC_SOURCE_DIR) + "/launch/machines/polygon_servo_lathe.yaml");
+  const ControllerLayout ch1 = controller_layout_for(m, *m.find_channel("CH1"));
+  ASSERT_EQ(ch1.axes.size(), 3U);
+  EXPECT_EQ(ch1.setup.polygon.master_view, 3U);
+  EXPECT_TRUE(ch1.setup.polygon.slave_axis);
+  EXPECT_EQ(ch1.setup.polygon.slave_view, 2U);
+  EXPECT_FALSE(ch1.setup.polygon.no_wait);
+  ASSERT_EQ(ch1.setup.slots.size(), 3U);
+  EXPECT_FALSE(ch1.setup.slots[0].polygon);
+  EXPECT_TRUE(ch1.setup.slots[2].polygon);
+}
+
 }  // namespace
 }  // namespace mcnc::channel

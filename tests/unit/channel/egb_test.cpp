@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -32,11 +33,11 @@ interp::InterpreterConfig xzc_channel() {
   return c;
 }
 
-ChannelSetup xzc_setup() {
+ChannelSetup xzc_setup(bool no_wait) {
   ChannelSetup s{kAxes, {0.001, 0.001, 0.001}, kDt};
   s.channel_id = 1;
   s.spindle_count = 1;
-  s.egb = coordination::EgbSetup{4, kAxes, kC, true, false};
+  s.egb = coordination::EgbSetup{4, kAxes, kC, true, no_wait};
   return s;
 }
 
@@ -45,8 +46,8 @@ ChannelSetup xzc_setup() {
 // when the channel's setpoint carries it.
 class EgbRig : public ChannelRig, public CouplingNodeRig<EgbOut> {
  public:
-  EgbRig()
-      : ChannelRig(xzc_channel(), alike_axes(kAxes, kDt), xzc_setup()),
+  explicit EgbRig(bool no_wait = false)
+      : ChannelRig(xzc_channel(), alike_axes(kAxes, kDt), xzc_setup(no_wait)),
         CouplingNodeRig<EgbOut>(4, kCatchUp) {
     feedback_ = standing_feedback(kAxes + 1, 1);
   }
@@ -66,6 +67,9 @@ class EgbRig : public ChannelRig, public CouplingNodeRig<EgbOut> {
     }
     for (std::size_t a = 0; a < kAxes; ++a) {
       if (out.setpoints[a].valid) {
+        if (feedback_[a].channel_cmd() != out.setpoints[a].pos) {
+          first_move[a] = first_move[a] == 0 ? cycle_ : first_move[a];
+        }
         feedback_[a].cmd = out.setpoints[a].pos + feedback_[a].superimposed;
       } else {
         feedback_[a].cmd = feedback_[a].channel_cmd() + feedback_[a].superimposed;
@@ -79,7 +83,8 @@ class EgbRig : public ChannelRig, public CouplingNodeRig<EgbOut> {
 
   std::uint64_t cycle_ = 0;
   std::uint64_t absorbed_at = 0;
-  std::vector<double> c_cmd;  // C as its node commands it, per cycle
+  std::array<std::uint64_t, kAxes> first_move{};  // the cycle each axis was first moved in
+  std::vector<double> c_cmd;                      // C as its node commands it, per cycle
   std::vector<AxisFeedbackView> feedback_;
 };
 
@@ -114,6 +119,20 @@ TEST(EgbChannel, ASecondG814IsRefusedAndTheGearKeepsRunning) {
   EXPECT_EQ(rig.alarm_lines, std::vector<int>{2});
   EXPECT_EQ(rig.sent.size(), 1U);
   EXPECT_EQ(rig.feedback_[0].cmd, 0.0);  // X never moved
+}
+
+// Param 5320.5 = 1 (spec dafeng L3331-3333): G81.4 does not wait for the work axis to lock,
+// the rapid after it runs at once, and the cutting block after that waits for the lock.
+TEST(EgbChannel, WithoutWaitTheNextCuttingBlockWaitsForTheLock) {
+  EgbRig rig(true);
+  rig.load("G81.4 T20 L1 R0\nG00 Z0.1\nG01 X10 F3000\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  ASSERT_GT(rig.locked_at, 0U);
+  ASSERT_GT(rig.first_move[1], 0U);
+  EXPECT_LT(rig.first_move[1], rig.locked_at);  // Z: while C catches up
+  EXPECT_GT(rig.first_move[0], rig.locked_at);  // X (G01): only once C was locked
+  EXPECT_EQ(rig.feedback_[0].cmd, 5.0);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,11 +30,12 @@ interp::InterpreterConfig xz_channel() {
   return c;
 }
 
-ChannelSetup xz_setup() {
+ChannelSetup xz_setup(bool no_wait) {
   ChannelSetup s{kAxes, {0.001, 0.001}, kDt};
   s.channel_id = 1;
   s.spindle_count = 2;
   s.polygon = coordination::PolygonSetup{3, kMaster, kSlave, 3000.0 * 6.0};
+  s.polygon.no_wait = no_wait;
   return s;
 }
 
@@ -41,8 +43,8 @@ ChannelSetup xz_setup() {
 // free kCatchUp cycles after G50.2.
 class PolygonRig : public ChannelRig, public CouplingNodeRig<PolygonOut> {
  public:
-  PolygonRig()
-      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup()),
+  explicit PolygonRig(bool no_wait = false)
+      : ChannelRig(xz_channel(), alike_axes(kAxes, kDt), xz_setup(no_wait)),
         CouplingNodeRig<PolygonOut>(3, kCatchUp) {
     feedback_ = standing_feedback(kAxes + 2, 1);
     feedback_[kMaster].vel = 3000.0;  // S1 turns at 500 rpm
@@ -59,6 +61,9 @@ class PolygonRig : public ChannelRig, public CouplingNodeRig<PolygonOut> {
         if (feedback_[a].act != out.setpoints[a].pos && first_move == 0) {
           first_move = cycle_;
         }
+        if (feedback_[a].act != out.setpoints[a].pos && first_move_of[a] == 0) {
+          first_move_of[a] = cycle_;
+        }
         feedback_[a].cmd = feedback_[a].act = out.setpoints[a].pos;
       }
     }
@@ -67,6 +72,7 @@ class PolygonRig : public ChannelRig, public CouplingNodeRig<PolygonOut> {
   }
 
   std::uint64_t first_move = 0;
+  std::array<std::uint64_t, kAxes> first_move_of{};  // X's, Z's
   std::uint64_t cycle_ = 0;
   std::vector<AxisFeedbackView> feedback_;
 };
@@ -123,6 +129,20 @@ TEST(PolygonChannel, ARefusedG512SendsNothingAndMovesNothing) {
     (void)rig.step();
   }
   EXPECT_EQ(rig.feedback_[0].cmd, 2.0);  // X stands where G00 X4 put it (radius)
+}
+
+// Param 5300.5 = 1 (spec dafeng L2917-2919): G51.2 does not wait for the polygon axis to lock,
+// the rapid after it runs at once, and the cutting block after that waits for the lock.
+TEST(PolygonChannel, WithoutWaitTheNextCuttingBlockWaitsForThePhase) {
+  PolygonRig rig(true);
+  rig.load("G51.2 P1 Q2\nG00 Z0.1\nG01 X10 F3000\nG50.2\nM30\n");
+  ASSERT_TRUE(rig.run_to_end());
+  EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
+  ASSERT_GT(rig.locked_at, 0U);
+  ASSERT_GT(rig.first_move_of[1], 0U);
+  EXPECT_LT(rig.first_move_of[1], rig.locked_at);  // Z: while T1 catches up
+  EXPECT_GT(rig.first_move_of[0], rig.locked_at);  // X (G01): only once T1 was in phase
+  EXPECT_EQ(rig.feedback_[0].cmd, 5.0);
 }
 
 }  // namespace

@@ -74,6 +74,20 @@ TEST(AxisNodeSetup, ThePolygonAxisFollowsItsMasterSpindleForItsChannel) {
   EXPECT_EQ(master.sync_master, 0U);
 }
 
+// polygon_servo_lathe.yaml (param 5311 naming a servo axis): C1's node holds the polygon
+// coupling to S1 and stays a servo axis, in CSP.
+TEST(AxisNodeSetup, AServoPolygonAxisFollowsItsMasterSpindleAsAServoAxis) {
+  const config::MachineConfig m = config::load_machine_file(
+      std::string(MCNC_SOURCE_DIR) + "/launch/machines/polygon_servo_lathe.yaml");
+  const config::AxisConfig& c1 = *m.find_axis("C1");
+  const axisnode::AxisNodeRoles r = axisnode::roles_of(m, c1, axisnode::drive_startup_of(c1));
+  EXPECT_TRUE(r.polygon);
+  EXPECT_FALSE(r.controller.spindle);
+  EXPECT_EQ(r.sync_master, static_cast<std::uint32_t>(m.find_axis("S1")->id));
+  EXPECT_EQ(r.sync_channel, static_cast<std::uint32_t>(m.find_channel("CH1")->id));
+  EXPECT_DOUBLE_EQ(r.spindle_coupling.max_acceleration, 7200.0);
+}
+
 // G10 L14 P10-P12: an axis with torque_mode gets the CST objects after the torque limit's, and
 // its node switches the drive's mode as its owner asks.
 TEST(AxisNodeSetup, ATorqueModeAxisMapsTheModeTheTargetTorqueAndTheSpeedLimit) {

@@ -354,6 +354,73 @@ TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG5
   EXPECT_EQ(n.core.standing().coupled_to, 0U);
 }
 
+// G51.2 with a rotary servo axis as the polygon axis (param 5311, decision 200): axis 1 of
+// channel 1 follows S1 (axis 3) at Q/P = 2 in CSP while the channel sends it no valid
+// setpoint, G50.2 slows it to rest within its acceleration, and it then holds where it stands
+// until the channel commands it there.
+TEST(AxisNode, AServoPolygonAxisFollowsItsMasterInsteadOfTheChannelAndStandsWhereG502LeftIt) {
+  AxisNodeRoles r = over_spindle_3();
+  r.polygon = true;
+  r.spindle_coupling = coupling::SpindleCouplingSetup{kCycle, 3600.0, 0.05, 1.0};
+  Node n(r);
+  std::uint64_t seq = 0;
+  double master = 0.0;
+  const double master_vel = 360.0;  // deg/s: the slave turns at 720 deg/s
+  double last_cmd = 5.0;
+  double stood = 0.0;
+  std::uint64_t coupled_at = 0;
+  std::uint64_t locked_at = 0;
+  std::uint64_t decoupled_at = 0;
+  for (std::uint64_t c = 0; c < 2800; ++c) {
+    if (c == 300 || c == 1600) {
+      AxisNodeEvent e;
+      e.kind = AxisNodeEvent::Kind::polygon_sync;
+      e.channel = 1;
+      e.seq = ++seq;
+      e.cycle = c;
+      e.sync_on = c == 300;
+      e.spindle = coupling::SpindleCouplingCommand{1, 2, 0.0};
+      n.core.on_event(e);
+    }
+    // The channel holds C (its slot follows) from G51.2 until it takes it back at 2300.
+    const bool valid = c < 300 || c >= 2300;
+    n.core.on_setpoint(1, 1, at(c, c >= 2300 ? stood : 5.0, valid), seq, writer(1));
+    n.core.on_sync_channel_status(1, c, seq, writer(1));
+    n.core.on_master_feedback(3, c, master, master_vel, master, writer(3));
+    master += master_vel * kCycle;
+    ASSERT_TRUE(n.core.ready(c + 1)) << c;
+    const auto& out = n.run(c + 1);
+    for (std::size_t k = 0; k < n.core.happening_count(); ++k) {
+      coupled_at = n.core.happenings()[k].kind == Happening::polygon_coupled ? c + 1 : coupled_at;
+      decoupled_at =
+          n.core.happenings()[k].kind == Happening::polygon_decoupled ? c + 1 : decoupled_at;
+    }
+    EXPECT_EQ(out.mode, axisnode::kModeCsp) << c;  // a servo axis: positions, never a speed
+    locked_at = locked_at == 0 && n.core.standing().coupling_locked ? c + 1 : locked_at;
+    if (locked_at != 0 && c > locked_at &&
+        c < 1600) {  // locked: twice the master's angle of this cycle
+      const double off = std::remainder(out.cmd - 2.0 * master, 360.0);
+      ASSERT_NEAR(off, 0.0, 1e-6) << c;
+      EXPECT_EQ(n.core.standing().coupled_to, 3U);
+      EXPECT_TRUE(n.core.standing().coupling_locked);
+    }
+    if (c == 2299) {
+      stood = out.cmd;
+      EXPECT_EQ(n.core.standing().coupled_to, 0U);
+    }
+    if (c > 1900) {
+      ASSERT_EQ(out.cmd, last_cmd) << c;  // stands, held, then commanded where it stands
+    }
+    last_cmd = out.cmd;
+  }
+  EXPECT_EQ(coupled_at, 301U);
+  EXPECT_GT(locked_at, 500U);  // 0.2 s to reach 720 deg/s, then the phase
+  EXPECT_LT(locked_at, 1500U);
+  // From 720 deg/s to rest within 3600 deg/s^2: 0.2 s.
+  EXPECT_NEAR(static_cast<double>(decoupled_at - 1601) * kCycle, 0.2, 0.01);
+  EXPECT_GT(stood, 5.0 + 360.0);
+}
+
 namespace {
 
 // G81.4 (spec dafeng §2.6.11): axis 1 of channel 1 is the gear box's work axis, the tool

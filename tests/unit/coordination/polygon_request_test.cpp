@@ -126,5 +126,56 @@ TEST(PolygonRequest, AResetReleasesAPolygonAxisThatFollowsOrWasAskedTo) {
   EXPECT_TRUE(r.request.polygon_on_reset(r.feedback).has_value());
 }
 
+// A servo polygon axis (param 5311, decision 200): C in slot 1 of a channel with X, C and the
+// master S1 (id 3, view 2). The slot is the master's from the send, another channel's C is
+// refused, G50.2 P0 waits for it to stand (decision 201) and hands over where it stands, and
+// with 5300.5 = 1 G51.2 ends at once while the lock stays due until the feedback shows it.
+TEST(PolygonRequest, AServoPolygonAxisIsTheMastersUntilItStandsAgain) {
+  CouplingSetup s = setup();
+  s.polygon = PolygonSetup{3, 2, 1, 3000.0 * 6.0, true};
+  CouplingRequest request(s);
+  std::array<AxisFeedbackView, 3> feedback{};
+  std::array<SlotUse, 2> uses{SlotUse::commanded, SlotUse::away};
+  const auto step = [&](std::uint64_t cycle) {
+    return request.step(CouplingInputs{cycle, feedback, uses});
+  };
+  request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(step(1), CouplingStep::alarm);
+  EXPECT_STREQ(request.alarm().text.data(),
+               "G51.2: the polygon axis is not this channel's now (G141 first)");
+  uses[1] = SlotUse::commanded;
+  request.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(step(10), CouplingStep::send);
+  EXPECT_EQ(request.slot_change().to, SlotChange::To::follows);
+  EXPECT_EQ(request.slot_change().slot, 1U);
+  uses[1] = SlotUse::follows;
+  feedback[1].coupled_to = 3;
+  feedback[1].coupling_locked = true;
+  EXPECT_EQ(step(12), CouplingStep::done);
+  // G50.2 P0: waits until C stands free, then the channel commands it at 1234.5.
+  request.begin_polygon(PolygonOut{false, 1, 1, 0.0, false});
+  ASSERT_EQ(step(20), CouplingStep::send);
+  feedback[1].cmd = 1234.5;
+  EXPECT_EQ(step(22), CouplingStep::waiting);
+  feedback[1].coupled_to = 0;
+  feedback[1].coupling_locked = false;
+  ASSERT_EQ(step(30), CouplingStep::done);
+  EXPECT_EQ(request.slot_change().to, SlotChange::To::commanded);
+  EXPECT_EQ(request.slot_change().at, 1234.5);
+
+  s.polygon.no_wait = true;
+  CouplingRequest no_wait(s);
+  uses[1] = SlotUse::commanded;
+  no_wait.begin_polygon(PolygonOut{true, 1, 2, 0.0, true});
+  ASSERT_EQ(no_wait.step(CouplingInputs{40, feedback, uses}), CouplingStep::send);
+  EXPECT_EQ(no_wait.step(CouplingInputs{41, feedback, uses}), CouplingStep::done);
+  EXPECT_TRUE(no_wait.lock_pending(CouplingInputs{41, feedback, uses}));
+  feedback[1].coupled_to = 3;
+  EXPECT_TRUE(no_wait.lock_pending(CouplingInputs{42, feedback, uses}));  // catching up
+  feedback[1].coupling_locked = true;
+  EXPECT_FALSE(no_wait.lock_pending(CouplingInputs{50, feedback, uses}));
+  EXPECT_FALSE(no_wait.lock_pending(CouplingInputs{51, feedback, uses}));  // once locked: done
+}
+
 }  // namespace
 }  // namespace mcnc::coordination

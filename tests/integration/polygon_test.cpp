@@ -8,7 +8,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -153,6 +156,89 @@ TEST(PolygonTurning, ARefusedG512MovesNothing) {
     ASSERT_LE(std::fabs(cmd), 25.0 + 1e-9) << "cycle " << cycle;
   }
   EXPECT_NEAR(x1.rbegin()->second, 25.0, 1e-6);
+}
+
+// Param 5311 naming a rotary servo axis (decision 200): on polygon_servo_lathe.yaml C1 turns
+// twice S1 while its node follows S1, whatever the channel sent it before, and after G50.2 the
+// channel commands it where it stood: N80's H90 positions it 90 degrees on from there.
+TEST(PolygonTurning, AServoDiscFollowsTheSpindleAndIsPositionedFromWhereItStood) {
+  TestMachine machine("polygon_servo_lathe.yaml", 219);
+  const auto trace = run_to_clean_end(machine, "launch/programs/polygon_servo_turn.nc",
+                                      {"--trace-pos-every", "1"});
+  ASSERT_FALSE(trace.empty());
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  const auto couples = events(trace, "couple", "C1");
+  ASSERT_EQ(couples.size(), 1U);
+  EXPECT_EQ(couples[0]["kind"], "polygon");
+  EXPECT_EQ(couples[0]["master"], "S1");
+  const auto decouples = events(trace, "decouple", "C1");
+  ASSERT_EQ(decouples.size(), 1U);
+
+  const auto block = block_starts(trace);
+  const auto s1 = axis_positions(trace, "S1", "act");
+  const auto c1 = axis_positions(trace, "C1", "cmd");
+  // N40-N60 cut while the disc is locked (G51.2 ended only then), up to G50.2 (N70).
+  int compared = 0;
+  for (std::uint64_t c = block.at(6); c < block.at(9); ++c) {
+    ASSERT_NEAR(wrap(2.0 * s1.at(c) - c1.at(c)), 0.0, 0.01) << "cycle " << c;
+    ++compared;
+  }
+  EXPECT_GT(compared, 500);
+  // G50.2 slows the disc from 3600 deg/s to rest within its 7200 deg/s^2 (0.5 s), and N80 starts
+  // only then. From there C1 moves only as N80's rapid moves it (100 rpm: 1.2 deg a cycle), and
+  // ends 90 degrees on from where it stood: the channel took it over there, without a jump.
+  const std::uint64_t free = decouples[0]["cycle"].get<std::uint64_t>();
+  EXPECT_NEAR((free - block.at(9)) * 0.002, 0.5, 0.03);
+  EXPECT_GE(block.at(10), free);
+  const double stood = c1.at(free);
+  EXPECT_GT(stood, 3000.0);
+  for (auto it = c1.upper_bound(free); it != c1.end(); ++it) {
+    ASSERT_LE(std::fabs(it->second - std::prev(it)->second), 1.2 + 1e-6) << "cycle " << it->first;
+  }
+  EXPECT_NEAR(c1.rbegin()->second, stood + 90.0, 1e-3);
+  for (const auto& p : events(trace, "pos", "CH1")) {
+    if (p["axis"] == "C1" && p["cycle"].get<std::uint64_t>() > block.at(10)) {
+      EXPECT_NEAR(p["cmd"].get<double>(), stood + 90.0, 1e-3) << p;
+    }
+  }
+}
+
+// Param 5300.5 = 1 (decision 202): G51.2 (N30, with S1 at speed) ends at once, N40's rapid runs
+// while the servo disc catches up, and N50's cut starts only once the disc is in phase.
+TEST(PolygonTurning, WithoutWaitTheRapidRunsWhileTheDiscCatchesUpAndTheCutWaits) {
+  TestMachine machine("polygon_servo_lathe.yaml", 223);
+  const std::string yaml = slurp(machine.path());
+  std::ofstream(machine.path()) << std::regex_replace(yaml, std::regex("max_rpm: 1500\\}"),
+                                                      "max_rpm: 1500, no_wait: true}");
+  const auto trace = run_to_clean_end(
+      machine, "tests/integration/programs/polygon/servo_no_wait.nc", {"--trace-pos-every", "1"});
+  ASSERT_FALSE(trace.empty());
+  EXPECT_TRUE(events(trace, "alarm").empty());
+  const auto couples = events(trace, "couple", "C1");
+  ASSERT_EQ(couples.size(), 1U);
+  const auto block = block_starts(trace);
+  const auto s1 = axis_positions(trace, "S1", "act");
+  const auto c1 = axis_positions(trace, "C1", "cmd");
+  // The disc is in phase (within its node's 0.05 degrees) from `locked` to G50.2 (N60).
+  const std::uint64_t coupled = couples[0]["cycle"].get<std::uint64_t>();
+  std::uint64_t locked = coupled;
+  for (std::uint64_t c = coupled; c < block.at(8); ++c) {
+    locked = std::fabs(wrap(2.0 * s1.at(c) - c1.at(c))) > 0.05 ? c + 1 : locked;
+  }
+  // From rest to 3600 deg/s within 7200 deg/s^2 takes half a second at least.
+  EXPECT_GT(locked, coupled + 250);
+  EXPECT_LT(block.at(6), coupled + 10);  // the rapid did not wait
+  EXPECT_GE(block.at(7), locked);        // the cut did, and starts as the channel sees the lock
+  EXPECT_LT(block.at(7), locked + 10);
+  std::uint64_t z_there = 0;  // N40's Z1 at its end point
+  for (const auto& [c, z] : axis_positions(trace, "Z1", "cmd")) {
+    z_there = z_there == 0 && std::fabs(z - 1.0) < 1e-9 ? c : z_there;
+  }
+  ASSERT_GT(z_there, 0U);
+  EXPECT_LT(z_there, locked - 100);  // the rapid ended long before: the cut waited for the disc
+  for (std::uint64_t c = block.at(7); c < block.at(8); ++c) {
+    ASSERT_NEAR(wrap(2.0 * s1.at(c) - c1.at(c)), 0.0, 0.01) << "cycle " << c;
+  }
 }
 
 }  // namespace

@@ -1585,7 +1585,7 @@ axes:
   const MachineConfig config = parse_machine_yaml(
       with(", drive: {max_velocity: 12000}", ", polygon: {master: S1, slave: C1}"));
   EXPECT_EQ(config.channels[0].polygon_master, 2);
-  EXPECT_EQ(config.channels[0].polygon_slave, 6);  // C1, the last axis of the file
+  EXPECT_EQ(config.channels[0].polygon_slave, 6);         // C1, the last axis of the file
   EXPECT_EQ(config.channels[0].polygon_max_rpm, 2000.0);  // its drive's 12000 deg/s
   EXPECT_FALSE(config.channels[0].polygon_no_wait);
   // Param 5300.5 = 1: G51.2 does not wait for the lock, the next cutting block does.
@@ -1599,22 +1599,23 @@ axes:
   EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C2}"), &what),
             "channels[0].polygon.slave");
   EXPECT_NE(what.find("C2 is not an axis of channel CH1"), std::string::npos) << what;
-  EXPECT_EQ(rejection_path(with(", soft_limits: [-10, 10]", ", polygon: {master: S1, slave: C1}"),
-                           &what),
-            "channels[0].polygon.slave");
+  EXPECT_EQ(
+      rejection_path(with(", soft_limits: [-10, 10]", ", polygon: {master: S1, slave: C1}"), &what),
+      "channels[0].polygon.slave");
   EXPECT_NE(what.find("turns without end"), std::string::npos) << what;
   EXPECT_EQ(rejection_path(with(", axis_sync: {}", ", polygon: {master: S1, slave: C1}"), &what),
             "channels[0].polygon.slave");
   EXPECT_NE(what.find("may follow another axis"), std::string::npos) << what;
-  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C1}, cam: {master: S1, slave: C1}"),
-                           &what),
-            "channels[0].cam.slave");
+  EXPECT_EQ(
+      rejection_path(with("", ", polygon: {master: S1, slave: C1}, cam: {master: S1, slave: C1}"),
+                     &what),
+      "channels[0].cam.slave");
   EXPECT_NE(what.find("C1 is the channel's polygon axis"), std::string::npos) << what;
-  EXPECT_EQ(rejection_path(with("", ", polygon: {master: S1, slave: C1}, egb: {tool: S1, work: C1}"),
-                           &what),
+  EXPECT_EQ(rejection_path(
+                with("", ", polygon: {master: S1, slave: C1}, egb: {tool: S1, work: C1}"), &what),
             "channels[0].egb.work");
   EXPECT_NE(what.find("C1 is the channel's polygon axis"), std::string::npos) << what;
-  }
+}
 
 }  // namespace
 }  // namespace mcnc::config

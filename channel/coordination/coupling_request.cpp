@@ -93,7 +93,7 @@ CouplingStep CouplingRequest::step(const CouplingInputs& in) noexcept {
   if (kind_ == CouplingKind::polygon && !polygon_.on && !polygon_.wait &&
       !setup_.polygon.slave_axis) {
     // G50.2 P0: the program goes on while the spindle slows down. A servo polygon axis is
-    // waited for: the program goes on from where it stands (decision 201).
+    // waited for: the program goes on from where it stands (decision 158).
     return CouplingStep::done;
   }
   if (kind_ == CouplingKind::egb && egb_.on && setup_.egb.no_wait) {

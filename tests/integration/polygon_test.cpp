@@ -158,7 +158,7 @@ TEST(PolygonTurning, ARefusedG512MovesNothing) {
   EXPECT_NEAR(x1.rbegin()->second, 25.0, 1e-6);
 }
 
-// Param 5311 naming a rotary servo axis (decision 200): on polygon_servo_lathe.yaml C1 turns
+// Param 5311 naming a rotary servo axis (decision 157): on polygon_servo_lathe.yaml C1 turns
 // twice S1 while its node follows S1, whatever the channel sent it before, and after G50.2 the
 // channel commands it where it stood: N80's H90 positions it 90 degrees on from there.
 TEST(PolygonTurning, AServoDiscFollowsTheSpindleAndIsPositionedFromWhereItStood) {
@@ -203,7 +203,7 @@ TEST(PolygonTurning, AServoDiscFollowsTheSpindleAndIsPositionedFromWhereItStood)
   }
 }
 
-// Param 5300.5 = 1 (decision 202): G51.2 (N30, with S1 at speed) ends at once, N40's rapid runs
+// Param 5300.5 = 1 (decision 159): G51.2 (N30, with S1 at speed) ends at once, N40's rapid runs
 // while the servo disc catches up, and N50's cut starts only once the disc is in phase.
 TEST(PolygonTurning, WithoutWaitTheRapidRunsWhileTheDiscCatchesUpAndTheCutWaits) {
   TestMachine machine("polygon_servo_lathe.yaml", 223);

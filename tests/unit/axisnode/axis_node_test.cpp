@@ -354,7 +354,7 @@ TEST(AxisNode, ACamSlaveAddsTheLiftAtItsMastersAngleToTheChannelsSetpointUntilG5
   EXPECT_EQ(n.core.standing().coupled_to, 0U);
 }
 
-// G51.2 with a rotary servo axis as the polygon axis (param 5311, decision 200): axis 1 of
+// G51.2 with a rotary servo axis as the polygon axis (param 5311, decision 157): axis 1 of
 // channel 1 follows S1 (axis 3) at Q/P = 2 in CSP while the channel sends it no valid
 // setpoint, G50.2 slows it to rest within its acceleration, and it then holds where it stands
 // until the channel commands it there.

@@ -137,7 +137,7 @@ TEST(PolygonServoChannel, AMoveOfCWhileItFollowsIsAnAlarmAndG502P0Waits) {
   EXPECT_TRUE(rig.alarms.empty()) << rig.alarm_text;
   ASSERT_EQ(rig.sent.size(), 2U);
   EXPECT_FALSE(rig.sent[1].wait);
-  // X moved only once C stood free (decision 201): the program knows where C is.
+  // X moved only once C stood free (decision 158): the program knows where C is.
   ASSERT_GT(rig.first_move, rig.sent_at[1] + kCatchUp);
   EXPECT_FALSE(rig.c_coupled.at(rig.first_move));
 }

@@ -1563,7 +1563,7 @@ axes:
 }
 
 // Param 5311 may name a servo axis too (spec dafeng L2897-2899): one of the channel's own rotary
-// axes, which the channel stops commanding while it follows (decision 200).
+// axes, which the channel stops commanding while it follows (decision 157).
 TEST(MachineConfig, PolygonAxisMayBeARotaryServoAxisOfTheChannel) {
   const std::string base = R"(
 machine: {name: m, cycle_us: 2000}

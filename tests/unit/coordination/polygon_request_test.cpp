@@ -126,9 +126,9 @@ TEST(PolygonRequest, AResetReleasesAPolygonAxisThatFollowsOrWasAskedTo) {
   EXPECT_TRUE(r.request.polygon_on_reset(r.feedback).has_value());
 }
 
-// A servo polygon axis (param 5311, decision 200): C in slot 1 of a channel with X, C and the
+// A servo polygon axis (param 5311, decision 157): C in slot 1 of a channel with X, C and the
 // master S1 (id 3, view 2). The slot is the master's from the send, another channel's C is
-// refused, G50.2 P0 waits for it to stand (decision 201) and hands over where it stands, and
+// refused, G50.2 P0 waits for it to stand (decision 158) and hands over where it stands, and
 // with 5300.5 = 1 G51.2 ends at once while the lock stays due until the feedback shows it.
 TEST(PolygonRequest, AServoPolygonAxisIsTheMastersUntilItStandsAgain) {
   CouplingSetup s = setup();

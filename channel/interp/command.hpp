@@ -95,6 +95,10 @@ struct ModalState {
 inline constexpr std::string_view kMdiName = "MDI";
 
 struct Command {
+  // User-provided, so that value-initialisation (`emplace_back()`, `Command{}`) runs the member
+  // initialisers only, without zeroing all of the object first: one is made per command.
+  Command() noexcept {}  // NOLINT(modernize-use-equals-default)
+
   Op op = Op::rapid;
   std::uint64_t n = 0;                // 1-based sequence number of the command in this run
   int line = 0;                       // 1-based line of the block in its file

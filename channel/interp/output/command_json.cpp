@@ -164,37 +164,52 @@ char* fixed_shortest(char* out, double v) {
   return nullptr;
 }
 
-// Shortest round-trip form, after rounding to 1e-9 so that binary noise (0.30000000000000004)
-// does not reach the output; -0 prints as 0.
 // The decimal digits of `u` at `out` (room for 10); the end.
 char* digits_of(char* out, std::uint32_t u) {
   return std::to_chars(out, out + 10, u).ptr;
 }
 
-void number(Writer& out, double v) {
+// A whole number below 1e5 prints as its digits: fixed_shortest's text, as five digits are
+// never longer than the scientific form. nullptr: `r` is not such a number.
+char* small_whole_at(char* at, double r) {
+  if (!(std::fabs(r) < 1e5)) {
+    return nullptr;
+  }
+  const auto whole = static_cast<std::int32_t>(r);
+  if (static_cast<double>(whole) != r) {
+    return nullptr;
+  }
+  if (whole < 0) {
+    *at++ = '-';
+  }
+  return digits_of(at, static_cast<std::uint32_t>(whole < 0 ? -whole : whole));
+}
+
+// The text of `v` at `at` (room for kNumberRoom bytes), its end: the shortest round-trip form,
+// after rounding to 1e-9 so that binary noise (0.30000000000000004) does not reach the output;
+// -0 prints as 0.
+constexpr std::size_t kNumberRoom = 40;
+char* number_at(char* at, double v) {
+  // A whole v below 1e5 first: v * 1e9 is then a whole number below 2^53, exact, so the
+  // rounding below would give v back (and -0 prints as 0 either way).
+  if (char* end = small_whole_at(at, v)) {
+    return end;
+  }
   double r = round_half_away(v * 1e9) / 1e9;
   if (r == 0.0 || !std::isfinite(r)) {
     r = 0.0;
   }
-  char* const buf = out.room(40);
-  // A whole number below 1e5 prints as its digits: fixed_shortest's text, as five digits are
-  // never longer than the scientific form.
-  if (std::fabs(r) < 1e5) {
-    const auto whole = static_cast<std::int32_t>(r);
-    if (static_cast<double>(whole) == r) {
-      char* at = buf;
-      if (whole < 0) {
-        *at++ = '-';
-      }
-      out.commit(digits_of(at, static_cast<std::uint32_t>(whole < 0 ? -whole : whole)));
-      return;
-    }
+  if (char* end = small_whole_at(at, r)) {
+    return end;
   }
-  char* end = fixed_shortest(buf, r);
-  if (end == nullptr) {
-    end = std::to_chars(buf, buf + 40, r).ptr;
+  if (char* end = fixed_shortest(at, r)) {
+    return end;
   }
-  out.commit(end);
+  return std::to_chars(at, at + kNumberRoom, r).ptr;
+}
+
+void number(Writer& out, double v) {
+  out.commit(number_at(out.room(kNumberRoom), v));
 }
 
 void integer(Writer& out, long long v) {
@@ -260,13 +275,16 @@ void axis_name(Writer& out, char axis) {
 void positions(Writer& out, const AxisVector& v, const std::vector<AxisConfig>& axes) {
   out += '{';
   for (std::size_t i = 0; i < axes.size(); ++i) {
+    // The separator, the name and the number in one piece of room: this runs per axis.
+    char* at = out.room(5 + kNumberRoom);
     if (i > 0) {
-      out += ',';
+      *at++ = ',';
     }
-    out += '"';
-    out += axes[i].name;
-    out += "\":";
-    number(out, v[i]);
+    at[0] = '"';
+    at[1] = axes[i].name;
+    at[2] = '"';
+    at[3] = ':';
+    out.commit(number_at(at + 4, v[i]));
   }
   out += '}';
 }

@@ -17,6 +17,7 @@
 #include "channel/interp/normal_direction.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
+#include "channel/interp/state/hole_mode.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
 #include "channel/interp/transform/cylindrical_interpolation.hpp"
 #include "channel/interp/transform/plane_rotation.hpp"
@@ -549,27 +550,7 @@ class ProgramRun final : public macro::VariableProvider {
   };
   ExtendedThread extended_thread_;
   // The modal hole cycle (group 10): its code and the amounts later blocks keep.
-  struct HoleMode {
-    GFunction function = GFunction::unknown;
-    int code10 = 0;
-    bool has_r = false;
-    double r_level = 0.0;  // physical, on the drilling axis (machine)
-    bool has_bottom = false;
-    double bottom = 0.0;
-    double peck = 0.0;
-    double retract = -1.0;  // gsk R: the high-speed back-off (-1: the parameter)
-    int peck_type = -1;     // gsk J: 0 high-speed, 1 deep (-1: by the code)
-    double dwell_s = 0.0;
-    double lead = 0.0;
-    int clamp = 0;
-    int repeat = 1;
-    // The mill: the initial level (where the drilling axis stood when the cycle began, G98's
-    // return level) and Q of G76/G87, the shift off the wall.
-    bool has_initial = false;
-    double initial = 0.0;
-    double shift = 0.0;
-  };
-  HoleMode hole_;
+  state::HoleMode hole_;
   int contour_motions_ = 0;                   // motion blocks of the contour so far
   std::array<bool, 2> contour_first_axes_{};  // plane axes the first one gives
   Command::Compensation compensation_ = Command::Compensation::off;  // G40/G41/G42

@@ -642,13 +642,13 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   for (int i = 0; i < ng; ++i) {
     group10 = group10 || gs[static_cast<std::size_t>(i)].info.group == 10;
   }
-  if (motion != GFunction::unknown && !group10 && hole_.function != GFunction::unknown) {
-    hole_ = HoleMode{};  // a group 01 code ends the hole cycle (spec L1938)
+  if (motion != GFunction::unknown && !group10 && hole_.active()) {
+    hole_ = state::HoleMode{};  // a group 01 code ends the hole cycle (spec L1938)
     modal_codes_[10] = 80.0;
   }
   // A hole block: the cycle's code, or positioning words while the cycle is modal.
-  bool hole_block = group10 && hole_.function != GFunction::unknown;
-  if (!hole_block && hole_.function != GFunction::unknown && motion == GFunction::unknown &&
+  bool hole_block = group10 && hole_.active();
+  if (!hole_block && hole_.active() && motion == GFunction::unknown &&
       primary == GFunction::unknown) {
     for (std::size_t i = 0; i < config_.axes.size() && !hole_block; ++i) {
       const AxisWords aw = axis_words(static_cast<int>(i));
@@ -846,7 +846,7 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       modal_codes_[7] = value;
       return true;
     case GFunction::drill_cancel:
-      hole_ = HoleMode{};
+      hole_ = state::HoleMode{};
       modal_codes_[10] = value;
       return true;
     case GFunction::work_system:

@@ -62,7 +62,7 @@ bool ProgramRun::hole_cycle_block(bool group10_in_block, bool motion_code_in_blo
   if (group10_in_block) {
     return true;
   }
-  return hole_.function != GFunction::unknown && !motion_code_in_block;
+  return hole_.active() && !motion_code_in_block;
 }
 
 bool ProgramRun::hole_axes(std::array<int, 2>& plane, int& drill, int column) {
@@ -90,7 +90,7 @@ bool ProgramRun::hole_axes(std::array<int, 2>& plane, int& drill, int column) {
 bool ProgramRun::take_hole_words(int column) {
   const bool gsk = config_.dialect == Dialect::gsk;
   const bool mill = config_.dialect == Dialect::fanuc_mill;
-  HoleMode& h = hole_;
+  state::HoleMode& h = hole_;
   const bool tap = hole_kind(h.function) == cycles::HoleKind::tap;
   std::array<int, 2> plane{};
   int drill = -1;
@@ -208,7 +208,7 @@ bool ProgramRun::run_hole_cycle(int column) {
   if (!hole_axes(axes, drill_axis, column)) {
     return false;
   }
-  HoleMode& h = hole_;
+  state::HoleMode& h = hole_;
   const bool mill = config_.dialect == Dialect::fanuc_mill;
   if (h.function == GFunction::mill_bore_manual) {
     return fail(alarm::kNotInThisVersion,

@@ -618,7 +618,7 @@ bool ProgramRun::jump_to_sequence(std::int64_t n, parse::GotoDirection direction
 
 bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, int column,
                                  bool t_call) {
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids("a subprogram call (M98, T or M code)", column);  // gsk A.6.30 rule 4
   }
   if (config_.dialect == Dialect::gsk && compensation_ != Command::Compensation::off && !t_call) {
@@ -653,7 +653,7 @@ bool ProgramRun::call_subprogram(int program, int start_sequence, int repeat, in
 
 bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::MacroValue, 33>& args,
                             int column, bool modal) {
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids("a macro call (G65, G66, G/M-code macros)", column);
   }
   if (macro_depth_ >= config_.max_macro_nesting) {
@@ -687,7 +687,7 @@ bool ProgramRun::call_macro(int program, int repeat, const std::array<macro::Mac
 }
 
 bool ProgramRun::return_from_subprogram(std::int64_t return_sequence, int column) {
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids("M99", column);
   }
   if (frames_.size() == 1 && (called_ || mdi_)) {

@@ -17,6 +17,7 @@
 #include "channel/interp/normal_direction.hpp"
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
+#include "channel/interp/state/contour_capture.hpp"
 #include "channel/interp/state/hole_mode.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
 #include "channel/interp/transform/cylindrical_interpolation.hpp"
@@ -388,11 +389,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool fail_path(const path::PathError& e, int column);
 
   // ---- the P..Q contour of G70-G73 (program_run_contour.cpp)
-  enum class ContourMode : std::uint8_t {
-    none,
-    finish,   // G70: the blocks run as written, F S T effective
-    capture,  // G71-G73: the blocks are read for their geometry; F S T M are ignored
-  };
+  using ContourMode = state::ContourMode;
   struct BlockContext {  // the executing block's state, kept while the contour's blocks run
     const parse::Line* line = nullptr;
     const std::string* file = nullptr;
@@ -527,10 +524,7 @@ class ProgramRun final : public macro::VariableProvider {
   std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
   double feed_ = 0.0;
   ModalCall modal_call_;
-  ContourMode contour_mode_ = ContourMode::none;
-  std::vector<int> contour_lines_;  // the program line of each captured contour element
-  int contour_first_ = 0;           // the last captured contour's line range (for the resume point)
-  int contour_last_ = 0;
+  state::ContourCapture contour_;  // the P..Q contour of G70-G73
   // The modal amounts of the cycles' first blocks (G71 U R, G73 U W R, G74 R, G76 P Q R).
   CycleDefaults cycle_memory_;
   // GSK G78's first block (gsk A.6.33), kept for the blocks that follow: m (constant-distance
@@ -551,8 +545,6 @@ class ProgramRun final : public macro::VariableProvider {
   ExtendedThread extended_thread_;
   // The modal hole cycle (group 10): its code and the amounts later blocks keep.
   state::HoleMode hole_;
-  int contour_motions_ = 0;                   // motion blocks of the contour so far
-  std::array<bool, 2> contour_first_axes_{};  // plane axes the first one gives
   Command::Compensation compensation_ = Command::Compensation::off;  // G40/G41/G42
   int idle_blocks_ = 0;  // blocks without a move in a row under compensation
   // The moves of a cycle are not compensated again: G71-G73 rough the compensated contour,

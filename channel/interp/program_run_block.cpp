@@ -399,13 +399,13 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   if (words_.empty()) {
     return true;
   }
-  if (contour_mode_ == ContourMode::none) {
+  if (!contour_.active()) {
     block_start_ = machine_;  // a G70-G73 contour's blocks belong to their cycle's block
   }
   block_barrier_ = false;
   block_moved_ = false;
   block_exact_stop_ = false;
-  if (frame_active() && contour_mode_ == ContourMode::none) {
+  if (frame_active() && !contour_.active()) {
     // Offsets written since the last block (G10, #2001, #5221 ...); not inside a G70-G73
     // contour, whose moves are read back in the frame before they go out.
     rebuild_frame();
@@ -629,7 +629,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (ignore_work_system && g.info.group == 14) {
       continue;
     }
-    if (contour_mode_ == ContourMode::capture && g.info.group == 2) {
+    if (contour_.capturing() && g.info.group == 2) {
       continue;  // G96/G97 in a G71-G73 contour are the finishing pass's (spec L1527)
     }
     if (g.info.group != 0 && g.info.group != 1 && g.info.function != primary &&
@@ -671,7 +671,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   // G71-G73 read the contour's geometry only: its F, S, T and M codes are the finishing pass's
   // (spec L1524-1530); the calls among them are refused by the calls themselves.
-  if (contour_mode_ == ContourMode::capture) {
+  if (contour_.capturing()) {
     for (BlockWord& w : words_) {
       const char c = w.address.first;
       if (w.address.second == 0 && !w.address.comma && (c == 'F' || c == 'S' || c == 'T')) {
@@ -709,7 +709,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   bool spindle_words = false;
   bool m_words = false;
-  const bool capture = contour_mode_ == ContourMode::capture;
+  const bool capture = contour_.capturing();
   for (const BlockWord& w : words_) {
     if (capture) {
       break;
@@ -786,7 +786,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   // Under compensation the look-ahead needs moves: too many blocks in a row without one leave
   // it blind (spec L3735-3740: 4 of 5; gsk A.6.22 rule 1: 7).
-  if (compensation_ != Command::Compensation::off && contour_mode_ != ContourMode::capture) {
+  if (compensation_ != Command::Compensation::off && !contour_.capturing()) {
     idle_blocks_ = block_moved_ ? 0 : idle_blocks_ + 1;
     const int limit = config_.compensation_idle_blocks > 0 ? config_.compensation_idle_blocks
                       : config_.dialect == Dialect::gsk    ? 7

@@ -89,13 +89,11 @@ bool ProgramRun::run_contour(int first, int last, ContourMode mode, int column) 
   const std::size_t depth = frames_.size();
   const int resume = frames_.back().pc;
   BlockContext saved = save_block();
-  const ContourMode outer = contour_mode_;
+  const ContourMode outer = contour_.mode;
   if (outer != ContourMode::none) {
     return contour_forbids("a G70-G73 cycle", column);
   }
-  contour_mode_ = mode;
-  contour_motions_ = 0;
-  contour_first_axes_ = {false, false};
+  contour_.begin(mode);
   frames_.back().pc = first;
   bool ok = true;
   for (int steps = 0; ok && !alarm_; ++steps) {
@@ -132,7 +130,7 @@ bool ProgramRun::run_contour(int first, int last, ContourMode mode, int column) 
       break;
     }
   }
-  contour_mode_ = outer;
+  contour_.mode = outer;
   if (alarm_) {
     return false;
   }
@@ -178,8 +176,8 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   if (!find_contour(code, first, last, column)) {
     return false;
   }
-  contour_first_ = first;
-  contour_last_ = last;
+  contour_.first = first;
+  contour_.last = last;
   const AxisVector start = machine_;
   const GFunction motion = motion_;
   const double motion_code = modal_codes_[1];
@@ -187,11 +185,11 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   if (!run_contour(first, last, ContourMode::capture, column)) {
     return false;
   }
-  type2 = contour_first_axes_[0] && contour_first_axes_[1];
+  type2 = contour_.type2();
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
   contour.clear();
-  contour_lines_.clear();
+  contour_.lines.clear();
   // Nose compensation of the contour (spec L3743: active in G70-G73): the side, radius and tip
   // in effect at the cycle, or of the first compensated contour block.
   Command::Compensation side = compensation_;
@@ -234,7 +232,7 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
     m.feed = c.feed;
     m.source = static_cast<int>(contour.size());
     contour.push_back(m);
-    contour_lines_.push_back(c.line);
+    contour_.lines.push_back(c.line);
   }
   out_.resize(from);
   machine_ = start;

@@ -137,7 +137,7 @@ bool ProgramRun::run_rough_cycle(GFunction f, int column) {
           cycles::expand_rough_turning({machine_[a], machine_[b]}, contour, p, moves)) {
     return fail_path(*e, column);
   }
-  return run_contour_cycle(moves, axes, contour_first_, contour_last_);
+  return run_contour_cycle(moves, axes, contour_.first, contour_.last);
 }
 
 bool ProgramRun::run_pattern_cycle(int column) {
@@ -198,7 +198,7 @@ bool ProgramRun::run_pattern_cycle(int column) {
           cycles::expand_pattern_repeat({machine_[a], machine_[b]}, contour, p, moves)) {
     return fail_path(*e, column);
   }
-  return run_contour_cycle(moves, axes, contour_first_, contour_last_);
+  return run_contour_cycle(moves, axes, contour_.first, contour_.last);
 }
 
 bool ProgramRun::run_groove_cycle(GFunction f, int column) {

@@ -44,7 +44,7 @@ bool ProgramRun::run_cylindrical(int column) {
     return fail(alarm::kBadWordValue, "the cylinder's radius must not be negative",
                 radius_word->column);
   }
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids("G07.1", column);
   }
   if (compensation_ != Command::Compensation::off || lookahead_.holding()) {

@@ -128,7 +128,7 @@ bool ProgramRun::frame_allows(GFunction f, int code10, int column) {
 }
 
 bool ProgramRun::run_rotation(GFunction f, int column) {
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids(f == GFunction::rotation_on ? "G68.1" : "G69.1", column);
   }
   if (f == GFunction::rotation_off) {
@@ -184,7 +184,7 @@ bool ProgramRun::run_rotation(GFunction f, int column) {
 
 bool ProgramRun::run_mirror(GFunction f, int column) {
   const bool on = f == GFunction::mirror_on;
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids(on ? "G51.1" : "G50.1", column);
   }
   if (on && turret_mirror_) {

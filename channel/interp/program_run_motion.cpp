@@ -334,12 +334,11 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
       first_column = w.column;
     }
   }
-  if (any && contour_mode_ == ContourMode::capture && contour_motions_++ == 0) {
-    // Type II of G71/G72: the contour's first block gives both plane axes (gsk A.6.30).
+  if (any && contour_.capturing()) {
+    // Type II of G71/G72 is told by the plane axes of the contour's first block.
     const std::array<int, 2> plane = plane_axis_indices();
-    for (std::size_t k = 0; k < 2; ++k) {
-      contour_first_axes_[k] = plane[k] >= 0 && given[static_cast<std::size_t>(plane[k])];
-    }
+    const auto gives = [&](int axis) { return axis >= 0 && given[static_cast<std::size_t>(axis)]; };
+    contour_.note_motion(gives(plane[0]), gives(plane[1]));
   }
   if (motion == GFunction::arc_cw || motion == GFunction::arc_ccw) {
     const bool arc_words = word('R') != nullptr || word('I') != nullptr || word('J') != nullptr ||

@@ -68,7 +68,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
                   w.column);
     }
   }
-  if (contour_mode_ != ContourMode::none) {
+  if (contour_.active()) {
     return contour_forbids(on ? "G12.1" : "G13.1", column);
   }
   if (compensation_ != Command::Compensation::off || lookahead_.holding()) {

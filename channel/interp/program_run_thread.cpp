@@ -23,11 +23,8 @@ std::string format_value(double v) {
 }  // namespace
 
 bool ProgramRun::fail_path(const path::PathError& e, int column) {
-  if (e.source >= 0 && static_cast<std::size_t>(e.source) < contour_lines_.size()) {
-    return fail(e.alarm,
-                e.text + " (contour block at line " +
-                    std::to_string(contour_lines_[static_cast<std::size_t>(e.source)]) + ")",
-                column);
+  if (const std::optional<int> line = contour_.line_of(e.source)) {
+    return fail(e.alarm, e.text + " (contour block at line " + std::to_string(*line) + ")", column);
   }
   return fail(e.alarm, e.text, column);
 }

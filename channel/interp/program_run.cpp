@@ -97,8 +97,6 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   work_.resize(kWorkSystems + 1);
   local_.resize(kWorkSystems + 1);
   feed_mode_ = config_.power_on_feed_mode;
-  spindle_direction_.fill(SpindleDirection::stop);
-  position_control_.fill(false);
   // #4001-#4030 at power-on (spec dafeng §2.1): G00, G97, G69, G98/G99, G21, G40, G80, G67, G54,
   // G64, G18, G69.1, G13.1, G50.1; system B adds G90 and G98 (return level).
   const bool b = config_.system == GCodeSystem::b;

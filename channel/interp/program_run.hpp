@@ -19,6 +19,7 @@
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/state/contour_capture.hpp"
 #include "channel/interp/state/hole_mode.hpp"
+#include "channel/interp/state/spindle_state.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
 #include "channel/interp/transform/cylindrical_interpolation.hpp"
 #include "channel/interp/transform/plane_rotation.hpp"
@@ -516,7 +517,6 @@ class ProgramRun final : public macro::VariableProvider {
   Plane plane_ = Plane::zx;
   FeedMode feed_mode_ = FeedMode::per_min;
   bool metric_ = true;
-  bool css_ = false;
   bool exact_stop_mode_ = false;
   bool turret_mirror_ = false;
   bool incremental_mode_ = false;                       // system B G91
@@ -574,12 +574,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool cycle_repair_ = false;  // GSK G92/G92.1 P1: the modal thread cycle repairs (gsk A.6.41)
 
   // Spindles of this channel (1-9), the reference spindle (SP) and G96 data.
-  std::array<double, 10> rpm_{};
-  std::array<SpindleDirection, 10> spindle_direction_{};
-  std::array<bool, 10> position_control_{};  // M18 (GSK M14) until M17 (M15)
-  double surface_ = 0.0;
-  double clamp_rpm_ = 0.0;
-  int reference_spindle_ = 1;
+  state::SpindleState spindles_;
 
   // The axes programmed as a diameter now: param 0001.1 (AxisConfig::diameter) until G10.9
   // switches one, again at the program's end (spec L3959-4023).

@@ -879,7 +879,7 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       return true;
     case GFunction::css_on:
     case GFunction::css_off:
-      css_ = f == GFunction::css_on;
+      spindles_.css = f == GFunction::css_on;
       modal_codes_[2] = value;
       return true;
     case GFunction::feed_per_min:
@@ -975,7 +975,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     c.channel = channel == config_.channel ? 0 : channel;
     c.spindle = spindle;
     if (c.channel == 0) {
-      reference_spindle_ = spindle;
+      spindles_.reference = spindle;
     }
   }
 
@@ -1033,13 +1033,13 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     if (channel != 0) {
       remote_rpm = s->value;
     } else if (clamp) {
-      clamp_rpm_ = s->value;  // G50 S (G92 S in system B): the G96 maximum
+      spindles_.clamp_rpm = s->value;  // G50 S (G92 S in system B): the G96 maximum
       clamp_changed = true;
-    } else if (css_ && s->index < 0 && p == nullptr) {
-      surface_ = s->value * (metric_ ? 1.0 : 0.3048);  // G96 S: m/min (ft/min in G20)
+    } else if (spindles_.css && s->index < 0 && p == nullptr) {
+      spindles_.surface = s->value * (metric_ ? 1.0 : 0.3048);  // G96 S: m/min (ft/min in G20)
       surface_changed = true;
     } else {
-      rpm_[static_cast<std::size_t>(spindle)] = s->value;
+      spindles_.rpm[static_cast<std::size_t>(spindle)] = s->value;
       speed_changed[static_cast<std::size_t>(spindle)] = true;
     }
   }
@@ -1048,12 +1048,12 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     Command& c = emit(Op::spindle);
     c.spindle = spindle;
     c.spindle_direction = dir;
-    c.rpm = rpm_[static_cast<std::size_t>(spindle)];
-    if (css_ && spindle == reference_spindle_ && dir != SpindleDirection::stop &&
+    c.rpm = spindles_.rpm[static_cast<std::size_t>(spindle)];
+    if (spindles_.surface_speed_on(spindle) && dir != SpindleDirection::stop &&
         dir != SpindleDirection::orient) {
       c.css = true;
-      c.surface = surface_;
-      c.max_rpm = clamp_rpm_;
+      c.surface = spindles_.surface;
+      c.max_rpm = spindles_.clamp_rpm;
     }
     return c;
   };
@@ -1105,7 +1105,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       }
       commanded_spindles |= 1U << spindle;
       const auto s_index = static_cast<std::size_t>(spindle);
-      const SpindleDirection turning = spindle_direction_[s_index];
+      const SpindleDirection turning = spindles_.direction[s_index];
       if (control == 1 && (turning == SpindleDirection::cw || turning == SpindleDirection::ccw)) {
         return fail(alarm::kSpindleControl,
                     "M" + std::to_string(m) + ": spindle " + std::to_string(spindle) +
@@ -1126,7 +1126,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
                       aw.word->column);
         }
       }
-      position_control_[s_index] = control == 1;
+      spindles_.position_control[s_index] = control == 1;
       Command& c = emit(Op::spindle_mode);
       c.spindle = spindle;
       c.position_control = control == 1;
@@ -1139,7 +1139,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
                                  : base == 5 ? SpindleDirection::stop
                                              : SpindleDirection::orient;
     if (dir != SpindleDirection::stop && channel == 0 && spindle <= 9 &&
-        position_control_[static_cast<std::size_t>(spindle)]) {
+        spindles_.position_control[static_cast<std::size_t>(spindle)]) {
       return fail(alarm::kSpindleControl,
                   "M" + std::to_string(m) + ": spindle " + std::to_string(spindle) +
                       " is under position control; " + position_code(spindle, false) +
@@ -1161,7 +1161,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
     }
     commanded_spindles |= 1U << spindle;
     if (dir != SpindleDirection::orient) {
-      spindle_direction_[static_cast<std::size_t>(spindle)] = dir;
+      spindles_.direction[static_cast<std::size_t>(spindle)] = dir;
     }
     Command& c = spindle_command(spindle, dir);
     if (dir == SpindleDirection::stop) {
@@ -1180,7 +1180,7 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       }
     }
     speed_changed[static_cast<std::size_t>(spindle)] = false;
-    if (spindle == reference_spindle_) {
+    if (spindle == spindles_.reference) {
       surface_changed = false;
       clamp_changed = false;
     }
@@ -1195,9 +1195,9 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
   }
   // A new speed, surface speed or clamp for a turning spindle goes out at once.
   for (int sp = 1; sp <= 9; ++sp) {
-    const SpindleDirection dir = spindle_direction_[static_cast<std::size_t>(sp)];
+    const SpindleDirection dir = spindles_.direction[static_cast<std::size_t>(sp)];
     const bool turning = dir == SpindleDirection::cw || dir == SpindleDirection::ccw;
-    const bool css_here = css_ && sp == reference_spindle_;
+    const bool css_here = spindles_.surface_speed_on(sp);
     const bool changed =
         css_here ? (surface_changed || clamp_changed) : speed_changed[static_cast<std::size_t>(sp)];
     if (turning && changed) {

@@ -53,26 +53,26 @@ bool ProgramRun::mark_chip_breaking() {
       continue;
     }
     double per_rev = c.feed;  // mm of path per spindle revolution
-    if (c.feed_mode == FeedMode::per_min && css_) {
+    if (c.feed_mode == FeedMode::per_min && spindles_.css) {
       // G96: the speed at each point of the move follows its radius (decision 108).
       int x = -1;
       for (std::size_t i = 0; i < config_.axes.size(); ++i) {
         x = config_.axes[i].name == 'X' ? static_cast<int>(i) : x;
       }
-      if (x < 0 || clamp_rpm_ <= 0.0 || surface_ <= 0.0) {
+      if (x < 0 || spindles_.clamp_rpm <= 0.0 || spindles_.surface <= 0.0) {
         return fail(alarm::kCycleWordMissing,
                     "G98.1 under G96 counts the revolutions of a speed that follows the X "
                     "radius: it needs X, a surface speed S and the speed limit G50 S (the speed "
                     "at the centre)",
                     0);
       }
-      c.chip_surface = surface_;
-      c.chip_max_rpm = clamp_rpm_;
+      c.chip_surface = spindles_.surface;
+      c.chip_max_rpm = spindles_.clamp_rpm;
       c.chip_radius_axis = x;
       c.chip_centre = offset_sum(x) + tool_offset(x);  // where the X radius is 0
-      per_rev = c.feed / clamp_rpm_;
+      per_rev = c.feed / spindles_.clamp_rpm;
     } else if (c.feed_mode == FeedMode::per_min) {
-      const double rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+      const double rpm = spindles_.reference_rpm();
       if (rpm <= 0.0) {
         return fail(alarm::kCycleWordMissing,
                     "G98.1 counts the spindle's revolutions: the spindle needs a speed S", 0);

@@ -224,7 +224,7 @@ bool ProgramRun::run_hole_cycle(int column) {
   }
   if (mill && kind == cycles::HoleKind::tap) {
     // G84/G74: F is the feed; the lead is F/S (FANUC 0i-M's rigid tapping in G94).
-    const double rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+    const double rpm = spindles_.reference_rpm();
     if (feed_mode_ == FeedMode::per_min && rpm <= 0.0) {
       return fail(alarm::kThreadLead, "tapping needs the spindle speed S: the lead is F/S", column);
     }
@@ -319,8 +319,7 @@ bool ProgramRun::run_hole_cycle(int column) {
     if (const path::PathResult e = cycles::expand_hole(c, steps)) {
       return fail_path(*e, column);
     }
-    const SpindleDirection turning =
-        spindle_direction_[static_cast<std::size_t>(reference_spindle_)];
+    const SpindleDirection turning = spindles_.reference_direction();
     for (const cycles::HoleStep& s : steps) {
       AxisVector to = machine_;
       to[drill] = s.to;
@@ -341,7 +340,7 @@ bool ProgramRun::run_hole_cycle(int column) {
           Command& cmd = emit(Op::thread);
           cmd.to = to;
           cmd.lead = std::fabs(c.lead);
-          cmd.spindle = reference_spindle_;
+          cmd.spindle = spindles_.reference;
           machine_ = to;
           break;
         }
@@ -354,8 +353,8 @@ bool ProgramRun::run_hole_cycle(int column) {
         case cycles::HoleStep::Kind::spindle_stop:
         case cycles::HoleStep::Kind::orient: {
           Command& cmd = emit(Op::spindle);
-          cmd.spindle = reference_spindle_;
-          cmd.rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+          cmd.spindle = spindles_.reference;
+          cmd.rpm = spindles_.reference_rpm();
           cmd.spindle_direction = s.kind == cycles::HoleStep::Kind::orient
                                       ? SpindleDirection::orient
                                       : SpindleDirection::stop;
@@ -380,8 +379,8 @@ bool ProgramRun::run_hole_cycle(int column) {
           }
           const bool reverse = s.kind == cycles::HoleStep::Kind::reverse;
           Command& cmd = emit(Op::spindle);
-          cmd.spindle = reference_spindle_;
-          cmd.rpm = rpm_[static_cast<std::size_t>(reference_spindle_)];
+          cmd.spindle = spindles_.reference;
+          cmd.rpm = spindles_.reference_rpm();
           cmd.spindle_direction = !reverse                          ? turning
                                   : turning == SpindleDirection::cw ? SpindleDirection::ccw
                                                                     : SpindleDirection::cw;

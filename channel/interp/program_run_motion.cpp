@@ -209,7 +209,8 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
   const bool ok = for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
     const auto i = static_cast<std::size_t>(axis);
     const int spindle = config_.axes[i].spindle;
-    if (spindle > 0 && spindle < 10 && !position_control_[static_cast<std::size_t>(spindle)]) {
+    if (spindle > 0 && spindle < 10 &&
+        !spindles_.position_control[static_cast<std::size_t>(spindle)]) {
       return fail(alarm::kSpindleControl,
                   std::string(1, config_.axes[i].name) + " is spindle " + std::to_string(spindle) +
                       " under speed control: " + position_code(spindle, true) +

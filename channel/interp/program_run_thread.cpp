@@ -244,7 +244,7 @@ bool ProgramRun::run_thread(GFunction f, int column) {
     c.lead = lead_here;
     c.lead_change = lead_change;
     c.start_angle = start_angle;
-    c.spindle = reference_spindle_;
+    c.spindle = spindles_.reference;
     c.continuous = joins;
     c.rpm = rpm;
     c.left_hand = rpm > 0.0 && left_hand_thread_ && signed_lead();
@@ -323,8 +323,8 @@ bool ProgramRun::run_flexible_tap(int column) {
     }
     times = static_cast<int>(l->value);
   }
-  const auto s = static_cast<std::size_t>(reference_spindle_);
-  const SpindleDirection turning = spindle_direction_[s];
+  const auto s = static_cast<std::size_t>(spindles_.reference);
+  const SpindleDirection turning = spindles_.direction[s];
   if (turning != SpindleDirection::cw && turning != SpindleDirection::ccw) {
     return fail(alarm::kWordNotAllowed, "G33 needs the spindle turning (M03/M04) before it",
                 column);
@@ -334,15 +334,15 @@ bool ProgramRun::run_flexible_tap(int column) {
   const AxisVector top = machine_;
   auto spindle = [&](SpindleDirection d) {
     Command& c = emit(Op::spindle);
-    c.spindle = reference_spindle_;
+    c.spindle = spindles_.reference;
     c.spindle_direction = d;
-    c.rpm = rpm_[s];
+    c.rpm = spindles_.rpm[s];
   };
   auto tap = [&](const AxisVector& to) {
     Command& c = emit(Op::thread);
     c.to = to;
     c.lead = lead;
-    c.spindle = reference_spindle_;
+    c.spindle = spindles_.reference;
   };
   for (int i = 0; i < times; ++i) {
     if (i > 0) {
@@ -354,7 +354,7 @@ bool ProgramRun::run_flexible_tap(int column) {
     tap(top);
     spindle(SpindleDirection::stop);
   }
-  spindle_direction_[s] = SpindleDirection::stop;  // the cycle leaves the spindle stopped
+  spindles_.direction[s] = SpindleDirection::stop;  // the cycle leaves the spindle stopped
   machine_ = top;
   block_moved_ = true;
   return true;
@@ -394,7 +394,7 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
         c.lead = m.lead;
         c.lead_change = m.lead_change;
         c.start_angle = m.start_angle;
-        c.spindle = reference_spindle_;
+        c.spindle = spindles_.reference;
         c.continuous = after_thread;  // a chamfer-out continues its thread
         c.rpm = thread_rpm;
         c.left_hand = thread_rpm > 0.0 && left_hand_thread_ && signed_lead();
@@ -454,7 +454,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
   if (f == GFunction::thread_cycle_interpolated) {
     // S: the threading speed (gsk A.6.29); without it the speed in force.
     BlockWord* s = word('S');
-    rpm = s != nullptr ? s->value : rpm_[static_cast<std::size_t>(reference_spindle_)];
+    rpm = s != nullptr ? s->value : spindles_.reference_rpm();
     if (s != nullptr) {
       s->used = true;
     }

@@ -139,7 +139,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     return value(feed_ / (metric_ ? 1.0 : 25.4));
   }
   if (n == 4119 || n == 4319) {
-    return value(rpm_[1]);
+    return value(spindles_.rpm[1]);
   }
   if (n == 4120 || n == 4320) {
     return value(t_value_);

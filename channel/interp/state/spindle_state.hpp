@@ -15,10 +15,10 @@ struct SpindleState {
   std::array<double, kSlots> rpm{};
   std::array<SpindleDirection, kSlots> direction = all_stopped();
   std::array<bool, kSlots> position_control{};  // M18 (GSK M14) until M17 (M15)
-  bool css = false;        // G96 until G97
-  double surface = 0.0;    // G96 S: m/min
-  double clamp_rpm = 0.0;  // G50 S (G92 S in system B): the G96 maximum
-  int reference = 1;       // SP: the spindle G96, threading and the cycles use
+  bool css = false;                             // G96 until G97
+  double surface = 0.0;                         // G96 S: m/min
+  double clamp_rpm = 0.0;                       // G50 S (G92 S in system B): the G96 maximum
+  int reference = 1;                            // SP: the spindle G96, threading and the cycles use
 
   [[nodiscard]] double reference_rpm() const noexcept { return rpm[slot(reference)]; }
   [[nodiscard]] SpindleDirection reference_direction() const noexcept {

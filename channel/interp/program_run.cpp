@@ -42,8 +42,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
     : config_(config),
       environment_(environment != nullptr ? environment : &default_environment_),
       vars_(dialect_of(config)),
-      geometry_(config.tool_geometry),
-      wear_(config.tool_wear),
+      tools_(config.tool_geometry, config.tool_wear),
       work_(config.work_offsets),
       local_(config.work_offsets.size()) {
   vars_.add_provider(macro::MathConstantsProvider::kFirst, macro::MathConstantsProvider::kLast,
@@ -782,10 +781,10 @@ Command& ProgramRun::emit(Op op) {
       (op == Op::rapid || op == Op::linear || op == Op::arc)) {
     c.compensation = compensation_;
     if (radius_offset() > 0) {
-      const auto o = static_cast<std::size_t>(radius_offset());
-      c.nose_radius = geometry_[o].radius + wear_[o].radius;
+      const int o = radius_offset();
+      c.nose_radius = tools_.radius(o);
       // A milling cutter is compensated about its centre (tip 0).
-      c.nose_tip = config_.dialect == Dialect::fanuc_mill ? 0 : geometry_[o].tip;
+      c.nose_tip = config_.dialect == Dialect::fanuc_mill ? 0 : tools_.tip(o);
     }
   }
   c.line = line_ != nullptr ? line_->line : 0;

@@ -20,6 +20,7 @@
 #include "channel/interp/state/contour_capture.hpp"
 #include "channel/interp/state/hole_mode.hpp"
 #include "channel/interp/state/spindle_state.hpp"
+#include "channel/interp/state/tool_table.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
 #include "channel/interp/transform/cylindrical_interpolation.hpp"
 #include "channel/interp/transform/plane_rotation.hpp"
@@ -609,17 +610,8 @@ class ProgramRun final : public macro::VariableProvider {
   AxisVector oscillation_hold_{};
   AxisVector block_start_{};  // machine_ when the executing block began (its moves start there)
 
-  // Tool
-  int tool_ = 0;
-  int offset_ = 0;
-  // The mill: G43 (+1) / G44 (-1) / G49 (0) with the length of offset H on Z, and the radius
-  // of offset D for G41/G42.
-  int length_sign_ = 0;
-  int length_offset_ = 0;
-  int radius_offset_ = 0;
-  double t_value_ = 0.0;
-  std::array<ToolOffsetValues, kMaxToolOffsets + 1> geometry_{};
-  std::array<ToolOffsetValues, kMaxToolOffsets + 1> wear_{};
+  // The tool and offset numbers selected, and the offset table.
+  state::ToolTable tools_;
 
   // Coordinates (physical, per channel axis). machine_ is the position in the frame: the
   // programmed point plus the offsets, before the G68.1 rotation and the G51.1 mirror, which

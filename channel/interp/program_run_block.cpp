@@ -1291,8 +1291,8 @@ bool ProgramRun::run_tool_word() {
   Command& c = emit(Op::tool);
   c.tool = tool;
   c.offset = offset;
-  tool_ = tool;
-  t_value_ = static_cast<double>(v);
+  tools_.tool = tool;
+  tools_.t_value = static_cast<double>(v);
   apply_tool_offset(offset);
   return true;
 }
@@ -2197,8 +2197,7 @@ bool ProgramRun::run_data_input(int column) {
     return fail(alarm::kBadWordValue, "G10 P must be 1-64 (wear) or 10001-10064 (geometry)",
                 p->column);
   }
-  ToolOffsetValues& t = geometry ? geometry_[static_cast<std::size_t>(pv - 10000)]
-                                 : wear_[static_cast<std::size_t>(pv)];
+  ToolOffsetValues& t = tools_.values(geometry, static_cast<int>(geometry ? pv - 10000 : pv));
   struct Field {
     char abs;
     char inc;
@@ -2236,9 +2235,9 @@ bool ProgramRun::run_data_input(int column) {
       return fail(alarm::kBadWordValue, "G10 Q (imaginary tool tip) must be 0-9", q->column);
     }
     // One imaginary tip per offset number, read as #2301+: kept with the geometry.
-    geometry_[static_cast<std::size_t>(geometry ? pv - 10000 : pv)].tip = static_cast<int>(tip);
+    tools_.values(true, static_cast<int>(geometry ? pv - 10000 : pv)).tip = static_cast<int>(tip);
   }
-  apply_tool_offset(offset_);  // the active offset takes the new values at once
+  apply_tool_offset(tools_.offset);  // the active offset takes the new values at once
   return true;
 }
 

@@ -195,10 +195,9 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   Command::Compensation side = compensation_;
   double radius = 0.0;
   int tip = 0;
-  if (offset_ > 0) {
-    const auto o = static_cast<std::size_t>(offset_);
-    radius = geometry_[o].radius + wear_[o].radius;
-    tip = geometry_[o].tip;
+  if (tools_.offset > 0) {
+    radius = tools_.radius(tools_.offset);
+    tip = tools_.tip(tools_.offset);
   }
   for (std::size_t k = from; k < out_.size() && side == Command::Compensation::off; ++k) {
     side = out_[k].compensation;

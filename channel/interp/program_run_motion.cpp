@@ -128,35 +128,14 @@ double ProgramRun::offset_sum(int axis) const {
 
 double ProgramRun::tool_offset(int axis) const {
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
-  if (config_.dialect == Dialect::fanuc_mill) {
-    // G43/G44 H: the length along Z whatever the plane (FANUC's tool length compensation A).
-    if (length_sign_ == 0 || length_offset_ <= 0 || a.name != 'Z') {
-      return 0.0;
-    }
-    const auto h = static_cast<std::size_t>(length_offset_);
-    return length_sign_ * (geometry_[h].z + wear_[h].z);
-  }
-  if (offset_ <= 0) {
-    return 0.0;
-  }
-  const ToolOffsetValues& g = geometry_[static_cast<std::size_t>(offset_)];
-  const ToolOffsetValues& w = wear_[static_cast<std::size_t>(offset_)];
-  switch (a.name) {
-    case 'X':
-      return (g.x + w.x) / (a.diameter ? 2.0 : 1.0);
-    case 'Z':
-      return g.z + w.z;
-    case 'Y':
-      return g.y + w.y;
-    default:
-      return 0.0;
-  }
+  return config_.dialect == Dialect::fanuc_mill ? tools_.mill_length(a.name)
+                                                : tools_.lathe_offset(a.name, a.diameter);
 }
 
 void ProgramRun::apply_tool_offset(int offset) {
   // No motion: the displayed position changes and the next move goes to the offset position
   // (spec dafeng L3574-3619). Incremental moves are measured from the displayed position.
-  offset_ = offset;
+  tools_.offset = offset;
   if (frame_active()) {
     rebuild_frame();
   }

@@ -22,13 +22,13 @@ bool offset_number(const BlockWord& w, int& n) {
 }  // namespace
 
 int ProgramRun::radius_offset() const {
-  return config_.dialect == Dialect::fanuc_mill ? radius_offset_ : offset_;
+  return config_.dialect == Dialect::fanuc_mill ? tools_.radius_offset : tools_.offset;
 }
 
 bool ProgramRun::run_length_compensation(GFunction f, double value) {
-  length_sign_ = f == GFunction::length_plus ? 1 : f == GFunction::length_minus ? -1 : 0;
+  tools_.length_sign = f == GFunction::length_plus ? 1 : f == GFunction::length_minus ? -1 : 0;
   modal_codes_[8] = value;
-  apply_tool_offset(offset_);  // the frame follows the new offset; nothing moves yet
+  apply_tool_offset(tools_.offset);  // the frame follows the new offset; nothing moves yet
   return true;
 }
 
@@ -40,10 +40,10 @@ bool ProgramRun::run_mill_tool_words() {
                   "T needs a tool number 0-" + std::to_string(config_.max_tool), t->column);
     }
     // The tool to change to with M06; the offsets are H's and D's.
-    tool_ = static_cast<int>(t->value);
-    t_value_ = t->value;
+    tools_.tool = static_cast<int>(t->value);
+    tools_.t_value = t->value;
     Command& c = emit(Op::tool);
-    c.tool = tool_;
+    c.tool = tools_.tool;
     c.offset = 0;
   }
   // H and D: an offset number of the table; the number is kept when the word is valid.
@@ -61,15 +61,15 @@ bool ProgramRun::run_mill_tool_words() {
     }
     return true;
   };
-  const int length_before = length_offset_;
-  if (!offset_word('H', "tool length", length_offset_) ||
-      !offset_word('D', "cutter radius", radius_offset_)) {
+  const int length_before = tools_.length_offset;
+  if (!offset_word('H', "tool length", tools_.length_offset) ||
+      !offset_word('D', "cutter radius", tools_.radius_offset)) {
     return false;
   }
-  if (length_offset_ != length_before) {
+  if (tools_.length_offset != length_before) {
     // Like the lathe's T offset: the position shown changes at once, the next move of Z goes
     // to the compensated position (G43 H alone does not move).
-    apply_tool_offset(offset_);
+    apply_tool_offset(tools_.offset);
   }
   return true;
 }

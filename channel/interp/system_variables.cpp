@@ -95,8 +95,7 @@ VariableRead undefined(std::int64_t n) {
 VariableRead ProgramRun::read(std::int64_t n) const {
   const int axes = static_cast<int>(config_.axes.size());
   if (const ToolVariable tv = tool_variable(n, config_.dialect); tv.found) {
-    const auto k = static_cast<std::size_t>(tv.offset);
-    const ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
+    const ToolOffsetValues& t = tools_.values(tv.geometry, tv.offset);
     if (tv.field == ToolField::tip) {
       return value(t.tip);
     }
@@ -142,7 +141,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     return value(spindles_.rpm[1]);
   }
   if (n == 4120 || n == 4320) {
-    return value(t_value_);
+    return value(tools_.t_value);
   }
   if (n == 4115) {
     const Frame& f = frames_.back();
@@ -194,8 +193,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
 MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
   const double x = v.number();
   if (const ToolVariable tv = tool_variable(n, config_.dialect); tv.found) {
-    const auto k = static_cast<std::size_t>(tv.offset);
-    ToolOffsetValues& t = tv.geometry ? geometry_[k] : wear_[k];
+    ToolOffsetValues& t = tools_.values(tv.geometry, tv.offset);
     if (tv.field == ToolField::tip) {
       t.tip = static_cast<int>(x);
     } else {

@@ -43,8 +43,7 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
       environment_(environment != nullptr ? environment : &default_environment_),
       vars_(dialect_of(config)),
       tools_(config.tool_geometry, config.tool_wear),
-      work_(config.work_offsets),
-      local_(config.work_offsets.size()) {
+      coordinates_(config.work_offsets) {
   vars_.add_provider(macro::MathConstantsProvider::kFirst, macro::MathConstantsProvider::kLast,
                      constants_);
   vars_.share(config_.shared_variables, config_.shared_sink);
@@ -93,8 +92,6 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   extended_thread_.min_depth = config_.cycles.thread_min_depth;
   extended_thread_.allowance = config_.cycles.thread_allowance;
   extended_thread_.finish_passes = config_.cycles.thread_finish_passes;
-  work_.resize(kWorkSystems + 1);
-  local_.resize(kWorkSystems + 1);
   feed_mode_ = config_.power_on_feed_mode;
   // #4001-#4030 at power-on (spec dafeng §2.1): G00, G97, G69, G98/G99, G21, G40, G80, G67, G54,
   // G64, G18, G69.1, G13.1, G50.1; system B adds G90 and G98 (return level).

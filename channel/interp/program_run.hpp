@@ -18,6 +18,7 @@
 #include "channel/interp/parse/parsed_program.hpp"
 #include "channel/interp/path/plane_path.hpp"
 #include "channel/interp/state/contour_capture.hpp"
+#include "channel/interp/state/coordinate_systems.hpp"
 #include "channel/interp/state/hole_mode.hpp"
 #include "channel/interp/state/spindle_state.hpp"
 #include "channel/interp/state/tool_table.hpp"
@@ -521,7 +522,6 @@ class ProgramRun final : public macro::VariableProvider {
   bool exact_stop_mode_ = false;
   bool turret_mirror_ = false;
   bool incremental_mode_ = false;                       // system B G91
-  int work_system_ = 1;                                 // 1-6 = G54-G59, 7.. = G54.1 P1..
   std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
   double feed_ = 0.0;
   ModalCall modal_call_;
@@ -667,11 +667,9 @@ class ProgramRun final : public macro::VariableProvider {
   // the identity when off. released_at_ and what the channel sees (machine(), set_machine())
   // are inclined.
   transform::TransformChain inclined_;
-  std::array<int, 2> inclined_axes_{-1, -1};                // inclined, orthogonal (channel axes)
-  std::vector<std::array<double, kMaxChannelAxes>> work_;   // [0] EXT, [1..] systems
-  std::vector<std::array<double, kMaxChannelAxes>> local_;  // G52 per work system
-  std::array<double, kMaxChannelAxes> shift_{};             // G50 shift
-  std::array<bool, kMaxChannelAxes> released_{};            // G140 without G142/G141 since
+  std::array<int, 2> inclined_axes_{-1, -1};  // inclined, orthogonal (channel axes)
+  state::CoordinateSystems coordinates_;      // work offsets, G52, G50 shift, the system selected
+  std::array<bool, kMaxChannelAxes> released_{};  // G140 without G142/G141 since
   // The intermediate point of the last G28/G30 (machine), per axis it named: G29 goes back
   // through it.
   AxisVector reference_via_{};

@@ -859,11 +859,11 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
                       p != nullptr ? p->column : column);
         }
         p->used = true;
-        work_system_ = 6 + static_cast<int>(n);
+        coordinates_.select(6 + static_cast<int>(n));
         modal_codes_[14] = 54.1;
         return true;
       }
-      work_system_ = (code10 - 540) / 10 + 1;
+      coordinates_.select((code10 - 540) / 10 + 1);
       modal_codes_[14] = value;
       return true;
     }
@@ -2185,7 +2185,7 @@ bool ProgramRun::run_data_input(int column) {
       system = 6 + static_cast<int>(pv);
     }
     return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
-      double& slot = work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)];
+      double& slot = coordinates_.offset(system, axis);
       const double v = data_to_physical(axis, scaled_axis_word(axis, w));
       slot = incremental ? slot + v : v;
       return true;

@@ -121,9 +121,7 @@ bool ProgramRun::run_radius_switch(int column) {
 }
 
 double ProgramRun::offset_sum(int axis) const {
-  const auto i = static_cast<std::size_t>(axis);
-  const auto ws = static_cast<std::size_t>(work_system_);
-  return work_[0][i] + work_[ws][i] + shift_[i] + local_[ws][i];
+  return coordinates_.sum(axis);
 }
 
 double ProgramRun::tool_offset(int axis) const {
@@ -647,10 +645,7 @@ bool ProgramRun::run_reference_return(GFunction f, int column) {
     // Homing clears the G50 shift and the G52 local systems of the homed axes (L4083-4129).
     for (std::size_t i = 0; i < config_.axes.size(); ++i) {
       if (given[i]) {
-        shift_[i] = 0.0;
-        for (auto& l : local_) {
-          l[i] = 0.0;
-        }
+        coordinates_.clear_shift_and_local(static_cast<int>(i));
       }
     }
   }
@@ -658,32 +653,28 @@ bool ProgramRun::run_reference_return(GFunction f, int column) {
 }
 
 bool ProgramRun::run_coordinate_set(int /*column*/) {
-  const auto ws = static_cast<std::size_t>(work_system_);
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
-    const auto i = static_cast<std::size_t>(axis);
     const double v = to_physical(axis, scaled_axis_word(axis, w));
     if (incremental) {
-      shift_[i] -= v;  // G50 U: the position reads U more (L4219-4232)
+      coordinates_.shift_by(axis, v);  // G50 U: the position reads U more (L4219-4232)
       return true;
     }
     // The position before the tool offset reads v; G52 of this axis ends in every system.
-    for (auto& l : local_) {
-      l[i] = 0.0;
-    }
-    shift_[i] = machine_[i] - work_[0][i] - work_[ws][i] - v;
+    coordinates_.set_position(axis, machine_[static_cast<std::size_t>(axis)], v);
     return true;
   });
 }
 
 bool ProgramRun::run_local_system(int /*column*/) {
-  const auto ws = static_cast<std::size_t>(work_system_);
   return for_each_axis_word([&](int axis, const BlockWord& w, bool incremental) {
-    const auto i = static_cast<std::size_t>(axis);
     const double v = to_physical(axis, scaled_axis_word(axis, w));
     // U/W: relative to the current position in the work system (spec L4302-4386).
-    local_[ws][i] =
-        incremental ? machine_[i] - work_[0][i] - work_[ws][i] - shift_[i] - tool_offset(axis) + v
-                    : v;
+    if (incremental) {
+      coordinates_.set_local_from(axis, machine_[static_cast<std::size_t>(axis)], tool_offset(axis),
+                                  v);
+    } else {
+      coordinates_.set_local(axis, v);
+    }
     return true;
   });
 }
@@ -698,11 +689,7 @@ bool ProgramRun::run_restore_origin(int /*column*/) {
                       : "G92.1 restores the origin of an axis written with 0, e.g. X0",
                   w.column);
     }
-    const auto i = static_cast<std::size_t>(axis);
-    shift_[i] = 0.0;
-    for (auto& l : local_) {
-      l[i] = 0.0;
-    }
+    coordinates_.clear_shift_and_local(axis);
     return true;
   });
 }

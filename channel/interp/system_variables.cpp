@@ -175,8 +175,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     if (axis >= axes) {
       return VariableRead{};
     }
-    return value(physical_to_data(
-        axis, work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)]));
+    return value(physical_to_data(axis, coordinates_.offset(system, axis)));
   }
   if (n >= 7001 && n <= 7999) {
     const int set = static_cast<int>((n - 7001) / 20) + 1;  // G54.1 P1-P50
@@ -184,8 +183,7 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     if (axis >= axes) {
       return VariableRead{};
     }
-    return value(physical_to_data(
-        axis, work_[static_cast<std::size_t>(6 + set)][static_cast<std::size_t>(axis)]));
+    return value(physical_to_data(axis, coordinates_.offset(6 + set, axis)));
   }
   return undefined(n);
 }
@@ -225,8 +223,7 @@ MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
                                "variable #%lld: channel %d has no axis %d",
                                static_cast<long long>(n), config_.channel, axis + 1);
     }
-    work_[static_cast<std::size_t>(system)][static_cast<std::size_t>(axis)] =
-        data_to_physical(axis, x);
+    coordinates_.offset(system, axis) = data_to_physical(axis, x);
     return {};
   }
   if (read(n).alarm) {

@@ -92,38 +92,8 @@ ProgramRun::ProgramRun(const InterpreterConfig& config, const InterpreterEnviron
   extended_thread_.min_depth = config_.cycles.thread_min_depth;
   extended_thread_.allowance = config_.cycles.thread_allowance;
   extended_thread_.finish_passes = config_.cycles.thread_finish_passes;
-  feed_mode_ = config_.power_on_feed_mode;
-  // #4001-#4030 at power-on (spec dafeng §2.1): G00, G97, G69, G98/G99, G21, G40, G80, G67, G54,
-  // G64, G18, G69.1, G13.1, G50.1; system B adds G90 and G98 (return level).
-  const bool b = config_.system == GCodeSystem::b;
-  modal_codes_[1] = 0;
-  modal_codes_[2] = 97;
-  modal_codes_[3] = b ? 90 : 0;
-  modal_codes_[4] = 69;
-  modal_codes_[5] = feed_mode_ == FeedMode::per_min ? (b ? 94 : 98) : (b ? 95 : 99);
-  modal_codes_[6] = 21;
-  modal_codes_[7] = 40;
-  modal_codes_[9] = 23;
-  modal_codes_[10] = 80;
-  modal_codes_[11] = b ? 98 : 0;
-  modal_codes_[12] = 67;
-  modal_codes_[14] = 54;
-  modal_codes_[15] = 64;
-  modal_codes_[16] = 18;
-  modal_codes_[17] = 69.1;
-  modal_codes_[18] = 15;
-  modal_codes_[19] = 40.1;
-  modal_codes_[21] = 13.1;
-  modal_codes_[22] = 50.1;
-  if (config_.dialect == Dialect::fanuc_mill) {
-    // Seed 003's power-on states (gsk B.1): G17, G49, G98 beside those above; it has no G96/G97.
-    plane_ = Plane::xy;
-    modal_codes_[16] = 17;
-    modal_codes_[8] = 49;
-    modal_codes_[2] = 0;
-    modal_codes_[9] = 0;  // no G22/G23 in its table
-    modal_codes_[19] = 0;
-  }
+  // #4001-#4030 at power-on.
+  modal_ = state::ModalState::power_on(config_.system, config_.dialect, config_.power_on_feed_mode);
   timer_ms_base_ = environment_->milliseconds();
 }
 
@@ -350,7 +320,7 @@ void ProgramRun::release_through_lookahead() {
   }
   const std::array<int, 2> axes = plane_axis_indices();
   if (axes[0] >= 0 && axes[1] >= 0) {
-    lookahead_.set_plane(axes, plane_);
+    lookahead_.set_plane(axes, modal_.plane);
   }
   path::PathResult e;
   for (Command& c : out_) {
@@ -742,9 +712,9 @@ void ProgramRun::end_program(int code) {
     diameter_[i] = config_.axes[i].diameter;  // G10.9 ends with the program (L3981)
   }
   polar_coords_ = false;
-  modal_codes_[17] = 69.1;
-  modal_codes_[18] = 15;
-  modal_codes_[22] = 50.1;
+  modal_.codes[17] = 69.1;
+  modal_.codes[18] = 15;
+  modal_.codes[22] = 50.1;
   rebuild_frame();
   save_retained();
 }
@@ -790,10 +760,10 @@ Command& ProgramRun::emit(Op op) {
   for (std::size_t k = 0; k < kShownModalGroups.size(); ++k) {
     // A G code is >= 0 with at most one decimal: adding a half and truncating rounds it as
     // std::lround would, without a library call per group and command.
-    const double g = modal_codes_[static_cast<std::size_t>(kShownModalGroups[k])];
+    const double g = modal_.codes[static_cast<std::size_t>(kShownModalGroups[k])];
     c.modal.g[k] = static_cast<std::uint16_t>(g * 10.0 + 0.5);
   }
-  c.modal.feed = feed_;
+  c.modal.feed = modal_.feed;
   c.to = machine_;
   return c;
 }

@@ -20,6 +20,7 @@
 #include "channel/interp/state/contour_capture.hpp"
 #include "channel/interp/state/coordinate_systems.hpp"
 #include "channel/interp/state/hole_mode.hpp"
+#include "channel/interp/state/modal_state.hpp"
 #include "channel/interp/state/spindle_state.hpp"
 #include "channel/interp/state/tool_table.hpp"
 #include "channel/interp/transform/axis_mirror.hpp"
@@ -515,15 +516,7 @@ class ProgramRun final : public macro::VariableProvider {
   bool block_motion_code_ = false;  // the block has a group 01 code
 
   // Modal state
-  GFunction motion_ = GFunction::rapid;
-  Plane plane_ = Plane::zx;
-  FeedMode feed_mode_ = FeedMode::per_min;
-  bool metric_ = true;
-  bool exact_stop_mode_ = false;
-  bool turret_mirror_ = false;
-  bool incremental_mode_ = false;                       // system B G91
-  std::array<double, kModalGroups + 1> modal_codes_{};  // #4001.. (G value per group)
-  double feed_ = 0.0;
+  state::ModalState modal_;
   ModalCall modal_call_;
   state::ContourCapture contour_;  // the P..Q contour of G70-G73
   // The modal amounts of the cycles' first blocks (G71 U R, G73 U W R, G74 R, G76 P Q R).

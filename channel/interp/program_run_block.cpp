@@ -222,7 +222,7 @@ int ProgramRun::count_words(char letter) const {
 double ProgramRun::length_increment() const {
   // IS-B inputs 0.001 mm or 0.0001 inch: the inch increment is a tenth of the metric one's
   // number, in every increment system.
-  return metric_ ? config_.least_increment : config_.least_increment / 10.0;
+  return modal_.metric ? config_.least_increment : config_.least_increment / 10.0;
 }
 
 double ProgramRun::scaled(const BlockWord& w, bool length) const {
@@ -247,7 +247,7 @@ double ProgramRun::scaled(const BlockWord& w, bool length) const {
 }
 
 double ProgramRun::length_of(const BlockWord& w) const {
-  return scaled(w, true) * (metric_ ? 1.0 : 25.4);
+  return scaled(w, true) * (modal_.metric ? 1.0 : 25.4);
 }
 
 double ProgramRun::scaled_axis_word(int axis, const BlockWord& w) const {
@@ -547,7 +547,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
     if (modal_call_.active) {
       modal_call_.active = false;  // G65 cancels a modal G66 call (gsk D2-37)
-      modal_codes_[12] = 67;
+      modal_.codes[12] = 67;
     }
     return call_with_arguments(static_cast<int>(program), primary_column, true);
   }
@@ -568,12 +568,12 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
         return false;
       }
       modal_call_ = m;
-      modal_codes_[12] = 66;
+      modal_.codes[12] = 66;
       return check_unused_words();
     }
     if (g.info.function == GFunction::modal_call_cancel) {
       modal_call_.active = false;
-      modal_codes_[12] = 67;
+      modal_.codes[12] = 67;
     }
   }
   if (primary == GFunction::channel_call) {
@@ -644,7 +644,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
   }
   if (motion != GFunction::unknown && !group10 && hole_.active()) {
     hole_ = state::HoleMode{};  // a group 01 code ends the hole cycle (spec L1938)
-    modal_codes_[10] = 80.0;
+    modal_.codes[10] = 80.0;
   }
   // A hole block: the cycle's code, or positioning words while the cycle is modal.
   bool hole_block = group10 && hole_.active();
@@ -662,10 +662,10 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     return false;
   }
   if (motion != GFunction::unknown) {
-    motion_ = motion;
+    modal_.motion = motion;
     for (int i = 0; i < ng; ++i) {
       if (gs[static_cast<std::size_t>(i)].info.group == 1) {
-        modal_codes_[1] = static_cast<double>(gs[static_cast<std::size_t>(i)].code10) / 10.0;
+        modal_.codes[1] = static_cast<double>(gs[static_cast<std::size_t>(i)].code10) / 10.0;
       }
     }
   }
@@ -692,7 +692,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     if (f->value < 0.0 && !signed_lead()) {
       return fail(alarm::kNegativeFeed, "feed F must not be negative", f->column);
     }
-    feed_ = std::fabs(f->value) * (metric_ ? 1.0 : 25.4);
+    modal_.feed = std::fabs(f->value) * (modal_.metric ? 1.0 : 25.4);
   }
 
   // Spindles, tool and the M codes that go out before the motion.
@@ -744,7 +744,7 @@ bool ProgramRun::execute_block(const parse::Line& /*line*/, const parse::Stateme
     }
   } else {
     const bool g53 = primary == GFunction::machine_position;
-    GFunction m = motion_;
+    GFunction m = modal_.motion;
     if (g53) {
       block_barrier_ = true;
       m = motion == GFunction::linear ? GFunction::linear : GFunction::rapid;
@@ -825,29 +825,29 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
   }
   switch (f) {
     case GFunction::plane_xy:
-      plane_ = Plane::xy;
-      modal_codes_[16] = value;
+      modal_.plane = Plane::xy;
+      modal_.codes[16] = value;
       return true;
     case GFunction::plane_zx:
-      plane_ = Plane::zx;
-      modal_codes_[16] = value;
+      modal_.plane = Plane::zx;
+      modal_.codes[16] = value;
       return true;
     case GFunction::plane_yz:
-      plane_ = Plane::yz;
-      modal_codes_[16] = value;
+      modal_.plane = Plane::yz;
+      modal_.codes[16] = value;
       return true;
     case GFunction::inch:
     case GFunction::metric:
-      metric_ = f == GFunction::metric;
-      modal_codes_[6] = value;
+      modal_.metric = f == GFunction::metric;
+      modal_.codes[6] = value;
       return true;
     case GFunction::tnrc_cancel:
       compensation_ = Command::Compensation::off;
-      modal_codes_[7] = value;
+      modal_.codes[7] = value;
       return true;
     case GFunction::drill_cancel:
       hole_ = state::HoleMode{};
-      modal_codes_[10] = value;
+      modal_.codes[10] = value;
       return true;
     case GFunction::work_system:
     case GFunction::work_system_ext: {
@@ -860,43 +860,43 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
         }
         p->used = true;
         coordinates_.select(6 + static_cast<int>(n));
-        modal_codes_[14] = 54.1;
+        modal_.codes[14] = 54.1;
         return true;
       }
       coordinates_.select((code10 - 540) / 10 + 1);
-      modal_codes_[14] = value;
+      modal_.codes[14] = value;
       return true;
     }
     case GFunction::exact_stop_mode:
     case GFunction::cutting_mode:
-      exact_stop_mode_ = f == GFunction::exact_stop_mode;
-      modal_codes_[15] = value;
+      modal_.exact_stop = f == GFunction::exact_stop_mode;
+      modal_.codes[15] = value;
       return true;
     case GFunction::turret_mirror_on:
     case GFunction::turret_mirror_off:
-      turret_mirror_ = f == GFunction::turret_mirror_on;
-      modal_codes_[4] = value;
+      modal_.turret_mirror = f == GFunction::turret_mirror_on;
+      modal_.codes[4] = value;
       return true;
     case GFunction::css_on:
     case GFunction::css_off:
       spindles_.css = f == GFunction::css_on;
-      modal_codes_[2] = value;
+      modal_.codes[2] = value;
       return true;
     case GFunction::feed_per_min:
     case GFunction::feed_per_rev:
-      feed_mode_ = f == GFunction::feed_per_min ? FeedMode::per_min : FeedMode::per_rev;
-      modal_codes_[5] = value;
+      modal_.feed_mode = f == GFunction::feed_per_min ? FeedMode::per_min : FeedMode::per_rev;
+      modal_.codes[5] = value;
       chip_ = ChipBreaking{};  // G98/G99 end chip breaking (spec L2568)
-      modal_codes_[13] = 0;
+      modal_.codes[13] = 0;
       return true;
     case GFunction::absolute:
     case GFunction::incremental:
-      incremental_mode_ = f == GFunction::incremental;
-      modal_codes_[3] = value;
+      modal_.incremental = f == GFunction::incremental;
+      modal_.codes[3] = value;
       return true;
     case GFunction::return_initial:
     case GFunction::return_r_level:
-      modal_codes_[11] = value;
+      modal_.codes[11] = value;
       return true;
     case GFunction::polar_coords_on:
     case GFunction::polar_coords_off:
@@ -908,7 +908,7 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
       }
       polar_coords_ = f == GFunction::polar_coords_on;
       polar_command_.reset();
-      modal_codes_[18] = value;
+      modal_.codes[18] = value;
       return true;
     case GFunction::modal_call:
     case GFunction::modal_call_cancel:
@@ -921,7 +921,7 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::tnrc_right:
       compensation_ =
           f == GFunction::tnrc_left ? Command::Compensation::left : Command::Compensation::right;
-      modal_codes_[7] = value;
+      modal_.codes[7] = value;
       return true;
     case GFunction::drill_face:
     case GFunction::drill_side:
@@ -943,7 +943,7 @@ bool ProgramRun::apply_modal(GFunction f, int code10, int column) {
     case GFunction::mill_fine_bore:
       hole_.function = f;
       hole_.code10 = code10;
-      modal_codes_[10] = value;
+      modal_.codes[10] = value;
       return true;
     default:
       return fail(alarm::kUnsupportedG, g_name(code10) + " cannot be used here", column);
@@ -1036,7 +1036,8 @@ bool ProgramRun::run_spindle_words(bool p_is_spindle_address) {
       spindles_.clamp_rpm = s->value;  // G50 S (G92 S in system B): the G96 maximum
       clamp_changed = true;
     } else if (spindles_.css && s->index < 0 && p == nullptr) {
-      spindles_.surface = s->value * (metric_ ? 1.0 : 0.3048);  // G96 S: m/min (ft/min in G20)
+      spindles_.surface =
+          s->value * (modal_.metric ? 1.0 : 0.3048);  // G96 S: m/min (ft/min in G20)
       surface_changed = true;
     } else {
       spindles_.rpm[static_cast<std::size_t>(spindle)] = s->value;
@@ -1286,7 +1287,7 @@ bool ProgramRun::run_tool_word() {
   if (compensation_ != Command::Compensation::off) {
     // A T command cancels tool-nose radius compensation (spec L3789).
     compensation_ = Command::Compensation::off;
-    modal_codes_[7] = 40;
+    modal_.codes[7] = 40;
   }
   Command& c = emit(Op::tool);
   c.tool = tool;
@@ -1636,7 +1637,7 @@ bool ProgramRun::run_dwell(int column) {
     return true;
   }
   Command& c = emit(Op::dwell);
-  if (config_.dwell_in_revs_with_g99 && feed_mode_ == FeedMode::per_rev) {
+  if (config_.dwell_in_revs_with_g99 && modal_.feed_mode == FeedMode::per_rev) {
     c.in_revs = true;
   }
   c.seconds = seconds;
@@ -2203,7 +2204,7 @@ bool ProgramRun::run_data_input(int column) {
     char inc;
     double* value;
   };
-  const double inch = metric_ ? 1.0 : 25.4;
+  const double inch = modal_.metric ? 1.0 : 25.4;
   for (const Field& fd : {Field{'X', 'U', &t.x}, Field{'Z', 'W', &t.z}, Field{'Y', 'V', &t.y}}) {
     BlockWord* a = word(fd.abs);
     BlockWord* i = word(fd.inc);

@@ -34,10 +34,10 @@ bool ProgramRun::run_chip_breaking(GFunction f, int column) {
   }
   // G98.1 is chip breaking in feed per minute, G99.1 per revolution: each selects its feed
   // mode, which a later G98/G99 leaves without chip breaking (decision 59).
-  feed_mode_ = per_min ? FeedMode::per_min : FeedMode::per_rev;
+  modal_.feed_mode = per_min ? FeedMode::per_min : FeedMode::per_rev;
   const bool b = config_.system == GCodeSystem::b;
-  modal_codes_[5] = per_min ? (b ? 94 : 98) : (b ? 95 : 99);
-  modal_codes_[13] = per_min ? 98.1 : 99.1;
+  modal_.codes[5] = per_min ? (b ? 94 : 98) : (b ? 95 : 99);
+  modal_.codes[13] = per_min ? 98.1 : 99.1;
   chip_ = ChipBreaking{true, q->value, p->value};
   chip_revs_ = 0.0;
   return true;

@@ -179,8 +179,8 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   contour_.first = first;
   contour_.last = last;
   const AxisVector start = machine_;
-  const GFunction motion = motion_;
-  const double motion_code = modal_codes_[1];
+  const GFunction motion = modal_.motion;
+  const double motion_code = modal_.codes[1];
   const std::size_t from = out_.size();
   if (!run_contour(first, last, ContourMode::capture, column)) {
     return false;
@@ -218,7 +218,7 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
         m.kind = path::MoveKind::arc;
         m.ccw = c.direction == ArcDirection::ccw;
         m.center = {c.center[0], c.center[1]};
-        if (c.plane != plane_) {
+        if (c.plane != modal_.plane) {
           return fail(alarm::kContourStart, "an arc of another plane in the contour", column);
         }
         break;
@@ -235,8 +235,8 @@ bool ProgramRun::capture_contour(const char* code, const std::array<int, 2>& axe
   }
   out_.resize(from);
   machine_ = start;
-  motion_ = motion;
-  modal_codes_[1] = motion_code;
+  modal_.motion = motion;
+  modal_.codes[1] = motion_code;
   if (contour.empty()) {
     return fail(alarm::kContourMissing, std::string(code) + " contour N(P)..N(Q) has no motion",
                 column);

@@ -21,7 +21,7 @@ bool ProgramRun::take_corner_request() {
       if (e->value < 0.0) {
         return fail(alarm::kNegativeFeed, "corner feed E must not be negative", e->column);
       }
-      corner_feed_ = e->value * (metric_ ? 1.0 : 25.4);
+      corner_feed_ = e->value * (modal_.metric ? 1.0 : 25.4);
     }
   }
   if (round != nullptr) {
@@ -97,7 +97,7 @@ bool ProgramRun::apply_line_angle(AxisVector& target, std::array<bool, kMaxChann
     c.to = first;
     c.line = angle_start_.line;
     c.feed = angle_start_.feed;
-    c.feed_mode = feed_mode_;
+    c.feed_mode = modal_.feed_mode;
     machine_ = first;
     angle_start_ = AngleStart{};
     return true;
@@ -113,7 +113,7 @@ bool ProgramRun::apply_line_angle(AxisVector& target, std::array<bool, kMaxChann
   if (!given[a] && !given[b]) {
     // The angle only: the end comes with the next block (spec L1388 case 2).
     angle_start_ =
-        AngleStart{true, machine_, degrees, line_ != nullptr ? line_->line : 0, feed_, 0};
+        AngleStart{true, machine_, degrees, line_ != nullptr ? line_->line : 0, modal_.feed, 0};
     deferred = true;
     return true;
   }

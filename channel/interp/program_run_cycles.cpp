@@ -14,7 +14,7 @@
 namespace mcnc::interp {
 
 bool ProgramRun::require_turning_plane(const char* code, std::array<int, 2>& axes, int column) {
-  if (plane_ != Plane::zx) {
+  if (modal_.plane != Plane::zx) {
     return fail(alarm::kNoPlaneAxis, std::string(code) + " works in the ZX plane (G18) only",
                 column);  // gsk D2-14
   }
@@ -37,7 +37,7 @@ bool ProgramRun::cycle_end_point(const char* code, std::array<int, 2>& axes, Axi
 }
 
 double ProgramRun::cycle_amount(const BlockWord& w) const {
-  const double inch = metric_ ? 1.0 : 25.4;
+  const double inch = modal_.metric ? 1.0 : 25.4;
   if (w.literal && !w.has_point) {
     return w.value * length_increment() * inch;
   }
@@ -46,7 +46,7 @@ double ProgramRun::cycle_amount(const BlockWord& w) const {
 
 bool ProgramRun::run_contour_cycle(const path::PlanePath& moves, const std::array<int, 2>& axes,
                                    int first, int last) {
-  emit_plane_path(moves, axes, feed_);
+  emit_plane_path(moves, axes, modal_.feed);
   // The contour follows the cycle block: execution goes on after N(Q) (gsk A.6.30 step 8).
   Frame& f = frames_.back();
   if (first >= f.pc) {
@@ -127,7 +127,7 @@ bool ProgramRun::run_rough_cycle(GFunction f, int column) {
   if (!check_feed(fw != nullptr ? fw->column : column)) {
     return false;
   }
-  p.feed = feed_;
+  p.feed = modal_.feed;
   path::PlanePath contour;
   if (!capture_contour(code, axes, contour, p.type2, column)) {
     return false;
@@ -185,7 +185,7 @@ bool ProgramRun::run_pattern_cycle(int column) {
   if (!check_feed(fw != nullptr ? fw->column : column)) {
     return false;
   }
-  p.feed = feed_;
+  p.feed = modal_.feed;
   path::PlanePath contour;
   bool type2 = false;
   if (!capture_contour("G73", axes, contour, type2, column)) {
@@ -250,13 +250,13 @@ bool ProgramRun::run_groove_cycle(GFunction f, int column) {
   if (!check_feed(fw != nullptr ? fw->column : column)) {
     return false;
   }
-  g.feed = feed_;
+  g.feed = modal_.feed;
   path::PlanePath moves;
   if (const path::PathResult e =
           cycles::expand_peck_grooving({machine_[a], machine_[b]}, g, moves)) {
     return fail_path(*e, column);
   }
-  emit_plane_path(moves, axes, feed_);
+  emit_plane_path(moves, axes, modal_.feed);
   return true;
 }
 
@@ -300,7 +300,7 @@ bool ProgramRun::emit_multiple_thread(const cycles::MultipleThread& t,
           cycles::expand_multiple_thread({machine_[a], machine_[b]}, t, moves)) {
     return fail_path(*e, column);
   }
-  emit_plane_path(moves, axes, feed_);
+  emit_plane_path(moves, axes, modal_.feed);
   return true;
 }
 
@@ -369,7 +369,7 @@ bool ProgramRun::run_multiple_thread(int column) {
   if (config_.dialect == Dialect::dafeng) {
     if (BlockWord* k = word('K')) {
       k->used = true;
-      t.lead_change = k->value * (metric_ ? 1.0 : 25.4);
+      t.lead_change = k->value * (modal_.metric ? 1.0 : 25.4);
     }
     if (BlockWord* l = word('L')) {
       l->used = true;

@@ -39,7 +39,7 @@ bool ProgramRun::run_cylindrical(int column) {
                 column);
   }
   radius_word->used = true;
-  const double radius = scaled(*radius_word, true) * (metric_ ? 1.0 : 25.4);
+  const double radius = scaled(*radius_word, true) * (modal_.metric ? 1.0 : 25.4);
   if (radius < 0.0) {
     return fail(alarm::kBadWordValue, "the cylinder's radius must not be negative",
                 radius_word->column);
@@ -62,7 +62,7 @@ bool ProgramRun::run_cylindrical(int column) {
                     "0 first",
                 column);
   }
-  if (frame_active() || turret_mirror_) {
+  if (frame_active() || modal_.turret_mirror) {
     return fail(alarm::kInterpolationModeRestriction,
                 "G07.1 is not allowed under G68.1, G51.1 or G68 (spec L4502-4652): cancel them "
                 "first",

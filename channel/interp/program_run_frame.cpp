@@ -91,7 +91,7 @@ bool ProgramRun::frame_allows(GFunction f, int code10, int column) {
       const Plane wanted = f == GFunction::plane_xy   ? Plane::xy
                            : f == GFunction::plane_zx ? Plane::zx
                                                       : Plane::yz;
-      if (!rotated_ || wanted == plane_) {
+      if (!rotated_ || wanted == modal_.plane) {
         return true;
       }
       return fail(alarm::kFrameRestriction,
@@ -133,11 +133,11 @@ bool ProgramRun::run_rotation(GFunction f, int column) {
   }
   if (f == GFunction::rotation_off) {
     rotated_ = false;
-    modal_codes_[17] = 69.1;
+    modal_.codes[17] = 69.1;
     rebuild_frame();
     return true;
   }
-  if (turret_mirror_) {
+  if (modal_.turret_mirror) {
     return fail(alarm::kFrameRestriction,
                 "G68.1 is not allowed under the facing turret's mirror G68: cancel it first (G69)",
                 column);
@@ -177,7 +177,7 @@ bool ProgramRun::run_rotation(GFunction f, int column) {
   }
   rotation_ = rotation;
   rotated_ = true;
-  modal_codes_[17] = 68.1;
+  modal_.codes[17] = 68.1;
   rebuild_frame();
   return true;
 }
@@ -187,7 +187,7 @@ bool ProgramRun::run_mirror(GFunction f, int column) {
   if (contour_.active()) {
     return contour_forbids(on ? "G51.1" : "G50.1", column);
   }
-  if (on && turret_mirror_) {
+  if (on && modal_.turret_mirror) {
     return fail(alarm::kFrameRestriction,
                 "G51.1 is not allowed under the facing turret's mirror G68: cancel it first (G69)",
                 column);
@@ -218,7 +218,7 @@ bool ProgramRun::run_mirror(GFunction f, int column) {
     }
     program_mirror_ = transform::AxisMirror{};  // G50.1 alone ends every mirror
   }
-  modal_codes_[22] = program_mirror_.active() ? 51.1 : 50.1;
+  modal_.codes[22] = program_mirror_.active() ? 51.1 : 50.1;
   rebuild_frame();
   return true;
 }

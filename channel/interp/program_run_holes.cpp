@@ -73,7 +73,7 @@ bool ProgramRun::hole_axes(std::array<int, 2>& plane, int& drill, int column) {
     drill = side_cycle(hole_.function) ? plane[1] : plane[0];
     return true;
   }
-  const char normal = plane_ == Plane::xy ? 'Z' : plane_ == Plane::zx ? 'Y' : 'X';
+  const char normal = modal_.plane == Plane::xy ? 'Z' : modal_.plane == Plane::zx ? 'Y' : 'X';
   drill = -1;
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
     drill = config_.axes[i].name == normal ? static_cast<int>(i) : drill;
@@ -123,9 +123,9 @@ bool ProgramRun::take_hole_words(int column) {
       if (!hole_axes(plane, drill, r->column)) {
         return false;
       }
-      h.r_level = mill && incremental_mode_ ? h.initial + length_of(*r)
-                                            : to_physical(drill, scaled(*r, true)) +
-                                                  offset_sum(drill) + tool_offset(drill);
+      h.r_level = mill && modal_.incremental ? h.initial + length_of(*r)
+                                             : to_physical(drill, scaled(*r, true)) +
+                                                   offset_sum(drill) + tool_offset(drill);
     }
   }
   if (BlockWord* q = word('Q')) {
@@ -167,7 +167,7 @@ bool ProgramRun::take_hole_words(int column) {
       }
       if (f != nullptr) {
         f->used = true;
-        h.lead = f->value * (metric_ ? 1.0 : 25.4);
+        h.lead = f->value * (modal_.metric ? 1.0 : 25.4);
       } else {
         i->used = true;
         if (i->value == 0.0) {
@@ -225,10 +225,10 @@ bool ProgramRun::run_hole_cycle(int column) {
   if (mill && kind == cycles::HoleKind::tap) {
     // G84/G74: F is the feed; the lead is F/S (FANUC 0i-M's rigid tapping in G94).
     const double rpm = spindles_.reference_rpm();
-    if (feed_mode_ == FeedMode::per_min && rpm <= 0.0) {
+    if (modal_.feed_mode == FeedMode::per_min && rpm <= 0.0) {
       return fail(alarm::kThreadLead, "tapping needs the spindle speed S: the lead is F/S", column);
     }
-    h.lead = (feed_mode_ == FeedMode::per_min ? feed_ / rpm : feed_) *
+    h.lead = (modal_.feed_mode == FeedMode::per_min ? modal_.feed / rpm : modal_.feed) *
              (h.function == GFunction::mill_tap_left ? -1.0 : 1.0);
   }
   bool first = true;
@@ -246,7 +246,7 @@ bool ProgramRun::run_hole_cycle(int column) {
     }
     if (first && given[drill]) {
       // The mill's G91: Z is the distance from R to the bottom (FANUC).
-      h.bottom = mill && incremental_mode_
+      h.bottom = mill && modal_.incremental
                      ? (h.has_r ? h.r_level : h.initial) + target[drill] - machine_[drill]
                      : target[drill];
       h.has_bottom = true;
@@ -279,10 +279,10 @@ bool ProgramRun::run_hole_cycle(int column) {
     c.peck = h.peck;
     c.dwell_s = !mill || mill_dwells(h.function) ? h.dwell_s : 0.0;
     c.shift = h.shift;
-    c.feed = feed_;
+    c.feed = modal_.feed;
     c.lead = h.lead;
     c.clamp_code = h.clamp;
-    c.return_to_initial = config_.system == GCodeSystem::b && modal_codes_[11] == 98.0;
+    c.return_to_initial = config_.system == GCodeSystem::b && modal_.codes[11] == 98.0;
     const CycleDefaults& d = config_.cycles;
     const int variant = h.code10 % 10;  // G83.5 -> 5
     if (mill && kind == cycles::HoleKind::tap) {
@@ -331,8 +331,8 @@ bool ProgramRun::run_hole_cycle(int column) {
         case cycles::HoleStep::Kind::feed: {
           Command& cmd = emit(Op::linear);
           cmd.to = to;
-          cmd.feed = feed_;
-          cmd.feed_mode = feed_mode_;
+          cmd.feed = modal_.feed;
+          cmd.feed_mode = modal_.feed_mode;
           machine_ = to;
           break;
         }

@@ -30,13 +30,13 @@ double ProgramRun::to_physical(int axis, double programmed, bool mirror) const {
   }
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = programmed;
-  if ((!a.rotary || polar_virtual(axis)) && !metric_) {
+  if ((!a.rotary || polar_virtual(axis)) && !modal_.metric) {
     v *= 25.4;
   }
   if (diameter_[static_cast<std::size_t>(axis)]) {
     v /= 2.0;
   }
-  if (mirror && turret_mirror_ && a.name == 'X') {
+  if (mirror && modal_.turret_mirror && a.name == 'X') {
     v = -v;  // G68: the facing turret's X is mirrored about X0 (spec L4460-4501)
   }
   return v;
@@ -48,13 +48,13 @@ double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
   }
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = physical;
-  if (mirror && turret_mirror_ && a.name == 'X') {
+  if (mirror && modal_.turret_mirror && a.name == 'X') {
     v = -v;
   }
   if (diameter_[static_cast<std::size_t>(axis)]) {
     v *= 2.0;
   }
-  if ((!a.rotary || polar_virtual(axis)) && !metric_) {
+  if ((!a.rotary || polar_virtual(axis)) && !modal_.metric) {
     v /= 25.4;
   }
   return v;
@@ -63,7 +63,7 @@ double ProgramRun::to_programmed(int axis, double physical, bool mirror) const {
 double ProgramRun::data_to_physical(int axis, double value) const {
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   double v = value;
-  if (!a.rotary && !metric_) {
+  if (!a.rotary && !modal_.metric) {
     v *= 25.4;
   }
   return a.diameter ? v / 2.0 : v;
@@ -72,7 +72,7 @@ double ProgramRun::data_to_physical(int axis, double value) const {
 double ProgramRun::physical_to_data(int axis, double physical) const {
   const AxisConfig& a = config_.axes[static_cast<std::size_t>(axis)];
   const double v = a.diameter ? physical * 2.0 : physical;
-  return !a.rotary && !metric_ ? v / 25.4 : v;
+  return !a.rotary && !modal_.metric ? v / 25.4 : v;
 }
 
 bool ProgramRun::run_radius_switch(int column) {
@@ -169,7 +169,7 @@ ProgramRun::AxisWords ProgramRun::axis_words(int axis) {
     out.error = true;
     return out;
   }
-  if (abs != nullptr && config_.system == GCodeSystem::b && incremental_mode_) {
+  if (abs != nullptr && config_.system == GCodeSystem::b && modal_.incremental) {
     out.word = abs;
     out.incremental = true;  // system B, G91
     return out;
@@ -243,7 +243,7 @@ bool ProgramRun::read_axis_targets(AxisVector& target, std::array<bool, kMaxChan
 }
 
 bool ProgramRun::check_feed(int column) {
-  if (feed_ <= 0.0) {
+  if (modal_.feed <= 0.0) {
     return fail(alarm::kFeedMissing, "cutting move without feed: program F greater than 0", column);
   }
   return true;
@@ -346,9 +346,9 @@ bool ProgramRun::run_motion(GFunction motion, bool machine_coordinates, int colu
   }
   Command& c = emit(motion == GFunction::linear ? Op::linear : Op::rapid);
   c.to = target;
-  c.feed = feed_;
-  c.feed_mode = feed_mode_;
-  c.exact_stop = motion == GFunction::linear && (block_exact_stop_ || exact_stop_mode_);
+  c.feed = modal_.feed;
+  c.feed_mode = modal_.feed_mode;
+  c.exact_stop = motion == GFunction::linear && (block_exact_stop_ || modal_.exact_stop);
   if (motion == GFunction::linear) {
     mark_corner(c);
   }
@@ -361,8 +361,8 @@ std::array<int, 2> ProgramRun::plane_axis_indices() const {
   if (polar_) {
     return polar_axes_;  // the polar plane (spec L711-849: params 5530/5531, not G17-G19)
   }
-  const char first = plane_ == Plane::xy ? 'X' : plane_ == Plane::zx ? 'Z' : 'Y';
-  const char second = plane_ == Plane::xy ? 'Y' : plane_ == Plane::zx ? 'X' : 'Z';
+  const char first = modal_.plane == Plane::xy ? 'X' : modal_.plane == Plane::zx ? 'Z' : 'Y';
+  const char second = modal_.plane == Plane::xy ? 'Y' : modal_.plane == Plane::zx ? 'X' : 'Z';
   std::array<int, 2> axes{-1, -1};
   for (std::size_t i = 0; i < config_.axes.size(); ++i) {
     axes[0] = config_.axes[i].name == first ? static_cast<int>(i) : axes[0];
@@ -381,7 +381,7 @@ bool ProgramRun::require_plane_axes(std::array<int, 2>& axes, int column) {
   if (axes[0] >= 0 && axes[1] >= 0) {
     return true;
   }
-  const char* name = plane_ == Plane::xy ? "XY" : plane_ == Plane::zx ? "ZX" : "YZ";
+  const char* name = modal_.plane == Plane::xy ? "XY" : modal_.plane == Plane::zx ? "ZX" : "YZ";
   return fail(alarm::kNoPlaneAxis,
               std::string("this block works in the ") + name + " plane (G17/G18/G19), whose axes " +
                   name[0] + " and " + name[1] + " this channel lacks",
@@ -391,7 +391,7 @@ bool ProgramRun::require_plane_axes(std::array<int, 2>& axes, int column) {
 bool ProgramRun::arc_center(bool ccw, const std::array<int, 2>& axes, const AxisVector& target,
                             std::array<double, 2>& center, int column) {
   // The centre words of the plane: I/J (G17), K/I (G18), J/K (G19), first axis first.
-  const Plane words = polar_ ? Plane::xy : plane_;  // the polar plane takes I and J
+  const Plane words = polar_ ? Plane::xy : modal_.plane;  // the polar plane takes I and J
   const char ca = words == Plane::xy ? 'I' : words == Plane::zx ? 'K' : 'J';
   const char cb = words == Plane::xy ? 'J' : words == Plane::zx ? 'I' : 'K';
   const auto a = static_cast<std::size_t>(axes[0]);
@@ -400,7 +400,7 @@ bool ProgramRun::arc_center(bool ccw, const std::array<int, 2>& axes, const Axis
   const double sb = machine_[b];
   const double ea = target[a];
   const double eb = target[b];
-  const double inch = metric_ ? 1.0 : 25.4;
+  const double inch = modal_.metric ? 1.0 : 25.4;
   BlockWord* r = word('R');
   BlockWord* wa = word(ca);
   BlockWord* wb = word(cb);
@@ -453,7 +453,7 @@ bool ProgramRun::arc_center(bool ccw, const std::array<int, 2>& axes, const Axis
     }
     w->used = true;
     double v = scaled(*w, true) * inch;  // I/J/K are radius values (spec L119-167)
-    if (turret_mirror_ && config_.axes[axis].name == 'X') {
+    if (modal_.turret_mirror && config_.axes[axis].name == 'X') {
       v = -v;
     }
     return v;
@@ -481,7 +481,7 @@ bool ProgramRun::run_arc(GFunction motion, const AxisVector& target, int column)
   const auto a = static_cast<std::size_t>(axes[0]);
   const auto b = static_cast<std::size_t>(axes[1]);
   ArcDirection dir = motion == GFunction::arc_cw ? ArcDirection::cw : ArcDirection::ccw;
-  if (turret_mirror_ && (config_.axes[a].name == 'X' || config_.axes[b].name == 'X')) {
+  if (modal_.turret_mirror && (config_.axes[a].name == 'X' || config_.axes[b].name == 'X')) {
     dir = dir == ArcDirection::cw ? ArcDirection::ccw : ArcDirection::cw;  // mirrored X
   }
   if (word('R') != nullptr && config_.dialect == Dialect::gsk &&
@@ -519,14 +519,14 @@ bool ProgramRun::emit_arc(const AxisVector& target, const std::array<int, 2>& ax
   }
   Command& c = emit(Op::arc);
   c.to = target;
-  c.plane = plane_;
+  c.plane = modal_.plane;
   c.direction = dir;
   c.center_axes = axes;
   c.center = center;
   c.turns = turns;
-  c.feed = feed_;
-  c.feed_mode = feed_mode_;
-  c.exact_stop = block_exact_stop_ || exact_stop_mode_;
+  c.feed = modal_.feed;
+  c.feed_mode = modal_.feed_mode;
+  c.exact_stop = block_exact_stop_ || modal_.exact_stop;
   mark_corner(c);
   machine_ = target;
   block_moved_ = true;
@@ -538,8 +538,8 @@ bool ProgramRun::run_three_point_arc(GFunction motion, const AxisVector& target,
   const bool absolute = motion == GFunction::arc_three_point_absolute;
   const std::string code = absolute ? "G05.1" : "G05";
   // The middle point's words are the plane's centre words: K/I in G18 (gsk A.6.4 rule 4).
-  const char ca = plane_ == Plane::xy ? 'I' : plane_ == Plane::zx ? 'K' : 'J';
-  const char cb = plane_ == Plane::xy ? 'J' : plane_ == Plane::zx ? 'I' : 'K';
+  const char ca = modal_.plane == Plane::xy ? 'I' : modal_.plane == Plane::zx ? 'K' : 'J';
+  const char cb = modal_.plane == Plane::xy ? 'J' : modal_.plane == Plane::zx ? 'I' : 'K';
   BlockWord* wa = word(ca);
   BlockWord* wb = word(cb);
   if (!any && wa == nullptr && wb == nullptr) {
@@ -557,7 +557,7 @@ bool ProgramRun::run_three_point_arc(GFunction motion, const AxisVector& target,
   // An omitted word leaves the middle point on the start's coordinate: G05's increment 0, and
   // for G05.1 the start's position as an omitted axis word keeps it (decision 56).
   AxisVector middle = machine_;
-  const double inch = metric_ ? 1.0 : 25.4;
+  const double inch = modal_.metric ? 1.0 : 25.4;
   const std::array<BlockWord*, 2> mw{wa, wb};
   for (std::size_t k = 0; k < 2; ++k) {
     BlockWord* w = mw[k];
@@ -574,7 +574,7 @@ bool ProgramRun::run_three_point_arc(GFunction motion, const AxisVector& target,
       continue;
     }
     double v = scaled(*w, true) * inch;  // a radius value, as G02/G03's I (gsk A.6.4)
-    if (turret_mirror_ && config_.axes[i].name == 'X') {
+    if (modal_.turret_mirror && config_.axes[i].name == 'X') {
       v = -v;
     }
     middle[i] = machine_[i] + v;

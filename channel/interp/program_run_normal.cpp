@@ -35,7 +35,7 @@ bool ProgramRun::run_normal_direction(GFunction f, int column) {
   // known once they leave (sync_normal_direction).
   normal_pending_ = f == GFunction::normal_off && lookahead_.holds_normal_direction();
   normal_side_ = f == GFunction::normal_off ? 0 : f == GFunction::normal_left ? 1 : -1;
-  modal_codes_[19] = f == GFunction::normal_off ? 40.1 : f == GFunction::normal_left ? 41.1 : 42.1;
+  modal_.codes[19] = f == GFunction::normal_off ? 40.1 : f == GFunction::normal_left ? 41.1 : 42.1;
   return true;
 }
 

@@ -166,7 +166,7 @@ bool ProgramRun::run_oscillation(GFunction f, int column) {
   c.top = physical;
   c.bottom = bottom;
   // Units per minute, not per revolution (L2484): a length in inch becomes mm.
-  c.feed = fw->value * (a.rotary || metric_ ? 1.0 : 25.4);
+  c.feed = fw->value * (a.rotary || modal_.metric ? 1.0 : 25.4);
   c.feed_mode = FeedMode::per_min;
   return true;
 }

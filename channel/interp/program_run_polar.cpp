@@ -86,7 +86,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
     return fail(alarm::kInterpolationModeRestriction, "G12.1 while polar interpolation is on",
                 column);
   }
-  if (frame_active() || turret_mirror_) {
+  if (frame_active() || modal_.turret_mirror) {
     return fail(alarm::kInterpolationModeRestriction,
                 "G12.1 is not allowed under G68.1, G51.1 or G68 (spec L4502-4652): cancel them "
                 "first",
@@ -122,7 +122,7 @@ bool ProgramRun::run_polar(GFunction f, int column) {
   polar_command_.reset();
   lookahead_.passed(machine_);
   polar_ = true;
-  modal_codes_[21] = 12.1;
+  modal_.codes[21] = 12.1;
   return true;
 }
 
@@ -183,7 +183,7 @@ bool ProgramRun::polar_coordinate_target(AxisVector& target,
 }
 
 void ProgramRun::end_polar() {
-  modal_codes_[21] = 13.1;
+  modal_.codes[21] = 13.1;
   if (!polar_) {
     return;
   }

@@ -102,8 +102,8 @@ Command* ProgramRun::emit_skip_move(const char* code, bool one_axis, int column)
   }
   Command& c = emit(Op::linear);
   c.to = target;
-  c.feed = feed_;
-  c.feed_mode = feed_mode_;
+  c.feed = modal_.feed;
+  c.feed_mode = modal_.feed_mode;
   c.exact_stop = true;
   block_barrier_ = true;  // the next block needs where it ended (L6907)
   machine_ = target;

@@ -51,7 +51,7 @@ std::string ProgramRun::stroke_limits_text() const {
 bool ProgramRun::run_stroke_check(GFunction f, int column) {
   if (f == GFunction::stroke_check_off) {
     stroke_on_ = false;
-    modal_codes_[9] = 23;
+    modal_.codes[9] = 23;
     return true;
   }
   limits::StrokeZone zone = stroke_zone_;
@@ -126,7 +126,7 @@ bool ProgramRun::run_stroke_check(GFunction f, int column) {
   }
   stroke_zone_ = zone;
   stroke_on_ = true;
-  modal_codes_[9] = 22;
+  modal_.codes[9] = 22;
   return true;
 }
 

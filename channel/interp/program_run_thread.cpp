@@ -39,7 +39,7 @@ bool ProgramRun::thread_lead(double& lead, int column) {
   bool left_hand = left_hand_thread_;
   if (f != nullptr) {
     f->used = true;
-    lead = f->value * (metric_ ? 1.0 : 25.4);
+    lead = f->value * (modal_.metric ? 1.0 : 25.4);
     left_hand = lead < 0.0 && signed_lead();
     lead = left_hand ? -lead : lead;
   } else if (i != nullptr) {
@@ -62,8 +62,9 @@ bool ProgramRun::thread_lead(double& lead, int column) {
 }
 
 bool ProgramRun::signed_lead() const {
-  return config_.dialect == Dialect::gsk && (motion_ == GFunction::thread_cycle_interpolated ||
-                                             motion_ == GFunction::thread_interpolated);
+  return config_.dialect == Dialect::gsk &&
+         (modal_.motion == GFunction::thread_cycle_interpolated ||
+          modal_.motion == GFunction::thread_interpolated);
 }
 
 bool ProgramRun::thread_repair_word(const std::string& code, bool cycle_code_in_block, int column) {
@@ -170,7 +171,7 @@ bool ProgramRun::run_thread(GFunction f, int column) {
   BlockWord* change = gsk ? (f == GFunction::thread_variable ? word('R') : nullptr) : word('K');
   if (change != nullptr) {
     change->used = true;
-    lead_change = change->value * (metric_ ? 1.0 : 25.4);
+    lead_change = change->value * (modal_.metric ? 1.0 : 25.4);
   }
   if (f == GFunction::thread_variable && change == nullptr) {
     return fail(alarm::kWordNotAllowed,
@@ -250,7 +251,7 @@ bool ProgramRun::run_thread(GFunction f, int column) {
     c.left_hand = rpm > 0.0 && left_hand_thread_ && signed_lead();
     if (arc) {
       c.thread_arc = true;
-      c.plane = plane_;
+      c.plane = modal_.plane;
       c.direction = f == GFunction::thread_arc_ccw ? ArcDirection::ccw : ArcDirection::cw;
       c.center_axes = axes;
       c.center = center;
@@ -379,9 +380,9 @@ void ProgramRun::emit_plane_path(const path::PlanePath& moves, const std::array<
         Command& c = emit(m.kind == path::MoveKind::arc ? Op::arc : Op::linear);
         c.to = to;
         c.feed = m.feed > 0.0 ? m.feed : feed;
-        c.feed_mode = feed_mode_;
+        c.feed_mode = modal_.feed_mode;
         if (m.kind == path::MoveKind::arc) {
-          c.plane = plane_;
+          c.plane = modal_.plane;
           c.direction = m.ccw ? ArcDirection::ccw : ArcDirection::cw;
           c.center_axes = axes;
           c.center = {m.center.a, m.center.b};
@@ -438,7 +439,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
   if (BlockWord* r = word('R')) {
     r->used = true;
     // R is a radius difference in X (G90/G92) or a Z difference (G94): physical either way.
-    const double inch = metric_ ? 1.0 : 25.4;
+    const double inch = modal_.metric ? 1.0 : 25.4;
     taper = scaled(*r, true) * inch;
   }
   cycle_end_ = target;
@@ -522,7 +523,7 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
       if (gsk) {
         c.chamfer_a = std::fabs(length_of(*k));
       } else {
-        c.lead_change = k->value * (metric_ ? 1.0 : 25.4);
+        c.lead_change = k->value * (modal_.metric ? 1.0 : 25.4);
       }
     }
     if (f == GFunction::thread_cycle_interpolated) {
@@ -534,14 +535,14 @@ bool ProgramRun::run_single_cycle(GFunction f, bool cycle_code_in_block, int col
     if (!check_feed(fw != nullptr ? fw->column : column)) {
       return false;
     }
-    c.feed = feed_;
+    c.feed = modal_.feed;
   }
   path::PlanePath moves;
   if (const path::PathResult r =
           cycles::expand_single_cycle({machine_[a], machine_[b]}, c, moves)) {
     return fail_path(*r, column);
   }
-  emit_plane_path(moves, axes, feed_, rpm);
+  emit_plane_path(moves, axes, modal_.feed, rpm);
   return true;
 }
 

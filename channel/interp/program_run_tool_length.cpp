@@ -27,7 +27,7 @@ int ProgramRun::radius_offset() const {
 
 bool ProgramRun::run_length_compensation(GFunction f, double value) {
   tools_.length_sign = f == GFunction::length_plus ? 1 : f == GFunction::length_minus ? -1 : 0;
-  modal_codes_[8] = value;
+  modal_.codes[8] = value;
   apply_tool_offset(tools_.offset);  // the frame follows the new offset; nothing moves yet
   return true;
 }

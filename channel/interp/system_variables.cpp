@@ -132,10 +132,10 @@ VariableRead ProgramRun::read(std::int64_t n) const {
     const int slot = config_.dialect == Dialect::fanuc_mill
                          ? mill_group_slot(static_cast<int>(n % 100))
                          : static_cast<int>(n % 100);
-    return value(slot < 0 ? 0.0 : modal_codes_[static_cast<std::size_t>(slot)]);
+    return value(slot < 0 ? 0.0 : modal_.codes[static_cast<std::size_t>(slot)]);
   }
   if (n == 4109 || n == 4309) {
-    return value(feed_ / (metric_ ? 1.0 : 25.4));
+    return value(modal_.feed / (modal_.metric ? 1.0 : 25.4));
   }
   if (n == 4119 || n == 4319) {
     return value(spindles_.rpm[1]);
@@ -236,7 +236,7 @@ MacroAlarm ProgramRun::write(std::int64_t n, MacroValue v) {
 double ProgramRun::machine_reading(std::size_t axis, double physical) const {
   const AxisConfig& a = config_.axes[axis];
   const double v = physical * (a.diameter ? 2.0 : 1.0);
-  return !a.rotary && !metric_ ? v / 25.4 : v;
+  return !a.rotary && !modal_.metric ? v / 25.4 : v;
 }
 
 }  // namespace mcnc::interp

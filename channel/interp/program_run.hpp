@@ -1,14 +1,23 @@
 #pragma once
 // The state of one interpreter run and its execution, behind Interpreter (interpreter.hpp).
-// program_run.cpp: programs, calls and macro statements; program_run_block.cpp: NC blocks;
-// program_run_motion.cpp: coordinates and motion; program_run_corners.cpp: chamfers and corner
-// rounds (,C ,R); program_run_thread.cpp: threading and the single cycles;
+// The run's state that is a value of its own lives in channel/interp/state/: the modal state
+// (ModalState), the coordinate systems (CoordinateSystems), the spindles (SpindleState), the
+// tools and their offsets (ToolTable), the modal hole cycle (HoleMode) and the G70-G73 contour
+// (ContourCapture); the rules over each (the offsets' sum, a tool offset on an axis, ...) are
+// their members. ProgramRun holds one of each and the flow, the block and the transforms.
+// The execution: program_run.cpp: programs, calls and macro statements; program_run_block.cpp:
+// NC blocks; program_run_motion.cpp: coordinates and motion; program_run_corners.cpp: chamfers
+// and corner rounds (,C ,R); program_run_thread.cpp: threading and the single cycles;
 // program_run_cycles.cpp: the multiple repetitive cycles G71-G76 and the hole cycles' words;
 // program_run_contour.cpp: the finishing contour of G70-G73; program_run_holes.cpp: the hole
 // cycles (lathe G83-G89, mill G73-G89); program_run_positioning.cpp: the mill's G27/G29/G60;
 // program_run_tool_length.cpp: the mill's T, H and D; program_run_frame.cpp: the G68.1 rotation
 // and the G51.1 mirror; program_run_polar.cpp: G12.1 polar interpolation;
-// program_run_cylinder.cpp: G07.1; system_variables.cpp: the system variables (#2000-#19999).
+// program_run_cylinder.cpp: G07.1; program_run_inclined.cpp: inclined-axis control;
+// program_run_chip_breaking.cpp: G98.1/G99.1; program_run_normal.cpp: G40.1-G42.1;
+// program_run_oscillation.cpp: G81.1; program_run_skip.cpp: G31, G31.8 and G160;
+// program_run_torque.cpp: G10 L14; program_run_stroke.cpp: G22/G23; system_variables.cpp: the
+// system variables (#2000-#19999).
 #include "channel/interp/block_lookahead.hpp"
 #include "channel/interp/cycles/multiple_thread.hpp"
 #include "channel/interp/gcode_table.hpp"

@@ -201,6 +201,22 @@ struct Command {
   bool timer_longer = false;
   std::int64_t timer_variable = 0;
   int torque_mode_p = 0;  // torque_mode: 10, 11 or 12
+  // G10 L14 P7/P8 (decision 200): a hole cycle's in-feed whose load is watched (bit i of
+  // overload_axes: channel axis i at overload_loads[i] % of the rated torque, for
+  // overload_filter_s seconds in a row; 0: not watched). On an overload the move stops, the
+  // tool goes back along it to the hole's R point, overload_retract (mm) short of `to`, then
+  // the cycle alarms, goes on with the next block or retries the in-feed (overload_outcome);
+  // overload_variable (0: none) counts the overloads. overload_p is 7 (drilling) or 8
+  // (tapping); overload_block names the block whose commands a `go_on` drops.
+  enum class Overload : std::uint8_t { stop, alarm, go_on, retry };
+  std::uint32_t overload_axes = 0;
+  std::array<double, kMaxChannelAxes> overload_loads{};
+  double overload_filter_s = 0.0;
+  double overload_retract = 0.0;
+  Overload overload_outcome = Overload::stop;
+  std::int64_t overload_variable = 0;
+  int overload_p = 7;
+  std::uint64_t overload_block = 0;
   // wait_input (G04 I): input number, wanted state, optional timeout/width/dwell (< 0: none).
   // wait_spindle (G04 PS) takes `spindle`, `rpm` and `dwell_s`.
   int input = 0;

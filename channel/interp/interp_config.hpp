@@ -90,6 +90,18 @@ struct MacroCallTables {
 
 // The parameters the canned cycles take when their first block is not programmed (spec dafeng
 // §2.5: params 5030-5036, 5110-5111, 5130-5136, 5200-5211). Lengths physical mm (radius).
+// What a drilling (G10 L14 P7) or tapping (P8) overload does (decision 200): params
+// 5100.2/5200.4 retract (else the cycle stops where it stands, with an alarm), 5100.3/5200.5
+// retry the in-feed after the retract, 5100.4/5200.6 alarm after it (else the block ends
+// there and the program goes on); 5113/5251 the variable that counts the overloads when the
+// G10 gives no R (0: none).
+struct OverloadParams {
+  bool retract = false;
+  bool retry = false;
+  bool alarm = false;
+  int variable = 0;
+};
+
 struct CycleDefaults {
   double rough_depth = 1.0;                  // G71 U(d) / G72 W(d), param 5130
   double rough_retract = 0.5;                // R(e), param 5131
@@ -114,6 +126,8 @@ struct CycleDefaults {
   // The mill's G76/G87 shift off the wall (FANUC param 5101 RD1/RD2): 0 along the plane's
   // first axis (G17: +X), 1 its negative, 2 along the second axis (+Y), 3 its negative.
   int bore_shift_direction = 0;
+  OverloadParams drill_overload;  // params 5100.2-5100.4, 5113
+  OverloadParams tap_overload;    // params 5200.4-5200.6, 5251
 };
 
 struct InterpreterConfig {

@@ -59,6 +59,11 @@ void Interpreter::load_timer_result(std::uint32_t axes) {
   run_->set_load_timer_result(axes);
 }
 
+void Interpreter::overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                                  const AxisVector& stop_at) {
+  run_->set_overload_result(overloads, dropped_block, stop_at);
+}
+
 void Interpreter::multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) {
   run_->set_multi_skip_result(latched, stop_at);
 }

@@ -87,6 +87,12 @@ class Interpreter {
   // channel axis i) met its condition and go to its R variable. Without this call #R is not
   // written (a dry run).
   void load_timer_result(std::uint32_t axes);
+  // The G10 L14 P7/P8-watched in-feed just pulled ended: `overloads` overloads happened (added
+  // to its R variable); `dropped_block` (0: none) is its Command::overload_block when the block
+  // ends there (the overload's "go on"): its commands not pulled yet are dropped and the axes
+  // stand at `stop_at`. Without this call no overload happens (a dry run).
+  void overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                       const AxisVector& stop_at);
   // The workpiece position as #5001.. reads it (X as a diameter on a diameter axis).
   double program_position(int axis) const;
   // The number of non-empty lines of the main program (0 before start).

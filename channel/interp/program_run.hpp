@@ -88,6 +88,9 @@ class ProgramRun final : public macro::VariableProvider {
   // The last G10 L14 P20-P51: the axes (bit i: channel axis i) that met its condition, written
   // to its R variable when any did.
   void set_load_timer_result(std::uint32_t axes);
+  // The G10 L14 P7/P8-watched in-feed just pulled (Interpreter::overload_result).
+  void set_overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                           const AxisVector& stop_at);
   double program_position(int axis) const;
   std::optional<ProgramAlarm> save_retained();
   std::size_t main_block_count() const;
@@ -261,6 +264,11 @@ class ProgramRun final : public macro::VariableProvider {
   bool run_load_watch(int column);        // G10 L14 P0/P1, P2-P5 (the load timers)
   bool run_load_timer_check(int column);  // G10 L14 P20-P51
   bool run_torque_mode(int column);       // G10 L14 P10-P12
+  bool run_overload_watch(int column);    // G10 L14 P7/P8 (program_run_overload.cpp)
+  // A hole cycle's in-feed `c` (a drilling feed, or a tap step with `tapping`, into the hole,
+  // ending `depth` mm past R): watched for overload when G10 L14 P7 (drilling) or P8 (rigid
+  // tapping) is on.
+  void watch_overload(Command& c, bool tapping, double depth);
   // G10 L14's per-axis values (`what` in an alarm), absolute addresses only, 0-`max` in
   // `unit`: into `values`, bit i of `given` for each axis named.
   bool read_axis_values(const char* what, const char* unit, double max, AxisVector& values,
@@ -643,6 +651,18 @@ class ProgramRun final : public macro::VariableProvider {
   std::int64_t load_timer_variable_ = 0;  // the R of the last G10 L14 P20-P51
   // G10 L14 P11: per channel axis, the motor speed limit of torque mode, rpm (0: param 5521's).
   AxisVector torque_mode_speed_{};
+  // G10 L14 P7 ([0], drilling) and P8 ([1], tapping): the loads watched in the cycles'
+  // in-feeds (bit i of axes: channel axis i at loads[i] %), J and the counting variable R.
+  struct OverloadWatch {
+    std::uint32_t axes = 0;
+    AxisVector loads{};
+    double filter_s = 0.0;
+    std::int64_t variable = 0;
+  };
+  std::array<OverloadWatch, 2> overload_watch_{};
+  std::uint64_t overload_blocks_ = 0;   // hole blocks watched so far (Command::overload_block)
+  std::uint64_t overload_block_ = 0;    // the hole block executing now, when watched
+  std::int64_t overload_variable_ = 0;  // the R of the in-feeds released last
   bool rotated_ = false;
   transform::PlaneRotation rotation_;     // physical program coordinates
   transform::AxisMirror program_mirror_;  // physical work coordinates

@@ -232,6 +232,7 @@ bool ProgramRun::run_hole_cycle(int column) {
              (h.function == GFunction::mill_tap_left ? -1.0 : 1.0);
   }
   bool first = true;
+  overload_block_ = 0;  // G10 L14 P7/P8: this block's in-feeds get a number of their own
   // Reset on every way out: the alarms below return early, and an alarm ends the run anyway.
   struct CycleOutput {
     bool& flag;
@@ -320,6 +321,12 @@ bool ProgramRun::run_hole_cycle(int column) {
       return fail_path(*e, column);
     }
     const SpindleDirection turning = spindles_.reference_direction();
+    // Rigid tapping (M29): the spindle stands and follows the thread move; G10 L14 P8 watches
+    // only that form (L4902).
+    const bool rigid = turning != SpindleDirection::cw && turning != SpindleDirection::ccw;
+    // A step deeper into the hole than where the drilling axis stands: an in-feed.
+    const double inward = c.bottom < c.r_level ? -1.0 : 1.0;
+    const auto into_hole = [&](double to) { return (to - machine_[drill]) * inward > 0.0; };
     for (const cycles::HoleStep& s : steps) {
       AxisVector to = machine_;
       to[drill] = s.to;
@@ -329,18 +336,26 @@ bool ProgramRun::run_hole_cycle(int column) {
           machine_ = to;
           break;
         case cycles::HoleStep::Kind::feed: {
+          const bool in_feed = into_hole(s.to);
           Command& cmd = emit(Op::linear);
           cmd.to = to;
           cmd.feed = modal_.feed;
           cmd.feed_mode = modal_.feed_mode;
+          if (in_feed && kind == cycles::HoleKind::drill && !mill) {
+            watch_overload(cmd, false, std::fabs(s.to - c.r_level));  // G10 L14 P7
+          }
           machine_ = to;
           break;
         }
         case cycles::HoleStep::Kind::tap: {
+          const bool in_feed = into_hole(s.to);
           Command& cmd = emit(Op::thread);
           cmd.to = to;
           cmd.lead = std::fabs(c.lead);
           cmd.spindle = spindles_.reference;
+          if (in_feed && rigid && !mill) {
+            watch_overload(cmd, true, std::fabs(s.to - c.r_level));  // G10 L14 P8, M29 only
+          }
           machine_ = to;
           break;
         }
@@ -389,6 +404,11 @@ bool ProgramRun::run_hole_cycle(int column) {
       }
     }
     block_moved_ = true;
+  }
+  // A watched block's commands carry its number: an overload that ends the block drops those
+  // after the in-feed (set_overload_result).
+  for (std::size_t k = block_out_start_; overload_block_ != 0 && k < out_.size(); ++k) {
+    out_[k].overload_block = overload_block_;
   }
   return true;
 }

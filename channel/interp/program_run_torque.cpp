@@ -1,8 +1,8 @@
 // G10 L14 (spec dafeng §2.9.1-2.9.4, L4768-5209): the torque data of the axes. P6 sets the
 // load ratios of G31 P98/P99 (program_run_skip.cpp); P9 limits the drives' torque (L5094-5142).
 // P0/P1 watch the load, P2-P5 start the load timers and P20-P51 read them (L4770-4849); P10-P12
-// switch torque mode (run_torque_mode, below). The drilling/tapping overloads (P7/P8) are
-// alarm 1122 (docs/dialect.md, "Not done yet").
+// switch torque mode (run_torque_mode, below). P7/P8 watch the drilling/tapping cycles'
+// in-feeds for overload (program_run_overload.cpp).
 #include "channel/interp/program_alarms.hpp"
 #include "channel/interp/program_run.hpp"
 
@@ -47,11 +47,14 @@ bool ProgramRun::run_torque_data(int column) {
   if (p->value == 10.0 || p->value == 11.0 || p->value == 12.0) {
     return run_torque_mode(column);
   }
-  return fail(alarm::kNotInThisVersion,
+  if (p->value == 7.0 || p->value == 8.0) {
+    return run_overload_watch(column);
+  }
+  return fail(alarm::kBadWordValue,
               "G10 L14 P" + std::to_string(static_cast<long long>(p->value)) +
-                  " (overload detection) is not implemented; G10 L14 P0/P1 watch the load, "
-                  "P2-P5 and P20-P51 time it, P6 sets the load ratios of G31 P98/P99, P9 the "
-                  "torque limits, P10-P12 switch torque mode",
+                  " is not a torque function: P0/P1 watch the load, P2-P5 and P20-P51 time it, "
+                  "P6 sets the load ratios of G31 P98/P99, P7/P8 watch the drilling/tapping "
+                  "cycles, P9 the torque limits, P10-P12 switch torque mode",
               p->column);
 }
 

@@ -54,7 +54,8 @@ void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
              "thread_angle",       "thread_min_depth",     "thread_allowance",
              "thread_alternating", "drill_high_speed",     "drill_retract",
              "drill_clearance",    "drill_full_retract",   "tap_high_speed",
-             "tap_retract",        "bore_shift_direction"});
+             "tap_retract",        "bore_shift_direction", "drill_overload",
+             "tap_overload"});
   const auto length = [&](const char* k, double& v) {
     if (node[k]) {
       v = get<double>(node[k], std::string("cycles.") + k);
@@ -100,6 +101,31 @@ void cycle_defaults(const YAML::Node& node, interp::CycleDefaults& d) {
   flag("tap_high_speed", d.tap_high_speed);
   length("tap_retract", d.tap_retract);
   count("bore_shift_direction", d.bore_shift_direction, 0, 3);
+  // G10 L14 P7/P8 on an overload: params 5100.2-5100.4 and 5113, 5200.4-5200.6 and 5251.
+  const auto overload = [&](const char* k, interp::OverloadParams& o) {
+    const YAML::Node n = node[k];
+    if (!n) {
+      return;
+    }
+    const std::string at = std::string("cycles.") + k;
+    only_keys(n, at, {"retract", "retry", "alarm", "variable"});
+    const auto bit = [&](const char* b, bool& v) {
+      if (n[b]) {
+        v = get<bool>(n[b], at + "." + b);
+      }
+    };
+    bit("retract", o.retract);
+    bit("retry", o.retry);
+    bit("alarm", o.alarm);
+    if (n["variable"]) {
+      o.variable = get<int>(n["variable"], at + ".variable");
+      if (o.variable < 0 || o.variable > 999) {
+        bad(at + ".variable", "0-999");
+      }
+    }
+  };
+  overload("drill_overload", d.drill_overload);
+  overload("tap_overload", d.tap_overload);
 }
 
 char axis_letter(const std::string& s, const std::string& key) {

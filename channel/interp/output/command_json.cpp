@@ -335,6 +335,42 @@ void arc_fields(Writer& out, const Command& c, const std::vector<AxisConfig>& ax
   out += c.plane == Plane::xy ? "\"XY\"" : c.plane == Plane::zx ? "\"ZX\"" : "\"YZ\"";
 }
 
+// G10 L14 P7/P8: a hole cycle's in-feed watched for overload, what follows one and where to.
+void overload_fields(Writer& out, const Command& c, const std::vector<AxisConfig>& axes) {
+  if (c.overload_axes == 0) {
+    return;
+  }
+  key(out, "overload");
+  out += "{\"p\":";
+  integer(out, c.overload_p);
+  out += ",\"loads\":";
+  axis_values(out, c.overload_loads, c.overload_axes, axes);
+  out += ",\"filter\":";
+  number(out, c.overload_filter_s);
+  out += ",\"retract\":";
+  number(out, c.overload_retract);
+  out += ",\"then\":";
+  switch (c.overload_outcome) {
+    case Command::Overload::stop:
+      out += "\"stop\"";
+      break;
+    case Command::Overload::alarm:
+      out += "\"alarm\"";
+      break;
+    case Command::Overload::go_on:
+      out += "\"go_on\"";
+      break;
+    case Command::Overload::retry:
+      out += "\"retry\"";
+      break;
+  }
+  if (c.overload_variable != 0) {
+    out += ",\"variable\":";
+    integer(out, c.overload_variable);
+  }
+  out += '}';
+}
+
 const char* op_name(Op op) {
   switch (op) {
     case Op::rapid:
@@ -481,6 +517,7 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
         }
         axis_values(out, c.load_ratio, watched, axes);
       }
+      overload_fields(out, c, axes);
       if (c.torque_skip) {  // G160: the axis's torque limit (-1: cancelled) and the skip's error
         key(out, "torque_skip");
         out += "{\"limit\":";
@@ -526,6 +563,7 @@ void append_json(std::string& text, const Command& c, const std::vector<AxisConf
       if (c.thread_arc) {
         arc_fields(out, c, axes);
       }
+      overload_fields(out, c, axes);
       break;
     case Op::dwell:
       key(out, std::string_view(c.in_revs ? "revs" : "seconds"));

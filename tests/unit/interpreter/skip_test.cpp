@@ -309,7 +309,6 @@ TEST(InterpLoadSkip, Alarms) {
       {"G98 G10 L14 P6 W40\nM30\n", alarm::kWordNotAllowed, 1},  // absolute addresses only
       {"G98 G10 L14 P6 Z1001\nM30\n", alarm::kBadWordValue, 1},
       {"G98 G10 L14 P6 Z-1\nM30\n", alarm::kBadWordValue, 1},
-      {"G98 G10 L14 P7 Z80\nM30\n", alarm::kNotInThisVersion, 1},  // the drilling overload
   };
   expect_alarms(cases, c);
 }

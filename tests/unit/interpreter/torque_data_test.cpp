@@ -78,7 +78,7 @@ TEST(InterpTorqueLimit, Alarms) {
       {"G10 L14 P1 Z80 J-1\nM30\n", alarm::kBadWordValue, 1},
       {"G10 L14 P0 U80\nM30\n", alarm::kWordNotAllowed, 1},
       {"G10 L14 P1 Z1200\nM30\n", alarm::kBadWordValue, 1},
-      {"G10 L14 P7 R100 Z80\nM30\n", alarm::kNotInThisVersion, 1},  // drilling overload
+      {"G10 L14 P13 Z80\nM30\n", alarm::kBadWordValue, 1},  // no such torque function
   };
   expect_alarms(cases, lathe());
 }
@@ -158,7 +158,7 @@ TEST(InterpLoadTimers, Alarms) {
       {"G10 L14 P2 Z80\nG10 L14 P21 Z15 R0.5\nM30\n", alarm::kBadWordValue, 2},
       {"G10 L14 P2 Z1200\nM30\n", alarm::kBadWordValue, 1},
       {"G10 L14 P2 W80\nM30\n", alarm::kWordNotAllowed, 1},
-      {"G10 L14 P22 Z15 R100\nM30\n", alarm::kNotInThisVersion, 1},  // no such form
+      {"G10 L14 P22 Z15 R100\nM30\n", alarm::kBadWordValue, 1},  // no such form
       {"G10 L14 P2 Z80\nG10 L14 P2\nG10 L14 P21 Z15 R100\nM30\n", alarm::kCycleWordMissing,
        3},  // P2 without axes stopped the timer
   };

@@ -473,6 +473,7 @@ void ChannelController::run_blocks(std::uint64_t cycle,
   }
   fill(cycle);
   coordination_.watch_skip(feedback);
+  coordination_.watch_overload(feedback);
   motion::CycleInput input;
   input.in_position = in_pos;
   input.feed_hold = out_.state == ChannelState::hold;

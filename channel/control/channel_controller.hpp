@@ -218,6 +218,9 @@ class ChannelController : private ChannelHost {
     source_.multi_skip_result(latched, commanded_);
   }
   void load_timer_result(std::uint32_t axes) noexcept override { source_.load_timer_result(axes); }
+  void overload_result(std::uint32_t overloads, std::uint64_t dropped_block) noexcept override {
+    source_.overload_result(overloads, dropped_block, commanded_);
+  }
 
   const CycleOutput& run_cycle(std::uint64_t cycle,
                                std::span<const AxisFeedbackView> feedback) noexcept;

@@ -45,7 +45,8 @@ ChannelCoordination::ChannelCoordination(const ChannelSetup& setup, ChannelHost&
       spindle_mode_(c_rest_width(setup), setup.cycle_s),
       skip_(setup.axis_count, setup.probe_arm_cycles),
       load_(setup.slots),
-      timers_(setup.slots) {}
+      timers_(setup.slots),
+      overload_(setup.slots) {}
 
 void ChannelCoordination::on_arrival(const coordination::SyncArrival& arrival) noexcept {
   mark_.on_arrival(arrival);  // a full table makes the next evaluation an alarm
@@ -243,8 +244,10 @@ bool ChannelCoordination::hold_cut_until_locked(const interp::Command& c,
 }
 
 bool ChannelCoordination::holds_before_motion() const noexcept {
+  const auto* overload = std::get_if<OverloadStop>(&held_);
   return holds() &&
-         (!std::holds_alternative<SkipStop>(held_) || skip_in(coordination::SkipPhase::arming));
+         (!std::holds_alternative<SkipStop>(held_) || skip_in(coordination::SkipPhase::arming)) &&
+         (overload == nullptr || overload->phase == OverloadPhase::start);
 }
 
 void ChannelCoordination::run_held(std::uint64_t cycle,
@@ -285,7 +288,8 @@ std::optional<interp::ProgramAlarm> ChannelCoordination::foreign_move(
 }
 
 void ChannelCoordination::abandon_run() noexcept {
-  load_.cancel();           // the checks live in the program's run (decision 121)
+  load_.cancel();  // the checks live in the program's run (decision 121)
+  overload_.cancel();
   timers_.clear();          // so do the load timers
   torque_mode_speed_ = {};  // so does P11's speed; an axis in torque mode keeps its own
   under_way_ = {};

@@ -49,6 +49,9 @@ class ChannelHost {
   virtual void multi_skip_result(std::span<const double> latched) noexcept = 0;
   // G10 L14 P20-P51 ran: the axes (bit i: channel axis i) that met its condition.
   virtual void load_timer_result(std::uint32_t axes) noexcept = 0;
+  // A G10 L14 P7/P8 in-feed is over after `overloads` overloads; `dropped_block` (0: none) ends
+  // its block where the axes stand (CommandSource::overload_result).
+  virtual void overload_result(std::uint32_t overloads, std::uint64_t dropped_block) noexcept = 0;
 
  protected:
   ChannelHost() = default;
@@ -112,9 +115,15 @@ class ChannelCoordination {
                                                                  const interp::Command& c) const;
   // G31 while it moves: a latch stops the move.
   void watch_skip(std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  // G31's move, or a G10 L14 P7/P8 in-feed that overloaded, decelerates to a stop.
   [[nodiscard]] bool skip_stopping() const noexcept {
-    return skip_in(coordination::SkipPhase::stopping);
+    const auto* o = std::get_if<OverloadStop>(&held_);
+    return skip_in(coordination::SkipPhase::stopping) ||
+           (o != nullptr && o->phase == OverloadPhase::stopping);
   }
+  // G10 L14 P7/P8 while the in-feed moves: an overload of an axis it watches stops the move
+  // (channel_overload.cpp).
+  void watch_overload(std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   // A queued block starts: a move of an axis under a G160 (or G31 P98/P99) torque limit other
   // than one that sets one cancels it (L5382), and so does G160 P-1.
   void block_started(const QueuedBlock& b) noexcept;
@@ -246,6 +255,10 @@ class ChannelCoordination {
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
   void run(LockWaitStop& b, std::uint64_t cycle,
            std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  void run(OverloadStop& b, std::uint64_t cycle,
+           std::span<const coordination::AxisFeedbackView> feedback) noexcept;
+  // G10 L14 P7/P8: the in-feed (again) from where the axes stand, its loads watched.
+  void feed_in(OverloadStop& b) noexcept;
 
   const ChannelSetup& setup_;
   ChannelHost& host_;
@@ -305,6 +318,8 @@ class ChannelCoordination {
   coordination::MoveUnderWay under_way_{};
   // G10 L14 P2-P5: the load timers, over the same moves; P20-P51 read them.
   coordination::LoadTimers timers_;
+  // G10 L14 P7/P8: the loads of the in-feed under way, as P1 watches its G01 moves.
+  coordination::LoadMonitor overload_;
   // The torque limit a G160 or G31 P98/P99 puts on channel axis i (limit 0: none): G160 its P
   // and Q on its one axis, P98/P99 the axis's load ratio and no deviation (decision 116).
   [[nodiscard]] static TorqueLimit skip_torque_limit(const interp::Command& c,

@@ -183,6 +183,11 @@ ReadAheadStop read_ahead_stop(const interp::Command& c, const StopRules& rules, 
                    c.op == Op::tool ? coordination::AuxKind::t_code : coordination::AuxKind::m_code,
                    code, spindle_start, c};
   }
+  if (c.overload_axes != 0 && c.moves()) {  // G10 L14 P7/P8: a watched in-feed
+    OverloadStop s;
+    s.command = c;
+    return s;
+  }
   // G31 (P98/P99 on the load too), G160 (P-1 only moves).
   if (c.skip || c.load_skip || (c.torque_skip && c.torque_limit > 0.0)) {
     SkipStop s;

@@ -1,12 +1,12 @@
 #pragma once
 // The blocks that stop the channel's read-ahead (spec dafeng §3.0, spec L6907): G04.1, G144,
 // G145, G140-G142, aux codes the PLC answers (and spindle starts it allows), G114.1/G113,
-// G51.4/G50.4, M18/M17, G31, G04 I/PS and G10 L14 P0-P5/P9-P12/P20-P51. Such a block is pulled and
-// held until every block before it ended, then run by its coordination machine; nothing after it is
-// read meanwhile. "The block that stops read-ahead" is one std::variant, and read_ahead_stop() is
-// the one place that says which commands are one and what each carries. Pure: no allocation beyond
-// the command copies the G31 and aux blocks keep (made while reading ahead, as before), nothing
-// throws but a copy of a command.
+// G51.4/G50.4, M18/M17, G31, G04 I/PS, G10 L14 P0-P5/P9-P12/P20-P51 and the in-feeds G10 L14
+// P7/P8 watch. Such a block is pulled and held until every block before it ended, then run by its
+// coordination machine; nothing after it is read meanwhile. "The block that stops read-ahead" is
+// one std::variant, and read_ahead_stop() is the one place that says which commands are one and
+// what each carries. Pure: no allocation beyond the command copies the G31, G10 L14 P7/P8 and aux
+// blocks keep (made while reading ahead, as before), nothing throws but a copy of a command.
 #include "channel/coordination/aux_handshake.hpp"
 #include "channel/coordination/axis_exchange.hpp"
 #include "channel/coordination/condition_block.hpp"
@@ -147,10 +147,29 @@ struct TorqueModeStop {
 struct LockWaitStop {
   interp::Command command;
 };
+// G10 L14 P7/P8 (decision 200): a drilling or tapping cycle's in-feed watched for overload,
+// queued once every block before it ended. While it moves, the loads of its axes are watched
+// as G10 L14 P0's; on an overload the move stops, the tool goes back along it to the hole's R
+// point, and then the cycle alarms, goes on with the next block (the source drops the rest of
+// this one) or feeds in again from R, as Command::overload_outcome says.
+enum class OverloadPhase : std::uint8_t {
+  start,       // not queued yet
+  feeding,     // the in-feed moves, its load watched
+  stopping,    // overloaded: the move decelerates (the planner's reset deceleration)
+  retracting,  // back to R
+};
+struct OverloadStop {
+  interp::Command command;  // the in-feed
+  OverloadPhase phase = OverloadPhase::start;
+  interp::AxisVector start{};  // where the in-feed starts (a retry starts there again)
+  std::uint32_t overloads = 0;
+  coordination::CoordinationAlarm alarm;  // the last overload's (number 1282)
+};
 // The block held, std::monostate when none.
 using ReadAheadStop = std::variant<std::monostate, SyncStop, CallStop, ReleaseStop, ExchangeStop,
                                    AuxStop, CouplingStop, ModeStop, SkipStop, WaitStop,
-                                   TorqueDataStop, LoadTimerStop, TorqueModeStop, LockWaitStop>;
+                                   TorqueDataStop, LoadTimerStop, TorqueModeStop, LockWaitStop,
+                                   OverloadStop>;
 
 // What decides which commands stop read-ahead in a channel.
 struct StopRules {

@@ -13,7 +13,7 @@ LoadMonitor::LoadMonitor(std::span<const AxisSlot> slots) noexcept {
 }
 
 void LoadMonitor::raise(std::size_t axis, const char* why, double load) noexcept {
-  const int p = watch_ == LoadWatch::every_move ? 0 : 1;
+  const int p = p_ >= 0 ? p_ : watch_ == LoadWatch::every_move ? 0 : 1;
   char name[8];
   if (names_[axis] != 0) {
     std::snprintf(name, sizeof name, "%c", names_[axis]);
@@ -30,7 +30,8 @@ void LoadMonitor::raise(std::size_t axis, const char* why, double load) noexcept
 }
 
 void LoadMonitor::set(LoadWatch watch, std::uint32_t axes, const Percent& reference,
-                      std::uint64_t filter_cycles) noexcept {
+                      std::uint64_t filter_cycles, int p) noexcept {
+  p_ = p;
   watch_ = axes != 0 ? watch : LoadWatch::off;
   axes_ = watch_ != LoadWatch::off ? axes : 0;
   reference_ = reference;

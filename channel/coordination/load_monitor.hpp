@@ -17,6 +17,8 @@
 namespace mcnc::coordination {
 
 inline constexpr int kAlarmOverload = 1280;  // G10 L14 P0/P1: an axis's load above its reference
+// G10 L14 P7/P8: a drilling or tapping cycle's in-feed overloaded; the tool went back to R.
+inline constexpr int kAlarmCycleOverload = 1282;
 
 // Which moves P0/P1 watch: none, every move of the axis (P0), its G01 moves (P1).
 enum class LoadWatch : std::uint8_t { off, every_move, feed_moves };
@@ -37,9 +39,10 @@ class LoadMonitor {
   explicit LoadMonitor(std::span<const AxisSlot> slots) noexcept;
 
   // G10 L14 P0/P1 reached the front: the axes of `axes` (bit i) watched at `reference[i]` %,
-  // for `filter_cycles` cycles in a row (at least 1); `axes` 0 cancels every check.
+  // for `filter_cycles` cycles in a row (at least 1); `axes` 0 cancels every check. `p` names
+  // the G10 L14 P in the alarm (-1: P0 or P1, as `watch` says; P7/P8 watch a cycle's in-feed).
   void set(LoadWatch watch, std::uint32_t axes, const Percent& reference,
-           std::uint64_t filter_cycles) noexcept;
+           std::uint64_t filter_cycles, int p = -1) noexcept;
   void cancel() noexcept { set(LoadWatch::off, 0, {}, 1); }
   // One cycle, with the feedback the channel holds: true when an axis overloaded now (alarm()).
   bool step(std::span<const AxisFeedbackView> feedback, const MoveUnderWay& move) noexcept;
@@ -52,6 +55,7 @@ class LoadMonitor {
   std::uint32_t axes_ = 0;
   Percent reference_{};
   std::uint64_t filter_cycles_ = 1;
+  int p_ = -1;
   std::array<std::uint64_t, kMaxAxes> over_{};  // cycles in a row above the reference
   CoordinationAlarm alarm_{};
   std::array<char, kMaxAxes> names_{};  // 0: by number

@@ -62,6 +62,15 @@ class CommandSource {
   // The G10 L14 P20-P51 (Op::load_timer_check) just pulled: `axes` (bit i: channel axis i) met
   // its condition. Called before the next pull.
   virtual void load_timer_result(std::uint32_t axes) { (void)axes; }
+  // The G10 L14 P7/P8-watched in-feed (Command::overload_axes) just pulled ended after
+  // `overloads` overloads; `dropped_block` (0: none) ends its block there, the axes standing at
+  // `stop_at` (Interpreter::overload_result). Called before the next pull.
+  virtual void overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                               const AxisVector& stop_at) {
+    (void)overloads;
+    (void)dropped_block;
+    (void)stop_at;
+  }
   // Positions the source at the start of program O<number> called by another channel (G144)
   // with locals #1-#26 from `args`; an alarm when it cannot (not found, no program store).
   // Outside the cycle's allocation rule: a call loads a program. The next rewind() goes back to

@@ -99,7 +99,8 @@ const AxisConfig* axis_without_torque_mode(const Command& c, const InterpreterCo
 // anything else is not in this version.
 int alarm_for(const Command& c, const InterpreterConfig& config) {
   if (c.torque_skip || (c.load_skip && unlimited_load_axis(c, config) != nullptr) ||
-      c.op == Op::torque_limit || c.op == Op::load_watch || c.op == Op::torque_mode) {
+      c.op == Op::torque_limit || c.op == Op::load_watch || c.op == Op::torque_mode ||
+      c.overload_axes != 0) {
     return alarm::kSkipInput;
   }
   if (c.op == Op::sync) {
@@ -410,6 +411,15 @@ bool InterpreterSource::for_channel(const Command& c, std::string& why,
     }
     return true;
   }
+  for (std::size_t a = 0; c.overload_axes != 0 && a < config.axes.size(); ++a) {
+    // G10 L14 P7/P8 watch the loads the drives report (0x6077), as P0/P1.
+    if (((c.overload_axes >> a) & 1U) != 0 && !config.axes[a].torque_skip) {
+      why = "G10 L14 P" + std::to_string(c.overload_p) + ": the drive of axis " +
+            config.axes[a].name + " does not report its torque (torque_skip of the axis in the " +
+            "machine file)";
+      return false;
+    }
+  }
   if (c.skip && !skip_wired(c, config)) {
     why = c.skip_signal != 0
               ? "G31 P" + std::to_string(c.skip_signal) +
@@ -455,6 +465,13 @@ void InterpreterSource::skip_result(bool skipped, const AxisVector& skip_at,
 void InterpreterSource::load_timer_result(std::uint32_t axes) {
   if (interpreter_) {
     interpreter_->load_timer_result(axes);
+  }
+}
+
+void InterpreterSource::overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                                        const AxisVector& stop_at) {
+  if (interpreter_) {
+    interpreter_->overload_result(overloads, dropped_block, stop_at);
   }
 }
 

@@ -54,6 +54,8 @@ class InterpreterSource final : public CommandSource {
   void adopt_position(const AxisVector& at) override;
   void skip_result(bool skipped, const AxisVector& skip_at, const AxisVector& stop_at) override;
   void multi_skip_result(std::span<const double> latched, const AxisVector& stop_at) override;
+  void overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                       const AxisVector& stop_at) override;
   void load_timer_result(std::uint32_t axes) override;
 
   // Whether the channel can execute `c`; when not, `why` says what is missing. A channel with a

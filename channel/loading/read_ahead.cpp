@@ -89,6 +89,7 @@ void ReadAhead::abandon() noexcept {
   has_position_ = false;
   has_skip_ = false;
   has_timer_ = false;
+  has_overload_ = false;
   thread_stands();
 }
 
@@ -117,6 +118,7 @@ ReadAhead::Order* ReadAhead::begin_run(Order::Kind kind, const interp::AxisVecto
   has_position_ = false;
   has_skip_ = false;
   has_timer_ = false;
+  has_overload_ = false;
   order_lost_ = false;
   Order* o = order_slot();
   if (o == nullptr) {
@@ -210,6 +212,14 @@ void ReadAhead::load_timer_result(std::uint32_t axes) {
   timer_axes_ = axes;
 }
 
+void ReadAhead::overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                                const interp::AxisVector& stop_at) {
+  has_overload_ = true;
+  overloads_ = overloads;
+  dropped_block_ = dropped_block;
+  stop_at_ = stop_at;
+}
+
 void ReadAhead::multi_skip_result(std::span<const double> latched,
                                   const interp::AxisVector& stop_at) {
   has_skip_ = true;
@@ -267,10 +277,14 @@ bool ReadAhead::ready() noexcept {
       o->latched_count = latched_count_;
       o->has_timer = has_timer_;
       o->timer_axes = timer_axes_;
+      o->has_overload = has_overload_;
+      o->overloads = overloads_;
+      o->dropped_block = dropped_block_;
       o->peer_writes = peer_writes_posted_;
       has_position_ = false;
       has_skip_ = false;
       has_timer_ = false;
+      has_overload_ = false;
       expecting_ = true;
       post();
     }
@@ -422,6 +436,9 @@ void ReadAhead::handle(Order& order) noexcept {
         }
         if (order.has_timer) {
           inner_->load_timer_result(order.timer_axes);
+        }
+        if (order.has_overload) {
+          inner_->overload_result(order.overloads, order.dropped_block, order.stop_at);
         }
         reading_ = true;
       }

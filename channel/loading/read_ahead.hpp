@@ -82,6 +82,8 @@ class ReadAhead final : public interp::CommandSource {
   void multi_skip_result(std::span<const double> latched,
                          const interp::AxisVector& stop_at) override;
   void load_timer_result(std::uint32_t axes) override;
+  void overload_result(std::uint32_t overloads, std::uint64_t dropped_block,
+                       const interp::AxisVector& stop_at) override;
   std::optional<interp::ProgramAlarm> call(int number, std::span<const std::pair<int, double>> args,
                                            const interp::AxisVector& current) override;
   std::optional<interp::ProgramAlarm> start_mdi(const interp::AxisVector& current) override;
@@ -120,6 +122,9 @@ class ReadAhead final : public interp::CommandSource {
     std::size_t latched_count = 0;
     bool has_timer = false;  // a G10 L14 P20-P51's result: these axes met it
     std::uint32_t timer_axes = 0;
+    bool has_overload = false;  // a G10 L14 P7/P8 in-feed's result (stop_at if dropped)
+    std::uint32_t overloads = 0;
+    std::uint64_t dropped_block = 0;
     int program = 0;
     std::array<std::pair<int, double>, interp::kSubcallArgs> args{};
     std::size_t arg_count = 0;
@@ -195,6 +200,9 @@ class ReadAhead final : public interp::CommandSource {
   std::size_t latched_count_ = 0;
   bool has_timer_ = false;  // load_timer_result() waits for the resume
   std::uint32_t timer_axes_ = 0;
+  bool has_overload_ = false;  // overload_result() waits for the resume
+  std::uint32_t overloads_ = 0;
+  std::uint64_t dropped_block_ = 0;
   std::uint64_t peer_writes_posted_ = 0;
   std::size_t block_count_ = 0;
   bool has_program_ = false;

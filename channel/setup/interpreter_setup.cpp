@@ -40,6 +40,11 @@ interp::InterpreterConfig interpreter_config_for(const config::MachineConfig& ma
   c.skip_input = channel.skip_input;
   c.torque_skip_percent = channel.torque_skip_limit;
   c.torque_skip_deviation = channel.torque_skip_deviation;
+  const auto overload = [](const config::ChannelConfig::Overload& o) {
+    return interp::OverloadParams{o.retract, o.retry, o.alarm, o.variable};
+  };
+  c.cycles.drill_overload = overload(channel.drill_overload);
+  c.cycles.tap_overload = overload(channel.tap_overload);
   c.axes.clear();
   for (const std::string& name : channel.program_axes()) {
     const config::AxisConfig* a = machine.find_axis(name);

@@ -231,10 +231,11 @@ char read_address(const YamlValue& value, std::string_view letters) {
 
 ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis_refs,
                             std::vector<YamlValue>& spindle_refs) {
-  const YamlMap map = value.map({"name", "axes", "spindles", "exchange_axes", "motion", "feed_mode",
-                                 "middleware", "dialect", "polar", "cylindrical_parallel", "normal",
-                                 "inclined", "skip_input", "torque_skip", "speed_arrival",
-                                 "polygon", "cam", "egb", "reset_leaves_torque_mode"});
+  const YamlMap map = value.map(
+      {"name",      "axes",       "spindles",   "exchange_axes", "motion",
+       "feed_mode", "middleware", "dialect",    "polar",         "cylindrical_parallel",
+       "normal",    "inclined",   "skip_input", "torque_skip",   "speed_arrival",
+       "overload",  "polygon",    "cam",        "egb",           "reset_leaves_torque_mode"});
   ChannelConfig channel;
   channel.name = read_name(map.required("name"));
   read_optional_middleware(map, channel.middleware);
@@ -403,6 +404,31 @@ ChannelConfig parse_channel(const YamlValue& value, std::vector<YamlValue>& axis
     const YamlMap a = arrival->map({"tolerance", "timeout"});
     read_optional_positive(a, "tolerance", channel.speed_arrival_rpm);
     read_optional_positive(a, "timeout", channel.speed_arrival_timeout_s);
+  }
+  if (auto overload = map.optional("overload")) {
+    // Params 5100.2-5100.4 and 5113 (drilling), 5200.4-5200.6 and 5251 (tapping).
+    const YamlMap o = overload->map({"drilling", "tapping"});
+    const auto read = [](const YamlValue& v, ChannelConfig::Overload& out) {
+      const YamlMap m = v.map({"retract", "retry", "alarm", "variable"});
+      if (auto b = m.optional("retract")) {
+        out.retract = b->boolean();
+      }
+      if (auto b = m.optional("retry")) {
+        out.retry = b->boolean();
+      }
+      if (auto b = m.optional("alarm")) {
+        out.alarm = b->boolean();
+      }
+      if (auto n = m.optional("variable")) {
+        out.variable = read_int(*n, 1, 999);
+      }
+    };
+    if (auto d = o.optional("drilling")) {
+      read(*d, channel.drill_overload);
+    }
+    if (auto t = o.optional("tapping")) {
+      read(*t, channel.tap_overload);
+    }
   }
   return channel;
 }

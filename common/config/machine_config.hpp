@@ -236,6 +236,18 @@ struct ChannelConfig {
   // within this many seconds is an alarm (param 1059).
   double speed_arrival_rpm = 10.0;
   double speed_arrival_timeout_s = 10.0;
+  // G10 L14 P7 (drilling) and P8 (tapping) on an overload (`overload: {drilling, tapping}`):
+  // retract to R (params 5100.2 / 5200.4; else the alarm where the tool stopped), then retry
+  // the in-feed (5100.3 / 5200.5) or alarm (5100.4 / 5200.6), else go on with the next block;
+  // the variable that counts the overloads when the G10 gives no R (5113 / 5251; 0: none).
+  struct Overload {
+    bool retract = false;
+    bool retry = false;
+    bool alarm = false;
+    int variable = 0;
+  };
+  Overload drill_overload;
+  Overload tap_overload;
 
   // Every axis the channel programs, in slot order: its own axes, its exchange axes, then the
   // C axis of its spindle.

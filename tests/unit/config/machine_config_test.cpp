@@ -670,6 +670,34 @@ TEST(MachineConfig, TorqueModeNeedsTorqueSkipAndIsCountedInTheBusLoad) {
   }
 }
 
+// G10 L14 P7/P8: the channel's params 5100.2-5100.4/5113 and 5200.4-5200.6/5251 (decision 200).
+TEST(MachineConfig, TheChannelsOverloadSaysWhatADrillingOrTappingOverloadDoes) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["channels"][0]["overload"]["drilling"]["retract"] = true;
+    r["channels"][0]["overload"]["drilling"]["alarm"] = true;
+    r["channels"][0]["overload"]["drilling"]["variable"] = 120;
+    r["channels"][0]["overload"]["tapping"]["retract"] = true;
+    r["channels"][0]["overload"]["tapping"]["retry"] = true;
+  }));
+  const ChannelConfig& ch = config.channels[0];
+  EXPECT_TRUE(ch.drill_overload.retract);
+  EXPECT_FALSE(ch.drill_overload.retry);
+  EXPECT_TRUE(ch.drill_overload.alarm);
+  EXPECT_EQ(ch.drill_overload.variable, 120);
+  EXPECT_TRUE(ch.tap_overload.retract);
+  EXPECT_TRUE(ch.tap_overload.retry);
+  EXPECT_FALSE(ch.tap_overload.alarm);
+  EXPECT_EQ(ch.tap_overload.variable, 0);
+  const MachineConfig none = parse_machine_yaml(mutated([](YAML::Node&) {}));
+  EXPECT_FALSE(none.channels[0].drill_overload.retract);  // the parameters' 0
+  EXPECT_EQ(rejection_path(mutated(
+                [](YAML::Node& r) { r["channels"][0]["overload"]["drilling"]["variable"] = 0; })),
+            "channels[0].overload.drilling.variable");
+  EXPECT_EQ(rejection_path(mutated(
+                [](YAML::Node& r) { r["channels"][0]["overload"]["boring"]["retract"] = true; })),
+            "channels[0].overload.boring");
+}
+
 // G160 without P and Q: the channel's params 5515/5516.
 TEST(MachineConfig, TheChannelsTorqueSkipIsWhatG160TakesWithoutPAndQ) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {

@@ -1,5 +1,6 @@
 #include "axisnode/control/axis_node_controller.hpp"
 
+#include "axisnode/control/torque_units.hpp"
 #include "canopen/cia402/drive_pdos.hpp"
 
 #include <algorithm>
@@ -230,7 +231,8 @@ const AxisNodeOutput& AxisNodeController::cycle(std::uint64_t cycle,
     requested_mode_ = in.torque_mode ? kModeCst : kModeCsp;
     out_.target_torque =
         in.torque_mode
-            ? static_cast<std::int16_t>(std::clamp(std::lround(in.torque * 10.0), -10000L, 10000L))
+            ? static_cast<std::int16_t>(std::clamp(
+                  std::lround(drive_permille(in.torque, setup_.torque_scale)), -10000L, 10000L))
             : std::int16_t{0};
     out_.max_motor_speed =
         in.torque_mode
@@ -385,11 +387,11 @@ void AxisNodeController::probe_cycle(const AxisNodeInput& in) noexcept {
 
 void AxisNodeController::torque_cycle(const AxisNodeInput& in) noexcept {
   const std::uint16_t sent = out_.max_torque;
-  out_.max_torque =
-      torque_limit_ > 0.0
-          ? static_cast<std::uint16_t>(std::clamp(std::lround(torque_limit_ * 10.0), 1L,
-                                                  static_cast<long>(canopen::kNoTorqueLimit)))
-          : canopen::kNoTorqueLimit;
+  out_.max_torque = torque_limit_ > 0.0
+                        ? static_cast<std::uint16_t>(std::clamp(
+                              std::lround(drive_permille(torque_limit_, setup_.torque_scale)), 1L,
+                              static_cast<long>(canopen::kNoTorqueLimit)))
+                        : canopen::kNoTorqueLimit;
   const bool asked =
       setup_.torque_skip && out_.enabled && in.probe == ProbeRequest::torque && torque_limit_ > 0.0;
   if (!asked) {

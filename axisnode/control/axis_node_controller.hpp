@@ -51,6 +51,9 @@ struct AxisNodeSetup {
   // its TPDO1, the target torque 0x6071 and the max motor speed 0x6080 in its RPDO2 after the
   // max torque (canopen::add_torque_mode after add_torque_limit; needs torque_skip).
   bool torque_mode = false;
+  // Param 5522: the drive's 1000 per mille of torque in % of the rated torque (100: CiA 402's;
+  // torque_units.hpp).
+  double torque_scale = 100.0;
 };
 
 inline constexpr std::int8_t kModeHoming = 6;

@@ -133,6 +133,7 @@ AxisNodeRoles roles_of(const config::MachineConfig& machine, const config::AxisC
   setup.homing = axis.has_homing;
   setup.torque_skip = axis.torque_skip;
   setup.torque_mode = axis.torque_mode;
+  setup.torque_scale = axis.torque_scale;
   roles.spindle_coupling =
       coupling::SpindleCouplingSetup{machine.cycle_s(), axis.acceleration, 0.05, 1.0};
   // G51.8's lift moves no faster than the axis's rapid rate, with its acceleration.

@@ -1,5 +1,6 @@
 #include "axisnode/wire/axis_outputs.hpp"
 
+#include "axisnode/control/torque_units.hpp"
 #include "canopen/emcy_codes.hpp"
 #include "common/config/cyclic_routes.hpp"
 
@@ -178,7 +179,7 @@ void AxisOutputs::publish(std::uint64_t cycle, const AxisNode& core, const Drive
   fb.last_emcy(last_emcy);
   const bool torque = axis_.tpdo2_torque || axis_.torque_skip;  // 0x6077 in TPDO2
   fb.load_known(torque);
-  fb.load(torque ? tpdo.torque_actual / 10.0 : 0.0);  // per mille -> percent
+  fb.load(torque ? rated_percent(tpdo.torque_actual, axis_.torque_scale) : 0.0);  // param 5522
   fb.mode_display(out.mode_display);
   fb.alarm(out.alarm != AxisAlarm::none);
   fb.probe(static_cast<std::uint8_t>(out.probe));

@@ -533,6 +533,7 @@ AxisConfig parse_axis(const YamlValue& value) {
                                  "torque_mode",
                                  "torque_mode_speed",
                                  "skip_load",
+                                 "torque_scale",
                                  "exchange",
                                  "axis_sync",
                                  "oscillation",
@@ -688,6 +689,16 @@ AxisConfig parse_axis(const YamlValue& value) {
     }
     if (!axis.torque_mode) {
       speed->fail("torque_mode_speed needs torque_mode: true");
+    }
+  }
+  if (auto scale = map.optional("torque_scale")) {
+    // Param 5522: the servo's torque scaling (decision 202).
+    axis.torque_scale = scale->number();
+    if (!(axis.torque_scale >= 1.0 && axis.torque_scale <= 1000.0)) {
+      scale->fail("torque_scale is 1-1000 (% of the rated torque the drive's 1000 per mille are)");
+    }
+    if (!axis.torque_skip) {
+      scale->fail("torque_scale needs torque_skip: true (the drive's torque objects)");
     }
   }
   if (auto load = map.optional("skip_load")) {

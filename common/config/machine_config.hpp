@@ -112,6 +112,10 @@ struct AxisConfig {
   // `torque_mode_speed` (param 5521): the motor speed in torque mode where no G10 L14 P11 set
   // one, rpm (0: none).
   double torque_mode_speed = 0.0;
+  // `torque_scale` (param 5522): what the drive's torque objects (0x6071, 0x6072, 0x6077) count
+  // as 1000 per mille, in % of the motor's rated torque: 100 for a drive that counts them of
+  // its rated torque as CiA 402 says, its maximum torque's % for one that counts of that.
+  double torque_scale = 100.0;
   // `skip_load` (param 5511): the load ratio G31 P98/P99 skip at where no G10 L14 P6 set one,
   // percent of the rated torque (0: none).
   double skip_load = 0.0;

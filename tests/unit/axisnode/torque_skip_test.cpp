@@ -3,6 +3,7 @@
 // skip latches once the torque (0x6077) stands at the limit and the following error is beyond
 // the deviation, where the axis stands then, and the following-error check (alarm 2009) allows
 // the deviation on top of its limit while the limit stands.
+#include "axisnode/control/torque_units.hpp"
 #include "tests/unit/axisnode/node_drive_loop.hpp"
 
 #include <gtest/gtest.h>
@@ -21,13 +22,15 @@ namespace {
 constexpr double kCycle = 0.001;
 
 // The node and a drive whose load meets the contact at 12.0 from above.
+// `torque_scale`: param 5522 (decision 202).
 struct PressLoop : test::NodeDriveLoop {
-  explicit PressLoop(bool torque_skip)
+  explicit PressLoop(bool torque_skip, double torque_scale = 100.0)
       : NodeDriveLoop(
             [&] {
               axisnode::AxisNodeSetup s{10000.0, kCycle, 5};
               s.following_error_limit = 2.0;
               s.torque_skip = torque_skip;
+              s.torque_scale = torque_scale;
               return s;
             }(),
             [] {
@@ -86,6 +89,21 @@ TEST(AxisNodeTorqueSkip, LatchesWhereTheTorqueIsAtTheLimitAndTheErrorBeyondTheDe
   EXPECT_EQ(loop.node.output().max_torque, 500);
   EXPECT_DOUBLE_EQ(loop.drive.position(), 12.0);
   EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
+}
+
+// Param 5522 (decision 202): a drive whose 1000 per mille are 250 % of the rated torque takes
+// G160's 50 % as 200 per mille, and the skip latches where its 0x6077 reaches that.
+TEST(AxisNodeTorqueSkip, TheTorqueScaleOfParam5522ConvertsTheLimit) {
+  PressLoop loop(true, 250.0);
+  EXPECT_EQ(loop.step(pressing(12.5, 50.0, 0.5)).max_torque, 200);
+  double pos = 12.5;
+  while (pos > 10.0 && loop.node.output().probe != ProbeState::latched) {
+    pos -= 0.01;
+    loop.step(pressing(pos, 50.0, 0.5));
+  }
+  ASSERT_EQ(loop.node.output().probe, ProbeState::latched);
+  EXPECT_EQ(loop.torque, -200);  // the drive held at 200 per mille of its rated torque
+  EXPECT_EQ(axisnode::rated_percent(-200.0, 250.0), -50.0);  // what the feedback reports
 }
 
 TEST(AxisNodeTorqueSkip, DoesNotLatchWhileTheAxisMovesFreely) {

@@ -698,6 +698,27 @@ TEST(MachineConfig, TheChannelsOverloadSaysWhatADrillingOrTappingOverloadDoes) {
             "channels[0].overload.boring");
 }
 
+// Param 5522: what the drive's torque objects count as 1000 per mille (decision 202).
+TEST(MachineConfig, TheTorqueScaleIsParam5522AndNeedsTheDrivesTorque) {
+  const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
+    r["machine"]["cycle_us"] = 2000;
+    r["axes"][1]["torque_skip"] = true;
+    r["axes"][1]["torque_scale"] = 300.0;
+  }));
+  EXPECT_DOUBLE_EQ(config.axes[1].torque_scale, 300.0);
+  EXPECT_DOUBLE_EQ(config.axes[0].torque_scale, 100.0);  // CiA 402: of the rated torque
+  EXPECT_EQ(rejection_path(mutated([](YAML::Node& r) { r["axes"][1]["torque_scale"] = 300.0; })),
+            "axes[1].torque_scale");
+  for (const double bad : {0.0, 1000.5}) {
+    EXPECT_EQ(rejection_path(mutated([bad](YAML::Node& r) {
+                r["axes"][1]["torque_skip"] = true;
+                r["axes"][1]["torque_scale"] = bad;
+              })),
+              "axes[1].torque_scale")
+        << bad;
+  }
+}
+
 // G160 without P and Q: the channel's params 5515/5516.
 TEST(MachineConfig, TheChannelsTorqueSkipIsWhatG160TakesWithoutPAndQ) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {

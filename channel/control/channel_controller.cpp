@@ -497,6 +497,18 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     out_.line = m.line;
   }
   if (coordination_.skip_stopping() && planner_.idle()) {
+    // An in-feed an overload stopped presses against what stopped it, its command beyond: the
+    // command follows the axis back to where it is held, so that the block ends there and the
+    // retract starts from where the tool stands.
+    if (const std::uint32_t pressed = coordination_.overload_stopped_axes(); pressed != 0) {
+      for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
+        if ((pressed >> i) & 1U) {
+          commanded_[i] = feedback[i].act;
+        }
+      }
+      planner_.restart(commanded_, true);
+      hold_outputs(true);
+    }
     queued_.end_newest_at(commanded_);  // the skipped move ends where it stopped
   }
   block_events(m, feedback);

@@ -121,6 +121,11 @@ class ChannelCoordination {
     return skip_in(coordination::SkipPhase::stopping) ||
            (o != nullptr && o->phase == OverloadPhase::stopping);
   }
+  // The axes a G10 L14 P7/P8 in-feed watches while an overload stops it (0: none).
+  [[nodiscard]] std::uint32_t overload_stopped_axes() const noexcept {
+    const auto* o = std::get_if<OverloadStop>(&held_);
+    return o != nullptr && o->phase == OverloadPhase::stopping ? o->command.overload_axes : 0;
+  }
   // G10 L14 P7/P8 while the in-feed moves: an overload of an axis it watches stops the move
   // (channel_overload.cpp).
   void watch_overload(std::span<const coordination::AxisFeedbackView> feedback) noexcept;

@@ -1,4 +1,4 @@
-// G10 L14 P7/P8 at run time (spec dafeng L4895-5093, decision 200): a drilling or tapping
+// G10 L14 P7/P8 at run time (spec dafeng L4895-5093, decision 162): a drilling or tapping
 // cycle's in-feed, held as a read-ahead stop, runs with its axes' loads watched by the rule of
 // G10 L14 P1 (coordination::LoadMonitor over the G01 under way). On an overload the move stops
 // at the planner's reset deceleration and the tool goes back along it to the hole's R point;

@@ -147,7 +147,7 @@ struct TorqueModeStop {
 struct LockWaitStop {
   interp::Command command;
 };
-// G10 L14 P7/P8 (decision 200): a drilling or tapping cycle's in-feed watched for overload,
+// G10 L14 P7/P8 (decision 162): a drilling or tapping cycle's in-feed watched for overload,
 // queued once every block before it ended. While it moves, the loads of its axes are watched
 // as G10 L14 P0's; on an overload the move stops, the tool goes back along it to the hole's R
 // point, and then the cycle alarms, goes on with the next block (the source drops the rest of

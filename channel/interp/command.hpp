@@ -201,7 +201,7 @@ struct Command {
   bool timer_longer = false;
   std::int64_t timer_variable = 0;
   int torque_mode_p = 0;  // torque_mode: 10, 11 or 12
-  // G10 L14 P7/P8 (decision 200): a hole cycle's in-feed whose load is watched (bit i of
+  // G10 L14 P7/P8 (decision 162): a hole cycle's in-feed whose load is watched (bit i of
   // overload_axes: channel axis i at overload_loads[i] % of the rated torque, for
   // overload_filter_s seconds in a row; 0: not watched). On an overload the move stops, the
   // tool goes back along it to the hole's R point, overload_retract (mm) short of `to`, then

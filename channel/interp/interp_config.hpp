@@ -90,7 +90,7 @@ struct MacroCallTables {
 
 // The parameters the canned cycles take when their first block is not programmed (spec dafeng
 // §2.5: params 5030-5036, 5110-5111, 5130-5136, 5200-5211). Lengths physical mm (radius).
-// What a drilling (G10 L14 P7) or tapping (P8) overload does (decision 200): params
+// What a drilling (G10 L14 P7) or tapping (P8) overload does (decision 162): params
 // 5100.2/5200.4 retract (else the cycle stops where it stands, with an alarm), 5100.3/5200.5
 // retry the in-feed after the retract, 5100.4/5200.6 alarm after it (else the block ends
 // there and the program goes on); 5113/5251 the variable that counts the overloads when the

@@ -692,7 +692,7 @@ AxisConfig parse_axis(const YamlValue& value) {
     }
   }
   if (auto scale = map.optional("torque_scale")) {
-    // Param 5522: the servo's torque scaling (decision 202).
+    // Param 5522: the servo's torque scaling (decision 164).
     axis.torque_scale = scale->number();
     if (!(axis.torque_scale >= 1.0 && axis.torque_scale <= 1000.0)) {
       scale->fail("torque_scale is 1-1000 (% of the rated torque the drive's 1000 per mille are)");

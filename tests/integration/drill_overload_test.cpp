@@ -1,4 +1,4 @@
-// G10 L14 P7 through the runtime, in lockstep (decision 200): small_lathe.yaml at a 2 ms cycle
+// G10 L14 P7 through the runtime, in lockstep (decision 162): small_lathe.yaml at a 2 ms cycle
 // with Z1's drive reporting its torque (torque_skip: 0x6077 in its TPDO2) and its load meeting
 // a hard stop at Z-5 (the simulator's contact), the channel's drilling overload set as params
 // 5100.2-5100.4 say. The G83's feed runs into the stop, the drive's torque rises above the

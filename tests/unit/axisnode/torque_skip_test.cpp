@@ -22,7 +22,7 @@ namespace {
 constexpr double kCycle = 0.001;
 
 // The node and a drive whose load meets the contact at 12.0 from above.
-// `torque_scale`: param 5522 (decision 202).
+// `torque_scale`: param 5522 (decision 164).
 struct PressLoop : test::NodeDriveLoop {
   explicit PressLoop(bool torque_skip, double torque_scale = 100.0)
       : NodeDriveLoop(
@@ -91,7 +91,7 @@ TEST(AxisNodeTorqueSkip, LatchesWhereTheTorqueIsAtTheLimitAndTheErrorBeyondTheDe
   EXPECT_EQ(loop.node.output().alarm, AxisAlarm::none);
 }
 
-// Param 5522 (decision 202): a drive whose 1000 per mille are 250 % of the rated torque takes
+// Param 5522 (decision 164): a drive whose 1000 per mille are 250 % of the rated torque takes
 // G160's 50 % as 200 per mille, and the skip latches where its 0x6077 reaches that.
 TEST(AxisNodeTorqueSkip, TheTorqueScaleOfParam5522ConvertsTheLimit) {
   PressLoop loop(true, 250.0);

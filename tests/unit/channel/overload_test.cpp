@@ -1,4 +1,4 @@
-// G10 L14 P7 as a channel runs it (decision 200): the G83's in-feed runs with Z's load watched;
+// G10 L14 P7 as a channel runs it (decision 162): the G83's in-feed runs with Z's load watched;
 // an overload stops it and takes the drill back to R, then the cycle alarms (1282), goes on
 // with the next block (#R counted) or feeds in again, as params 5100.2-5100.4 say; without the
 // retract the overload is the alarm where the drill stopped. Channel 1 programs X and Z; Z's

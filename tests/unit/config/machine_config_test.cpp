@@ -670,7 +670,7 @@ TEST(MachineConfig, TorqueModeNeedsTorqueSkipAndIsCountedInTheBusLoad) {
   }
 }
 
-// G10 L14 P7/P8: the channel's params 5100.2-5100.4/5113 and 5200.4-5200.6/5251 (decision 200).
+// G10 L14 P7/P8: the channel's params 5100.2-5100.4/5113 and 5200.4-5200.6/5251 (decision 162).
 TEST(MachineConfig, TheChannelsOverloadSaysWhatADrillingOrTappingOverloadDoes) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["channels"][0]["overload"]["drilling"]["retract"] = true;
@@ -698,7 +698,7 @@ TEST(MachineConfig, TheChannelsOverloadSaysWhatADrillingOrTappingOverloadDoes) {
             "channels[0].overload.boring");
 }
 
-// Param 5522: what the drive's torque objects count as 1000 per mille (decision 202).
+// Param 5522: what the drive's torque objects count as 1000 per mille (decision 164).
 TEST(MachineConfig, TheTorqueScaleIsParam5522AndNeedsTheDrivesTorque) {
   const MachineConfig config = parse_machine_yaml(mutated([](YAML::Node& r) {
     r["machine"]["cycle_us"] = 2000;

@@ -500,12 +500,16 @@ void ChannelController::run_blocks(std::uint64_t cycle,
     // An in-feed an overload stopped presses against what stopped it, its command beyond: the
     // command follows the axis back to where it is held, so that the block ends there and the
     // retract starts from where the tool stands.
-    if (const std::uint32_t pressed = coordination_.overload_stopped_axes(); pressed != 0) {
-      for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
-        if ((pressed >> i) & 1U) {
-          commanded_[i] = feedback[i].act;
-        }
+    // Once: the planner restarts only where a command moved.
+    const std::uint32_t pressed = coordination_.overload_stopped_axes();
+    bool followed = false;
+    for (std::size_t i = 0; i < setup_.axis_count && i < feedback.size(); ++i) {
+      if (((pressed >> i) & 1U) != 0 && commanded_[i] != feedback[i].act) {
+        commanded_[i] = feedback[i].act;
+        followed = true;
       }
+    }
+    if (followed) {
       planner_.restart(commanded_, true);
       hold_outputs(true);
     }
